@@ -1,0 +1,108 @@
+//! The error collector shared by the compile passes.
+
+use crate::de::DeError;
+use crate::error::{Error, ErrorKind, Location};
+use crate::path::{Path, Segment};
+use crate::yaml::{Node, Value};
+
+/// Collects located errors while a pass walks one spanned tree.
+pub(super) struct Context<'a> {
+    pub(super) file: &'a str,
+    pub(super) tree: &'a Node,
+    pub(super) errors: Vec<Error>,
+}
+
+impl<'a> Context<'a> {
+    pub(super) fn new(file: &'a str, tree: &'a Node) -> Self {
+        Self {
+            file,
+            tree,
+            errors: Vec::new(),
+        }
+    }
+
+    /// Records an error at the deepest node of `path` that exists in the tree.
+    pub(super) fn error(&mut self, path: &Path, kind: ErrorKind) {
+        self.error_at(locate(self.tree, path), path, kind);
+    }
+
+    /// Records an error at an explicit location (a key rather than its value).
+    pub(super) fn error_at(&mut self, location: Location, path: &Path, kind: ErrorKind) {
+        self.errors.push(Error {
+            file: self.file.to_string(),
+            location,
+            path: path.to_string(),
+            kind,
+        });
+    }
+
+    /// Records an out-of-range error unless `ok`; returns `ok`.
+    pub(super) fn expect(&mut self, ok: bool, path: &Path, expected: &str, found: f64) -> bool {
+        if !ok {
+            self.error(
+                path,
+                ErrorKind::OutOfRange {
+                    expected: expected.to_string(),
+                    found: found.to_string(),
+                },
+            );
+        }
+        ok
+    }
+
+    /// Checks a finite number > 0.
+    pub(super) fn positive(&mut self, path: &Path, value: f64) -> bool {
+        self.expect(value.is_finite() && value > 0.0, path, "a number > 0", value)
+    }
+
+    /// Checks a finite number ≥ 0.
+    pub(super) fn non_negative(&mut self, path: &Path, value: f64) -> bool {
+        self.expect(value.is_finite() && value >= 0.0, path, "a number ≥ 0", value)
+    }
+
+    /// Checks a probability in [0, 1].
+    pub(super) fn probability(&mut self, path: &Path, value: f64) -> bool {
+        self.expect((0.0..=1.0).contains(&value), path, "a number from 0 to 1", value)
+    }
+
+    /// Checks a finite number.
+    pub(super) fn finite(&mut self, path: &Path, value: f64) -> bool {
+        self.expect(value.is_finite(), path, "a finite number", value)
+    }
+
+    /// Turns a deserialization error into a located [`Error`].
+    pub(super) fn de_error(&self, error: DeError) -> Error {
+        let error = error.into_inner();
+        Error {
+            file: self.file.to_string(),
+            location: error.location.unwrap_or(self.tree.location),
+            path: error.path.map(|p| p.to_string()).unwrap_or_default(),
+            kind: error.kind,
+        }
+    }
+
+    /// Returns the collected errors, or `value` when there are none.
+    pub(super) fn finish<T>(self, value: Option<T>) -> Result<T, Vec<Error>> {
+        match value {
+            Some(value) if self.errors.is_empty() => Ok(value),
+            _ => Err(self.errors),
+        }
+    }
+}
+
+/// The location of the deepest node on `path` present in `tree`.
+pub(super) fn locate(tree: &Node, path: &Path) -> Location {
+    let mut node = tree;
+    for segment in path.segments() {
+        let next = match (segment, &node.value) {
+            (Segment::Key(key), Value::Map(_)) => node.get(key),
+            (Segment::Index(i), Value::Seq(items)) => items.get(*i),
+            _ => None,
+        };
+        match next {
+            Some(next) => node = next,
+            None => break,
+        }
+    }
+    node.location
+}

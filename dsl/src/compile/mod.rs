@@ -1,0 +1,12 @@
+//! YAML text → [`Scenario`](crate::Scenario), in named passes:
+//! `yaml::parse` (spanned tree) → `de` (raw serde types, located errors) →
+//! `setup` (ranges, units, defaults) → `sweep` (one tree per point) →
+//! `requirements` (ids, checks, `where` filters) → `Scenario`.
+
+mod context;
+mod requirements;
+mod scenario;
+mod setup;
+mod sweep;
+
+pub use scenario::{Options, compile};

@@ -1,0 +1,180 @@
+//! The driver: text → tree → raw → setup per sweep point → requirements.
+
+use super::context::Context;
+use super::requirements::{references, requirements};
+use super::setup::setup;
+use super::sweep::{self, AxisNodes};
+use crate::de::from_node;
+use crate::error::{Error, ErrorKind, Errors, Location};
+use crate::model::{Assignment, Axis, Point, Scenario};
+use crate::path::Path;
+use crate::raw::RawScenario;
+use crate::yaml::{self, Node, Value};
+
+/// The language version this release reads.
+pub const LANGUAGE_VERSION: i64 = 1;
+
+/// Settings that override the file.
+#[derive(Debug, Clone, Default)]
+pub struct Options {
+    /// Replace the scenario's `seed` (the CLI's `--seed`). An error when `seed` is swept.
+    pub seed: Option<u64>,
+}
+
+/// Compiles the text of one scenario file. `file` names it in errors.
+///
+/// Returns every problem found; no problem means the scenario can run.
+pub fn compile(file: &str, source: &str, options: &Options) -> Result<Scenario, Errors> {
+    compile_inner(file, source, options).map_err(|mut errors| {
+        errors.sort_by_key(|e| e.location);
+        errors.dedup();
+        Errors(errors)
+    })
+}
+
+fn compile_inner(file: &str, source: &str, options: &Options) -> Result<Scenario, Vec<Error>> {
+    let tree = yaml::parse(source).map_err(|e| {
+        vec![Error {
+            file: file.to_string(),
+            location: e.location,
+            path: String::new(),
+            kind: e.kind,
+        }]
+    })?;
+    let mut ctx = Context::new(file, &tree);
+    check_version(&mut ctx);
+    if !ctx.errors.is_empty() {
+        return Err(ctx.errors);
+    }
+    let raw: RawScenario = from_node(&tree, &Path::root()).map_err(|e| vec![ctx.de_error(e)])?;
+    // Check the file as written before expanding the sweep, so that a problem
+    // outside the swept keys is reported once, not once per point.
+    let base = setup(&mut ctx, &raw);
+    let axes = sweep::axes(&mut ctx);
+    if let (Some(_), Some(axis)) = (options.seed, axes.iter().find(|a| a.dotted == "seed")) {
+        ctx.error_at(
+            axis.key_location,
+            &Path::root().key("sweep").key("seed"),
+            ErrorKind::Invalid("`--seed` cannot override a swept `seed`".into()),
+        );
+    }
+    if base.is_none() || !ctx.errors.is_empty() {
+        return Err(ctx.errors);
+    }
+    let points = points(file, &tree, &axes, options)?;
+    let requirements = requirements(&mut ctx, &raw.requirements, &points);
+    let references = references(&mut ctx, &raw.references, &points);
+    let sweep = axes
+        .iter()
+        .map(|a| Axis {
+            path: a.dotted.clone(),
+            values: a.values.iter().map(Node::to_json).collect(),
+        })
+        .collect();
+    ctx.finish(Some(Scenario {
+        file: file.to_string(),
+        name: raw.name,
+        description: raw.description,
+        sweep,
+        points,
+        requirements,
+        references,
+    }))
+}
+
+fn check_version(ctx: &mut Context<'_>) {
+    let root = Path::root();
+    match ctx.tree.get("sightline").map(|n| &n.value) {
+        Some(Value::Int(LANGUAGE_VERSION)) => {}
+        Some(Value::Int(other)) => ctx.error(
+            &root.key("sightline"),
+            ErrorKind::Invalid(format!(
+                "language version {other} is not supported; this sightline reads version {LANGUAGE_VERSION}"
+            )),
+        ),
+        Some(_) => ctx.error(
+            &root.key("sightline"),
+            ErrorKind::InvalidType {
+                expected: format!("the language version `{LANGUAGE_VERSION}`"),
+                found: ctx.tree.get("sightline").map(Node::describe).unwrap_or_default(),
+            },
+        ),
+        None if matches!(ctx.tree.value, Value::Map(_)) => {
+            ctx.error_at(Location::new(1, 1), &root, ErrorKind::MissingKey("sightline".into()))
+        }
+        None => ctx.error(
+            &root,
+            ErrorKind::InvalidType {
+                expected: "a scenario mapping starting with `sightline: 1`".into(),
+                found: ctx.tree.describe(),
+            },
+        ),
+    }
+}
+
+/// Compiles every sweep point (one when there is no sweep).
+fn points(file: &str, tree: &Node, axes: &[AxisNodes<'_>], options: &Options) -> Result<Vec<Point>, Vec<Error>> {
+    let mut points = Vec::new();
+    let mut errors = Vec::new();
+    for (index, choice) in sweep::choices(axes).into_iter().enumerate() {
+        let point_tree = sweep::substitute(tree, axes, &choice);
+        let mut ctx = Context::new(file, &point_tree);
+        let compiled = match from_node::<RawScenario>(&point_tree, &Path::root()) {
+            Ok(raw) => setup(&mut ctx, &raw).map(|setup| (raw, setup)),
+            Err(e) => {
+                ctx.errors.push(ctx.de_error(e));
+                None
+            }
+        };
+        match ctx.finish(compiled) {
+            Ok((raw, mut setup)) => {
+                if let Some(seed) = options.seed {
+                    setup.seed = seed;
+                }
+                let settings = settings(&raw, &setup);
+                let assignments = axes
+                    .iter()
+                    .zip(&choice)
+                    .map(|(axis, &i)| {
+                        let value = axis.values[i].to_json();
+                        Assignment {
+                            path: axis.dotted.clone(),
+                            display: sweep::display(&value),
+                            value,
+                        }
+                    })
+                    .collect();
+                points.push(Point {
+                    index,
+                    assignments,
+                    setup,
+                    settings,
+                });
+            }
+            Err(e) => errors.extend(e),
+        }
+    }
+    if errors.is_empty() { Ok(points) } else { Err(errors) }
+}
+
+/// The effective settings of a point as JSON, for `where` filters: the raw
+/// sections with serde defaults filled in, plus the resolved seed and label.
+fn settings(raw: &RawScenario, setup: &crate::model::Setup) -> serde_json::Value {
+    let mut json = serde_json::to_value(raw).expect("raw scenario types serialize to JSON");
+    let object = json.as_object_mut().expect("a scenario serializes to an object");
+    for key in [
+        "sightline",
+        "name",
+        "description",
+        "requirements",
+        "sweep",
+        "references",
+    ] {
+        object.remove(key);
+    }
+    object.insert("seed".into(), setup.seed.into());
+    if let Some(fusion) = object.get_mut("fusion").and_then(|f| f.as_object_mut()) {
+        fusion.insert("label".into(), setup.fusion.label.clone().into());
+    }
+    json
+}

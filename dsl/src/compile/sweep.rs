@@ -1,0 +1,191 @@
+//! Sweeps: axes read from the spanned tree in file order, and one tree per point
+//! with the swept values substituted, so a bad value is reported where it is written.
+
+use super::context::Context;
+use crate::error::{ErrorKind, Location};
+use crate::path::{Path, Segment};
+use crate::yaml::{Key, Node, Value};
+
+/// The most sweep points one scenario may have.
+pub const MAX_POINTS: usize = 10_000;
+
+/// Top-level sections a sweep may set.
+const SWEEPABLE: [&str; 5] = ["seed", "grid", "field", "fusion", "decision"];
+
+/// One axis as written: the path it sets and its value nodes.
+pub(super) struct AxisNodes<'a> {
+    pub(super) path: Path,
+    pub(super) dotted: String,
+    pub(super) key_location: Location,
+    pub(super) values: &'a [Node],
+}
+
+/// Reads and checks the axes of the `sweep` mapping.
+pub(super) fn axes<'a>(ctx: &mut Context<'a>) -> Vec<AxisNodes<'a>> {
+    let tree = ctx.tree;
+    let Some(Value::Map(entries)) = tree.get("sweep").map(|n| &n.value) else {
+        return Vec::new();
+    };
+    let mut axes: Vec<AxisNodes<'a>> = Vec::new();
+    for (key, node) in entries {
+        let here = Path::root().key("sweep").key(&key.name);
+        let Some(path) = Path::parse_dotted(&key.name) else {
+            ctx.error_at(
+                key.location,
+                &here,
+                ErrorKind::Invalid("expected a dotted path such as `fusion.method`".into()),
+            );
+            continue;
+        };
+        let Some(Segment::Key(section)) = path.segments().first() else {
+            continue;
+        };
+        if !SWEEPABLE.contains(&section.as_str()) {
+            ctx.error_at(
+                key.location,
+                &here,
+                ErrorKind::Invalid(format!(
+                    "cannot sweep `{section}`; a sweep sets the simulation: {}",
+                    SWEEPABLE.map(|s| format!("`{s}`")).join(", ")
+                )),
+            );
+            continue;
+        }
+        let Value::Seq(values) = &node.value else {
+            continue; // serde has already rejected a non-list
+        };
+        if values.is_empty() {
+            ctx.error(
+                &here,
+                ErrorKind::Invalid("a sweep axis needs at least one value".into()),
+            );
+            continue;
+        }
+        if let Some((i, _)) = values.iter().enumerate().find(|(i, v)| {
+            values[..*i]
+                .iter()
+                .any(|earlier| json_eq(&earlier.to_json(), &v.to_json()))
+        }) {
+            ctx.error(&here.index(i), ErrorKind::Invalid("this value is listed twice".into()));
+            continue;
+        }
+        if let Some(other) = axes
+            .iter()
+            .find(|a| is_prefix(&a.path, &path) || is_prefix(&path, &a.path))
+        {
+            ctx.error_at(
+                key.location,
+                &here,
+                ErrorKind::Invalid(format!("overlaps the sweep key `{}`", other.dotted)),
+            );
+            continue;
+        }
+        let mut probe = tree.clone();
+        if let Err(message) = set(&mut probe, path.segments(), values[0].clone(), key.location) {
+            ctx.error_at(key.location, &here, ErrorKind::Invalid(message));
+            continue;
+        }
+        axes.push(AxisNodes {
+            path,
+            dotted: key.name.clone(),
+            key_location: key.location,
+            values,
+        });
+    }
+    let count = axes.iter().try_fold(1usize, |n, a| n.checked_mul(a.values.len()));
+    if count.is_none_or(|n| n > MAX_POINTS) {
+        ctx.error(
+            &Path::root().key("sweep"),
+            ErrorKind::TooLarge(format!("the sweep has more than {MAX_POINTS} points")),
+        );
+    }
+    axes
+}
+
+/// Every choice of one value per axis, first axis outermost.
+pub(super) fn choices(axes: &[AxisNodes<'_>]) -> Vec<Vec<usize>> {
+    axes.iter().fold(vec![Vec::new()], |acc, axis| {
+        acc.iter()
+            .flat_map(|prefix| {
+                (0..axis.values.len()).map(move |i| {
+                    let mut choice = prefix.clone();
+                    choice.push(i);
+                    choice
+                })
+            })
+            .collect()
+    })
+}
+
+/// A copy of `tree` with each axis set to its chosen value.
+pub(super) fn substitute(tree: &Node, axes: &[AxisNodes<'_>], choice: &[usize]) -> Node {
+    let mut point = tree.clone();
+    for (axis, &i) in axes.iter().zip(choice) {
+        set(
+            &mut point,
+            axis.path.segments(),
+            axis.values[i].clone(),
+            axis.key_location,
+        )
+        .expect("axes() checked that every path can be set");
+    }
+    point
+}
+
+/// Sets the node at `segments`, creating missing mappings on the way.
+fn set(node: &mut Node, segments: &[Segment], value: Node, key_location: Location) -> Result<(), String> {
+    let Some((Segment::Key(first), rest)) = segments.split_first() else {
+        return Err("a sweep path names mapping keys only".into());
+    };
+    let Value::Map(entries) = &mut node.value else {
+        return Err(format!("cannot set `{first}`: its parent is not a mapping"));
+    };
+    let index = match entries.iter().position(|(k, _)| &k.name == first) {
+        Some(index) => index,
+        None => {
+            let empty = Node::new(Value::Map(Vec::new()), key_location);
+            let key = Key {
+                name: first.clone(),
+                location: key_location,
+            };
+            entries.push((key, empty));
+            entries.len() - 1
+        }
+    };
+    let child = &mut entries[index].1;
+    if rest.is_empty() {
+        *child = value;
+        Ok(())
+    } else {
+        set(child, rest, value, key_location)
+    }
+}
+
+fn is_prefix(prefix: &Path, path: &Path) -> bool {
+    path.segments().starts_with(prefix.segments())
+}
+
+/// JSON equality with numbers compared by value (`6` equals `6.0`).
+pub(super) fn json_eq(a: &serde_json::Value, b: &serde_json::Value) -> bool {
+    use serde_json::Value as J;
+    match (a, b) {
+        (J::Number(x), J::Number(y)) => x.as_f64() == y.as_f64(),
+        (J::Array(x), J::Array(y)) => x.len() == y.len() && x.iter().zip(y).all(|(a, b)| json_eq(a, b)),
+        (J::Object(x), J::Object(y)) => {
+            x.len() == y.len() && x.iter().all(|(k, v)| y.get(k).is_some_and(|w| json_eq(v, w)))
+        }
+        _ => a == b,
+    }
+}
+
+/// How a swept value shows in tables: a mapping by its `label`, a string unquoted.
+pub(super) fn display(value: &serde_json::Value) -> String {
+    match value {
+        serde_json::Value::String(s) => s.clone(),
+        serde_json::Value::Object(map) => match map.get("label") {
+            Some(serde_json::Value::String(label)) => label.clone(),
+            _ => value.to_string(),
+        },
+        other => other.to_string(),
+    }
+}

@@ -1,0 +1,34 @@
+//! sightline's scenario language: YAML text in, a typed and validated
+//! [`Scenario`] out.
+//!
+//! This crate owns the language: its syntax (a spanned YAML tree with strict
+//! core-schema scalars), its JSON Schema, its checks and its error messages. It
+//! does not read files, simulate or print: the CLI hands it text and prints the
+//! [`Errors`] it returns, each located as `file:line:col` with a YAML path.
+//!
+//! ```
+//! let text = "sightline: 1\nname: tiny\ngrid: { size: [10, 10], cell: 1 }\n\
+//!             field:\n  truth: { occupied_fraction: 0.2 }\n  sensors: { range: 8, layout: { regular: { rows: 1, cols: 2 } } }\n  masses: { gamma: 10 }\n";
+//! let scenario = sightline_dsl::compile("tiny.yaml", text, &Default::default()).unwrap();
+//! assert_eq!(scenario.points.len(), 1);
+//! assert_eq!(scenario.points[0].setup.grid.cells(), 100);
+//!
+//! let bad = text.replace("gamma: 10", "gamma: -3");
+//! let errors = sightline_dsl::compile("bad.yaml", &bad, &Default::default()).unwrap_err();
+//! assert_eq!(errors.to_string(), "bad.yaml:7:20: error: field.masses.gamma: expected a number ≥ 0, found -3");
+//! ```
+#![warn(missing_docs)]
+
+pub use compile::{Options, compile};
+pub use error::{Error, ErrorKind, Errors, Location};
+pub use model::*;
+pub use schema::{reference_markdown, schema};
+
+mod compile;
+mod de;
+mod error;
+mod model;
+mod path;
+mod raw;
+mod schema;
+mod yaml;

@@ -1,0 +1,14 @@
+//! The compiled scenario: typed, validated, defaults filled in. Nothing downstream
+//! re-validates it.
+
+mod field;
+mod fusion;
+mod requirement;
+mod scenario;
+
+pub use field::{ErrorModel, Field, Layout, Masses, Truth};
+pub use fusion::{
+    Decision, Fusion, FusionMethod, Rule, SourceCombination, Switch, SwitchMeasure, WeightScaling, Weighting,
+};
+pub use requirement::{Bound, Check, Invariant, Metric, Reference, Requirement};
+pub use scenario::{Assignment, Axis, Experiment, Grid, Point, Scenario, Setup};

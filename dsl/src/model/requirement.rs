@@ -1,0 +1,184 @@
+//! Requirements, the metrics they check, and published figures to compare with.
+
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+use crate::Location;
+
+/// A requirement with its check and the sweep points it applies to.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Requirement {
+    /// Unique id (`FIELD-ERR-01`).
+    pub id: String,
+    /// The requirement in words.
+    pub text: String,
+    /// Where the requirement starts in the file, for traceability.
+    pub location: Location,
+    /// How it is checked.
+    pub check: Check,
+    /// Indices of the points it is checked at (never empty).
+    pub points: Vec<usize>,
+}
+
+/// How a requirement is checked.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Check {
+    /// A metric compared with a threshold.
+    Metric {
+        /// The metric.
+        metric: Metric,
+        /// The threshold.
+        bound: Bound,
+    },
+    /// An invariant over every fused cell.
+    Invariant {
+        /// Which invariant.
+        invariant: Invariant,
+        /// Numerical tolerance.
+        tolerance: f64,
+    },
+}
+
+/// A threshold and its direction.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Bound {
+    /// value ≥ threshold.
+    AtLeast(f64),
+    /// value ≤ threshold.
+    AtMost(f64),
+}
+
+impl Bound {
+    /// The threshold.
+    pub fn threshold(self) -> f64 {
+        match self {
+            Self::AtLeast(t) | Self::AtMost(t) => t,
+        }
+    }
+
+    /// Signed margin: positive when `value` satisfies the bound.
+    pub fn margin(self, value: f64) -> f64 {
+        match self {
+            Self::AtLeast(t) => value - t,
+            Self::AtMost(t) => t - value,
+        }
+    }
+}
+
+/// Invariants checked over every fused cell.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum Invariant {
+    /// Every fused cell holds a mass function: each mass finite and in [0, 1], the
+    /// masses summing to 1 within the tolerance (for `bayes`: the occupancy
+    /// probability is finite and in [0, 1]).
+    MassFunction,
+}
+
+impl Invariant {
+    /// The name as written in scenario files.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::MassFunction => "mass_function",
+        }
+    }
+}
+
+/// Metrics of the field experiment. Counts are numbers of cells.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum Metric {
+    /// Share of all cells whose decided state equals the ground truth (0–1).
+    Accuracy,
+    /// Cells with no decision (p_max − p_others < θ): seed 001's Table III.
+    BelowThreshold,
+    /// `below_threshold` as a share of all cells (0–1).
+    BelowThresholdFraction,
+    /// Cells decided Occupy that are truly empty.
+    FalseAlarms,
+    /// Cells decided Empty that are truly occupied.
+    MissedDetections,
+    /// `false_alarms` + `missed_detections`: confident wrong decisions.
+    ConfidentErrors,
+    /// `confident_errors` as a share of all cells (0–1).
+    ConfidentErrorRate,
+    /// Cells decided Unknown (the Unknown mass dominates).
+    DecidedUnknown,
+    /// Cells no sensor observes.
+    Unobserved,
+    /// Mean per-cell uncertainty over observed cells (0–1): the Unknown mass for
+    /// evidential methods, the binary entropy of the occupancy probability (bits)
+    /// for `bayes`.
+    MeanUncertainty,
+    /// Mean conflict K over observed cells (evidential methods only, 0–1).
+    MeanConflict,
+    /// Largest conflict K of any cell (evidential methods only, 0–1).
+    MaxConflict,
+    /// Cells whose sources are in total conflict, K = 1 (evidential methods only).
+    TotalConflictCells,
+    /// Cells fused with the distance-weighted rule (evidential methods only).
+    WeightedCells,
+}
+
+impl Metric {
+    /// Every metric, in documentation order.
+    pub const ALL: [Metric; 14] = [
+        Self::Accuracy,
+        Self::BelowThreshold,
+        Self::BelowThresholdFraction,
+        Self::FalseAlarms,
+        Self::MissedDetections,
+        Self::ConfidentErrors,
+        Self::ConfidentErrorRate,
+        Self::DecidedUnknown,
+        Self::Unobserved,
+        Self::MeanUncertainty,
+        Self::MeanConflict,
+        Self::MaxConflict,
+        Self::TotalConflictCells,
+        Self::WeightedCells,
+    ];
+
+    /// The name as written in scenario files.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Accuracy => "accuracy",
+            Self::BelowThreshold => "below_threshold",
+            Self::BelowThresholdFraction => "below_threshold_fraction",
+            Self::FalseAlarms => "false_alarms",
+            Self::MissedDetections => "missed_detections",
+            Self::ConfidentErrors => "confident_errors",
+            Self::ConfidentErrorRate => "confident_error_rate",
+            Self::DecidedUnknown => "decided_unknown",
+            Self::Unobserved => "unobserved",
+            Self::MeanUncertainty => "mean_uncertainty",
+            Self::MeanConflict => "mean_conflict",
+            Self::MaxConflict => "max_conflict",
+            Self::TotalConflictCells => "total_conflict_cells",
+            Self::WeightedCells => "weighted_cells",
+        }
+    }
+
+    /// Whether the metric exists only for evidential (Dempster–Shafer) methods.
+    pub fn is_evidential_only(self) -> bool {
+        matches!(
+            self,
+            Self::MeanConflict | Self::MaxConflict | Self::TotalConflictCells | Self::WeightedCells
+        )
+    }
+}
+
+/// A published figure to show beside the measured one.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Reference {
+    /// Where it is published.
+    pub source: String,
+    /// The metric it reports.
+    pub metric: Metric,
+    /// The published value.
+    pub value: f64,
+    /// Indices of the points it corresponds to (never empty).
+    pub points: Vec<usize>,
+}

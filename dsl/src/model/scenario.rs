@@ -1,0 +1,121 @@
+//! The scenario as a whole: its sweep points and what each simulates.
+
+use serde::Serialize;
+
+use super::{Decision, Field, Fusion, Reference, Requirement};
+
+/// A compiled scenario file: one or more sweep points, the requirements checked on
+/// them and published figures to compare with.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Scenario {
+    /// The file as the user named it.
+    pub file: String,
+    /// Human-readable name.
+    pub name: String,
+    /// Free text describing the scenario.
+    pub description: String,
+    /// The swept settings in file order; empty without a `sweep` section.
+    pub sweep: Vec<Axis>,
+    /// Every combination of sweep values (one point without a sweep), first axis outermost.
+    pub points: Vec<Point>,
+    /// Requirements in file order.
+    pub requirements: Vec<Requirement>,
+    /// Published figures, in file order.
+    pub references: Vec<Reference>,
+}
+
+/// One swept setting and its values.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Axis {
+    /// Dotted path of the setting (`field.masses.gamma`).
+    pub path: String,
+    /// The values, as written.
+    pub values: Vec<serde_json::Value>,
+}
+
+/// One simulation: a setting of every swept path and the setup it produces.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Point {
+    /// Position in [`Scenario::points`].
+    pub index: usize,
+    /// The value of each sweep axis at this point, in axis order.
+    pub assignments: Vec<Assignment>,
+    /// What to simulate.
+    pub setup: Setup,
+    /// The effective settings (defaults filled in) as JSON, matched by `where` filters.
+    #[serde(skip)]
+    pub settings: serde_json::Value,
+}
+
+impl Point {
+    /// A short label such as `field.masses.gamma=6, fusion=Proposed`; empty without a sweep.
+    pub fn label(&self) -> String {
+        self.assignments
+            .iter()
+            .map(|a| format!("{}={}", a.path, a.display))
+            .collect::<Vec<_>>()
+            .join(", ")
+    }
+}
+
+/// A sweep axis's value at one point.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Assignment {
+    /// Dotted path of the setting.
+    pub path: String,
+    /// The value as written.
+    pub value: serde_json::Value,
+    /// The value for tables: a mapping shows its `label`, a string shows unquoted.
+    pub display: String,
+}
+
+/// Everything one simulation needs.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Setup {
+    /// Seed of every random stream.
+    pub seed: u64,
+    /// The occupancy grid.
+    pub grid: Grid,
+    /// What is simulated.
+    pub experiment: Experiment,
+    /// How evidence is fused.
+    pub fusion: Fusion,
+    /// How a fused cell is turned into a decision.
+    pub decision: Decision,
+}
+
+/// What a scenario simulates. Later language versions add worlds with roads and agents.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Experiment {
+    /// The static evidential-grid experiment of seed 001.
+    Field(Field),
+}
+
+/// A regular grid of square cells, axis-aligned in the world frame.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Grid {
+    /// World position of the lower-left corner, metres.
+    pub origin: [f64; 2],
+    /// Side of a cell, metres.
+    pub cell: f64,
+    /// Number of cells along x.
+    pub cols: usize,
+    /// Number of cells along y.
+    pub rows: usize,
+}
+
+impl Grid {
+    /// Number of cells.
+    pub fn cells(&self) -> usize {
+        self.cols * self.rows
+    }
+
+    /// World position of the centre of cell (`col`, `row`), metres.
+    pub fn cell_center(&self, col: usize, row: usize) -> [f64; 2] {
+        [
+            self.origin[0] + (col as f64 + 0.5) * self.cell,
+            self.origin[1] + (row as f64 + 0.5) * self.cell,
+        ]
+    }
+}

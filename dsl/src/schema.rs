@@ -1,0 +1,186 @@
+//! The JSON Schema of the scenario language (draft-07, which yaml-language-server
+//! reads) and the field reference generated from it.
+
+use std::fmt::Write;
+
+use schemars::generate::SchemaSettings;
+use serde_json::{Map, Value};
+
+use crate::raw::RawScenario;
+
+/// The JSON Schema of a scenario file.
+pub fn schema() -> Value {
+    SchemaSettings::draft07()
+        .into_generator()
+        .into_root_schema_for::<RawScenario>()
+        .to_value()
+}
+
+/// The field-by-field reference of the language as Markdown, generated from
+/// [`schema`]: one table per mapping (named by its YAML path), then the allowed
+/// values of every enumeration.
+pub fn reference_markdown() -> String {
+    let schema = schema();
+    let definitions = schema["definitions"].as_object().cloned().unwrap_or_default();
+    let mut out = String::from(
+        "# Scenario language reference\n\n\
+         Generated from the JSON Schema by `sightline schema --markdown`; do not edit by hand.\n\
+         Units are SI (metres, seconds) unless a field says otherwise.\n",
+    );
+    let mut enums = Vec::new();
+    let mut queue = vec![("(top level)".to_string(), schema.clone())];
+    while !queue.is_empty() {
+        let (path, object) = queue.remove(0);
+        let _ = write!(out, "\n## `{path}`\n\n");
+        if let Some(description) = object["description"].as_str() {
+            let _ = writeln!(out, "{}\n", one_line(description));
+        }
+        out.push_str("| key | type | default | description |\n|---|---|---|---|\n");
+        let required: Vec<&str> = object["required"]
+            .as_array()
+            .map(|r| r.iter().filter_map(Value::as_str).collect())
+            .unwrap_or_default();
+        for (key, property) in object["properties"].as_object().into_iter().flatten() {
+            let (type_text, target) = describe_type(property, &definitions);
+            let default = if required.contains(&key.as_str()) {
+                "required".to_string()
+            } else {
+                property
+                    .get("default")
+                    .map(|d| format!("`{d}`"))
+                    .unwrap_or_else(|| "—".into())
+            };
+            let description = property["description"].as_str().map(one_line).unwrap_or_default();
+            let _ = writeln!(out, "| `{key}` | {type_text} | {default} | {description} |");
+            match target {
+                Some(Target::Object(name, suffix)) => {
+                    let child = if path == "(top level)" {
+                        format!("{key}{suffix}")
+                    } else {
+                        format!("{path}.{key}{suffix}")
+                    };
+                    queue.push((child, definitions[&name].clone()));
+                }
+                Some(Target::Enum(name)) if !enums.contains(&name) => enums.push(name),
+                _ => {}
+            }
+        }
+    }
+    out.push_str("\n# Values\n");
+    for name in enums {
+        let definition = &definitions[&name];
+        let _ = write!(out, "\n## {name}\n\n");
+        if let Some(description) = definition["description"].as_str() {
+            let _ = writeln!(out, "{}\n", one_line(description));
+        }
+        out.push_str("| value | meaning |\n|---|---|\n");
+        for variant in definition["oneOf"].as_array().into_iter().flatten() {
+            let _ = writeln!(
+                out,
+                "| `{}` | {} |",
+                variant["const"].as_str().unwrap_or_default(),
+                variant["description"].as_str().map(one_line).unwrap_or_default()
+            );
+        }
+    }
+    out
+}
+
+/// A definition a property leads to.
+enum Target {
+    /// A mapping, and the suffix its path takes (`[]` for a list of mappings).
+    Object(String, &'static str),
+    /// An enumeration.
+    Enum(String),
+}
+
+/// The type of a property in words, and the definition it leads to.
+fn describe_type(property: &Value, definitions: &Map<String, Value>) -> (String, Option<Target>) {
+    if let Some(name) = reference(property) {
+        let definition = &definitions[&name];
+        if definition.get("oneOf").is_some() {
+            let values: Vec<String> = definition["oneOf"]
+                .as_array()
+                .into_iter()
+                .flatten()
+                .filter_map(|v| v["const"].as_str().map(|c| format!("`{c}`")))
+                .collect();
+            let anchor = name.to_lowercase();
+            return (
+                format!("[{name}](#{anchor}): {}", values.join(", ")),
+                Some(Target::Enum(name)),
+            );
+        }
+        return ("mapping".into(), Some(Target::Object(name, "")));
+    }
+    match property["type"].as_str().or_else(|| {
+        // `Option<T>` becomes `["T", "null"]`.
+        property["type"]
+            .as_array()?
+            .iter()
+            .filter_map(Value::as_str)
+            .find(|t| *t != "null")
+    }) {
+        Some("array") => {
+            let items = &property["items"];
+            if let Some(name) = reference(items) {
+                return ("list of mappings".into(), Some(Target::Object(name, "[]")));
+            }
+            let (item_type, _) = describe_type(items, definitions);
+            match (property["minItems"].as_u64(), property["maxItems"].as_u64()) {
+                (Some(2), Some(2)) => (format!("[{item_type}, {item_type}]"), None),
+                _ => (format!("list of {item_type}"), None),
+            }
+        }
+        Some("object") => ("mapping of dotted path → value".into(), None),
+        Some("integer") => ("whole number".into(), None),
+        Some(other) => (other.into(), None),
+        None => ("any".into(), None),
+    }
+}
+
+/// The definition name a property points at, through `$ref`, `allOf` or a nullable `anyOf`.
+fn reference(property: &Value) -> Option<String> {
+    if let Some(r) = property["$ref"].as_str() {
+        return r.strip_prefix("#/definitions/").map(str::to_string);
+    }
+    ["allOf", "anyOf"]
+        .iter()
+        .filter_map(|k| property[*k].as_array())
+        .flatten()
+        .find_map(reference)
+}
+
+fn one_line(text: &str) -> String {
+    text.split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ")
+        .replace('|', "\\|")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn schema_is_draft_07_and_closed() {
+        let schema = schema();
+        assert_eq!(schema["$schema"], "http://json-schema.org/draft-07/schema#");
+        assert_eq!(schema["additionalProperties"], false);
+        assert_eq!(schema["definitions"]["Masses"]["additionalProperties"], false);
+    }
+
+    #[test]
+    fn reference_names_sections_by_yaml_path() {
+        let markdown = reference_markdown();
+        for section in [
+            "## `field.masses`",
+            "## `requirements[].check`",
+            "## `fusion.switch`",
+            "## FusionMethod",
+        ] {
+            assert!(markdown.contains(section), "missing {section}");
+        }
+        assert!(markdown.contains("| `gamma` | number | required |"));
+    }
+}

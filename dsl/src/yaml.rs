@@ -1,0 +1,397 @@
+//! A spanned YAML tree: every node knows where it came from.
+//!
+//! serde loaders for YAML lose the source position once parsing is done, yet most
+//! scenario errors (an out-of-range value, a dangling reference) are found later.
+//! We build our own tree from saphyr-parser's events, keep the position of every
+//! key and value, and deserialize from the tree (see `de.rs`). Compile passes then
+//! point at any node by its YAML path.
+//!
+//! Scalars resolve by the YAML 1.2 core schema: `true`/`false`, `null`/`~`/empty,
+//! integers (decimal, `0x`, `0o`), floats (including `.inf`, `.nan`). A quoted
+//! scalar is always a string, so `"1"` never becomes a number and `no` never
+//! becomes `false`.
+
+use std::collections::HashMap;
+
+use saphyr_parser::{Event, Parser, ScalarStyle, Span, Tag};
+
+use crate::error::{ErrorKind, Location};
+
+/// One YAML value with the position of its first character.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Node {
+    pub(crate) value: Value,
+    pub(crate) location: Location,
+}
+
+/// The value of a [`Node`].
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) enum Value {
+    Null,
+    Bool(bool),
+    Int(i64),
+    Float(f64),
+    Str(String),
+    Seq(Vec<Node>),
+    /// Keys in source order; duplicates are rejected while building.
+    Map(Vec<(Key, Node)>),
+}
+
+/// A mapping key (always a string scalar) and its position.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Key {
+    pub(crate) name: String,
+    pub(crate) location: Location,
+}
+
+impl Node {
+    pub(crate) fn new(value: Value, location: Location) -> Self {
+        Self { value, location }
+    }
+
+    /// The entry for `key` when this node is a mapping that holds it.
+    pub(crate) fn get(&self, key: &str) -> Option<&Node> {
+        match &self.value {
+            Value::Map(entries) => entries.iter().find(|(k, _)| k.name == key).map(|(_, v)| v),
+            _ => None,
+        }
+    }
+
+    /// A short description of the node's type for messages ("a mapping", "string \"x\"").
+    pub(crate) fn describe(&self) -> String {
+        match &self.value {
+            Value::Null => "null".into(),
+            Value::Bool(b) => format!("boolean `{b}`"),
+            Value::Int(i) => format!("integer `{i}`"),
+            Value::Float(f) => format!("number `{f}`"),
+            Value::Str(s) => format!("string \"{s}\""),
+            Value::Seq(_) => "a list".into(),
+            Value::Map(_) => "a mapping".into(),
+        }
+    }
+
+    /// The node as JSON (for sweep values and `where` filters), keys in source order.
+    pub(crate) fn to_json(&self) -> serde_json::Value {
+        use serde_json::Value as J;
+        match &self.value {
+            Value::Null => J::Null,
+            Value::Bool(b) => J::Bool(*b),
+            Value::Int(i) => J::from(*i),
+            Value::Float(f) => serde_json::Number::from_f64(*f).map_or(J::Null, J::Number),
+            Value::Str(s) => J::String(s.clone()),
+            Value::Seq(items) => J::Array(items.iter().map(Node::to_json).collect()),
+            Value::Map(entries) => J::Object(entries.iter().map(|(k, v)| (k.name.clone(), v.to_json())).collect()),
+        }
+    }
+}
+
+/// A problem found while reading YAML text, before any scenario meaning is applied.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct ParseError {
+    pub(crate) location: Location,
+    pub(crate) kind: ErrorKind,
+}
+
+/// Parses `source` (one YAML document) into a spanned tree.
+///
+/// An empty document is an error: a scenario always has content.
+pub(crate) fn parse(source: &str) -> Result<Node, ParseError> {
+    let mut builder = Builder::default();
+    let mut parser = Parser::new_from_str(source);
+    while let Some(event) = parser.next_event() {
+        let (event, span) = event.map_err(|e| ParseError {
+            location: Location::from_marker(*e.marker()),
+            kind: ErrorKind::Syntax(e.info().to_string()),
+        })?;
+        builder.on_event(event, span)?;
+    }
+    builder.finish()
+}
+
+/// A container being filled while events arrive.
+enum Open {
+    Seq {
+        items: Vec<Node>,
+        location: Location,
+        anchor: usize,
+    },
+    Map {
+        entries: Vec<(Key, Node)>,
+        pending_key: Option<Key>,
+        location: Location,
+        anchor: usize,
+    },
+}
+
+#[derive(Default)]
+struct Builder {
+    stack: Vec<Open>,
+    anchors: HashMap<usize, Node>,
+    documents: usize,
+    root: Option<Node>,
+}
+
+impl Builder {
+    fn on_event(&mut self, event: Event<'_>, span: Span) -> Result<(), ParseError> {
+        let location = Location::from_marker(span.start);
+        match event {
+            Event::StreamStart | Event::StreamEnd | Event::DocumentEnd | Event::Nothing => Ok(()),
+            Event::DocumentStart(_) => {
+                self.documents += 1;
+                if self.documents > 1 {
+                    return Err(ParseError {
+                        location,
+                        kind: ErrorKind::Syntax("a scenario file holds one YAML document; found a second `---`".into()),
+                    });
+                }
+                Ok(())
+            }
+            Event::Alias(id) => {
+                let node = self.anchors.get(&id).cloned().ok_or_else(|| ParseError {
+                    location,
+                    kind: ErrorKind::Syntax("alias refers to an unknown anchor".into()),
+                })?;
+                self.push(node)
+            }
+            Event::Scalar(text, style, anchor, tag) => {
+                let value = resolve_scalar(&text, style, tag.as_deref()).map_err(|message| ParseError {
+                    location,
+                    kind: ErrorKind::Syntax(message),
+                })?;
+                let node = Node::new(value, location);
+                self.remember(anchor, &node);
+                self.push(node)
+            }
+            Event::SequenceStart(anchor, tag) => {
+                reject_tag(tag.as_deref(), location)?;
+                self.stack.push(Open::Seq {
+                    items: Vec::new(),
+                    location,
+                    anchor,
+                });
+                Ok(())
+            }
+            Event::MappingStart(anchor, tag) => {
+                reject_tag(tag.as_deref(), location)?;
+                self.stack.push(Open::Map {
+                    entries: Vec::new(),
+                    pending_key: None,
+                    location,
+                    anchor,
+                });
+                Ok(())
+            }
+            Event::SequenceEnd | Event::MappingEnd => {
+                let (node, anchor) = match self.stack.pop() {
+                    Some(Open::Seq {
+                        items,
+                        location,
+                        anchor,
+                    }) => (Node::new(Value::Seq(items), location), anchor),
+                    Some(Open::Map {
+                        entries,
+                        location,
+                        anchor,
+                        ..
+                    }) => (Node::new(Value::Map(entries), location), anchor),
+                    None => unreachable!("the parser balances start and end events"),
+                };
+                self.remember(anchor, &node);
+                self.push(node)
+            }
+        }
+    }
+
+    fn remember(&mut self, anchor: usize, node: &Node) {
+        if anchor != 0 {
+            self.anchors.insert(anchor, node.clone());
+        }
+    }
+
+    /// Places a finished node into its parent (or makes it the root).
+    fn push(&mut self, node: Node) -> Result<(), ParseError> {
+        match self.stack.last_mut() {
+            None => {
+                self.root = Some(node);
+                Ok(())
+            }
+            Some(Open::Seq { items, .. }) => {
+                items.push(node);
+                Ok(())
+            }
+            Some(Open::Map {
+                entries, pending_key, ..
+            }) => match pending_key.take() {
+                Some(key) => {
+                    entries.push((key, node));
+                    Ok(())
+                }
+                None => {
+                    let name = match node.value {
+                        Value::Str(s) => s,
+                        Value::Int(i) => i.to_string(),
+                        Value::Float(f) => f.to_string(),
+                        Value::Bool(b) => b.to_string(),
+                        Value::Null | Value::Seq(_) | Value::Map(_) => {
+                            return Err(ParseError {
+                                location: node.location,
+                                kind: ErrorKind::Syntax(format!(
+                                    "a mapping key must be a plain name, found {}",
+                                    node.describe()
+                                )),
+                            });
+                        }
+                    };
+                    if let Some((first, _)) = entries.iter().find(|(k, _)| k.name == name) {
+                        return Err(ParseError {
+                            location: node.location,
+                            kind: ErrorKind::DuplicateKey {
+                                key: name,
+                                first: first.location,
+                            },
+                        });
+                    }
+                    *pending_key = Some(Key {
+                        name,
+                        location: node.location,
+                    });
+                    Ok(())
+                }
+            },
+        }
+    }
+
+    fn finish(self) -> Result<Node, ParseError> {
+        self.root.ok_or(ParseError {
+            location: Location::new(1, 1),
+            kind: ErrorKind::Syntax("the file is empty; a scenario starts with `sightline: 1`".into()),
+        })
+    }
+}
+
+fn reject_tag(tag: Option<&Tag>, location: Location) -> Result<(), ParseError> {
+    match tag {
+        Some(tag) if !tag.is_yaml_core_schema() => Err(ParseError {
+            location,
+            kind: ErrorKind::Syntax(format!("YAML tags such as `{tag}` are not supported")),
+        }),
+        _ => Ok(()),
+    }
+}
+
+/// Resolves a scalar by the YAML 1.2 core schema.
+fn resolve_scalar(text: &str, style: ScalarStyle, tag: Option<&Tag>) -> Result<Value, String> {
+    if let Some(tag) = tag {
+        if !tag.is_yaml_core_schema() {
+            return Err(format!("YAML tags such as `{tag}` are not supported"));
+        }
+        if tag.suffix == "str" {
+            return Ok(Value::Str(text.to_string()));
+        }
+    }
+    if style != ScalarStyle::Plain {
+        return Ok(Value::Str(text.to_string()));
+    }
+    Ok(match text {
+        "" | "~" | "null" | "Null" | "NULL" => Value::Null,
+        "true" | "True" | "TRUE" => Value::Bool(true),
+        "false" | "False" | "FALSE" => Value::Bool(false),
+        ".inf" | ".Inf" | ".INF" | "+.inf" | "+.Inf" | "+.INF" => Value::Float(f64::INFINITY),
+        "-.inf" | "-.Inf" | "-.INF" => Value::Float(f64::NEG_INFINITY),
+        ".nan" | ".NaN" | ".NAN" => Value::Float(f64::NAN),
+        _ => parse_number(text).unwrap_or_else(|| Value::Str(text.to_string())),
+    })
+}
+
+fn parse_number(text: &str) -> Option<Value> {
+    if let Some(hex) = text.strip_prefix("0x") {
+        return i64::from_str_radix(hex, 16).ok().map(Value::Int);
+    }
+    if let Some(oct) = text.strip_prefix("0o") {
+        return i64::from_str_radix(oct, 8).ok().map(Value::Int);
+    }
+    let digits = text.strip_prefix(['-', '+']).unwrap_or(text);
+    if !digits.starts_with(|c: char| c.is_ascii_digit() || c == '.') {
+        return None;
+    }
+    if digits.bytes().all(|b| b.is_ascii_digit()) {
+        // An integer too large for i64 is still a number: keep it as a float.
+        return Some(
+            text.parse()
+                .map_or_else(|_| Value::Float(text.parse().unwrap_or(f64::NAN)), Value::Int),
+        );
+    }
+    text.parse::<f64>().ok().map(Value::Float)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn root(source: &str) -> Node {
+        parse(source).expect("valid YAML")
+    }
+
+    #[test]
+    fn scalars_resolve_by_the_core_schema() {
+        let node = root("a: 1\nb: 1.5\nc: \"1\"\nd: no\ne: true\nf: ~\ng: .inf\nh: 0x10\ni: -2e3\n");
+        let get = |k| node.get(k).unwrap().value.clone();
+        assert_eq!(get("a"), Value::Int(1));
+        assert_eq!(get("b"), Value::Float(1.5));
+        assert_eq!(get("c"), Value::Str("1".into()));
+        assert_eq!(get("d"), Value::Str("no".into()));
+        assert_eq!(get("e"), Value::Bool(true));
+        assert_eq!(get("f"), Value::Null);
+        assert_eq!(get("g"), Value::Float(f64::INFINITY));
+        assert_eq!(get("h"), Value::Int(16));
+        assert_eq!(get("i"), Value::Float(-2000.0));
+    }
+
+    #[test]
+    fn locations_are_one_based_line_and_column() {
+        let node = root("top:\n  inner: [1, 2]\n");
+        let inner = node.get("top").unwrap().get("inner").unwrap();
+        assert_eq!(inner.location, Location::new(2, 10));
+        let Value::Map(entries) = &node.get("top").unwrap().value else {
+            panic!("a mapping")
+        };
+        assert_eq!(entries[0].0.location, Location::new(2, 3));
+    }
+
+    #[test]
+    fn duplicate_keys_are_rejected_with_both_locations() {
+        let err = parse("a: 1\nb: 2\na: 3\n").unwrap_err();
+        assert_eq!(err.location, Location::new(3, 1));
+        assert_eq!(
+            err.kind,
+            ErrorKind::DuplicateKey {
+                key: "a".into(),
+                first: Location::new(1, 1)
+            }
+        );
+    }
+
+    #[test]
+    fn aliases_copy_the_anchored_node() {
+        let node = root("a: &x {k: 1}\nb: *x\n");
+        assert_eq!(node.get("b").unwrap().get("k").unwrap().value, Value::Int(1));
+    }
+
+    #[test]
+    fn syntax_errors_carry_a_location() {
+        let err = parse("a: [1, 2\nb: 3\n").unwrap_err();
+        assert!(matches!(err.kind, ErrorKind::Syntax(_)));
+        assert!(err.location.line >= 1);
+    }
+
+    #[test]
+    fn empty_and_multi_document_files_are_rejected() {
+        assert!(parse("").is_err());
+        assert!(parse("a: 1\n---\nb: 2\n").is_err());
+    }
+
+    #[test]
+    fn custom_tags_are_rejected() {
+        assert!(parse("a: !custom 1\n").is_err());
+    }
+}

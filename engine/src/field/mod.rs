@@ -1,0 +1,12 @@
+//! The static field experiment of seed 001: a ground-truth occupancy field, fixed
+//! sensors reporting a mass vector for every cell in range, fusion, decision.
+
+mod experiment;
+mod layout;
+mod sensor;
+mod truth;
+
+pub use experiment::{Job, run};
+pub use layout::positions;
+pub use sensor::SensorModel;
+pub use truth::GroundTruth;

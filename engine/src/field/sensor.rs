@@ -1,0 +1,235 @@
+//! The sensor mass model of seed 001 (§IV-A): a Dirichlet-distributed mass vector
+//! whose misdetection grows linearly with distance, ε(d; γ) = ε0 + γ/100 · d/R.
+
+use rand::RngExt;
+use rand::rngs::ChaCha8Rng;
+use rand_distr::StandardNormal;
+use sightline_dsl::{ErrorModel, Masses};
+
+use crate::fusion::{Mass, State};
+
+/// Draws one sensor's mass vector for a cell.
+#[derive(Debug, Clone)]
+pub struct SensorModel {
+    masses: Masses,
+    /// dε/dd = γ/100 / R, so that ε(d) = ε0 + slope·d.
+    slope: f64,
+    /// The Dirichlet of a reported label under [`ErrorModel::WrongLabel`] (its
+    /// parameters do not vary with distance).
+    label_dirichlet: Dirichlet,
+}
+
+impl SensorModel {
+    /// The model of `masses` for sensors of range `range` (validated by the dsl:
+    /// concentration > 0, 0 < ε0, ε(range) < 1).
+    pub fn new(masses: Masses, range: f64) -> Self {
+        Self {
+            masses,
+            slope: masses.gamma / 100.0 / range,
+            label_dirichlet: Dirichlet::new(masses.concentration, masses.epsilon0),
+        }
+    }
+
+    /// The mass vector a sensor at `distance` reports for a cell that is truly
+    /// `occupied` (or empty).
+    #[inline]
+    pub fn sample(&self, occupied: bool, distance: f64, rng: &mut ChaCha8Rng) -> Mass {
+        let epsilon = self.masses.epsilon0 + self.slope * distance;
+        let truth = if occupied { State::Occupied } else { State::Empty };
+        match self.masses.error_model {
+            ErrorModel::DirichletMean => Dirichlet::new(self.masses.concentration, epsilon).sample(truth, rng),
+            ErrorModel::WrongLabel => {
+                let u = rng.random::<f64>();
+                let label = match truth {
+                    State::Empty if u < epsilon / 2.0 => State::Occupied,
+                    State::Empty if u < epsilon => State::Unknown,
+                    State::Occupied if u < epsilon => State::Empty,
+                    _ => truth,
+                };
+                self.label_dirichlet.sample(label, rng)
+            }
+        }
+    }
+}
+
+/// Dirichlet(κ(1 − ε), κε/2, κε/2) with the large parameter on a chosen state.
+#[derive(Debug, Clone, Copy)]
+struct Dirichlet {
+    major: Gamma,
+    minor: Gamma,
+}
+
+impl Dirichlet {
+    #[inline]
+    fn new(concentration: f64, epsilon: f64) -> Self {
+        Self {
+            major: Gamma::new(concentration * (1.0 - epsilon)),
+            minor: Gamma::new(concentration * epsilon / 2.0),
+        }
+    }
+
+    /// A draw with the major parameter on `favoured`, by normalising independent
+    /// Gamma draws (Empty, Occupy, Unknown in that order).
+    #[inline]
+    fn sample(&self, favoured: State, rng: &mut ChaCha8Rng) -> Mass {
+        loop {
+            let mut draw = |state| {
+                if state == favoured {
+                    self.major.sample(rng)
+                } else {
+                    self.minor.sample(rng)
+                }
+            };
+            let (empty, occupied, unknown) = (draw(State::Empty), draw(State::Occupied), draw(State::Unknown));
+            let total = empty + occupied + unknown;
+            // Gamma draws are positive with probability 1; retrying keeps a zero
+            // total (possible only through underflow) from producing NaN.
+            if total > 0.0 {
+                let scale = 1.0 / total;
+                return Mass::new(empty * scale, occupied * scale, unknown * scale);
+            }
+        }
+    }
+}
+
+/// Gamma(shape, 1) by Marsaglia and Tsang (2000), "A simple method for generating
+/// gamma variables", with their boost Gamma(a) = Gamma(a + 1)·U^(1/a) for a < 1.
+/// The same method as rand_distr's `Gamma`, without its per-distribution setup
+/// enum, because the engine draws from a fresh shape for nearly every sample.
+#[derive(Debug, Clone, Copy)]
+struct Gamma {
+    d: f64,
+    c: f64,
+    /// 1/shape when shape < 1 (boosted), else 0.
+    inverse_small_shape: f64,
+}
+
+impl Gamma {
+    #[inline]
+    fn new(shape: f64) -> Self {
+        debug_assert!(
+            shape > 0.0 && shape.is_finite(),
+            "the dsl keeps Dirichlet parameters positive"
+        );
+        // A branch, not a select: the division is rare (shapes are ≥ 1 in the paper's setting).
+        let (large, inverse_small_shape) = if shape < 1.0 {
+            (shape + 1.0, 1.0 / shape)
+        } else {
+            (shape, 0.0)
+        };
+        let d = large - 1.0 / 3.0;
+        Self {
+            d,
+            c: 1.0 / (9.0 * d).sqrt(),
+            inverse_small_shape,
+        }
+    }
+
+    #[inline]
+    fn sample(&self, rng: &mut ChaCha8Rng) -> f64 {
+        let value = loop {
+            let x: f64 = rng.sample(StandardNormal);
+            let t = 1.0 + self.c * x;
+            if t <= 0.0 {
+                continue;
+            }
+            let v = t * t * t;
+            let u: f64 = rng.random();
+            let x2 = x * x;
+            if u < 1.0 - 0.0331 * x2 * x2 || u.ln() < 0.5 * x2 + self.d * (1.0 - v + v.ln()) {
+                break self.d * v;
+            }
+        };
+        if self.inverse_small_shape > 0.0 {
+            value * rng.random::<f64>().powf(self.inverse_small_shape)
+        } else {
+            value
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use approx::assert_relative_eq;
+
+    use super::*;
+    use crate::rng::{Purpose, stream};
+
+    fn model(error_model: ErrorModel, gamma: f64) -> SensorModel {
+        SensorModel::new(
+            Masses {
+                concentration: 32.0,
+                epsilon0: 0.0625,
+                gamma,
+                error_model,
+            },
+            200.0,
+        )
+    }
+
+    fn mean_mass(model: &SensorModel, occupied: bool, distance: f64) -> [f64; 3] {
+        let mut rng = stream(1, Purpose::Masses, 0);
+        let n = 20_000;
+        let mut sum = [0.0; 3];
+        for _ in 0..n {
+            let m = model.sample(occupied, distance, &mut rng).to_array();
+            (0..3).for_each(|i| sum[i] += m[i] / n as f64);
+        }
+        sum
+    }
+
+    /// At d = 0 both readings give Dirichlet(30, 1, 1) on a correct label: mean
+    /// (0.9375, 0.03125, 0.03125).
+    #[test]
+    fn paper_dirichlet_at_the_sensor() {
+        let mean = mean_mass(&model(ErrorModel::DirichletMean, 10.0), false, 0.0);
+        assert_relative_eq!(mean[0], 0.9375, epsilon = 0.003);
+        assert_relative_eq!(mean[1], 0.03125, epsilon = 0.002);
+    }
+
+    /// At d = R with γ = 14, ε = 0.2025: the mean puts 0.7975 on the truth.
+    #[test]
+    fn dirichlet_mean_shifts_with_distance() {
+        let mean = mean_mass(&model(ErrorModel::DirichletMean, 14.0), true, 200.0);
+        assert_relative_eq!(mean[1], 1.0 - 0.2025, epsilon = 0.005);
+        assert_relative_eq!(mean[0], 0.2025 / 2.0, epsilon = 0.005);
+    }
+
+    /// Wrong labels at d = R, γ = 14: an occupied cell is reported Empty with
+    /// probability 0.2025, so the mean Empty mass is 0.2025·0.9375 + 0.7975·0.03125.
+    #[test]
+    fn wrong_label_flips_occupied_to_empty() {
+        let mean = mean_mass(&model(ErrorModel::WrongLabel, 14.0), true, 200.0);
+        assert_relative_eq!(mean[0], 0.2025 * 0.9375 + 0.7975 * 0.03125, epsilon = 0.006);
+        assert_relative_eq!(mean[2], 0.03125, epsilon = 0.002);
+    }
+
+    /// Gamma(a) has mean a and variance a, for large and boosted small shapes.
+    #[test]
+    fn gamma_moments() {
+        let mut rng = stream(3, Purpose::Masses, 0);
+        for shape in [0.3, 1.0, 2.5, 30.0] {
+            let gamma = Gamma::new(shape);
+            let n = 40_000;
+            let draws: Vec<f64> = (0..n).map(|_| gamma.sample(&mut rng)).collect();
+            let mean = draws.iter().sum::<f64>() / n as f64;
+            let variance = draws.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / n as f64;
+            // Standard error of the mean: √(a/n) ≤ 0.028 here.
+            assert_relative_eq!(mean, shape, epsilon = 0.1_f64.max(4.0 * (shape / n as f64).sqrt()));
+            assert_relative_eq!(variance, shape, max_relative = 0.08);
+        }
+    }
+
+    #[test]
+    fn samples_are_mass_functions() {
+        let model = model(ErrorModel::DirichletMean, 14.0);
+        let mut rng = stream(2, Purpose::Masses, 0);
+        for i in 0..1000 {
+            assert!(
+                model
+                    .sample(i % 2 == 0, i as f64 / 5.0, &mut rng)
+                    .is_mass_function(1e-12)
+            );
+        }
+    }
+}

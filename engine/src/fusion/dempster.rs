@@ -1,0 +1,223 @@
+//! Dempster's rule of combination (seed 001, eq. 1) on the frame {Empty, Occupy}.
+//!
+//! For two sources the conflict is k = e₁o₂ + o₁e₂ and
+//!
+//! ```text
+//! m(E) = (e₁e₂ + e₁u₂ + u₁e₂) / (1 − k)
+//! m(O) = (o₁o₂ + o₁u₂ + u₁o₂) / (1 − k)
+//! m(Θ) = u₁u₂ / (1 − k)
+//! ```
+//!
+//! We divide by the sum of the three numerators rather than by 1 − k: the two
+//! are equal for mass functions, but the sum keeps the result normalised to the
+//! last bit when the inputs carry rounding error.
+//!
+//! **Total conflict** (k = 1: all numerators zero, e.g. {Empty} certain against
+//! {Occupy} certain) leaves the rule undefined. We return the vacuous mass
+//! (complete ignorance) with conflict 1, never NaN, and the n-source
+//! [`Combiner`] keeps it absorbing: once the sources are in total conflict no
+//! further source changes that, so the result does not depend on source order.
+
+use super::mass::Mass;
+
+/// The result of a combination: the fused mass and the conflict it discarded.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Combination {
+    /// The normalised fused mass (vacuous under total conflict).
+    pub mass: Mass,
+    /// The conflict k ∈ [0, 1].
+    pub conflict: f64,
+    /// Whether the sources are in total conflict (no agreeing product at all).
+    pub total_conflict: bool,
+}
+
+/// The unnormalised conjunctive combination: the three numerators of eq. 1.
+#[inline]
+fn conjunctive(a: Mass, b: Mass) -> Mass {
+    Mass::new(
+        a.empty * b.empty + a.empty * b.unknown + a.unknown * b.empty,
+        a.occupied * b.occupied + a.occupied * b.unknown + a.unknown * b.occupied,
+        a.unknown * b.unknown,
+    )
+}
+
+/// Scales a conjunctive result to sum to 1, or `None` under total conflict.
+#[inline]
+fn normalise(raw: Mass) -> Option<(Mass, f64)> {
+    let agreement = raw.total();
+    (agreement > 0.0).then(|| {
+        let scale = 1.0 / agreement;
+        (
+            Mass::new(raw.empty * scale, raw.occupied * scale, raw.unknown * scale),
+            agreement,
+        )
+    })
+}
+
+const TOTAL_CONFLICT: Combination = Combination {
+    mass: Mass::VACUOUS,
+    conflict: 1.0,
+    total_conflict: true,
+};
+
+/// Combines two masses with Dempster's rule.
+#[inline]
+pub fn combine(a: Mass, b: Mass) -> Combination {
+    match normalise(conjunctive(a, b)) {
+        Some((mass, _)) => Combination {
+            mass,
+            conflict: (a.empty * b.occupied + a.occupied * b.empty).min(1.0),
+            total_conflict: false,
+        },
+        None => TOTAL_CONFLICT,
+    }
+}
+
+/// Combines any number of sources with Dempster's rule, one at a time.
+///
+/// The rule is associative and commutative, so the order of [`add`](Self::add)
+/// calls does not matter (up to rounding). The accumulated conflict is the
+/// conflict of the n-source combination, K = 1 − Πⱼ(1 − kⱼ).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Combiner {
+    mass: Mass,
+    agreement: f64,
+    total_conflict: bool,
+}
+
+impl Default for Combiner {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl Combiner {
+    /// A combiner holding the vacuous mass (no evidence yet).
+    pub const fn new() -> Self {
+        Self {
+            mass: Mass::VACUOUS,
+            agreement: 1.0,
+            total_conflict: false,
+        }
+    }
+
+    /// Combines one more source into the result.
+    #[inline]
+    pub fn add(&mut self, source: Mass) {
+        if self.total_conflict {
+            return;
+        }
+        match normalise(conjunctive(self.mass, source)) {
+            Some((mass, agreement)) => {
+                self.mass = mass;
+                self.agreement *= agreement;
+            }
+            None => self.total_conflict = true,
+        }
+    }
+
+    /// The fused mass and the total conflict K.
+    pub fn finish(&self) -> Combination {
+        if self.total_conflict {
+            TOTAL_CONFLICT
+        } else {
+            Combination {
+                mass: self.mass,
+                conflict: (1.0 - self.agreement).clamp(0.0, 1.0),
+                total_conflict: false,
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use approx::assert_relative_eq;
+
+    use super::*;
+    use crate::fusion::mass::State;
+
+    fn assert_mass(actual: Mass, expected: [f64; 3]) {
+        for (a, e) in actual.to_array().iter().zip(expected) {
+            assert_relative_eq!(*a, e, epsilon = 1e-12);
+        }
+    }
+
+    /// Worked by hand from eq. 1: m₁ = (0.6, 0.3, 0.1), m₂ = (0.5, 0.2, 0.3).
+    /// k = 0.6·0.2 + 0.3·0.5 = 0.27, 1 − k = 0.73;
+    /// E: 0.30 + 0.18 + 0.05 = 0.53; O: 0.06 + 0.09 + 0.02 = 0.17; Θ: 0.03.
+    #[test]
+    fn two_sources_by_hand() {
+        let c = combine(Mass::new(0.6, 0.3, 0.1), Mass::new(0.5, 0.2, 0.3));
+        assert_relative_eq!(c.conflict, 0.27, epsilon = 1e-12);
+        assert_mass(c.mass, [0.53 / 0.73, 0.17 / 0.73, 0.03 / 0.73]);
+    }
+
+    /// Two confident, agreeing sensors as in the paper's experiment:
+    /// (0.9375, 0.03125, 0.03125) twice: k = 2·0.9375·0.03125 = 0.05859375;
+    /// E: 0.87890625 + 2·0.029296875 = 0.9375; O: 0.0029296875; Θ: 0.0009765625.
+    #[test]
+    fn agreeing_sources_sharpen() {
+        let m = Mass::new(0.9375, 0.03125, 0.03125);
+        let c = combine(m, m);
+        assert_relative_eq!(c.conflict, 0.05859375, epsilon = 1e-15);
+        let norm = 1.0 - 0.05859375;
+        assert_mass(c.mass, [0.9375 / norm, 0.0029296875 / norm, 0.0009765625 / norm]);
+    }
+
+    #[test]
+    fn total_conflict_is_vacuous_with_k_one() {
+        let c = combine(Mass::certain(State::Empty), Mass::certain(State::Occupied));
+        assert_eq!(c.mass, Mass::VACUOUS);
+        assert_eq!(c.conflict, 1.0);
+        assert!(c.total_conflict);
+    }
+
+    #[test]
+    fn total_conflict_absorbs_later_sources() {
+        let mut combiner = Combiner::new();
+        combiner.add(Mass::certain(State::Empty));
+        combiner.add(Mass::certain(State::Occupied));
+        combiner.add(Mass::new(0.5, 0.0, 0.5));
+        assert_eq!(combiner.finish(), TOTAL_CONFLICT);
+    }
+
+    /// Three sources: K = 1 − (1 − k₁)(1 − k₂) equals the conflict of the
+    /// unnormalised conjunctive combination, computed here directly.
+    #[test]
+    fn combiner_conflict_is_the_n_source_conflict() {
+        let sources = [
+            Mass::new(0.6, 0.3, 0.1),
+            Mass::new(0.5, 0.2, 0.3),
+            Mass::new(0.1, 0.7, 0.2),
+        ];
+        let mut combiner = Combiner::new();
+        sources.iter().for_each(|&m| combiner.add(m));
+        // Unnormalised conjunctive combination of the three.
+        let (mut e, mut o, mut u) = (1.0, 0.0, 0.0);
+        let mut first = true;
+        for m in sources {
+            if first {
+                (e, o, u) = (m.empty, m.occupied, m.unknown);
+                first = false;
+            } else {
+                (e, o, u) = (
+                    e * m.empty + e * m.unknown + u * m.empty,
+                    o * m.occupied + o * m.unknown + u * m.occupied,
+                    u * m.unknown,
+                );
+            }
+        }
+        let fused = combiner.finish();
+        assert_relative_eq!(fused.conflict, 1.0 - (e + o + u), epsilon = 1e-12);
+        assert_mass(fused.mass, [e / (e + o + u), o / (e + o + u), u / (e + o + u)]);
+    }
+
+    #[test]
+    fn vacuous_is_the_identity() {
+        let m = Mass::new(0.2, 0.5, 0.3);
+        let c = combine(m, Mass::VACUOUS);
+        assert_mass(c.mass, m.to_array());
+        assert_eq!(c.conflict, 0.0);
+    }
+}

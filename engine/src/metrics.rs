@@ -1,0 +1,325 @@
+//! What a field run measures, and the tallies it is computed from.
+//!
+//! Every cell falls in exactly one outcome: decided correctly, false alarm
+//! (decided Occupy, truly empty), missed detection (decided Empty, truly
+//! occupied), decided Unknown, below threshold (no decision), or unobserved (no
+//! sensor in range). Tallies are kept per grid row and merged in row order, so
+//! sums of floating-point values do not depend on the thread count.
+
+use serde::Serialize;
+use sightline_dsl::Metric;
+
+use crate::fusion::{Estimate, Mass, State, decide};
+
+/// Everything measured at one sweep point.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct FieldOutcome {
+    /// Whole-grid metrics.
+    pub metrics: FieldMetrics,
+    /// The same decisions split by distance to the nearest sensor.
+    pub bands: Vec<BandMetrics>,
+    /// The mass-function audit of every fused cell.
+    pub audit: MassAudit,
+    /// How many sensors observe each cell.
+    pub coverage: Coverage,
+}
+
+/// Whole-grid metrics of one run.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct FieldMetrics {
+    /// Cells in the grid.
+    pub cells: u64,
+    /// Cells decided correctly.
+    pub correct: u64,
+    /// Cells with no decision.
+    pub below_threshold: u64,
+    /// Cells decided Occupy that are truly empty.
+    pub false_alarms: u64,
+    /// Cells decided Empty that are truly occupied.
+    pub missed_detections: u64,
+    /// Cells decided Unknown.
+    pub decided_unknown: u64,
+    /// Cells no sensor observes.
+    pub unobserved: u64,
+    /// Mean uncertainty over observed cells (`None` when no cell is observed).
+    pub mean_uncertainty: Option<f64>,
+    /// Conflict statistics (`None` for non-evidential methods).
+    pub conflict: Option<ConflictMetrics>,
+}
+
+/// The conflict signal of an evidential run.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ConflictMetrics {
+    /// Mean conflict K over observed cells (`None` when no cell is observed).
+    pub mean: Option<f64>,
+    /// Largest conflict K of any cell.
+    pub max: f64,
+    /// Cells in total conflict (K = 1).
+    pub total_conflict_cells: u64,
+    /// Cells fused with the distance-weighted rule.
+    pub weighted_cells: u64,
+}
+
+impl FieldMetrics {
+    /// The value of `metric`, or `None` where it is not defined for this run.
+    pub fn value(&self, metric: Metric) -> Option<f64> {
+        let cells = self.cells as f64;
+        let confident_errors = (self.false_alarms + self.missed_detections) as f64;
+        Some(match metric {
+            Metric::Accuracy => self.correct as f64 / cells,
+            Metric::BelowThreshold => self.below_threshold as f64,
+            Metric::BelowThresholdFraction => self.below_threshold as f64 / cells,
+            Metric::FalseAlarms => self.false_alarms as f64,
+            Metric::MissedDetections => self.missed_detections as f64,
+            Metric::ConfidentErrors => confident_errors,
+            Metric::ConfidentErrorRate => confident_errors / cells,
+            Metric::DecidedUnknown => self.decided_unknown as f64,
+            Metric::Unobserved => self.unobserved as f64,
+            Metric::MeanUncertainty => self.mean_uncertainty?,
+            Metric::MeanConflict => self.conflict.as_ref()?.mean?,
+            Metric::MaxConflict => self.conflict.as_ref()?.max,
+            Metric::TotalConflictCells => self.conflict.as_ref()?.total_conflict_cells as f64,
+            Metric::WeightedCells => self.conflict.as_ref()?.weighted_cells as f64,
+        })
+    }
+
+    /// Every defined metric in documentation order.
+    pub fn values(&self) -> Vec<(Metric, f64)> {
+        Metric::ALL
+            .iter()
+            .filter_map(|&m| self.value(m).map(|v| (m, v)))
+            .collect()
+    }
+}
+
+/// Decisions among the cells whose nearest sensor lies in [`from`, `to`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct BandMetrics {
+    /// Lower edge, metres.
+    pub from: f64,
+    /// Upper edge, metres (`None`: unbounded).
+    pub to: Option<f64>,
+    /// Cells in the band.
+    pub cells: u64,
+    /// Share decided correctly (`None` for an empty band).
+    pub accuracy: Option<f64>,
+    /// Cells with no decision.
+    pub below_threshold: u64,
+    /// False alarms.
+    pub false_alarms: u64,
+    /// Missed detections.
+    pub missed_detections: u64,
+}
+
+/// Extremes of the fused masses, for the mass-function invariant. For `bayes`
+/// the audited vector is (1 − p, p, 0).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct MassAudit {
+    /// Fused cells audited.
+    pub cells: u64,
+    /// Cells with a NaN or infinite mass.
+    pub non_finite: u64,
+    /// Smallest finite mass of any cell (`None` when no cell was fused).
+    pub min_mass: Option<f64>,
+    /// Largest finite mass of any cell.
+    pub max_mass: Option<f64>,
+    /// Largest |Σ masses − 1| of any finite cell.
+    pub max_sum_error: f64,
+}
+
+/// Sensors per cell.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Coverage {
+    /// Number of sensors.
+    pub sensors: usize,
+    /// Fewest sensors observing a cell.
+    pub min_sources: usize,
+    /// Most sensors observing a cell.
+    pub max_sources: usize,
+    /// Mean sensors per cell.
+    pub mean_sources: f64,
+}
+
+/// Counts for one band.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+struct BandTally {
+    cells: u64,
+    correct: u64,
+    below: u64,
+    false_alarms: u64,
+    missed: u64,
+}
+
+/// Running counts of one method over part of the grid.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Tally {
+    cells: u64,
+    correct: u64,
+    below: u64,
+    false_alarms: u64,
+    missed: u64,
+    unknown: u64,
+    unobserved: u64,
+    uncertainty_sum: f64,
+    conflict_sum: f64,
+    conflict_max: f64,
+    total_conflict: u64,
+    weighted: u64,
+    bands: Vec<BandTally>,
+    audit_non_finite: u64,
+    audit_min: f64,
+    audit_max: f64,
+    audit_sum_error: f64,
+}
+
+impl Tally {
+    pub(crate) fn new(bands: usize) -> Self {
+        Self {
+            cells: 0,
+            correct: 0,
+            below: 0,
+            false_alarms: 0,
+            missed: 0,
+            unknown: 0,
+            unobserved: 0,
+            uncertainty_sum: 0.0,
+            conflict_sum: 0.0,
+            conflict_max: 0.0,
+            total_conflict: 0,
+            weighted: 0,
+            bands: vec![BandTally::default(); bands],
+            audit_non_finite: 0,
+            audit_min: f64::INFINITY,
+            audit_max: f64::NEG_INFINITY,
+            audit_sum_error: 0.0,
+        }
+    }
+
+    /// Records one cell: its band, its truth, and its estimate (`None`: unobserved).
+    #[inline]
+    pub(crate) fn record(&mut self, band: usize, occupied: bool, estimate: Option<&Estimate>, threshold: f64) {
+        self.cells += 1;
+        self.bands[band].cells += 1;
+        let Some(estimate) = estimate else {
+            self.unobserved += 1;
+            return;
+        };
+        let mass = estimate.decision_mass();
+        self.audit(mass);
+        self.uncertainty_sum += estimate.uncertainty();
+        if let Estimate::Evidential { combination, weighted } = estimate {
+            self.conflict_sum += combination.conflict;
+            self.conflict_max = self.conflict_max.max(combination.conflict);
+            self.total_conflict += u64::from(combination.total_conflict);
+            self.weighted += u64::from(*weighted);
+        }
+        let band = &mut self.bands[band];
+        match (decide(mass, threshold), occupied) {
+            (None, _) => {
+                self.below += 1;
+                band.below += 1;
+            }
+            (Some(State::Unknown), _) => self.unknown += 1,
+            (Some(State::Occupied), true) | (Some(State::Empty), false) => {
+                self.correct += 1;
+                band.correct += 1;
+            }
+            (Some(State::Occupied), false) => {
+                self.false_alarms += 1;
+                band.false_alarms += 1;
+            }
+            (Some(State::Empty), true) => {
+                self.missed += 1;
+                band.missed += 1;
+            }
+        }
+    }
+
+    fn audit(&mut self, mass: Mass) {
+        let masses = mass.to_array();
+        if masses.iter().all(|m| m.is_finite()) {
+            for m in masses {
+                self.audit_min = self.audit_min.min(m);
+                self.audit_max = self.audit_max.max(m);
+            }
+            self.audit_sum_error = self.audit_sum_error.max((mass.total() - 1.0).abs());
+        } else {
+            self.audit_non_finite += 1;
+        }
+    }
+
+    /// Adds `other`'s counts; call in a fixed order for reproducible sums.
+    pub(crate) fn merge(&mut self, other: &Tally) {
+        self.cells += other.cells;
+        self.correct += other.correct;
+        self.below += other.below;
+        self.false_alarms += other.false_alarms;
+        self.missed += other.missed;
+        self.unknown += other.unknown;
+        self.unobserved += other.unobserved;
+        self.uncertainty_sum += other.uncertainty_sum;
+        self.conflict_sum += other.conflict_sum;
+        self.conflict_max = self.conflict_max.max(other.conflict_max);
+        self.total_conflict += other.total_conflict;
+        self.weighted += other.weighted;
+        for (band, o) in self.bands.iter_mut().zip(&other.bands) {
+            band.cells += o.cells;
+            band.correct += o.correct;
+            band.below += o.below;
+            band.false_alarms += o.false_alarms;
+            band.missed += o.missed;
+        }
+        self.audit_non_finite += other.audit_non_finite;
+        self.audit_min = self.audit_min.min(other.audit_min);
+        self.audit_max = self.audit_max.max(other.audit_max);
+        self.audit_sum_error = self.audit_sum_error.max(other.audit_sum_error);
+    }
+
+    /// The metrics of the tallied cells; `edges` are the band edges, `evidential`
+    /// whether the method has a conflict signal.
+    pub(crate) fn finish(&self, edges: &[f64], evidential: bool, coverage: Coverage) -> FieldOutcome {
+        let observed = self.cells - self.unobserved;
+        let mean = |sum: f64| (observed > 0).then(|| sum / observed as f64);
+        let fused = observed > 0;
+        FieldOutcome {
+            metrics: FieldMetrics {
+                cells: self.cells,
+                correct: self.correct,
+                below_threshold: self.below,
+                false_alarms: self.false_alarms,
+                missed_detections: self.missed,
+                decided_unknown: self.unknown,
+                unobserved: self.unobserved,
+                mean_uncertainty: mean(self.uncertainty_sum),
+                conflict: evidential.then(|| ConflictMetrics {
+                    mean: mean(self.conflict_sum),
+                    max: self.conflict_max,
+                    total_conflict_cells: self.total_conflict,
+                    weighted_cells: self.weighted,
+                }),
+            },
+            bands: self
+                .bands
+                .iter()
+                .enumerate()
+                .map(|(i, b)| BandMetrics {
+                    from: if i == 0 { 0.0 } else { edges[i - 1] },
+                    to: edges.get(i).copied(),
+                    cells: b.cells,
+                    accuracy: (b.cells > 0).then(|| b.correct as f64 / b.cells as f64),
+                    below_threshold: b.below,
+                    false_alarms: b.false_alarms,
+                    missed_detections: b.missed,
+                })
+                .collect(),
+            audit: MassAudit {
+                cells: observed,
+                non_finite: self.audit_non_finite,
+                min_mass: (fused && self.audit_min.is_finite()).then_some(self.audit_min),
+                max_mass: (fused && self.audit_max.is_finite()).then_some(self.audit_max),
+                max_sum_error: self.audit_sum_error,
+            },
+            coverage,
+        }
+    }
+}

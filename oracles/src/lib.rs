@@ -1,0 +1,16 @@
+//! sightline's oracles: every requirement of a scenario checked against the
+//! measurements of a run, with the measured value, the threshold and the signed
+//! margin by which it holds or fails.
+//!
+//! This crate owns the judgement, not the measuring (that is `sightline-engine`)
+//! nor the evidence files (that is `sightline-reports`). It never prints.
+//!
+//! A requirement is checked at every sweep point it applies to; its verdict is
+//! the worst of those evaluations (an error outranks a failure, a failure a pass),
+//! and its reported value is the one with the smallest margin.
+#![warn(missing_docs)]
+
+pub use verdict::{Evaluation, Status, Verdict, check};
+
+mod check;
+mod verdict;

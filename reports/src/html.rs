@@ -1,0 +1,336 @@
+//! report.html: one self-contained page (inline CSS, no script, no network) for an
+//! assessor. The template is embedded and auto-escaped; numbers are formatted here
+//! so the template only lays them out.
+
+use minijinja::value::Serde;
+use minijinja::{Environment, UndefinedBehavior, Value, context};
+use serde::Serialize;
+
+use crate::results::{Results, Summary};
+
+const TEMPLATE: &str = include_str!("../templates/report.html");
+
+/// Metrics every sweep table shows; metrics that requirements or references use
+/// are added after them.
+const TABLE_METRICS: [&str; 7] = [
+    "accuracy",
+    "below_threshold",
+    "false_alarms",
+    "missed_detections",
+    "confident_errors",
+    "decided_unknown",
+    "mean_conflict",
+];
+
+/// Renders the report. `reproduce` is the command that re-creates the run.
+pub fn html(results: &Results, reproduce: &str) -> Result<String, minijinja::Error> {
+    let mut env = Environment::new();
+    env.set_undefined_behavior(UndefinedBehavior::Strict);
+    // The name ends in `.html`, so minijinja escapes every interpolation.
+    env.add_template("report.html", TEMPLATE)?;
+    let view = View::new(results, reproduce);
+    env.get_template("report.html")?
+        .render(context! { report => Value::from(Serde(&view)) })
+}
+
+#[derive(Serialize)]
+struct View<'a> {
+    name: &'a str,
+    description: &'a str,
+    verdict: &'static str,
+    summary: Summary,
+    provenance: Vec<(&'static str, String)>,
+    requirements: Vec<RequirementView>,
+    sweep: TableView,
+    comparisons: Vec<ComparisonView>,
+    points: Vec<PointView>,
+}
+
+#[derive(Serialize)]
+struct RequirementView {
+    id: String,
+    anchor: String,
+    text: String,
+    line: usize,
+    check: String,
+    measured: String,
+    threshold: String,
+    margin: String,
+    verdict: &'static str,
+    message: String,
+    points: Vec<EvaluationView>,
+}
+
+#[derive(Serialize)]
+struct EvaluationView {
+    label: String,
+    verdict: &'static str,
+    measured: String,
+    margin: String,
+    message: String,
+}
+
+#[derive(Serialize)]
+struct TableView {
+    head: Vec<String>,
+    rows: Vec<Vec<String>>,
+}
+
+#[derive(Serialize)]
+struct ComparisonView {
+    source: String,
+    label: String,
+    metric: &'static str,
+    published: String,
+    measured: String,
+    ratio: String,
+}
+
+#[derive(Serialize)]
+struct PointView {
+    label: String,
+    coverage: String,
+    bands: TableView,
+}
+
+impl<'a> View<'a> {
+    fn new(results: &'a Results, reproduce: &str) -> Self {
+        let points = &results.sweep.points;
+        let mut metrics: Vec<&str> = TABLE_METRICS.to_vec();
+        let used = results
+            .requirements
+            .iter()
+            .filter(|r| r.check.kind == "metric")
+            .map(|r| r.check.name)
+            .chain(results.references.iter().map(|r| r.metric));
+        for name in used {
+            if !metrics.contains(&name) {
+                metrics.push(name);
+            }
+        }
+        metrics.retain(|m| points.iter().any(|p| p.metrics.0.iter().any(|(k, _)| k == m)));
+
+        let mut head: Vec<String> = results.sweep.axes.iter().map(|a| a.path.clone()).collect();
+        for metric in &metrics {
+            head.push((*metric).to_string());
+            if results.references.iter().any(|r| r.metric == *metric) {
+                head.push(format!("{metric} (published)"));
+            }
+        }
+        let rows = points
+            .iter()
+            .map(|point| {
+                let mut row: Vec<String> = point
+                    .settings
+                    .0
+                    .iter()
+                    .map(|(_, v)| match v {
+                        serde_json::Value::String(s) => s.clone(),
+                        serde_json::Value::Object(o) => o
+                            .get("label")
+                            .and_then(|l| l.as_str())
+                            .map_or_else(|| v.to_string(), str::to_string),
+                        other => other.to_string(),
+                    })
+                    .collect();
+                for metric in &metrics {
+                    let value = point.metrics.0.iter().find(|(k, _)| k == metric).map(|(_, v)| *v);
+                    row.push(value.map_or("—".into(), number));
+                    if results.references.iter().any(|r| r.metric == *metric) {
+                        let published: Vec<String> = results
+                            .references
+                            .iter()
+                            .filter(|r| r.metric == *metric && r.points.iter().any(|p| p.point == point.index))
+                            .map(|r| number(r.published))
+                            .collect();
+                        row.push(if published.is_empty() {
+                            "—".into()
+                        } else {
+                            published.join(" / ")
+                        });
+                    }
+                }
+                row
+            })
+            .collect();
+
+        let mut provenance = vec![
+            (
+                "Tool",
+                format!(
+                    "{} {} (git {})",
+                    results.tool.name, results.tool.version, results.tool.git
+                ),
+            ),
+            ("Scenario file", results.scenario.path.clone()),
+            ("Scenario SHA-256", results.scenario.sha256.clone()),
+            (
+                "Seed",
+                results
+                    .seed
+                    .map_or_else(|| "swept (see the table)".into(), |s| s.to_string()),
+            ),
+            ("Sweep points", points.len().to_string()),
+            ("Reproduce with", reproduce.to_string()),
+        ];
+        provenance.retain(|(_, v)| !v.is_empty());
+
+        View {
+            name: &results.scenario.name,
+            description: &results.scenario.description,
+            verdict: results.verdict.name(),
+            summary: results.summary,
+            provenance,
+            requirements: results
+                .requirements
+                .iter()
+                .map(|r| RequirementView {
+                    id: r.id.clone(),
+                    anchor: format!("req-{}", r.id),
+                    text: r.text.clone(),
+                    line: r.line,
+                    check: describe_check(r.check.kind, r.check.name, r.check.relation, r.check.threshold),
+                    measured: r.value.map_or("—".into(), number),
+                    threshold: number(r.threshold),
+                    margin: r.margin.map_or("—".into(), number),
+                    verdict: r.verdict.name(),
+                    message: r.message.clone(),
+                    points: r
+                        .points
+                        .iter()
+                        .map(|p| EvaluationView {
+                            label: if p.label.is_empty() {
+                                "—".into()
+                            } else {
+                                p.label.clone()
+                            },
+                            verdict: p.verdict.name(),
+                            measured: p.value.map_or("—".into(), number),
+                            margin: p.margin.map_or("—".into(), number),
+                            message: p.message.clone(),
+                        })
+                        .collect(),
+                })
+                .collect(),
+            sweep: TableView { head, rows },
+            comparisons: results
+                .references
+                .iter()
+                .flat_map(|r| {
+                    r.points.iter().map(move |p| ComparisonView {
+                        source: r.source.clone(),
+                        label: p.label.clone(),
+                        metric: r.metric,
+                        published: number(r.published),
+                        measured: p.measured.map_or("—".into(), number),
+                        ratio: p
+                            .measured
+                            .filter(|_| r.published != 0.0)
+                            .map_or("—".into(), |m| format!("{:.2}×", m / r.published)),
+                    })
+                })
+                .collect(),
+            points: points
+                .iter()
+                .map(|p| PointView {
+                    label: if p.label.is_empty() {
+                        "the scenario".into()
+                    } else {
+                        p.label.clone()
+                    },
+                    coverage: format!(
+                        "{} sensors; {}–{} observe each cell (mean {:.2})",
+                        p.coverage.sensors, p.coverage.min_sources, p.coverage.max_sources, p.coverage.mean_sources
+                    ),
+                    bands: TableView {
+                        head: [
+                            "distance to nearest sensor",
+                            "cells",
+                            "accuracy",
+                            "below threshold",
+                            "false alarms",
+                            "missed detections",
+                        ]
+                        .map(String::from)
+                        .to_vec(),
+                        rows: p
+                            .bands
+                            .iter()
+                            .map(|b| {
+                                vec![
+                                    match b.to {
+                                        Some(to) => format!("{} – {} m", number(b.from), number(to)),
+                                        None => format!("≥ {} m", number(b.from)),
+                                    },
+                                    number(b.cells as f64),
+                                    b.accuracy.map_or("—".into(), number),
+                                    number(b.below_threshold as f64),
+                                    number(b.false_alarms as f64),
+                                    number(b.missed_detections as f64),
+                                ]
+                            })
+                            .collect(),
+                    },
+                })
+                .collect(),
+        }
+    }
+}
+
+fn describe_check(kind: &str, name: &str, relation: &str, threshold: f64) -> String {
+    match (kind, relation) {
+        ("metric", "at_least") => format!("{name} ≥ {}", number(threshold)),
+        ("metric", _) => format!("{name} ≤ {}", number(threshold)),
+        _ => format!("invariant {name} (tolerance {})", number(threshold)),
+    }
+}
+
+/// A number for people: counts with thousands separators, fractions to four
+/// decimals, tiny values in scientific notation.
+fn number(value: f64) -> String {
+    if !value.is_finite() {
+        return value.to_string();
+    }
+    if value == value.trunc() && value.abs() < 1e15 {
+        let digits = format!("{}", value.abs() as u64);
+        let mut grouped = String::new();
+        for (i, c) in digits.chars().enumerate() {
+            if i > 0 && (digits.len() - i) % 3 == 0 {
+                grouped.push(',');
+            }
+            grouped.push(c);
+        }
+        return if value < 0.0 { format!("-{grouped}") } else { grouped };
+    }
+    if value.abs() < 1e-3 {
+        format!("{value:.2e}")
+    } else if value.abs() < 10.0 {
+        format!("{value:.4}")
+    } else {
+        format!("{value:.2}")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use sightline_dsl::Metric;
+
+    use super::*;
+
+    #[test]
+    fn numbers_read_like_the_paper() {
+        assert_eq!(number(59862.0), "59,862");
+        assert_eq!(number(-1425.0), "-1,425");
+        assert_eq!(number(0.97871), "0.9787");
+        assert_eq!(number(1e-9), "1.00e-9");
+        assert_eq!(number(123.456), "123.46");
+        assert_eq!(number(0.0), "0");
+    }
+
+    #[test]
+    fn metric_list_is_known() {
+        for name in TABLE_METRICS {
+            assert!(Metric::ALL.iter().any(|m| m.name() == name), "{name}");
+        }
+    }
+}

@@ -1,0 +1,76 @@
+//! sightline's evidence: `results.json`, `junit.xml` and `report.html` of a run.
+//!
+//! This crate maps a compiled scenario, its run and its verdicts to bytes. It owns
+//! the wire formats (see [`Results`]) and the report template; it does not write
+//! files (the CLI writes them atomically) and it does not judge (that is
+//! `sightline-oracles`).
+#![warn(missing_docs)]
+
+pub use html::html;
+pub use junit::junit;
+pub use results::{
+    CheckInfo, FORMAT, MetricEntry, Ordered, PointResult, PointVerdict, Provenance, ReferencePoint, ReferenceResult,
+    RequirementResult, Results, ScenarioInfo, Summary, Sweep, Table, Tool,
+};
+
+mod html;
+mod junit;
+mod results;
+
+use sha2::{Digest, Sha256};
+use sightline_dsl::Scenario;
+use sightline_engine::Run;
+use sightline_oracles::Verdict;
+
+/// The three evidence files of one scenario, rendered in memory.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Evidence {
+    /// The assembled results.
+    pub results: Results,
+    /// `results.json`.
+    pub results_json: String,
+    /// `junit.xml`.
+    pub junit_xml: String,
+    /// `report.html`.
+    pub report_html: String,
+}
+
+/// Why evidence could not be rendered (a defect in sightline, never in the input).
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    /// The report template failed.
+    #[error("failed to render report.html: {0}")]
+    Template(#[from] minijinja::Error),
+    /// The JUnit serializer failed.
+    #[error("failed to render junit.xml: {0}")]
+    Junit(#[from] quick_junit::SerializeError),
+    /// The JSON serializer failed.
+    #[error("failed to render results.json: {0}")]
+    Json(#[from] serde_json::Error),
+}
+
+/// Renders all evidence of a run. `reproduce` is the command that re-creates it.
+pub fn render(
+    scenario: &Scenario,
+    run: &Run,
+    verdicts: &[Verdict],
+    provenance: &Provenance,
+    reproduce: &str,
+) -> Result<Evidence, Error> {
+    let results = Results::new(scenario, run, verdicts, provenance);
+    let mut results_json = serde_json::to_string_pretty(&results)?;
+    results_json.push('\n');
+    let junit_xml = junit(&results).to_string()?;
+    let report_html = html(&results, reproduce)?;
+    Ok(Evidence {
+        results,
+        results_json,
+        junit_xml,
+        report_html,
+    })
+}
+
+/// SHA-256 of `bytes` as lowercase hex.
+pub fn sha256_hex(bytes: &[u8]) -> String {
+    Sha256::digest(bytes).iter().map(|b| format!("{b:02x}")).collect()
+}

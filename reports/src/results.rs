@@ -1,0 +1,402 @@
+//! results.json: the versioned wire format of a run's evidence.
+//!
+//! Everything here is deterministic: no timestamps, no thread counts, no output
+//! paths, so the same scenario and seed give a byte-identical file.
+
+use serde::{Serialize, Serializer};
+use sightline_dsl::{Bound, Check, Scenario};
+use sightline_engine::{BandMetrics, Coverage, MassAudit, Run};
+use sightline_oracles::{Status, Verdict};
+
+/// The format identifier written into every results.json.
+pub const FORMAT: &str = "sightline-results/1";
+
+/// Where a run came from, supplied by the CLI.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Provenance {
+    /// The tool that produced the evidence.
+    pub tool: Tool,
+    /// The scenario file as the user named it.
+    pub scenario_path: String,
+    /// SHA-256 of the scenario file's bytes, lowercase hex.
+    pub scenario_sha256: String,
+}
+
+/// The tool and its build.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Tool {
+    /// `sightline`.
+    pub name: String,
+    /// The crate version.
+    pub version: String,
+    /// `git describe` of the build (`unknown` outside a checkout).
+    pub git: String,
+}
+
+/// The whole of results.json.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Results {
+    /// [`FORMAT`].
+    pub format: &'static str,
+    /// The tool.
+    pub tool: Tool,
+    /// The scenario.
+    pub scenario: ScenarioInfo,
+    /// The seed, when every point shares one (`null` when the seed is swept).
+    pub seed: Option<u64>,
+    /// The overall verdict: the worst requirement verdict (pass with no requirements).
+    pub verdict: Status,
+    /// Requirement counts.
+    pub summary: Summary,
+    /// One entry per requirement, in file order.
+    pub requirements: Vec<RequirementResult>,
+    /// Metrics: numbers for a scenario without sweep, tables over the sweep otherwise.
+    pub metrics: Ordered<MetricEntry>,
+    /// Every sweep point and its measurements.
+    pub sweep: Sweep,
+    /// Published figures beside the measured values.
+    pub references: Vec<ReferenceResult>,
+}
+
+/// The scenario file.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ScenarioInfo {
+    /// The path as given.
+    pub path: String,
+    /// SHA-256 of its bytes.
+    pub sha256: String,
+    /// Its `name`.
+    pub name: String,
+    /// Its `description`.
+    pub description: String,
+}
+
+/// Requirement counts by verdict.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Summary {
+    /// All requirements.
+    pub requirements: usize,
+    /// Passed.
+    pub passed: usize,
+    /// Failed.
+    pub failed: usize,
+    /// Could not be checked.
+    pub errors: usize,
+}
+
+/// One requirement's verdict and the evidence for it.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RequirementResult {
+    /// The id.
+    pub id: String,
+    /// The text.
+    pub text: String,
+    /// Line of the requirement in the scenario file.
+    pub line: usize,
+    /// The check as written.
+    pub check: CheckInfo,
+    /// The verdict.
+    pub verdict: Status,
+    /// The deciding measured value (smallest margin).
+    pub value: Option<f64>,
+    /// The threshold (for invariants: the tolerance).
+    pub threshold: f64,
+    /// The deciding margin (≥ 0 holds).
+    pub margin: Option<f64>,
+    /// The deciding check in words.
+    pub message: String,
+    /// Every point it was checked at.
+    pub points: Vec<PointVerdict>,
+}
+
+/// A check in the form it was written.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CheckInfo {
+    /// `metric` or `invariant`.
+    pub kind: &'static str,
+    /// The metric or invariant name.
+    pub name: &'static str,
+    /// `at_least`, `at_most` or `tolerance`.
+    pub relation: &'static str,
+    /// The threshold or tolerance.
+    pub threshold: f64,
+}
+
+/// A requirement checked at one point.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PointVerdict {
+    /// The point index.
+    pub point: usize,
+    /// The point's sweep label (empty without a sweep).
+    pub label: String,
+    /// The verdict at this point.
+    pub verdict: Status,
+    /// The measured value.
+    pub value: Option<f64>,
+    /// The margin.
+    pub margin: Option<f64>,
+    /// The check in words.
+    pub message: String,
+}
+
+/// A metric in the top-level `metrics` map.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(untagged)]
+pub enum MetricEntry {
+    /// The value of a scenario without sweep.
+    Number(f64),
+    /// The values over a sweep.
+    Table(Table),
+}
+
+/// A metric over the sweep: one row per point, the axis values then the metric
+/// (`null` where it is undefined).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Table {
+    /// The axis paths, then `value`.
+    pub columns: Vec<String>,
+    /// One row per point.
+    pub rows: Vec<Vec<serde_json::Value>>,
+}
+
+/// The sweep: its axes and every point.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Sweep {
+    /// The swept paths and their values.
+    pub axes: Vec<sightline_dsl::Axis>,
+    /// One entry per point.
+    pub points: Vec<PointResult>,
+}
+
+/// Everything measured at one point.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PointResult {
+    /// The index.
+    pub index: usize,
+    /// The sweep label.
+    pub label: String,
+    /// Each axis's value.
+    pub settings: Ordered<serde_json::Value>,
+    /// The seed.
+    pub seed: u64,
+    /// The fusion method.
+    pub method: &'static str,
+    /// The fusion label.
+    pub fusion: String,
+    /// Every defined metric.
+    pub metrics: Ordered<f64>,
+    /// Metrics by distance to the nearest sensor.
+    pub bands: Vec<BandMetrics>,
+    /// Sensors per cell.
+    pub coverage: Coverage,
+    /// The mass audit.
+    pub audit: MassAudit,
+}
+
+/// A published figure and the measured values it compares with.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ReferenceResult {
+    /// Where it is published.
+    pub source: String,
+    /// The metric.
+    pub metric: &'static str,
+    /// The published value.
+    pub published: f64,
+    /// The measured value at each matching point.
+    pub points: Vec<ReferencePoint>,
+}
+
+/// A measured value beside a published one.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ReferencePoint {
+    /// The point index.
+    pub point: usize,
+    /// The point's label.
+    pub label: String,
+    /// The measured value (`null` where undefined).
+    pub measured: Option<f64>,
+}
+
+/// A map that serializes its entries in insertion order.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Ordered<T>(pub Vec<(String, T)>);
+
+impl<T: Serialize> Serialize for Ordered<T> {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.collect_map(self.0.iter().map(|(k, v)| (k, v)))
+    }
+}
+
+impl Results {
+    /// Assembles the results of a run.
+    pub fn new(scenario: &Scenario, run: &Run, verdicts: &[Verdict], provenance: &Provenance) -> Self {
+        let labels: Vec<String> = scenario.points.iter().map(|p| p.label()).collect();
+        let requirements: Vec<RequirementResult> = scenario
+            .requirements
+            .iter()
+            .zip(verdicts)
+            .map(|(requirement, verdict)| RequirementResult {
+                id: requirement.id.clone(),
+                text: requirement.text.clone(),
+                line: requirement.location.line,
+                check: check_info(&requirement.check),
+                verdict: verdict.status,
+                value: verdict.decisive.value,
+                threshold: verdict.threshold,
+                margin: verdict.decisive.margin,
+                message: verdict.decisive.message.clone(),
+                points: verdict
+                    .evaluations
+                    .iter()
+                    .map(|e| PointVerdict {
+                        point: e.point,
+                        label: labels[e.point].clone(),
+                        verdict: e.status,
+                        value: e.value,
+                        margin: e.margin,
+                        message: e.message.clone(),
+                    })
+                    .collect(),
+            })
+            .collect();
+        let count = |status| verdicts.iter().filter(|v| v.status == status).count();
+        let seeds: Vec<u64> = scenario.points.iter().map(|p| p.setup.seed).collect();
+        Results {
+            format: FORMAT,
+            tool: provenance.tool.clone(),
+            scenario: ScenarioInfo {
+                path: provenance.scenario_path.clone(),
+                sha256: provenance.scenario_sha256.clone(),
+                name: scenario.name.clone(),
+                description: scenario.description.clone(),
+            },
+            seed: seeds.iter().all(|&s| s == seeds[0]).then_some(seeds[0]),
+            verdict: verdicts.iter().map(|v| v.status).max().unwrap_or(Status::Pass),
+            summary: Summary {
+                requirements: verdicts.len(),
+                passed: count(Status::Pass),
+                failed: count(Status::Fail),
+                errors: count(Status::Error),
+            },
+            requirements,
+            metrics: metrics(scenario, run),
+            sweep: Sweep {
+                axes: scenario.sweep.clone(),
+                points: scenario
+                    .points
+                    .iter()
+                    .zip(&run.points)
+                    .map(|(point, outcome)| PointResult {
+                        index: point.index,
+                        label: point.label(),
+                        settings: Ordered(
+                            point
+                                .assignments
+                                .iter()
+                                .map(|a| (a.path.clone(), a.value.clone()))
+                                .collect(),
+                        ),
+                        seed: point.setup.seed,
+                        method: point.setup.fusion.rule.method().name(),
+                        fusion: point.setup.fusion.label.clone(),
+                        metrics: Ordered(
+                            outcome
+                                .metrics
+                                .values()
+                                .into_iter()
+                                .map(|(m, v)| (m.name().to_string(), v))
+                                .collect(),
+                        ),
+                        bands: outcome.bands.clone(),
+                        coverage: outcome.coverage,
+                        audit: outcome.audit,
+                    })
+                    .collect(),
+            },
+            references: scenario
+                .references
+                .iter()
+                .map(|r| ReferenceResult {
+                    source: r.source.clone(),
+                    metric: r.metric.name(),
+                    published: r.value,
+                    points: r
+                        .points
+                        .iter()
+                        .map(|&p| ReferencePoint {
+                            point: p,
+                            label: labels[p].clone(),
+                            measured: run.points[p].metrics.value(r.metric),
+                        })
+                        .collect(),
+                })
+                .collect(),
+        }
+    }
+}
+
+fn check_info(check: &Check) -> CheckInfo {
+    match *check {
+        Check::Metric { metric, bound } => CheckInfo {
+            kind: "metric",
+            name: metric.name(),
+            relation: match bound {
+                Bound::AtLeast(_) => "at_least",
+                Bound::AtMost(_) => "at_most",
+            },
+            threshold: bound.threshold(),
+        },
+        Check::Invariant { invariant, tolerance } => CheckInfo {
+            kind: "invariant",
+            name: invariant.name(),
+            relation: "tolerance",
+            threshold: tolerance,
+        },
+    }
+}
+
+/// Top-level metrics: numbers without a sweep, one table per metric with one.
+fn metrics(scenario: &Scenario, run: &Run) -> Ordered<MetricEntry> {
+    if scenario.sweep.is_empty() {
+        let values = run.points[0].metrics.values();
+        return Ordered(
+            values
+                .into_iter()
+                .map(|(m, v)| (m.name().to_string(), MetricEntry::Number(v)))
+                .collect(),
+        );
+    }
+    let mut columns: Vec<String> = scenario.sweep.iter().map(|a| a.path.clone()).collect();
+    columns.push("value".into());
+    Ordered(
+        sightline_dsl::Metric::ALL
+            .iter()
+            .filter(|&&m| run.points.iter().any(|o| o.metrics.value(m).is_some()))
+            .map(|&m| {
+                let rows = scenario
+                    .points
+                    .iter()
+                    .zip(&run.points)
+                    .map(|(point, outcome)| {
+                        let mut row: Vec<serde_json::Value> =
+                            point.assignments.iter().map(|a| a.value.clone()).collect();
+                        row.push(
+                            outcome
+                                .metrics
+                                .value(m)
+                                .map_or(serde_json::Value::Null, serde_json::Value::from),
+                        );
+                        row
+                    })
+                    .collect();
+                (
+                    m.name().to_string(),
+                    MetricEntry::Table(Table {
+                        columns: columns.clone(),
+                        rows,
+                    }),
+                )
+            })
+            .collect(),
+    )
+}

@@ -1,0 +1,25 @@
+//! `sightline check FILE…`
+
+use std::path::PathBuf;
+
+use crate::exit::Exit;
+use crate::input::load_all;
+
+/// Validates every file; prints one line per valid file, every error otherwise.
+pub fn check(files: &[PathBuf]) -> Exit {
+    let Some(inputs) = load_all(files, &Default::default()) else {
+        return Exit::Invalid;
+    };
+    for input in inputs {
+        let scenario = &input.scenario;
+        println!(
+            "{}: ok ({} sweep point{}, {} requirement{})",
+            input.path.display(),
+            scenario.points.len(),
+            if scenario.points.len() == 1 { "" } else { "s" },
+            scenario.requirements.len(),
+            if scenario.requirements.len() == 1 { "" } else { "s" },
+        );
+    }
+    Exit::Pass
+}

@@ -1,0 +1,17 @@
+//! One module per subcommand.
+
+mod check;
+mod run;
+mod schema;
+
+use crate::cli::{Cli, Command};
+use crate::exit::Exit;
+
+/// Runs the parsed command. `Err` is an internal error (exit 3).
+pub fn dispatch(cli: Cli) -> anyhow::Result<Exit> {
+    match cli.command {
+        Command::Run(args) => run::run(&args),
+        Command::Check { files } => Ok(check::check(&files)),
+        Command::Schema { markdown } => schema::schema(markdown),
+    }
+}

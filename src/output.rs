@@ -1,0 +1,37 @@
+//! Writing evidence files atomically: each file is written to a temporary file in
+//! its directory and renamed into place, so a reader never sees half a file.
+
+use std::io::Write;
+use std::path::Path;
+
+use anyhow::Context;
+
+/// Writes every (name, contents) pair into `dir`, creating it if needed. All
+/// temporary files are complete before the first is renamed.
+pub fn write_atomically(dir: &Path, files: &[(&str, &str)]) -> anyhow::Result<()> {
+    std::fs::create_dir_all(dir).with_context(|| format!("failed to create {}", dir.display()))?;
+    let mut staged = Vec::new();
+    for (name, contents) in files {
+        let mut builder = tempfile::Builder::new();
+        builder.prefix(".sightline-");
+        // Evidence is meant to be read by others (CI artefacts, assessors), not
+        // kept private as temporary files are by default.
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt;
+            builder.permissions(std::fs::Permissions::from_mode(0o644));
+        }
+        let mut file = builder
+            .tempfile_in(dir)
+            .with_context(|| format!("failed to create a temporary file in {}", dir.display()))?;
+        file.write_all(contents.as_bytes())
+            .and_then(|()| file.as_file().sync_all())
+            .with_context(|| format!("failed to write {}", dir.join(name).display()))?;
+        staged.push((file, dir.join(name)));
+    }
+    for (file, path) in staged {
+        file.persist(&path)
+            .with_context(|| format!("failed to write {}", path.display()))?;
+    }
+    Ok(())
+}
