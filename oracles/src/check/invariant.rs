@@ -3,6 +3,7 @@
 use sightline_dsl::Invariant;
 use sightline_engine::MassAudit;
 
+use super::short;
 use crate::Status;
 
 /// Checks the mass-function invariant from the run's audit: no NaN or infinite
@@ -39,8 +40,12 @@ fn mass_function(tolerance: f64, audit: &MassAudit) -> (Status, Option<f64>, Opt
         .min(1.0 + tolerance - max);
     let status = if margin >= 0.0 { Status::Pass } else { Status::Fail };
     let message = format!(
-        "over {} fused cells: masses in [{min}, {max}], largest |Σm − 1| = {} (tolerance {tolerance})",
-        audit.cells, audit.max_sum_error
+        "over {} fused cells: masses in [{}, {}], largest |Σm − 1| = {} (tolerance {})",
+        audit.cells,
+        short(min),
+        short(max),
+        short(audit.max_sum_error),
+        short(tolerance)
     );
     (status, Some(audit.max_sum_error), Some(margin), message)
 }

@@ -3,6 +3,7 @@
 use sightline_dsl::{Bound, Metric};
 use sightline_engine::FieldMetrics;
 
+use super::short;
 use crate::Status;
 
 /// Compares `metric` with `bound`: passes when the margin is ≥ 0.
@@ -33,8 +34,10 @@ pub(crate) fn evaluate(
     };
     let status = if holds { Status::Pass } else { Status::Fail };
     let message = format!(
-        "{name} = {value} {relation} {threshold} (required {wanted} {threshold}; margin {margin})",
-        threshold = bound.threshold()
+        "{name} = {} {relation} {threshold} (required {wanted} {threshold}; margin {})",
+        short(value),
+        short(margin),
+        threshold = short(bound.threshold())
     );
     (status, Some(value), Some(margin), message)
 }
