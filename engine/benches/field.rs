@@ -28,7 +28,8 @@ fn field(c: &mut Criterion) {
     group.sample_size(10);
     for error_model in ["dirichlet_mean", "wrong_label"] {
         let text = SCENARIO.replace("ERROR_MODEL", error_model);
-        let scenario = sightline_dsl::compile("bench.yaml", &text, &Default::default()).expect("the bench scenario is valid");
+        let scenario =
+            sightline_dsl::compile("bench.yaml", &text, &Default::default()).expect("the bench scenario is valid");
         group.bench_function(error_model, |b| b.iter(|| simulate(&scenario)));
     }
     group.finish();

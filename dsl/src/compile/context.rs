@@ -82,10 +82,19 @@ impl<'a> Context<'a> {
     }
 
     /// Returns the collected errors, or `value` when there are none.
-    pub(super) fn finish<T>(self, value: Option<T>) -> Result<T, Vec<Error>> {
+    pub(super) fn finish<T>(mut self, value: Option<T>) -> Result<T, Vec<Error>> {
         match value {
             Some(value) if self.errors.is_empty() => Ok(value),
-            _ => Err(self.errors),
+            _ => {
+                if self.errors.is_empty() {
+                    // Every pass records why it gives up; never fail silently if one does not.
+                    self.error(
+                        &Path::root(),
+                        ErrorKind::Invalid("the scenario could not be compiled (a defect in sightline)".into()),
+                    );
+                }
+                Err(self.errors)
+            }
         }
     }
 }

@@ -13,8 +13,13 @@ use crate::raw::{RawCheck, RawReference, RawRequirement};
 /// Tolerance of an invariant check when the file gives none.
 pub const DEFAULT_TOLERANCE: f64 = 1e-9;
 
-/// Compiles the requirements against the compiled points.
-pub(super) fn requirements(ctx: &mut Context<'_>, raw: &[RawRequirement], points: &[Point]) -> Vec<Requirement> {
+/// Compiles the requirements against the compiled points. Without points (the
+/// setup is invalid) only what does not depend on them is checked.
+pub(super) fn requirements(
+    ctx: &mut Context<'_>,
+    raw: &[RawRequirement],
+    points: Option<&[Point]>,
+) -> Vec<Requirement> {
     let list = Path::root().key("requirements");
     let mut first_seen: HashMap<&str, Location> = HashMap::new();
     let mut compiled = Vec::new();
@@ -48,6 +53,9 @@ pub(super) fn requirements(ctx: &mut Context<'_>, raw: &[RawRequirement], points
             );
         }
         let check = check(ctx, &requirement.check, &path.key("check"));
+        let Some(points) = points else {
+            continue;
+        };
         let selected = select(ctx, &requirement.filter, points, &path.key("where"));
         if let (Some(check), Some(selected)) = (check, selected) {
             if let Check::Metric { metric, .. } = check
@@ -67,8 +75,8 @@ pub(super) fn requirements(ctx: &mut Context<'_>, raw: &[RawRequirement], points
     compiled
 }
 
-/// Compiles the published figures against the compiled points.
-pub(super) fn references(ctx: &mut Context<'_>, raw: &[RawReference], points: &[Point]) -> Vec<Reference> {
+/// Compiles the published figures against the compiled points (when there are any).
+pub(super) fn references(ctx: &mut Context<'_>, raw: &[RawReference], points: Option<&[Point]>) -> Vec<Reference> {
     let list = Path::root().key("references");
     let mut compiled = Vec::new();
     for (i, reference) in raw.iter().enumerate() {
@@ -80,6 +88,9 @@ pub(super) fn references(ctx: &mut Context<'_>, raw: &[RawReference], points: &[
             );
         }
         let value_ok = ctx.finite(&path.key("value"), reference.value);
+        let Some(points) = points else {
+            continue;
+        };
         let Some(selected) = select(ctx, &reference.filter, points, &path.key("where")) else {
             continue;
         };

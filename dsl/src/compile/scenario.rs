@@ -58,12 +58,20 @@ fn compile_inner(file: &str, source: &str, options: &Options) -> Result<Scenario
             ErrorKind::Invalid("`--seed` cannot override a swept `seed`".into()),
         );
     }
-    if base.is_none() || !ctx.errors.is_empty() {
-        return Err(ctx.errors);
-    }
-    let points = points(file, &tree, &axes, options)?;
-    let requirements = requirements(&mut ctx, &raw.requirements, &points);
-    let references = references(&mut ctx, &raw.references, &points);
+    // Requirements are checked even when the setup is invalid (ids, texts and
+    // check forms do not depend on the points), so one pass reports everything.
+    let points = match base {
+        Some(_) if ctx.errors.is_empty() => match points(file, &tree, &axes, options) {
+            Ok(points) => Some(points),
+            Err(errors) => {
+                ctx.errors.extend(errors);
+                None
+            }
+        },
+        _ => None,
+    };
+    let requirements = requirements(&mut ctx, &raw.requirements, points.as_deref());
+    let references = references(&mut ctx, &raw.references, points.as_deref());
     let sweep = axes
         .iter()
         .map(|a| Axis {
@@ -71,7 +79,7 @@ fn compile_inner(file: &str, source: &str, options: &Options) -> Result<Scenario
             values: a.values.iter().map(Node::to_json).collect(),
         })
         .collect();
-    ctx.finish(Some(Scenario {
+    ctx.finish(points.map(|points| Scenario {
         file: file.to_string(),
         name: raw.name,
         description: raw.description,

@@ -41,16 +41,19 @@ fn conjunctive(a: Mass, b: Mass) -> Mass {
     )
 }
 
+/// The conflict k = e₁o₂ + o₁e₂: the mass the two sources put on ∅.
+#[inline]
+fn conflict(a: Mass, b: Mass) -> f64 {
+    (a.empty * b.occupied + a.occupied * b.empty).min(1.0)
+}
+
 /// Scales a conjunctive result to sum to 1, or `None` under total conflict.
 #[inline]
-fn normalise(raw: Mass) -> Option<(Mass, f64)> {
+fn normalise(raw: Mass) -> Option<Mass> {
     let agreement = raw.total();
     (agreement > 0.0).then(|| {
         let scale = 1.0 / agreement;
-        (
-            Mass::new(raw.empty * scale, raw.occupied * scale, raw.unknown * scale),
-            agreement,
-        )
+        Mass::new(raw.empty * scale, raw.occupied * scale, raw.unknown * scale)
     })
 }
 
@@ -64,9 +67,9 @@ const TOTAL_CONFLICT: Combination = Combination {
 #[inline]
 pub fn combine(a: Mass, b: Mass) -> Combination {
     match normalise(conjunctive(a, b)) {
-        Some((mass, _)) => Combination {
+        Some(mass) => Combination {
             mass,
-            conflict: (a.empty * b.occupied + a.occupied * b.empty).min(1.0),
+            conflict: conflict(a, b),
             total_conflict: false,
         },
         None => TOTAL_CONFLICT,
@@ -77,7 +80,9 @@ pub fn combine(a: Mass, b: Mass) -> Combination {
 ///
 /// The rule is associative and commutative, so the order of [`add`](Self::add)
 /// calls does not matter (up to rounding). The accumulated conflict is the
-/// conflict of the n-source combination, K = 1 − Πⱼ(1 − kⱼ).
+/// conflict of the n-source combination, K = 1 − Πⱼ(1 − kⱼ), with each kⱼ
+/// computed as in eq. 1 (so a single source against the vacuous start adds
+/// exactly no conflict).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Combiner {
     mass: Mass,
@@ -108,9 +113,9 @@ impl Combiner {
             return;
         }
         match normalise(conjunctive(self.mass, source)) {
-            Some((mass, agreement)) => {
+            Some(mass) => {
+                self.agreement *= 1.0 - conflict(self.mass, source);
                 self.mass = mass;
-                self.agreement *= agreement;
             }
             None => self.total_conflict = true,
         }

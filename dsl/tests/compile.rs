@@ -1,0 +1,160 @@
+//! The compiled model: what a valid file becomes, and how problems are reported.
+
+use sightline_dsl::{
+    Bound, Check, ErrorKind, Errors, Experiment, Layout, Location, Metric, Options, Rule, Scenario, SourceCombination,
+    Switch, SwitchMeasure, WeightScaling, Weighting, compile,
+};
+
+const BASE: &str = "sightline: 1
+name: t
+grid: { size: [20, 10], cell: 0.5 }
+field:
+  truth: { occupied_fraction: 0.2 }
+  sensors: { range: 15, layout: { regular: { rows: 1, cols: 2 } } }
+  masses: { gamma: 10 }
+";
+
+fn ok(text: &str) -> Scenario {
+    compile("t.yaml", text, &Options::default()).unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn errors(text: &str) -> Errors {
+    compile("t.yaml", text, &Options::default()).expect_err("the file is invalid")
+}
+
+#[test]
+fn defaults_follow_the_paper() {
+    let scenario = ok(BASE);
+    let setup = &scenario.points[0].setup;
+    assert_eq!(setup.seed, 0);
+    assert_eq!(setup.decision.threshold, 0.8);
+    assert_eq!(setup.fusion.rule, Rule::Dempster);
+    assert_eq!(setup.fusion.label, "dempster");
+    assert_eq!((setup.grid.cols, setup.grid.rows), (40, 20));
+    let Experiment::Field(field) = &setup.experiment;
+    assert_eq!(field.masses.concentration, 32.0);
+    assert_eq!(field.masses.epsilon0, 0.0625);
+    assert_eq!(field.truth.blob_cells, 1);
+    assert_eq!(field.distance_bands, vec![50.0, 100.0, 150.0, 200.0]);
+    // A regular 1 × 2 layout sits at the centres of two 10 × 10 m tiles.
+    assert_eq!(field.layout, Layout::Positions(vec![[5.0, 5.0], [15.0, 5.0]]));
+}
+
+#[test]
+fn sweep_expands_first_axis_outermost() {
+    let scenario = ok(&format!(
+        "{BASE}sweep:\n  field.masses.gamma: [6, 14]\n  fusion:\n    - {{ label: B, method: dempster }}\n    - {{ label: P, method: hybrid, weights: mean_one, sources: pairwise, switch: {{ measure: ratio, threshold: 2 }} }}\n"
+    ));
+    let labels: Vec<String> = scenario.points.iter().map(|p| p.label()).collect();
+    assert_eq!(
+        labels,
+        [
+            "field.masses.gamma=6, fusion=B",
+            "field.masses.gamma=6, fusion=P",
+            "field.masses.gamma=14, fusion=B",
+            "field.masses.gamma=14, fusion=P"
+        ]
+    );
+    assert_eq!(
+        scenario.points[3].setup.fusion.rule,
+        Rule::Hybrid {
+            weighting: Weighting {
+                scaling: WeightScaling::MeanOne,
+                sources: SourceCombination::Pairwise
+            },
+            switch: Switch {
+                measure: SwitchMeasure::Ratio,
+                threshold: 2.0
+            }
+        }
+    );
+    let Experiment::Field(field) = &scenario.points[2].setup.experiment;
+    assert_eq!(field.masses.gamma, 14.0);
+}
+
+#[test]
+fn where_selects_points_by_effective_settings() {
+    let scenario = ok(&format!(
+        "{BASE}sweep:\n  field.masses.gamma: [6, 14]\n  fusion.method: [dempster, bayes]\nrequirements:\n  - id: R1\n    text: conflict stays low\n    where: {{ fusion.label: dempster, field.masses.gamma: 14.0 }}\n    check: {{ metric: mean_conflict, at_most: 0.5 }}\n"
+    ));
+    let requirement = &scenario.requirements[0];
+    assert_eq!(requirement.points, vec![2]);
+    assert_eq!(requirement.location, Location::new(12, 5));
+    assert_eq!(
+        requirement.check,
+        Check::Metric {
+            metric: Metric::MeanConflict,
+            bound: Bound::AtMost(0.5)
+        }
+    );
+}
+
+#[test]
+fn seed_option_replaces_the_file_seed() {
+    let scenario = compile("t.yaml", BASE, &Options { seed: Some(99) }).unwrap();
+    assert_eq!(scenario.points[0].setup.seed, 99);
+    let swept = format!("{BASE}sweep:\n  seed: [1, 2]\n");
+    let error = compile("t.yaml", &swept, &Options { seed: Some(99) }).unwrap_err();
+    assert_eq!(error.0[0].path, "sweep.seed");
+}
+
+#[test]
+fn compile_errors_are_reported_together_in_source_order() {
+    let text = format!(
+        "{BASE}decision: {{ threshold: 1.5 }}\nrequirements:\n  - {{ id: A, text: x, check: {{ metric: accuracy, at_least: 0.9 }} }}\n  - {{ id: A, text: y, check: {{ metric: accuracy }} }}\n"
+    )
+    .replace("occupied_fraction: 0.2", "occupied_fraction: -0.2");
+    let errors = errors(&text);
+    let paths: Vec<&str> = errors.0.iter().map(|e| e.path.as_str()).collect();
+    assert_eq!(
+        paths,
+        [
+            "field.truth.occupied_fraction",
+            "decision.threshold",
+            "requirements[1].id",
+            "requirements[1].check"
+        ]
+    );
+    assert!(matches!(errors.0[2].kind, ErrorKind::DuplicateId { .. }));
+}
+
+#[test]
+fn a_bad_swept_value_is_reported_at_the_value() {
+    let errors = errors(&format!("{BASE}sweep:\n  decision.threshold: [0.5, 2]\n"));
+    assert_eq!(errors.0.len(), 1);
+    assert_eq!(errors.0[0].location, Location::new(9, 29));
+    assert_eq!(errors.0[0].path, "decision.threshold");
+}
+
+#[test]
+fn a_requirement_that_checks_nothing_is_an_error() {
+    let errors = errors(&format!(
+        "{BASE}sweep:\n  fusion.method: [dempster, bayes]\nrequirements:\n  - {{ id: A, text: x, where: {{ fusion.method: hybrid }}, check: {{ metric: accuracy, at_least: 0.9 }} }}\n"
+    ));
+    assert!(matches!(errors.0[0].kind, ErrorKind::DanglingReference(ref m) if m.starts_with("matches no sweep point")));
+}
+
+#[test]
+fn evidential_metrics_are_refused_at_bayes_points() {
+    let errors = errors(&format!(
+        "{BASE}fusion: {{ method: bayes }}\nrequirements:\n  - {{ id: A, text: x, check: {{ metric: max_conflict, at_most: 0.9 }} }}\n"
+    ));
+    assert_eq!(errors.0[0].path, "requirements[0].check.metric");
+}
+
+#[test]
+fn misdetection_must_stay_below_one_at_the_range() {
+    let errors = errors(&BASE.replace("gamma: 10", "gamma: 95"));
+    assert_eq!(errors.0[0].path, "field.masses.gamma");
+    assert!(errors.0[0].to_string().contains("γ < 93.75"));
+}
+
+#[test]
+fn overlapping_and_unsweepable_keys_are_refused() {
+    let overlap = errors(&format!(
+        "{BASE}sweep:\n  fusion: [{{ method: bayes }}]\n  fusion.method: [dempster]\n"
+    ));
+    assert!(overlap.0[0].to_string().contains("overlaps the sweep key `fusion`"));
+    let name = errors(&format!("{BASE}sweep:\n  name: [a, b]\n"));
+    assert!(name.0[0].to_string().contains("cannot sweep `name`"));
+}

@@ -1,0 +1,131 @@
+//! The field experiment end to end through the engine API: determinism, shared
+//! sampling, and hand-computable outcomes.
+
+use sightline_dsl::{Metric, Scenario, compile};
+use sightline_engine::{FieldOutcome, Run, simulate};
+
+fn scenario(text: &str) -> Scenario {
+    compile("test.yaml", text, &Default::default()).unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn in_pool(threads: usize, scenario: &Scenario) -> Run {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap()
+        .install(|| simulate(scenario))
+}
+
+const NOISY: &str = r#"
+sightline: 1
+name: noisy
+seed: 5
+grid: { origin: [-10, 20], size: [60, 40], cell: 0.5 }
+field:
+  truth: { occupied_fraction: 0.3, blob: 1.5 }
+  sensors: { range: 35, layout: { positions: [[0, 30], [40, 50], [15, 55], [45, 25]] } }
+  masses: { gamma: 40, error_model: wrong_label }
+  distance_bands: [10, 20, 30]
+sweep:
+  fusion:
+    - { label: Baseline, method: dempster }
+    - { label: Proposed, method: hybrid, switch: { threshold: 5 } }
+    - { label: Pairwise, method: distance_weighted, weights: mean_one, sources: pairwise }
+    - { label: Bayes, method: bayes }
+"#;
+
+#[test]
+fn results_do_not_depend_on_the_thread_count() {
+    let scenario = scenario(NOISY);
+    let one = in_pool(1, &scenario);
+    assert_eq!(one, in_pool(2, &scenario));
+    assert_eq!(one, in_pool(3, &scenario));
+}
+
+#[test]
+fn a_method_sees_the_same_samples_alone_or_beside_others() {
+    let together = simulate(&scenario(NOISY));
+    let alone = scenario(&NOISY.replace("    - { label: Baseline, method: dempster }\n", ""));
+    let alone = simulate(&alone);
+    // Points 1..4 of the full sweep are points 0..3 of the reduced one.
+    assert_eq!(&together.points[1..], &alone.points[..]);
+}
+
+#[test]
+fn every_cell_has_exactly_one_outcome() {
+    let run = simulate(&scenario(NOISY));
+    for outcome in &run.points {
+        let m = &outcome.metrics;
+        assert_eq!(
+            m.correct + m.false_alarms + m.missed_detections + m.decided_unknown + m.below_threshold + m.unobserved,
+            m.cells
+        );
+        assert_eq!(m.cells, 120 * 80);
+        let band_cells: u64 = outcome.bands.iter().map(|b| b.cells).sum();
+        assert_eq!(band_cells, m.cells);
+        assert_eq!(outcome.bands.len(), 4);
+    }
+}
+
+#[test]
+fn different_seeds_give_different_data() {
+    let a = simulate(&scenario(NOISY));
+    let b = simulate(&scenario(&NOISY.replace("seed: 5", "seed: 6")));
+    assert_ne!(a, b);
+}
+
+/// With concentration 10⁹ the Dirichlet draws sit on their mean, so every
+/// observed cell reports (1 − ε, ε/2, ε/2) on its true state with ε = 0.05
+/// (γ = 0): p_max − p_others = 0.9. One sensor at the grid's centre with range
+/// 10 observes the cells whose centre lies within 10 m.
+fn single_sensor(threshold: f64) -> FieldOutcome {
+    let text = format!(
+        r#"
+sightline: 1
+name: deterministic
+grid: {{ size: [40, 40], cell: 1 }}
+field:
+  truth: {{ occupied_fraction: 0.5 }}
+  sensors: {{ range: 10, layout: {{ positions: [[20, 20]] }} }}
+  masses: {{ concentration: 1.0e9, epsilon0: 0.05, gamma: 0 }}
+decision: {{ threshold: {threshold} }}
+"#
+    );
+    simulate(&scenario(&text)).points.remove(0)
+}
+
+/// Cell centres (i + 0.5, j + 0.5) within 10 m of (20, 20).
+fn cells_within_ten_metres() -> u64 {
+    let mut count = 0;
+    for i in 0..40 {
+        for j in 0..40 {
+            let (dx, dy) = (i as f64 + 0.5 - 20.0, j as f64 + 0.5 - 20.0);
+            count += u64::from(dx * dx + dy * dy <= 100.0);
+        }
+    }
+    count
+}
+
+#[test]
+fn a_confident_sensor_decides_every_cell_it_sees() {
+    let outcome = single_sensor(0.85);
+    let observed = cells_within_ten_metres();
+    let m = &outcome.metrics;
+    assert_eq!(m.unobserved, 1600 - observed);
+    assert_eq!(m.correct, observed);
+    assert_eq!(
+        m.below_threshold + m.false_alarms + m.missed_detections + m.decided_unknown,
+        0
+    );
+    assert_eq!(m.value(Metric::Accuracy), Some(observed as f64 / 1600.0));
+    // One source per cell: no combination, no conflict.
+    assert_eq!(m.value(Metric::MaxConflict), Some(0.0));
+}
+
+#[test]
+fn the_same_sensor_decides_nothing_above_its_margin() {
+    // p_max − p_others = 0.9 < 0.95.
+    let outcome = single_sensor(0.95);
+    assert_eq!(outcome.metrics.below_threshold, cells_within_ten_metres());
+    assert_eq!(outcome.metrics.correct, 0);
+}
