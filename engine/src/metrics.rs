@@ -109,6 +109,8 @@ pub struct BandMetrics {
     pub false_alarms: u64,
     /// Missed detections.
     pub missed_detections: u64,
+    /// Mean conflict K over the band's observed cells (evidential methods only).
+    pub mean_conflict: Option<f64>,
 }
 
 /// Extremes of the fused masses, for the mass-function invariant. For `bayes`
@@ -144,6 +146,8 @@ pub struct Coverage {
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 struct BandTally {
     cells: u64,
+    observed: u64,
+    conflict_sum: f64,
     correct: u64,
     below: u64,
     false_alarms: u64,
@@ -207,13 +211,15 @@ impl Tally {
         let mass = estimate.decision_mass();
         self.audit(mass);
         self.uncertainty_sum += estimate.uncertainty();
+        let band = &mut self.bands[band];
+        band.observed += 1;
         if let Estimate::Evidential { combination, weighted } = estimate {
             self.conflict_sum += combination.conflict;
             self.conflict_max = self.conflict_max.max(combination.conflict);
             self.total_conflict += u64::from(combination.total_conflict);
             self.weighted += u64::from(*weighted);
+            band.conflict_sum += combination.conflict;
         }
-        let band = &mut self.bands[band];
         match (decide(mass, threshold), occupied) {
             (None, _) => {
                 self.below += 1;
@@ -264,6 +270,8 @@ impl Tally {
         self.weighted += other.weighted;
         for (band, o) in self.bands.iter_mut().zip(&other.bands) {
             band.cells += o.cells;
+            band.observed += o.observed;
+            band.conflict_sum += o.conflict_sum;
             band.correct += o.correct;
             band.below += o.below;
             band.false_alarms += o.false_alarms;
@@ -310,6 +318,7 @@ impl Tally {
                     below_threshold: b.below,
                     false_alarms: b.false_alarms,
                     missed_detections: b.missed,
+                    mean_conflict: (evidential && b.observed > 0).then(|| b.conflict_sum / b.observed as f64),
                 })
                 .collect(),
             audit: MassAudit {

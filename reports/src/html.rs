@@ -6,7 +6,9 @@ use minijinja::value::Serde;
 use minijinja::{Environment, UndefinedBehavior, Value, context};
 use serde::Serialize;
 
-use crate::results::{Results, Summary};
+use sightline_dsl::display_value;
+
+use crate::results::{PointResult, RequirementResult, Results, Summary};
 
 const TEMPLATE: &str = include_str!("../templates/report.html");
 
@@ -74,6 +76,8 @@ struct EvaluationView {
 struct TableView {
     head: Vec<String>,
     rows: Vec<Vec<String>>,
+    /// Leading columns that hold text (labels), not numbers.
+    text_columns: usize,
 }
 
 #[derive(Serialize)]
@@ -95,185 +99,192 @@ struct PointView {
 
 impl<'a> View<'a> {
     fn new(results: &'a Results, reproduce: &str) -> Self {
-        let points = &results.sweep.points;
-        let mut metrics: Vec<&str> = TABLE_METRICS.to_vec();
-        let used = results
-            .requirements
-            .iter()
-            .filter(|r| r.check.kind == "metric")
-            .map(|r| r.check.name)
-            .chain(results.references.iter().map(|r| r.metric));
-        for name in used {
-            if !metrics.contains(&name) {
-                metrics.push(name);
-            }
-        }
-        metrics.retain(|m| points.iter().any(|p| p.metrics.0.iter().any(|(k, _)| k == m)));
-
-        let mut head: Vec<String> = results.sweep.axes.iter().map(|a| a.path.clone()).collect();
-        for metric in &metrics {
-            head.push((*metric).to_string());
-            if results.references.iter().any(|r| r.metric == *metric) {
-                head.push(format!("{metric} (published)"));
-            }
-        }
-        let rows = points
-            .iter()
-            .map(|point| {
-                let mut row: Vec<String> = point
-                    .settings
-                    .0
-                    .iter()
-                    .map(|(_, v)| match v {
-                        serde_json::Value::String(s) => s.clone(),
-                        serde_json::Value::Object(o) => o
-                            .get("label")
-                            .and_then(|l| l.as_str())
-                            .map_or_else(|| v.to_string(), str::to_string),
-                        other => other.to_string(),
-                    })
-                    .collect();
-                for metric in &metrics {
-                    let value = point.metrics.0.iter().find(|(k, _)| k == metric).map(|(_, v)| *v);
-                    row.push(value.map_or("—".into(), number));
-                    if results.references.iter().any(|r| r.metric == *metric) {
-                        let published: Vec<String> = results
-                            .references
-                            .iter()
-                            .filter(|r| r.metric == *metric && r.points.iter().any(|p| p.point == point.index))
-                            .map(|r| number(r.published))
-                            .collect();
-                        row.push(if published.is_empty() {
-                            "—".into()
-                        } else {
-                            published.join(" / ")
-                        });
-                    }
-                }
-                row
-            })
-            .collect();
-
-        let mut provenance = vec![
-            (
-                "Tool",
-                format!(
-                    "{} {} (git {})",
-                    results.tool.name, results.tool.version, results.tool.git
-                ),
-            ),
-            ("Scenario file", results.scenario.path.clone()),
-            ("Scenario SHA-256", results.scenario.sha256.clone()),
-            (
-                "Seed",
-                results
-                    .seed
-                    .map_or_else(|| "swept (see the table)".into(), |s| s.to_string()),
-            ),
-            ("Sweep points", points.len().to_string()),
-            ("Reproduce with", reproduce.to_string()),
-        ];
-        provenance.retain(|(_, v)| !v.is_empty());
-
         View {
             name: &results.scenario.name,
             description: &results.scenario.description,
             verdict: results.verdict.name(),
             summary: results.summary,
-            provenance,
-            requirements: results
-                .requirements
-                .iter()
-                .map(|r| RequirementView {
-                    id: r.id.clone(),
-                    anchor: format!("req-{}", r.id),
-                    text: r.text.clone(),
-                    line: r.line,
-                    check: describe_check(r.check.kind, r.check.name, r.check.relation, r.check.threshold),
-                    measured: r.value.map_or("—".into(), number),
-                    threshold: number(r.threshold),
-                    margin: r.margin.map_or("—".into(), number),
-                    verdict: r.verdict.name(),
-                    message: r.message.clone(),
-                    points: r
-                        .points
-                        .iter()
-                        .map(|p| EvaluationView {
-                            label: if p.label.is_empty() {
-                                "—".into()
-                            } else {
-                                p.label.clone()
-                            },
-                            verdict: p.verdict.name(),
-                            measured: p.value.map_or("—".into(), number),
-                            margin: p.margin.map_or("—".into(), number),
-                            message: p.message.clone(),
-                        })
-                        .collect(),
-                })
-                .collect(),
-            sweep: TableView { head, rows },
-            comparisons: results
-                .references
-                .iter()
-                .flat_map(|r| {
-                    r.points.iter().map(move |p| ComparisonView {
-                        source: r.source.clone(),
-                        label: p.label.clone(),
-                        metric: r.metric,
-                        published: number(r.published),
-                        measured: p.measured.map_or("—".into(), number),
-                        ratio: p
-                            .measured
-                            .filter(|_| r.published != 0.0)
-                            .map_or("—".into(), |m| format!("{:.2}×", m / r.published)),
-                    })
-                })
-                .collect(),
-            points: points
-                .iter()
-                .map(|p| PointView {
-                    label: if p.label.is_empty() {
-                        "the scenario".into()
-                    } else {
-                        p.label.clone()
-                    },
-                    coverage: format!(
-                        "{} sensors; {}–{} observe each cell (mean {:.2})",
-                        p.coverage.sensors, p.coverage.min_sources, p.coverage.max_sources, p.coverage.mean_sources
-                    ),
-                    bands: TableView {
-                        head: [
-                            "distance to nearest sensor",
-                            "cells",
-                            "accuracy",
-                            "below threshold",
-                            "false alarms",
-                            "missed detections",
-                        ]
-                        .map(String::from)
-                        .to_vec(),
-                        rows: p
-                            .bands
-                            .iter()
-                            .map(|b| {
-                                vec![
-                                    match b.to {
-                                        Some(to) => format!("{} – {} m", number(b.from), number(to)),
-                                        None => format!("≥ {} m", number(b.from)),
-                                    },
-                                    number(b.cells as f64),
-                                    b.accuracy.map_or("—".into(), number),
-                                    number(b.below_threshold as f64),
-                                    number(b.false_alarms as f64),
-                                    number(b.missed_detections as f64),
-                                ]
-                            })
-                            .collect(),
-                    },
-                })
-                .collect(),
+            provenance: provenance(results, reproduce),
+            requirements: results.requirements.iter().map(requirement_view).collect(),
+            sweep: sweep_table(results),
+            comparisons: comparisons(results),
+            points: results.sweep.points.iter().map(point_view).collect(),
         }
+    }
+}
+
+/// A measured value, or a dash where it is undefined.
+fn or_dash(value: Option<f64>) -> String {
+    value.map_or_else(|| "—".into(), number)
+}
+
+fn provenance(results: &Results, reproduce: &str) -> Vec<(&'static str, String)> {
+    let tool = &results.tool;
+    vec![
+        ("Tool", format!("{} {} (git {})", tool.name, tool.version, tool.git)),
+        ("Scenario file", results.scenario.path.clone()),
+        ("Scenario SHA-256", results.scenario.sha256.clone()),
+        (
+            "Seed",
+            results
+                .seed
+                .map_or_else(|| "swept (see the table)".into(), |s| s.to_string()),
+        ),
+        ("Sweep points", results.sweep.points.len().to_string()),
+        ("Reproduce with", reproduce.to_string()),
+    ]
+}
+
+fn requirement_view(r: &RequirementResult) -> RequirementView {
+    RequirementView {
+        id: r.id.clone(),
+        anchor: format!("req-{}", r.id),
+        text: r.text.clone(),
+        line: r.line,
+        check: describe_check(r.check.kind, r.check.name, r.check.relation, r.check.threshold),
+        measured: or_dash(r.value),
+        threshold: number(r.threshold),
+        margin: or_dash(r.margin),
+        verdict: r.verdict.name(),
+        message: r.message.clone(),
+        points: r
+            .points
+            .iter()
+            .map(|p| EvaluationView {
+                label: if p.label.is_empty() {
+                    "—".into()
+                } else {
+                    p.label.clone()
+                },
+                verdict: p.verdict.name(),
+                measured: or_dash(p.value),
+                margin: or_dash(p.margin),
+                message: p.message.clone(),
+            })
+            .collect(),
+    }
+}
+
+/// One row per point: the axis values, then [`TABLE_METRICS`] and every metric a
+/// requirement or reference uses, each followed by its published value if any.
+fn sweep_table(results: &Results) -> TableView {
+    let points = &results.sweep.points;
+    let mut metrics: Vec<&str> = TABLE_METRICS.to_vec();
+    let used = results
+        .requirements
+        .iter()
+        .filter(|r| r.check.kind == "metric")
+        .map(|r| r.check.name)
+        .chain(results.references.iter().map(|r| r.metric));
+    for name in used {
+        if !metrics.contains(&name) {
+            metrics.push(name);
+        }
+    }
+    metrics.retain(|m| points.iter().any(|p| p.metrics.0.iter().any(|(k, _)| k == m)));
+    let has_published = |metric: &str| results.references.iter().any(|r| r.metric == metric);
+
+    let mut head: Vec<String> = results.sweep.axes.iter().map(|a| a.path.clone()).collect();
+    for metric in &metrics {
+        head.push((*metric).to_string());
+        if has_published(metric) {
+            head.push(format!("{metric} (published)"));
+        }
+    }
+    let rows = points
+        .iter()
+        .map(|point| {
+            let mut row: Vec<String> = point.settings.0.iter().map(|(_, v)| display_value(v)).collect();
+            for metric in &metrics {
+                row.push(or_dash(point.metrics.get(metric)));
+                if has_published(metric) {
+                    let values: Vec<String> = results
+                        .references
+                        .iter()
+                        .filter(|r| r.metric == *metric && r.points.iter().any(|p| p.point == point.index))
+                        .map(|r| number(r.published))
+                        .collect();
+                    row.push(if values.is_empty() {
+                        "—".into()
+                    } else {
+                        values.join(" / ")
+                    });
+                }
+            }
+            row
+        })
+        .collect();
+    TableView {
+        head,
+        rows,
+        text_columns: results.sweep.axes.len(),
+    }
+}
+
+fn comparisons(results: &Results) -> Vec<ComparisonView> {
+    results
+        .references
+        .iter()
+        .flat_map(|r| {
+            r.points.iter().map(move |p| ComparisonView {
+                source: r.source.clone(),
+                label: p.label.clone(),
+                metric: r.metric,
+                published: number(r.published),
+                measured: or_dash(p.measured),
+                ratio: p
+                    .measured
+                    .filter(|_| r.published != 0.0)
+                    .map_or_else(|| "—".into(), |m| format!("{:.2}×", m / r.published)),
+            })
+        })
+        .collect()
+}
+
+const BAND_COLUMNS: [&str; 7] = [
+    "distance to nearest sensor",
+    "cells",
+    "accuracy",
+    "below threshold",
+    "false alarms",
+    "missed detections",
+    "mean conflict",
+];
+
+fn point_view(p: &PointResult) -> PointView {
+    let c = &p.coverage;
+    PointView {
+        label: if p.label.is_empty() {
+            "the scenario".into()
+        } else {
+            p.label.clone()
+        },
+        coverage: format!(
+            "{} sensors; {}–{} observe each cell (mean {:.2})",
+            c.sensors, c.min_sources, c.max_sources, c.mean_sources
+        ),
+        bands: TableView {
+            text_columns: 1,
+            head: BAND_COLUMNS.map(String::from).to_vec(),
+            rows: p
+                .bands
+                .iter()
+                .map(|b| {
+                    vec![
+                        match b.to {
+                            Some(to) => format!("{} – {} m", number(b.from), number(to)),
+                            None => format!("≥ {} m", number(b.from)),
+                        },
+                        number(b.cells as f64),
+                        or_dash(b.accuracy),
+                        number(b.below_threshold as f64),
+                        number(b.false_alarms as f64),
+                        number(b.missed_detections as f64),
+                        or_dash(b.mean_conflict),
+                    ]
+                })
+                .collect(),
+        },
     }
 }
 

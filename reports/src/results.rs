@@ -4,8 +4,8 @@
 //! paths, so the same scenario and seed give a byte-identical file.
 
 use serde::{Serialize, Serializer};
-use sightline_dsl::{Bound, Check, Scenario};
-use sightline_engine::{BandMetrics, Coverage, MassAudit, Run};
+use sightline_dsl::{Bound, Check, Point, Requirement, Scenario};
+use sightline_engine::{BandMetrics, Coverage, FieldOutcome, MassAudit, Run};
 use sightline_oracles::{Status, Verdict};
 
 /// The format identifier written into every results.json.
@@ -221,6 +221,13 @@ pub struct ReferencePoint {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Ordered<T>(pub Vec<(String, T)>);
 
+impl<T: Copy> Ordered<T> {
+    /// The value under `key`.
+    pub fn get(&self, key: &str) -> Option<T> {
+        self.0.iter().find(|(k, _)| k == key).map(|(_, v)| *v)
+    }
+}
+
 impl<T: Serialize> Serialize for Ordered<T> {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         serializer.collect_map(self.0.iter().map(|(k, v)| (k, v)))
@@ -231,34 +238,6 @@ impl Results {
     /// Assembles the results of a run.
     pub fn new(scenario: &Scenario, run: &Run, verdicts: &[Verdict], provenance: &Provenance) -> Self {
         let labels: Vec<String> = scenario.points.iter().map(|p| p.label()).collect();
-        let requirements: Vec<RequirementResult> = scenario
-            .requirements
-            .iter()
-            .zip(verdicts)
-            .map(|(requirement, verdict)| RequirementResult {
-                id: requirement.id.clone(),
-                text: requirement.text.clone(),
-                line: requirement.location.line,
-                check: check_info(&requirement.check),
-                verdict: verdict.status,
-                value: verdict.decisive.value,
-                threshold: verdict.threshold,
-                margin: verdict.decisive.margin,
-                message: verdict.decisive.message.clone(),
-                points: verdict
-                    .evaluations
-                    .iter()
-                    .map(|e| PointVerdict {
-                        point: e.point,
-                        label: labels[e.point].clone(),
-                        verdict: e.status,
-                        value: e.value,
-                        margin: e.margin,
-                        message: e.message.clone(),
-                    })
-                    .collect(),
-            })
-            .collect();
         let count = |status| verdicts.iter().filter(|v| v.status == status).count();
         let seeds: Vec<u64> = scenario.points.iter().map(|p| p.setup.seed).collect();
         Results {
@@ -278,40 +257,16 @@ impl Results {
                 failed: count(Status::Fail),
                 errors: count(Status::Error),
             },
-            requirements,
+            requirements: scenario
+                .requirements
+                .iter()
+                .zip(verdicts)
+                .map(|(requirement, verdict)| requirement_result(requirement, verdict, &labels))
+                .collect(),
             metrics: metrics(scenario, run),
             sweep: Sweep {
                 axes: scenario.sweep.clone(),
-                points: scenario
-                    .points
-                    .iter()
-                    .zip(&run.points)
-                    .map(|(point, outcome)| PointResult {
-                        index: point.index,
-                        label: point.label(),
-                        settings: Ordered(
-                            point
-                                .assignments
-                                .iter()
-                                .map(|a| (a.path.clone(), a.value.clone()))
-                                .collect(),
-                        ),
-                        seed: point.setup.seed,
-                        method: point.setup.fusion.rule.method().name(),
-                        fusion: point.setup.fusion.label.clone(),
-                        metrics: Ordered(
-                            outcome
-                                .metrics
-                                .values()
-                                .into_iter()
-                                .map(|(m, v)| (m.name().to_string(), v))
-                                .collect(),
-                        ),
-                        bands: outcome.bands.clone(),
-                        coverage: outcome.coverage,
-                        audit: outcome.audit,
-                    })
-                    .collect(),
+                points: scenario.points.iter().zip(&run.points).map(point_result).collect(),
             },
             references: scenario
                 .references
@@ -332,6 +287,60 @@ impl Results {
                 })
                 .collect(),
         }
+    }
+}
+
+fn requirement_result(requirement: &Requirement, verdict: &Verdict, labels: &[String]) -> RequirementResult {
+    RequirementResult {
+        id: requirement.id.clone(),
+        text: requirement.text.clone(),
+        line: requirement.location.line,
+        check: check_info(&requirement.check),
+        verdict: verdict.status,
+        value: verdict.decisive.value,
+        threshold: verdict.threshold,
+        margin: verdict.decisive.margin,
+        message: verdict.decisive.message.clone(),
+        points: verdict
+            .evaluations
+            .iter()
+            .map(|e| PointVerdict {
+                point: e.point,
+                label: labels[e.point].clone(),
+                verdict: e.status,
+                value: e.value,
+                margin: e.margin,
+                message: e.message.clone(),
+            })
+            .collect(),
+    }
+}
+
+fn point_result((point, outcome): (&Point, &FieldOutcome)) -> PointResult {
+    PointResult {
+        index: point.index,
+        label: point.label(),
+        settings: Ordered(
+            point
+                .assignments
+                .iter()
+                .map(|a| (a.path.clone(), a.value.clone()))
+                .collect(),
+        ),
+        seed: point.setup.seed,
+        method: point.setup.fusion.rule.method().name(),
+        fusion: point.setup.fusion.label.clone(),
+        metrics: Ordered(
+            outcome
+                .metrics
+                .values()
+                .into_iter()
+                .map(|(m, v)| (m.name().to_string(), v))
+                .collect(),
+        ),
+        bands: outcome.bands.clone(),
+        coverage: outcome.coverage,
+        audit: outcome.audit,
     }
 }
 

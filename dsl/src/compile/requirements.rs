@@ -3,9 +3,10 @@
 use std::collections::{BTreeMap, HashMap};
 
 use super::context::{Context, locate};
-use super::sweep::{display, json_eq};
+use super::sweep::json_eq;
 use crate::de::closest;
 use crate::error::{ErrorKind, Location};
+use crate::model::display_value;
 use crate::model::{Bound, Check, Metric, Point, Reference, Requirement};
 use crate::path::Path;
 use crate::raw::{RawCheck, RawReference, RawRequirement};
@@ -237,7 +238,7 @@ fn select(
             .map(|key| {
                 let mut values: Vec<String> = Vec::new();
                 for p in points {
-                    if let Some(v) = lookup(&p.settings, key).map(display)
+                    if let Some(v) = lookup(&p.settings, key).map(display_value)
                         && !values.contains(&v)
                     {
                         values.push(v);

@@ -6,7 +6,7 @@ use super::setup::setup;
 use super::sweep::{self, AxisNodes};
 use crate::de::from_node;
 use crate::error::{Error, ErrorKind, Errors, Location};
-use crate::model::{Assignment, Axis, Point, Scenario};
+use crate::model::{Assignment, Axis, Point, Scenario, display_value};
 use crate::path::Path;
 use crate::raw::RawScenario;
 use crate::yaml::{self, Node, Value};
@@ -147,7 +147,7 @@ fn points(file: &str, tree: &Node, axes: &[AxisNodes<'_>], options: &Options) ->
                         let value = axis.values[i].to_json();
                         Assignment {
                             path: axis.dotted.clone(),
-                            display: sweep::display(&value),
+                            display: display_value(&value),
                             value,
                         }
                     })

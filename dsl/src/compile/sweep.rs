@@ -177,15 +177,3 @@ pub(super) fn json_eq(a: &serde_json::Value, b: &serde_json::Value) -> bool {
         _ => a == b,
     }
 }
-
-/// How a swept value shows in tables: a mapping by its `label`, a string unquoted.
-pub(super) fn display(value: &serde_json::Value) -> String {
-    match value {
-        serde_json::Value::String(s) => s.clone(),
-        serde_json::Value::Object(map) => match map.get("label") {
-            Some(serde_json::Value::String(label)) => label.clone(),
-            _ => value.to_string(),
-        },
-        other => other.to_string(),
-    }
-}

@@ -11,4 +11,4 @@ pub use fusion::{
     Decision, Fusion, FusionMethod, Rule, SourceCombination, Switch, SwitchMeasure, WeightScaling, Weighting,
 };
 pub use requirement::{Bound, Check, Invariant, Metric, Reference, Requirement};
-pub use scenario::{Assignment, Axis, Experiment, Grid, Point, Scenario, Setup};
+pub use scenario::{Assignment, Axis, Experiment, Grid, Point, Scenario, Setup, display_value};

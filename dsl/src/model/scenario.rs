@@ -58,6 +58,19 @@ impl Point {
     }
 }
 
+/// How a swept value shows in tables: a mapping by its `label`, a string unquoted,
+/// anything else as JSON.
+pub fn display_value(value: &serde_json::Value) -> String {
+    match value {
+        serde_json::Value::String(s) => s.clone(),
+        serde_json::Value::Object(map) => match map.get("label") {
+            Some(serde_json::Value::String(label)) => label.clone(),
+            _ => value.to_string(),
+        },
+        other => other.to_string(),
+    }
+}
+
 /// A sweep axis's value at one point.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Assignment {
