@@ -91,11 +91,13 @@ pub enum WeightScaling {
     /// As the paper writes it: wᵢ = (1/dᵢ) / Σⱼ(1/dⱼ), so the weights sum to 1.
     /// Equal distances give wᵢ = 1/n, which flattens every source.
     SumToOne,
-    /// wᵢ = n·(1/dᵢ) / Σⱼ(1/dⱼ): weights average 1, so equal distances give the
-    /// standard rule; nearer sources are sharpened (w > 1), farther ones flattened.
+    /// wᵢ = n·(1/dᵢ) / Σⱼ(1/dⱼ): weights average 1; nearer sources are sharpened
+    /// (w > 1), farther ones flattened. Equal distances give the standard rule with
+    /// `all_at_once` (or two sources), not with `pairwise`.
     MeanOne,
     /// wᵢ = min_j dⱼ / dᵢ: the nearest source keeps its mass (w = 1), farther
-    /// ones are flattened; equal distances give the standard rule.
+    /// ones are flattened. Equal distances give the standard rule with
+    /// `all_at_once` (or two sources), not with `pairwise`.
     NearestOne,
 }
 
@@ -109,6 +111,7 @@ pub enum SourceCombination {
     AllAtOnce,
     /// Sources are folded pairwise in sensor order with the paper's two-source
     /// rule; a fused result carries the reliability 1/d₁ + 1/d₂ of its inputs.
+    /// Not associative: the result depends on the order of the sensors.
     Pairwise,
 }
 

@@ -85,8 +85,7 @@ impl Dirichlet {
             // Gamma draws are positive with probability 1; retrying keeps a zero
             // total (possible only through underflow) from producing NaN.
             if total > 0.0 {
-                let scale = 1.0 / total;
-                return Mass::new(empty * scale, occupied * scale, unknown * scale);
+                return Mass::new(empty / total, occupied / total, unknown / total);
             }
         }
     }

@@ -48,13 +48,12 @@ fn conflict(a: Mass, b: Mass) -> f64 {
 }
 
 /// Scales a conjunctive result to sum to 1, or `None` under total conflict.
+/// Divides rather than multiplying by 1/agreement: the reciprocal of a subnormal
+/// agreement overflows to infinity.
 #[inline]
 fn normalise(raw: Mass) -> Option<Mass> {
     let agreement = raw.total();
-    (agreement > 0.0).then(|| {
-        let scale = 1.0 / agreement;
-        Mass::new(raw.empty * scale, raw.occupied * scale, raw.unknown * scale)
-    })
+    (agreement > 0.0).then(|| Mass::new(raw.empty / agreement, raw.occupied / agreement, raw.unknown / agreement))
 }
 
 const TOTAL_CONFLICT: Combination = Combination {
@@ -64,6 +63,11 @@ const TOTAL_CONFLICT: Combination = Combination {
 };
 
 /// Combines two masses with Dempster's rule.
+///
+/// Under total conflict the returned mass is the vacuous one, which is also the
+/// rule's identity: a caller that chains `.mass` into a further combination
+/// without checking [`Combination::total_conflict`] loses the conflict. Use a
+/// [`Combiner`] for more than two sources.
 #[inline]
 pub fn combine(a: Mass, b: Mass) -> Combination {
     match normalise(conjunctive(a, b)) {

@@ -22,16 +22,20 @@ use super::dempster::{Combination, Combiner, combine};
 use super::mass::Mass;
 
 /// The power transform m'ₛ = mₛ^w / Σₜ mₜ^w of a mass vector by weight `w` > 0.
+///
+/// Computed as (mₛ/m_max)^w / Σₜ (mₜ/m_max)^w, which is the same quantity: the
+/// largest term is exactly 1, so the sum lies in [1, 3] and cannot underflow
+/// however large w is, and the largest mass needs no power at all.
 #[inline]
 pub fn discount(mass: Mass, weight: f64) -> Mass {
     if weight == 1.0 {
         return mass;
     }
-    let empty = mass.empty.powf(weight);
-    let occupied = mass.occupied.powf(weight);
-    let unknown = mass.unknown.powf(weight);
-    let scale = 1.0 / (empty + occupied + unknown);
-    Mass::new(empty * scale, occupied * scale, unknown * scale)
+    let max = mass.empty.max(mass.occupied).max(mass.unknown);
+    let power = |m: f64| if m == max { 1.0 } else { (m / max).powf(weight) };
+    let (empty, occupied, unknown) = (power(mass.empty), power(mass.occupied), power(mass.unknown));
+    let total = empty + occupied + unknown;
+    Mass::new(empty / total, occupied / total, unknown / total)
 }
 
 /// What the weights of one cell's sources depend on.
