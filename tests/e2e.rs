@@ -1,1 +1,34 @@
+//! End-to-end tests of the `sightline` command line: the real binary on real
+//! scenario files, checked against the CLI and evidence contracts of DESIGN.md.
+//!
+//! One test binary (like ripgrep's `tests/tests.rs`), its modules in `tests/e2e/`.
+//! Expected files (invalid-input messages, golden evidence, generated docs) are
+//! refreshed with `SIGHTLINE_BLESS=1 cargo test --test e2e`, never by hand.
 
+// Helpers: running the binary, blessing expected files, redacting evidence.
+#[path = "e2e/support.rs"]
+mod support;
+
+// `run` on valid scenarios: exit codes, the three evidence files, several files.
+#[path = "e2e/run.rs"]
+mod run;
+
+// Invalid inputs and usage errors: exit 2, exact `file:line:col` messages, nothing written.
+#[path = "e2e/invalid.rs"]
+mod invalid;
+
+// Same file and seed give byte-identical evidence whatever the thread count; `--seed`.
+#[path = "e2e/determinism.rs"]
+mod determinism;
+
+// Redacted evidence of the fixtures against `tests/golden/<scenario>/`.
+#[path = "e2e/golden.rs"]
+mod golden;
+
+// docs/ generated from the schema, and the bundled scenarios valid and linked to it.
+#[path = "e2e/docs.rs"]
+mod docs;
+
+// The bundled seed-001 scenario run end to end (the one slow test).
+#[path = "e2e/bundled.rs"]
+mod bundled;

@@ -1,0 +1,53 @@
+//! The generated docs stay in sync with the language, and the bundled scenarios
+//! are valid and point editors at the schema. Regenerate docs/schema.json and
+//! docs/reference.md with `SIGHTLINE_BLESS=1 cargo test --test e2e docs::`.
+
+use crate::support::{arg, assert_matches_file, blessing, files_under, read, root, sightline};
+
+/// The first line of every bundled scenario: the YAML language server then
+/// validates and completes it against the schema.
+const MODELINE: &str = "# yaml-language-server: $schema=../docs/schema.json";
+
+#[test]
+fn schema_json_is_the_output_of_sightline_schema() {
+    let outcome = sightline(["schema"]);
+    outcome.assert_exit(0);
+    let schema: serde_json::Value = serde_json::from_str(&outcome.stdout).expect("the schema is JSON");
+    assert!(
+        schema["$schema"]
+            .as_str()
+            .is_some_and(|s| s.contains("json-schema.org"))
+    );
+    assert_matches_file("docs/schema.json", &outcome.stdout);
+}
+
+#[test]
+fn reference_md_is_the_output_of_sightline_schema_markdown() {
+    let outcome = sightline(["schema", "--markdown"]);
+    outcome.assert_exit(0);
+    assert!(outcome.stdout.starts_with("# "), "{outcome}");
+    assert_matches_file("docs/reference.md", &outcome.stdout);
+}
+
+#[test]
+fn bundled_scenarios_are_valid_and_carry_the_schema_modeline() {
+    let dir = root().join("scenarios");
+    let scenarios: Vec<_> = files_under(&dir)
+        .into_iter()
+        .filter(|p| p.extension().is_some_and(|e| e == "yaml" || e == "yml"))
+        .map(|p| dir.join(p))
+        .collect();
+    assert!(!scenarios.is_empty(), "no scenarios in {}", dir.display());
+    for scenario in &scenarios {
+        let first = read(scenario).lines().next().unwrap_or_default().to_string();
+        assert_eq!(first, MODELINE, "first line of {}", scenario.display());
+        sightline(["check", arg(scenario)]).assert_exit(0);
+    }
+    // While blessing, another test may be writing docs/schema.json right now.
+    if !blessing() {
+        assert!(
+            dir.join("../docs/schema.json").is_file(),
+            "the modeline points at docs/schema.json, which does not exist"
+        );
+    }
+}

@@ -1,0 +1,208 @@
+//! Invalid inputs and usage errors: exit 2, every problem on stderr, nothing
+//! written.
+//!
+//! Data-driven: each `tests/fixtures/invalid/NAME.yaml` has a `NAME.stderr`
+//! holding the exact expected stderr, one `file:line:col: error: yaml.path:
+//! message` line per problem. `check` and `run` must both print exactly that.
+//!
+//! To (re)write the `.stderr` files from the actual output, run
+//!
+//! ```text
+//! SIGHTLINE_BLESS=1 cargo test --test e2e invalid::
+//! ```
+//!
+//! then read every changed file: the line and column must point at the offending
+//! key or value, and the message must say what was expected and what was found.
+//! A new fixture needs a line in `invalid_inputs!` below.
+
+use std::path::PathBuf;
+
+use crate::support::{arg, assert_matches_file, blessing, files_under, root, sightline, sightline_in, temp_dir};
+
+const FIXTURES: &str = "tests/fixtures/invalid";
+
+/// Panics unless every line of `stderr` has the form `file:line:col: error: …`
+/// with 1-based numbers, so that a blessed file cannot hold a malformed message.
+#[track_caller]
+fn assert_located(file: &str, stderr: &str) {
+    assert!(!stderr.is_empty(), "no error printed for {file}");
+    assert!(stderr.ends_with('\n'), "stderr does not end in a newline: {stderr:?}");
+    for line in stderr.lines() {
+        let rest = line
+            .strip_prefix(file)
+            .and_then(|r| r.strip_prefix(':'))
+            .unwrap_or_else(|| panic!("{line:?} does not start with `{file}:`"));
+        let mut parts = rest.splitn(3, ':');
+        for what in ["line", "column"] {
+            let number: usize = parts
+                .next()
+                .and_then(|n| n.parse().ok())
+                .unwrap_or_else(|| panic!("{line:?} has no {what} number"));
+            assert!(number >= 1, "{line:?}: {what} numbers start at 1");
+        }
+        let message = parts.next().unwrap_or_default();
+        assert!(message.starts_with(" error: "), "{line:?} is not an error line");
+    }
+}
+
+/// Runs `check` and `run` on one invalid fixture and compares with its `.stderr`.
+#[track_caller]
+fn assert_rejected(name: &str) {
+    let scenario = format!("{FIXTURES}/{name}.yaml");
+    let check = sightline(["check", &scenario]);
+    check.assert_exit(2);
+    assert_eq!(check.stdout, "", "check printed on stdout\n{check}");
+    assert_located(&scenario, &check.stderr);
+    assert_matches_file(&format!("{FIXTURES}/{name}.stderr"), &check.stderr);
+
+    let tmp = temp_dir();
+    let out = tmp.path().join("out");
+    let run = sightline(["run", &scenario, "--out", arg(&out)]);
+    run.assert_exit(2);
+    assert_eq!(run.stdout, "", "run printed on stdout\n{run}");
+    assert_eq!(run.stderr, check.stderr, "run and check disagree on {scenario}");
+    assert!(!out.exists(), "run created {} for an invalid scenario", out.display());
+    assert_eq!(files_under(tmp.path()), Vec::<PathBuf>::new(), "run wrote files");
+}
+
+macro_rules! invalid_inputs {
+    ($($test:ident => $name:literal,)*) => {
+        /// Every fixture the tests below cover.
+        const NAMES: &[&str] = &[$($name),*];
+        $(
+            #[test]
+            fn $test() {
+                assert_rejected($name);
+            }
+        )*
+    };
+}
+
+invalid_inputs! {
+    malformed_yaml_is_a_syntax_error => "syntax-unclosed-flow",
+    empty_file_is_refused => "empty",
+    non_utf8_file_is_refused => "not-utf8",
+    unsupported_language_version_is_refused => "unsupported-version",
+    unknown_key_suggests_the_closest_key => "unknown-key",
+    unknown_value_suggests_the_closest_value => "unknown-fusion-method",
+    missing_required_key_is_named => "missing-key",
+    wrong_type_is_refused => "wrong-type",
+    probability_above_one_is_out_of_range => "probability-above-one",
+    negative_grid_size_is_out_of_range => "non-positive-size",
+    zero_cell_size_is_out_of_range => "zero-cell",
+    grid_size_not_a_whole_number_of_cells_is_refused => "size-not-multiple-of-cell",
+    oversize_grid_is_refused_before_allocating => "oversize-grid",
+    duplicate_key_is_refused => "duplicate-key",
+    duplicate_requirement_id_is_refused => "duplicate-requirement-id",
+    where_naming_no_setting_is_a_dangling_reference => "where-unknown-setting",
+    where_matching_no_sweep_point_is_a_dangling_reference => "where-matches-no-point",
+    metric_undefined_for_the_fusion_method_is_refused => "metric-undefined-for-method",
+    metric_undefined_at_one_sweep_point_is_refused => "metric-undefined-at-sweep-point",
+    hybrid_without_switch_is_refused => "hybrid-without-switch",
+    sweep_over_an_unsweepable_section_is_refused => "sweep-unsweepable-section",
+    sweep_key_with_an_empty_segment_is_refused => "sweep-empty-segment",
+    sweep_key_naming_no_setting_is_refused => "sweep-unknown-key",
+    out_of_range_sweep_value_is_located_in_the_sweep => "sweep-value-out-of-range",
+    every_problem_of_a_file_is_reported_in_source_order => "several-errors",
+}
+
+#[test]
+fn every_invalid_fixture_is_tested_and_has_its_stderr() {
+    let dir = root().join(FIXTURES);
+    let mut yaml = Vec::new();
+    let mut stderr = Vec::new();
+    for path in files_under(&dir) {
+        let name = path.file_stem().unwrap().to_string_lossy().into_owned();
+        match path.extension().and_then(|e| e.to_str()) {
+            Some("yaml") => yaml.push(name),
+            Some("stderr") => stderr.push(name),
+            _ => panic!("unexpected file {} in {FIXTURES}", path.display()),
+        }
+    }
+    let mut listed: Vec<String> = NAMES.iter().map(|n| n.to_string()).collect();
+    listed.sort();
+    assert_eq!(
+        yaml, listed,
+        "every NAME.yaml is listed in invalid_inputs!, and only those"
+    );
+    if !blessing() {
+        assert_eq!(
+            stderr, listed,
+            "every NAME.yaml has its NAME.stderr, and no .stderr is orphaned"
+        );
+    }
+}
+
+#[test]
+fn invalid_file_makes_check_of_several_files_fail_without_ok_lines() {
+    let valid = "tests/fixtures/valid/small-field.yaml";
+    let invalid = format!("{FIXTURES}/duplicate-key.yaml");
+    let outcome = sightline(["check", valid, &invalid]);
+    outcome.assert_exit(2);
+    assert_eq!(outcome.stdout, "", "{outcome}");
+    assert_eq!(outcome.stderr, sightline(["check", &invalid]).stderr);
+}
+
+#[test]
+fn missing_file_exits_2_and_writes_nothing() {
+    let missing = "tests/fixtures/does-not-exist.yaml";
+    let check = sightline(["check", missing]);
+    check.assert_exit(2);
+    assert!(
+        check
+            .stderr
+            .starts_with(&format!("{missing}: error: failed to read the file: ")),
+        "{check}"
+    );
+    assert_eq!(check.stderr.lines().count(), 1, "{check}");
+
+    let tmp = temp_dir();
+    let out = tmp.path().join("out");
+    let run = sightline(["run", missing, "--out", arg(&out)]);
+    run.assert_exit(2);
+    assert_eq!(run.stderr, check.stderr);
+    assert_eq!(files_under(tmp.path()), Vec::<PathBuf>::new());
+}
+
+#[test]
+fn directory_given_as_scenario_exits_2() {
+    let outcome = sightline(["check", "tests/fixtures"]);
+    outcome.assert_exit(2);
+    assert!(
+        outcome
+            .stderr
+            .starts_with("tests/fixtures: error: failed to read the file: "),
+        "{outcome}"
+    );
+}
+
+#[test]
+fn usage_errors_exit_2_and_write_nothing() {
+    let scenario = root().join("tests/fixtures/valid/small-field.yaml");
+    let scenario = arg(&scenario);
+    let cases: [&[&str]; 10] = [
+        &[],
+        &["frobnicate"],
+        &["run"],
+        &["check"],
+        &["run", scenario, "--frobnicate"],
+        &["run", scenario, "--jobs", "0"],
+        &["run", scenario, "--jobs", "two"],
+        &["run", scenario, "--seed", "-1"],
+        &["run", scenario, "--seed", "18446744073709551616"],
+        &["run", scenario, "--out"],
+    ];
+    for args in cases {
+        // Run in an empty directory: the default evidence directory (out/) must
+        // not appear either.
+        let tmp = temp_dir();
+        let outcome = sightline_in(tmp.path(), args);
+        outcome.assert_exit(2);
+        assert_eq!(outcome.stdout, "", "{outcome}");
+        assert!(
+            outcome.stderr.starts_with("error: ") || outcome.stderr.contains("\nUsage: "),
+            "no usage error printed\n{outcome}"
+        );
+        assert_eq!(files_under(tmp.path()), Vec::<PathBuf>::new(), "{outcome}");
+    }
+}

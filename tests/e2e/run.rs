@@ -1,0 +1,427 @@
+//! `sightline run` on valid scenarios: the exit code says whether every
+//! requirement holds, and the three evidence files say why.
+
+use std::path::Path;
+use std::process::{Command, Stdio};
+
+use quick_junit::{NonSuccessKind, TestCaseStatus};
+
+use crate::support::{
+    FAILING, SEED_SWEEP, SMALL_FIELD, arg, assert_evidence_files, files_under, read, read_json, read_junit, root,
+    sha256_hex, sightline, sightline_in, temp_dir, unescape_html,
+};
+
+/// The requirement ids of a fixture, in file order, read from its `- id:` lines.
+fn requirement_ids(scenario: &str) -> Vec<String> {
+    read(&root().join(scenario))
+        .lines()
+        .filter_map(|line| line.trim_start().strip_prefix("- id:"))
+        .map(|id| id.trim().to_string())
+        .collect()
+}
+
+/// The top-level `name:` of a fixture.
+fn scenario_name(scenario: &str) -> String {
+    read(&root().join(scenario))
+        .lines()
+        .find_map(|line| line.strip_prefix("name:"))
+        .map(|name| name.trim().to_string())
+        .expect("the fixture has a top-level name")
+}
+
+#[test]
+fn valid_scenario_passes_and_writes_three_evidence_files() {
+    let tmp = temp_dir();
+    let out = tmp.path().join("evidence");
+    let outcome = sightline(["run", SMALL_FIELD, "--out", arg(&out)]);
+    outcome.assert_exit(0);
+    assert!(
+        outcome.stdout.starts_with(&format!(
+            "PASS {SMALL_FIELD}: 3 of 3 requirements hold over 3 sweep points"
+        )),
+        "{outcome}"
+    );
+    assert_eq!(outcome.stderr, "", "{outcome}");
+    assert_evidence_files(&out);
+
+    let results = read_json(&out.join("results.json"));
+    assert_eq!(results["format"], "sightline-results/1");
+    assert_eq!(results["verdict"], "pass");
+    assert_eq!(results["tool"]["name"], "sightline");
+    assert_eq!(results["tool"]["version"], env!("CARGO_PKG_VERSION"));
+    assert_eq!(results["scenario"]["path"], SMALL_FIELD);
+    assert_eq!(results["scenario"]["name"], scenario_name(SMALL_FIELD).as_str());
+    let bytes = std::fs::read(root().join(SMALL_FIELD)).unwrap();
+    assert_eq!(results["scenario"]["sha256"], sha256_hex(&bytes).as_str());
+    assert_eq!(results["seed"], 42);
+
+    let requirements = results["requirements"].as_array().expect("requirements is a list");
+    let ids: Vec<&str> = requirements.iter().map(|r| r["id"].as_str().unwrap()).collect();
+    assert_eq!(ids, requirement_ids(SMALL_FIELD));
+    let summary = &results["summary"];
+    assert_eq!(
+        (
+            &summary["requirements"],
+            &summary["passed"],
+            &summary["failed"],
+            &summary["errors"]
+        ),
+        (&3.into(), &3.into(), &0.into(), &0.into())
+    );
+    for requirement in requirements {
+        assert_eq!(requirement["verdict"], "pass", "{requirement:#}");
+        // The verdict must agree with the measured value and the threshold it reports.
+        let value = requirement["value"]
+            .as_f64()
+            .expect("a passing requirement has a value");
+        let threshold = requirement["threshold"].as_f64().unwrap();
+        match requirement["check"]["relation"].as_str().unwrap() {
+            "at_least" => assert!(value >= threshold, "{requirement:#}"),
+            "at_most" | "tolerance" => assert!(value <= threshold, "{requirement:#}"),
+            other => panic!("unknown relation {other}"),
+        }
+    }
+
+    let points = results["sweep"]["points"].as_array().expect("sweep.points is a list");
+    let labels: Vec<&str> = points.iter().map(|p| p["label"].as_str().unwrap()).collect();
+    assert_eq!(labels, ["fusion=Baseline", "fusion=Proposed", "fusion=Bayes"]);
+    let methods: Vec<&str> = points.iter().map(|p| p["method"].as_str().unwrap()).collect();
+    assert_eq!(methods, ["dempster", "hybrid", "bayes"]);
+    let accuracy = &results["metrics"]["accuracy"];
+    assert_eq!(accuracy["columns"], serde_json::json!(["fusion", "value"]));
+    assert_eq!(accuracy["rows"].as_array().map(Vec::len), Some(3));
+    // The reference's `where` selects the Baseline point only.
+    let references = results["references"].as_array().unwrap();
+    assert_eq!(references.len(), 1);
+    assert_eq!(references[0]["points"][0]["label"], "fusion=Baseline");
+    assert_eq!(references[0]["points"].as_array().map(Vec::len), Some(1));
+}
+
+#[test]
+fn report_is_self_contained_and_traces_every_requirement() {
+    let tmp = temp_dir();
+    let out = tmp.path().join("evidence");
+    sightline(["run", SMALL_FIELD, "--out", arg(&out)]).assert_exit(0);
+    let html = read(&out.join("report.html"));
+    let text = unescape_html(&html);
+
+    assert!(
+        text.contains(&scenario_name(SMALL_FIELD)),
+        "the report names the scenario"
+    );
+    for id in requirement_ids(SMALL_FIELD) {
+        assert!(text.contains(&id), "the report lacks requirement {id}");
+    }
+    let bytes = std::fs::read(root().join(SMALL_FIELD)).unwrap();
+    assert!(text.contains(&sha256_hex(&bytes)), "the report lacks the input hash");
+    assert!(
+        text.contains(&format!("sightline run {SMALL_FIELD} --seed 42")),
+        "the report lacks the command that reproduces it"
+    );
+
+    // Self-contained: every link stays inside the page and resolves there; nothing
+    // is fetched from the network or a neighbouring file.
+    let lower = html.to_ascii_lowercase();
+    assert!(
+        !lower.contains("<script src") && !lower.contains("<link"),
+        "external resource"
+    );
+    assert!(
+        !lower.contains("@import") && !lower.contains("url("),
+        "CSS loads a resource"
+    );
+    for attribute in ["src=", "href="] {
+        for (at, _) in lower.match_indices(attribute) {
+            let value = attribute_value(&html[at + attribute.len()..]);
+            assert!(
+                !value.contains("http://") && !value.contains("https://") && !value.starts_with("//"),
+                "{attribute}{value:?} reaches the network"
+            );
+            let anchor = value
+                .strip_prefix('#')
+                .unwrap_or_else(|| panic!("{attribute}{value:?} leaves the page"));
+            assert!(
+                html.contains(&format!("id=\"{anchor}\"")),
+                "link to a missing anchor #{anchor}"
+            );
+        }
+    }
+}
+
+/// The value of an HTML attribute, given the text after its `=`.
+fn attribute_value(text: &str) -> &str {
+    match text.chars().next() {
+        Some(quote @ ('"' | '\'')) => {
+            let rest = &text[1..];
+            &rest[..rest.find(quote).expect("the attribute value is closed")]
+        }
+        _ => &text[..text.find(|c: char| c.is_whitespace() || c == '>').unwrap_or(text.len())],
+    }
+}
+
+#[test]
+fn failing_requirement_exits_1_and_junit_carries_value_and_threshold() {
+    let tmp = temp_dir();
+    let out = tmp.path().join("evidence");
+    let outcome = sightline(["run", FAILING, "--out", arg(&out)]);
+    outcome.assert_exit(1);
+    assert!(
+        outcome.stdout.starts_with(&format!("FAIL {FAILING}: 1 of 2")),
+        "{outcome}"
+    );
+    assert!(outcome.stdout.contains("\n  fail NOISE-ACC-01: "), "{outcome}");
+    assert!(
+        !outcome.stdout.contains("NOISE-MASS-01"),
+        "a passing requirement is listed\n{outcome}"
+    );
+    assert_evidence_files(&out);
+
+    let results = read_json(&out.join("results.json"));
+    assert_eq!(results["verdict"], "fail");
+    assert_eq!(results["summary"]["failed"], 1);
+    let requirement = results["requirements"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|r| r["id"] == "NOISE-ACC-01")
+        .expect("NOISE-ACC-01 in results.json");
+    assert_eq!(requirement["verdict"], "fail");
+    let threshold = requirement["threshold"].as_f64().unwrap();
+    assert_eq!(threshold, 0.995);
+    let failing_points: Vec<&serde_json::Value> = results["requirements"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .flat_map(|r| r["points"].as_array().unwrap())
+        .filter(|p| p["verdict"] == "fail")
+        .collect();
+    assert_eq!(failing_points.len(), 1, "one failing point: γ = 30");
+    let failing = failing_points[0];
+    assert_eq!(failing["label"], "field.masses.gamma=30");
+    let measured = failing["value"].as_f64().unwrap();
+    assert!(measured < threshold);
+
+    let junit = read_junit(&out.join("junit.xml"));
+    let suites = &junit.test_suites;
+    assert_eq!(suites.len(), 1);
+    let count = |suite: &quick_junit::TestSuite, wanted: NonSuccessKind| {
+        suite
+            .test_cases
+            .iter()
+            .filter(|c| matches!(&c.status, TestCaseStatus::NonSuccess { kind, .. } if *kind == wanted))
+            .count()
+    };
+    let suite = &suites[0];
+    assert_eq!(suite.test_cases.len(), 4, "one case per requirement and sweep point");
+    assert_eq!(
+        (suite.tests, suite.failures, suite.errors),
+        (
+            suite.test_cases.len(),
+            count(suite, NonSuccessKind::Failure),
+            count(suite, NonSuccessKind::Error)
+        ),
+        "<testsuite> counts"
+    );
+    assert_eq!(
+        (junit.tests, junit.failures, junit.errors),
+        (suite.tests, suite.failures, suite.errors),
+        "<testsuites> counts"
+    );
+    assert_eq!(suite.failures, failing_points.len());
+
+    let case = suite
+        .test_cases
+        .iter()
+        .find(|c| c.name.as_str() == "NOISE-ACC-01 [field.masses.gamma=30]")
+        .expect("a test case for the failing point");
+    let TestCaseStatus::NonSuccess {
+        kind: NonSuccessKind::Failure,
+        message,
+        description,
+        ..
+    } = &case.status
+    else {
+        panic!("the failing point is not a <failure>: {:?}", case.status);
+    };
+    let message = message.as_ref().expect("the failure has a message");
+    // Messages round to six significant digits; the description keeps full precision.
+    let numbers = numbers_in(message);
+    assert!(
+        numbers.iter().any(|&n| (n - measured).abs() <= 1e-5 * measured.abs())
+            && numbers.iter().any(|&n| (n - threshold).abs() <= 1e-5 * threshold.abs()),
+        "the failure message {message:?} lacks the measured {measured} or the threshold {threshold}"
+    );
+    let description = description.as_ref().expect("the failure has a description");
+    let lines: Vec<&str> = description.lines().collect();
+    assert!(
+        lines.contains(&format!("measured: {measured}").as_str()),
+        "{description:?}"
+    );
+    assert!(
+        lines.contains(&format!("threshold: {threshold} (at_least)").as_str()),
+        "{description:?}"
+    );
+    let requirement_property = case.properties.iter().find(|p| p.name.as_str() == "requirement");
+    assert_eq!(requirement_property.map(|p| p.value.as_str()), Some("NOISE-ACC-01"));
+
+    let passing = suite
+        .test_cases
+        .iter()
+        .find(|c| c.name.as_str() == "NOISE-ACC-01 [field.masses.gamma=4]")
+        .expect("a test case for the passing point");
+    assert!(
+        matches!(passing.status, TestCaseStatus::Success { .. }),
+        "{:?}",
+        passing.status
+    );
+}
+
+/// Every decimal number written in `text`.
+fn numbers_in(text: &str) -> Vec<f64> {
+    text.split(|c: char| !(c.is_ascii_digit() || matches!(c, '.' | '-' | 'e')))
+        .filter_map(|token| token.trim_end_matches('.').parse().ok())
+        .collect()
+}
+
+#[test]
+fn several_files_write_one_directory_per_file_stem() {
+    let tmp = temp_dir();
+    let out = tmp.path().join("evidence");
+    let outcome = sightline(["run", SMALL_FIELD, SEED_SWEEP, "--out", arg(&out)]);
+    outcome.assert_exit(0);
+    assert_eq!(
+        outcome.stdout.lines().filter(|l| l.starts_with("PASS ")).count(),
+        2,
+        "{outcome}"
+    );
+    for (stem, scenario) in [("small-field", SMALL_FIELD), ("seed-sweep", SEED_SWEEP)] {
+        assert_evidence_files(&out.join(stem));
+        assert_eq!(
+            read_json(&out.join(stem).join("results.json"))["scenario"]["path"],
+            scenario
+        );
+    }
+    assert_eq!(files_under(&out).len(), 6, "nothing beside the two directories");
+}
+
+#[test]
+fn one_failing_file_among_several_exits_1_and_all_evidence_is_written() {
+    let tmp = temp_dir();
+    let out = tmp.path().join("evidence");
+    let outcome = sightline(["run", FAILING, SMALL_FIELD, "--out", arg(&out)]);
+    outcome.assert_exit(1);
+    assert_evidence_files(&out.join("accuracy-under-noise"));
+    assert_evidence_files(&out.join("small-field"));
+    assert_eq!(
+        read_json(&out.join("small-field").join("results.json"))["verdict"],
+        "pass"
+    );
+}
+
+#[test]
+fn one_invalid_file_among_several_writes_nothing() {
+    let tmp = temp_dir();
+    let out = tmp.path().join("evidence");
+    let invalid = "tests/fixtures/invalid/unknown-key.yaml";
+    let outcome = sightline(["run", SMALL_FIELD, invalid, "--out", arg(&out)]);
+    outcome.assert_exit(2);
+    // Exactly the problems `check` finds in the invalid file alone.
+    assert_eq!(outcome.stderr, sightline(["check", invalid]).stderr);
+    assert_eq!(outcome.stdout, "", "{outcome}");
+    assert!(!out.exists(), "{} was created", out.display());
+    assert_eq!(files_under(tmp.path()), Vec::<std::path::PathBuf>::new());
+}
+
+#[test]
+fn files_sharing_a_stem_are_refused_before_anything_is_written() {
+    let tmp = temp_dir();
+    let copy = tmp.path().join("copy");
+    std::fs::create_dir(&copy).unwrap();
+    let other = copy.join("small-field.yaml");
+    std::fs::copy(root().join(SMALL_FIELD), &other).unwrap();
+    let out = tmp.path().join("evidence");
+    let outcome = sightline(["run", SMALL_FIELD, arg(&other), "--out", arg(&out)]);
+    outcome.assert_exit(2);
+    assert_eq!(
+        outcome.stderr,
+        format!(
+            "{}: error: its evidence would overwrite another scenario's in {}; run the files separately with --out\n",
+            other.display(),
+            out.join("small-field").display()
+        )
+    );
+    assert!(!out.exists(), "{} was created", out.display());
+}
+
+#[test]
+fn default_evidence_dir_is_out_slash_file_stem() {
+    let tmp = temp_dir();
+    std::fs::copy(root().join(SMALL_FIELD), tmp.path().join("small-field.yaml")).unwrap();
+    let outcome = sightline_in(tmp.path(), ["run", "small-field.yaml"]);
+    outcome.assert_exit(0);
+    assert_evidence_files(&tmp.path().join("out").join("small-field"));
+    assert_eq!(
+        files_under(tmp.path()).len(),
+        4,
+        "the scenario and three evidence files"
+    );
+}
+
+#[test]
+fn check_accepts_valid_files_and_writes_nothing() {
+    let tmp = temp_dir();
+    let files = [SMALL_FIELD, SEED_SWEEP, FAILING].map(|f| root().join(f));
+    let outcome = sightline_in(tmp.path(), std::iter::once("check").chain(files.iter().map(|f| arg(f))));
+    outcome.assert_exit(0);
+    let expected = format!(
+        "{}: ok (3 sweep points, 3 requirements)\n{}: ok (3 sweep points, 1 requirement)\n{}: ok (2 sweep points, 2 requirements)\n",
+        files[0].display(),
+        files[1].display(),
+        files[2].display()
+    );
+    assert_eq!(outcome.stdout, expected);
+    assert_eq!(outcome.stderr, "");
+    assert_eq!(
+        files_under(tmp.path()),
+        Vec::<std::path::PathBuf>::new(),
+        "check wrote files"
+    );
+}
+
+#[test]
+fn unwritable_evidence_dir_is_an_internal_error() {
+    let tmp = temp_dir();
+    let blocker = tmp.path().join("evidence");
+    std::fs::write(&blocker, "a file where the directory should go").unwrap();
+    let outcome = sightline(["run", SMALL_FIELD, "--out", arg(&blocker)]);
+    outcome.assert_exit(3);
+    assert!(
+        outcome
+            .stderr
+            .starts_with(&format!("error: failed to create {}", blocker.display())),
+        "{outcome}"
+    );
+}
+
+/// `sightline run … | head -1` closes stdout while sightline still prints its
+/// summary; that is the reader's choice, not a defect in sightline.
+#[test]
+#[ignore = "known defect: println! panics on a closed stdout, so sightline reports an internal error (exit 3) \
+            although the evidence was written; see the e2e report"]
+fn closed_stdout_is_not_an_internal_error() {
+    let tmp = temp_dir();
+    let out = tmp.path().join("evidence");
+    let (reader, writer) = std::io::pipe().expect("failed to create a pipe");
+    drop(reader);
+    let output = Command::new(env!("CARGO_BIN_EXE_sightline"))
+        .args(["run", SMALL_FIELD, "--out", arg(&out)])
+        .current_dir(root())
+        .stdout(writer)
+        .stderr(Stdio::piped())
+        .output()
+        .expect("failed to start sightline");
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert_ne!(output.status.code(), Some(3), "{stderr}");
+    assert_evidence_files(Path::new(&out));
+}

@@ -1,0 +1,267 @@
+//! Helpers shared by the end-to-end tests: running the real binary, comparing
+//! output with expected files (or rewriting them under `SIGHTLINE_BLESS=1`),
+//! reading evidence and redacting what changes from build to build.
+
+use std::ffi::OsStr;
+use std::fmt;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use sha2::{Digest, Sha256};
+
+/// Set to `1` to rewrite expected files from the actual output instead of
+/// comparing with them.
+pub const BLESS_VAR: &str = "SIGHTLINE_BLESS";
+
+/// The names of the evidence files `run` writes into its directory.
+pub const EVIDENCE_FILES: [&str; 3] = ["results.json", "junit.xml", "report.html"];
+
+/// The main valid fixture (small, every requirement passes).
+pub const SMALL_FIELD: &str = "tests/fixtures/valid/small-field.yaml";
+
+/// A valid fixture that sweeps `seed`.
+pub const SEED_SWEEP: &str = "tests/fixtures/valid/seed-sweep.yaml";
+
+/// A valid fixture with a requirement that fails at one of its two sweep points.
+pub const FAILING: &str = "tests/fixtures/failing/accuracy-under-noise.yaml";
+
+/// The package root. Every command runs there, so scenario paths in evidence
+/// and messages are the stable relative paths the tests pass.
+pub fn root() -> &'static Path {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// Whether expected files are being rewritten.
+pub fn blessing() -> bool {
+    std::env::var_os(BLESS_VAR).is_some_and(|v| v == "1")
+}
+
+/// How one invocation of `sightline` ended.
+pub struct Outcome {
+    /// The command line, for failure messages.
+    pub command: String,
+    /// The exit code (`None` when killed by a signal).
+    pub code: Option<i32>,
+    /// Standard output.
+    pub stdout: String,
+    /// Standard error.
+    pub stderr: String,
+}
+
+impl Outcome {
+    /// Panics, showing both streams, unless the exit code is `code`.
+    #[track_caller]
+    pub fn assert_exit(&self, code: i32) -> &Self {
+        assert_eq!(self.code, Some(code), "unexpected exit status\n{self}");
+        self
+    }
+}
+
+impl fmt::Display for Outcome {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        writeln!(f, "$ {}", self.command)?;
+        writeln!(f, "exit: {:?}", self.code)?;
+        writeln!(f, "--- stdout\n{}", self.stdout)?;
+        write!(f, "--- stderr\n{}", self.stderr)
+    }
+}
+
+/// Runs the real `sightline` binary with `args` in the package root.
+pub fn sightline<I, S>(args: I) -> Outcome
+where
+    I: IntoIterator<Item = S>,
+    S: AsRef<OsStr>,
+{
+    sightline_in(root(), args)
+}
+
+/// Runs the real `sightline` binary with `args` in `dir`.
+pub fn sightline_in<I, S>(dir: &Path, args: I) -> Outcome
+where
+    I: IntoIterator<Item = S>,
+    S: AsRef<OsStr>,
+{
+    let args: Vec<S> = args.into_iter().collect();
+    let command = std::iter::once("sightline".to_string())
+        .chain(args.iter().map(|a| a.as_ref().to_string_lossy().into_owned()))
+        .collect::<Vec<_>>()
+        .join(" ");
+    let output = Command::new(env!("CARGO_BIN_EXE_sightline"))
+        .args(&args)
+        .current_dir(dir)
+        .output()
+        .unwrap_or_else(|e| panic!("failed to start {command}: {e}"));
+    let text = |bytes: Vec<u8>, stream: &str| {
+        String::from_utf8(bytes).unwrap_or_else(|e| panic!("{command}: {stream} is not UTF-8: {e}"))
+    };
+    Outcome {
+        code: output.status.code(),
+        stdout: text(output.stdout, "stdout"),
+        stderr: text(output.stderr, "stderr"),
+        command,
+    }
+}
+
+/// A path as a command-line argument (temporary paths are UTF-8 here).
+#[track_caller]
+pub fn arg(path: &Path) -> &str {
+    path.to_str().expect("the path is UTF-8")
+}
+
+/// A fresh temporary directory, removed when dropped.
+pub fn temp_dir() -> tempfile::TempDir {
+    tempfile::Builder::new()
+        .prefix("sightline-e2e-")
+        .tempdir()
+        .expect("failed to create a temporary directory")
+}
+
+/// Every file below `dir` (recursively), relative to it and sorted; empty when
+/// `dir` does not exist.
+pub fn files_under(dir: &Path) -> Vec<PathBuf> {
+    fn walk(base: &Path, dir: &Path, found: &mut Vec<PathBuf>) {
+        let Ok(entries) = std::fs::read_dir(dir) else {
+            return;
+        };
+        for entry in entries {
+            let path = entry.expect("failed to read a directory entry").path();
+            if path.is_dir() {
+                walk(base, &path, found);
+            } else {
+                found.push(path.strip_prefix(base).expect("below base").to_path_buf());
+            }
+        }
+    }
+    let mut found = Vec::new();
+    walk(dir, dir, &mut found);
+    found.sort();
+    found
+}
+
+/// Panics unless `dir` holds exactly the three evidence files.
+#[track_caller]
+pub fn assert_evidence_files(dir: &Path) {
+    let mut expected: Vec<PathBuf> = EVIDENCE_FILES.iter().map(PathBuf::from).collect();
+    expected.sort();
+    assert_eq!(files_under(dir), expected, "evidence files in {}", dir.display());
+}
+
+/// Reads a file as UTF-8 text.
+#[track_caller]
+pub fn read(path: &Path) -> String {
+    std::fs::read_to_string(path).unwrap_or_else(|e| panic!("failed to read {}: {e}", path.display()))
+}
+
+/// Reads and parses a JSON file.
+#[track_caller]
+pub fn read_json(path: &Path) -> serde_json::Value {
+    serde_json::from_str(&read(path)).unwrap_or_else(|e| panic!("{} is not JSON: {e}", path.display()))
+}
+
+/// Reads and parses a JUnit XML file.
+#[track_caller]
+pub fn read_junit(path: &Path) -> quick_junit::Report {
+    quick_junit::Report::deserialize_from_str(&read(path))
+        .unwrap_or_else(|e| panic!("{} is not JUnit XML: {e}", path.display()))
+}
+
+/// The text of HTML: the entities minijinja's auto-escaping writes, decoded.
+pub fn unescape_html(html: &str) -> String {
+    html.replace("&lt;", "<")
+        .replace("&gt;", ">")
+        .replace("&quot;", "\"")
+        .replace("&#x27;", "'")
+        .replace("&#x2f;", "/")
+        .replace("&amp;", "&")
+}
+
+/// SHA-256 of `bytes` as lowercase hex, computed here rather than by sightline.
+pub fn sha256_hex(bytes: &[u8]) -> String {
+    Sha256::digest(bytes).iter().map(|b| format!("{b:02x}")).collect()
+}
+
+/// Compares `actual` with the file at `expected` (relative to the package root),
+/// or writes it there when blessing.
+#[track_caller]
+pub fn assert_matches_file(expected: &str, actual: &str) {
+    let path = root().join(expected);
+    if blessing() {
+        if let Some(parent) = path.parent() {
+            std::fs::create_dir_all(parent).unwrap_or_else(|e| panic!("failed to create {}: {e}", parent.display()));
+        }
+        std::fs::write(&path, actual).unwrap_or_else(|e| panic!("failed to write {}: {e}", path.display()));
+        return;
+    }
+    let wanted = std::fs::read_to_string(&path)
+        .unwrap_or_else(|e| panic!("failed to read {expected} ({e}); create it with {BLESS_VAR}=1"));
+    if wanted != actual {
+        panic!(
+            "{expected} differs from the actual output; if the change is intended, refresh it with {BLESS_VAR}=1\n{}",
+            first_difference(&wanted, actual)
+        );
+    }
+}
+
+/// The first line where two texts differ, for a readable failure.
+fn first_difference(expected: &str, actual: &str) -> String {
+    let mut expected_lines = expected.split_inclusive('\n');
+    let mut actual_lines = actual.split_inclusive('\n');
+    for line in 1.. {
+        match (expected_lines.next(), actual_lines.next()) {
+            (Some(e), Some(a)) if e == a => continue,
+            (None, None) => break,
+            (e, a) => return format!("first difference at line {line}:\n  expected: {e:?}\n  actual:   {a:?}"),
+        }
+    }
+    "the texts differ".into()
+}
+
+/// Replaces exactly one occurrence of `from` in `text` by `to`; panics when
+/// `from` occurs zero or several times, so a redaction never silently misses.
+#[track_caller]
+fn replace_once(text: &str, from: &str, to: &str) -> String {
+    let count = text.matches(from).count();
+    assert_eq!(count, 1, "expected exactly one `{from}` to redact, found {count}");
+    text.replacen(from, to, 1)
+}
+
+/// results.json with the tool version and git revision redacted (they change
+/// with every build; everything else must not). Checks that the version is this
+/// package's and the revision is not empty.
+#[track_caller]
+pub fn redact_results_json(text: &str) -> String {
+    let json: serde_json::Value = serde_json::from_str(text).expect("results.json is JSON");
+    let tool = &json["tool"];
+    assert_eq!(tool["name"], "sightline");
+    let version = tool["version"].as_str().expect("tool.version is a string");
+    let git = tool["git"].as_str().expect("tool.git is a string");
+    assert_eq!(version, env!("CARGO_PKG_VERSION"), "tool.version");
+    assert!(!git.is_empty(), "tool.git is empty");
+    let text = replace_once(
+        text,
+        &format!("\"version\": \"{version}\""),
+        "\"version\": \"[VERSION]\"",
+    );
+    replace_once(&text, &format!("\"git\": \"{git}\""), "\"git\": \"[GIT]\"")
+}
+
+/// junit.xml with the `tool` property (name, version and git revision) redacted.
+#[track_caller]
+pub fn redact_junit(text: &str) -> String {
+    let value = format!("sightline {} (", env!("CARGO_PKG_VERSION"));
+    let start = format!("<property name=\"tool\" value=\"{value}");
+    let count = text.matches(&start).count();
+    assert_eq!(
+        count, 1,
+        "expected exactly one `{start}…` property to redact, found {count}"
+    );
+    let begin = text.find(&start).expect("counted above") + start.len() - value.len();
+    let end = begin + text[begin..].find('"').expect("the attribute value is closed");
+    let revision = &text[begin + value.len()..end];
+    assert!(
+        revision.ends_with(')') && revision.len() > 1,
+        "tool property {:?} does not end in a git revision",
+        &text[begin..end]
+    );
+    format!("{}[TOOL]{}", &text[..begin], &text[end..])
+}
