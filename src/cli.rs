@@ -1,6 +1,5 @@
 //! Command-line syntax (clap derive). Usage errors exit with status 2.
 
-use std::num::NonZeroUsize;
 use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand};
@@ -46,7 +45,7 @@ pub struct RunArgs {
     /// Replace every scenario's seed.
     #[arg(long, value_name = "N")]
     pub seed: Option<u64>,
-    /// Worker threads (default: one per core). Results do not depend on it.
-    #[arg(long, value_name = "N")]
-    pub jobs: Option<NonZeroUsize>,
+    /// Worker threads, at least 1 (default: one per core). Results do not depend on it.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..))]
+    pub jobs: Option<u16>,
 }

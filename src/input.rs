@@ -35,8 +35,12 @@ fn load(path: &Path, options: &Options) -> Result<Input, String> {
     let name = path.display().to_string();
     let bytes = std::fs::read(path).map_err(|e| format!("{name}: error: failed to read the file: {e}"))?;
     let text = std::str::from_utf8(&bytes).map_err(|e| {
-        let line = bytes[..e.valid_up_to()].iter().filter(|&&b| b == b'\n').count() + 1;
-        format!("{name}:{line}:1: error: the file is not UTF-8 text")
+        let valid = &bytes[..e.valid_up_to()];
+        let line_start = valid.iter().rposition(|&b| b == b'\n').map_or(0, |i| i + 1);
+        let line = valid.iter().filter(|&&b| b == b'\n').count() + 1;
+        // The prefix is valid UTF-8, so its characters can be counted.
+        let column = String::from_utf8_lossy(&valid[line_start..]).chars().count() + 1;
+        format!("{name}:{line}:{column}: error: the file is not UTF-8 text")
     })?;
     let scenario = sightline_dsl::compile(&name, text, options).map_err(|errors| errors.to_string())?;
     Ok(Input {

@@ -1,7 +1,9 @@
-//! Writing evidence files atomically: each file is written to a temporary file in
-//! its directory and renamed into place, so a reader never sees half a file.
+//! Output: evidence files written atomically (each to a temporary file in its
+//! directory, renamed into place, so a reader never sees half a file), and lines
+//! on stdout.
 
-use std::io::Write;
+use std::fmt::Display;
+use std::io::{ErrorKind, Write};
 use std::path::Path;
 
 use anyhow::Context;
@@ -34,4 +36,15 @@ pub fn write_atomically(dir: &Path, files: &[(&str, &str)]) -> anyhow::Result<()
             .with_context(|| format!("failed to write {}", path.display()))?;
     }
     Ok(())
+}
+
+/// Prints a line on stdout. A closed stdout (`sightline run … | head`) is not an
+/// error: the evidence files and the exit status are what matter, so the run goes
+/// on and exits with the status it earns.
+pub fn say(line: impl Display) {
+    if let Err(error) = writeln!(std::io::stdout().lock(), "{line}")
+        && error.kind() != ErrorKind::BrokenPipe
+    {
+        eprintln!("warning: failed to write to stdout: {error}");
+    }
 }

@@ -149,7 +149,8 @@ fn edit_distance(a: &str, b: &str) -> usize {
 fn friendly_expected(expected: &str) -> String {
     match expected {
         "f64" | "f32" => "a number".into(),
-        "u64" | "u32" | "u16" | "u8" | "usize" => "a whole number ≥ 0".into(),
+        "u64" => format!("a whole number from 0 to {}", u64::MAX),
+        "u32" => format!("a whole number from 0 to {}", u32::MAX),
         "i64" | "i32" => "a whole number".into(),
         "a boolean" | "bool" => "`true` or `false`".into(),
         "a sequence" => "a list".into(),
@@ -167,6 +168,11 @@ fn describe_unexpected(unexpected: &Unexpected<'_>) -> String {
         Unexpected::Unsigned(u) => format!("integer `{u}`"),
         Unexpected::Float(f) => format!("number `{f}`"),
         Unexpected::Bool(b) => format!("boolean `{b}`"),
+        // serde describes integers beyond 64 bits as "integer `…` as i128".
+        Unexpected::Other(text) => text
+            .trim_end_matches(" as i128")
+            .trim_end_matches(" as u128")
+            .to_string(),
         other => other.to_string(),
     }
 }
@@ -197,7 +203,11 @@ impl<'de> de::Deserializer<'de> for NodeDeserializer<'de> {
         let result = match &self.node.value {
             Value::Null => visitor.visit_unit(),
             Value::Bool(b) => visitor.visit_bool(*b),
-            Value::Int(i) => visitor.visit_i64(*i),
+            Value::Int(i) => match (i64::try_from(*i), u64::try_from(*i)) {
+                (Ok(i), _) => visitor.visit_i64(i),
+                (_, Ok(u)) => visitor.visit_u64(u),
+                _ => visitor.visit_i128(*i),
+            },
             Value::Float(f) => visitor.visit_f64(*f),
             Value::Str(s) => visitor.visit_borrowed_str(s),
             Value::Seq(items) => visitor.visit_seq(SeqAccess {
@@ -393,7 +403,10 @@ mod tests {
     #[test]
     fn negative_count_is_out_of_range() {
         let err = load("inner: {gamma: 1, count: -1}\nmethod: bayes\n").unwrap_err();
-        assert_eq!(err.kind.to_string(), "expected a whole number ≥ 0, found integer `-1`");
+        assert_eq!(
+            err.kind.to_string(),
+            "expected a whole number from 0 to 4294967295, found integer `-1`"
+        );
     }
 
     #[test]

@@ -26,7 +26,7 @@ pub(crate) struct RawScenario {
     /// What the scenario models and why; shown in reports.
     #[serde(default)]
     pub description: String,
-    /// Seed of every random stream (0 to 2⁶³ − 1). The same file and seed give
+    /// Seed of every random stream (0 to 2⁶⁴ − 1). The same file and seed give
     /// byte-identical results.
     #[serde(default)]
     pub seed: u64,

@@ -2,6 +2,7 @@
 //! reads) and the field reference generated from it.
 
 use std::fmt::Write;
+use std::sync::OnceLock;
 
 use schemars::generate::SchemaSettings;
 use serde_json::{Map, Value};
@@ -14,6 +15,37 @@ pub fn schema() -> Value {
         .into_generator()
         .into_root_schema_for::<RawScenario>()
         .to_value()
+}
+
+/// Why a dotted path names no setting: the deepest valid prefix, the keys allowed
+/// under it (empty when it is not a mapping), and the first unknown segment.
+pub(crate) struct NoSetting {
+    pub(crate) parent: String,
+    pub(crate) allowed: Vec<String>,
+    pub(crate) unknown: String,
+}
+
+/// Checks that a dotted key path (`field.masses.gamma`) names a setting of the
+/// language, by walking the properties of the schema.
+pub(crate) fn check_setting(segments: &[&str]) -> Result<(), NoSetting> {
+    static SCHEMA: OnceLock<Value> = OnceLock::new();
+    let schema = SCHEMA.get_or_init(schema);
+    let mut node = schema;
+    for (depth, segment) in segments.iter().enumerate() {
+        let resolved = reference(node).map_or(node, |name| &schema["definitions"][name.as_str()]);
+        let properties = resolved["properties"].as_object();
+        match properties.and_then(|p| p.get(*segment)) {
+            Some(child) => node = child,
+            None => {
+                return Err(NoSetting {
+                    parent: segments[..depth].join("."),
+                    allowed: properties.map(|p| p.keys().cloned().collect()).unwrap_or_default(),
+                    unknown: (*segment).to_string(),
+                });
+            }
+        }
+    }
+    Ok(())
 }
 
 /// The field-by-field reference of the language as Markdown, generated from

@@ -16,6 +16,7 @@ use std::collections::HashMap;
 use saphyr_parser::{Event, Parser, ScalarStyle, Span, Tag};
 
 use crate::error::{ErrorKind, Location};
+use crate::path::Path;
 
 /// One YAML value with the position of its first character.
 #[derive(Debug, Clone, PartialEq)]
@@ -29,7 +30,8 @@ pub(crate) struct Node {
 pub(crate) enum Value {
     Null,
     Bool(bool),
-    Int(i64),
+    /// Integers are kept exactly, wide enough for any `u64` (seeds).
+    Int(i128),
     Float(f64),
     Str(String),
     Seq(Vec<Node>),
@@ -76,7 +78,10 @@ impl Node {
         match &self.value {
             Value::Null => J::Null,
             Value::Bool(b) => J::Bool(*b),
-            Value::Int(i) => J::from(*i),
+            Value::Int(i) => i64::try_from(*i)
+                .map(J::from)
+                .or_else(|_| u64::try_from(*i).map(J::from))
+                .unwrap_or_else(|_| J::String(i.to_string())),
             Value::Float(f) => serde_json::Number::from_f64(*f).map_or(J::Null, J::Number),
             Value::Str(s) => J::String(s.clone()),
             Value::Seq(items) => J::Array(items.iter().map(Node::to_json).collect()),
@@ -89,6 +94,8 @@ impl Node {
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct ParseError {
     pub(crate) location: Location,
+    /// The YAML path of the innermost mapping or list being read.
+    pub(crate) path: Path,
     pub(crate) kind: ErrorKind,
 }
 
@@ -101,6 +108,7 @@ pub(crate) fn parse(source: &str) -> Result<Node, ParseError> {
     while let Some(event) = parser.next_event() {
         let (event, span) = event.map_err(|e| ParseError {
             location: Location::from_marker(*e.marker()),
+            path: builder.path(),
             kind: ErrorKind::Syntax(e.info().to_string()),
         })?;
         builder.on_event(event, span)?;
@@ -141,6 +149,7 @@ impl Builder {
                 if self.documents > 1 {
                     return Err(ParseError {
                         location,
+                        path: Path::root(),
                         kind: ErrorKind::Syntax("a scenario file holds one YAML document; found a second `---`".into()),
                     });
                 }
@@ -149,6 +158,7 @@ impl Builder {
             Event::Alias(id) => {
                 let node = self.anchors.get(&id).cloned().ok_or_else(|| ParseError {
                     location,
+                    path: self.path(),
                     kind: ErrorKind::Syntax("alias refers to an unknown anchor".into()),
                 })?;
                 self.push(node)
@@ -156,6 +166,7 @@ impl Builder {
             Event::Scalar(text, style, anchor, tag) => {
                 let value = resolve_scalar(&text, style, tag.as_deref()).map_err(|message| ParseError {
                     location,
+                    path: self.path(),
                     kind: ErrorKind::Syntax(message),
                 })?;
                 let node = Node::new(value, location);
@@ -163,7 +174,7 @@ impl Builder {
                 self.push(node)
             }
             Event::SequenceStart(anchor, tag) => {
-                reject_tag(tag.as_deref(), location)?;
+                reject_tag(tag.as_deref(), location, self.path())?;
                 self.stack.push(Open::Seq {
                     items: Vec::new(),
                     location,
@@ -172,7 +183,7 @@ impl Builder {
                 Ok(())
             }
             Event::MappingStart(anchor, tag) => {
-                reject_tag(tag.as_deref(), location)?;
+                reject_tag(tag.as_deref(), location, self.path())?;
                 self.stack.push(Open::Map {
                     entries: Vec::new(),
                     pending_key: None,
@@ -210,69 +221,92 @@ impl Builder {
 
     /// Places a finished node into its parent (or makes it the root).
     fn push(&mut self, node: Node) -> Result<(), ParseError> {
+        if let Some(Open::Map {
+            entries,
+            pending_key: None,
+            ..
+        }) = self.stack.last()
+        {
+            let key = self.key(node, entries)?;
+            if let Some(Open::Map { pending_key, .. }) = self.stack.last_mut() {
+                *pending_key = Some(key);
+            }
+            return Ok(());
+        }
         match self.stack.last_mut() {
-            None => {
-                self.root = Some(node);
-                Ok(())
-            }
-            Some(Open::Seq { items, .. }) => {
-                items.push(node);
-                Ok(())
-            }
+            None => self.root = Some(node),
+            Some(Open::Seq { items, .. }) => items.push(node),
             Some(Open::Map {
                 entries, pending_key, ..
-            }) => match pending_key.take() {
-                Some(key) => {
-                    entries.push((key, node));
-                    Ok(())
-                }
-                None => {
-                    let name = match node.value {
-                        Value::Str(s) => s,
-                        Value::Int(i) => i.to_string(),
-                        Value::Float(f) => f.to_string(),
-                        Value::Bool(b) => b.to_string(),
-                        Value::Null | Value::Seq(_) | Value::Map(_) => {
-                            return Err(ParseError {
-                                location: node.location,
-                                kind: ErrorKind::Syntax(format!(
-                                    "a mapping key must be a plain name, found {}",
-                                    node.describe()
-                                )),
-                            });
-                        }
-                    };
-                    if let Some((first, _)) = entries.iter().find(|(k, _)| k.name == name) {
-                        return Err(ParseError {
-                            location: node.location,
-                            kind: ErrorKind::DuplicateKey {
-                                key: name,
-                                first: first.location,
-                            },
-                        });
-                    }
-                    *pending_key = Some(Key {
-                        name,
-                        location: node.location,
-                    });
-                    Ok(())
-                }
-            },
+            }) => {
+                let key = pending_key.take().expect("a key was stored before its value");
+                entries.push((key, node));
+            }
         }
+        Ok(())
+    }
+
+    /// Turns a scalar node in key position into a key, rejecting complex and duplicate keys.
+    fn key(&self, node: Node, entries: &[(Key, Node)]) -> Result<Key, ParseError> {
+        let name = match node.value {
+            Value::Str(s) => s,
+            Value::Int(i) => i.to_string(),
+            Value::Float(f) => f.to_string(),
+            Value::Bool(b) => b.to_string(),
+            Value::Null | Value::Seq(_) | Value::Map(_) => {
+                return Err(ParseError {
+                    location: node.location,
+                    path: self.path(),
+                    kind: ErrorKind::Syntax(format!("a mapping key must be a plain name, found {}", node.describe())),
+                });
+            }
+        };
+        if let Some((first, _)) = entries.iter().find(|(k, _)| k.name == name) {
+            return Err(ParseError {
+                location: node.location,
+                path: self.path(),
+                kind: ErrorKind::DuplicateKey {
+                    key: name,
+                    first: first.location,
+                },
+            });
+        }
+        Ok(Key {
+            name,
+            location: node.location,
+        })
+    }
+
+    /// The YAML path of the innermost open mapping or list.
+    fn path(&self) -> Path {
+        let mut path = Path::root();
+        for frame in self.stack.iter().take(self.stack.len().saturating_sub(1)) {
+            path = match frame {
+                Open::Seq { items, .. } => path.index(items.len()),
+                Open::Map {
+                    pending_key: Some(key), ..
+                } => path.key(&key.name),
+                // A mapping used as a key: rejected when it closes.
+                Open::Map { pending_key: None, .. } => path,
+            };
+        }
+        path
     }
 
     fn finish(self) -> Result<Node, ParseError> {
         self.root.ok_or(ParseError {
             location: Location::new(1, 1),
+            path: Path::root(),
             kind: ErrorKind::Syntax("the file is empty; a scenario starts with `sightline: 1`".into()),
         })
     }
 }
 
-fn reject_tag(tag: Option<&Tag>, location: Location) -> Result<(), ParseError> {
+fn reject_tag(tag: Option<&Tag>, location: Location, path: Path) -> Result<(), ParseError> {
     match tag {
         Some(tag) if !tag.is_yaml_core_schema() => Err(ParseError {
             location,
+            path,
             kind: ErrorKind::Syntax(format!("YAML tags such as `{tag}` are not supported")),
         }),
         _ => Ok(()),
@@ -305,17 +339,17 @@ fn resolve_scalar(text: &str, style: ScalarStyle, tag: Option<&Tag>) -> Result<V
 
 fn parse_number(text: &str) -> Option<Value> {
     if let Some(hex) = text.strip_prefix("0x") {
-        return i64::from_str_radix(hex, 16).ok().map(Value::Int);
+        return i128::from_str_radix(hex, 16).ok().map(Value::Int);
     }
     if let Some(oct) = text.strip_prefix("0o") {
-        return i64::from_str_radix(oct, 8).ok().map(Value::Int);
+        return i128::from_str_radix(oct, 8).ok().map(Value::Int);
     }
     let digits = text.strip_prefix(['-', '+']).unwrap_or(text);
     if !digits.starts_with(|c: char| c.is_ascii_digit() || c == '.') {
         return None;
     }
     if digits.bytes().all(|b| b.is_ascii_digit()) {
-        // An integer too large for i64 is still a number: keep it as a float.
+        // Beyond i128 an integer is still a number: keep it as a float.
         return Some(
             text.parse()
                 .map_or_else(|_| Value::Float(text.parse().unwrap_or(f64::NAN)), Value::Int),
@@ -345,6 +379,8 @@ mod tests {
         assert_eq!(get("g"), Value::Float(f64::INFINITY));
         assert_eq!(get("h"), Value::Int(16));
         assert_eq!(get("i"), Value::Float(-2000.0));
+        let big = root("seed: 18446744073709551615\n");
+        assert_eq!(big.get("seed").unwrap().value, Value::Int(u64::MAX.into()));
     }
 
     #[test]
@@ -362,6 +398,9 @@ mod tests {
     fn duplicate_keys_are_rejected_with_both_locations() {
         let err = parse("a: 1\nb: 2\na: 3\n").unwrap_err();
         assert_eq!(err.location, Location::new(3, 1));
+        assert_eq!(err.path, Path::root());
+        let nested = parse("top:\n  list:\n    - {k: 1, k: 2}\n").unwrap_err();
+        assert_eq!(nested.path.to_string(), "top.list[0]");
         assert_eq!(
             err.kind,
             ErrorKind::DuplicateKey {

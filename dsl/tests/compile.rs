@@ -90,6 +90,12 @@ fn where_selects_points_by_effective_settings() {
 }
 
 #[test]
+fn seed_spans_the_whole_u64_range() {
+    let scenario = ok(&format!("{BASE}seed: 18446744073709551615\n"));
+    assert_eq!(scenario.points[0].setup.seed, u64::MAX);
+}
+
+#[test]
 fn seed_option_replaces_the_file_seed() {
     let scenario = compile("t.yaml", BASE, &Options { seed: Some(99) }).unwrap();
     assert_eq!(scenario.points[0].setup.seed, 99);

@@ -4,6 +4,7 @@ use std::path::PathBuf;
 
 use crate::exit::Exit;
 use crate::input::load_all;
+use crate::output::say;
 
 /// Validates every file; prints one line per valid file, every error otherwise.
 pub fn check(files: &[PathBuf]) -> Exit {
@@ -12,14 +13,14 @@ pub fn check(files: &[PathBuf]) -> Exit {
     };
     for input in inputs {
         let scenario = &input.scenario;
-        println!(
+        say(format_args!(
             "{}: ok ({} sweep point{}, {} requirement{})",
             input.path.display(),
             scenario.points.len(),
             if scenario.points.len() == 1 { "" } else { "s" },
             scenario.requirements.len(),
             if scenario.requirements.len() == 1 { "" } else { "s" },
-        );
+        ));
     }
     Exit::Pass
 }

@@ -11,7 +11,7 @@ use sightline_reports::{Provenance, Tool, render, sha256_hex};
 use crate::cli::RunArgs;
 use crate::exit::Exit;
 use crate::input::{Input, load_all};
-use crate::output::write_atomically;
+use crate::output::{say, write_atomically};
 
 /// Validates every file first (nothing is written if one is invalid), then runs
 /// each scenario and writes its evidence.
@@ -23,7 +23,7 @@ pub fn run(args: &RunArgs) -> anyhow::Result<Exit> {
         return Ok(Exit::Invalid);
     };
     let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(args.jobs.map_or(0, |n| n.get()))
+        .num_threads(args.jobs.map_or(0, usize::from))
         .build()
         .context("failed to start worker threads")?;
     let mut exit = Exit::Pass;
@@ -56,26 +56,26 @@ pub fn run(args: &RunArgs) -> anyhow::Result<Exit> {
         )?;
         let summary = evidence.results.summary;
         let verdict = evidence.results.verdict.name().to_uppercase();
-        println!(
+        say(format_args!(
             "{verdict} {path}: {} of {} requirements hold over {} sweep point{} -> {}",
             summary.passed,
             summary.requirements,
             scenario.points.len(),
             if scenario.points.len() == 1 { "" } else { "s" },
             dir.display()
-        );
+        ));
         for requirement in evidence
             .results
             .requirements
             .iter()
             .filter(|r| r.verdict != Status::Pass)
         {
-            println!(
+            say(format_args!(
                 "  {} {}: {}",
                 requirement.verdict.name(),
                 requirement.id,
                 requirement.message
-            );
+            ));
         }
         if evidence.results.verdict != Status::Pass {
             exit = Exit::Fail;

@@ -26,7 +26,13 @@ impl<'a> Context<'a> {
         self.error_at(locate(self.tree, path), path, kind);
     }
 
-    /// Records an error at an explicit location (a key rather than its value).
+    /// Records an error at the key that ends `path` (an unknown or misspelt name),
+    /// rather than at its value.
+    pub(super) fn error_at_key(&mut self, path: &Path, kind: ErrorKind) {
+        self.error_at(locate_key(self.tree, path), path, kind);
+    }
+
+    /// Records an error at an explicit location.
     pub(super) fn error_at(&mut self, location: Location, path: &Path, kind: ErrorKind) {
         self.errors.push(Error {
             file: self.file.to_string(),
@@ -101,8 +107,26 @@ impl<'a> Context<'a> {
 
 /// The location of the deepest node on `path` present in `tree`.
 pub(super) fn locate(tree: &Node, path: &Path) -> Location {
+    deepest(tree, path.segments()).0.location
+}
+
+/// The location of the key that ends `path`, or of the deepest node on it when
+/// the key is not there.
+fn locate_key(tree: &Node, path: &Path) -> Location {
+    if let Some((Segment::Key(last), parent)) = path.segments().split_last()
+        && let (parent, true) = deepest(tree, parent)
+        && let Value::Map(entries) = &parent.value
+        && let Some((key, _)) = entries.iter().find(|(k, _)| &k.name == last)
+    {
+        return key.location;
+    }
+    locate(tree, path)
+}
+
+/// The deepest node on `segments`, and whether it is the node they name.
+fn deepest<'a>(tree: &'a Node, segments: &[Segment]) -> (&'a Node, bool) {
     let mut node = tree;
-    for segment in path.segments() {
+    for segment in segments {
         let next = match (segment, &node.value) {
             (Segment::Key(key), Value::Map(_)) => node.get(key),
             (Segment::Index(i), Value::Seq(items)) => items.get(*i),
@@ -110,8 +134,8 @@ pub(super) fn locate(tree: &Node, path: &Path) -> Location {
         };
         match next {
             Some(next) => node = next,
-            None => break,
+            None => return (node, false),
         }
     }
-    node.location
+    (node, true)
 }

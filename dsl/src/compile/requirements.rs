@@ -176,26 +176,25 @@ fn defined_everywhere(
         .map(|&i| &points[i])
         .find(|p| metric.is_evidential_only() && !p.setup.fusion.rule.is_evidential());
     if let Some(point) = undefined {
+        let method = point.setup.fusion.rule.method().name();
+        let advice = if point.assignments.is_empty() {
+            format!("the scenario fuses with `{method}`")
+        } else {
+            format!(
+                "sweep point {} fuses with `{method}`; restrict the check with `where`",
+                point.label()
+            )
+        };
         ctx.error(
             path,
             ErrorKind::Invalid(format!(
-                "metric `{}` is not defined for fusion method `{}`{}; restrict it with `where`",
-                metric.name(),
-                point.setup.fusion.rule.method().name(),
-                at_point(point)
+                "metric `{}` exists only for evidential fusion methods, and {advice}",
+                metric.name()
             )),
         );
         return false;
     }
     true
-}
-
-fn at_point(point: &Point) -> String {
-    if point.assignments.is_empty() {
-        String::new()
-    } else {
-        format!(" (at sweep point {})", point.label())
-    }
 }
 
 /// The points whose settings match every entry of a `where` filter.
@@ -213,7 +212,7 @@ fn select(
             let hint = suggest(&points[0].settings, key)
                 .map(|s| format!(" (did you mean `{s}`?)"))
                 .unwrap_or_default();
-            ctx.error(
+            ctx.error_at_key(
                 &key_path,
                 ErrorKind::DanglingReference(format!("`{key}` names no setting of this scenario{hint}")),
             );

@@ -12,7 +12,7 @@ use crate::raw::RawScenario;
 use crate::yaml::{self, Node, Value};
 
 /// The language version this release reads.
-pub const LANGUAGE_VERSION: i64 = 1;
+pub const LANGUAGE_VERSION: i128 = 1;
 
 /// Settings that override the file.
 #[derive(Debug, Clone, Default)]
@@ -37,7 +37,7 @@ fn compile_inner(file: &str, source: &str, options: &Options) -> Result<Scenario
         vec![Error {
             file: file.to_string(),
             location: e.location,
-            path: String::new(),
+            path: e.path.to_string(),
             kind: e.kind,
         }]
     })?;

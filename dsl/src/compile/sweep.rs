@@ -2,8 +2,10 @@
 //! with the swept values substituted, so a bad value is reported where it is written.
 
 use super::context::Context;
+use crate::de::{closest, one_of};
 use crate::error::{ErrorKind, Location};
 use crate::path::{Path, Segment};
+use crate::schema::check_setting;
 use crate::yaml::{Key, Node, Value};
 
 /// The most sweep points one scenario may have.
@@ -49,6 +51,25 @@ pub(super) fn axes<'a>(ctx: &mut Context<'a>) -> Vec<AxisNodes<'a>> {
                     SWEEPABLE.map(|s| format!("`{s}`")).join(", ")
                 )),
             );
+            continue;
+        }
+        let names: Vec<&str> = key.name.split('.').collect();
+        if let Err(no) = check_setting(&names) {
+            let message = if no.allowed.is_empty() {
+                format!("`{}` names no setting: `{}` is not a mapping", key.name, no.parent)
+            } else {
+                let allowed: Vec<&str> = no.allowed.iter().map(String::as_str).collect();
+                let hint = closest(&no.unknown, allowed.iter().copied())
+                    .map(|c| format!(" (did you mean `{}.{c}`?)", no.parent))
+                    .unwrap_or_default();
+                format!(
+                    "`{}` names no setting: `{}` has {}{hint}",
+                    key.name,
+                    no.parent,
+                    one_of(allowed.iter())
+                )
+            };
+            ctx.error_at(key.location, &here, ErrorKind::DanglingReference(message));
             continue;
         }
         let Value::Seq(values) = &node.value else {

@@ -58,14 +58,23 @@ impl Point {
     }
 }
 
-/// How a swept value shows in tables: a mapping by its `label`, a string unquoted,
-/// anything else as JSON.
+/// How a setting shows in tables and messages: a string unquoted, a whole number
+/// without a decimal point (`6`, not `6.0`), a mapping by its `label` or else as
+/// `{key=value …}`, a list as JSON.
 pub fn display_value(value: &serde_json::Value) -> String {
+    use serde_json::Value as J;
     match value {
-        serde_json::Value::String(s) => s.clone(),
-        serde_json::Value::Object(map) => match map.get("label") {
-            Some(serde_json::Value::String(label)) => label.clone(),
-            _ => value.to_string(),
+        J::String(s) => s.clone(),
+        J::Number(n) => match n.as_f64() {
+            Some(f) if n.is_f64() && f.fract() == 0.0 && f.abs() < 1e15 => format!("{f:.0}"),
+            _ => n.to_string(),
+        },
+        J::Object(map) => match map.get("label") {
+            Some(J::String(label)) => label.clone(),
+            _ => {
+                let pairs: Vec<String> = map.iter().map(|(k, v)| format!("{k}={}", display_value(v))).collect();
+                format!("{{{}}}", pairs.join(" "))
+            }
         },
         other => other.to_string(),
     }
@@ -130,5 +139,29 @@ impl Grid {
             self.origin[0] + (col as f64 + 0.5) * self.cell,
             self.origin[1] + (row as f64 + 0.5) * self.cell,
         ]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use serde_json::json;
+
+    use super::display_value;
+
+    #[test]
+    fn settings_display_as_written() {
+        assert_eq!(display_value(&json!(6)), "6");
+        assert_eq!(display_value(&json!(6.0)), "6");
+        assert_eq!(display_value(&json!(0.25)), "0.25");
+        assert_eq!(display_value(&json!("bayes")), "bayes");
+        assert_eq!(
+            display_value(&json!({"label": "Proposed", "method": "hybrid"})),
+            "Proposed"
+        );
+        assert_eq!(
+            display_value(&json!({"method": "hybrid", "switch": {"threshold": 50}})),
+            "{method=hybrid switch={threshold=50}}"
+        );
+        assert_eq!(display_value(&json!([1, 2])), "[1,2]");
     }
 }
