@@ -1,20 +1,31 @@
 //! The bundled seed-001 scenario, end to end: 1000 × 1000 cells, 60 sweep points.
-//! It takes a while, so it runs once and checks only the shape of the evidence.
+//! It takes a while, so it runs once (shared by the tests below): the shape of its
+//! evidence, and every figure `docs/findings/seed-001.md` quotes from it.
 
-use crate::support::{arg, assert_evidence_files, read_json, sightline, temp_dir};
+use std::sync::OnceLock;
+
+use crate::support::{arg, assert_evidence_files, read, read_json, root, sightline, temp_dir};
+
+const SCENARIO: &str = "scenarios/evidential-field.yaml";
+
+/// results.json of one run of the bundled scenario.
+fn results() -> &'static serde_json::Value {
+    static RESULTS: OnceLock<serde_json::Value> = OnceLock::new();
+    RESULTS.get_or_init(|| {
+        let tmp = temp_dir();
+        let out = tmp.path().join("out");
+        sightline(["run", SCENARIO, "--out", arg(&out)]).assert_exit(0);
+        assert_evidence_files(&out);
+        read_json(&out.join("results.json"))
+    })
+}
 
 #[test]
 fn evidential_field_scenario_runs_end_to_end() {
-    let tmp = temp_dir();
-    let out = tmp.path().join("out");
-    let scenario = "scenarios/evidential-field.yaml";
-    let outcome = sightline(["run", scenario, "--out", arg(&out)]);
-    outcome.assert_exit(0);
-    assert_evidence_files(&out);
-    let results = read_json(&out.join("results.json"));
+    let results = results();
     assert_eq!(results["format"], "sightline-results/1");
     assert_eq!(results["verdict"], "pass");
-    assert_eq!(results["scenario"]["path"], scenario);
+    assert_eq!(results["scenario"]["path"], SCENARIO);
     assert_eq!(results["sweep"]["points"].as_array().map(Vec::len), Some(60));
     assert_eq!(results["references"].as_array().map(Vec::len), Some(10));
     for reference in results["references"].as_array().unwrap() {
@@ -23,4 +34,127 @@ fn evidential_field_scenario_runs_end_to_end() {
         assert_eq!(points.len(), 2, "{reference:#}");
         assert!(points.iter().all(|p| p["measured"].is_number()), "{reference:#}");
     }
+}
+
+/// The short column names of the findings tables and the fusion labels they stand for.
+const COLUMNS: [(&str, &str); 6] = [
+    ("Baseline", "Baseline"),
+    ("Proposed", "Proposed"),
+    ("mean-one", "Proposed, mean-one weights"),
+    ("mean-one, pairwise", "Proposed, mean-one weights, pairwise"),
+    ("nearest-one", "Proposed, nearest-one weights"),
+    ("Bayes", "Bayes"),
+];
+
+/// The measured value of `metric` at (error model, γ, fusion label).
+fn measured(metric: &str, error_model: &str, gamma: f64, label: &str) -> f64 {
+    let points = results()["sweep"]["points"].as_array().unwrap();
+    let point = points
+        .iter()
+        .find(|p| {
+            p["settings"]["field.masses.error_model"] == error_model
+                && p["settings"]["field.masses.gamma"].as_f64() == Some(gamma)
+                && p["fusion"] == label
+        })
+        .unwrap_or_else(|| panic!("no point for {error_model}, γ = {gamma}, {label}"));
+    point["metrics"][metric].as_f64().unwrap()
+}
+
+/// The published value of `metric` at (γ, fusion label), from the scenario's references.
+fn published(metric: &str, gamma: f64, label: &str) -> f64 {
+    let points = results()["sweep"]["points"].as_array().unwrap();
+    let references = results()["references"].as_array().unwrap();
+    references
+        .iter()
+        .find(|r| {
+            r["metric"] == metric
+                && r["points"].as_array().unwrap().iter().any(|p| {
+                    let point = &points[p["point"].as_u64().unwrap() as usize];
+                    point["settings"]["field.masses.gamma"].as_f64() == Some(gamma) && point["fusion"] == label
+                })
+        })
+        .unwrap_or_else(|| panic!("no reference for {metric} at γ = {gamma}, {label}"))["published"]
+        .as_f64()
+        .unwrap()
+}
+
+/// Every table under "Measured against Table III" quotes the bundled run (and its
+/// "paper" columns the scenario's references), so the findings cannot drift from
+/// what sightline computes.
+#[test]
+fn findings_tables_quote_the_bundled_run() {
+    let doc = read(&root().join("docs/findings/seed-001.md"));
+    let section = doc
+        .split("\n## ")
+        .find(|s| s.starts_with("Measured against Table III"))
+        .expect("the findings have a section \"Measured against Table III\"");
+    let mut checked = 0;
+    let mut table: Option<(&str, String)> = None;
+    let mut header: Vec<String> = Vec::new();
+    for line in section.lines() {
+        if line.starts_with("**") {
+            let metric = if line.contains("below the threshold") {
+                "below_threshold"
+            } else if line.contains("Confident errors") {
+                "confident_errors"
+            } else if line.contains("Accuracy") {
+                "accuracy"
+            } else {
+                panic!("a table heading names no metric: {line}")
+            };
+            let model = line.split("`error_model: ").nth(1).and_then(|s| s.split('`').next());
+            table = Some((
+                metric,
+                model.expect("a table heading names its error model").to_string(),
+            ));
+            header.clear();
+            continue;
+        }
+        let Some((metric, model)) = &table else { continue };
+        if !line.starts_with('|') {
+            continue;
+        }
+        let cells: Vec<String> = line
+            .trim_matches('|')
+            .split('|')
+            .map(|c| c.trim().to_string())
+            .collect();
+        if header.is_empty() {
+            header = cells;
+            continue;
+        }
+        if cells[0].starts_with("---") {
+            continue;
+        }
+        let gamma: f64 = cells[0].parse().expect("the first column is γ");
+        for (column, cell) in header.iter().zip(&cells).skip(1) {
+            let quoted: f64 = cell
+                .replace(',', "")
+                .parse()
+                .unwrap_or_else(|_| panic!("not a number: {cell}"));
+            let (name, from_paper) = match column.strip_suffix(", paper") {
+                Some(name) => (name, true),
+                None => (column.as_str(), false),
+            };
+            let label = COLUMNS
+                .iter()
+                .find(|(short, _)| *short == name)
+                .unwrap_or_else(|| panic!("unknown column {column}"))
+                .1;
+            let actual = if from_paper {
+                published(metric, gamma, label)
+            } else {
+                measured(metric, model, gamma, label)
+            };
+            // Counts are quoted exactly; accuracies to four decimals.
+            let tolerance = if *metric == "accuracy" { 5e-5 } else { 0.0 };
+            assert!(
+                (actual - quoted).abs() <= tolerance,
+                "{metric} at {model}, γ = {gamma}, {column}: the findings quote {quoted}, the run gives {actual}"
+            );
+            checked += 1;
+        }
+    }
+    // Two below-threshold tables of 8 columns, two wrong-label tables of 6, 5 rows each.
+    assert_eq!(checked, 5 * (8 + 8 + 6 + 6));
 }

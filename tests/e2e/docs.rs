@@ -51,3 +51,33 @@ fn bundled_scenarios_are_valid_and_carry_the_schema_modeline() {
         );
     }
 }
+
+/// The fenced block of `language` that follows `marker` in `text`.
+fn fenced_after<'a>(text: &'a str, marker: &str, language: &str) -> &'a str {
+    let after = &text[text.find(marker).unwrap_or_else(|| panic!("no {marker:?}"))..];
+    let fence = format!("```{language}\n");
+    let start = after
+        .find(&fence)
+        .unwrap_or_else(|| panic!("no {language} block after {marker:?}"))
+        + fence.len();
+    let end = start + after[start..].find("```").expect("the block is closed");
+    &after[start..end]
+}
+
+/// The README's example scenario passes as it says, and the error message it shows
+/// for a negative γ is the one sightline prints.
+#[test]
+fn readme_example_runs_and_its_error_is_real() {
+    let readme = read(&root().join("README.md"));
+    let scenario = fenced_after(&readme, "## Writing a scenario", "yaml");
+    let quoted_error = fenced_after(&readme, "Errors point at the line", "text");
+    let tmp = crate::support::temp_dir();
+    std::fs::write(tmp.path().join("small.yaml"), scenario).unwrap();
+    crate::support::sightline_in(tmp.path(), ["run", "small.yaml", "--out", "out"]).assert_exit(0);
+    let broken = scenario.replace("gamma: 10 }", "gamma: -3 }");
+    assert_ne!(broken, scenario, "the example sets gamma: 10");
+    std::fs::write(tmp.path().join("small.yaml"), broken).unwrap();
+    let outcome = crate::support::sightline_in(tmp.path(), ["check", "small.yaml"]);
+    outcome.assert_exit(2);
+    assert_eq!(outcome.stderr, quoted_error, "the README quotes another message");
+}

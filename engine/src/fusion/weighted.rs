@@ -198,6 +198,31 @@ mod tests {
         }
     }
 
+    /// The mechanism table of docs/findings/seed-001.md: n agreeing sensors at d = 0
+    /// of the paper's experiment, (0.9375, 0.03125, 0.03125) each, at equal distances.
+    /// As written, their fused p_max − p_others falls below θ = 0.8 from n = 4 on, and
+    /// falls further as n grows; Dempster's rule goes to 1.
+    #[test]
+    fn as_written_agreeing_sources_fall_below_the_paper_threshold() {
+        let margin = |m: Mass| {
+            let max = m.empty.max(m.occupied).max(m.unknown);
+            max - (m.total() - max)
+        };
+        let ideal = Mass::new(0.9375, 0.03125, 0.03125);
+        let as_written = Weighting {
+            scaling: WeightScaling::SumToOne,
+            sources: SourceCombination::AllAtOnce,
+        };
+        for (n, dempster, weighted) in [(2, 0.9917, 0.8220), (4, 1.0, 0.7706), (6, 1.0, 0.7479)] {
+            let sources = vec![(ideal, 100.0); n];
+            let mut standard = Combiner::new();
+            sources.iter().for_each(|&(m, _)| standard.add(m));
+            assert_relative_eq!(margin(standard.finish().mass), dempster, epsilon = 5e-5);
+            let fused = combine_all(sources.iter().copied(), as_written);
+            assert_relative_eq!(margin(fused.mass), weighted, epsilon = 5e-5);
+        }
+    }
+
     #[test]
     fn all_at_once_equals_the_paper_for_two_sources() {
         let a = (Mass::new(0.7, 0.2, 0.1), 40.0);
