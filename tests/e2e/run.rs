@@ -424,3 +424,36 @@ fn closed_stdout_is_not_an_internal_error() {
     assert_eq!(output.status.code(), Some(0), "{stderr}");
     assert_evidence_files(Path::new(&out));
 }
+
+/// Text from the scenario reaches the report escaped: a name or requirement that
+/// contains markup is shown as text, never interpreted.
+#[test]
+fn markup_in_scenario_text_is_escaped_in_the_report() {
+    let tmp = temp_dir();
+    let fixture = read(&root().join(SMALL_FIELD))
+        .replace(
+            "name: Small field, three fusion methods",
+            "name: \"<script>alert('name')</script> & co\"",
+        )
+        .replace(
+            "text: Every fused cell holds a mass function.",
+            "text: \"<img src=x onerror=alert(1)> holds\"",
+        );
+    assert!(
+        fixture.contains("<script>") && fixture.contains("<img"),
+        "the fixture changed"
+    );
+    std::fs::write(tmp.path().join("markup.yaml"), fixture).unwrap();
+    sightline_in(tmp.path(), ["run", "markup.yaml", "--out", "out"]).assert_exit(0);
+    let html = read(&tmp.path().join("out/report.html"));
+    assert!(!html.contains("<script"), "raw <script> in the report");
+    assert!(!html.contains("<img"), "raw <img> in the report");
+    assert!(
+        html.contains("&lt;script&gt;alert(&#x27;name&#x27;)&lt;&#x2f;script&gt; &amp; co"),
+        "escaped name missing"
+    );
+    assert!(
+        html.contains("&lt;img src=x onerror=alert(1)&gt; holds"),
+        "escaped requirement text missing"
+    );
+}
