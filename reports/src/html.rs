@@ -108,7 +108,7 @@ impl<'a> View<'a> {
             requirements: results.requirements.iter().map(requirement_view).collect(),
             sweep: sweep_table(results),
             comparisons: comparisons(results),
-            points: results.sweep.points.iter().map(point_view).collect(),
+            points: results.sweep.iter().map(point_view).collect(),
         }
     }
 }
@@ -130,7 +130,7 @@ fn provenance(results: &Results, reproduce: &str) -> Vec<(&'static str, String)>
                 .seed
                 .map_or_else(|| "swept (see the table)".into(), |s| s.to_string()),
         ),
-        ("Sweep points", results.sweep.points.len().to_string()),
+        ("Sweep points", results.sweep.len().to_string()),
         ("Reproduce with", reproduce.to_string()),
     ]
 }
@@ -168,7 +168,7 @@ fn requirement_view(r: &RequirementResult) -> RequirementView {
 /// One row per point: the axis values, then [`TABLE_METRICS`] and every metric a
 /// requirement or reference uses, each followed by its published value if any.
 fn sweep_table(results: &Results) -> TableView {
-    let points = &results.sweep.points;
+    let points = &results.sweep;
     let mut metrics: Vec<&str> = TABLE_METRICS.to_vec();
     let used = results
         .requirements
@@ -184,7 +184,7 @@ fn sweep_table(results: &Results) -> TableView {
     metrics.retain(|m| points.iter().any(|p| p.metrics.0.iter().any(|(k, _)| k == m)));
     let has_published = |metric: &str| results.references.iter().any(|r| r.metric == metric);
 
-    let mut head: Vec<String> = results.sweep.axes.iter().map(|a| a.path.clone()).collect();
+    let mut head: Vec<String> = results.axes.iter().map(|a| a.path.clone()).collect();
     for metric in &metrics {
         head.push((*metric).to_string());
         if has_published(metric) {
@@ -217,7 +217,7 @@ fn sweep_table(results: &Results) -> TableView {
     TableView {
         head,
         rows,
-        text_columns: results.sweep.axes.len(),
+        text_columns: results.axes.len(),
     }
 }
 

@@ -10,7 +10,7 @@ pub use html::html;
 pub use junit::junit;
 pub use results::{
     CheckInfo, FORMAT, MetricEntry, Ordered, PointResult, PointVerdict, Provenance, ReferencePoint, ReferenceResult,
-    RequirementResult, Results, ScenarioInfo, Summary, Sweep, Table, Tool,
+    RequirementResult, Results, ScenarioInfo, Summary, Table, Tool,
 };
 
 mod html;

@@ -52,8 +52,10 @@ pub struct Results {
     pub requirements: Vec<RequirementResult>,
     /// Metrics: numbers for a scenario without sweep, tables over the sweep otherwise.
     pub metrics: Ordered<MetricEntry>,
-    /// Every sweep point and its measurements.
-    pub sweep: Sweep,
+    /// The swept settings and their values (empty without a sweep).
+    pub axes: Vec<sightline_dsl::Axis>,
+    /// Every sweep point and its measurements (one point without a sweep).
+    pub sweep: Vec<PointResult>,
     /// Published figures beside the measured values.
     pub references: Vec<ReferenceResult>,
 }
@@ -159,15 +161,6 @@ pub struct Table {
     pub rows: Vec<Vec<serde_json::Value>>,
 }
 
-/// The sweep: its axes and every point.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Sweep {
-    /// The swept paths and their values.
-    pub axes: Vec<sightline_dsl::Axis>,
-    /// One entry per point.
-    pub points: Vec<PointResult>,
-}
-
 /// Everything measured at one point.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct PointResult {
@@ -264,10 +257,8 @@ impl Results {
                 .map(|(requirement, verdict)| requirement_result(requirement, verdict, &labels))
                 .collect(),
             metrics: metrics(scenario, run),
-            sweep: Sweep {
-                axes: scenario.sweep.clone(),
-                points: scenario.points.iter().zip(&run.points).map(point_result).collect(),
-            },
+            axes: scenario.sweep.clone(),
+            sweep: scenario.points.iter().zip(&run.points).map(point_result).collect(),
             references: scenario
                 .references
                 .iter()

@@ -26,7 +26,7 @@ fn evidential_field_scenario_runs_end_to_end() {
     assert_eq!(results["format"], "sightline-results/1");
     assert_eq!(results["verdict"], "pass");
     assert_eq!(results["scenario"]["path"], SCENARIO);
-    assert_eq!(results["sweep"]["points"].as_array().map(Vec::len), Some(60));
+    assert_eq!(results["sweep"].as_array().map(Vec::len), Some(60));
     assert_eq!(results["references"].as_array().map(Vec::len), Some(10));
     for reference in results["references"].as_array().unwrap() {
         let points = reference["points"].as_array().unwrap();
@@ -48,7 +48,7 @@ const COLUMNS: [(&str, &str); 6] = [
 
 /// The measured value of `metric` at (error model, γ, fusion label).
 fn measured(metric: &str, error_model: &str, gamma: f64, label: &str) -> f64 {
-    let points = results()["sweep"]["points"].as_array().unwrap();
+    let points = results()["sweep"].as_array().unwrap();
     let point = points
         .iter()
         .find(|p| {
@@ -62,7 +62,7 @@ fn measured(metric: &str, error_model: &str, gamma: f64, label: &str) -> f64 {
 
 /// The published value of `metric` at (γ, fusion label), from the scenario's references.
 fn published(metric: &str, gamma: f64, label: &str) -> f64 {
-    let points = results()["sweep"]["points"].as_array().unwrap();
+    let points = results()["sweep"].as_array().unwrap();
     let references = results()["references"].as_array().unwrap();
     references
         .iter()

@@ -77,7 +77,7 @@ fn seed_flag_replaces_the_seed_and_changes_the_results() {
     let after = read_json(&other_seed.join("results.json"));
     assert_eq!(before["seed"], 42);
     assert_eq!(after["seed"], 7);
-    let points = |results: &serde_json::Value| results["sweep"]["points"].as_array().unwrap().clone();
+    let points = |results: &serde_json::Value| results["sweep"].as_array().unwrap().clone();
     for point in points(&after) {
         assert_eq!(point["seed"], 7, "every point takes the flag's seed");
     }
@@ -111,7 +111,7 @@ fn seed_flag_is_refused_when_the_scenario_sweeps_the_seed() {
     run_into(SEED_SWEEP, &out, &[], 0);
     let results = read_json(&out.join("results.json"));
     assert_eq!(results["seed"], serde_json::Value::Null);
-    let seeds: Vec<_> = results["sweep"]["points"]
+    let seeds: Vec<_> = results["sweep"]
         .as_array()
         .unwrap()
         .iter()

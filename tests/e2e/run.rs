@@ -82,7 +82,7 @@ fn valid_scenario_passes_and_writes_three_evidence_files() {
         }
     }
 
-    let points = results["sweep"]["points"].as_array().expect("sweep.points is a list");
+    let points = results["sweep"].as_array().expect("sweep is a list");
     let labels: Vec<&str> = points.iter().map(|p| p["label"].as_str().unwrap()).collect();
     assert_eq!(labels, ["fusion=Baseline", "fusion=Proposed", "fusion=Bayes"]);
     let methods: Vec<&str> = points.iter().map(|p| p["method"].as_str().unwrap()).collect();
