@@ -39,7 +39,7 @@ pub struct RunArgs {
     #[arg(required = true)]
     pub files: Vec<PathBuf>,
     /// Evidence directory. With one file the evidence goes here; with several,
-    /// into DIR/<file stem>/. Default: out/<file stem>/.
+    /// into DIR/STEM/ (STEM: the file name without its extension). Default: out/STEM/.
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
     /// Replace every scenario's seed.
