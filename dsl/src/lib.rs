@@ -27,6 +27,7 @@ pub use schema::{reference_markdown, schema};
 mod compile;
 mod de;
 mod error;
+pub mod geometry;
 mod model;
 mod path;
 mod raw;

@@ -10,7 +10,10 @@ use std::collections::BTreeMap;
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
-use crate::model::{ErrorModel, FusionMethod, Invariant, Metric, SourceCombination, SwitchMeasure, WeightScaling};
+use crate::model::{
+    AgentKind, Direction, ErrorModel, FusionMethod, Invariant, Metric, PoseFilter, SourceCombination, SwitchMeasure,
+    WeightScaling,
+};
 
 /// A sightline scenario: what to simulate, the requirements that must hold, and
 /// optionally a sweep over settings.
@@ -32,9 +35,31 @@ pub(crate) struct RawScenario {
     pub seed: u64,
     /// The occupancy grid every method fuses into.
     pub grid: RawGrid,
-    /// The static field experiment (seed 001): ground truth, fixed sensors, mass model.
+    /// The static field experiment (seed 001): ground truth, fixed sensors, mass
+    /// model. A scenario has either a `field` or a world (`time` … `perception`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub field: Option<RawField>,
+    /// World: simulated time.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub time: Option<RawTime>,
+    /// World: directed roads with their lanes.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub roads: Vec<RawRoad>,
+    /// World: buildings and walls that block sight.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub occluders: Vec<RawOccluder>,
+    /// World: sensor models by id.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub sensor_models: BTreeMap<String, RawSensorModel>,
+    /// World: vehicles, pedestrians and roadside units.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub agents: Vec<RawAgent>,
+    /// World: how connected agents localize themselves.
+    #[serde(default)]
+    pub localization: RawLocalization,
+    /// World: who shares perception, and how observations become evidence.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub perception: Option<RawPerception>,
     /// How sensor evidence is fused.
     #[serde(default)]
     pub fusion: RawFusion,
@@ -324,4 +349,342 @@ pub(crate) struct RawReference {
     pub filter: BTreeMap<String, serde_json::Value>,
     /// The published value.
     pub value: f64,
+}
+
+/// Simulated time.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, expecting = "a time mapping with `duration` and `step`")]
+#[schemars(rename = "Time")]
+pub(crate) struct RawTime {
+    /// Length of the run, seconds.
+    pub duration: f64,
+    /// Time between steps, seconds; the duration is a whole number of steps.
+    pub step: f64,
+}
+
+/// A directed road: one geometry, its lanes and its speed limit.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, expecting = "a road mapping with `id` and one geometry")]
+#[schemars(rename = "Road")]
+pub(crate) struct RawRoad {
+    /// Unique id, used in routes.
+    pub id: String,
+    /// Centreline of lane 0 as points [[x, y], …], metres, in the direction of travel.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub polyline: Option<Vec<[f64; 2]>>,
+    /// Centreline of lane 0 as a circular arc.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub arc: Option<RawArc>,
+    /// A closed one-way ring: the circulating lane of a roundabout.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub roundabout: Option<RawRoundabout>,
+    /// Number of lanes; lane k lies k lane widths left of lane 0.
+    #[serde(default = "default_lanes")]
+    pub lanes: u32,
+    /// Lane width, metres.
+    #[serde(default = "default_lane_width")]
+    pub lane_width: f64,
+    /// Speed limit, m/s.
+    pub speed_limit: f64,
+}
+
+fn default_lanes() -> u32 {
+    1
+}
+
+fn default_lane_width() -> f64 {
+    3.5
+}
+
+/// A circular arc, counter-clockwise when `end_deg` > `start_deg`.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, expecting = "an arc mapping")]
+#[schemars(rename = "Arc")]
+pub(crate) struct RawArc {
+    /// Centre [x, y], metres.
+    pub center: [f64; 2],
+    /// Radius, metres.
+    pub radius: f64,
+    /// Angle of the first point, degrees counter-clockwise from +x.
+    pub start_deg: f64,
+    /// Angle of the last point, degrees.
+    pub end_deg: f64,
+}
+
+/// A roundabout's circulating lane.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, expecting = "a roundabout mapping with `center` and `radius`")]
+#[schemars(rename = "Roundabout")]
+pub(crate) struct RawRoundabout {
+    /// Centre [x, y], metres.
+    pub center: [f64; 2],
+    /// Radius of lane 0's centreline, metres.
+    pub radius: f64,
+    /// Direction of travel: `ccw` (right-hand traffic) or `cw`.
+    #[serde(default = "default_direction")]
+    pub direction: Direction,
+}
+
+fn default_direction() -> Direction {
+    Direction::Ccw
+}
+
+/// A static obstacle to sight: a building or a wall.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, expecting = "an occluder mapping with `id` and `polygon`")]
+#[schemars(rename = "Occluder")]
+pub(crate) struct RawOccluder {
+    /// Unique id.
+    pub id: String,
+    /// Outline [[x, y], …], metres, at least three corners (not repeated at the end).
+    pub polygon: Vec<[f64; 2]>,
+    /// Height, metres (recorded; sight is computed in the plane).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub height: Option<f64>,
+}
+
+/// A sensor model, referred to by agents.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, expecting = "a sensor model mapping")]
+#[schemars(rename = "SensorModel")]
+pub(crate) struct RawSensorModel {
+    /// Range, metres.
+    pub range: f64,
+    /// Horizontal field of view, degrees (360: all around).
+    #[serde(default = "default_fov")]
+    pub fov_deg: f64,
+    /// Mounting pose in the agent frame (x forward, y left).
+    #[serde(default)]
+    pub mount: RawMount,
+    /// Probability that a visible object in range is detected (0–1).
+    #[serde(default = "default_detection_probability")]
+    pub detection_probability: f64,
+    /// Standard deviation of a detection's position error, σ(d) = base + per_m · d
+    /// (seed 002, eq. 1, with a linear σ(d)).
+    #[serde(default)]
+    pub position_noise: RawNoise,
+    /// Angle between the rays that carve free space, degrees.
+    #[serde(default = "default_ray_spacing")]
+    pub ray_spacing_deg: f64,
+}
+
+fn default_fov() -> f64 {
+    360.0
+}
+
+fn default_detection_probability() -> f64 {
+    1.0
+}
+
+fn default_ray_spacing() -> f64 {
+    0.5
+}
+
+/// A mounting pose in the agent frame.
+#[derive(Debug, Clone, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, expecting = "a mount mapping")]
+#[schemars(rename = "Mount")]
+pub(crate) struct RawMount {
+    /// Forward of the agent's centre, metres.
+    #[serde(default)]
+    pub x: f64,
+    /// Left of the agent's centre, metres.
+    #[serde(default)]
+    pub y: f64,
+    /// Yaw relative to the agent's heading, degrees.
+    #[serde(default)]
+    pub yaw_deg: f64,
+}
+
+/// A distance-dependent standard deviation σ(d) = base + per_m · d.
+#[derive(Debug, Clone, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, expecting = "a noise mapping with `base` and `per_m`")]
+#[schemars(rename = "Noise")]
+pub(crate) struct RawNoise {
+    /// σ at distance 0, metres.
+    #[serde(default)]
+    pub base: f64,
+    /// Growth of σ per metre of distance.
+    #[serde(default)]
+    pub per_m: f64,
+}
+
+/// A traffic participant or a roadside unit.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, expecting = "an agent mapping with `id` and `kind`")]
+#[schemars(rename = "Agent")]
+pub(crate) struct RawAgent {
+    /// Unique id.
+    pub id: String,
+    /// What it is; sets the default footprint.
+    pub kind: AgentKind,
+    /// Vehicles: the road ids it drives along, in order.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub route: Option<Vec<String>>,
+    /// Vehicles: the lane it keeps (0: lane 0 of every road).
+    #[serde(default)]
+    pub lane: u32,
+    /// Pedestrians: the points [[x, y], …] it walks through, metres.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub path: Option<Vec<[f64; 2]>>,
+    /// Roadside units: where it stands [x, y], metres.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub position: Option<[f64; 2]>,
+    /// Roadside units: heading, degrees counter-clockwise from +x.
+    #[serde(default)]
+    pub heading_deg: f64,
+    /// When and where a moving agent appears.
+    #[serde(default)]
+    pub start: RawStart,
+    /// Speed profile of a moving agent.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub speed: Option<RawSpeed>,
+    /// Footprint; the kind's default when absent.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub size: Option<RawSize>,
+    /// Whether it shares its perception over V2X.
+    #[serde(default)]
+    pub connected: bool,
+    /// Ids of its sensor models.
+    #[serde(default)]
+    pub sensors: Vec<String>,
+}
+
+/// When and where a moving agent appears.
+#[derive(Debug, Clone, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, expecting = "a start mapping")]
+#[schemars(rename = "Start")]
+pub(crate) struct RawStart {
+    /// Time it appears, seconds.
+    #[serde(default)]
+    pub time: f64,
+    /// Distance along its route or path where it appears, metres.
+    #[serde(default)]
+    pub offset: f64,
+}
+
+/// A speed profile: from `initial`, toward `target` at `acceleration`.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, expecting = "a speed mapping with `target`")]
+#[schemars(rename = "Speed")]
+pub(crate) struct RawSpeed {
+    /// Desired speed, m/s (vehicles never exceed the road's limit).
+    pub target: f64,
+    /// Speed when it appears, m/s; the target when absent.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub initial: Option<f64>,
+    /// Largest change of speed, m/s².
+    #[serde(default = "default_acceleration")]
+    pub acceleration: f64,
+}
+
+fn default_acceleration() -> f64 {
+    2.0
+}
+
+/// A footprint.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, expecting = "a size mapping with `length` and `width`")]
+#[schemars(rename = "Size")]
+pub(crate) struct RawSize {
+    /// Along the heading, metres.
+    pub length: f64,
+    /// Across the heading, metres.
+    pub width: f64,
+}
+
+/// Self-localization of connected agents.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, expecting = "a localization mapping")]
+#[schemars(rename = "Localization")]
+pub(crate) struct RawLocalization {
+    /// σ of each self-reported x and y measurement, metres.
+    #[serde(default)]
+    pub position_sigma: f64,
+    /// σ of each self-reported heading measurement, degrees.
+    #[serde(default)]
+    pub heading_sigma_deg: f64,
+    /// How an agent estimates its pose from its measurements.
+    #[serde(default = "default_filter")]
+    pub filter: PoseFilter,
+    /// Kalman filter: uncertainty the motion model adds to x and y, metres per √s.
+    #[serde(default = "default_process_position")]
+    pub process_position_sigma: f64,
+    /// Kalman filter: uncertainty the motion model adds to the heading, degrees per √s.
+    #[serde(default = "default_process_heading")]
+    pub process_heading_sigma_deg: f64,
+}
+
+impl Default for RawLocalization {
+    fn default() -> Self {
+        Self {
+            position_sigma: 0.0,
+            heading_sigma_deg: 0.0,
+            filter: default_filter(),
+            process_position_sigma: default_process_position(),
+            process_heading_sigma_deg: default_process_heading(),
+        }
+    }
+}
+
+fn default_process_position() -> f64 {
+    0.1
+}
+
+fn default_process_heading() -> f64 {
+    0.5
+}
+
+fn default_filter() -> PoseFilter {
+    PoseFilter::Kalman
+}
+
+/// Collective perception: who shares, and how an observation becomes evidence.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, expecting = "a perception mapping with `ego`")]
+#[schemars(rename = "Perception")]
+pub(crate) struct RawPerception {
+    /// Id of the ego agent (connected, with sensors).
+    pub ego: String,
+    /// Agents whose grids are fused, the ego included: the ego and the first
+    /// `cooperating` − 1 other connected agents with sensors, in file order.
+    /// Default: all connected agents with sensors.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cooperating: Option<u32>,
+    /// Probabilities of occupancy an observation conveys.
+    #[serde(default)]
+    pub inverse_model: RawInverseModel,
+    /// Time of the grids pictured in the report, seconds. Default: the middle of the run.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub snapshot: Option<f64>,
+}
+
+/// The inverse sensor model.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, expecting = "an inverse model mapping")]
+#[schemars(rename = "InverseModel")]
+pub(crate) struct RawInverseModel {
+    /// P(occupied) of a cell a detected object covers (0.5–1).
+    #[serde(default = "default_occupied")]
+    pub occupied: f64,
+    /// P(occupied) of a cell seen free along a ray (0–0.5).
+    #[serde(default = "default_free")]
+    pub free: f64,
+}
+
+impl Default for RawInverseModel {
+    fn default() -> Self {
+        Self {
+            occupied: default_occupied(),
+            free: default_free(),
+        }
+    }
+}
+
+fn default_occupied() -> f64 {
+    0.7
+}
+
+fn default_free() -> f64 {
+    0.3
 }

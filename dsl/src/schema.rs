@@ -34,7 +34,11 @@ pub(crate) fn check_setting(segments: &[&str]) -> Result<(), NoSetting> {
     for (depth, segment) in segments.iter().enumerate() {
         let resolved = reference(node).map_or(node, |name| &schema["definitions"][name.as_str()]);
         let properties = resolved["properties"].as_object();
-        match properties.and_then(|p| p.get(*segment)) {
+        // A map with keys of the user's choosing (`sensor_models.<id>`).
+        let entries = resolved["additionalProperties"]
+            .as_object()
+            .map(|_| &resolved["additionalProperties"]);
+        match properties.and_then(|p| p.get(*segment)).or(entries) {
             Some(child) => node = child,
             None => {
                 return Err(NoSetting {

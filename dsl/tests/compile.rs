@@ -31,7 +31,9 @@ fn defaults_follow_the_paper() {
     assert_eq!(setup.fusion.rule, Rule::Dempster);
     assert_eq!(setup.fusion.label, "dempster");
     assert_eq!((setup.grid.cols, setup.grid.rows), (40, 20));
-    let Experiment::Field(field) = &setup.experiment;
+    let Experiment::Field(field) = &setup.experiment else {
+        panic!("a field scenario")
+    };
     assert_eq!(field.masses.concentration, 32.0);
     assert_eq!(field.masses.epsilon0, 0.0625);
     assert_eq!(field.truth.blob_cells, 1);
@@ -68,7 +70,9 @@ fn sweep_expands_first_axis_outermost() {
             }
         }
     );
-    let Experiment::Field(field) = &scenario.points[2].setup.experiment;
+    let Experiment::Field(field) = &scenario.points[2].setup.experiment else {
+        panic!("a field scenario")
+    };
     assert_eq!(field.masses.gamma, 14.0);
 }
 

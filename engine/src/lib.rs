@@ -19,7 +19,7 @@
 #![warn(missing_docs)]
 
 pub use metrics::{BandMetrics, ConflictMetrics, Coverage, FieldMetrics, FieldOutcome, MassAudit};
-pub use run::{Run, simulate};
+pub use run::{Job, Outcome, Run, simulate};
 
 pub mod field;
 pub mod fusion;
@@ -27,3 +27,4 @@ pub mod math;
 mod metrics;
 mod rng;
 mod run;
+pub mod world;

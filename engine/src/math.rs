@@ -1,9 +1,9 @@
-//! The geometry vocabulary of the engine. Signatures use these names, never
-//! nalgebra's generic types.
+//! The geometry vocabulary of the engine: parry's types (glam underneath), so that
+//! positions go to parry's ray casts and BVH without conversion. Signatures use
+//! these names, never glam's or nalgebra's.
 
-/// The scalar type: metres, seconds, radians.
-pub type Real = f64;
-/// A position in the world frame, metres.
-pub type Point = nalgebra::Point2<Real>;
-/// A displacement in the world frame, metres.
-pub type Vector = nalgebra::Vector2<Real>;
+pub use parry2d_f64::math::{Pose, Real, Vector};
+
+/// A position in the world frame, metres: a vector from the world origin (glam has
+/// no separate point type).
+pub type Point = Vector;

@@ -9,7 +9,7 @@
 use serde::Serialize;
 use sightline_dsl::Metric;
 
-use crate::fusion::{Estimate, Mass, State, decide};
+use crate::fusion::{Estimate, State, decide};
 
 /// Everything measured at one sweep point.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -80,6 +80,7 @@ impl FieldMetrics {
             Metric::MaxConflict => self.conflict.as_ref()?.max,
             Metric::TotalConflictCells => self.conflict.as_ref()?.total_conflict_cells as f64,
             Metric::WeightedCells => self.conflict.as_ref()?.weighted_cells as f64,
+            Metric::FovGain | Metric::OccupiedRecall | Metric::OccupiedPrecision | Metric::BlindRecall => return None,
         })
     }
 
@@ -154,6 +155,101 @@ struct BandTally {
     missed: u64,
 }
 
+/// Running statistics of fused estimates: uncertainty, conflict, and the
+/// mass-function audit. Shared by the field and world tallies.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct EstimateTally {
+    fused: u64,
+    uncertainty_sum: f64,
+    conflict_sum: f64,
+    conflict_max: f64,
+    total_conflict: u64,
+    weighted: u64,
+    non_finite: u64,
+    min_mass: f64,
+    max_mass: f64,
+    max_sum_error: f64,
+}
+
+impl Default for EstimateTally {
+    fn default() -> Self {
+        Self {
+            fused: 0,
+            uncertainty_sum: 0.0,
+            conflict_sum: 0.0,
+            conflict_max: 0.0,
+            total_conflict: 0,
+            weighted: 0,
+            non_finite: 0,
+            min_mass: f64::INFINITY,
+            max_mass: f64::NEG_INFINITY,
+            max_sum_error: 0.0,
+        }
+    }
+}
+
+impl EstimateTally {
+    /// Records one fused estimate.
+    #[inline]
+    pub(crate) fn record(&mut self, estimate: &Estimate) {
+        self.fused += 1;
+        self.uncertainty_sum += estimate.uncertainty();
+        if let Estimate::Evidential { combination, weighted } = estimate {
+            self.conflict_sum += combination.conflict;
+            self.conflict_max = self.conflict_max.max(combination.conflict);
+            self.total_conflict += u64::from(combination.total_conflict);
+            self.weighted += u64::from(*weighted);
+        }
+        let mass = estimate.decision_mass();
+        let masses = mass.to_array();
+        if masses.iter().all(|m| m.is_finite()) {
+            for m in masses {
+                self.min_mass = self.min_mass.min(m);
+                self.max_mass = self.max_mass.max(m);
+            }
+            self.max_sum_error = self.max_sum_error.max((mass.total() - 1.0).abs());
+        } else {
+            self.non_finite += 1;
+        }
+    }
+
+    /// Adds `other`'s statistics; call in a fixed order for reproducible sums.
+    pub(crate) fn merge(&mut self, other: &EstimateTally) {
+        self.fused += other.fused;
+        self.uncertainty_sum += other.uncertainty_sum;
+        self.conflict_sum += other.conflict_sum;
+        self.conflict_max = self.conflict_max.max(other.conflict_max);
+        self.total_conflict += other.total_conflict;
+        self.weighted += other.weighted;
+        self.non_finite += other.non_finite;
+        self.min_mass = self.min_mass.min(other.min_mass);
+        self.max_mass = self.max_mass.max(other.max_mass);
+        self.max_sum_error = self.max_sum_error.max(other.max_sum_error);
+    }
+
+    /// Mean uncertainty, conflict statistics (for evidential methods) and the audit.
+    pub(crate) fn finish(&self, evidential: bool) -> (Option<f64>, Option<ConflictMetrics>, MassAudit) {
+        let mean = |sum: f64| (self.fused > 0).then(|| sum / self.fused as f64);
+        let fused = self.fused > 0;
+        (
+            mean(self.uncertainty_sum),
+            evidential.then(|| ConflictMetrics {
+                mean: mean(self.conflict_sum),
+                max: self.conflict_max,
+                total_conflict_cells: self.total_conflict,
+                weighted_cells: self.weighted,
+            }),
+            MassAudit {
+                cells: self.fused,
+                non_finite: self.non_finite,
+                min_mass: (fused && self.min_mass.is_finite()).then_some(self.min_mass),
+                max_mass: (fused && self.max_mass.is_finite()).then_some(self.max_mass),
+                max_sum_error: self.max_sum_error,
+            },
+        )
+    }
+}
+
 /// Running counts of one method over part of the grid.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct Tally {
@@ -164,16 +260,8 @@ pub(crate) struct Tally {
     missed: u64,
     unknown: u64,
     unobserved: u64,
-    uncertainty_sum: f64,
-    conflict_sum: f64,
-    conflict_max: f64,
-    total_conflict: u64,
-    weighted: u64,
+    estimates: EstimateTally,
     bands: Vec<BandTally>,
-    audit_non_finite: u64,
-    audit_min: f64,
-    audit_max: f64,
-    audit_sum_error: f64,
 }
 
 impl Tally {
@@ -186,16 +274,8 @@ impl Tally {
             missed: 0,
             unknown: 0,
             unobserved: 0,
-            uncertainty_sum: 0.0,
-            conflict_sum: 0.0,
-            conflict_max: 0.0,
-            total_conflict: 0,
-            weighted: 0,
+            estimates: EstimateTally::default(),
             bands: vec![BandTally::default(); bands],
-            audit_non_finite: 0,
-            audit_min: f64::INFINITY,
-            audit_max: f64::NEG_INFINITY,
-            audit_sum_error: 0.0,
         }
     }
 
@@ -208,19 +288,13 @@ impl Tally {
             self.unobserved += 1;
             return;
         };
-        let mass = estimate.decision_mass();
-        self.audit(mass);
-        self.uncertainty_sum += estimate.uncertainty();
+        self.estimates.record(estimate);
         let band = &mut self.bands[band];
         band.observed += 1;
-        if let Estimate::Evidential { combination, weighted } = estimate {
-            self.conflict_sum += combination.conflict;
-            self.conflict_max = self.conflict_max.max(combination.conflict);
-            self.total_conflict += u64::from(combination.total_conflict);
-            self.weighted += u64::from(*weighted);
+        if let Estimate::Evidential { combination, .. } = estimate {
             band.conflict_sum += combination.conflict;
         }
-        match (decide(mass, threshold), occupied) {
+        match (decide(estimate.decision_mass(), threshold), occupied) {
             (None, _) => {
                 self.below += 1;
                 band.below += 1;
@@ -241,19 +315,6 @@ impl Tally {
         }
     }
 
-    fn audit(&mut self, mass: Mass) {
-        let masses = mass.to_array();
-        if masses.iter().all(|m| m.is_finite()) {
-            for m in masses {
-                self.audit_min = self.audit_min.min(m);
-                self.audit_max = self.audit_max.max(m);
-            }
-            self.audit_sum_error = self.audit_sum_error.max((mass.total() - 1.0).abs());
-        } else {
-            self.audit_non_finite += 1;
-        }
-    }
-
     /// Adds `other`'s counts; call in a fixed order for reproducible sums.
     pub(crate) fn merge(&mut self, other: &Tally) {
         self.cells += other.cells;
@@ -263,11 +324,7 @@ impl Tally {
         self.missed += other.missed;
         self.unknown += other.unknown;
         self.unobserved += other.unobserved;
-        self.uncertainty_sum += other.uncertainty_sum;
-        self.conflict_sum += other.conflict_sum;
-        self.conflict_max = self.conflict_max.max(other.conflict_max);
-        self.total_conflict += other.total_conflict;
-        self.weighted += other.weighted;
+        self.estimates.merge(&other.estimates);
         for (band, o) in self.bands.iter_mut().zip(&other.bands) {
             band.cells += o.cells;
             band.observed += o.observed;
@@ -277,18 +334,12 @@ impl Tally {
             band.false_alarms += o.false_alarms;
             band.missed += o.missed;
         }
-        self.audit_non_finite += other.audit_non_finite;
-        self.audit_min = self.audit_min.min(other.audit_min);
-        self.audit_max = self.audit_max.max(other.audit_max);
-        self.audit_sum_error = self.audit_sum_error.max(other.audit_sum_error);
     }
 
     /// The metrics of the tallied cells; `edges` are the band edges, `evidential`
     /// whether the method has a conflict signal.
     pub(crate) fn finish(&self, edges: &[f64], evidential: bool, coverage: Coverage) -> FieldOutcome {
-        let observed = self.cells - self.unobserved;
-        let mean = |sum: f64| (observed > 0).then(|| sum / observed as f64);
-        let fused = observed > 0;
+        let (mean_uncertainty, conflict, audit) = self.estimates.finish(evidential);
         FieldOutcome {
             metrics: FieldMetrics {
                 cells: self.cells,
@@ -298,13 +349,8 @@ impl Tally {
                 missed_detections: self.missed,
                 decided_unknown: self.unknown,
                 unobserved: self.unobserved,
-                mean_uncertainty: mean(self.uncertainty_sum),
-                conflict: evidential.then(|| ConflictMetrics {
-                    mean: mean(self.conflict_sum),
-                    max: self.conflict_max,
-                    total_conflict_cells: self.total_conflict,
-                    weighted_cells: self.weighted,
-                }),
+                mean_uncertainty,
+                conflict,
             },
             bands: self
                 .bands
@@ -321,13 +367,7 @@ impl Tally {
                     mean_conflict: (evidential && b.observed > 0).then(|| b.conflict_sum / b.observed as f64),
                 })
                 .collect(),
-            audit: MassAudit {
-                cells: observed,
-                non_finite: self.audit_non_finite,
-                min_mass: (fused && self.audit_min.is_finite()).then_some(self.audit_min),
-                max_mass: (fused && self.audit_max.is_finite()).then_some(self.audit_max),
-                max_sum_error: self.audit_sum_error,
-            },
+            audit,
             coverage,
         }
     }

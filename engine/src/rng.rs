@@ -14,6 +14,10 @@ pub(crate) enum Purpose {
     Layout,
     /// Sensor mass vectors; one stream per grid row.
     Masses,
+    /// Self-reported pose measurements; one stream per agent.
+    Localization,
+    /// Detection draws and detection noise; one stream per agent.
+    Detections,
 }
 
 impl Purpose {
@@ -22,6 +26,8 @@ impl Purpose {
             Self::Truth => 1,
             Self::Layout => 2,
             Self::Masses => 3,
+            Self::Localization => 4,
+            Self::Detections => 5,
         }
     }
 }

@@ -1,28 +1,74 @@
 //! Running a whole scenario: every sweep point, sharing sampled data where it can.
 
-use sightline_dsl::{Experiment, Scenario, Setup};
+use serde::Serialize;
+use sightline_dsl::{Decision, Experiment, Fusion, Metric, Scenario, Setup};
 
-use crate::field::{self, Job};
-use crate::metrics::FieldOutcome;
+use crate::field;
+use crate::metrics::{FieldOutcome, MassAudit};
+use crate::world::{self, WorldOutcome};
+
+/// One method to evaluate on shared data.
+#[derive(Debug, Clone, Copy)]
+pub struct Job<'a> {
+    /// The fusion rule.
+    pub fusion: &'a Fusion,
+    /// The decision rule.
+    pub decision: Decision,
+}
+
+/// What one sweep point measured.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(tag = "experiment", rename_all = "snake_case")]
+pub enum Outcome {
+    /// The field experiment.
+    Field(FieldOutcome),
+    /// A world.
+    World(WorldOutcome),
+}
+
+impl Outcome {
+    /// The value of `metric`, or `None` where it is not defined for this run.
+    pub fn value(&self, metric: Metric) -> Option<f64> {
+        match self {
+            Self::Field(o) => o.metrics.value(metric),
+            Self::World(o) => o.metrics.value(metric),
+        }
+    }
+
+    /// Every defined metric in documentation order.
+    pub fn values(&self) -> Vec<(Metric, f64)> {
+        Metric::ALL
+            .iter()
+            .filter_map(|&m| self.value(m).map(|v| (m, v)))
+            .collect()
+    }
+
+    /// The mass-function audit of every fused cell.
+    pub fn audit(&self) -> &MassAudit {
+        match self {
+            Self::Field(o) => &o.audit,
+            Self::World(o) => &o.audit,
+        }
+    }
+}
 
 /// The outcome of every sweep point of a scenario, in point order.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Run {
     /// One outcome per [`Scenario::points`] entry.
-    pub points: Vec<FieldOutcome>,
+    pub points: Vec<Outcome>,
 }
 
 /// Simulates every point of `scenario`.
 ///
-/// Points that differ only in fusion or decision settings share one pass over the
-/// grid: the ground truth and every sensor's masses are sampled once, and each
-/// method fuses the very same samples. Comparisons between methods at a sweep
-/// point are therefore paired, not subject to sampling noise.
+/// Points that differ only in fusion or decision settings share one simulation:
+/// the same ground truth and the same sampled observations, fused by each method.
+/// Comparisons between methods at a sweep point are therefore paired, not subject
+/// to sampling noise.
 pub fn simulate(scenario: &Scenario) -> Run {
-    let mut outcomes: Vec<Option<FieldOutcome>> = vec![None; scenario.points.len()];
+    let mut outcomes: Vec<Option<Outcome>> = vec![None; scenario.points.len()];
     for group in shared_data_groups(scenario) {
         let first = &scenario.points[group[0]].setup;
-        let Experiment::Field(field) = &first.experiment;
         let jobs: Vec<Job<'_>> = group
             .iter()
             .map(|&i| Job {
@@ -30,7 +76,17 @@ pub fn simulate(scenario: &Scenario) -> Run {
                 decision: scenario.points[i].setup.decision,
             })
             .collect();
-        for (&i, outcome) in group.iter().zip(field::run(first.seed, &first.grid, field, &jobs)) {
+        let results: Vec<Outcome> = match &first.experiment {
+            Experiment::Field(f) => field::run(first.seed, &first.grid, f, &jobs)
+                .into_iter()
+                .map(Outcome::Field)
+                .collect(),
+            Experiment::World(w) => world::run(first.seed, &first.grid, w, &jobs)
+                .into_iter()
+                .map(Outcome::World)
+                .collect(),
+        };
+        for (&i, outcome) in group.iter().zip(results) {
             outcomes[i] = Some(outcome);
         }
     }

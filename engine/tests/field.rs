@@ -2,7 +2,7 @@
 //! sampling, and hand-computable outcomes.
 
 use sightline_dsl::{Metric, Scenario, compile};
-use sightline_engine::{FieldOutcome, Run, simulate};
+use sightline_engine::{FieldOutcome, Outcome, Run, simulate};
 
 fn scenario(text: &str) -> Scenario {
     compile("test.yaml", text, &Default::default()).unwrap_or_else(|e| panic!("{e}"))
@@ -51,10 +51,18 @@ fn a_method_sees_the_same_samples_alone_or_beside_others() {
     assert_eq!(&together.points[1..], &alone.points[..]);
 }
 
+/// The field outcome of a point.
+fn field(outcome: &Outcome) -> &FieldOutcome {
+    match outcome {
+        Outcome::Field(field) => field,
+        Outcome::World(_) => panic!("a field scenario gives field outcomes"),
+    }
+}
+
 #[test]
 fn every_cell_has_exactly_one_outcome() {
     let run = simulate(&scenario(NOISY));
-    for outcome in &run.points {
+    for outcome in run.points.iter().map(field) {
         let m = &outcome.metrics;
         assert_eq!(
             m.correct + m.false_alarms + m.missed_detections + m.decided_unknown + m.below_threshold + m.unobserved,
@@ -91,7 +99,7 @@ field:
 decision: {{ threshold: {threshold} }}
 "#
     );
-    simulate(&scenario(&text)).points.remove(0)
+    field(&simulate(&scenario(&text)).points[0]).clone()
 }
 
 /// Cell centres (i + 0.5, j + 0.5) within 10 m of (20, 20).

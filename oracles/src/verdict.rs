@@ -75,11 +75,11 @@ fn verdict(requirement: &Requirement, run: &Run) -> Verdict {
         .map(|&point| {
             let outcome = &run.points[point];
             let (status, value, margin, message) = match requirement.check {
-                Check::Metric { metric: m, bound } => metric::evaluate(m, bound, &outcome.metrics),
+                Check::Metric { metric: m, bound } => metric::evaluate(m, bound, outcome.value(m)),
                 Check::Invariant {
                     invariant: i,
                     tolerance,
-                } => invariant::evaluate(i, tolerance, &outcome.audit),
+                } => invariant::evaluate(i, tolerance, outcome.audit()),
             };
             Evaluation {
                 point,

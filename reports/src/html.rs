@@ -8,13 +8,17 @@ use serde::Serialize;
 
 use sightline_dsl::display_value;
 
-use crate::results::{PointResult, RequirementResult, Results, Summary};
+use crate::results::{Detail, PointResult, RequirementResult, Results, Summary};
 
 const TEMPLATE: &str = include_str!("../templates/report.html");
 
 /// Metrics every sweep table shows; metrics that requirements or references use
 /// are added after them.
-const TABLE_METRICS: [&str; 7] = [
+const TABLE_METRICS: [&str; 11] = [
+    "occupied_recall",
+    "blind_recall",
+    "occupied_precision",
+    "fov_gain",
     "accuracy",
     "below_threshold",
     "false_alarms",
@@ -93,8 +97,8 @@ struct ComparisonView {
 #[derive(Serialize)]
 struct PointView {
     label: String,
-    coverage: String,
-    bands: TableView,
+    summary: String,
+    table: TableView,
 }
 
 impl<'a> View<'a> {
@@ -252,39 +256,71 @@ const BAND_COLUMNS: [&str; 7] = [
 ];
 
 fn point_view(p: &PointResult) -> PointView {
-    let c = &p.coverage;
-    PointView {
-        label: if p.label.is_empty() {
-            "the scenario".into()
-        } else {
-            p.label.clone()
+    let label = if p.label.is_empty() {
+        "the scenario".into()
+    } else {
+        p.label.clone()
+    };
+    match &p.detail {
+        Detail::Field { bands, coverage: c } => PointView {
+            label,
+            summary: format!(
+                "{} sensors; {}–{} observe each cell (mean {:.2})",
+                c.sensors, c.min_sources, c.max_sources, c.mean_sources
+            ),
+            table: TableView {
+                text_columns: 1,
+                head: BAND_COLUMNS.map(String::from).to_vec(),
+                rows: bands
+                    .iter()
+                    .map(|b| {
+                        vec![
+                            match b.to {
+                                Some(to) => format!("{} – {} m", number(b.from), number(to)),
+                                None => format!("≥ {} m", number(b.from)),
+                            },
+                            number(b.cells as f64),
+                            or_dash(b.accuracy),
+                            number(b.below_threshold as f64),
+                            number(b.false_alarms as f64),
+                            number(b.missed_detections as f64),
+                            or_dash(b.mean_conflict),
+                        ]
+                    })
+                    .collect(),
+            },
         },
-        coverage: format!(
-            "{} sensors; {}–{} observe each cell (mean {:.2})",
-            c.sensors, c.min_sources, c.max_sources, c.mean_sources
-        ),
-        bands: TableView {
-            text_columns: 1,
-            head: BAND_COLUMNS.map(String::from).to_vec(),
-            rows: p
-                .bands
-                .iter()
-                .map(|b| {
-                    vec![
-                        match b.to {
-                            Some(to) => format!("{} – {} m", number(b.from), number(to)),
-                            None => format!("≥ {} m", number(b.from)),
-                        },
-                        number(b.cells as f64),
-                        or_dash(b.accuracy),
-                        number(b.below_threshold as f64),
-                        number(b.false_alarms as f64),
-                        number(b.missed_detections as f64),
-                        or_dash(b.mean_conflict),
-                    ]
-                })
-                .collect(),
-        },
+        Detail::World { counts: c } => {
+            let s = &c.sightings;
+            let rows = [
+                ("steps with the ego in the scene", c.steps as f64),
+                ("occupied cell-steps", c.occupied as f64),
+                ("… decided Occupy", c.detected as f64),
+                ("free cell-steps decided Occupy", c.false_positives as f64),
+                ("occupied cell-steps the ego did not observe", c.blind_occupied as f64),
+                ("… decided Occupy", c.blind_detected as f64),
+                ("cell-steps observed by the ego", c.ego_observed as f64),
+                ("cell-steps observed by any cooperating agent", c.joint_observed as f64),
+                ("targets in line of sight (sensor–target pairs)", s.los as f64),
+                ("… hidden by an occluder", s.nlos_static as f64),
+                ("… hidden by other agents", s.nlos_dynamic as f64),
+                ("… detected", s.detected as f64),
+            ];
+            let mut rows: Vec<Vec<String>> = rows.iter().map(|(k, v)| vec![(*k).to_string(), number(*v)]).collect();
+            rows.push(vec![
+                "mean pose-estimate error, m".into(),
+                or_dash(c.localization_error),
+            ]);
+            PointView {
+                label,
+                summary: format!("{} steps", c.steps),
+                table: TableView {
+                    text_columns: 1,
+                    head: vec!["count".into(), "value".into()],
+                    rows,
+                },
+            }
+        }
     }
 }
 

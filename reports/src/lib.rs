@@ -9,8 +9,8 @@
 pub use html::html;
 pub use junit::junit;
 pub use results::{
-    CheckInfo, FORMAT, MetricEntry, Ordered, PointResult, PointVerdict, Provenance, ReferencePoint, ReferenceResult,
-    RequirementResult, Results, ScenarioInfo, Summary, Table, Tool,
+    CheckInfo, Detail, FORMAT, MetricEntry, Ordered, PointResult, PointVerdict, Provenance, ReferencePoint,
+    ReferenceResult, RequirementResult, Results, ScenarioInfo, Summary, Table, Tool,
 };
 
 mod html;

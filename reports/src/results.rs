@@ -5,7 +5,8 @@
 
 use serde::{Serialize, Serializer};
 use sightline_dsl::{Bound, Check, Point, Requirement, Scenario};
-use sightline_engine::{BandMetrics, Coverage, FieldOutcome, MassAudit, Run};
+use sightline_engine::world::WorldMetrics;
+use sightline_engine::{BandMetrics, Coverage, MassAudit, Outcome, Run};
 use sightline_oracles::{Status, Verdict};
 
 /// The format identifier written into every results.json.
@@ -178,12 +179,29 @@ pub struct PointResult {
     pub fusion: String,
     /// Every defined metric.
     pub metrics: Ordered<f64>,
-    /// Metrics by distance to the nearest sensor.
-    pub bands: Vec<BandMetrics>,
-    /// Sensors per cell.
-    pub coverage: Coverage,
     /// The mass audit.
     pub audit: MassAudit,
+    /// What only this kind of scenario measures.
+    #[serde(flatten)]
+    pub detail: Detail,
+}
+
+/// Measurements particular to the kind of scenario.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(tag = "experiment", rename_all = "snake_case")]
+pub enum Detail {
+    /// The field experiment.
+    Field {
+        /// Metrics by distance to the nearest sensor.
+        bands: Vec<BandMetrics>,
+        /// Sensors per cell.
+        coverage: Coverage,
+    },
+    /// A world.
+    World {
+        /// The counts behind the metrics.
+        counts: WorldMetrics,
+    },
 }
 
 /// A published figure and the measured values it compares with.
@@ -272,7 +290,7 @@ impl Results {
                         .map(|&p| ReferencePoint {
                             point: p,
                             label: labels[p].clone(),
-                            measured: run.points[p].metrics.value(r.metric),
+                            measured: run.points[p].value(r.metric),
                         })
                         .collect(),
                 })
@@ -307,7 +325,7 @@ fn requirement_result(requirement: &Requirement, verdict: &Verdict, labels: &[St
     }
 }
 
-fn point_result((point, outcome): (&Point, &FieldOutcome)) -> PointResult {
+fn point_result((point, outcome): (&Point, &Outcome)) -> PointResult {
     PointResult {
         index: point.index,
         label: point.label(),
@@ -323,15 +341,21 @@ fn point_result((point, outcome): (&Point, &FieldOutcome)) -> PointResult {
         fusion: point.setup.fusion.label.clone(),
         metrics: Ordered(
             outcome
-                .metrics
                 .values()
                 .into_iter()
                 .map(|(m, v)| (m.name().to_string(), v))
                 .collect(),
         ),
-        bands: outcome.bands.clone(),
-        coverage: outcome.coverage,
-        audit: outcome.audit,
+        audit: *outcome.audit(),
+        detail: match outcome {
+            Outcome::Field(o) => Detail::Field {
+                bands: o.bands.clone(),
+                coverage: o.coverage,
+            },
+            Outcome::World(o) => Detail::World {
+                counts: o.metrics.clone(),
+            },
+        },
     }
 }
 
@@ -358,7 +382,7 @@ fn check_info(check: &Check) -> CheckInfo {
 /// Top-level metrics: numbers without a sweep, one table per metric with one.
 fn metrics(scenario: &Scenario, run: &Run) -> Ordered<MetricEntry> {
     if scenario.sweep.is_empty() {
-        let values = run.points[0].metrics.values();
+        let values = run.points[0].values();
         return Ordered(
             values
                 .into_iter()
@@ -371,7 +395,7 @@ fn metrics(scenario: &Scenario, run: &Run) -> Ordered<MetricEntry> {
     Ordered(
         sightline_dsl::Metric::ALL
             .iter()
-            .filter(|&&m| run.points.iter().any(|o| o.metrics.value(m).is_some()))
+            .filter(|&&m| run.points.iter().any(|o| o.value(m).is_some()))
             .map(|&m| {
                 let rows = scenario
                     .points
@@ -382,7 +406,6 @@ fn metrics(scenario: &Scenario, run: &Run) -> Ordered<MetricEntry> {
                             point.assignments.iter().map(|a| a.value.clone()).collect();
                         row.push(
                             outcome
-                                .metrics
                                 .value(m)
                                 .map_or(serde_json::Value::Null, serde_json::Value::from),
                         );

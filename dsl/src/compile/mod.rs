@@ -8,5 +8,6 @@ mod requirements;
 mod scenario;
 mod setup;
 mod sweep;
+mod world;
 
 pub use scenario::{Options, compile};

@@ -7,7 +7,7 @@ use super::sweep::json_eq;
 use crate::de::closest;
 use crate::error::{ErrorKind, Location};
 use crate::model::display_value;
-use crate::model::{Bound, Check, Metric, Point, Reference, Requirement};
+use crate::model::{Bound, Check, Experiment, Metric, Point, Reference, Requirement};
 use crate::path::Path;
 use crate::raw::{RawCheck, RawReference, RawRequirement};
 
@@ -163,7 +163,8 @@ fn check(ctx: &mut Context<'_>, raw: &RawCheck, path: &Path) -> Option<Check> {
     }
 }
 
-/// Errors unless `metric` is produced at every selected point.
+/// Errors unless `metric` is produced at every selected point: by its kind of
+/// scenario, and by its fusion method (conflict metrics need an evidential rule).
 fn defined_everywhere(
     ctx: &mut Context<'_>,
     metric: Metric,
@@ -171,28 +172,38 @@ fn defined_everywhere(
     points: &[Point],
     path: &Path,
 ) -> bool {
-    let undefined = selected
-        .iter()
-        .map(|&i| &points[i])
-        .find(|p| metric.is_evidential_only() && !p.setup.fusion.rule.is_evidential());
-    if let Some(point) = undefined {
-        let method = point.setup.fusion.rule.method().name();
-        let advice = if point.assignments.is_empty() {
-            format!("the scenario fuses with `{method}`")
-        } else {
-            format!(
-                "sweep point {} fuses with `{method}`; restrict the check with `where`",
-                point.label()
-            )
+    for &i in selected {
+        let point = &points[i];
+        let (measured, kind) = match point.setup.experiment {
+            Experiment::Field(_) => (metric.in_field(), "the field experiment"),
+            Experiment::World(_) => (metric.in_world(), "a world scenario"),
         };
-        ctx.error(
-            path,
-            ErrorKind::Invalid(format!(
-                "metric `{}` exists only for evidential fusion methods, and {advice}",
-                metric.name()
-            )),
-        );
-        return false;
+        if !measured {
+            ctx.error(
+                path,
+                ErrorKind::Invalid(format!("metric `{}` is not measured in {kind}", metric.name())),
+            );
+            return false;
+        }
+        if metric.is_evidential_only() && !point.setup.fusion.rule.is_evidential() {
+            let method = point.setup.fusion.rule.method().name();
+            let advice = if point.assignments.is_empty() {
+                format!("the scenario fuses with `{method}`")
+            } else {
+                format!(
+                    "sweep point {} fuses with `{method}`; restrict the check with `where`",
+                    point.label()
+                )
+            };
+            ctx.error(
+                path,
+                ErrorKind::Invalid(format!(
+                    "metric `{}` exists only for evidential fusion methods, and {advice}",
+                    metric.name()
+                )),
+            );
+            return false;
+        }
     }
     true
 }

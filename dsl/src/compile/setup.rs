@@ -1,6 +1,7 @@
 //! Ranges, units and defaults of the simulation settings: raw → [`Setup`].
 
 use super::context::Context;
+use super::world::world;
 use crate::error::ErrorKind;
 use crate::model::{
     Decision, Experiment, Field, Fusion, FusionMethod, Grid, Layout, Masses, Rule, Setup, Switch, SwitchMeasure, Truth,
@@ -21,31 +22,36 @@ pub const MAX_SENSORS: usize = 1_000;
 pub(super) fn setup(ctx: &mut Context<'_>, raw: &RawScenario) -> Option<Setup> {
     let root = Path::root();
     let grid = grid(ctx, &raw.grid, &root.key("grid"));
+    let world_given = raw.time.is_some() || !raw.agents.is_empty() || raw.perception.is_some();
     let experiment = match &raw.field {
-        Some(field_raw) => grid.and_then(|g| field(ctx, field_raw, &g, &root.key("field"))),
-        None => {
+        Some(_) if world_given => {
             ctx.error(
-                &root,
+                &root.key("field"),
                 ErrorKind::Invalid(
-                    "missing key `field`: a language-version-1 scenario simulates the field experiment".into(),
+                    "a scenario simulates either a `field` or a world (`time`, `agents`, `perception`), not both"
+                        .into(),
                 ),
             );
             None
         }
+        Some(field_raw) => grid
+            .and_then(|g| field(ctx, field_raw, &g, &root.key("field")))
+            .map(Experiment::Field),
+        None => world(ctx, raw).map(Experiment::World),
     };
     let fusion = fusion(ctx, &raw.fusion, &root.key("fusion"));
     let decision = decision(ctx, &raw.decision, &root.key("decision"));
     Some(Setup {
         seed: raw.seed,
         grid: grid?,
-        experiment: Experiment::Field(experiment?),
+        experiment: experiment?,
         fusion: fusion?,
         decision: decision?,
     })
 }
 
 /// The number of whole `step`s in `length`, or `None` when it is not whole.
-fn whole_multiple(length: f64, step: f64) -> Option<f64> {
+pub(super) fn whole_multiple(length: f64, step: f64) -> Option<f64> {
     let n = length / step;
     let rounded = n.round();
     ((n - rounded).abs() <= 1e-9 * rounded.max(1.0) && rounded >= 1.0).then_some(rounded)

@@ -12,7 +12,17 @@ use crate::yaml::{Key, Node, Value};
 pub const MAX_POINTS: usize = 10_000;
 
 /// Top-level sections a sweep may set.
-const SWEEPABLE: [&str; 5] = ["seed", "grid", "field", "fusion", "decision"];
+const SWEEPABLE: [&str; 9] = [
+    "seed",
+    "grid",
+    "field",
+    "fusion",
+    "decision",
+    "time",
+    "sensor_models",
+    "localization",
+    "perception",
+];
 
 /// One axis as written: the path it sets and its value nodes.
 pub(super) struct AxisNodes<'a> {

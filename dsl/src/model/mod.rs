@@ -5,6 +5,7 @@ mod field;
 mod fusion;
 mod requirement;
 mod scenario;
+mod world;
 
 pub use field::{ErrorModel, Field, Layout, Masses, Truth};
 pub use fusion::{
@@ -12,3 +13,6 @@ pub use fusion::{
 };
 pub use requirement::{Bound, Check, Invariant, Metric, Reference, Requirement};
 pub use scenario::{Assignment, Axis, Experiment, Grid, Point, Scenario, Setup, display_value};
+pub use world::{
+    Agent, AgentKind, Direction, Localization, Motion, Occluder, Perception, PoseFilter, Road, Sensor, World,
+};

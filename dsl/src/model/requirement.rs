@@ -86,7 +86,8 @@ impl Invariant {
     }
 }
 
-/// Metrics of the field experiment. Counts are numbers of cells.
+/// Metrics. Counts are numbers of cells. Some exist only in the field experiment,
+/// some only in worlds (see [`Metric::in_field`], [`Metric::in_world`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Metric {
@@ -120,11 +121,22 @@ pub enum Metric {
     TotalConflictCells,
     /// Cells fused with the distance-weighted rule (evidential methods only).
     WeightedCells,
+    /// World: Σ cells observed by any cooperating agent / Σ cells observed by the
+    /// ego, minus 1, over the run (seed 000 reports +260 %, that is 2.6).
+    FovGain,
+    /// World: share of truly occupied cells the fused grid decides Occupy, over
+    /// the run (0–1).
+    OccupiedRecall,
+    /// World: share of the cells the fused grid decides Occupy that are truly
+    /// occupied, over the run (0–1).
+    OccupiedPrecision,
+    /// World: `occupied_recall` over the cells the ego does not observe itself (0–1).
+    BlindRecall,
 }
 
 impl Metric {
     /// Every metric, in documentation order.
-    pub const ALL: [Metric; 14] = [
+    pub const ALL: [Metric; 18] = [
         Self::Accuracy,
         Self::BelowThreshold,
         Self::BelowThresholdFraction,
@@ -139,6 +151,10 @@ impl Metric {
         Self::MaxConflict,
         Self::TotalConflictCells,
         Self::WeightedCells,
+        Self::FovGain,
+        Self::OccupiedRecall,
+        Self::OccupiedPrecision,
+        Self::BlindRecall,
     ];
 
     /// The name as written in scenario files.
@@ -158,7 +174,35 @@ impl Metric {
             Self::MaxConflict => "max_conflict",
             Self::TotalConflictCells => "total_conflict_cells",
             Self::WeightedCells => "weighted_cells",
+            Self::FovGain => "fov_gain",
+            Self::OccupiedRecall => "occupied_recall",
+            Self::OccupiedPrecision => "occupied_precision",
+            Self::BlindRecall => "blind_recall",
         }
+    }
+
+    /// Whether the field experiment measures it.
+    pub fn in_field(self) -> bool {
+        !matches!(
+            self,
+            Self::FovGain | Self::OccupiedRecall | Self::OccupiedPrecision | Self::BlindRecall
+        )
+    }
+
+    /// Whether world scenarios measure it.
+    pub fn in_world(self) -> bool {
+        !matches!(
+            self,
+            Self::Accuracy
+                | Self::BelowThreshold
+                | Self::BelowThresholdFraction
+                | Self::FalseAlarms
+                | Self::MissedDetections
+                | Self::ConfidentErrors
+                | Self::ConfidentErrorRate
+                | Self::DecidedUnknown
+                | Self::Unobserved
+        )
     }
 
     /// Whether the metric exists only for evidential (Dempster–Shafer) methods.

@@ -2,7 +2,7 @@
 
 use serde::Serialize;
 
-use super::{Decision, Field, Fusion, Reference, Requirement};
+use super::{Decision, Field, Fusion, Reference, Requirement, World};
 
 /// A compiled scenario file: one or more sweep points, the requirements checked on
 /// them and published figures to compare with.
@@ -106,12 +106,14 @@ pub struct Setup {
     pub decision: Decision,
 }
 
-/// What a scenario simulates. Later language versions add worlds with roads and agents.
+/// What a scenario simulates.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Experiment {
     /// The static evidential-grid experiment of seed 001.
     Field(Field),
+    /// A traffic scene with agents, sensors and collective perception (seed 000).
+    World(World),
 }
 
 /// A regular grid of square cells, axis-aligned in the world frame.

@@ -7,7 +7,7 @@
 //! whatever the thread count.
 
 use rayon::prelude::*;
-use sightline_dsl::{Decision, Field, Fusion, Grid};
+use sightline_dsl::{Field, Grid};
 
 use super::layout::positions;
 use super::sensor::SensorModel;
@@ -16,15 +16,7 @@ use crate::fusion::{Source, fuse};
 use crate::math::Point;
 use crate::metrics::{Coverage, FieldOutcome, Tally};
 use crate::rng::{Purpose, stream};
-
-/// One method to evaluate in a pass.
-#[derive(Debug, Clone, Copy)]
-pub struct Job<'a> {
-    /// The fusion rule.
-    pub fusion: &'a Fusion,
-    /// The decision rule.
-    pub decision: Decision,
-}
+use crate::run::Job;
 
 /// A sensor that may reach cells of the current row.
 #[derive(Debug, Clone, Copy)]

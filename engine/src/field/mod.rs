@@ -6,7 +6,7 @@ mod layout;
 mod sensor;
 mod truth;
 
-pub use experiment::{Job, run};
+pub use experiment::run;
 pub use layout::positions;
 pub use sensor::SensorModel;
 pub use truth::GroundTruth;

@@ -1,24 +1,20 @@
 //! Metric thresholds.
 
 use sightline_dsl::{Bound, Metric};
-use sightline_engine::FieldMetrics;
 
 use super::short;
 use crate::Status;
 
-/// Compares `metric` with `bound`: passes when the margin is ≥ 0.
-pub(crate) fn evaluate(
-    metric: Metric,
-    bound: Bound,
-    metrics: &FieldMetrics,
-) -> (Status, Option<f64>, Option<f64>, String) {
+/// Compares the `value` of `metric` with `bound`: passes when the margin is ≥ 0.
+/// `None` (or NaN) is an error: the metric is undefined at this point.
+pub(crate) fn evaluate(metric: Metric, bound: Bound, value: Option<f64>) -> (Status, Option<f64>, Option<f64>, String) {
     let name = metric.name();
-    let Some(value) = metrics.value(metric).filter(|v| !v.is_nan()) else {
+    let Some(value) = value.filter(|v| !v.is_nan()) else {
         return (
             Status::Error,
             None,
             None,
-            format!("{name} is not defined at this point (no observed cell)"),
+            format!("{name} is not defined at this point (nothing to measure it on)"),
         );
     };
     let margin = bound.margin(value);
@@ -44,6 +40,8 @@ pub(crate) fn evaluate(
 
 #[cfg(test)]
 mod tests {
+    use sightline_engine::FieldMetrics;
+
     use super::*;
 
     fn metrics(false_alarms: u64) -> FieldMetrics {
@@ -62,22 +60,38 @@ mod tests {
 
     #[test]
     fn at_most_passes_on_the_boundary_and_fails_beyond() {
-        let (status, value, margin, _) = evaluate(Metric::FalseAlarms, Bound::AtMost(3.0), &metrics(3));
+        let (status, value, margin, _) = evaluate(
+            Metric::FalseAlarms,
+            Bound::AtMost(3.0),
+            metrics(3).value(Metric::FalseAlarms),
+        );
         assert_eq!((status, value, margin), (Status::Pass, Some(3.0), Some(0.0)));
-        let (status, _, margin, message) = evaluate(Metric::FalseAlarms, Bound::AtMost(3.0), &metrics(4));
+        let (status, _, margin, message) = evaluate(
+            Metric::FalseAlarms,
+            Bound::AtMost(3.0),
+            metrics(4).value(Metric::FalseAlarms),
+        );
         assert_eq!((status, margin), (Status::Fail, Some(-1.0)));
         assert_eq!(message, "false_alarms = 4 > 3 (required at most 3; margin -1)");
     }
 
     #[test]
     fn at_least_compares_accuracy() {
-        let (status, value, _, _) = evaluate(Metric::Accuracy, Bound::AtLeast(0.95), &metrics(1));
+        let (status, value, _, _) = evaluate(
+            Metric::Accuracy,
+            Bound::AtLeast(0.95),
+            metrics(1).value(Metric::Accuracy),
+        );
         assert_eq!((status, value), (Status::Fail, Some(0.9)));
     }
 
     #[test]
     fn undefined_metric_is_an_error_not_a_pass() {
-        let (status, value, ..) = evaluate(Metric::MeanConflict, Bound::AtMost(1.0), &metrics(0));
+        let (status, value, ..) = evaluate(
+            Metric::MeanConflict,
+            Bound::AtMost(1.0),
+            metrics(0).value(Metric::MeanConflict),
+        );
         assert_eq!((status, value), (Status::Error, None));
     }
 }

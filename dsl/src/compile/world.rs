@@ -1,0 +1,657 @@
+//! The world sections: ids, ranges, geometry resolved into lane polylines, routes
+//! checked for connectivity and resolved into one path per vehicle.
+
+use std::collections::HashMap;
+
+use super::context::{Context, locate};
+use super::setup::whole_multiple;
+use crate::error::{ErrorKind, Location};
+use crate::geometry::{MAX_CHORD_ERROR, Polyline, Xy, arc, distance};
+use crate::model::{Agent, AgentKind, Direction, Localization, Motion, Occluder, Perception, Road, Sensor, World};
+use crate::path::Path;
+use crate::raw::{RawAgent, RawOccluder, RawPerception, RawRoad, RawScenario, RawSensorModel, RawTime};
+
+/// The most steps a run may have.
+pub const MAX_STEPS: usize = 100_000;
+
+/// Compiles the world sections of a scenario that has no `field`.
+pub(super) fn world(ctx: &mut Context<'_>, raw: &RawScenario) -> Option<World> {
+    let root = Path::root();
+    let Some(time) = &raw.time else {
+        ctx.error(
+            &root,
+            ErrorKind::Invalid(
+                "a scenario simulates a `field` or a world; a world needs `time: { duration, step }`".into(),
+            ),
+        );
+        return None;
+    };
+    let steps = time_steps(ctx, time, &root.key("time"));
+    let roads = roads(ctx, &raw.roads);
+    let occluders = occluders(ctx, &raw.occluders);
+    let sensors = sensor_models(ctx, raw);
+    let agents = agents(ctx, &raw.agents, roads.as_deref().unwrap_or_default(), &sensors?);
+    let localization = localization(ctx, raw);
+    let perception = match (&raw.perception, &agents, steps) {
+        (Some(perception), Some(agents), Some(steps)) => perception_of(ctx, perception, agents, time.step, steps),
+        (None, _, _) => {
+            ctx.error(
+                &root,
+                ErrorKind::Invalid("a world needs `perception: { ego: … }` (whose view is measured)".into()),
+            );
+            None
+        }
+        _ => None,
+    };
+    Some(World {
+        step: time.step,
+        steps: steps?,
+        roads: roads?,
+        occluders: occluders?,
+        agents: agents?,
+        localization: localization?,
+        perception: perception?,
+    })
+}
+
+fn time_steps(ctx: &mut Context<'_>, time: &RawTime, path: &Path) -> Option<usize> {
+    let ok = ctx.positive(&path.key("duration"), time.duration) & ctx.positive(&path.key("step"), time.step);
+    if !ok {
+        return None;
+    }
+    match whole_multiple(time.duration, time.step) {
+        Some(n) if n <= MAX_STEPS as f64 => Some(n as usize),
+        Some(n) => {
+            ctx.error(
+                path,
+                ErrorKind::TooLarge(format!("{n:.0} steps exceed the limit of {MAX_STEPS}")),
+            );
+            None
+        }
+        None => {
+            ctx.error(
+                &path.key("duration"),
+                ErrorKind::OutOfRange {
+                    expected: format!("a whole number of {} s steps", time.step),
+                    found: time.duration.to_string(),
+                },
+            );
+            None
+        }
+    }
+}
+
+/// Records a duplicate-id error for every repeated id of a list; returns whether all are unique.
+fn unique_ids<'a>(ctx: &mut Context<'_>, list: &Path, ids: impl Iterator<Item = &'a str>) -> bool {
+    let mut first: HashMap<&str, Location> = HashMap::new();
+    let mut ok = true;
+    for (i, id) in ids.enumerate() {
+        let path = list.index(i).key("id");
+        if let Some(&location) = first.get(id) {
+            ctx.error(
+                &path,
+                ErrorKind::DuplicateId {
+                    id: id.to_string(),
+                    first: location,
+                },
+            );
+            ok = false;
+        } else {
+            first.insert(id, locate(ctx.tree, &path));
+        }
+    }
+    ok
+}
+
+fn finite_points(ctx: &mut Context<'_>, path: &Path, points: &[[f64; 2]]) -> bool {
+    let mut ok = true;
+    for (i, point) in points.iter().enumerate() {
+        for (axis, &v) in point.iter().enumerate() {
+            ok &= ctx.finite(&path.index(i).index(axis), v);
+        }
+    }
+    ok
+}
+
+fn roads(ctx: &mut Context<'_>, raw: &[RawRoad]) -> Option<Vec<Road>> {
+    let list = Path::root().key("roads");
+    let mut ok = unique_ids(ctx, &list, raw.iter().map(|r| r.id.as_str()));
+    let mut roads = Vec::new();
+    for (i, road) in raw.iter().enumerate() {
+        let path = list.index(i);
+        let shape_ok = ctx.expect(road.lanes >= 1, &path.key("lanes"), "at least 1", road.lanes.into())
+            & ctx.positive(&path.key("lane_width"), road.lane_width)
+            & ctx.positive(&path.key("speed_limit"), road.speed_limit);
+        match (shape_ok, reference_line(ctx, road, &path)) {
+            (true, Some(reference)) => {
+                let lanes = (0..road.lanes)
+                    .map(|k| reference.offset_left(f64::from(k) * road.lane_width))
+                    .collect();
+                roads.push(Road {
+                    id: road.id.clone(),
+                    lanes,
+                    lane_width: road.lane_width,
+                    speed_limit: road.speed_limit,
+                });
+            }
+            _ => ok = false,
+        }
+    }
+    ok.then_some(roads)
+}
+
+/// Lane 0's centreline of a road.
+fn reference_line(ctx: &mut Context<'_>, road: &RawRoad, path: &Path) -> Option<Polyline> {
+    let given = [road.polyline.is_some(), road.arc.is_some(), road.roundabout.is_some()];
+    if given.iter().filter(|&&g| g).count() != 1 {
+        ctx.error(
+            path,
+            ErrorKind::Invalid("give exactly one of `polyline`, `arc`, `roundabout`".into()),
+        );
+        return None;
+    }
+    if let Some(points) = &road.polyline {
+        let line_path = path.key("polyline");
+        if !finite_points(ctx, &line_path, points) {
+            return None;
+        }
+        let line = Polyline::new(points.iter().copied());
+        if line.is_none() {
+            ctx.error(
+                &line_path,
+                ErrorKind::Invalid("a polyline needs two distinct points".into()),
+            );
+        }
+        return line;
+    }
+    if let Some(a) = &road.arc {
+        let arc_path = path.key("arc");
+        let ok = finite_points(ctx, &arc_path.key("center"), &[a.center])
+            & ctx.positive(&arc_path.key("radius"), a.radius)
+            & ctx.finite(&arc_path.key("start_deg"), a.start_deg)
+            & ctx.expect(
+                a.end_deg.is_finite() && a.end_deg != a.start_deg && (a.end_deg - a.start_deg).abs() <= 360.0,
+                &arc_path.key("end_deg"),
+                "an angle other than start_deg, within 360° of it",
+                a.end_deg,
+            );
+        return ok
+            .then(|| {
+                Polyline::new(arc(
+                    a.center,
+                    a.radius,
+                    a.start_deg.to_radians(),
+                    a.end_deg.to_radians(),
+                ))
+            })
+            .flatten();
+    }
+    let ring = road.roundabout.as_ref()?;
+    let ring_path = path.key("roundabout");
+    let inner = ring.radius - f64::from(road.lanes - 1) * road.lane_width;
+    let ok = finite_points(ctx, &ring_path.key("center"), &[ring.center])
+        & ctx.expect(
+            ring.radius.is_finite() && inner > MAX_CHORD_ERROR,
+            &ring_path.key("radius"),
+            "a radius larger than the inner lanes take",
+            ring.radius,
+        );
+    let sweep = match ring.direction {
+        Direction::Ccw => std::f64::consts::TAU,
+        Direction::Cw => -std::f64::consts::TAU,
+    };
+    ok.then(|| Polyline::new(arc(ring.center, ring.radius, 0.0, sweep)))
+        .flatten()
+}
+
+fn occluders(ctx: &mut Context<'_>, raw: &[RawOccluder]) -> Option<Vec<Occluder>> {
+    let list = Path::root().key("occluders");
+    let mut ok = unique_ids(ctx, &list, raw.iter().map(|o| o.id.as_str()));
+    let mut occluders = Vec::new();
+    for (i, occluder) in raw.iter().enumerate() {
+        let path = list.index(i);
+        let polygon_path = path.key("polygon");
+        if !finite_points(ctx, &polygon_path, &occluder.polygon) {
+            ok = false;
+            continue;
+        }
+        if let Some(height) = occluder.height {
+            ok &= ctx.positive(&path.key("height"), height);
+        }
+        let area = signed_area(&occluder.polygon);
+        if occluder.polygon.len() < 3 || area.abs() < 1e-9 {
+            ctx.error(
+                &polygon_path,
+                ErrorKind::Invalid("an occluder needs at least three corners enclosing an area".into()),
+            );
+            ok = false;
+            continue;
+        }
+        let mut polygon = occluder.polygon.clone();
+        if area < 0.0 {
+            polygon.reverse();
+        }
+        occluders.push(Occluder {
+            id: occluder.id.clone(),
+            polygon,
+        });
+    }
+    ok.then_some(occluders)
+}
+
+/// The signed area of a polygon, positive when counter-clockwise (shoelace formula).
+fn signed_area(polygon: &[Xy]) -> f64 {
+    let n = polygon.len();
+    (0..n)
+        .map(|i| {
+            let [a, b] = [polygon[i], polygon[(i + 1) % n]];
+            a[0] * b[1] - b[0] * a[1]
+        })
+        .sum::<f64>()
+        / 2.0
+}
+
+fn sensor_models(ctx: &mut Context<'_>, raw: &RawScenario) -> Option<HashMap<String, Sensor>> {
+    let map = Path::root().key("sensor_models");
+    let mut ok = true;
+    let mut sensors = HashMap::new();
+    for (name, model) in &raw.sensor_models {
+        let path = map.key(name);
+        match sensor(ctx, name, model, &path) {
+            Some(sensor) => {
+                sensors.insert(name.clone(), sensor);
+            }
+            None => ok = false,
+        }
+    }
+    ok.then_some(sensors)
+}
+
+fn sensor(ctx: &mut Context<'_>, name: &str, raw: &RawSensorModel, path: &Path) -> Option<Sensor> {
+    let ok = ctx.positive(&path.key("range"), raw.range)
+        & ctx.expect(
+            raw.fov_deg > 0.0 && raw.fov_deg <= 360.0,
+            &path.key("fov_deg"),
+            "an angle above 0 and at most 360",
+            raw.fov_deg,
+        )
+        & ctx.probability(&path.key("detection_probability"), raw.detection_probability)
+        & ctx.non_negative(&path.key("position_noise").key("base"), raw.position_noise.base)
+        & ctx.non_negative(&path.key("position_noise").key("per_m"), raw.position_noise.per_m)
+        & ctx.expect(
+            raw.ray_spacing_deg > 0.0 && raw.ray_spacing_deg <= 10.0,
+            &path.key("ray_spacing_deg"),
+            "an angle above 0 and at most 10",
+            raw.ray_spacing_deg,
+        )
+        & ctx.finite(&path.key("mount").key("x"), raw.mount.x)
+        & ctx.finite(&path.key("mount").key("y"), raw.mount.y)
+        & ctx.finite(&path.key("mount").key("yaw_deg"), raw.mount.yaw_deg);
+    ok.then(|| Sensor {
+        model: name.to_string(),
+        range: raw.range,
+        fov: raw.fov_deg.to_radians(),
+        mount_x: raw.mount.x,
+        mount_y: raw.mount.y,
+        mount_yaw: raw.mount.yaw_deg.to_radians(),
+        detection_probability: raw.detection_probability,
+        noise_base: raw.position_noise.base,
+        noise_per_m: raw.position_noise.per_m,
+        ray_spacing: raw.ray_spacing_deg.to_radians(),
+    })
+}
+
+fn agents(
+    ctx: &mut Context<'_>,
+    raw: &[RawAgent],
+    roads: &[Road],
+    sensors: &HashMap<String, Sensor>,
+) -> Option<Vec<Agent>> {
+    let list = Path::root().key("agents");
+    let mut ok = unique_ids(ctx, &list, raw.iter().map(|a| a.id.as_str()));
+    let mut agents = Vec::new();
+    for (i, agent) in raw.iter().enumerate() {
+        match agent_of(ctx, agent, &list.index(i), roads, sensors) {
+            Some(agent) => agents.push(agent),
+            None => ok = false,
+        }
+    }
+    ok.then_some(agents)
+}
+
+fn agent_of(
+    ctx: &mut Context<'_>,
+    raw: &RawAgent,
+    path: &Path,
+    roads: &[Road],
+    sensors: &HashMap<String, Sensor>,
+) -> Option<Agent> {
+    let (default_length, default_width) = raw.kind.footprint();
+    let (length, width) = match &raw.size {
+        Some(size) => {
+            let ok = ctx.positive(&path.key("size").key("length"), size.length)
+                & ctx.positive(&path.key("size").key("width"), size.width);
+            if !ok {
+                return None;
+            }
+            (size.length, size.width)
+        }
+        None => (default_length, default_width),
+    };
+    let mut resolved = Vec::new();
+    let mut sensors_ok = true;
+    for (i, name) in raw.sensors.iter().enumerate() {
+        match sensors.get(name) {
+            Some(sensor) => resolved.push(sensor.clone()),
+            None => {
+                let mut known: Vec<&str> = sensors.keys().map(String::as_str).collect();
+                known.sort_unstable();
+                ctx.error(
+                    &path.key("sensors").index(i),
+                    ErrorKind::DanglingReference(format!(
+                        "no sensor model `{name}` in `sensor_models` (it has {})",
+                        if known.is_empty() {
+                            "none".into()
+                        } else {
+                            known.join(", ")
+                        }
+                    )),
+                );
+                sensors_ok = false;
+            }
+        }
+    }
+    let motion = motion(ctx, raw, path, roads);
+    Some(Agent {
+        id: raw.id.clone(),
+        kind: raw.kind,
+        length,
+        width,
+        motion: motion?,
+        connected: raw.connected,
+        sensors: sensors_ok.then_some(resolved)?,
+    })
+}
+
+/// How an agent moves: roadside units stand, vehicles follow their route, pedestrians their path.
+fn motion(ctx: &mut Context<'_>, raw: &RawAgent, path: &Path, roads: &[Road]) -> Option<Motion> {
+    let allowed: &[&str] = match raw.kind {
+        AgentKind::Rsu => &["position"],
+        AgentKind::Pedestrian => &["path"],
+        _ => &["route"],
+    };
+    for (key, given) in [
+        ("route", raw.route.is_some()),
+        ("path", raw.path.is_some()),
+        ("position", raw.position.is_some()),
+    ] {
+        if given != allowed.contains(&key) {
+            let kind = serde_json::to_value(raw.kind)
+                .map(|v| v.to_string())
+                .unwrap_or_default();
+            ctx.error(
+                path,
+                ErrorKind::Invalid(format!(
+                    "an agent of kind {kind} moves by `{}`{}",
+                    allowed[0],
+                    if given {
+                        format!(", not by `{key}`")
+                    } else {
+                        String::new()
+                    }
+                )),
+            );
+            return None;
+        }
+    }
+    if let Some(position) = raw.position {
+        let ok = finite_points(ctx, &path.key("position"), &[position])
+            & ctx.finite(&path.key("heading_deg"), raw.heading_deg);
+        return ok.then_some(Motion::Fixed {
+            position,
+            heading: raw.heading_deg.to_radians(),
+        });
+    }
+    let Some(speed) = &raw.speed else {
+        ctx.error(
+            path,
+            ErrorKind::Invalid("a moving agent needs `speed: { target: … }`".into()),
+        );
+        return None;
+    };
+    let speed_path = path.key("speed");
+    let initial = speed.initial.unwrap_or(speed.target);
+    let ok = ctx.non_negative(&speed_path.key("target"), speed.target)
+        & ctx.non_negative(&speed_path.key("initial"), initial)
+        & ctx.positive(&speed_path.key("acceleration"), speed.acceleration)
+        & ctx.non_negative(&path.key("start").key("time"), raw.start.time)
+        & ctx.non_negative(&path.key("start").key("offset"), raw.start.offset);
+    let (along, limits) = match (&raw.route, &raw.path) {
+        (Some(route), _) => route_path(ctx, route, raw.lane, &path.key("route"), roads)?,
+        (None, Some(points)) => {
+            let path_path = path.key("path");
+            if !finite_points(ctx, &path_path, points) {
+                return None;
+            }
+            let Some(line) = Polyline::new(points.iter().copied()) else {
+                ctx.error(
+                    &path_path,
+                    ErrorKind::Invalid("a path needs two distinct points".into()),
+                );
+                return None;
+            };
+            let length = line.length();
+            (line, vec![(length, f64::INFINITY)])
+        }
+        (None, None) => unreachable!("checked above: a moving agent has a route or a path"),
+    };
+    if !ok {
+        return None;
+    }
+    if raw.start.offset >= along.length() {
+        ctx.error(
+            &path.key("start").key("offset"),
+            ErrorKind::OutOfRange {
+                expected: format!("less than the length of its way, {:.1} m", along.length()),
+                found: raw.start.offset.to_string(),
+            },
+        );
+        return None;
+    }
+    Some(Motion::Along {
+        path: along,
+        limits,
+        start_time: raw.start.time,
+        start_offset: raw.start.offset,
+        initial_speed: initial,
+        target_speed: speed.target,
+        acceleration: speed.acceleration,
+    })
+}
+
+/// Resolves a route into one polyline on lane `lane` of each road, with the speed
+/// limit of each part. Road a connects to road b when a's last point lies within one
+/// lane width of b (a ring is left where b's first point projects onto it).
+fn route_path(
+    ctx: &mut Context<'_>,
+    route: &[String],
+    lane: u32,
+    path: &Path,
+    roads: &[Road],
+) -> Option<(Polyline, Vec<(f64, f64)>)> {
+    if route.is_empty() {
+        ctx.error(path, ErrorKind::Invalid("a route names at least one road".into()));
+        return None;
+    }
+    let mut parts: Vec<(&Road, &Polyline)> = Vec::new();
+    for (i, id) in route.iter().enumerate() {
+        let Some(road) = roads.iter().find(|r| &r.id == id) else {
+            let known: Vec<&str> = roads.iter().map(|r| r.id.as_str()).collect();
+            ctx.error(
+                &path.index(i),
+                ErrorKind::DanglingReference(format!(
+                    "no road `{id}` (roads: {})",
+                    if known.is_empty() {
+                        "none".into()
+                    } else {
+                        known.join(", ")
+                    }
+                )),
+            );
+            return None;
+        };
+        let Some(centreline) = road.lanes.get(lane as usize) else {
+            ctx.error(
+                &path.index(i),
+                ErrorKind::Invalid(format!("road `{id}` has no lane {lane} (it has {})", road.lanes.len())),
+            );
+            return None;
+        };
+        parts.push((road, centreline));
+    }
+    if parts.last().is_some_and(|(_, line)| line.is_closed()) {
+        ctx.error(
+            &path.index(route.len() - 1),
+            ErrorKind::Invalid("a route cannot end on a roundabout: name the road that leaves it".into()),
+        );
+        return None;
+    }
+    let mut points: Vec<Xy> = Vec::new();
+    let mut limits = Vec::new();
+    let mut entry = 0.0;
+    for (i, &(road, line)) in parts.iter().enumerate() {
+        // Where this road is left, and where the next one is entered: a ring is
+        // left where the next road starts; any other road at its end, onto the
+        // closest point of the next.
+        let (exit, next_entry) = match parts.get(i + 1) {
+            None => (line.length(), 0.0),
+            Some(&(next_road, next)) => {
+                let (exit, gap, next_entry) = if line.is_closed() {
+                    let at = line.project(next.start());
+                    (at.offset, at.distance, 0.0)
+                } else {
+                    let at = next.project(line.end());
+                    (line.length(), at.distance, at.offset)
+                };
+                let tolerance = road.lane_width.max(next_road.lane_width);
+                if gap > tolerance {
+                    ctx.error(
+                        &path.index(i + 1),
+                        ErrorKind::DanglingReference(format!(
+                            "road `{}` does not connect to `{}`: they are {gap:.2} m apart where one should \
+                             join the other (at most the lane width, {tolerance} m)",
+                            road.id, next_road.id
+                        )),
+                    );
+                    return None;
+                }
+                (exit, next_entry)
+            }
+        };
+        if line.is_closed() && exit < entry {
+            points.extend(line.slice(entry, line.length()));
+            points.extend(line.slice(0.0, exit));
+        } else {
+            points.extend(line.slice(entry, exit));
+        }
+        limits.push((length_of(&points), road.speed_limit));
+        entry = next_entry;
+    }
+    let Some(polyline) = Polyline::new(points) else {
+        ctx.error(path, ErrorKind::Invalid("the route has no length".into()));
+        return None;
+    };
+    Some((polyline, limits))
+}
+
+fn length_of(points: &[Xy]) -> f64 {
+    points.windows(2).map(|p| distance(p[0], p[1])).sum()
+}
+
+fn localization(ctx: &mut Context<'_>, raw: &RawScenario) -> Option<Localization> {
+    let path = Path::root().key("localization");
+    let l = &raw.localization;
+    let ok = ctx.non_negative(&path.key("position_sigma"), l.position_sigma)
+        & ctx.non_negative(&path.key("heading_sigma_deg"), l.heading_sigma_deg)
+        & ctx.positive(&path.key("process_position_sigma"), l.process_position_sigma)
+        & ctx.positive(&path.key("process_heading_sigma_deg"), l.process_heading_sigma_deg);
+    ok.then_some(Localization {
+        position_sigma: l.position_sigma,
+        heading_sigma: l.heading_sigma_deg.to_radians(),
+        filter: l.filter,
+        process_position_sigma: l.process_position_sigma,
+        process_heading_sigma: l.process_heading_sigma_deg.to_radians(),
+    })
+}
+
+fn perception_of(
+    ctx: &mut Context<'_>,
+    raw: &RawPerception,
+    agents: &[Agent],
+    step: f64,
+    steps: usize,
+) -> Option<Perception> {
+    let path = Path::root().key("perception");
+    let Some(ego) = agents.iter().position(|a| a.id == raw.ego) else {
+        ctx.error(
+            &path.key("ego"),
+            ErrorKind::DanglingReference(format!("no agent `{}`", raw.ego)),
+        );
+        return None;
+    };
+    if agents[ego].sensors.is_empty() {
+        ctx.error(
+            &path.key("ego"),
+            ErrorKind::Invalid(format!("the ego `{}` has no sensors", raw.ego)),
+        );
+        return None;
+    }
+    let others = agents
+        .iter()
+        .enumerate()
+        .filter(|&(i, a)| i != ego && a.connected && !a.sensors.is_empty())
+        .map(|(i, _)| i);
+    let available = 1 + others.clone().count();
+    let count = raw.cooperating.map_or(available, |c| c as usize);
+    if !(1..=available).contains(&count) {
+        ctx.error(
+            &path.key("cooperating"),
+            ErrorKind::OutOfRange {
+                expected: format!(
+                    "from 1 to {available} (the ego and {} connected agents with sensors)",
+                    available - 1
+                ),
+                found: count.to_string(),
+            },
+        );
+        return None;
+    }
+    let model = &raw.inverse_model;
+    let model_path = path.key("inverse_model");
+    let ok = ctx.expect(
+        model.occupied > 0.5 && model.occupied < 1.0,
+        &model_path.key("occupied"),
+        "a probability above 0.5 and below 1",
+        model.occupied,
+    ) & ctx.expect(
+        model.free > 0.0 && model.free < 0.5,
+        &model_path.key("free"),
+        "a probability above 0 and below 0.5",
+        model.free,
+    );
+    let duration = step * steps as f64;
+    let snapshot = raw.snapshot.unwrap_or(duration / 2.0);
+    let snapshot_ok = ctx.expect(
+        (0.0..=duration).contains(&snapshot),
+        &path.key("snapshot"),
+        &format!("a time from 0 to {duration} s"),
+        snapshot,
+    );
+    (ok && snapshot_ok).then(|| Perception {
+        ego,
+        cooperating: std::iter::once(ego).chain(others.take(count - 1)).collect(),
+        occupied: model.occupied,
+        free: model.free,
+        snapshot_step: ((snapshot / step).round() as usize).min(steps),
+    })
+}

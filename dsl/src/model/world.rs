@@ -1,0 +1,211 @@
+//! A traffic scene: roads resolved into lane polylines, occluders, agents with
+//! their motion, sensors and localization, and who shares perception.
+
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+use crate::geometry::{Polyline, Xy};
+
+/// A simulated traffic scene (language sections `time` … `perception`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct World {
+    /// Time between steps, seconds.
+    pub step: f64,
+    /// Number of steps; step k is at time k · step.
+    pub steps: usize,
+    /// Roads, for pictures: id and lane centrelines.
+    pub roads: Vec<Road>,
+    /// Static obstacles to sight.
+    pub occluders: Vec<Occluder>,
+    /// Every agent, in file order.
+    pub agents: Vec<Agent>,
+    /// Self-localization of connected agents.
+    pub localization: Localization,
+    /// Collective perception.
+    pub perception: Perception,
+}
+
+/// A road's lanes.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Road {
+    /// Its id.
+    pub id: String,
+    /// Lane centrelines, lane 0 first.
+    pub lanes: Vec<Polyline>,
+    /// Lane width, metres.
+    pub lane_width: f64,
+    /// Speed limit, m/s.
+    pub speed_limit: f64,
+}
+
+/// A static obstacle.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Occluder {
+    /// Its id.
+    pub id: String,
+    /// Outline, counter-clockwise, first corner not repeated.
+    pub polygon: Vec<Xy>,
+}
+
+/// Kinds of agent.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum AgentKind {
+    /// A passenger car (4.5 × 1.8 m).
+    Car,
+    /// A truck (10 × 2.5 m).
+    Truck,
+    /// A bus (12 × 2.55 m).
+    Bus,
+    /// A motorbike (2.2 × 0.8 m).
+    Motorbike,
+    /// A pedestrian (0.6 × 0.6 m).
+    Pedestrian,
+    /// A roadside unit (0.5 × 0.5 m): fixed, never part of the ground truth.
+    Rsu,
+}
+
+impl AgentKind {
+    /// The default footprint (length, width), metres.
+    pub fn footprint(self) -> (f64, f64) {
+        match self {
+            Self::Car => (4.5, 1.8),
+            Self::Truck => (10.0, 2.5),
+            Self::Bus => (12.0, 2.55),
+            Self::Motorbike => (2.2, 0.8),
+            Self::Pedestrian => (0.6, 0.6),
+            Self::Rsu => (0.5, 0.5),
+        }
+    }
+
+    /// Whether it drives along roads.
+    pub fn is_vehicle(self) -> bool {
+        matches!(self, Self::Car | Self::Truck | Self::Bus | Self::Motorbike)
+    }
+}
+
+/// Direction of travel on a roundabout.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum Direction {
+    /// Counter-clockwise (right-hand traffic).
+    Ccw,
+    /// Clockwise (left-hand traffic).
+    Cw,
+}
+
+/// How an agent estimates its own pose.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum PoseFilter {
+    /// A Kalman filter on (x, y, θ): prediction from its own motion, update with
+    /// each self-reported measurement (seed 000).
+    Kalman,
+    /// The raw measurement, unfiltered.
+    None,
+}
+
+/// An agent.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Agent {
+    /// Its id.
+    pub id: String,
+    /// What it is.
+    pub kind: AgentKind,
+    /// Footprint length, metres.
+    pub length: f64,
+    /// Footprint width, metres.
+    pub width: f64,
+    /// How it moves.
+    pub motion: Motion,
+    /// Whether it shares its perception.
+    pub connected: bool,
+    /// Its sensors.
+    pub sensors: Vec<Sensor>,
+}
+
+/// How an agent moves.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Motion {
+    /// It stands still.
+    Fixed {
+        /// Position, metres.
+        position: Xy,
+        /// Heading, radians.
+        heading: f64,
+    },
+    /// It follows a polyline (a vehicle's resolved route, a pedestrian's path).
+    Along {
+        /// The path.
+        path: Polyline,
+        /// Speed limits along it: (arc length where the limit ends, limit m/s), in
+        /// order; the last entry covers the end. Unlimited for pedestrians.
+        limits: Vec<(f64, f64)>,
+        /// When it appears, seconds.
+        start_time: f64,
+        /// Where it appears, metres along the path.
+        start_offset: f64,
+        /// Speed when it appears, m/s.
+        initial_speed: f64,
+        /// Desired speed, m/s.
+        target_speed: f64,
+        /// Largest change of speed, m/s².
+        acceleration: f64,
+    },
+}
+
+/// A sensor on an agent.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Sensor {
+    /// The sensor model's id.
+    pub model: String,
+    /// Range, metres.
+    pub range: f64,
+    /// Horizontal field of view, radians (≤ 2π).
+    pub fov: f64,
+    /// Mount forward of the agent's centre, metres.
+    pub mount_x: f64,
+    /// Mount left of the agent's centre, metres.
+    pub mount_y: f64,
+    /// Mount yaw relative to the agent's heading, radians.
+    pub mount_yaw: f64,
+    /// Detection probability of a visible object in range.
+    pub detection_probability: f64,
+    /// σ of position error at distance 0, metres.
+    pub noise_base: f64,
+    /// Growth of σ per metre.
+    pub noise_per_m: f64,
+    /// Angle between carving rays, radians.
+    pub ray_spacing: f64,
+}
+
+/// Self-localization.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Localization {
+    /// σ of each x and y measurement, metres.
+    pub position_sigma: f64,
+    /// σ of each heading measurement, radians.
+    pub heading_sigma: f64,
+    /// The estimator.
+    pub filter: PoseFilter,
+    /// Process noise of the Kalman filter on x and y, metres per √s.
+    pub process_position_sigma: f64,
+    /// Process noise on the heading, radians per √s.
+    pub process_heading_sigma: f64,
+}
+
+/// Collective perception.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Perception {
+    /// Index of the ego in [`World::agents`].
+    pub ego: usize,
+    /// Indices of the agents whose grids are fused, the ego first.
+    pub cooperating: Vec<usize>,
+    /// P(occupied) of a detected cell.
+    pub occupied: f64,
+    /// P(occupied) of a cell seen free.
+    pub free: f64,
+    /// Step whose grids the report pictures.
+    pub snapshot_step: usize,
+}

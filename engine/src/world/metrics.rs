@@ -1,0 +1,111 @@
+//! What a world run measures: occupied-cell recall and precision of the fused grid,
+//! recall in the ego's blind area, the field of view gained by cooperation, and what
+//! sensors saw and missed.
+//!
+//! Counts are over cell-steps: a cell occupied at 300 steps counts 300 times.
+//! Occluder cells are never counted. Only steps at which the ego is in the scene
+//! are counted.
+
+use serde::Serialize;
+use sightline_dsl::Metric;
+
+use super::observe::Sightings;
+use crate::metrics::{ConflictMetrics, EstimateTally, MassAudit};
+
+/// Everything measured at one sweep point of a world.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct WorldOutcome {
+    /// The metrics.
+    pub metrics: WorldMetrics,
+    /// The mass-function audit of every fused cell.
+    pub audit: MassAudit,
+    /// The grids at the snapshot step, for pictures (not serialized: the report
+    /// draws them).
+    #[serde(skip)]
+    pub snapshot: Option<Snapshot>,
+}
+
+/// World metrics of one run.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct WorldMetrics {
+    /// Steps counted (the ego in the scene).
+    pub steps: u64,
+    /// Cell-steps truly occupied by an agent other than the ego and RSUs.
+    pub occupied: u64,
+    /// Of those, decided Occupy by the fused grid.
+    pub detected: u64,
+    /// Cell-steps decided Occupy that are truly free.
+    pub false_positives: u64,
+    /// Truly occupied cell-steps the ego did not observe itself.
+    pub blind_occupied: u64,
+    /// Of those, decided Occupy by the fused grid.
+    pub blind_detected: u64,
+    /// Cell-steps observed by the ego.
+    pub ego_observed: u64,
+    /// Cell-steps observed by any cooperating agent.
+    pub joint_observed: u64,
+    /// Sensor–target pairs in range and field of view, by visibility, over the run.
+    pub sightings: Sightings,
+    /// Mean position error of the cooperating agents' pose estimates, metres.
+    pub localization_error: Option<f64>,
+    /// Mean uncertainty of the fused cells.
+    pub mean_uncertainty: Option<f64>,
+    /// Conflict statistics (evidential methods only).
+    pub conflict: Option<ConflictMetrics>,
+}
+
+impl WorldMetrics {
+    /// The value of `metric`, or `None` where it is not defined for this run.
+    pub fn value(&self, metric: Metric) -> Option<f64> {
+        let ratio = |num: u64, den: u64| (den > 0).then(|| num as f64 / den as f64);
+        match metric {
+            Metric::FovGain => ratio(self.joint_observed, self.ego_observed).map(|r| r - 1.0),
+            Metric::OccupiedRecall => ratio(self.detected, self.occupied),
+            Metric::OccupiedPrecision => ratio(self.detected, self.detected + self.false_positives),
+            Metric::BlindRecall => ratio(self.blind_detected, self.blind_occupied),
+            Metric::MeanUncertainty => self.mean_uncertainty,
+            Metric::MeanConflict => self.conflict.as_ref()?.mean,
+            Metric::MaxConflict => Some(self.conflict.as_ref()?.max),
+            Metric::TotalConflictCells => Some(self.conflict.as_ref()?.total_conflict_cells as f64),
+            Metric::WeightedCells => Some(self.conflict.as_ref()?.weighted_cells as f64),
+            _ => None,
+        }
+    }
+}
+
+/// The grids of one step.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Snapshot {
+    /// The step.
+    pub step: usize,
+    /// Per cell: 0 free, 1 occupied by an agent, 2 occluder.
+    pub truth: Vec<u8>,
+    /// Per cell, the ego's own grid: 0 unknown, 1 free, 2 occupied.
+    pub ego: Vec<u8>,
+    /// Per cell, the fused occupancy probability (pignistic for evidential
+    /// methods); NaN where no cooperating agent observed the cell.
+    pub fused: Vec<f32>,
+}
+
+/// Running counts of one method.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub(crate) struct WorldTally {
+    pub(crate) occupied: u64,
+    pub(crate) detected: u64,
+    pub(crate) false_positives: u64,
+    pub(crate) blind_occupied: u64,
+    pub(crate) blind_detected: u64,
+    pub(crate) estimates: EstimateTally,
+}
+
+impl WorldTally {
+    /// Adds `other`'s counts; call in a fixed order for reproducible sums.
+    pub(crate) fn merge(&mut self, other: &WorldTally) {
+        self.occupied += other.occupied;
+        self.detected += other.detected;
+        self.false_positives += other.false_positives;
+        self.blind_occupied += other.blind_occupied;
+        self.blind_detected += other.blind_detected;
+        self.estimates.merge(&other.estimates);
+    }
+}

@@ -1,0 +1,19 @@
+//! Traffic scenes (seed 000): agents moving along roads, sensors limited by range,
+//! field of view and line of sight, self-localization, and the collective
+//! perception grid fused across cooperating agents.
+
+mod localization;
+mod metrics;
+mod motion;
+mod observe;
+mod raster;
+mod sight;
+mod simulate;
+
+pub use localization::PoseEstimator;
+pub use metrics::{Snapshot, WorldMetrics, WorldOutcome};
+pub use motion::{AgentState, Kinematics};
+pub use observe::Sightings;
+pub use raster::traverse;
+pub use sight::{Bodies, Body, Occluders, Visibility, visibility};
+pub use simulate::run;

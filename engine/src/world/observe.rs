@@ -1,0 +1,208 @@
+//! What one agent's sensors observe at one step, as an occupancy grid in the world
+//! frame placed with the agent's *estimated* pose.
+//!
+//! For each sensor: rays every `ray_spacing` over the field of view are measured in
+//! the true world (how far each runs before an obstacle) and drawn from the
+//! estimated sensor pose, marking the cells they cross free. Every other agent in
+//! range and field of view is classified by line of sight; a visible one is detected
+//! with the sensor's detection probability, at its true position plus Gaussian noise
+//! σ(d) = base + per_m · d on each axis, and the cells of its footprint at that
+//! position (seen from the estimated pose) are marked occupied. Occupied wins over
+//! free where two observations of the agent meet.
+
+use rand::RngExt;
+use rand::rngs::ChaCha8Rng;
+use rand_distr::{Distribution, StandardNormal};
+use sightline_dsl::{Agent, Grid, Sensor};
+
+use super::raster::{Raster, box_cells, traverse};
+use super::sight::{Bodies, Body, Occluders, Visibility, visibility};
+use crate::math::{Point, Pose, Vector};
+
+/// What an agent knows of a cell.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Observed {
+    /// Nothing.
+    Unknown,
+    /// Seen free along a ray.
+    Free,
+    /// Covered by a detected object.
+    Occupied,
+}
+
+/// One agent's observation grid, reused from step to step.
+pub struct Observation {
+    cells: Vec<Observed>,
+    touched: Vec<usize>,
+    /// Estimated positions of the agent's sensors this step.
+    pub sensor_positions: Vec<Point>,
+    /// Counts of targets in range and field of view, by visibility, and detections.
+    pub sightings: Sightings,
+}
+
+/// Targets in range and field of view, by what hides them, over a run or a step.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize)]
+pub struct Sightings {
+    /// In line of sight.
+    pub los: u64,
+    /// Hidden by an occluder.
+    pub nlos_static: u64,
+    /// Hidden by other agents only.
+    pub nlos_dynamic: u64,
+    /// Visible targets that were detected.
+    pub detected: u64,
+}
+
+impl Sightings {
+    /// Adds `other`'s counts.
+    pub fn add(&mut self, other: Sightings) {
+        self.los += other.los;
+        self.nlos_static += other.nlos_static;
+        self.nlos_dynamic += other.nlos_dynamic;
+        self.detected += other.detected;
+    }
+}
+
+/// Everything an observation reads from the step.
+pub struct StepScene<'a> {
+    /// The grid.
+    pub grid: &'a Grid,
+    /// Occluders for line of sight.
+    pub occluders: &'a Occluders,
+    /// Footprints of the step.
+    pub bodies: &'a Bodies,
+    /// Obstacles on the grid.
+    pub raster: &'a Raster,
+}
+
+impl Observation {
+    /// An empty observation of a grid of `cells` cells.
+    pub fn new(cells: usize) -> Self {
+        Self {
+            cells: vec![Observed::Unknown; cells],
+            touched: Vec::new(),
+            sensor_positions: Vec::new(),
+            sightings: Sightings::default(),
+        }
+    }
+
+    /// What the agent knows of `cell`.
+    pub fn get(&self, cell: usize) -> Observed {
+        self.cells[cell]
+    }
+
+    /// The cells observed this step (free or occupied), each once.
+    pub fn touched(&self) -> &[usize] {
+        &self.touched
+    }
+
+    fn mark(&mut self, cell: usize, observed: Observed) {
+        match (self.cells[cell], observed) {
+            (Observed::Unknown, _) => {
+                self.cells[cell] = observed;
+                self.touched.push(cell);
+            }
+            (Observed::Free, Observed::Occupied) => self.cells[cell] = Observed::Occupied,
+            _ => {}
+        }
+    }
+
+    fn clear(&mut self) {
+        for &cell in &self.touched {
+            self.cells[cell] = Observed::Unknown;
+        }
+        self.touched.clear();
+        self.sensor_positions.clear();
+        self.sightings = Sightings::default();
+    }
+
+    /// Observes the step as agent `index`, truly at `truth`, believing itself at
+    /// `estimate`; draws detections from `rng`.
+    pub fn observe(
+        &mut self,
+        scene: &StepScene<'_>,
+        (index, agent): (usize, &Agent),
+        truth: Pose,
+        estimate: Pose,
+        rng: &mut ChaCha8Rng,
+    ) {
+        self.clear();
+        for sensor in &agent.sensors {
+            let mount = Pose::new(Vector::new(sensor.mount_x, sensor.mount_y), sensor.mount_yaw);
+            let (true_sensor, estimated_sensor) = (truth * mount, estimate * mount);
+            self.sensor_positions.push(estimated_sensor.translation);
+            self.carve(scene, index, sensor, true_sensor, estimated_sensor);
+            self.detect(scene, index, sensor, true_sensor, estimated_sensor, rng);
+        }
+    }
+
+    /// Marks free the cells along each ray, as long as it runs in the true world.
+    fn carve(&mut self, scene: &StepScene<'_>, index: usize, sensor: &Sensor, truth: Pose, estimate: Pose) {
+        let rays = (sensor.fov / sensor.ray_spacing).ceil().max(1.0) as usize;
+        let first = -sensor.fov / 2.0 + sensor.ray_spacing / 2.0;
+        let (true_heading, estimated_heading) = (truth.rotation.angle(), estimate.rotation.angle());
+        for i in 0..rays {
+            let bearing = first + i as f64 * sensor.ray_spacing;
+            let length = scene
+                .raster
+                .free_length(truth.translation, true_heading + bearing, sensor.range, index);
+            traverse(
+                scene.grid,
+                estimate.translation,
+                estimated_heading + bearing,
+                length,
+                |cell, _| {
+                    self.mark(cell, Observed::Free);
+                    true
+                },
+            );
+        }
+    }
+
+    /// Classifies every other agent in range and field of view and marks the
+    /// footprints of those detected.
+    fn detect(
+        &mut self,
+        scene: &StepScene<'_>,
+        index: usize,
+        sensor: &Sensor,
+        truth: Pose,
+        estimate: Pose,
+        rng: &mut ChaCha8Rng,
+    ) {
+        for target in scene.bodies.all().iter().filter(|b| b.agent != index) {
+            let offset = target.pose.translation - truth.translation;
+            let distance = offset.length();
+            let bearing = offset.y.atan2(offset.x) - truth.rotation.angle();
+            let off_axis = bearing.sin().atan2(bearing.cos()).abs();
+            if distance > sensor.range || off_axis > sensor.fov / 2.0 {
+                continue;
+            }
+            match visibility(scene.occluders, scene.bodies, truth.translation, index, target) {
+                Visibility::NlosStatic => self.sightings.nlos_static += 1,
+                Visibility::NlosDynamic => self.sightings.nlos_dynamic += 1,
+                Visibility::Los => {
+                    self.sightings.los += 1;
+                    if rng.random::<f64>() >= sensor.detection_probability {
+                        continue;
+                    }
+                    self.sightings.detected += 1;
+                    let sigma = sensor.noise_base + sensor.noise_per_m * distance;
+                    let mut noise = || -> f64 { StandardNormal.sample(&mut *rng) };
+                    let measured = target.pose.translation + Vector::new(noise(), noise()) * sigma;
+                    // Where the sensor believes the object is: the measurement seen
+                    // from the estimated pose instead of the true one.
+                    let seen = estimate * (truth.inverse() * measured);
+                    let heading = target.pose.rotation.angle() + estimate.rotation.angle() - truth.rotation.angle();
+                    let placed = Body {
+                        pose: Pose::new(seen, heading),
+                        ..*target
+                    };
+                    for cell in box_cells(scene.grid, &placed) {
+                        self.mark(cell, Observed::Occupied);
+                    }
+                }
+            }
+        }
+    }
+}

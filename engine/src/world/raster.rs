@@ -1,0 +1,364 @@
+//! The world on the grid: which cell holds what, and the cells a ray crosses.
+//!
+//! A cell belongs to a shape when its centre lies inside it; a footprint also
+//! always owns the cell under its own centre, so that a pedestrian smaller than a
+//! cell is never lost. Rays are walked cell by cell (Amanatides and Woo, "A fast
+//! voxel traversal algorithm", 1987): this is the hot path of free-space carving.
+
+use sightline_dsl::{Grid, Occluder, geometry::Xy};
+
+use super::sight::Body;
+use crate::math::{Point, Vector};
+
+/// What a cell of the obstacle raster holds.
+const EMPTY: u32 = 0;
+const OCCLUDER: u32 = 1;
+
+/// The owner code of agent `agent`.
+fn agent_code(agent: usize) -> u32 {
+    agent as u32 + 2
+}
+
+/// The obstacles of a step on the grid: occluders (rasterised once) and footprints.
+pub struct Raster {
+    grid: Grid,
+    owners: Vec<u32>,
+    /// Cells currently owned by footprints, to clear them at the next step.
+    body_cells: Vec<usize>,
+}
+
+impl Raster {
+    /// The occluders of a world on `grid`.
+    pub fn new(grid: Grid, occluders: &[Occluder]) -> Self {
+        let mut owners = vec![EMPTY; grid.cells()];
+        for occluder in occluders {
+            for cell in polygon_cells(&grid, &occluder.polygon) {
+                owners[cell] = OCCLUDER;
+            }
+        }
+        Self {
+            grid,
+            owners,
+            body_cells: Vec::new(),
+        }
+    }
+
+    /// Whether a cell is covered by an occluder.
+    pub fn is_occluder(&self, cell: usize) -> bool {
+        self.owners[cell] == OCCLUDER
+    }
+
+    /// Replaces the footprints of the previous step by `bodies`.
+    pub fn set_bodies(&mut self, bodies: &[Body]) {
+        for &cell in &self.body_cells {
+            if self.owners[cell] != OCCLUDER {
+                self.owners[cell] = EMPTY;
+            }
+        }
+        self.body_cells.clear();
+        for body in bodies {
+            for cell in box_cells(&self.grid, body) {
+                if self.owners[cell] == EMPTY {
+                    self.owners[cell] = agent_code(body.agent);
+                    self.body_cells.push(cell);
+                }
+            }
+        }
+    }
+
+    /// How far a ray from `from` at `angle` runs before it enters a cell of an
+    /// occluder or of a footprint other than `observer`'s, up to `range`.
+    pub fn free_length(&self, from: Point, angle: f64, range: f64, observer: usize) -> f64 {
+        let own = agent_code(observer);
+        let mut free = range;
+        traverse(&self.grid, from, angle, range, |cell, enter| {
+            let owner = self.owners[cell];
+            if owner == EMPTY || owner == own {
+                true
+            } else {
+                free = enter;
+                false
+            }
+        });
+        free
+    }
+}
+
+/// The index of the cell holding `point`, if it lies on the grid.
+pub fn cell_at(grid: &Grid, point: Point) -> Option<usize> {
+    let col = ((point.x - grid.origin[0]) / grid.cell).floor();
+    let row = ((point.y - grid.origin[1]) / grid.cell).floor();
+    (col >= 0.0 && row >= 0.0 && col < grid.cols as f64 && row < grid.rows as f64)
+        .then(|| row as usize * grid.cols + col as usize)
+}
+
+/// The centre of cell `cell`.
+pub fn cell_center(grid: &Grid, cell: usize) -> Point {
+    let [x, y] = grid.cell_center(cell % grid.cols, cell / grid.cols);
+    Vector::new(x, y)
+}
+
+/// The columns and rows a box spanning `min`..`max` touches, clipped to the grid.
+fn cell_range(
+    grid: &Grid,
+    min: Point,
+    max: Point,
+) -> Option<(std::ops::RangeInclusive<usize>, std::ops::RangeInclusive<usize>)> {
+    let to_index =
+        |v: f64, origin: f64, count: usize| ((v - origin) / grid.cell).floor().clamp(0.0, count as f64 - 1.0) as usize;
+    let beyond = max.x < grid.origin[0]
+        || max.y < grid.origin[1]
+        || min.x >= grid.origin[0] + grid.cols as f64 * grid.cell
+        || min.y >= grid.origin[1] + grid.rows as f64 * grid.cell;
+    (!beyond).then(|| {
+        (
+            to_index(min.x, grid.origin[0], grid.cols)..=to_index(max.x, grid.origin[0], grid.cols),
+            to_index(min.y, grid.origin[1], grid.rows)..=to_index(max.y, grid.origin[1], grid.rows),
+        )
+    })
+}
+
+/// The cells whose centre lies in the footprint, and the cell under its centre.
+pub fn box_cells(grid: &Grid, body: &Body) -> Vec<usize> {
+    let corners = body.corners();
+    let min = corners.iter().fold(Vector::splat(f64::INFINITY), |m, c| m.min(*c));
+    let max = corners.iter().fold(Vector::splat(f64::NEG_INFINITY), |m, c| m.max(*c));
+    let mut cells = Vec::new();
+    if let Some((cols, rows)) = cell_range(grid, min, max) {
+        let inverse = body.pose.inverse();
+        for row in rows {
+            for col in cols.clone() {
+                let cell = row * grid.cols + col;
+                let local = inverse * cell_center(grid, cell);
+                if local.x.abs() <= body.half_extents.x && local.y.abs() <= body.half_extents.y {
+                    cells.push(cell);
+                }
+            }
+        }
+    }
+    if let Some(center) = cell_at(grid, body.pose.translation)
+        && !cells.contains(&center)
+    {
+        cells.push(center);
+    }
+    cells
+}
+
+/// The cells whose centre lies inside a polygon (even-odd rule).
+pub fn polygon_cells(grid: &Grid, polygon: &[Xy]) -> Vec<usize> {
+    let points: Vec<Point> = polygon.iter().map(|&[x, y]| Vector::new(x, y)).collect();
+    let min = points.iter().fold(Vector::splat(f64::INFINITY), |m, p| m.min(*p));
+    let max = points.iter().fold(Vector::splat(f64::NEG_INFINITY), |m, p| m.max(*p));
+    let Some((cols, rows)) = cell_range(grid, min, max) else {
+        return Vec::new();
+    };
+    let mut cells = Vec::new();
+    for row in rows {
+        for col in cols.clone() {
+            let cell = row * grid.cols + col;
+            if contains(&points, cell_center(grid, cell)) {
+                cells.push(cell);
+            }
+        }
+    }
+    cells
+}
+
+fn contains(polygon: &[Point], p: Point) -> bool {
+    let mut inside = false;
+    let mut j = polygon.len() - 1;
+    for i in 0..polygon.len() {
+        let (a, b) = (polygon[i], polygon[j]);
+        if (a.y > p.y) != (b.y > p.y) && p.x < (b.x - a.x) * (p.y - a.y) / (b.y - a.y) + a.x {
+            inside = !inside;
+        }
+        j = i;
+    }
+    inside
+}
+
+/// Walks the cells a ray from `from` at `angle` crosses within `length`, in order,
+/// calling `visit(cell, distance at which the ray enters it)` until it returns
+/// `false`. The part of the ray outside the grid is skipped.
+pub fn traverse(grid: &Grid, from: Point, angle: f64, length: f64, mut visit: impl FnMut(usize, f64) -> bool) {
+    let direction = Vector::new(angle.cos(), angle.sin());
+    let low = Vector::new(grid.origin[0], grid.origin[1]);
+    let high = low + Vector::new(grid.cols as f64, grid.rows as f64) * grid.cell;
+    // Clip the ray to the grid (slab method).
+    let (mut t_in, mut t_out) = (0.0_f64, length);
+    for axis in 0..2 {
+        let (o, d, lo, hi) = (from[axis], direction[axis], low[axis], high[axis]);
+        if d.abs() < 1e-12 {
+            if o < lo || o >= hi {
+                return;
+            }
+        } else {
+            let (t0, t1) = ((lo - o) / d, (hi - o) / d);
+            t_in = t_in.max(t0.min(t1));
+            t_out = t_out.min(t0.max(t1));
+        }
+    }
+    if t_in >= t_out {
+        return;
+    }
+    let start = from + direction * t_in;
+    let clamp_index = |v: f64, lo: f64, count: usize| (((v - lo) / grid.cell).floor().max(0.0) as usize).min(count - 1);
+    let mut col = clamp_index(start.x, low.x, grid.cols);
+    let mut row = clamp_index(start.y, low.y, grid.rows);
+    let step_col: isize = if direction.x >= 0.0 { 1 } else { -1 };
+    let step_row: isize = if direction.y >= 0.0 { 1 } else { -1 };
+    // Distance along the ray to the next vertical and horizontal cell boundary.
+    let boundary =
+        |index: usize, lo: f64, step: isize| lo + (index as f64 + if step > 0 { 1.0 } else { 0.0 }) * grid.cell;
+    let next = |o: f64, d: f64, b: f64| if d.abs() < 1e-12 { f64::INFINITY } else { (b - o) / d };
+    let mut t_max_x = next(from.x, direction.x, boundary(col, low.x, step_col));
+    let mut t_max_y = next(from.y, direction.y, boundary(row, low.y, step_row));
+    let t_delta_x = if direction.x.abs() < 1e-12 {
+        f64::INFINITY
+    } else {
+        grid.cell / direction.x.abs()
+    };
+    let t_delta_y = if direction.y.abs() < 1e-12 {
+        f64::INFINITY
+    } else {
+        grid.cell / direction.y.abs()
+    };
+    let mut enter = t_in;
+    loop {
+        if !visit(row * grid.cols + col, enter) {
+            return;
+        }
+        if t_max_x < t_max_y {
+            enter = t_max_x;
+            t_max_x += t_delta_x;
+            col = match col.checked_add_signed(step_col) {
+                Some(c) if c < grid.cols => c,
+                _ => return,
+            };
+        } else {
+            enter = t_max_y;
+            t_max_y += t_delta_y;
+            row = match row.checked_add_signed(step_row) {
+                Some(r) if r < grid.rows => r,
+                _ => return,
+            };
+        }
+        if enter >= t_out {
+            return;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use approx::assert_relative_eq;
+
+    use super::*;
+    use crate::math::Pose;
+
+    /// 10 × 10 cells of 1 m from the origin.
+    fn grid() -> Grid {
+        Grid {
+            origin: [0.0, 0.0],
+            cell: 1.0,
+            cols: 10,
+            rows: 10,
+        }
+    }
+
+    fn walk(from: Point, angle: f64, length: f64) -> Vec<(usize, f64)> {
+        let mut cells = Vec::new();
+        traverse(&grid(), from, angle, length, |cell, enter| {
+            cells.push((cell, enter));
+            true
+        });
+        cells
+    }
+
+    #[test]
+    fn a_ray_along_a_row_visits_each_cell_once() {
+        let cells = walk(Vector::new(0.5, 2.5), 0.0, 4.0);
+        assert_eq!(cells.iter().map(|c| c.0).collect::<Vec<_>>(), vec![20, 21, 22, 23, 24]);
+        assert_relative_eq!(cells[1].1, 0.5);
+        assert_relative_eq!(cells[4].1, 3.5);
+    }
+
+    #[test]
+    fn a_diagonal_ray_steps_through_neighbours() {
+        let cells = walk(Vector::new(0.5, 0.5), std::f64::consts::FRAC_PI_4, 2.0_f64.sqrt() * 2.0);
+        for pair in cells.windows(2) {
+            let (a, b) = (pair[0].0 as isize, pair[1].0 as isize);
+            assert!(b - a == 1 || b - a == 10 || b - a == 11, "{cells:?}");
+        }
+        assert_eq!(cells.last().unwrap().0, 22);
+    }
+
+    #[test]
+    fn a_ray_from_outside_enters_the_grid() {
+        let cells = walk(Vector::new(-5.0, 3.5), 0.0, 7.0);
+        assert_eq!(cells.first().unwrap(), &(30, 5.0));
+        assert_eq!(cells.last().unwrap().0, 31);
+    }
+
+    #[test]
+    fn a_ray_that_misses_the_grid_visits_nothing() {
+        assert!(walk(Vector::new(-5.0, 3.5), std::f64::consts::PI, 7.0).is_empty());
+        assert!(walk(Vector::new(-5.0, 30.0), 0.0, 100.0).is_empty());
+    }
+
+    #[test]
+    fn an_obstacle_stops_the_free_length() {
+        let wall = Occluder {
+            id: "w".into(),
+            polygon: vec![[6.0, 0.0], [7.0, 0.0], [7.0, 10.0], [6.0, 10.0]],
+        };
+        let raster = Raster::new(grid(), &[wall]);
+        assert_relative_eq!(raster.free_length(Vector::new(0.5, 5.5), 0.0, 20.0, 0), 5.5);
+        assert_relative_eq!(
+            raster.free_length(Vector::new(0.5, 5.5), std::f64::consts::PI, 20.0, 0),
+            20.0
+        );
+    }
+
+    #[test]
+    fn an_agent_does_not_block_its_own_sensor() {
+        let mut raster = Raster::new(grid(), &[]);
+        let own = Body {
+            agent: 3,
+            pose: Pose::new(Vector::new(2.0, 5.0), 0.0),
+            half_extents: Vector::new(1.5, 0.5),
+        };
+        let other = Body {
+            agent: 4,
+            pose: Pose::new(Vector::new(7.5, 5.5), 0.0),
+            half_extents: Vector::new(0.5, 0.5),
+        };
+        raster.set_bodies(&[own, other]);
+        assert_relative_eq!(raster.free_length(Vector::new(2.0, 5.5), 0.0, 20.0, 3), 5.0);
+        raster.set_bodies(&[own]);
+        assert_relative_eq!(raster.free_length(Vector::new(2.0, 5.5), 0.0, 20.0, 3), 20.0);
+    }
+
+    #[test]
+    fn a_small_footprint_still_owns_its_centre_cell() {
+        let pedestrian = Body {
+            agent: 0,
+            pose: Pose::new(Vector::new(3.0, 3.0), 0.0),
+            half_extents: Vector::new(0.1, 0.1),
+        };
+        assert_eq!(box_cells(&grid(), &pedestrian), vec![33]);
+    }
+
+    /// A 4 × 0.6 m box along the diagonal through (5, 5): the centres (4.5, 4.5) and
+    /// (5.5, 5.5) lie 0.71 m along it, inside; (3.5, 3.5) and (6.5, 6.5) lie 2.12 m
+    /// along, beyond its 2 m half length; (5.5, 4.5) lies 0.71 m across, beyond 0.3.
+    #[test]
+    fn a_rotated_box_covers_the_cells_under_it() {
+        let diagonal = Body {
+            agent: 0,
+            pose: Pose::new(Vector::new(5.0, 5.0), std::f64::consts::FRAC_PI_4),
+            half_extents: Vector::new(2.0, 0.3),
+        };
+        assert_eq!(box_cells(&grid(), &diagonal), vec![44, 55]);
+    }
+}

@@ -1,0 +1,305 @@
+//! The step loop of a world: kinematics, footprints, each cooperating agent's
+//! observation, and the fused grid of every method, tallied against ground truth.
+//!
+//! Observations run in parallel across agents (each draws from its own random
+//! streams); fusion runs in parallel over fixed-size chunks of the observed cells,
+//! merged in chunk order. Results do not depend on the thread count.
+
+use rand::rngs::ChaCha8Rng;
+use rayon::prelude::*;
+use sightline_dsl::{AgentKind, Grid, Motion, World};
+
+use super::localization::PoseEstimator;
+use super::metrics::{Snapshot, WorldMetrics, WorldOutcome, WorldTally};
+use super::motion::Kinematics;
+use super::observe::{Observation, Observed, Sightings, StepScene};
+use super::raster::{Raster, box_cells, cell_center};
+use super::sight::{Bodies, Body, Occluders};
+use crate::fusion::{Estimate, Mass, Source, State, decide, fuse, pignistic};
+use crate::math::Vector;
+use crate::rng::{Purpose, stream};
+use crate::run::Job;
+
+/// Cells fused per parallel task.
+const CHUNK: usize = 4096;
+
+/// A cooperating agent's state across steps.
+struct Cooperator {
+    agent: usize,
+    observation: Observation,
+    estimator: PoseEstimator,
+    localization: ChaCha8Rng,
+    detections: ChaCha8Rng,
+    present: bool,
+    localization_error: f64,
+}
+
+/// Runs a world once and evaluates every job on the same observations.
+pub fn run(seed: u64, grid: &Grid, world: &World, jobs: &[Job<'_>]) -> Vec<WorldOutcome> {
+    let cells = grid.cells();
+    let perception = &world.perception;
+    let occluders = Occluders::new(&world.occluders);
+    let mut raster = Raster::new(*grid, &world.occluders);
+    let mut kinematics = Kinematics::new(&world.agents, world.step);
+    let mut cooperators: Vec<Cooperator> = perception
+        .cooperating
+        .iter()
+        .map(|&agent| Cooperator {
+            agent,
+            observation: Observation::new(cells),
+            estimator: PoseEstimator::new(world.localization),
+            localization: stream(seed, Purpose::Localization, agent as u64),
+            detections: stream(seed, Purpose::Detections, agent as u64),
+            present: false,
+            localization_error: 0.0,
+        })
+        .collect();
+    let mut states = Vec::new();
+    let mut truth = vec![false; cells];
+    let mut truth_cells: Vec<usize> = Vec::new();
+    let mut observed = vec![false; cells];
+    let mut observed_cells: Vec<usize> = Vec::new();
+    let mut tallies = vec![WorldTally::default(); jobs.len()];
+    let mut snapshots: Vec<Option<Snapshot>> = vec![None; jobs.len()];
+    let (mut steps, mut ego_observed, mut joint_observed) = (0u64, 0u64, 0u64);
+    let mut sightings = Sightings::default();
+    let (mut error_sum, mut error_count) = (0.0, 0u64);
+
+    for k in 0..world.steps {
+        kinematics.advance(k, &mut states);
+        let bodies = Bodies::new(
+            states
+                .iter()
+                .enumerate()
+                .filter(|&(i, _)| world.agents[i].kind != AgentKind::Rsu)
+                .filter_map(|(i, s)| {
+                    s.map(|s| Body {
+                        agent: i,
+                        pose: s.pose,
+                        half_extents: Vector::new(world.agents[i].length, world.agents[i].width) / 2.0,
+                    })
+                })
+                .collect(),
+        );
+        raster.set_bodies(bodies.all());
+        // Agents update their pose estimates whether or not the ego is there.
+        let scene = StepScene {
+            grid,
+            occluders: &occluders,
+            bodies: &bodies,
+            raster: &raster,
+        };
+        cooperators.par_iter_mut().for_each(|c| {
+            c.present = false;
+            let Some(state) = states[c.agent] else { return };
+            let agent = &world.agents[c.agent];
+            let estimate = match agent.motion {
+                // A roadside unit's position is surveyed.
+                Motion::Fixed { .. } => state.pose,
+                Motion::Along { .. } => c.estimator.estimate(state.pose, world.step, &mut c.localization),
+            };
+            c.localization_error = (estimate.translation - state.pose.translation).length();
+            c.observation
+                .observe(&scene, (c.agent, agent), state.pose, estimate, &mut c.detections);
+            c.present = true;
+        });
+        if states[perception.ego].is_none() {
+            continue;
+        }
+        steps += 1;
+        for c in cooperators.iter().filter(|c| c.present) {
+            sightings.add(c.observation.sightings);
+            error_sum += c.localization_error;
+            error_count += 1;
+        }
+
+        for &cell in &truth_cells {
+            truth[cell] = false;
+        }
+        truth_cells.clear();
+        for body in bodies.all().iter().filter(|b| b.agent != perception.ego) {
+            for cell in box_cells(grid, body) {
+                if !raster.is_occluder(cell) && !truth[cell] {
+                    truth[cell] = true;
+                    truth_cells.push(cell);
+                }
+            }
+        }
+        for &cell in &observed_cells {
+            observed[cell] = false;
+        }
+        observed_cells.clear();
+        let present: Vec<&Cooperator> = cooperators.iter().filter(|c| c.present).collect();
+        for c in &present {
+            for &cell in c.observation.touched() {
+                if !raster.is_occluder(cell) && !observed[cell] {
+                    observed[cell] = true;
+                    observed_cells.push(cell);
+                }
+            }
+        }
+        let ego = &cooperators[0].observation;
+        ego_observed += ego.touched().iter().filter(|&&c| !raster.is_occluder(c)).count() as u64;
+        joint_observed += observed_cells.len() as u64;
+        // Occupied cells nobody observed count as missed (and as blind: the ego did
+        // not observe them either).
+        let unseen = truth_cells.iter().filter(|&&c| !observed[c]).count() as u64;
+
+        let snapshot = k == perception.snapshot_step;
+        for (j, job) in jobs.iter().enumerate() {
+            let fuser = Fuser {
+                grid,
+                job,
+                present: &present,
+                truth: &truth,
+                occupied: perception.occupied,
+                free: perception.free,
+            };
+            let chunks: Vec<(WorldTally, Vec<f32>)> = observed_cells
+                .par_chunks(CHUNK)
+                .map(|chunk| fuser.tally(chunk, snapshot))
+                .collect();
+            let tally = &mut tallies[j];
+            tally.occupied += unseen;
+            tally.blind_occupied += unseen;
+            for (chunk, _) in &chunks {
+                tally.merge(chunk);
+            }
+            if snapshot {
+                snapshots[j] = Some(picture(k, &truth, &raster, ego, &observed_cells, &chunks));
+            }
+        }
+    }
+
+    tallies
+        .iter()
+        .zip(jobs)
+        .zip(snapshots)
+        .map(|((tally, job), snapshot)| {
+            let (mean_uncertainty, conflict, audit) = tally.estimates.finish(job.fusion.rule.is_evidential());
+            WorldOutcome {
+                metrics: WorldMetrics {
+                    steps,
+                    occupied: tally.occupied,
+                    detected: tally.detected,
+                    false_positives: tally.false_positives,
+                    blind_occupied: tally.blind_occupied,
+                    blind_detected: tally.blind_detected,
+                    ego_observed,
+                    joint_observed,
+                    sightings,
+                    localization_error: (error_count > 0).then(|| error_sum / error_count as f64),
+                    mean_uncertainty,
+                    conflict,
+                },
+                audit,
+                snapshot,
+            }
+        })
+        .collect()
+}
+
+/// Fuses the cooperating agents' observations of one step with one method.
+struct Fuser<'a> {
+    grid: &'a Grid,
+    job: &'a Job<'a>,
+    present: &'a [&'a Cooperator],
+    truth: &'a [bool],
+    occupied: f64,
+    free: f64,
+}
+
+impl Fuser<'_> {
+    /// The least-committed mass whose pignistic probability is the inverse sensor
+    /// model's: free → (1 − 2f, 0, 2f), occupied → (0, 2o − 1, 2 − 2o).
+    fn mass(&self, observed: Observed) -> Option<Mass> {
+        match observed {
+            Observed::Unknown => None,
+            Observed::Free => Some(Mass::new(1.0 - 2.0 * self.free, 0.0, 2.0 * self.free)),
+            Observed::Occupied => Some(Mass::new(0.0, 2.0 * self.occupied - 1.0, 2.0 - 2.0 * self.occupied)),
+        }
+    }
+
+    /// Tallies a chunk of observed cells; with `picture`, also returns their fused
+    /// occupancy probabilities.
+    fn tally(&self, cells: &[usize], picture: bool) -> (WorldTally, Vec<f32>) {
+        let mut tally = WorldTally::default();
+        let mut probabilities = Vec::new();
+        let mut sources = Vec::with_capacity(self.present.len());
+        let half_cell = self.grid.cell / 2.0;
+        for &cell in cells {
+            sources.clear();
+            let center = cell_center(self.grid, cell);
+            for c in self.present {
+                if let Some(mass) = self.mass(c.observation.get(cell)) {
+                    let distance = c
+                        .observation
+                        .sensor_positions
+                        .iter()
+                        .map(|p| (*p - center).length())
+                        .fold(f64::INFINITY, f64::min);
+                    sources.push(Source {
+                        mass,
+                        distance: distance.max(half_cell),
+                    });
+                }
+            }
+            let estimate = fuse(&self.job.fusion.rule, &sources);
+            tally.estimates.record(&estimate);
+            let decided = decide(estimate.decision_mass(), self.job.decision.threshold) == Some(State::Occupied);
+            let blind = self.present[0].observation.get(cell) == Observed::Unknown;
+            if self.truth[cell] {
+                tally.occupied += 1;
+                tally.detected += u64::from(decided);
+                if blind {
+                    tally.blind_occupied += 1;
+                    tally.blind_detected += u64::from(decided);
+                }
+            } else if decided {
+                tally.false_positives += 1;
+            }
+            if picture {
+                probabilities.push(match estimate {
+                    Estimate::Occupancy(o) => o.probability as f32,
+                    Estimate::Evidential { combination, .. } => pignistic(combination.mass) as f32,
+                });
+            }
+        }
+        (tally, probabilities)
+    }
+}
+
+/// The grids of the snapshot step.
+fn picture(
+    step: usize,
+    truth: &[bool],
+    raster: &Raster,
+    ego: &Observation,
+    observed_cells: &[usize],
+    chunks: &[(WorldTally, Vec<f32>)],
+) -> Snapshot {
+    let truth_picture = (0..truth.len())
+        .map(|cell| match (raster.is_occluder(cell), truth[cell]) {
+            (true, _) => 2,
+            (false, true) => 1,
+            (false, false) => 0,
+        })
+        .collect();
+    let ego_picture = (0..truth.len())
+        .map(|cell| match ego.get(cell) {
+            Observed::Unknown => 0,
+            Observed::Free => 1,
+            Observed::Occupied => 2,
+        })
+        .collect();
+    let mut fused = vec![f32::NAN; truth.len()];
+    for (&cell, &p) in observed_cells.iter().zip(chunks.iter().flat_map(|(_, ps)| ps)) {
+        fused[cell] = p;
+    }
+    Snapshot {
+        step,
+        truth: truth_picture,
+        ego: ego_picture,
+        fused,
+    }
+}
