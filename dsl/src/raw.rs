@@ -657,6 +657,21 @@ pub(crate) struct RawPerception {
     /// Time of the grids pictured in the report, seconds. Default: the middle of the run.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub snapshot: Option<f64>,
+    /// The area the metrics count: cells whose centre lies in this circle. Default:
+    /// the whole grid.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub region: Option<RawRegion>,
+}
+
+/// A circular region of interest.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, expecting = "a region mapping with `center` and `radius`")]
+#[schemars(rename = "Region")]
+pub(crate) struct RawRegion {
+    /// Centre [x, y], metres.
+    pub center: [f64; 2],
+    /// Radius, metres.
+    pub radius: f64,
 }
 
 /// The inverse sensor model.

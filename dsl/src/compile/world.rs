@@ -647,11 +647,16 @@ fn perception_of(
         &format!("a time from 0 to {duration} s"),
         snapshot,
     );
-    (ok && snapshot_ok).then(|| Perception {
+    let region_ok = raw.region.as_ref().is_none_or(|r| {
+        finite_points(ctx, &path.key("region").key("center"), &[r.center])
+            & ctx.positive(&path.key("region").key("radius"), r.radius)
+    });
+    (ok && snapshot_ok && region_ok).then(|| Perception {
         ego,
         cooperating: std::iter::once(ego).chain(others.take(count - 1)).collect(),
         occupied: model.occupied,
         free: model.free,
         snapshot_step: ((snapshot / step).round() as usize).min(steps),
+        region: raw.region.as_ref().map(|r| (r.center, r.radius)),
     })
 }

@@ -208,4 +208,6 @@ pub struct Perception {
     pub free: f64,
     /// Step whose grids the report pictures.
     pub snapshot_step: usize,
+    /// The circle (centre, radius in metres) the metrics count; `None`: the whole grid.
+    pub region: Option<(Xy, f64)>,
 }

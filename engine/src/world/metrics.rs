@@ -3,8 +3,8 @@
 //! sensors saw and missed.
 //!
 //! Counts are over cell-steps: a cell occupied at 300 steps counts 300 times.
-//! Occluder cells are never counted. Only steps at which the ego is in the scene
-//! are counted.
+//! Only cells in the region of interest are counted, never occluder cells or the
+//! ego's own footprint, and only at steps at which the ego is in the scene.
 
 use serde::Serialize;
 use sightline_dsl::Metric;
@@ -83,8 +83,8 @@ pub struct Snapshot {
     /// Per cell, the ego's own grid: 0 unknown, 1 free, 2 occupied.
     pub ego: Vec<u8>,
     /// Per cell, the fused occupancy probability (pignistic for evidential
-    /// methods); NaN where no cooperating agent observed the cell.
-    pub fused: Vec<f32>,
+    /// methods); `None` where no cooperating agent observed the cell.
+    pub fused: Vec<Option<f32>>,
 }
 
 /// Running counts of one method.

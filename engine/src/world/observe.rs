@@ -8,7 +8,10 @@
 //! with the sensor's detection probability, at its true position plus Gaussian noise
 //! σ(d) = base + per_m · d on each axis, and the cells of its footprint at that
 //! position (seen from the estimated pose) are marked occupied. Occupied wins over
-//! free where two observations of the agent meet.
+//! free where two observations of the agent meet. Finally the agent marks its own
+//! footprint occupied at its estimated pose: it knows where it is (up to its
+//! localization error), as a V2X sender reports its own state, and its rays, which
+//! pass through its own footprint, must not report it as free space.
 
 use rand::RngExt;
 use rand::rngs::ChaCha8Rng;
@@ -133,6 +136,14 @@ impl Observation {
             self.sensor_positions.push(estimated_sensor.translation);
             self.carve(scene, index, sensor, true_sensor, estimated_sensor);
             self.detect(scene, index, sensor, true_sensor, estimated_sensor, rng);
+        }
+        let own = Body {
+            agent: index,
+            pose: estimate,
+            half_extents: Vector::new(agent.length, agent.width) / 2.0,
+        };
+        for cell in box_cells(scene.grid, &own) {
+            self.mark(cell, Observed::Occupied);
         }
     }
 

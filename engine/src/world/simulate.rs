@@ -23,6 +23,11 @@ use crate::run::Job;
 /// Cells fused per parallel task.
 const CHUNK: usize = 4096;
 
+/// Ground truth of a cell.
+const FREE: u8 = 0;
+const OCCUPIED: u8 = 1;
+const EXCLUDED: u8 = 2;
+
 /// A cooperating agent's state across steps.
 struct Cooperator {
     agent: usize,
@@ -55,10 +60,18 @@ pub fn run(seed: u64, grid: &Grid, world: &World, jobs: &[Job<'_>]) -> Vec<World
         })
         .collect();
     let mut states = Vec::new();
-    let mut truth = vec![false; cells];
+    // Per cell: 0 free, 1 truly occupied, 2 excluded from the metrics (occluders
+    // and the ego's own footprint).
+    let mut truth = vec![FREE; cells];
     let mut truth_cells: Vec<usize> = Vec::new();
     let mut observed = vec![false; cells];
     let mut observed_cells: Vec<usize> = Vec::new();
+    let in_region: Vec<bool> = match perception.region {
+        None => vec![true; cells],
+        Some(([x, y], radius)) => (0..cells)
+            .map(|cell| (cell_center(grid, cell) - Vector::new(x, y)).length() <= radius)
+            .collect(),
+    };
     let mut tallies = vec![WorldTally::default(); jobs.len()];
     let mut snapshots: Vec<Option<Snapshot>> = vec![None; jobs.len()];
     let (mut steps, mut ego_observed, mut joint_observed) = (0u64, 0u64, 0u64);
@@ -114,13 +127,20 @@ pub fn run(seed: u64, grid: &Grid, world: &World, jobs: &[Job<'_>]) -> Vec<World
         }
 
         for &cell in &truth_cells {
-            truth[cell] = false;
+            truth[cell] = FREE;
         }
         truth_cells.clear();
-        for body in bodies.all().iter().filter(|b| b.agent != perception.ego) {
+        // The ego's footprint first, so that no other body claims its cells.
+        let mut footprints: Vec<&Body> = bodies.all().iter().collect();
+        footprints.sort_by_key(|b| b.agent != perception.ego);
+        for body in footprints {
             for cell in box_cells(grid, body) {
-                if !raster.is_occluder(cell) && !truth[cell] {
-                    truth[cell] = true;
+                if in_region[cell] && !raster.is_occluder(cell) && truth[cell] == FREE {
+                    truth[cell] = if body.agent == perception.ego {
+                        EXCLUDED
+                    } else {
+                        OCCUPIED
+                    };
                     truth_cells.push(cell);
                 }
             }
@@ -130,20 +150,24 @@ pub fn run(seed: u64, grid: &Grid, world: &World, jobs: &[Job<'_>]) -> Vec<World
         }
         observed_cells.clear();
         let present: Vec<&Cooperator> = cooperators.iter().filter(|c| c.present).collect();
+        let counted = |cell: usize| in_region[cell] && !raster.is_occluder(cell) && truth[cell] != EXCLUDED;
         for c in &present {
             for &cell in c.observation.touched() {
-                if !raster.is_occluder(cell) && !observed[cell] {
+                if counted(cell) && !observed[cell] {
                     observed[cell] = true;
                     observed_cells.push(cell);
                 }
             }
         }
         let ego = &cooperators[0].observation;
-        ego_observed += ego.touched().iter().filter(|&&c| !raster.is_occluder(c)).count() as u64;
+        ego_observed += ego.touched().iter().filter(|&&c| counted(c)).count() as u64;
         joint_observed += observed_cells.len() as u64;
         // Occupied cells nobody observed count as missed (and as blind: the ego did
         // not observe them either).
-        let unseen = truth_cells.iter().filter(|&&c| !observed[c]).count() as u64;
+        let unseen = truth_cells
+            .iter()
+            .filter(|&&c| truth[c] == OCCUPIED && !observed[c])
+            .count() as u64;
 
         let snapshot = k == perception.snapshot_step;
         for (j, job) in jobs.iter().enumerate() {
@@ -204,7 +228,7 @@ struct Fuser<'a> {
     grid: &'a Grid,
     job: &'a Job<'a>,
     present: &'a [&'a Cooperator],
-    truth: &'a [bool],
+    truth: &'a [u8],
     occupied: f64,
     free: f64,
 }
@@ -248,7 +272,7 @@ impl Fuser<'_> {
             tally.estimates.record(&estimate);
             let decided = decide(estimate.decision_mass(), self.job.decision.threshold) == Some(State::Occupied);
             let blind = self.present[0].observation.get(cell) == Observed::Unknown;
-            if self.truth[cell] {
+            if self.truth[cell] == OCCUPIED {
                 tally.occupied += 1;
                 tally.detected += u64::from(decided);
                 if blind {
@@ -272,7 +296,7 @@ impl Fuser<'_> {
 /// The grids of the snapshot step.
 fn picture(
     step: usize,
-    truth: &[bool],
+    truth: &[u8],
     raster: &Raster,
     ego: &Observation,
     observed_cells: &[usize],
@@ -281,8 +305,8 @@ fn picture(
     let truth_picture = (0..truth.len())
         .map(|cell| match (raster.is_occluder(cell), truth[cell]) {
             (true, _) => 2,
-            (false, true) => 1,
-            (false, false) => 0,
+            (false, OCCUPIED) => 1,
+            _ => 0,
         })
         .collect();
     let ego_picture = (0..truth.len())
@@ -292,9 +316,9 @@ fn picture(
             Observed::Occupied => 2,
         })
         .collect();
-    let mut fused = vec![f32::NAN; truth.len()];
+    let mut fused = vec![None; truth.len()];
     for (&cell, &p) in observed_cells.iter().zip(chunks.iter().flat_map(|(_, ps)| ps)) {
-        fused[cell] = p;
+        fused[cell] = Some(p);
     }
     Snapshot {
         step,

@@ -1,0 +1,124 @@
+//! World sections: what the compiler resolves, and the errors it reports.
+
+use sightline_dsl::{Experiment, Motion, Options, World, compile};
+
+/// A T junction: a main road and a roundabout joined by an arm.
+const WORLD: &str = "sightline: 1
+name: t
+time: { duration: 10, step: 0.1 }
+grid: { origin: [-50, -50], size: [100, 100], cell: 0.5 }
+roads:
+  - { id: ring, roundabout: { center: [0, 0], radius: 10 }, speed_limit: 6 }
+  - { id: arm_in, polyline: [[-1.75, 45], [-1.75, 10.3]], speed_limit: 12 }
+  - { id: arm_out, polyline: [[1.75, 10.3], [1.75, 45]], speed_limit: 12 }
+  - { id: east_out, polyline: [[10.3, -1.75], [45, -1.75]], speed_limit: 12 }
+sensor_models:
+  lidar: { range: 40 }
+agents:
+  - { id: ego, kind: car, route: [arm_in, ring, east_out], speed: { target: 8 }, connected: true, sensors: [lidar] }
+  - { id: cav, kind: car, route: [arm_in, ring, arm_out], start: { time: 2 }, speed: { target: 8 }, connected: true, sensors: [lidar] }
+  - { id: rsu, kind: rsu, position: [15, 15], sensors: [lidar], connected: true }
+  - { id: walker, kind: pedestrian, path: [[-8, 20], [8, 20]], speed: { target: 1.4 } }
+perception: { ego: ego }
+";
+
+fn world(text: &str) -> World {
+    let scenario = compile("w.yaml", text, &Options::default()).unwrap_or_else(|e| panic!("{e}"));
+    let Experiment::World(world) = scenario.points[0].setup.experiment.clone() else {
+        panic!("a world scenario")
+    };
+    world
+}
+
+fn first_error(text: &str) -> String {
+    compile("w.yaml", text, &Options::default())
+        .expect_err("the file is invalid")
+        .0[0]
+        .to_string()
+}
+
+#[test]
+fn routes_resolve_into_one_polyline_through_the_roundabout() {
+    let world = world(WORLD);
+    assert_eq!((world.steps, world.step), (100, 0.1));
+    let Motion::Along { path, limits, .. } = &world.agents[0].motion else {
+        panic!("the ego follows a route")
+    };
+    // From (−1.75, 45) down the arm (34.7 m), a quarter turn counter-clockwise
+    // around the ring (r = 10) from about 100° to about 350°, then 34.7 m east.
+    let turn = std::f64::consts::TAU * 10.0 * (250.0 / 360.0);
+    assert!((path.length() - (34.7 + turn + 34.7)).abs() < 1.5, "{}", path.length());
+    assert_eq!(path.start(), [-1.75, 45.0]);
+    assert_eq!(path.end(), [45.0, -1.75]);
+    assert_eq!(limits.iter().map(|l| l.1).collect::<Vec<_>>(), vec![12.0, 6.0, 12.0]);
+    // The ego first, then the connected agents with sensors in file order.
+    assert_eq!(world.perception.cooperating, vec![0, 1, 2]);
+    assert_eq!(world.perception.snapshot_step, 50);
+    assert!(matches!(world.agents[2].motion, Motion::Fixed { .. }));
+}
+
+/// `arm_in` ends at (−1.75, 10.3); the closest point of `east_out` is its start
+/// (10.3, −1.75), 12.05·√2 = 17.04 m away. The error points at `east_out` in the route.
+#[test]
+fn a_route_that_does_not_connect_is_reported_at_its_road() {
+    let text = WORLD.replace("route: [arm_in, ring, east_out]", "route: [arm_in, east_out]");
+    assert_eq!(
+        first_error(&text),
+        "w.yaml:13:43: error: agents[0].route[1]: road `arm_in` does not connect to `east_out`: they are \
+         17.04 m apart where one should join the other (at most the lane width, 3.5 m)"
+    );
+}
+
+#[test]
+fn unknown_roads_sensors_and_ego_are_dangling_references() {
+    assert!(
+        first_error(&WORLD.replace("[arm_in, ring, east_out]", "[arm_in, ring, east]"))
+            .contains("agents[0].route[2]: no road `east` (roads: ring, arm_in, arm_out, east_out)")
+    );
+    assert!(
+        first_error(&WORLD.replace(
+            "sensors: [lidar], connected: true }",
+            "sensors: [radar], connected: true }"
+        ))
+        .contains("agents[2].sensors[0]: no sensor model `radar` in `sensor_models` (it has lidar)")
+    );
+    assert!(first_error(&WORLD.replace("ego: ego", "ego: eog")).contains("perception.ego: no agent `eog`"));
+}
+
+#[test]
+fn a_route_cannot_end_on_a_roundabout() {
+    let text = WORLD.replace("[arm_in, ring, east_out]", "[arm_in, ring]");
+    assert!(first_error(&text).contains("a route cannot end on a roundabout"));
+}
+
+#[test]
+fn cooperating_counts_only_connected_agents_with_sensors() {
+    let error = first_error(&WORLD.replace("perception: { ego: ego }", "perception: { ego: ego, cooperating: 4 }"));
+    assert!(
+        error.contains("expected from 1 to 3 (the ego and 2 connected agents with sensors), found 4"),
+        "{error}"
+    );
+    let two = world(&WORLD.replace("perception: { ego: ego }", "perception: { ego: ego, cooperating: 2 }"));
+    assert_eq!(two.perception.cooperating, vec![0, 1]);
+}
+
+#[test]
+fn each_kind_moves_its_own_way() {
+    let error = first_error(&WORLD.replace("kind: pedestrian, path:", "kind: car, path:"));
+    assert!(error.contains("an agent of kind \"car\" moves by `route`"), "{error}");
+}
+
+#[test]
+fn a_field_and_a_world_do_not_mix() {
+    let text = format!(
+        "{WORLD}field:\n  truth: {{ occupied_fraction: 0.1 }}\n  sensors: {{ range: 10, layout: {{ regular: {{ rows: 1, cols: 1 }} }} }}\n  masses: {{ gamma: 5 }}\n"
+    );
+    assert!(first_error(&text).contains("either a `field` or a world"));
+}
+
+#[test]
+fn world_metrics_are_refused_in_the_field_and_field_metrics_in_worlds() {
+    let text =
+        format!("{WORLD}requirements:\n  - {{ id: A, text: x, check: {{ metric: accuracy, at_least: 0.9 }} }}\n");
+    assert!(first_error(&text).contains("metric `accuracy` is not measured in a world scenario"));
+}
