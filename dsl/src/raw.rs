@@ -71,8 +71,13 @@ pub(crate) struct RawScenario {
     pub requirements: Vec<RawRequirement>,
     /// Settings to vary: a dotted path (`field.masses.gamma`) and the list of values
     /// it takes. One run per combination, first key outermost.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
     pub sweep: BTreeMap<String, Vec<serde_json::Value>>,
+    /// Independent sweeps, each like `sweep` and each reported as its own table
+    /// (for example one over cooperating agents and one over localization noise).
+    /// Use `sweep` or `sweeps`, not both.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub sweeps: Vec<BTreeMap<String, Vec<serde_json::Value>>>,
     /// Published figures to show beside the measured ones.
     #[serde(default)]
     pub references: Vec<RawReference>,

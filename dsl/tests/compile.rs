@@ -168,3 +168,34 @@ fn overlapping_and_unsweepable_keys_are_refused() {
     let name = errors(&format!("{BASE}sweep:\n  name: [a, b]\n"));
     assert!(name.0[0].to_string().contains("cannot sweep `name`"));
 }
+
+#[test]
+fn independent_sweeps_run_one_after_the_other() {
+    let scenario = ok(&format!(
+        "{BASE}sweeps:\n  - {{ field.masses.gamma: [6, 14] }}\n  - {{ decision.threshold: [0.7, 0.8, 0.9] }}\n"
+    ));
+    assert_eq!(scenario.sweeps.len(), 2);
+    assert_eq!(scenario.sweeps[0].points, vec![0, 1]);
+    assert_eq!(scenario.sweeps[1].points, vec![2, 3, 4]);
+    let labels: Vec<String> = scenario.points.iter().map(|p| p.label()).collect();
+    assert_eq!(labels[1], "field.masses.gamma=14");
+    assert_eq!(labels[4], "decision.threshold=0.9");
+    assert_eq!(scenario.points[3].sweep, Some(1));
+    // The second sweep leaves γ as the file has it.
+    let Experiment::Field(field) = &scenario.points[3].setup.experiment else {
+        panic!("a field scenario")
+    };
+    assert_eq!(field.masses.gamma, 10.0);
+}
+
+#[test]
+fn sweep_and_sweeps_do_not_mix() {
+    let errors = errors(&format!(
+        "{BASE}sweep:\n  seed: [1, 2]\nsweeps:\n  - {{ decision.threshold: [0.7] }}\n"
+    ));
+    assert!(
+        errors.0[0]
+            .to_string()
+            .contains("give `sweep` (one sweep) or `sweeps` (several), not both")
+    );
+}

@@ -47,7 +47,7 @@ struct View<'a> {
     summary: Summary,
     provenance: Vec<(&'static str, String)>,
     requirements: Vec<RequirementView>,
-    sweep: TableView,
+    sweeps: Vec<SweepView>,
     comparisons: Vec<ComparisonView>,
     points: Vec<PointView>,
 }
@@ -85,6 +85,12 @@ struct TableView {
 }
 
 #[derive(Serialize)]
+struct SweepView {
+    title: String,
+    table: TableView,
+}
+
+#[derive(Serialize)]
 struct ComparisonView {
     source: String,
     label: String,
@@ -110,7 +116,7 @@ impl<'a> View<'a> {
             summary: results.summary,
             provenance: provenance(results, reproduce),
             requirements: results.requirements.iter().map(requirement_view).collect(),
-            sweep: sweep_table(results),
+            sweeps: sweep_tables(results),
             comparisons: comparisons(results),
             points: results.sweep.iter().map(point_view).collect(),
         }
@@ -169,10 +175,32 @@ fn requirement_view(r: &RequirementResult) -> RequirementView {
     }
 }
 
+/// One table per sweep (one table of the single point without a sweep).
+fn sweep_tables(results: &Results) -> Vec<SweepView> {
+    if results.sweeps.is_empty() {
+        let all: Vec<&PointResult> = results.sweep.iter().collect();
+        return vec![SweepView {
+            title: "Results".into(),
+            table: sweep_table(results, &[], &all),
+        }];
+    }
+    results
+        .sweeps
+        .iter()
+        .map(|sweep| {
+            let paths: Vec<&str> = sweep.axes.iter().map(|a| a.path.as_str()).collect();
+            let points: Vec<&PointResult> = sweep.points.iter().map(|&p| &results.sweep[p]).collect();
+            SweepView {
+                title: format!("Results over {}", paths.join(" × ")),
+                table: sweep_table(results, &paths, &points),
+            }
+        })
+        .collect()
+}
+
 /// One row per point: the axis values, then [`TABLE_METRICS`] and every metric a
 /// requirement or reference uses, each followed by its published value if any.
-fn sweep_table(results: &Results) -> TableView {
-    let points = &results.sweep;
+fn sweep_table(results: &Results, axes: &[&str], points: &[&PointResult]) -> TableView {
     let mut metrics: Vec<&str> = TABLE_METRICS.to_vec();
     let used = results
         .requirements
@@ -188,7 +216,7 @@ fn sweep_table(results: &Results) -> TableView {
     metrics.retain(|m| points.iter().any(|p| p.metrics.0.iter().any(|(k, _)| k == m)));
     let has_published = |metric: &str| results.references.iter().any(|r| r.metric == metric);
 
-    let mut head: Vec<String> = results.axes.iter().map(|a| a.path.clone()).collect();
+    let mut head: Vec<String> = axes.iter().map(|a| (*a).to_string()).collect();
     for metric in &metrics {
         head.push((*metric).to_string());
         if has_published(metric) {
@@ -221,7 +249,7 @@ fn sweep_table(results: &Results) -> TableView {
     TableView {
         head,
         rows,
-        text_columns: results.axes.len(),
+        text_columns: axes.len(),
     }
 }
 

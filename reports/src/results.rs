@@ -53,8 +53,8 @@ pub struct Results {
     pub requirements: Vec<RequirementResult>,
     /// Metrics: numbers for a scenario without sweep, tables over the sweep otherwise.
     pub metrics: Ordered<MetricEntry>,
-    /// The swept settings and their values (empty without a sweep).
-    pub axes: Vec<sightline_dsl::Axis>,
+    /// The sweeps: their settings, values and points (empty without a sweep).
+    pub sweeps: Vec<sightline_dsl::Sweep>,
     /// Every sweep point and its measurements (one point without a sweep).
     pub sweep: Vec<PointResult>,
     /// Published figures beside the measured values.
@@ -148,14 +148,16 @@ pub struct PointVerdict {
 pub enum MetricEntry {
     /// The value of a scenario without sweep.
     Number(f64),
-    /// The values over a sweep.
-    Table(Table),
+    /// The values over each sweep, one table per sweep.
+    Tables(Vec<Table>),
 }
 
-/// A metric over the sweep: one row per point, the axis values then the metric
+/// A metric over one sweep: one row per point, the axis values then the metric
 /// (`null` where it is undefined).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Table {
+    /// Index of the sweep in `sweeps`.
+    pub sweep: usize,
     /// The axis paths, then `value`.
     pub columns: Vec<String>,
     /// One row per point.
@@ -167,6 +169,8 @@ pub struct Table {
 pub struct PointResult {
     /// The index.
     pub index: usize,
+    /// The sweep it belongs to.
+    pub sweep: Option<usize>,
     /// The sweep label.
     pub label: String,
     /// Each axis's value.
@@ -275,7 +279,7 @@ impl Results {
                 .map(|(requirement, verdict)| requirement_result(requirement, verdict, &labels))
                 .collect(),
             metrics: metrics(scenario, run),
-            axes: scenario.sweep.clone(),
+            sweeps: scenario.sweeps.clone(),
             sweep: scenario.points.iter().zip(&run.points).map(point_result).collect(),
             references: scenario
                 .references
@@ -328,6 +332,7 @@ fn requirement_result(requirement: &Requirement, verdict: &Verdict, labels: &[St
 fn point_result((point, outcome): (&Point, &Outcome)) -> PointResult {
     PointResult {
         index: point.index,
+        sweep: point.sweep,
         label: point.label(),
         settings: Ordered(
             point
@@ -379,9 +384,9 @@ fn check_info(check: &Check) -> CheckInfo {
     }
 }
 
-/// Top-level metrics: numbers without a sweep, one table per metric with one.
+/// Top-level metrics: numbers without a sweep, one table per sweep with one.
 fn metrics(scenario: &Scenario, run: &Run) -> Ordered<MetricEntry> {
-    if scenario.sweep.is_empty() {
+    if scenario.sweeps.is_empty() {
         let values = run.points[0].values();
         return Ordered(
             values
@@ -390,35 +395,40 @@ fn metrics(scenario: &Scenario, run: &Run) -> Ordered<MetricEntry> {
                 .collect(),
         );
     }
-    let mut columns: Vec<String> = scenario.sweep.iter().map(|a| a.path.clone()).collect();
-    columns.push("value".into());
     Ordered(
         sightline_dsl::Metric::ALL
             .iter()
             .filter(|&&m| run.points.iter().any(|o| o.value(m).is_some()))
             .map(|&m| {
-                let rows = scenario
-                    .points
+                let tables = scenario
+                    .sweeps
                     .iter()
-                    .zip(&run.points)
-                    .map(|(point, outcome)| {
-                        let mut row: Vec<serde_json::Value> =
-                            point.assignments.iter().map(|a| a.value.clone()).collect();
-                        row.push(
-                            outcome
-                                .value(m)
-                                .map_or(serde_json::Value::Null, serde_json::Value::from),
-                        );
-                        row
+                    .enumerate()
+                    .map(|(i, sweep)| {
+                        let mut columns: Vec<String> = sweep.axes.iter().map(|a| a.path.clone()).collect();
+                        columns.push("value".into());
+                        let rows = sweep
+                            .points
+                            .iter()
+                            .map(|&p| {
+                                let mut row: Vec<serde_json::Value> =
+                                    scenario.points[p].assignments.iter().map(|a| a.value.clone()).collect();
+                                row.push(
+                                    run.points[p]
+                                        .value(m)
+                                        .map_or(serde_json::Value::Null, serde_json::Value::from),
+                                );
+                                row
+                            })
+                            .collect();
+                        Table {
+                            sweep: i,
+                            columns,
+                            rows,
+                        }
                     })
                     .collect();
-                (
-                    m.name().to_string(),
-                    MetricEntry::Table(Table {
-                        columns: columns.clone(),
-                        rows,
-                    }),
-                )
+                (m.name().to_string(), MetricEntry::Tables(tables))
             })
             .collect(),
     )

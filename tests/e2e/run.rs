@@ -87,7 +87,10 @@ fn valid_scenario_passes_and_writes_three_evidence_files() {
     assert_eq!(labels, ["fusion=Baseline", "fusion=Proposed", "fusion=Bayes"]);
     let methods: Vec<&str> = points.iter().map(|p| p["method"].as_str().unwrap()).collect();
     assert_eq!(methods, ["dempster", "hybrid", "bayes"]);
-    let accuracy = &results["metrics"]["accuracy"];
+    // One sweep: one table per metric.
+    assert_eq!(results["sweeps"].as_array().map(Vec::len), Some(1));
+    let accuracy = &results["metrics"]["accuracy"][0];
+    assert_eq!(accuracy["sweep"], 0);
     assert_eq!(accuracy["columns"], serde_json::json!(["fusion", "value"]));
     assert_eq!(accuracy["rows"].as_array().map(Vec::len), Some(3));
     // The reference's `where` selects the Baseline point only.

@@ -6,7 +6,7 @@ use super::setup::setup;
 use super::sweep::{self, AxisNodes};
 use crate::de::from_node;
 use crate::error::{Error, ErrorKind, Errors, Location};
-use crate::model::{Assignment, Axis, Point, Scenario, display_value};
+use crate::model::{Assignment, Axis, Point, Scenario, Sweep, display_value};
 use crate::path::Path;
 use crate::raw::RawScenario;
 use crate::yaml::{self, Node, Value};
@@ -50,18 +50,18 @@ fn compile_inner(file: &str, source: &str, options: &Options) -> Result<Scenario
     // Check the file as written before expanding the sweep, so that a problem
     // outside the swept keys is reported once, not once per point.
     let base = setup(&mut ctx, &raw);
-    let axes = sweep::axes(&mut ctx);
-    if let (Some(_), Some(axis)) = (options.seed, axes.iter().find(|a| a.dotted == "seed")) {
+    let sweeps = sweep::sweeps(&mut ctx);
+    if let (Some(_), Some(axis)) = (options.seed, sweeps.iter().flatten().find(|a| a.dotted == "seed")) {
         ctx.error_at(
             axis.key_location,
-            &Path::root().key("sweep").key("seed"),
+            &axis.here,
             ErrorKind::Invalid("`--seed` cannot override a swept `seed`".into()),
         );
     }
     // Requirements are checked even when the setup is invalid (ids, texts and
     // check forms do not depend on the points), so one pass reports everything.
     let points = match base {
-        Some(_) if ctx.errors.is_empty() => match points(file, &tree, &axes, options) {
+        Some(_) if ctx.errors.is_empty() => match points(file, &tree, &sweeps, options) {
             Ok(points) => Some(points),
             Err(errors) => {
                 ctx.errors.extend(errors);
@@ -72,18 +72,30 @@ fn compile_inner(file: &str, source: &str, options: &Options) -> Result<Scenario
     };
     let requirements = requirements(&mut ctx, &raw.requirements, points.as_deref());
     let references = references(&mut ctx, &raw.references, points.as_deref());
-    let sweep = axes
+    let mut first_point = 0;
+    let sweeps = sweeps
         .iter()
-        .map(|a| Axis {
-            path: a.dotted.clone(),
-            values: a.values.iter().map(Node::to_json).collect(),
+        .map(|axes| {
+            let count: usize = axes.iter().map(|a| a.values.len()).product();
+            let points = (first_point..first_point + count).collect();
+            first_point += count;
+            Sweep {
+                axes: axes
+                    .iter()
+                    .map(|a| Axis {
+                        path: a.dotted.clone(),
+                        values: a.values.iter().map(Node::to_json).collect(),
+                    })
+                    .collect(),
+                points,
+            }
         })
         .collect();
     ctx.finish(points.map(|points| Scenario {
         file: file.to_string(),
         name: raw.name,
         description: raw.description,
-        sweep,
+        sweeps,
         points,
         requirements,
         references,
@@ -120,46 +132,51 @@ fn check_version(ctx: &mut Context<'_>) {
     }
 }
 
-/// Compiles every sweep point (one when there is no sweep).
-fn points(file: &str, tree: &Node, axes: &[AxisNodes<'_>], options: &Options) -> Result<Vec<Point>, Vec<Error>> {
+/// Compiles every point of every sweep (one point when there is no sweep).
+fn points(file: &str, tree: &Node, sweeps: &[Vec<AxisNodes<'_>>], options: &Options) -> Result<Vec<Point>, Vec<Error>> {
     let mut points = Vec::new();
     let mut errors = Vec::new();
-    for (index, choice) in sweep::choices(axes).into_iter().enumerate() {
-        let point_tree = sweep::substitute(tree, axes, &choice);
-        let mut ctx = Context::new(file, &point_tree);
-        let compiled = match from_node::<RawScenario>(&point_tree, &Path::root()) {
-            Ok(raw) => setup(&mut ctx, &raw).map(|setup| (raw, setup)),
-            Err(e) => {
-                ctx.errors.push(ctx.de_error(e));
-                None
-            }
-        };
-        match ctx.finish(compiled) {
-            Ok((raw, mut setup)) => {
-                if let Some(seed) = options.seed {
-                    setup.seed = seed;
+    let no_sweep: [Vec<AxisNodes<'_>>; 1] = [Vec::new()];
+    let groups = if sweeps.is_empty() { &no_sweep[..] } else { sweeps };
+    for (group, axes) in groups.iter().enumerate() {
+        for choice in sweep::choices(axes) {
+            let point_tree = sweep::substitute(tree, axes, &choice);
+            let mut ctx = Context::new(file, &point_tree);
+            let compiled = match from_node::<RawScenario>(&point_tree, &Path::root()) {
+                Ok(raw) => setup(&mut ctx, &raw).map(|setup| (raw, setup)),
+                Err(e) => {
+                    ctx.errors.push(ctx.de_error(e));
+                    None
                 }
-                let settings = settings(&raw, &setup);
-                let assignments = axes
-                    .iter()
-                    .zip(&choice)
-                    .map(|(axis, &i)| {
-                        let value = axis.values[i].to_json();
-                        Assignment {
-                            path: axis.dotted.clone(),
-                            display: display_value(&value),
-                            value,
-                        }
-                    })
-                    .collect();
-                points.push(Point {
-                    index,
-                    assignments,
-                    setup,
-                    settings,
-                });
+            };
+            match ctx.finish(compiled) {
+                Ok((raw, mut setup)) => {
+                    if let Some(seed) = options.seed {
+                        setup.seed = seed;
+                    }
+                    let settings = settings(&raw, &setup);
+                    let assignments = axes
+                        .iter()
+                        .zip(&choice)
+                        .map(|(axis, &i)| {
+                            let value = axis.values[i].to_json();
+                            Assignment {
+                                path: axis.dotted.clone(),
+                                display: display_value(&value),
+                                value,
+                            }
+                        })
+                        .collect();
+                    points.push(Point {
+                        index: points.len(),
+                        sweep: (!sweeps.is_empty()).then_some(group),
+                        assignments,
+                        setup,
+                        settings,
+                    });
+                }
+                Err(e) => errors.extend(e),
             }
-            Err(e) => errors.extend(e),
         }
     }
     if errors.is_empty() { Ok(points) } else { Err(errors) }

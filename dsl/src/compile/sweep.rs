@@ -26,21 +26,63 @@ const SWEEPABLE: [&str; 9] = [
 
 /// One axis as written: the path it sets and its value nodes.
 pub(super) struct AxisNodes<'a> {
+    /// Where the axis is written (`sweep.fusion`, `sweeps[1].seed`).
+    pub(super) here: Path,
     pub(super) path: Path,
     pub(super) dotted: String,
     pub(super) key_location: Location,
     pub(super) values: &'a [Node],
 }
 
-/// Reads and checks the axes of the `sweep` mapping.
-pub(super) fn axes<'a>(ctx: &mut Context<'a>) -> Vec<AxisNodes<'a>> {
+/// Reads and checks the sweeps: the `sweep` mapping, or each mapping of `sweeps`.
+pub(super) fn sweeps<'a>(ctx: &mut Context<'a>) -> Vec<Vec<AxisNodes<'a>>> {
     let tree = ctx.tree;
-    let Some(Value::Map(entries)) = tree.get("sweep").map(|n| &n.value) else {
-        return Vec::new();
+    let root = Path::root();
+    let sweeps = match (tree.get("sweep"), tree.get("sweeps")) {
+        (Some(_), Some(_)) => {
+            ctx.error(
+                &root.key("sweeps"),
+                ErrorKind::Invalid("give `sweep` (one sweep) or `sweeps` (several), not both".into()),
+            );
+            return Vec::new();
+        }
+        (Some(sweep), None) => vec![axes(ctx, sweep, &root.key("sweep"))],
+        (
+            None,
+            Some(Node {
+                value: Value::Seq(items),
+                ..
+            }),
+        ) => items
+            .iter()
+            .enumerate()
+            .map(|(i, sweep)| axes(ctx, sweep, &root.key("sweeps").index(i)))
+            .collect(),
+        _ => Vec::new(),
+    };
+    let count = sweeps.iter().try_fold(0usize, |total, axes| {
+        axes.iter()
+            .try_fold(1usize, |n, a| n.checked_mul(a.values.len()))
+            .and_then(|n| total.checked_add(n))
+    });
+    if count.is_none_or(|n| n > MAX_POINTS) {
+        ctx.error(
+            &root,
+            ErrorKind::TooLarge(format!("the sweeps have more than {MAX_POINTS} points")),
+        );
+    }
+    sweeps
+}
+
+/// Reads and checks the axes of one sweep mapping, at `prefix` in the file.
+fn axes<'a>(ctx: &mut Context<'a>, sweep: &'a Node, prefix: &Path) -> Vec<AxisNodes<'a>> {
+    let tree = ctx.tree;
+    let Value::Map(entries) = &sweep.value else {
+        return Vec::new(); // serde has already rejected anything but a mapping
     };
     let mut axes: Vec<AxisNodes<'a>> = Vec::new();
     for (key, node) in entries {
-        let here = Path::root().key("sweep").key(&key.name);
+        let here = prefix.key(&key.name);
         let Some(path) = Path::parse_dotted(&key.name) else {
             ctx.error_at(
                 key.location,
@@ -117,18 +159,12 @@ pub(super) fn axes<'a>(ctx: &mut Context<'a>) -> Vec<AxisNodes<'a>> {
             continue;
         }
         axes.push(AxisNodes {
+            here,
             path,
             dotted: key.name.clone(),
             key_location: key.location,
             values,
         });
-    }
-    let count = axes.iter().try_fold(1usize, |n, a| n.checked_mul(a.values.len()));
-    if count.is_none_or(|n| n > MAX_POINTS) {
-        ctx.error(
-            &Path::root().key("sweep"),
-            ErrorKind::TooLarge(format!("the sweep has more than {MAX_POINTS} points")),
-        );
     }
     axes
 }

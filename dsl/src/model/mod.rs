@@ -12,7 +12,7 @@ pub use fusion::{
     Decision, Fusion, FusionMethod, Rule, SourceCombination, Switch, SwitchMeasure, WeightScaling, Weighting,
 };
 pub use requirement::{Bound, Check, Invariant, Metric, Reference, Requirement};
-pub use scenario::{Assignment, Axis, Experiment, Grid, Point, Scenario, Setup, display_value};
+pub use scenario::{Assignment, Axis, Experiment, Grid, Point, Scenario, Setup, Sweep, display_value};
 pub use world::{
     Agent, AgentKind, Direction, Localization, Motion, Occluder, Perception, PoseFilter, Road, Sensor, World,
 };

@@ -14,14 +14,25 @@ pub struct Scenario {
     pub name: String,
     /// Free text describing the scenario.
     pub description: String,
-    /// The swept settings in file order; empty without a `sweep` section.
-    pub sweep: Vec<Axis>,
-    /// Every combination of sweep values (one point without a sweep), first axis outermost.
+    /// The sweeps in file order: one for `sweep`, one per entry of `sweeps`, none
+    /// without either.
+    pub sweeps: Vec<Sweep>,
+    /// Every point of every sweep, sweep by sweep, each sweep's combinations with
+    /// its first axis outermost (one point without a sweep).
     pub points: Vec<Point>,
     /// Requirements in file order.
     pub requirements: Vec<Requirement>,
     /// Published figures, in file order.
     pub references: Vec<Reference>,
+}
+
+/// One sweep: settings varied together, one point per combination of values.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Sweep {
+    /// The swept settings, in file order.
+    pub axes: Vec<Axis>,
+    /// Indices of its points in [`Scenario::points`].
+    pub points: Vec<usize>,
 }
 
 /// One swept setting and its values.
@@ -38,6 +49,8 @@ pub struct Axis {
 pub struct Point {
     /// Position in [`Scenario::points`].
     pub index: usize,
+    /// The sweep it belongs to (`None` without a sweep).
+    pub sweep: Option<usize>,
     /// The value of each sweep axis at this point, in axis order.
     pub assignments: Vec<Assignment>,
     /// What to simulate.
