@@ -8,6 +8,7 @@ use serde::Serialize;
 
 use sightline_dsl::display_value;
 
+use crate::picture::Pictures;
 use crate::results::{Detail, PointResult, RequirementResult, Results, Summary};
 
 const TEMPLATE: &str = include_str!("../templates/report.html");
@@ -28,13 +29,14 @@ const TABLE_METRICS: [&str; 11] = [
     "mean_conflict",
 ];
 
-/// Renders the report. `reproduce` is the command that re-creates the run.
-pub fn html(results: &Results, reproduce: &str) -> Result<String, minijinja::Error> {
+/// Renders the report. `reproduce` is the command that re-creates the run;
+/// `pictures` holds the grid pictures of each point (world points only).
+pub fn html(results: &Results, reproduce: &str, pictures: &[Option<Pictures>]) -> Result<String, minijinja::Error> {
     let mut env = Environment::new();
     env.set_undefined_behavior(UndefinedBehavior::Strict);
     // The name ends in `.html`, so minijinja escapes every interpolation.
     env.add_template("report.html", TEMPLATE)?;
-    let view = View::new(results, reproduce);
+    let view = View::new(results, reproduce, pictures);
     env.get_template("report.html")?
         .render(context! { report => Value::from(Serde(&view)) })
 }
@@ -105,10 +107,11 @@ struct PointView {
     label: String,
     summary: String,
     table: TableView,
+    pictures: Option<Pictures>,
 }
 
 impl<'a> View<'a> {
-    fn new(results: &'a Results, reproduce: &str) -> Self {
+    fn new(results: &'a Results, reproduce: &str, pictures: &[Option<Pictures>]) -> Self {
         View {
             name: &results.scenario.name,
             description: &results.scenario.description,
@@ -118,7 +121,12 @@ impl<'a> View<'a> {
             requirements: results.requirements.iter().map(requirement_view).collect(),
             sweeps: sweep_tables(results),
             comparisons: comparisons(results),
-            points: results.sweep.iter().map(point_view).collect(),
+            points: results
+                .sweep
+                .iter()
+                .zip(pictures)
+                .map(|(point, pictures)| point_view(point, pictures.clone()))
+                .collect(),
         }
     }
 }
@@ -283,7 +291,7 @@ const BAND_COLUMNS: [&str; 7] = [
     "mean conflict",
 ];
 
-fn point_view(p: &PointResult) -> PointView {
+fn point_view(p: &PointResult, pictures: Option<Pictures>) -> PointView {
     let label = if p.label.is_empty() {
         "the scenario".into()
     } else {
@@ -292,6 +300,7 @@ fn point_view(p: &PointResult) -> PointView {
     match &p.detail {
         Detail::Field { bands, coverage: c } => PointView {
             label,
+            pictures,
             summary: format!(
                 "{} sensors; {}–{} observe each cell (mean {:.2})",
                 c.sensors, c.min_sources, c.max_sources, c.mean_sources
@@ -341,6 +350,7 @@ fn point_view(p: &PointResult) -> PointView {
             ]);
             PointView {
                 label,
+                pictures,
                 summary: format!("{} steps", c.steps),
                 table: TableView {
                     text_columns: 1,

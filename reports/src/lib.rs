@@ -8,6 +8,7 @@
 
 pub use html::html;
 pub use junit::junit;
+pub use picture::{Pictures, pictures};
 pub use results::{
     CheckInfo, Detail, FORMAT, MetricEntry, Ordered, PointResult, PointVerdict, Provenance, ReferencePoint,
     ReferenceResult, RequirementResult, Results, ScenarioInfo, Summary, Table, Tool,
@@ -15,11 +16,12 @@ pub use results::{
 
 mod html;
 mod junit;
+mod picture;
 mod results;
 
 use sha2::{Digest, Sha256};
-use sightline_dsl::Scenario;
-use sightline_engine::Run;
+use sightline_dsl::{Experiment, Scenario};
+use sightline_engine::{Outcome, Run};
 use sightline_oracles::Verdict;
 
 /// The three evidence files of one scenario, rendered in memory.
@@ -47,6 +49,9 @@ pub enum Error {
     /// The JSON serializer failed.
     #[error("failed to render results.json: {0}")]
     Json(#[from] serde_json::Error),
+    /// A grid picture could not be encoded.
+    #[error("failed to draw a grid picture: {0}")]
+    Picture(#[from] png::EncodingError),
 }
 
 /// Renders all evidence of a run. `reproduce` is the command that re-creates it.
@@ -61,7 +66,20 @@ pub fn render(
     let mut results_json = serde_json::to_string_pretty(&results)?;
     results_json.push('\n');
     let junit_xml = junit(&results).to_string()?;
-    let report_html = html(&results, reproduce)?;
+    let pictures = scenario
+        .points
+        .iter()
+        .zip(&run.points)
+        .map(|(point, outcome)| match (outcome, &point.setup.experiment) {
+            (Outcome::World(o), Experiment::World(world)) => o
+                .snapshot
+                .as_ref()
+                .map(|s| picture::pictures(&point.setup.grid, world.step, s, world.perception.region))
+                .transpose(),
+            _ => Ok(None),
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let report_html = html(&results, reproduce, &pictures)?;
     Ok(Evidence {
         results,
         results_json,

@@ -6,7 +6,7 @@ use super::setup::setup;
 use super::sweep::{self, AxisNodes};
 use crate::de::from_node;
 use crate::error::{Error, ErrorKind, Errors, Location};
-use crate::model::{Assignment, Axis, Point, Scenario, Sweep, display_value};
+use crate::model::{Assignment, Axis, Experiment, Point, Scenario, Sweep, display_value};
 use crate::path::Path;
 use crate::raw::RawScenario;
 use crate::yaml::{self, Node, Value};
@@ -183,7 +183,8 @@ fn points(file: &str, tree: &Node, sweeps: &[Vec<AxisNodes<'_>>], options: &Opti
 }
 
 /// The effective settings of a point as JSON, for `where` filters: the raw
-/// sections with serde defaults filled in, plus the resolved seed and label.
+/// sections with serde defaults filled in, plus what the compiler resolves (the
+/// seed, the fusion label, the number of cooperating agents).
 fn settings(raw: &RawScenario, setup: &crate::model::Setup) -> serde_json::Value {
     let mut json = serde_json::to_value(raw).expect("raw scenario types serialize to JSON");
     let object = json.as_object_mut().expect("a scenario serializes to an object");
@@ -200,6 +201,12 @@ fn settings(raw: &RawScenario, setup: &crate::model::Setup) -> serde_json::Value
     object.insert("seed".into(), setup.seed.into());
     if let Some(fusion) = object.get_mut("fusion").and_then(|f| f.as_object_mut()) {
         fusion.insert("label".into(), setup.fusion.label.clone().into());
+    }
+    if let (Experiment::World(world), Some(perception)) = (
+        &setup.experiment,
+        object.get_mut("perception").and_then(|p| p.as_object_mut()),
+    ) {
+        perception.insert("cooperating".into(), world.perception.cooperating.len().into());
     }
     json
 }
