@@ -2,6 +2,7 @@
 //! field of view and line of sight, self-localization, and the collective
 //! perception grid fused across cooperating agents.
 
+mod fuse;
 mod localization;
 mod metrics;
 mod motion;
@@ -10,10 +11,11 @@ mod raster;
 mod sight;
 mod simulate;
 
+pub use fuse::CellFusion;
 pub use localization::PoseEstimator;
 pub use metrics::{Snapshot, WorldMetrics, WorldOutcome};
 pub use motion::{AgentState, Kinematics};
-pub use observe::Sightings;
-pub use raster::traverse;
+pub use observe::{Observation, Observed, Sightings, StepScene};
+pub use raster::{Raster, box_cells, cell_center, traverse};
 pub use sight::{Bodies, Body, Occluders, Visibility, visibility};
 pub use simulate::run;

@@ -9,13 +9,14 @@ use rand::rngs::ChaCha8Rng;
 use rayon::prelude::*;
 use sightline_dsl::{AgentKind, Grid, Motion, World};
 
+use super::fuse::CellFusion;
 use super::localization::PoseEstimator;
 use super::metrics::{Snapshot, WorldMetrics, WorldOutcome, WorldTally};
 use super::motion::Kinematics;
 use super::observe::{Observation, Observed, Sightings, StepScene};
 use super::raster::{Raster, box_cells, cell_center};
 use super::sight::{Bodies, Body, Occluders};
-use crate::fusion::{Estimate, Mass, Source, State, decide, fuse, pignistic};
+use crate::fusion::{Estimate, State, decide, pignistic};
 use crate::math::Vector;
 use crate::rng::{Purpose, stream};
 use crate::run::Job;
@@ -149,10 +150,14 @@ pub fn run(seed: u64, grid: &Grid, world: &World, jobs: &[Job<'_>]) -> Vec<World
             observed[cell] = false;
         }
         observed_cells.clear();
-        let present: Vec<&Cooperator> = cooperators.iter().filter(|c| c.present).collect();
+        let present: Vec<&Observation> = cooperators
+            .iter()
+            .filter(|c| c.present)
+            .map(|c| &c.observation)
+            .collect();
         let counted = |cell: usize| in_region[cell] && !raster.is_occluder(cell) && truth[cell] != EXCLUDED;
-        for c in &present {
-            for &cell in c.observation.touched() {
+        for observation in &present {
+            for &cell in observation.touched() {
                 if counted(cell) && !observed[cell] {
                     observed[cell] = true;
                     observed_cells.push(cell);
@@ -171,17 +176,20 @@ pub fn run(seed: u64, grid: &Grid, world: &World, jobs: &[Job<'_>]) -> Vec<World
 
         let snapshot = k == perception.snapshot_step;
         for (j, job) in jobs.iter().enumerate() {
-            let fuser = Fuser {
-                grid,
-                job,
-                present: &present,
+            let tallier = Tallier {
+                fusion: CellFusion {
+                    grid,
+                    rule: &job.fusion.rule,
+                    observations: &present,
+                    occupied: perception.occupied,
+                    free: perception.free,
+                },
+                threshold: job.decision.threshold,
                 truth: &truth,
-                occupied: perception.occupied,
-                free: perception.free,
             };
             let chunks: Vec<(WorldTally, Vec<f32>)> = observed_cells
                 .par_chunks(CHUNK)
-                .map(|chunk| fuser.tally(chunk, snapshot))
+                .map(|chunk| tallier.tally(chunk, snapshot))
                 .collect();
             let tally = &mut tallies[j];
             tally.occupied += unseen;
@@ -223,55 +231,26 @@ pub fn run(seed: u64, grid: &Grid, world: &World, jobs: &[Job<'_>]) -> Vec<World
         .collect()
 }
 
-/// Fuses the cooperating agents' observations of one step with one method.
-struct Fuser<'a> {
-    grid: &'a Grid,
-    job: &'a Job<'a>,
-    present: &'a [&'a Cooperator],
+/// Tallies one method's fused grid of one step against the truth.
+struct Tallier<'a> {
+    fusion: CellFusion<'a>,
+    threshold: f64,
     truth: &'a [u8],
-    occupied: f64,
-    free: f64,
 }
 
-impl Fuser<'_> {
-    /// The least-committed mass whose pignistic probability is the inverse sensor
-    /// model's: free → (1 − 2f, 0, 2f), occupied → (0, 2o − 1, 2 − 2o).
-    fn mass(&self, observed: Observed) -> Option<Mass> {
-        match observed {
-            Observed::Unknown => None,
-            Observed::Free => Some(Mass::new(1.0 - 2.0 * self.free, 0.0, 2.0 * self.free)),
-            Observed::Occupied => Some(Mass::new(0.0, 2.0 * self.occupied - 1.0, 2.0 - 2.0 * self.occupied)),
-        }
-    }
-
+impl Tallier<'_> {
     /// Tallies a chunk of observed cells; with `picture`, also returns their fused
     /// occupancy probabilities.
     fn tally(&self, cells: &[usize], picture: bool) -> (WorldTally, Vec<f32>) {
         let mut tally = WorldTally::default();
         let mut probabilities = Vec::new();
-        let mut sources = Vec::with_capacity(self.present.len());
-        let half_cell = self.grid.cell / 2.0;
+        let mut sources = Vec::with_capacity(self.fusion.observations.len());
+        let ego = self.fusion.observations[0];
         for &cell in cells {
-            sources.clear();
-            let center = cell_center(self.grid, cell);
-            for c in self.present {
-                if let Some(mass) = self.mass(c.observation.get(cell)) {
-                    let distance = c
-                        .observation
-                        .sensor_positions
-                        .iter()
-                        .map(|p| (*p - center).length())
-                        .fold(f64::INFINITY, f64::min);
-                    sources.push(Source {
-                        mass,
-                        distance: distance.max(half_cell),
-                    });
-                }
-            }
-            let estimate = fuse(&self.job.fusion.rule, &sources);
+            let estimate = self.fusion.estimate(cell, &mut sources);
             tally.estimates.record(&estimate);
-            let decided = decide(estimate.decision_mass(), self.job.decision.threshold) == Some(State::Occupied);
-            let blind = self.present[0].observation.get(cell) == Observed::Unknown;
+            let decided = decide(estimate.decision_mass(), self.threshold) == Some(State::Occupied);
+            let blind = ego.get(cell) == Observed::Unknown;
             if self.truth[cell] == OCCUPIED {
                 tally.occupied += 1;
                 tally.detected += u64::from(decided);

@@ -1,0 +1,148 @@
+//! The bundled roundabout (scenarios/roundabout-six-agents.yaml) with all six
+//! vehicles cooperating: 30 s at 10 Hz over 600 × 600 cells (DESIGN.md target:
+//! ≥ 20× faster than real time, ≤ 1.5 s on 2 cores), then one step (t = 12 s)
+//! phase by phase: line of sight, observation (free-space carving and detections),
+//! fusion. Run with `cargo bench -p sightline-engine --bench world`; figures are
+//! recorded in docs/performance.md.
+
+use criterion::{Criterion, criterion_group, criterion_main};
+use rand::SeedableRng;
+use rand::rngs::ChaCha8Rng;
+use sightline_dsl::{AgentKind, Experiment, Scenario, World};
+use sightline_engine::math::Vector;
+use sightline_engine::simulate;
+use sightline_engine::world::{
+    Bodies, Body, CellFusion, Kinematics, Observation, Occluders, Raster, StepScene, Visibility, visibility,
+};
+
+/// The bundled scenario reduced to its point with six cooperating vehicles and
+/// nominal localization, without requirements.
+fn six_agents() -> Scenario {
+    let text = include_str!("../../scenarios/roundabout-six-agents.yaml");
+    let mut scenario = sightline_dsl::compile("roundabout-six-agents.yaml", text, &Default::default())
+        .expect("the bundled scenario is valid");
+    let point = scenario
+        .points
+        .iter()
+        .find(|p| p.label() == "perception.cooperating=6")
+        .expect("the scenario sweeps cooperating vehicles")
+        .clone();
+    scenario.points = vec![sightline_dsl::Point {
+        index: 0,
+        sweep: None,
+        ..point
+    }];
+    scenario.sweeps.clear();
+    scenario.requirements.clear();
+    scenario.references.clear();
+    scenario
+}
+
+fn run(c: &mut Criterion) {
+    let scenario = six_agents();
+    let mut group = c.benchmark_group("roundabout");
+    group.sample_size(10);
+    group.bench_function("30s_at_10hz_six_cooperating", |b| b.iter(|| simulate(&scenario)));
+    group.finish();
+}
+
+fn step(c: &mut Criterion) {
+    let scenario = six_agents();
+    let setup = &scenario.points[0].setup;
+    let Experiment::World(world) = &setup.experiment else {
+        panic!("a world scenario")
+    };
+    let World { agents, .. } = world;
+    let grid = setup.grid;
+    let mut kinematics = Kinematics::new(agents, world.step);
+    let mut states = Vec::new();
+    for k in 0..=120 {
+        kinematics.advance(k, &mut states);
+    }
+    let bodies = Bodies::new(
+        states
+            .iter()
+            .enumerate()
+            .filter(|&(i, _)| agents[i].kind != AgentKind::Rsu)
+            .filter_map(|(i, s)| {
+                s.map(|s| Body {
+                    agent: i,
+                    pose: s.pose,
+                    half_extents: Vector::new(agents[i].length, agents[i].width) / 2.0,
+                })
+            })
+            .collect(),
+    );
+    let occluders = Occluders::new(&world.occluders);
+    let mut raster = Raster::new(grid, &world.occluders);
+    raster.set_bodies(bodies.all());
+    let scene = StepScene {
+        grid: &grid,
+        occluders: &occluders,
+        bodies: &bodies,
+        raster: &raster,
+    };
+    let cooperating: Vec<usize> = world
+        .perception
+        .cooperating
+        .iter()
+        .copied()
+        .filter(|&i| states[i].is_some())
+        .collect();
+
+    let mut group = c.benchmark_group("roundabout_step");
+    group.bench_function("line_of_sight_every_sensor_target_pair", |b| {
+        b.iter(|| {
+            let mut visible = 0;
+            for &i in &cooperating {
+                let from = states[i].unwrap().position();
+                for target in bodies.all().iter().filter(|t| t.agent != i) {
+                    let in_range = (target.pose.translation - from).length() <= agents[i].sensors[0].range;
+                    visible +=
+                        usize::from(in_range && visibility(&occluders, &bodies, from, i, target) == Visibility::Los);
+                }
+            }
+            visible
+        })
+    });
+    let mut observations: Vec<Observation> = cooperating.iter().map(|_| Observation::new(grid.cells())).collect();
+    group.bench_function("observation_carving_and_detections_six_agents", |b| {
+        b.iter(|| {
+            for (observation, &i) in observations.iter_mut().zip(&cooperating) {
+                let pose = states[i].unwrap().pose;
+                let mut rng = ChaCha8Rng::seed_from_u64(i as u64);
+                observation.observe(&scene, (i, &agents[i]), pose, pose, &mut rng);
+            }
+        })
+    });
+    // Fusion of every cell some agent observed, with the scenario's Bayesian rule.
+    let mut cells: Vec<usize> = observations.iter().flat_map(|o| o.touched().to_vec()).collect();
+    cells.sort_unstable();
+    cells.dedup();
+    let present: Vec<&Observation> = observations.iter().collect();
+    let fusion = CellFusion {
+        grid: &grid,
+        rule: &setup.fusion.rule,
+        observations: &present,
+        occupied: world.perception.occupied,
+        free: world.perception.free,
+    };
+    group.bench_function("fusion_of_the_observed_cells", |b| {
+        let mut sources = Vec::new();
+        b.iter(|| {
+            cells
+                .iter()
+                .filter(|&&cell| fusion.estimate(cell, &mut sources).decision_mass().occupied > 0.5)
+                .count()
+        })
+    });
+    group.finish();
+    eprintln!(
+        "(one step: {} cooperating agents present, {} observed cells)",
+        cooperating.len(),
+        cells.len()
+    );
+}
+
+criterion_group!(benches, run, step);
+criterion_main!(benches);
