@@ -71,18 +71,26 @@ fn a_route_that_does_not_connect_is_reported_at_its_road() {
 
 #[test]
 fn unknown_roads_sensors_and_ego_are_dangling_references() {
+    let road = first_error(&WORLD.replace("[arm_in, ring, east_out]", "[arm_in, ring, east]"));
     assert!(
-        first_error(&WORLD.replace("[arm_in, ring, east_out]", "[arm_in, ring, east]"))
-            .contains("agents[0].route[2]: no road `east` (roads: ring, arm_in, arm_out, east_out)")
+        road.contains("agents[0].route[2]: no road `east` (it has ring, arm_in, arm_out, east_out)"),
+        "{road}"
     );
+    let sensor = first_error(&WORLD.replace(
+        "sensors: [lidar], connected: true }",
+        "sensors: [lidr], connected: true }",
+    ));
     assert!(
-        first_error(&WORLD.replace(
-            "sensors: [lidar], connected: true }",
-            "sensors: [radar], connected: true }"
-        ))
-        .contains("agents[2].sensors[0]: no sensor model `radar` in `sensor_models` (it has lidar)")
+        sensor.contains(
+            "agents[2].sensors[0]: no sensor model `lidr` in `sensor_models` (it has lidar; did you mean `lidar`?)"
+        ),
+        "{sensor}"
     );
-    assert!(first_error(&WORLD.replace("ego: ego", "ego: eog")).contains("perception.ego: no agent `eog`"));
+    let ego = first_error(&WORLD.replace("ego: ego", "ego: eog"));
+    assert!(
+        ego.contains("perception.ego: no agent `eog` (it has ego, cav, rsu, walker; did you mean `ego`?)"),
+        "{ego}"
+    );
 }
 
 #[test]

@@ -158,3 +158,99 @@ fn findings_tables_quote_the_bundled_run() {
     // Two below-threshold tables of 8 columns, two wrong-label tables of 6, 5 rows each.
     assert_eq!(checked, 5 * (8 + 8 + 6 + 6));
 }
+
+/// results.json of one run of the bundled roundabout.
+fn roundabout() -> &'static serde_json::Value {
+    static RESULTS: OnceLock<serde_json::Value> = OnceLock::new();
+    RESULTS.get_or_init(|| {
+        let tmp = temp_dir();
+        let out = tmp.path().join("out");
+        sightline(["run", "scenarios/roundabout-six-agents.yaml", "--out", arg(&out)]).assert_exit(0);
+        assert_evidence_files(&out);
+        read_json(&out.join("results.json"))
+    })
+}
+
+#[test]
+fn roundabout_scenario_runs_end_to_end() {
+    let results = roundabout();
+    assert_eq!(results["verdict"], "pass");
+    assert_eq!(results["sweeps"].as_array().map(Vec::len), Some(2));
+    assert_eq!(results["sweep"].as_array().map(Vec::len), Some(12));
+    // The point both sweeps share (six vehicles, σ = 0.2 m) gives the same figures.
+    let points = results["sweep"].as_array().unwrap();
+    assert_eq!(points[5]["label"], "perception.cooperating=6");
+    assert_eq!(points[8]["label"], "localization.position_sigma=0.2");
+    assert_eq!(points[5]["metrics"], points[8]["metrics"]);
+    assert_eq!(points[5]["counts"], points[8]["counts"]);
+}
+
+/// Every table under "Measured beside the paper" in docs/findings/seed-000.md: the
+/// first column is a swept setting, the others metrics of the bundled run (or
+/// `… (paper)`: the scenario's reference at that point, `—` where there is none).
+#[test]
+fn seed_000_findings_quote_the_bundled_run() {
+    let results = roundabout();
+    let doc = read(&root().join("docs/findings/seed-000.md"));
+    let section = doc
+        .split("\n## ")
+        .find(|s| s.starts_with("Measured beside the paper"))
+        .expect("the findings have a section \"Measured beside the paper\"");
+    let points = results["sweep"].as_array().unwrap();
+    let references = results["references"].as_array().unwrap();
+    let mut header: Vec<String> = Vec::new();
+    let mut checked = 0;
+    for line in section.lines() {
+        if !line.starts_with('|') {
+            header.clear();
+            continue;
+        }
+        let cells: Vec<String> = line
+            .trim_matches('|')
+            .split('|')
+            .map(|c| c.trim().to_string())
+            .collect();
+        if header.is_empty() {
+            header = cells;
+            continue;
+        }
+        if cells[0].starts_with("---") {
+            continue;
+        }
+        let axis = header[0].trim_matches('`');
+        let value: f64 = cells[0].parse().unwrap();
+        let point = points
+            .iter()
+            .find(|p| p["sweep"].is_number() && p["settings"][axis].as_f64() == Some(value))
+            .unwrap_or_else(|| panic!("no point with {axis} = {value}"));
+        let index = point["index"].as_u64().unwrap();
+        for (column, cell) in header.iter().zip(&cells).skip(1) {
+            let actual = if let Some(metric) = column.strip_suffix(" (paper)") {
+                references
+                    .iter()
+                    .find(|r| {
+                        r["metric"] == metric && r["points"].as_array().unwrap().iter().any(|p| p["point"] == index)
+                    })
+                    .map(|r| r["published"].as_f64().unwrap())
+            } else if column == "localization_error" {
+                point["counts"]["localization_error"].as_f64()
+            } else {
+                point["metrics"][column.as_str()].as_f64()
+            };
+            match (cell.as_str(), actual) {
+                ("—", None) => {}
+                (quoted, Some(actual)) => {
+                    let decimals = quoted.split('.').nth(1).map_or(0, str::len) as i32;
+                    let quoted: f64 = quoted.parse().unwrap_or_else(|_| panic!("not a number: {quoted}"));
+                    assert!(
+                        (actual - quoted).abs() <= 0.5 * 10f64.powi(-decimals) + 1e-12,
+                        "{column} at {axis} = {value}: the findings quote {quoted}, the run gives {actual}"
+                    );
+                }
+                (quoted, None) => panic!("{column} at {axis} = {value}: the findings quote {quoted}, the run has none"),
+            }
+            checked += 1;
+        }
+    }
+    assert_eq!(checked, 6 * 6 + 6 * 4);
+}

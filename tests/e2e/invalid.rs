@@ -105,6 +105,8 @@ invalid_inputs! {
     out_of_range_sweep_value_is_located_in_the_sweep => "sweep-value-out-of-range",
     every_problem_of_a_file_is_reported_in_source_order => "several-errors",
     seed_beyond_64_bits_is_out_of_range => "seed-beyond-64-bits",
+    route_that_does_not_connect_is_located_at_its_road => "route-not-connected",
+    unknown_sensor_model_is_a_dangling_reference => "unknown-sensor-model",
 }
 
 #[test]

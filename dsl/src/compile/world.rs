@@ -5,6 +5,7 @@ use std::collections::HashMap;
 
 use super::context::{Context, locate};
 use super::setup::whole_multiple;
+use crate::de::closest;
 use crate::error::{ErrorKind, Location};
 use crate::geometry::{MAX_CHORD_ERROR, Polyline, Xy, arc, distance};
 use crate::model::{Agent, AgentKind, Direction, Localization, Motion, Occluder, Perception, Road, Sensor, World};
@@ -349,12 +350,8 @@ fn agent_of(
                 ctx.error(
                     &path.key("sensors").index(i),
                     ErrorKind::DanglingReference(format!(
-                        "no sensor model `{name}` in `sensor_models` (it has {})",
-                        if known.is_empty() {
-                            "none".into()
-                        } else {
-                            known.join(", ")
-                        }
+                        "no sensor model `{name}` in `sensor_models` ({})",
+                        known_names(name, &known)
                     )),
                 );
                 sensors_ok = false;
@@ -489,14 +486,7 @@ fn route_path(
             let known: Vec<&str> = roads.iter().map(|r| r.id.as_str()).collect();
             ctx.error(
                 &path.index(i),
-                ErrorKind::DanglingReference(format!(
-                    "no road `{id}` (roads: {})",
-                    if known.is_empty() {
-                        "none".into()
-                    } else {
-                        known.join(", ")
-                    }
-                )),
+                ErrorKind::DanglingReference(format!("no road `{id}` ({})", known_names(id, &known))),
             );
             return None;
         };
@@ -564,6 +554,19 @@ fn route_path(
     Some((polyline, limits))
 }
 
+/// "it has a, b" (or "it has none"), and the closest name when `name` looks like a typo of one.
+fn known_names(name: &str, known: &[&str]) -> String {
+    let list = if known.is_empty() {
+        "it has none".into()
+    } else {
+        format!("it has {}", known.join(", "))
+    };
+    match closest(name, known.iter().copied()) {
+        Some(close) => format!("{list}; did you mean `{close}`?"),
+        None => list,
+    }
+}
+
 fn length_of(points: &[Xy]) -> f64 {
     points.windows(2).map(|p| distance(p[0], p[1])).sum()
 }
@@ -593,9 +596,10 @@ fn perception_of(
 ) -> Option<Perception> {
     let path = Path::root().key("perception");
     let Some(ego) = agents.iter().position(|a| a.id == raw.ego) else {
+        let known: Vec<&str> = agents.iter().map(|a| a.id.as_str()).collect();
         ctx.error(
             &path.key("ego"),
-            ErrorKind::DanglingReference(format!("no agent `{}`", raw.ego)),
+            ErrorKind::DanglingReference(format!("no agent `{}` ({})", raw.ego, known_names(&raw.ego, &known))),
         );
         return None;
     };
