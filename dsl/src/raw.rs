@@ -468,6 +468,10 @@ pub(crate) struct RawSensorModel {
     /// (seed 002, eq. 1, with a linear σ(d)).
     #[serde(default)]
     pub position_noise: RawNoise,
+    /// Standard deviation of the error of a detection's length and width,
+    /// σ(d) = base + per_m · d, metres.
+    #[serde(default)]
+    pub size_noise: RawNoise,
     /// Angle between the rays that carve free space, degrees.
     #[serde(default = "default_ray_spacing")]
     pub ray_spacing_deg: f64,

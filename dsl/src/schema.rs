@@ -124,7 +124,8 @@ pub fn reference_markdown() -> String {
 
 /// A definition a property leads to.
 enum Target {
-    /// A mapping, and the suffix its path takes (`[]` for a list of mappings).
+    /// A mapping, and the suffix its path takes (`[]` for a list of mappings,
+    /// `.<id>` for the values of a map).
     Object(String, &'static str),
     /// An enumeration.
     Enum(String),
@@ -168,7 +169,11 @@ fn describe_type(property: &Value, definitions: &Map<String, Value>) -> (String,
                 _ => (format!("list of {item_type}"), None),
             }
         }
-        Some("object") => ("mapping of dotted path → value".into(), None),
+        Some("object") => match reference(&property["additionalProperties"]) {
+            // A map whose keys the user names (`sensor_models.<id>`).
+            Some(name) => ("mapping of id → mapping".into(), Some(Target::Object(name, ".<id>"))),
+            None => ("mapping of dotted path → value".into(), None),
+        },
         Some("integer") => ("whole number".into(), None),
         Some(other) => (other.into(), None),
         None => ("any".into(), None),
@@ -213,6 +218,8 @@ mod tests {
             "## `field.masses`",
             "## `requirements[].check`",
             "## `fusion.switch`",
+            "## `sensor_models.<id>`",
+            "## `sensor_models.<id>.mount`",
             "## FusionMethod",
         ] {
             assert!(markdown.contains(section), "missing {section}");

@@ -279,6 +279,8 @@ fn sensor(ctx: &mut Context<'_>, name: &str, raw: &RawSensorModel, path: &Path) 
         & ctx.probability(&path.key("detection_probability"), raw.detection_probability)
         & ctx.non_negative(&path.key("position_noise").key("base"), raw.position_noise.base)
         & ctx.non_negative(&path.key("position_noise").key("per_m"), raw.position_noise.per_m)
+        & ctx.non_negative(&path.key("size_noise").key("base"), raw.size_noise.base)
+        & ctx.non_negative(&path.key("size_noise").key("per_m"), raw.size_noise.per_m)
         & ctx.expect(
             raw.ray_spacing_deg > 0.0 && raw.ray_spacing_deg <= 10.0,
             &path.key("ray_spacing_deg"),
@@ -298,6 +300,8 @@ fn sensor(ctx: &mut Context<'_>, name: &str, raw: &RawSensorModel, path: &Path) 
         detection_probability: raw.detection_probability,
         noise_base: raw.position_noise.base,
         noise_per_m: raw.position_noise.per_m,
+        size_noise_base: raw.size_noise.base,
+        size_noise_per_m: raw.size_noise.per_m,
         ray_spacing: raw.ray_spacing_deg.to_radians(),
     })
 }

@@ -176,6 +176,10 @@ pub struct Sensor {
     pub noise_base: f64,
     /// Growth of σ per metre.
     pub noise_per_m: f64,
+    /// σ of length and width error at distance 0, metres.
+    pub size_noise_base: f64,
+    /// Growth of the size σ per metre.
+    pub size_noise_per_m: f64,
     /// Angle between carving rays, radians.
     pub ray_spacing: f64,
 }

@@ -6,8 +6,9 @@
 //! estimated sensor pose, marking the cells they cross free. Every other agent in
 //! range and field of view is classified by line of sight; a visible one is detected
 //! with the sensor's detection probability, at its true position plus Gaussian noise
-//! σ(d) = base + per_m · d on each axis, and the cells of its footprint at that
-//! position (seen from the estimated pose) are marked occupied. Occupied wins over
+//! σ(d) = base + per_m · d on each axis and with its length and width each off by
+//! Gaussian noise of the size σ(d) (never below 10 cm), and the cells of that
+//! footprint (seen from the estimated pose) are marked occupied. Occupied wins over
 //! free where two observations of the agent meet. Finally the agent marks its own
 //! footprint occupied at its estimated pose: it knows where it is (up to its
 //! localization error), as a V2X sender reports its own state, and its rays, which
@@ -64,6 +65,16 @@ impl Sightings {
         self.nlos_dynamic += other.nlos_dynamic;
         self.detected += other.detected;
     }
+}
+
+/// The distance to `point` when it lies within the range and field of view of a
+/// sensor at `pose` (both edges included), `None` otherwise.
+pub fn in_view(sensor: &Sensor, pose: Pose, point: Point) -> Option<f64> {
+    let offset = point - pose.translation;
+    let distance = offset.length();
+    let bearing = offset.y.atan2(offset.x) - pose.rotation.angle();
+    let off_axis = bearing.sin().atan2(bearing.cos()).abs();
+    (distance <= sensor.range && off_axis <= sensor.fov / 2.0).then_some(distance)
 }
 
 /// Everything an observation reads from the step.
@@ -182,13 +193,9 @@ impl Observation {
         rng: &mut ChaCha8Rng,
     ) {
         for target in scene.bodies.all().iter().filter(|b| b.agent != index) {
-            let offset = target.pose.translation - truth.translation;
-            let distance = offset.length();
-            let bearing = offset.y.atan2(offset.x) - truth.rotation.angle();
-            let off_axis = bearing.sin().atan2(bearing.cos()).abs();
-            if distance > sensor.range || off_axis > sensor.fov / 2.0 {
+            let Some(distance) = in_view(sensor, truth, target.pose.translation) else {
                 continue;
-            }
+            };
             match visibility(scene.occluders, scene.bodies, truth.translation, index, target) {
                 Visibility::NlosStatic => self.sightings.nlos_static += 1,
                 Visibility::NlosDynamic => self.sightings.nlos_dynamic += 1,
@@ -199,14 +206,18 @@ impl Observation {
                     }
                     self.sightings.detected += 1;
                     let sigma = sensor.noise_base + sensor.noise_per_m * distance;
+                    let size_sigma = sensor.size_noise_base + sensor.size_noise_per_m * distance;
                     let mut noise = || -> f64 { StandardNormal.sample(&mut *rng) };
                     let measured = target.pose.translation + Vector::new(noise(), noise()) * sigma;
+                    let size = (target.half_extents * 2.0 + Vector::new(noise(), noise()) * size_sigma)
+                        .max(Vector::splat(0.1));
                     // Where the sensor believes the object is: the measurement seen
                     // from the estimated pose instead of the true one.
                     let seen = estimate * (truth.inverse() * measured);
                     let heading = target.pose.rotation.angle() + estimate.rotation.angle() - truth.rotation.angle();
                     let placed = Body {
                         pose: Pose::new(seen, heading),
+                        half_extents: size / 2.0,
                         ..*target
                     };
                     for cell in box_cells(scene.grid, &placed) {
@@ -214,6 +225,60 @@ impl Observation {
                     }
                 }
             }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A sensor at the origin looking along +y, 50 m range, 90° field of view.
+    fn sensor(fov_deg: f64) -> (Sensor, Pose) {
+        let sensor = Sensor {
+            model: "s".into(),
+            range: 50.0,
+            fov: fov_deg.to_radians(),
+            mount_x: 0.0,
+            mount_y: 0.0,
+            mount_yaw: 0.0,
+            detection_probability: 1.0,
+            noise_base: 0.0,
+            noise_per_m: 0.0,
+            size_noise_base: 0.0,
+            size_noise_per_m: 0.0,
+            ray_spacing: 0.01,
+        };
+        (sensor, Pose::new(Vector::ZERO, std::f64::consts::FRAC_PI_2))
+    }
+
+    fn at(distance: f64, degrees_off_axis: f64) -> Point {
+        let angle = (90.0 + degrees_off_axis).to_radians();
+        Vector::new(angle.cos(), angle.sin()) * distance
+    }
+
+    #[test]
+    fn the_range_edge_is_included() {
+        let (sensor, pose) = sensor(90.0);
+        assert_eq!(in_view(&sensor, pose, Vector::new(0.0, 50.0)), Some(50.0));
+        assert_eq!(in_view(&sensor, pose, Vector::new(0.0, 50.001)), None);
+    }
+
+    #[test]
+    fn the_field_of_view_ends_at_half_its_angle_on_either_side() {
+        let (sensor, pose) = sensor(90.0);
+        assert!(in_view(&sensor, pose, at(30.0, 44.9)).is_some());
+        assert!(in_view(&sensor, pose, at(30.0, -44.9)).is_some());
+        assert!(in_view(&sensor, pose, at(30.0, 45.1)).is_none());
+        assert!(in_view(&sensor, pose, at(30.0, -45.1)).is_none());
+        assert!(in_view(&sensor, pose, at(30.0, 180.0)).is_none());
+    }
+
+    #[test]
+    fn an_all_round_sensor_sees_behind_itself() {
+        let (sensor, pose) = sensor(360.0);
+        for degrees in [0.0, 90.0, 179.9, 180.0, -135.0] {
+            assert!(in_view(&sensor, pose, at(30.0, degrees)).is_some(), "{degrees}°");
         }
     }
 }
