@@ -1,19 +1,14 @@
 //! The field experiment end to end through the engine API: determinism, shared
 //! sampling, and hand-computable outcomes.
 
+mod common;
+
+use common::in_pool;
 use sightline_dsl::{Metric, Scenario, compile};
-use sightline_engine::{FieldOutcome, Outcome, Run, simulate};
+use sightline_engine::{FieldOutcome, Outcome, simulate};
 
 fn scenario(text: &str) -> Scenario {
     compile("test.yaml", text, &Default::default()).unwrap_or_else(|e| panic!("{e}"))
-}
-
-fn in_pool(threads: usize, scenario: &Scenario) -> Run {
-    rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .unwrap()
-        .install(|| simulate(scenario))
 }
 
 const NOISY: &str = r#"

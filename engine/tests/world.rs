@@ -1,11 +1,14 @@
 //! World scenarios through the engine API: determinism, exact localization, and
 //! what cooperation can and cannot change.
 
+mod common;
+
+use common::in_pool;
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngAlgorithm, RngSeed, TestRunner};
 use sightline_dsl::{Metric, Scenario, compile};
 use sightline_engine::world::WorldOutcome;
-use sightline_engine::{Outcome, Run, simulate};
+use sightline_engine::{Outcome, simulate};
 
 /// A crossroads of 80 m arms with four buildings in the corners; five connected cars
 /// and a non-connected truck, pedestrian and car. `{…}` fields are filled in.
@@ -83,14 +86,6 @@ fn world(outcome: &Outcome) -> &WorldOutcome {
         Outcome::World(world) => world,
         Outcome::Field(_) => panic!("a world scenario gives world outcomes"),
     }
-}
-
-fn in_pool(threads: usize, scenario: &Scenario) -> Run {
-    rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .unwrap()
-        .install(|| simulate(scenario))
 }
 
 #[test]

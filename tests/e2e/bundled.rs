@@ -78,40 +78,31 @@ fn published(metric: &str, gamma: f64, label: &str) -> f64 {
         .unwrap()
 }
 
-/// Every table under "Measured against Table III" quotes the bundled run (and its
-/// "paper" columns the scenario's references), so the findings cannot drift from
-/// what sightline computes.
-#[test]
-fn findings_tables_quote_the_bundled_run() {
-    let doc = read(&root().join("docs/findings/seed-001.md"));
+/// A markdown table of a findings document: its header cells, its body rows, and
+/// the last bold line (`**…**`) before it.
+struct Table {
+    heading: String,
+    header: Vec<String>,
+    rows: Vec<Vec<String>>,
+}
+
+/// The tables of the section `## {title}…` of the document at `path` (relative to
+/// the repository root).
+fn tables(path: &str, title: &str) -> Vec<Table> {
+    let doc = read(&root().join(path));
     let section = doc
         .split("\n## ")
-        .find(|s| s.starts_with("Measured against Table III"))
-        .expect("the findings have a section \"Measured against Table III\"");
-    let mut checked = 0;
-    let mut table: Option<(&str, String)> = None;
-    let mut header: Vec<String> = Vec::new();
+        .find(|s| s.starts_with(title))
+        .unwrap_or_else(|| panic!("{path} has a section \"{title}\""));
+    let mut tables: Vec<Table> = Vec::new();
+    let mut heading = String::new();
+    let mut in_table = false;
     for line in section.lines() {
-        if line.starts_with("**") {
-            let metric = if line.contains("below the threshold") {
-                "below_threshold"
-            } else if line.contains("Confident errors") {
-                "confident_errors"
-            } else if line.contains("Accuracy") {
-                "accuracy"
-            } else {
-                panic!("a table heading names no metric: {line}")
-            };
-            let model = line.split("`error_model: ").nth(1).and_then(|s| s.split('`').next());
-            table = Some((
-                metric,
-                model.expect("a table heading names its error model").to_string(),
-            ));
-            header.clear();
-            continue;
-        }
-        let Some((metric, model)) = &table else { continue };
         if !line.starts_with('|') {
+            if line.starts_with("**") {
+                heading = line.to_string();
+            }
+            in_table = false;
             continue;
         }
         let cells: Vec<String> = line
@@ -119,40 +110,71 @@ fn findings_tables_quote_the_bundled_run() {
             .split('|')
             .map(|c| c.trim().to_string())
             .collect();
-        if header.is_empty() {
-            header = cells;
-            continue;
+        if !in_table {
+            tables.push(Table {
+                heading: heading.clone(),
+                header: cells,
+                rows: Vec::new(),
+            });
+            in_table = true;
+        } else if !cells[0].starts_with("---") {
+            tables.last_mut().unwrap().rows.push(cells);
         }
-        if cells[0].starts_with("---") {
-            continue;
-        }
-        let gamma: f64 = cells[0].parse().expect("the first column is γ");
-        for (column, cell) in header.iter().zip(&cells).skip(1) {
-            let quoted: f64 = cell
-                .replace(',', "")
-                .parse()
-                .unwrap_or_else(|_| panic!("not a number: {cell}"));
-            let (name, from_paper) = match column.strip_suffix(", paper") {
-                Some(name) => (name, true),
-                None => (column.as_str(), false),
-            };
-            let label = COLUMNS
-                .iter()
-                .find(|(short, _)| *short == name)
-                .unwrap_or_else(|| panic!("unknown column {column}"))
-                .1;
-            let actual = if from_paper {
-                published(metric, gamma, label)
-            } else {
-                measured(metric, model, gamma, label)
-            };
-            // Counts are quoted exactly; accuracies to four decimals.
-            let tolerance = if *metric == "accuracy" { 5e-5 } else { 0.0 };
-            assert!(
-                (actual - quoted).abs() <= tolerance,
-                "{metric} at {model}, γ = {gamma}, {column}: the findings quote {quoted}, the run gives {actual}"
-            );
-            checked += 1;
+    }
+    tables
+}
+
+/// Every table under "Measured against Table III" quotes the bundled run (and its
+/// "paper" columns the scenario's references), so the findings cannot drift from
+/// what sightline computes.
+#[test]
+fn findings_tables_quote_the_bundled_run() {
+    let mut checked = 0;
+    for table in tables("docs/findings/seed-001.md", "Measured against Table III") {
+        let line = &table.heading;
+        let metric = if line.contains("below the threshold") {
+            "below_threshold"
+        } else if line.contains("Confident errors") {
+            "confident_errors"
+        } else if line.contains("Accuracy") {
+            "accuracy"
+        } else {
+            panic!("a table heading names no metric: {line:?}")
+        };
+        let model = line
+            .split("`error_model: ")
+            .nth(1)
+            .and_then(|s| s.split('`').next())
+            .expect("a table heading names its error model");
+        for cells in &table.rows {
+            let gamma: f64 = cells[0].parse().expect("the first column is γ");
+            for (column, cell) in table.header.iter().zip(cells).skip(1) {
+                let quoted: f64 = cell
+                    .replace(',', "")
+                    .parse()
+                    .unwrap_or_else(|_| panic!("not a number: {cell}"));
+                let (name, from_paper) = match column.strip_suffix(", paper") {
+                    Some(name) => (name, true),
+                    None => (column.as_str(), false),
+                };
+                let label = COLUMNS
+                    .iter()
+                    .find(|(short, _)| *short == name)
+                    .unwrap_or_else(|| panic!("unknown column {column}"))
+                    .1;
+                let actual = if from_paper {
+                    published(metric, gamma, label)
+                } else {
+                    measured(metric, model, gamma, label)
+                };
+                // Counts are quoted exactly; accuracies to four decimals.
+                let tolerance = if metric == "accuracy" { 5e-5 } else { 0.0 };
+                assert!(
+                    (actual - quoted).abs() <= tolerance,
+                    "{metric} at {model}, γ = {gamma}, {column}: the findings quote {quoted}, the run gives {actual}"
+                );
+                checked += 1;
+            }
         }
     }
     // Two below-threshold tables of 8 columns, two wrong-label tables of 6, 5 rows each.
@@ -191,65 +213,47 @@ fn roundabout_scenario_runs_end_to_end() {
 #[test]
 fn seed_000_findings_quote_the_bundled_run() {
     let results = roundabout();
-    let doc = read(&root().join("docs/findings/seed-000.md"));
-    let section = doc
-        .split("\n## ")
-        .find(|s| s.starts_with("Measured beside the paper"))
-        .expect("the findings have a section \"Measured beside the paper\"");
     let points = results["sweep"].as_array().unwrap();
     let references = results["references"].as_array().unwrap();
-    let mut header: Vec<String> = Vec::new();
     let mut checked = 0;
-    for line in section.lines() {
-        if !line.starts_with('|') {
-            header.clear();
-            continue;
-        }
-        let cells: Vec<String> = line
-            .trim_matches('|')
-            .split('|')
-            .map(|c| c.trim().to_string())
-            .collect();
-        if header.is_empty() {
-            header = cells;
-            continue;
-        }
-        if cells[0].starts_with("---") {
-            continue;
-        }
-        let axis = header[0].trim_matches('`');
-        let value: f64 = cells[0].parse().unwrap();
-        let point = points
-            .iter()
-            .find(|p| p["sweep"].is_number() && p["settings"][axis].as_f64() == Some(value))
-            .unwrap_or_else(|| panic!("no point with {axis} = {value}"));
-        let index = point["index"].as_u64().unwrap();
-        for (column, cell) in header.iter().zip(&cells).skip(1) {
-            let actual = if let Some(metric) = column.strip_suffix(" (paper)") {
-                references
-                    .iter()
-                    .find(|r| {
-                        r["metric"] == metric && r["points"].as_array().unwrap().iter().any(|p| p["point"] == index)
-                    })
-                    .map(|r| r["published"].as_f64().unwrap())
-            } else if column == "localization_error" {
-                point["counts"]["localization_error"].as_f64()
-            } else {
-                point["metrics"][column.as_str()].as_f64()
-            };
-            match (cell.as_str(), actual) {
-                ("—", None) => {}
-                (quoted, Some(actual)) => {
-                    let decimals = quoted.split('.').nth(1).map_or(0, str::len) as i32;
-                    let quoted: f64 = quoted.parse().unwrap_or_else(|_| panic!("not a number: {quoted}"));
-                    assert!(
-                        (actual - quoted).abs() <= 0.5 * 10f64.powi(-decimals) + 1e-12,
-                        "{column} at {axis} = {value}: the findings quote {quoted}, the run gives {actual}"
-                    );
+    for table in tables("docs/findings/seed-000.md", "Measured beside the paper") {
+        let axis = table.header[0].trim_matches('`');
+        for cells in &table.rows {
+            let value: f64 = cells[0].parse().unwrap();
+            let point = points
+                .iter()
+                .find(|p| p["sweep"].is_number() && p["settings"][axis].as_f64() == Some(value))
+                .unwrap_or_else(|| panic!("no point with {axis} = {value}"));
+            let index = point["index"].as_u64().unwrap();
+            for (column, cell) in table.header.iter().zip(cells).skip(1) {
+                let actual = if let Some(metric) = column.strip_suffix(" (paper)") {
+                    references
+                        .iter()
+                        .find(|r| {
+                            r["metric"] == metric && r["points"].as_array().unwrap().iter().any(|p| p["point"] == index)
+                        })
+                        .map(|r| r["published"].as_f64().unwrap())
+                } else if column == "localization_error" {
+                    point["counts"]["localization_error"].as_f64()
+                } else {
+                    point["metrics"][column.as_str()].as_f64()
+                };
+                match (cell.as_str(), actual) {
+                    ("—", None) => {}
+                    (quoted, Some(actual)) => {
+                        let decimals = quoted.split('.').nth(1).map_or(0, str::len) as i32;
+                        let quoted: f64 = quoted.parse().unwrap_or_else(|_| panic!("not a number: {quoted}"));
+                        assert!(
+                            (actual - quoted).abs() <= 0.5 * 10f64.powi(-decimals) + 1e-12,
+                            "{column} at {axis} = {value}: the findings quote {quoted}, the run gives {actual}"
+                        );
+                    }
+                    (quoted, None) => {
+                        panic!("{column} at {axis} = {value}: the findings quote {quoted}, the run has none")
+                    }
                 }
-                (quoted, None) => panic!("{column} at {axis} = {value}: the findings quote {quoted}, the run has none"),
+                checked += 1;
             }
-            checked += 1;
         }
     }
     assert_eq!(checked, 6 * 6 + 6 * 4);
