@@ -93,7 +93,7 @@ fn tables(path: &str, title: &str) -> Vec<Table> {
     let section = doc
         .split("\n## ")
         .find(|s| s.starts_with(title))
-        .unwrap_or_else(|| panic!("{path} has a section \"{title}\""));
+        .unwrap_or_else(|| panic!("{path} has no section \"{title}\""));
     let mut tables: Vec<Table> = Vec::new();
     let mut heading = String::new();
     let mut in_table = false;
