@@ -5,6 +5,7 @@ mod field;
 mod fusion;
 mod requirement;
 mod scenario;
+mod v2x;
 mod world;
 
 pub use field::{ErrorModel, Field, Layout, Masses, Truth};
@@ -13,6 +14,7 @@ pub use fusion::{
 };
 pub use requirement::{Bound, Check, Invariant, Metric, Reference, Requirement};
 pub use scenario::{Assignment, Axis, Experiment, Grid, Point, Scenario, Setup, Sweep, display_value};
+pub use v2x::{Channel, PathLossModel, V2x};
 pub use world::{
     Agent, AgentKind, Direction, Localization, Motion, Occluder, Perception, PoseFilter, Road, Sensor, World,
 };

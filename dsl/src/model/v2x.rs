@@ -1,0 +1,74 @@
+//! The V2X link between connected agents and roadside units: who is connected,
+//! how often and how late messages go, and the radio channel that drops them.
+
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// V2X assumptions of a world.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct V2x {
+    /// Share of generated traffic that is connected (0–1).
+    pub penetration: f64,
+    /// Time from sending to delivery of a received packet, seconds (processing and
+    /// access delay; propagation at the speed of light is added per packet).
+    pub latency: f64,
+    /// The radio channel.
+    pub channel: Channel,
+}
+
+/// Path-loss models of 3GPP TR 36.885 (V14.0.0), Annex A.1.4.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum PathLossModel {
+    /// Urban case: WINNER+ B1 (Manhattan grid) for LOS; NLOS where an occluder
+    /// blocks the direct link.
+    Tr36885Urban,
+    /// Freeway case: LOS only (PL = 32.4 + 20 log10 d + 20 log10 fc).
+    Tr36885Highway,
+    /// Every packet arrives (no path loss, no shadowing).
+    Ideal,
+}
+
+/// The radio channel of every V2X link: received power
+/// RSSI = P_tx − L_path(d) − L_shadow − L_device; a packet is received when
+/// RSSI ≥ the receiver's sensitivity (seed 002, eq. 4).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Channel {
+    /// Path-loss model.
+    pub model: PathLossModel,
+    /// Transmit power P_tx, dBm.
+    pub tx_power_dbm: f64,
+    /// σ of the zero-mean log-normal shadowing on a line-of-sight link, dB.
+    pub shadowing_sigma_db: f64,
+    /// σ of the shadowing on a non-line-of-sight link, dB.
+    pub nlos_shadowing_sigma_db: f64,
+    /// Fixed implementation losses L_device, dB.
+    pub device_loss_db: f64,
+    /// Receiver sensitivity RSSI_TH, dBm.
+    pub sensitivity_dbm: f64,
+    /// Carrier frequency, GHz.
+    pub carrier_ghz: f64,
+    /// Antenna height of vehicles and pedestrians, metres.
+    pub vehicle_antenna_m: f64,
+    /// Antenna height of roadside units, metres.
+    pub rsu_antenna_m: f64,
+}
+
+impl Default for Channel {
+    /// Seed 002's values: 23 dBm, σ = 3 dB, 3 dB device loss, −90 dBm sensitivity,
+    /// 5.9 GHz, urban model; TR 36.885's 4 dB NLOS shadowing and 1.5 m antennas,
+    /// and a 5 m roadside unit mast.
+    fn default() -> Self {
+        Self {
+            model: PathLossModel::Tr36885Urban,
+            tx_power_dbm: 23.0,
+            shadowing_sigma_db: 3.0,
+            nlos_shadowing_sigma_db: 4.0,
+            device_loss_db: 3.0,
+            sensitivity_dbm: -90.0,
+            carrier_ghz: 5.9,
+            vehicle_antenna_m: 1.5,
+            rsu_antenna_m: 5.0,
+        }
+    }
+}
