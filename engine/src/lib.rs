@@ -2,9 +2,9 @@
 //!
 //! The engine owns everything between a compiled [`Scenario`](sightline_dsl::Scenario)
 //! and its measurements: seeded random streams, the fusion rules (Dempster,
-//! distance-weighted, hybrid, Bayesian), the decision rule, and the metrics of each
-//! sweep point. It returns data ([`Run`], [`FieldOutcome`]); it does not print,
-//! write files or judge requirements (that is `sightline-oracles`).
+//! distance-weighted, hybrid, Bayesian), the decision rule, the V2X radio channel, and
+//! the metrics of each sweep point. It returns data ([`Run`], [`FieldOutcome`]); it
+//! does not print, write files or judge requirements (that is `sightline-oracles`).
 //!
 //! Results are deterministic: the same scenario and seed give bit-identical
 //! outcomes whatever the number of rayon threads.
@@ -27,4 +27,5 @@ pub mod math;
 mod metrics;
 mod rng;
 mod run;
+pub mod v2x;
 pub mod world;

@@ -1,0 +1,6 @@
+//! V2X links (seed 002): how much power a packet arrives with and whether it is
+//! received.
+
+mod channel;
+
+pub use channel::{Link, Reception, delivery_probability, mean_rssi_dbm, path_loss_db, transmit};
