@@ -5,6 +5,8 @@
 //! core-schema scalars), its JSON Schema, its checks and its error messages. It
 //! does not read files, simulate or print: the CLI hands it text and prints the
 //! [`Errors`] it returns, each located as `file:line:col` with a YAML path.
+//! The [`sumo`] module reads traffic from the simulator SUMO the same way: text
+//! in, located errors out.
 //!
 //! ```
 //! let text = "sightline: 1\nname: tiny\ngrid: { size: [10, 10], cell: 1 }\n\
@@ -32,4 +34,5 @@ mod model;
 mod path;
 mod raw;
 mod schema;
+pub mod sumo;
 mod yaml;

@@ -1,0 +1,288 @@
+//! What the three SUMO readers share: the located [`SumoError`], parsing with
+//! positions, and typed attribute access that names the offending element.
+
+use roxmltree::{Attribute, Document, Node};
+
+use crate::Location;
+use crate::geometry::Xy;
+
+/// A problem in a SUMO file, located by line and column.
+///
+/// Displays as `line:col: message`; the caller prefixes the file name.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{location}: {message}")]
+pub struct SumoError {
+    /// Where in the file: an element's `<`, an attribute value's first character,
+    /// or the point of a shape that does not parse.
+    pub location: Location,
+    /// What is wrong, a lowercase fragment such as
+    /// ``attribute `x` of <vehicle> is not a number: "abc"``.
+    pub message: String,
+}
+
+/// Parses `text` as XML; a malformed file is an error at the parser's position.
+pub(crate) fn parse(text: &str) -> Result<Document<'_>, SumoError> {
+    Document::parse(text).map_err(|error| {
+        let pos = error.pos();
+        // roxmltree appends " at row:col" to its messages; the location says it already.
+        let message = error.to_string();
+        let message = message.strip_suffix(&format!(" at {pos}")).unwrap_or(&message);
+        let location = match error {
+            // These carry no position (roxmltree says 1:1); the text ends too early.
+            roxmltree::Error::UnexpectedEndOfStream | roxmltree::Error::UnclosedRootNode => end_of(text),
+            _ => Location::new(pos.row as usize, pos.col as usize),
+        };
+        SumoError {
+            location,
+            message: format!("malformed xml: {message}"),
+        }
+    })
+}
+
+/// Where `text` ends.
+fn end_of(text: &str) -> Location {
+    let last_line = text.rsplit('\n').next().unwrap_or_default();
+    Location::new(text.matches('\n').count() + 1, last_line.chars().count() + 1)
+}
+
+/// The root element, which must be named `name`.
+pub(crate) fn root<'a, 'i>(doc: &'a Document<'i>, name: &str) -> Result<Node<'a, 'i>, SumoError> {
+    let root = doc.root_element();
+    if root.tag_name().name() == name {
+        Ok(root)
+    } else {
+        Err(element_error(
+            root,
+            format!("expected <{name}> as the root element, found {}", tag(root)),
+        ))
+    }
+}
+
+/// The element children of `node` named `name`, in file order.
+pub(crate) fn children<'a, 'i>(node: Node<'a, 'i>, name: &str) -> impl Iterator<Item = Node<'a, 'i>> {
+    node.children().filter(move |child| child.has_tag_name(name))
+}
+
+/// An error at byte `pos` of the document that holds `node`.
+pub(crate) fn error_at_pos(node: Node, pos: usize, message: String) -> SumoError {
+    let pos = node.document().text_pos_at(pos);
+    SumoError {
+        location: Location::new(pos.row as usize, pos.col as usize),
+        message,
+    }
+}
+
+/// An error at the start (the `<`) of element `node`.
+pub(crate) fn element_error(node: Node, message: String) -> SumoError {
+    error_at_pos(node, node.range().start, message)
+}
+
+/// An error at the first character of `attribute`'s value.
+pub(crate) fn value_error(node: Node, attribute: &Attribute, message: String) -> SumoError {
+    error_at_pos(node, attribute.range_value().start, message)
+}
+
+/// The element's name, as `<name>`, for messages.
+pub(crate) fn tag(node: Node) -> String {
+    format!("<{}>", node.tag_name().name())
+}
+
+/// A required attribute.
+pub(crate) fn attribute<'a, 'i>(node: Node<'a, 'i>, name: &str) -> Result<Attribute<'a, 'i>, SumoError> {
+    node.attribute_node(name)
+        .ok_or_else(|| element_error(node, format!("missing attribute `{name}` on {}", tag(node))))
+}
+
+/// A required string attribute.
+pub(crate) fn string<'a>(node: Node<'a, '_>, name: &str) -> Result<&'a str, SumoError> {
+    Ok(attribute(node, name)?.value())
+}
+
+/// A required finite number.
+pub(crate) fn number(node: Node, name: &str) -> Result<f64, SumoError> {
+    let attribute = attribute(node, name)?;
+    finite(node, &attribute)
+}
+
+/// An optional finite number, `default` when absent.
+pub(crate) fn number_or(node: Node, name: &str, default: f64) -> Result<f64, SumoError> {
+    match node.attribute_node(name) {
+        Some(attribute) => finite(node, &attribute),
+        None => Ok(default),
+    }
+}
+
+/// A required non-negative integer, such as a lane index.
+pub(crate) fn index(node: Node, name: &str) -> Result<u32, SumoError> {
+    let attribute = attribute(node, name)?;
+    attribute.value().parse().map_err(|_| {
+        let message = format!(
+            "attribute `{name}` of {} is not a non-negative integer: {:?}",
+            tag(node),
+            attribute.value()
+        );
+        value_error(node, &attribute, message)
+    })
+}
+
+/// The value of `attribute` as a finite number.
+fn finite(node: Node, attribute: &Attribute) -> Result<f64, SumoError> {
+    let value = attribute.value();
+    let describe = |what: &str| {
+        let message = format!(
+            "attribute `{}` of {} is not {what}: {value:?}",
+            attribute.name(),
+            tag(node)
+        );
+        value_error(node, attribute, message)
+    };
+    match value.parse::<f64>() {
+        Ok(number) if number.is_finite() => Ok(number),
+        Ok(_) => Err(describe("a finite number")),
+        Err(_) => Err(describe("a number")),
+    }
+}
+
+/// A required shape: points `x,y` (or `x,y,z`, the height dropped) separated by
+/// spaces. An empty shape is an error; a bad point is located at that point.
+pub(crate) fn shape(node: Node, name: &str) -> Result<Vec<Xy>, SumoError> {
+    let attribute = attribute(node, name)?;
+    let value = attribute.value();
+    // Byte offsets into the value are exact in the file only when it holds no
+    // entity references; otherwise point at the value's start.
+    let raw = &node.document().input_text()[attribute.range_value()];
+    let start = attribute.range_value().start;
+    let mut points = Vec::new();
+    for token in value.split_ascii_whitespace() {
+        let offset = token.as_ptr() as usize - value.as_ptr() as usize;
+        let point = parse_point(token).ok_or_else(|| {
+            let pos = if raw == value { start + offset } else { start };
+            let message = format!(
+                "bad point {token:?} in attribute `{name}` of {}; expected \"x,y\" with finite numbers",
+                tag(node)
+            );
+            error_at_pos(node, pos, message)
+        })?;
+        points.push(point);
+    }
+    if points.is_empty() {
+        return Err(value_error(
+            node,
+            &attribute,
+            format!("attribute `{name}` of {} is empty", tag(node)),
+        ));
+    }
+    Ok(points)
+}
+
+/// `x,y` or `x,y,z` as `[x, y]`.
+fn parse_point(token: &str) -> Option<Xy> {
+    let mut parts = token
+        .split(',')
+        .map(|part| part.parse::<f64>().ok().filter(|v| v.is_finite()));
+    let x = parts.next()??;
+    let y = parts.next()??;
+    match (parts.next(), parts.next()) {
+        (None, _) | (Some(Some(_)), None) => Some([x, y]),
+        _ => None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn first_error<T>(text: &str, read: impl Fn(Node) -> Result<T, SumoError>) -> String {
+        let doc = parse(text).unwrap();
+        match read(doc.root_element().first_element_child().unwrap()) {
+            Ok(_) => panic!("expected an error"),
+            Err(error) => error.to_string(),
+        }
+    }
+
+    #[test]
+    fn malformed_xml_is_located_by_the_parser() {
+        let error = parse("<net>\n  <edge id=\"a\">\n</net>\n").unwrap_err();
+        assert_eq!(error.location, Location::new(3, 1));
+        assert_eq!(error.to_string(), "3:1: malformed xml: expected 'edge' tag, not 'net'");
+    }
+
+    #[test]
+    fn missing_attribute_points_at_the_element() {
+        let text = "<net>\n    <lane id=\"a\"/>\n</net>";
+        assert_eq!(
+            first_error(text, |n| number(n, "speed")),
+            "2:5: missing attribute `speed` on <lane>"
+        );
+    }
+
+    #[test]
+    fn bad_numbers_point_at_the_value() {
+        let text = "<net>\n  <lane speed=\"fast\" length=\"inf\" index=\"-1\"/>\n</net>";
+        assert_eq!(
+            first_error(text, |n| number(n, "speed")),
+            "2:16: attribute `speed` of <lane> is not a number: \"fast\""
+        );
+        assert_eq!(
+            first_error(text, |n| number(n, "length")),
+            "2:30: attribute `length` of <lane> is not a finite number: \"inf\""
+        );
+        assert_eq!(
+            first_error(text, |n| index(n, "index")),
+            "2:42: attribute `index` of <lane> is not a non-negative integer: \"-1\""
+        );
+    }
+
+    #[test]
+    fn optional_numbers_default_only_when_absent() {
+        let doc = parse("<net><lane width=\"2.5\"/><lane/></net>").unwrap();
+        let lanes: Vec<_> = children(doc.root_element(), "lane").collect();
+        assert_eq!(number_or(lanes[0], "width", 3.2).unwrap(), 2.5);
+        assert_eq!(number_or(lanes[1], "width", 3.2).unwrap(), 3.2);
+    }
+
+    #[test]
+    fn shapes_read_points_and_drop_heights() {
+        let doc = parse("<net><lane shape=\"0.00,1.60  100,1.6,4.5\n-3e1,2\"/></net>").unwrap();
+        let lane = doc.root_element().first_element_child().unwrap();
+        assert_eq!(
+            shape(lane, "shape").unwrap(),
+            vec![[0.0, 1.6], [100.0, 1.6], [-30.0, 2.0]]
+        );
+    }
+
+    #[test]
+    fn a_bad_shape_point_is_located_at_that_point() {
+        let text = "<net>\n  <lane shape=\"0,0 1,x 2,2\"/>\n</net>";
+        assert_eq!(
+            first_error(text, |n| shape(n, "shape")),
+            "2:20: bad point \"1,x\" in attribute `shape` of <lane>; expected \"x,y\" with finite numbers"
+        );
+        for bad in ["1", "1,2,3,4", "1,,2", "1,NaN"] {
+            let text = format!("<net><lane shape=\"0,0 {bad}\"/></net>");
+            assert!(
+                first_error(&text, |n| shape(n, "shape")).starts_with("1:23: bad point"),
+                "{bad}"
+            );
+        }
+    }
+
+    #[test]
+    fn an_empty_shape_is_an_error() {
+        let text = "<net><lane shape=\" \"/></net>";
+        assert_eq!(
+            first_error(text, |n| shape(n, "shape")),
+            "1:19: attribute `shape` of <lane> is empty"
+        );
+    }
+
+    #[test]
+    fn the_root_must_have_the_expected_name() {
+        let doc = parse("<?xml version=\"1.0\"?>\n<additional/>").unwrap();
+        let error = root(&doc, "net").unwrap_err();
+        assert_eq!(
+            error.to_string(),
+            "2:1: expected <net> as the root element, found <additional>"
+        );
+    }
+}
