@@ -10,6 +10,10 @@ use std::collections::BTreeMap;
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
+mod semantic;
+
+pub(crate) use semantic::*;
+
 use crate::model::{
     AgentKind, Direction, ErrorModel, FusionMethod, Invariant, Metric, PoseFilter, SourceCombination, SwitchMeasure,
     WeightScaling,
@@ -60,6 +64,24 @@ pub(crate) struct RawScenario {
     /// World: who shares perception, and how observations become evidence.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub perception: Option<RawPerception>,
+    /// World: background traffic generated on routes and crosswalks.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub traffic: Option<RawTraffic>,
+    /// World: pedestrian crossings.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub crosswalks: Vec<RawCrosswalk>,
+    /// World: regions around junctions, roundabout entries and crossings.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub interaction_areas: Vec<RawInteractionArea>,
+    /// World: how vehicles keep their distance.
+    #[serde(default)]
+    pub driving: RawDriving,
+    /// World: V2X assumptions.
+    #[serde(default)]
+    pub v2x: RawV2x,
+    /// World: the roadside units' semantic pipeline for an assisted ego (seed 002).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub semantic: Option<RawSemantic>,
     /// How sensor evidence is fused.
     #[serde(default)]
     pub fusion: RawFusion,
@@ -472,6 +494,9 @@ pub(crate) struct RawSensorModel {
     /// σ(d) = base + per_m · d, metres.
     #[serde(default)]
     pub size_noise: RawNoise,
+    /// Standard deviation of a detection's speed error, σ(d) = base + per_m · d, m/s.
+    #[serde(default)]
+    pub velocity_noise: RawNoise,
     /// Angle between the rays that carve free space, degrees.
     #[serde(default = "default_ray_spacing")]
     pub ray_spacing_deg: f64,
@@ -577,7 +602,7 @@ pub(crate) struct RawStart {
 #[serde(deny_unknown_fields, expecting = "a speed mapping with `target`")]
 #[schemars(rename = "Speed")]
 pub(crate) struct RawSpeed {
-    /// Desired speed, m/s (vehicles never exceed the road's limit).
+    /// Desired speed, m/s (vehicles never exceed the road's limit times `limit_factor`).
     pub target: f64,
     /// Speed when it appears, m/s; the target when absent.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -585,6 +610,14 @@ pub(crate) struct RawSpeed {
     /// Largest change of speed, m/s².
     #[serde(default = "default_acceleration")]
     pub acceleration: f64,
+    /// Vehicles: it never exceeds the road's speed limit times this factor
+    /// (above 1: a non-compliant driver).
+    #[serde(default = "default_limit_factor")]
+    pub limit_factor: f64,
+}
+
+fn default_limit_factor() -> f64 {
+    1.0
 }
 
 fn default_acceleration() -> f64 {

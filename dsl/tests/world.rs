@@ -27,7 +27,7 @@ fn world(text: &str) -> World {
     let Experiment::World(world) = scenario.points[0].setup.experiment.clone() else {
         panic!("a world scenario")
     };
-    world
+    *world
 }
 
 fn first_error(text: &str) -> String {
@@ -52,8 +52,8 @@ fn routes_resolve_into_one_polyline_through_the_roundabout() {
     assert_eq!(path.end(), [45.0, -1.75]);
     assert_eq!(limits.iter().map(|l| l.1).collect::<Vec<_>>(), vec![12.0, 6.0, 12.0]);
     // The ego first, then the connected agents with sensors in file order.
-    assert_eq!(world.perception.cooperating, vec![0, 1, 2]);
-    assert_eq!(world.perception.snapshot_step, 50);
+    assert_eq!(world.perception.as_ref().unwrap().cooperating, vec![0, 1, 2]);
+    assert_eq!(world.perception.as_ref().unwrap().snapshot_step, 50);
     assert!(matches!(world.agents[2].motion, Motion::Fixed { .. }));
 }
 
@@ -107,7 +107,7 @@ fn cooperating_counts_only_connected_agents_with_sensors() {
         "{error}"
     );
     let two = world(&WORLD.replace("perception: { ego: ego }", "perception: { ego: ego, cooperating: 2 }"));
-    assert_eq!(two.perception.cooperating, vec![0, 1]);
+    assert_eq!(two.perception.as_ref().unwrap().cooperating, vec![0, 1]);
 }
 
 #[test]

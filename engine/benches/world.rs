@@ -52,9 +52,13 @@ fn step(c: &mut Criterion) {
     let Experiment::World(world) = &setup.experiment else {
         panic!("a world scenario")
     };
-    let World { agents, .. } = world;
+    let World { agents, .. } = &**world;
+    let perception = world
+        .perception
+        .as_ref()
+        .expect("the roundabout measures collective perception");
     let grid = setup.grid;
-    let mut kinematics = Kinematics::new(agents, world.step);
+    let mut kinematics = Kinematics::new(agents, world.step, world.driving);
     let mut states = Vec::new();
     for k in 0..=120 {
         kinematics.advance(k, &mut states);
@@ -82,8 +86,7 @@ fn step(c: &mut Criterion) {
         bodies: &bodies,
         raster: &raster,
     };
-    let cooperating: Vec<usize> = world
-        .perception
+    let cooperating: Vec<usize> = perception
         .cooperating
         .iter()
         .copied()
@@ -124,8 +127,8 @@ fn step(c: &mut Criterion) {
         grid: &grid,
         rule: &setup.fusion.rule,
         observations: &present,
-        occupied: world.perception.occupied,
-        free: world.perception.free,
+        occupied: perception.occupied,
+        free: perception.free,
     };
     group.bench_function("fusion_of_the_observed_cells", |b| {
         let mut sources = Vec::new();

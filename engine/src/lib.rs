@@ -27,5 +27,6 @@ pub mod math;
 mod metrics;
 mod rng;
 mod run;
+pub mod semantic;
 pub mod v2x;
 pub mod world;

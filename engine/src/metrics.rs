@@ -80,7 +80,7 @@ impl FieldMetrics {
             Metric::MaxConflict => self.conflict.as_ref()?.max,
             Metric::TotalConflictCells => self.conflict.as_ref()?.total_conflict_cells as f64,
             Metric::WeightedCells => self.conflict.as_ref()?.weighted_cells as f64,
-            Metric::FovGain | Metric::OccupiedRecall | Metric::OccupiedPrecision | Metric::BlindRecall => return None,
+            _ => return None,
         })
     }
 

@@ -18,6 +18,10 @@ pub(crate) enum Purpose {
     Localization,
     /// Detection draws and detection noise; one stream per agent.
     Detections,
+    /// Generated traffic; one stream per route, then one per crosswalk.
+    Traffic,
+    /// Packet losses; one stream per sender.
+    Channel,
 }
 
 impl Purpose {
@@ -28,6 +32,8 @@ impl Purpose {
             Self::Masses => 3,
             Self::Localization => 4,
             Self::Detections => 5,
+            Self::Traffic => 6,
+            Self::Channel => 7,
         }
     }
 }

@@ -5,6 +5,7 @@ use sightline_dsl::{Decision, Experiment, Fusion, Metric, Scenario, Setup};
 
 use crate::field;
 use crate::metrics::{FieldOutcome, MassAudit};
+use crate::semantic::{self, SemanticMetrics};
 use crate::world::{self, WorldOutcome};
 
 /// One method to evaluate on shared data.
@@ -22,8 +23,10 @@ pub struct Job<'a> {
 pub enum Outcome {
     /// The field experiment.
     Field(FieldOutcome),
-    /// A world.
+    /// A world's collective perception.
     World(WorldOutcome),
+    /// A world's semantic pipeline.
+    Semantic(SemanticMetrics),
 }
 
 impl Outcome {
@@ -32,6 +35,7 @@ impl Outcome {
         match self {
             Self::Field(o) => o.metrics.value(metric),
             Self::World(o) => o.metrics.value(metric),
+            Self::Semantic(m) => m.value(metric),
         }
     }
 
@@ -43,11 +47,12 @@ impl Outcome {
             .collect()
     }
 
-    /// The mass-function audit of every fused cell.
-    pub fn audit(&self) -> &MassAudit {
+    /// The mass-function audit of every fused cell; `None` where nothing is fused.
+    pub fn audit(&self) -> Option<&MassAudit> {
         match self {
-            Self::Field(o) => &o.audit,
-            Self::World(o) => &o.audit,
+            Self::Field(o) => Some(&o.audit),
+            Self::World(o) => Some(&o.audit),
+            Self::Semantic(_) => None,
         }
     }
 }
@@ -81,10 +86,15 @@ pub fn simulate(scenario: &Scenario) -> Run {
                 .into_iter()
                 .map(Outcome::Field)
                 .collect(),
-            Experiment::World(w) => world::run(first.seed, &first.grid, w, &jobs)
-                .into_iter()
-                .map(Outcome::World)
-                .collect(),
+            Experiment::World(w) => match (&w.perception, &w.semantic) {
+                (Some(perception), _) => world::run(first.seed, &first.grid, w, perception, &jobs)
+                    .into_iter()
+                    .map(Outcome::World)
+                    .collect(),
+                // Fusion settings do not touch the semantic pipeline: one run serves all.
+                (None, Some(s)) => vec![Outcome::Semantic(semantic::run(first.seed, w, s)); jobs.len()],
+                (None, None) => unreachable!("the compiler requires `perception` or `semantic`"),
+            },
         };
         for (&i, outcome) in group.iter().zip(results) {
             outcomes[i] = Some(outcome);

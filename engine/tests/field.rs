@@ -50,7 +50,7 @@ fn a_method_sees_the_same_samples_alone_or_beside_others() {
 fn field(outcome: &Outcome) -> &FieldOutcome {
     match outcome {
         Outcome::Field(field) => field,
-        Outcome::World(_) => panic!("a field scenario gives field outcomes"),
+        other => panic!("a field scenario gives field outcomes, not {other:?}"),
     }
 }
 

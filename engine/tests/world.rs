@@ -84,7 +84,7 @@ fn nominal(sigma: f64, filter: &'static str) -> Setting {
 fn world(outcome: &Outcome) -> &WorldOutcome {
     match outcome {
         Outcome::World(world) => world,
-        Outcome::Field(_) => panic!("a world scenario gives world outcomes"),
+        other => panic!("a perception world gives world outcomes, not {other:?}"),
     }
 }
 

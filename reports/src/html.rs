@@ -8,6 +8,8 @@ use serde::Serialize;
 
 use sightline_dsl::display_value;
 
+use sightline_engine::semantic::{DELIVERY_BIN, DENSITY_BIN, DensityRow, SemanticMetrics};
+
 use crate::picture::Pictures;
 use crate::results::{Detail, PointResult, RequirementResult, Results, Summary};
 
@@ -80,6 +82,8 @@ struct EvaluationView {
 
 #[derive(Serialize)]
 struct TableView {
+    /// What the table shows; empty for none.
+    caption: String,
     head: Vec<String>,
     rows: Vec<Vec<String>>,
     /// Leading columns that hold text (labels), not numbers.
@@ -106,7 +110,7 @@ struct ComparisonView {
 struct PointView {
     label: String,
     summary: String,
-    table: TableView,
+    tables: Vec<TableView>,
     pictures: Option<Pictures>,
 }
 
@@ -255,6 +259,7 @@ fn sweep_table(results: &Results, axes: &[&str], points: &[&PointResult]) -> Tab
         })
         .collect();
     TableView {
+        caption: String::new(),
         head,
         rows,
         text_columns: axes.len(),
@@ -305,7 +310,8 @@ fn point_view(p: &PointResult, pictures: Option<Pictures>) -> PointView {
                 "{} sensors; {}–{} observe each cell (mean {:.2})",
                 c.sensors, c.min_sources, c.max_sources, c.mean_sources
             ),
-            table: TableView {
+            tables: vec![TableView {
+                caption: String::new(),
                 text_columns: 1,
                 head: BAND_COLUMNS.map(String::from).to_vec(),
                 rows: bands
@@ -325,7 +331,7 @@ fn point_view(p: &PointResult, pictures: Option<Pictures>) -> PointView {
                         ]
                     })
                     .collect(),
-            },
+            }],
         },
         Detail::World { counts: c } => {
             let s = &c.sightings;
@@ -352,14 +358,106 @@ fn point_view(p: &PointResult, pictures: Option<Pictures>) -> PointView {
                 label,
                 pictures,
                 summary: format!("{} steps", c.steps),
-                table: TableView {
-                    text_columns: 1,
-                    head: vec!["count".into(), "value".into()],
-                    rows,
-                },
+                tables: vec![counts_table(rows)],
             }
         }
+        Detail::Semantic {
+            counts: c,
+            contribution_by_density,
+        } => PointView {
+            label,
+            pictures,
+            summary: format!(
+                "{} steps, {} generated road users, {} anticipated objects",
+                c.steps,
+                c.generated,
+                c.anticipation.len()
+            ),
+            tables: semantic_tables(c, contribution_by_density),
+        },
     }
+}
+
+fn counts_table(rows: Vec<Vec<String>>) -> TableView {
+    TableView {
+        caption: String::new(),
+        text_columns: 1,
+        head: vec!["count".into(), "value".into()],
+        rows,
+    }
+}
+
+/// The counts of a semantic run, its contribution by density and its packet
+/// delivery by distance.
+fn semantic_tables(c: &SemanticMetrics, density: &[DensityRow]) -> Vec<TableView> {
+    let l = &c.labels;
+    let counts = [
+        ("steps with the ego in the scene", c.steps as f64),
+        (
+            "objects anticipated (learned of while hidden, later seen)",
+            c.anticipation.len() as f64,
+        ),
+        ("objects learned of while hidden and never seen", c.never_seen as f64),
+        ("object-cycles perceived by the RSUs", c.perceived as f64),
+        ("… sent to the ego", c.transmitted as f64),
+        ("… with at least one label", c.labelled as f64),
+        ("… labelled NLoS behind an occluder", l.nlos_static as f64),
+        ("… labelled NLoS behind road users", l.nlos_dynamic as f64),
+        ("… labelled relevant", l.relevant as f64),
+        ("… labelled speeding", l.speeding as f64),
+        ("… labelled with a predicted conflict", l.conflict as f64),
+        ("object-cycles the ETSI baseline sends", c.baseline_objects as f64),
+        ("bytes of semantic messages", c.bytes as f64),
+        ("bytes of ETSI baseline messages", c.baseline_bytes as f64),
+        ("messages sent to the ego", c.messages as f64),
+        ("… received", c.delivered as f64),
+        ("close approaches (within d_min of the ego)", c.close_approaches as f64),
+        ("… with no conflict flagged beforehand", c.missed_criticals as f64),
+        ("seconds the ego drove cautiously", c.cautious_time),
+    ];
+    let by_density = TableView {
+        caption: "Objects the ego knows only through an RSU, by traffic density".into(),
+        text_columns: 1,
+        head: ["objects per km", "steps", "median", "mean"].map(String::from).to_vec(),
+        rows: density
+            .iter()
+            .map(|r| {
+                vec![
+                    format!("{} – {}", number(r.from), number(r.from + DENSITY_BIN)),
+                    number(r.steps as f64),
+                    number(r.median),
+                    number(r.mean),
+                ]
+            })
+            .collect(),
+    };
+    let by_distance = TableView {
+        caption: "Messages to the ego by RSU–ego distance".into(),
+        text_columns: 1,
+        head: ["distance", "sent", "received", "delivery ratio"]
+            .map(String::from)
+            .to_vec(),
+        rows: c
+            .delivery_by_distance
+            .iter()
+            .enumerate()
+            .filter(|(_, b)| b.sent > 0)
+            .map(|(i, b)| {
+                let from = i as f64 * DELIVERY_BIN;
+                vec![
+                    format!("{} – {} m", number(from), number(from + DELIVERY_BIN)),
+                    number(b.sent as f64),
+                    number(b.received as f64),
+                    number(b.received as f64 / b.sent as f64),
+                ]
+            })
+            .collect(),
+    };
+    vec![
+        counts_table(counts.iter().map(|(k, v)| vec![(*k).to_string(), number(*v)]).collect()),
+        by_density,
+        by_distance,
+    ]
 }
 
 fn describe_check(kind: &str, name: &str, relation: &str, threshold: f64) -> String {

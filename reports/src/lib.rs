@@ -74,7 +74,14 @@ pub fn render(
             (Outcome::World(o), Experiment::World(world)) => o
                 .snapshot
                 .as_ref()
-                .map(|s| picture::pictures(&point.setup.grid, world.step, s, world.perception.region))
+                .map(|s| {
+                    picture::pictures(
+                        &point.setup.grid,
+                        world.step,
+                        s,
+                        world.perception.as_ref().and_then(|p| p.region),
+                    )
+                })
                 .transpose(),
             _ => Ok(None),
         })

@@ -5,6 +5,7 @@
 
 use serde::{Serialize, Serializer};
 use sightline_dsl::{Bound, Check, Point, Requirement, Scenario};
+use sightline_engine::semantic::{DensityRow, SemanticMetrics};
 use sightline_engine::world::WorldMetrics;
 use sightline_engine::{BandMetrics, Coverage, MassAudit, Outcome, Run};
 use sightline_oracles::{Status, Verdict};
@@ -183,8 +184,9 @@ pub struct PointResult {
     pub fusion: String,
     /// Every defined metric.
     pub metrics: Ordered<f64>,
-    /// The mass audit.
-    pub audit: MassAudit,
+    /// The mass audit (absent where nothing is fused).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub audit: Option<MassAudit>,
     /// What only this kind of scenario measures.
     #[serde(flatten)]
     pub detail: Detail,
@@ -201,10 +203,17 @@ pub enum Detail {
         /// Sensors per cell.
         coverage: Coverage,
     },
-    /// A world.
+    /// A world's collective perception.
     World {
         /// The counts behind the metrics.
         counts: WorldMetrics,
+    },
+    /// A world's semantic pipeline.
+    Semantic {
+        /// The counts and samples behind the metrics.
+        counts: SemanticMetrics,
+        /// Objects known to the ego only through an RSU, by traffic density.
+        contribution_by_density: Vec<DensityRow>,
     },
 }
 
@@ -351,7 +360,7 @@ fn point_result((point, outcome): (&Point, &Outcome)) -> PointResult {
                 .map(|(m, v)| (m.name().to_string(), v))
                 .collect(),
         ),
-        audit: *outcome.audit(),
+        audit: outcome.audit().copied(),
         detail: match outcome {
             Outcome::Field(o) => Detail::Field {
                 bands: o.bands.clone(),
@@ -359,6 +368,10 @@ fn point_result((point, outcome): (&Point, &Outcome)) -> PointResult {
             },
             Outcome::World(o) => Detail::World {
                 counts: o.metrics.clone(),
+            },
+            Outcome::Semantic(m) => Detail::Semantic {
+                counts: m.clone(),
+                contribution_by_density: m.contribution_by_density(),
             },
         },
     }

@@ -258,3 +258,33 @@ fn seed_000_findings_quote_the_bundled_run() {
     }
     assert_eq!(checked, 6 * 6 + 6 * 4);
 }
+
+/// The bundled seed 002 junction: every density point measures the semantic
+/// pipeline, and the report shows the density and delivery tables.
+#[test]
+fn urban_semantic_scenario_runs_end_to_end() {
+    let tmp = temp_dir();
+    let out = tmp.path().join("out");
+    sightline(["run", "scenarios/urban-rsu-semantic.yaml", "--out", arg(&out)]).assert_exit(0);
+    assert_evidence_files(&out);
+    let results = read_json(&out.join("results.json"));
+    assert_eq!(results["verdict"], "pass");
+    let points = results["sweep"].as_array().unwrap();
+    assert_eq!(points.len(), 4);
+    for point in points {
+        assert_eq!(point["experiment"], "semantic");
+        assert!(point.get("audit").is_none(), "a semantic world fuses no cells");
+        let counts = &point["counts"];
+        let share = point["metrics"]["transmitted_share"].as_f64().unwrap();
+        let expected = counts["transmitted"].as_f64().unwrap() / counts["perceived"].as_f64().unwrap();
+        assert!((share - expected).abs() < 1e-12);
+        assert!(counts["labelled"].as_u64() <= counts["transmitted"].as_u64());
+        assert!(!point["contribution_by_density"].as_array().unwrap().is_empty());
+    }
+    // Denser traffic puts more on the channel, for the baseline sender too.
+    let load = |i: usize, metric: &str| points[i]["metrics"][metric].as_f64().unwrap();
+    assert!(load(3, "baseline_channel_load") > load(0, "baseline_channel_load"));
+    let html = std::fs::read_to_string(out.join("report.html")).unwrap();
+    assert!(html.contains("Objects the ego knows only through an RSU, by traffic density"));
+    assert!(html.contains("Messages to the ego by RSU–ego distance"));
+}

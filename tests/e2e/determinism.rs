@@ -7,6 +7,9 @@ use crate::support::{
     FAILING, SEED_SWEEP, SMALL_FIELD, arg, files_under, read, read_json, root, sightline, temp_dir, unescape_html,
 };
 
+/// The bundled seed 002 junction.
+const URBAN: &str = "scenarios/urban-rsu-semantic.yaml";
+
 /// The files that must not change between equivalent runs.
 const DETERMINISTIC: [&str; 2] = ["results.json", "junit.xml"];
 
@@ -57,6 +60,16 @@ fn thread_count_does_not_change_evidence() {
     run_into(SMALL_FIELD, &three, &["--jobs", "3"], 0);
     assert_same_evidence(&one, &two);
     assert_same_evidence(&one, &three);
+}
+
+/// The semantic pipeline (generated traffic, packet drops) is as deterministic.
+#[test]
+fn thread_count_does_not_change_semantic_evidence() {
+    let tmp = temp_dir();
+    let (one, two) = (tmp.path().join("one"), tmp.path().join("two"));
+    run_into(URBAN, &one, &["--jobs", "1"], 0);
+    run_into(URBAN, &two, &["--jobs", "2"], 0);
+    assert_same_evidence(&one, &two);
 }
 
 #[test]

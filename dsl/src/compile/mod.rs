@@ -6,6 +6,7 @@
 mod context;
 mod requirements;
 mod scenario;
+mod semantic;
 mod setup;
 mod sweep;
 mod world;

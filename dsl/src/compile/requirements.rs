@@ -64,6 +64,20 @@ pub(super) fn requirements(
             {
                 continue;
             }
+            if let Check::Invariant { invariant, .. } = check
+                && selected
+                    .iter()
+                    .any(|&i| matches!(&points[i].setup.experiment, Experiment::World(w) if w.semantic.is_some()))
+            {
+                ctx.error(
+                    &path.key("check").key("invariant"),
+                    ErrorKind::Invalid(format!(
+                        "invariant `{}` checks fused grid cells, and a world with a semantic pipeline fuses none",
+                        invariant.name()
+                    )),
+                );
+                continue;
+            }
             compiled.push(Requirement {
                 id: requirement.id.clone(),
                 text: requirement.text.clone(),
@@ -174,8 +188,11 @@ fn defined_everywhere(
 ) -> bool {
     for &i in selected {
         let point = &points[i];
-        let (measured, kind) = match point.setup.experiment {
+        let (measured, kind) = match &point.setup.experiment {
             Experiment::Field(_) => (metric.in_field(), "the field experiment"),
+            Experiment::World(world) if world.semantic.is_some() => {
+                (metric.in_semantic(), "a world with a semantic pipeline")
+            }
             Experiment::World(_) => (metric.in_world(), "a world scenario"),
         };
         if !measured {

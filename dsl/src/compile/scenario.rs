@@ -205,8 +205,9 @@ fn settings(raw: &RawScenario, setup: &crate::model::Setup) -> serde_json::Value
     if let (Experiment::World(world), Some(perception)) = (
         &setup.experiment,
         object.get_mut("perception").and_then(|p| p.as_object_mut()),
-    ) {
-        perception.insert("cooperating".into(), world.perception.cooperating.len().into());
+    ) && let Some(compiled) = &world.perception
+    {
+        perception.insert("cooperating".into(), compiled.cooperating.len().into());
     }
     json
 }

@@ -37,7 +37,7 @@ pub(super) fn setup(ctx: &mut Context<'_>, raw: &RawScenario) -> Option<Setup> {
         Some(field_raw) => grid
             .and_then(|g| field(ctx, field_raw, &g, &root.key("field")))
             .map(Experiment::Field),
-        None => world(ctx, raw).map(Experiment::World),
+        None => world(ctx, raw).map(|w| Experiment::World(Box::new(w))),
     };
     let fusion = fusion(ctx, &raw.fusion, &root.key("fusion"));
     let decision = decision(ctx, &raw.decision, &root.key("decision"));

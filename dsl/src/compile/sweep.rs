@@ -12,7 +12,7 @@ use crate::yaml::{Key, Node, Value};
 pub const MAX_POINTS: usize = 10_000;
 
 /// Top-level sections a sweep may set.
-const SWEEPABLE: [&str; 9] = [
+const SWEEPABLE: [&str; 13] = [
     "seed",
     "grid",
     "field",
@@ -22,6 +22,10 @@ const SWEEPABLE: [&str; 9] = [
     "sensor_models",
     "localization",
     "perception",
+    "traffic",
+    "driving",
+    "v2x",
+    "semantic",
 ];
 
 /// One axis as written: the path it sets and its value nodes.

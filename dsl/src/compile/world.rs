@@ -4,6 +4,7 @@
 use std::collections::HashMap;
 
 use super::context::{Context, locate};
+use super::semantic::{crosswalks, driving, interaction_areas, semantic_of, traffic, v2x};
 use super::setup::whole_multiple;
 use crate::de::closest;
 use crate::error::{ErrorKind, Location};
@@ -34,16 +35,46 @@ pub(super) fn world(ctx: &mut Context<'_>, raw: &RawScenario) -> Option<World> {
     let agents = agents(ctx, &raw.agents, roads.as_deref().unwrap_or_default(), &sensors?);
     let localization = localization(ctx, raw);
     let perception = match (&raw.perception, &agents, steps) {
-        (Some(perception), Some(agents), Some(steps)) => perception_of(ctx, perception, agents, time.step, steps),
-        (None, _, _) => {
-            ctx.error(
-                &root,
-                ErrorKind::Invalid("a world needs `perception: { ego: … }` (whose view is measured)".into()),
-            );
-            None
+        (Some(perception), Some(agents), Some(steps)) => {
+            perception_of(ctx, perception, agents, time.step, steps).map(Some)
         }
+        (None, _, _) => Some(None),
         _ => None,
     };
+    let roads_known = roads.as_deref().unwrap_or_default();
+    let crosswalks = crosswalks(ctx, &raw.crosswalks);
+    let interaction_areas = interaction_areas(ctx, &raw.interaction_areas);
+    let traffic = raw
+        .traffic
+        .as_ref()
+        .map(|t| traffic(ctx, t, roads_known, crosswalks.as_deref().unwrap_or_default()));
+    let driving = driving(ctx, &raw.driving);
+    let v2x = v2x(ctx, &raw.v2x);
+    let semantic = match (&raw.semantic, &agents) {
+        (Some(semantic), Some(agents)) => semantic_of(ctx, semantic, agents, time.step).map(Some),
+        (None, _) => Some(None),
+        _ => None,
+    };
+    if raw.perception.is_none() && raw.semantic.is_none() {
+        ctx.error(
+            &root,
+            ErrorKind::Invalid(
+                "a world measures collective perception (`perception: { ego: … }`) or the semantic pipeline \
+                 (`semantic: { ego: … }`)"
+                    .into(),
+            ),
+        );
+        return None;
+    }
+    if raw.perception.is_some() && raw.semantic.is_some() {
+        ctx.error(
+            &root.key("semantic"),
+            ErrorKind::Invalid(
+                "a world measures `perception` or `semantic`, not both: split it into two scenarios".into(),
+            ),
+        );
+        return None;
+    }
     Some(World {
         step: time.step,
         steps: steps?,
@@ -52,6 +83,12 @@ pub(super) fn world(ctx: &mut Context<'_>, raw: &RawScenario) -> Option<World> {
         agents: agents?,
         localization: localization?,
         perception: perception?,
+        traffic: traffic.map_or(Some(None), |t| t.map(Some))?,
+        crosswalks: crosswalks?,
+        interaction_areas: interaction_areas?,
+        driving: driving?,
+        v2x: v2x?,
+        semantic: semantic?,
     })
 }
 
@@ -83,7 +120,7 @@ fn time_steps(ctx: &mut Context<'_>, time: &RawTime, path: &Path) -> Option<usiz
 }
 
 /// Records a duplicate-id error for every repeated id of a list; returns whether all are unique.
-fn unique_ids<'a>(ctx: &mut Context<'_>, list: &Path, ids: impl Iterator<Item = &'a str>) -> bool {
+pub(super) fn unique_ids<'a>(ctx: &mut Context<'_>, list: &Path, ids: impl Iterator<Item = &'a str>) -> bool {
     let mut first: HashMap<&str, Location> = HashMap::new();
     let mut ok = true;
     for (i, id) in ids.enumerate() {
@@ -104,7 +141,7 @@ fn unique_ids<'a>(ctx: &mut Context<'_>, list: &Path, ids: impl Iterator<Item = 
     ok
 }
 
-fn finite_points(ctx: &mut Context<'_>, path: &Path, points: &[[f64; 2]]) -> bool {
+pub(super) fn finite_points(ctx: &mut Context<'_>, path: &Path, points: &[[f64; 2]]) -> bool {
     let mut ok = true;
     for (i, point) in points.iter().enumerate() {
         for (axis, &v) in point.iter().enumerate() {
@@ -241,7 +278,7 @@ fn occluders(ctx: &mut Context<'_>, raw: &[RawOccluder]) -> Option<Vec<Occluder>
 }
 
 /// The signed area of a polygon, positive when counter-clockwise (shoelace formula).
-fn signed_area(polygon: &[Xy]) -> f64 {
+pub(super) fn signed_area(polygon: &[Xy]) -> f64 {
     let n = polygon.len();
     (0..n)
         .map(|i| {
@@ -281,6 +318,8 @@ fn sensor(ctx: &mut Context<'_>, name: &str, raw: &RawSensorModel, path: &Path) 
         & ctx.non_negative(&path.key("position_noise").key("per_m"), raw.position_noise.per_m)
         & ctx.non_negative(&path.key("size_noise").key("base"), raw.size_noise.base)
         & ctx.non_negative(&path.key("size_noise").key("per_m"), raw.size_noise.per_m)
+        & ctx.non_negative(&path.key("velocity_noise").key("base"), raw.velocity_noise.base)
+        & ctx.non_negative(&path.key("velocity_noise").key("per_m"), raw.velocity_noise.per_m)
         & ctx.expect(
             raw.ray_spacing_deg > 0.0 && raw.ray_spacing_deg <= 10.0,
             &path.key("ray_spacing_deg"),
@@ -302,6 +341,8 @@ fn sensor(ctx: &mut Context<'_>, name: &str, raw: &RawSensorModel, path: &Path) 
         noise_per_m: raw.position_noise.per_m,
         size_noise_base: raw.size_noise.base,
         size_noise_per_m: raw.size_noise.per_m,
+        velocity_noise_base: raw.velocity_noise.base,
+        velocity_noise_per_m: raw.velocity_noise.per_m,
         ray_spacing: raw.ray_spacing_deg.to_radians(),
     })
 }
@@ -425,6 +466,7 @@ fn motion(ctx: &mut Context<'_>, raw: &RawAgent, path: &Path, roads: &[Road]) ->
     let ok = ctx.non_negative(&speed_path.key("target"), speed.target)
         & ctx.non_negative(&speed_path.key("initial"), initial)
         & ctx.positive(&speed_path.key("acceleration"), speed.acceleration)
+        & ctx.positive(&speed_path.key("limit_factor"), speed.limit_factor)
         & ctx.non_negative(&path.key("start").key("time"), raw.start.time)
         & ctx.non_negative(&path.key("start").key("offset"), raw.start.offset);
     let (along, limits) = match (&raw.route, &raw.path) {
@@ -466,6 +508,7 @@ fn motion(ctx: &mut Context<'_>, raw: &RawAgent, path: &Path, roads: &[Road]) ->
         start_offset: raw.start.offset,
         initial_speed: initial,
         target_speed: speed.target,
+        limit_factor: speed.limit_factor,
         acceleration: speed.acceleration,
     })
 }
@@ -473,7 +516,7 @@ fn motion(ctx: &mut Context<'_>, raw: &RawAgent, path: &Path, roads: &[Road]) ->
 /// Resolves a route into one polyline on lane `lane` of each road, with the speed
 /// limit of each part. Road a connects to road b when a's last point lies within one
 /// lane width of b (a ring is left where b's first point projects onto it).
-fn route_path(
+pub(super) fn route_path(
     ctx: &mut Context<'_>,
     route: &[String],
     lane: u32,
@@ -559,7 +602,7 @@ fn route_path(
 }
 
 /// "it has a, b" (or "it has none"), and the closest name when `name` looks like a typo of one.
-fn known_names(name: &str, known: &[&str]) -> String {
+pub(super) fn known_names(name: &str, known: &[&str]) -> String {
     let list = if known.is_empty() {
         "it has none".into()
     } else {

@@ -5,6 +5,7 @@ mod field;
 mod fusion;
 mod requirement;
 mod scenario;
+mod semantic;
 mod v2x;
 mod world;
 
@@ -14,6 +15,10 @@ pub use fusion::{
 };
 pub use requirement::{Bound, Check, Invariant, Metric, Reference, Requirement};
 pub use scenario::{Assignment, Axis, Experiment, Grid, Point, Scenario, Setup, Sweep, display_value};
+pub use semantic::{
+    Area, Baseline, Caution, Crosswalk, Driving, Following, InteractionArea, PedestrianTraffic, RiskScope, RsuSight,
+    Semantic, Traffic, TrafficRoute, VehicleTraffic,
+};
 pub use v2x::{Channel, PathLossModel, V2x};
 pub use world::{
     Agent, AgentKind, Direction, Localization, Motion, Occluder, Perception, PoseFilter, Road, Sensor, World,

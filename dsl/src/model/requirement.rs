@@ -87,7 +87,8 @@ impl Invariant {
 }
 
 /// Metrics. Counts are numbers of cells. Some exist only in the field experiment,
-/// some only in worlds (see [`Metric::in_field`], [`Metric::in_world`]).
+/// some only in worlds (see [`Metric::in_field`], [`Metric::in_world`],
+/// [`Metric::in_semantic`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Metric {
@@ -132,11 +133,33 @@ pub enum Metric {
     OccupiedPrecision,
     /// World: `occupied_recall` over the cells the ego does not observe itself (0–1).
     BlindRecall,
+    /// Semantic: median anticipation time, seconds, over objects the ego first
+    /// learned of from an RSU while it could not see them and later saw itself.
+    AnticipationMedian,
+    /// Semantic: 95th percentile of the anticipation time, seconds.
+    AnticipationP95,
+    /// Semantic: mean number of objects per step the ego knows only through an RSU.
+    InfrastructureContribution,
+    /// Semantic: share of the objects the RSUs perceive that they send (0–1).
+    TransmittedShare,
+    /// Semantic: share of the objects the RSUs perceive that they send with at
+    /// least one label: NLoS, relevance, speed violation or conflict (0–1).
+    LabelledShare,
+    /// Semantic: bytes per second the RSUs' semantic messages put on the channel.
+    ChannelLoad,
+    /// Semantic: bytes per second an ETSI collective perception sender would put
+    /// on the channel for the same objects.
+    BaselineChannelLoad,
+    /// Semantic: share of RSU messages to the ego that arrive (0–1).
+    PacketDeliveryRatio,
+    /// Semantic: objects that came within d_min of the ego without a conflict
+    /// flagged in a message the ego received beforehand.
+    MissedCriticals,
 }
 
 impl Metric {
     /// Every metric, in documentation order.
-    pub const ALL: [Metric; 18] = [
+    pub const ALL: [Metric; 27] = [
         Self::Accuracy,
         Self::BelowThreshold,
         Self::BelowThresholdFraction,
@@ -155,6 +178,15 @@ impl Metric {
         Self::OccupiedRecall,
         Self::OccupiedPrecision,
         Self::BlindRecall,
+        Self::AnticipationMedian,
+        Self::AnticipationP95,
+        Self::InfrastructureContribution,
+        Self::TransmittedShare,
+        Self::LabelledShare,
+        Self::ChannelLoad,
+        Self::BaselineChannelLoad,
+        Self::PacketDeliveryRatio,
+        Self::MissedCriticals,
     ];
 
     /// The name as written in scenario files.
@@ -178,30 +210,57 @@ impl Metric {
             Self::OccupiedRecall => "occupied_recall",
             Self::OccupiedPrecision => "occupied_precision",
             Self::BlindRecall => "blind_recall",
+            Self::AnticipationMedian => "anticipation_median",
+            Self::AnticipationP95 => "anticipation_p95",
+            Self::InfrastructureContribution => "infrastructure_contribution",
+            Self::TransmittedShare => "transmitted_share",
+            Self::LabelledShare => "labelled_share",
+            Self::ChannelLoad => "channel_load",
+            Self::BaselineChannelLoad => "baseline_channel_load",
+            Self::PacketDeliveryRatio => "packet_delivery_ratio",
+            Self::MissedCriticals => "missed_criticals",
         }
     }
 
     /// Whether the field experiment measures it.
     pub fn in_field(self) -> bool {
-        !matches!(
-            self,
-            Self::FovGain | Self::OccupiedRecall | Self::OccupiedPrecision | Self::BlindRecall
-        )
+        !self.in_semantic()
+            && !matches!(
+                self,
+                Self::FovGain | Self::OccupiedRecall | Self::OccupiedPrecision | Self::BlindRecall
+            )
     }
 
-    /// Whether world scenarios measure it.
+    /// Whether worlds that measure collective perception measure it.
     pub fn in_world(self) -> bool {
-        !matches!(
+        !self.in_semantic()
+            && !matches!(
+                self,
+                Self::Accuracy
+                    | Self::BelowThreshold
+                    | Self::BelowThresholdFraction
+                    | Self::FalseAlarms
+                    | Self::MissedDetections
+                    | Self::ConfidentErrors
+                    | Self::ConfidentErrorRate
+                    | Self::DecidedUnknown
+                    | Self::Unobserved
+            )
+    }
+
+    /// Whether worlds that measure the semantic pipeline measure it.
+    pub fn in_semantic(self) -> bool {
+        matches!(
             self,
-            Self::Accuracy
-                | Self::BelowThreshold
-                | Self::BelowThresholdFraction
-                | Self::FalseAlarms
-                | Self::MissedDetections
-                | Self::ConfidentErrors
-                | Self::ConfidentErrorRate
-                | Self::DecidedUnknown
-                | Self::Unobserved
+            Self::AnticipationMedian
+                | Self::AnticipationP95
+                | Self::InfrastructureContribution
+                | Self::TransmittedShare
+                | Self::LabelledShare
+                | Self::ChannelLoad
+                | Self::BaselineChannelLoad
+                | Self::PacketDeliveryRatio
+                | Self::MissedCriticals
         )
     }
 

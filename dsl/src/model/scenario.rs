@@ -126,7 +126,7 @@ pub enum Experiment {
     /// The static evidential-grid experiment of seed 001.
     Field(Field),
     /// A traffic scene with agents, sensors and collective perception (seed 000).
-    World(World),
+    World(Box<World>),
 }
 
 /// A regular grid of square cells, axis-aligned in the world frame.

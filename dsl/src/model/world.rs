@@ -4,9 +4,11 @@
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
+use super::{Crosswalk, Driving, InteractionArea, Semantic, Traffic, V2x};
 use crate::geometry::{Polyline, Xy};
 
-/// A simulated traffic scene (language sections `time` … `perception`).
+/// A simulated traffic scene (language sections `time` … `semantic`). It measures
+/// collective perception (`perception`), the semantic pipeline (`semantic`), or both.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct World {
     /// Time between steps, seconds.
@@ -21,8 +23,20 @@ pub struct World {
     pub agents: Vec<Agent>,
     /// Self-localization of connected agents.
     pub localization: Localization,
-    /// Collective perception.
-    pub perception: Perception,
+    /// Collective perception, when measured.
+    pub perception: Option<Perception>,
+    /// Background traffic.
+    pub traffic: Option<Traffic>,
+    /// Pedestrian crossings.
+    pub crosswalks: Vec<Crosswalk>,
+    /// Regions around conflict zones.
+    pub interaction_areas: Vec<InteractionArea>,
+    /// How vehicles keep their distance.
+    pub driving: Driving,
+    /// V2X assumptions.
+    pub v2x: V2x,
+    /// The roadside units' semantic pipeline, when measured.
+    pub semantic: Option<Semantic>,
 }
 
 /// A road's lanes.
@@ -150,6 +164,8 @@ pub enum Motion {
         initial_speed: f64,
         /// Desired speed, m/s.
         target_speed: f64,
+        /// It never exceeds the speed limit times this factor (1: compliant).
+        limit_factor: f64,
         /// Largest change of speed, m/s².
         acceleration: f64,
     },
@@ -180,6 +196,10 @@ pub struct Sensor {
     pub size_noise_base: f64,
     /// Growth of the size σ per metre.
     pub size_noise_per_m: f64,
+    /// σ of speed error at distance 0, m/s.
+    pub velocity_noise_base: f64,
+    /// Growth of the speed σ per metre.
+    pub velocity_noise_per_m: f64,
     /// Angle between carving rays, radians.
     pub ray_spacing: f64,
 }

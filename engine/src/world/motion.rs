@@ -1,14 +1,34 @@
 //! Kinematics: agents along their polylines, step by step.
 //!
 //! A moving agent appears at the first step at or after its start time, at its start
-//! offset and initial speed. Each step its speed moves toward the target (capped by
-//! the speed limit where it is) by at most acceleration · dt, then it advances by
-//! speed · dt (semi-implicit Euler). It leaves the scene once it passes the end of
+//! offset and initial speed. Each step it picks an acceleration, then advances by
+//! speed · dt (semi-implicit Euler); it leaves the scene once it passes the end of
 //! its way. Kinematics involves no randomness.
+//!
+//! Its wanted speed is its target, capped by the speed limit where it is times its
+//! limit factor (and by a caution factor while the ego is cautious). Without car
+//! following, speed moves toward the wanted speed by at most acceleration · dt.
+//! With `following: idm`, a vehicle applies the Intelligent Driver Model
+//! (Treiber, Hennecke and Helbing, 2000) behind its leader: the closest vehicle
+//! heading within `SAME_WAY` of its own, or pedestrian, whose centre lies ahead of
+//! it within `LOOKAHEAD` and whose footprint overlaps its own across the heading,
+//! as positioned at the previous step. The leader's speed counts along the
+//! follower's heading (a pedestrian's as 0). There are no right-of-way rules:
+//! crossing vehicles do not see each other, so a junction never locks up, and
+//! they may meet in it — the conflicts the semantic pipeline is there to flag.
 
-use sightline_dsl::{Agent, Motion};
+use sightline_dsl::{Agent, AgentKind, Driving, Following, Motion};
 
 use crate::math::{Point, Pose, Vector};
+
+/// How far ahead a vehicle looks for a leader, metres.
+const LOOKAHEAD: f64 = 100.0;
+
+/// Largest heading difference of a vehicle followed, radians (60°).
+const SAME_WAY: f64 = std::f64::consts::FRAC_PI_3;
+
+/// The hardest braking IDM may ask for, m/s².
+const MAX_BRAKING: f64 = 9.0;
 
 /// Where an agent is at a step.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -17,6 +37,10 @@ pub struct AgentState {
     pub pose: Pose,
     /// Speed, m/s.
     pub speed: f64,
+    /// Distance along its way, metres (0 for a fixed agent).
+    pub offset: f64,
+    /// The speed limit where it is, m/s (infinite off roads).
+    pub limit: f64,
 }
 
 impl AgentState {
@@ -29,6 +53,15 @@ impl AgentState {
     pub fn heading(&self) -> f64 {
         self.pose.rotation.angle()
     }
+}
+
+/// A temporary change of an agent's driving: a longer headway and a lower speed.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Restraint {
+    /// Time headway, seconds.
+    pub headway: f64,
+    /// Share of the wanted speed kept.
+    pub speed_factor: f64,
 }
 
 /// The moving part of an agent's state between steps.
@@ -44,17 +77,28 @@ enum Progress {
 pub struct Kinematics<'a> {
     agents: &'a [Agent],
     step: f64,
+    driving: Driving,
     progress: Vec<Progress>,
+    restraints: Vec<Option<Restraint>>,
+    previous: Vec<Option<AgentState>>,
 }
 
 impl<'a> Kinematics<'a> {
     /// Every agent before the first step.
-    pub fn new(agents: &'a [Agent], step: f64) -> Self {
+    pub fn new(agents: &'a [Agent], step: f64, driving: Driving) -> Self {
         Self {
             agents,
             step,
+            driving,
             progress: vec![Progress::Waiting; agents.len()],
+            restraints: vec![None; agents.len()],
+            previous: vec![None; agents.len()],
         }
+    }
+
+    /// Restrains agent `agent` from the next step on (`None`: drives normally).
+    pub fn restrain(&mut self, agent: usize, restraint: Option<Restraint>) {
+        self.restraints[agent] = restraint;
     }
 
     /// The states at step `k` (time k · step), advancing from step k − 1. Call for
@@ -62,11 +106,14 @@ impl<'a> Kinematics<'a> {
     pub fn advance(&mut self, k: usize, states: &mut Vec<Option<AgentState>>) {
         let time = k as f64 * self.step;
         states.clear();
-        for (agent, progress) in self.agents.iter().zip(&mut self.progress) {
+        for i in 0..self.agents.len() {
+            let agent = &self.agents[i];
             states.push(match &agent.motion {
                 Motion::Fixed { position, heading } => Some(AgentState {
                     pose: Pose::new(Vector::new(position[0], position[1]), *heading),
                     speed: 0.0,
+                    offset: 0.0,
+                    limit: f64::INFINITY,
                 }),
                 Motion::Along {
                     path,
@@ -74,10 +121,9 @@ impl<'a> Kinematics<'a> {
                     start_time,
                     start_offset,
                     initial_speed,
-                    target_speed,
-                    acceleration,
+                    ..
                 } => {
-                    *progress = match *progress {
+                    self.progress[i] = match self.progress[i] {
                         // A tolerance of a millionth of a step keeps `start: 0.3` with
                         // `step: 0.1` from waiting a step for 0.30000000000000004.
                         Progress::Waiting if time + 1e-6 * self.step >= *start_time => Progress::Moving {
@@ -85,14 +131,7 @@ impl<'a> Kinematics<'a> {
                             speed: *initial_speed,
                         },
                         Progress::Moving { offset, speed } => {
-                            let limit = limits
-                                .iter()
-                                .find(|&&(end, _)| offset < end)
-                                .or(limits.last())
-                                .map_or(f64::INFINITY, |&(_, limit)| limit);
-                            let wanted = target_speed.min(limit);
-                            let change = (wanted - speed).clamp(-acceleration * self.step, acceleration * self.step);
-                            let speed = speed + change;
+                            let speed = self.next_speed(i, offset, speed);
                             let offset = offset + speed * self.step;
                             if offset > path.length() {
                                 Progress::Gone
@@ -102,12 +141,14 @@ impl<'a> Kinematics<'a> {
                         }
                         other => other,
                     };
-                    match *progress {
+                    match self.progress[i] {
                         Progress::Moving { offset, speed } => {
                             let [x, y] = path.point_at(offset);
                             Some(AgentState {
                                 pose: Pose::new(Vector::new(x, y), path.heading_at(offset)),
                                 speed,
+                                offset,
+                                limit: limit_at(limits, offset),
                             })
                         }
                         Progress::Waiting | Progress::Gone => None,
@@ -115,7 +156,81 @@ impl<'a> Kinematics<'a> {
                 }
             });
         }
+        self.previous.clone_from(states);
     }
+
+    /// The speed of moving agent `i` one step after being at `offset` at `speed`.
+    fn next_speed(&self, i: usize, offset: f64, speed: f64) -> f64 {
+        let agent = &self.agents[i];
+        let Motion::Along {
+            limits,
+            target_speed,
+            limit_factor,
+            acceleration,
+            ..
+        } = &agent.motion
+        else {
+            return 0.0;
+        };
+        let restraint = self.restraints[i];
+        let wanted =
+            target_speed.min(limit_at(limits, offset) * limit_factor) * restraint.map_or(1.0, |r| r.speed_factor);
+        if self.driving.following == Following::None || !agent.kind.is_vehicle() {
+            return speed + (wanted - speed).clamp(-acceleration * self.step, acceleration * self.step);
+        }
+        let (gap, leader_speed) = self.leader(i).unwrap_or((f64::INFINITY, speed));
+        let headway = restraint.map_or(self.driving.headway, |r| r.headway);
+        let free = if wanted > 0.0 {
+            1.0 - (speed / wanted).powi(4)
+        } else {
+            -1.0
+        };
+        let approach = speed * (speed - leader_speed) / (2.0 * (acceleration * self.driving.deceleration).sqrt());
+        let desired_gap = self.driving.min_gap + (speed * headway + approach).max(0.0);
+        let interaction = (desired_gap / gap.max(0.01)).powi(2);
+        let accel = (acceleration * (free - interaction)).clamp(-MAX_BRAKING, *acceleration);
+        (speed + accel * self.step).max(0.0)
+    }
+
+    /// The gap to agent `i`'s leader and the leader's speed along `i`'s heading.
+    fn leader(&self, i: usize) -> Option<(f64, f64)> {
+        let me = self.previous[i]?;
+        let (sin, cos) = me.heading().sin_cos();
+        let agent = &self.agents[i];
+        self.previous
+            .iter()
+            .zip(self.agents)
+            .enumerate()
+            .filter(|&(j, (_, other))| j != i && other.kind != AgentKind::Rsu)
+            .filter_map(|(_, (state, other))| {
+                let state = (*state)?;
+                let d = state.position() - me.position();
+                let ahead = d.x * cos + d.y * sin;
+                let across = -d.x * sin + d.y * cos;
+                let overlap = (agent.width + other.width) / 2.0;
+                let turn = (state.heading() - me.heading()).cos();
+                let followed = other.kind == AgentKind::Pedestrian || turn >= SAME_WAY.cos();
+                (followed && ahead > 0.0 && ahead <= LOOKAHEAD && across.abs() < overlap).then(|| {
+                    let gap = ahead - (agent.length + other.length) / 2.0;
+                    let along = if other.kind.is_vehicle() {
+                        state.speed * turn
+                    } else {
+                        0.0
+                    };
+                    (gap, along.max(0.0))
+                })
+            })
+            .min_by(|a, b| a.0.total_cmp(&b.0))
+    }
+}
+
+/// The limit in force at `offset`: the first entry that ends after it, else the last.
+fn limit_at(limits: &[(f64, f64)], offset: f64) -> f64 {
+    limits
+        .iter()
+        .find(|&&(end, _)| offset < end)
+        .or(limits.last())
+        .map_or(f64::INFINITY, |&(_, limit)| limit)
 }
 
 #[cfg(test)]
@@ -139,6 +254,7 @@ mod tests {
                 start_offset: 10.0,
                 initial_speed,
                 target_speed: 10.0,
+                limit_factor: 1.0,
                 acceleration: 2.0,
             },
             connected: false,
@@ -146,9 +262,18 @@ mod tests {
         }
     }
 
+    fn driving(following: Following) -> Driving {
+        Driving {
+            following,
+            headway: 1.5,
+            min_gap: 2.0,
+            deceleration: 3.0,
+        }
+    }
+
     fn trajectory(agent: Agent, steps: usize) -> Vec<Option<AgentState>> {
         let agents = [agent];
-        let mut kinematics = Kinematics::new(&agents, 0.5);
+        let mut kinematics = Kinematics::new(&agents, 0.5, driving(Following::None));
         let mut states = Vec::new();
         (0..steps)
             .map(|k| {
@@ -190,5 +315,79 @@ mod tests {
         let last_seen = states.iter().rposition(Option::is_some).unwrap();
         assert!(states[last_seen + 1..].iter().all(Option::is_none));
         assert!(states[last_seen].unwrap().position().x <= 100.0);
+    }
+
+    fn with(mut agent: Agent, edit: impl FnOnce(&mut f64, &mut f64, &mut f64, &mut f64)) -> Agent {
+        if let Motion::Along {
+            start_offset,
+            initial_speed,
+            target_speed,
+            limit_factor,
+            ..
+        } = &mut agent.motion
+        {
+            edit(start_offset, initial_speed, target_speed, limit_factor);
+        }
+        agent
+    }
+
+    #[test]
+    fn a_non_compliant_driver_exceeds_the_limit_by_its_factor() {
+        let fast = with(walker(0.0, 4.0, 4.0), |_, _, target, factor| {
+            *target = 50.0;
+            *factor = 1.5;
+        });
+        let states = trajectory(fast, 12);
+        // Limit 4 m/s on the first 50 m, times 1.5: it settles at 6 m/s.
+        assert_eq!(states[2].unwrap().speed, 6.0);
+        assert_eq!(states[2].unwrap().limit, 4.0);
+    }
+
+    /// A car at 10 m/s closes on a car standing 60 m ahead: IDM brakes it to a stop
+    /// behind the other, at least the minimum gap away, and never through it.
+    #[test]
+    fn idm_stops_behind_a_standing_vehicle() {
+        let follower = with(walker(0.0, 10.0, 30.0), |offset, _, _, _| *offset = 0.0);
+        let standing = with(walker(0.0, 0.0, 30.0), |offset, initial, target, _| {
+            *offset = 60.0;
+            *initial = 0.0;
+            *target = 0.0;
+        });
+        let agents = [follower, standing];
+        let mut kinematics = Kinematics::new(&agents, 0.1, driving(Following::Idm));
+        let mut states = Vec::new();
+        let mut gaps = Vec::new();
+        for k in 0..400 {
+            kinematics.advance(k, &mut states);
+            let [a, b] = [states[0].unwrap(), states[1].unwrap()];
+            gaps.push(b.offset - a.offset - 4.5);
+        }
+        assert!(
+            gaps.iter().all(|&g| g > 0.5),
+            "closest gap {:?}",
+            gaps.iter().copied().reduce(f64::min)
+        );
+        let last = *gaps.last().unwrap();
+        assert!((1.5..=3.0).contains(&last), "final gap {last}");
+        assert!(states[0].unwrap().speed < 0.05);
+    }
+
+    #[test]
+    fn restraint_lowers_the_wanted_speed() {
+        let agents = [walker(0.0, 10.0, 30.0)];
+        let mut kinematics = Kinematics::new(&agents, 0.5, driving(Following::Idm));
+        kinematics.restrain(
+            0,
+            Some(Restraint {
+                headway: 2.5,
+                speed_factor: 0.5,
+            }),
+        );
+        let mut states = Vec::new();
+        for k in 0..20 {
+            kinematics.advance(k, &mut states);
+        }
+        let speed = states[0].unwrap().speed;
+        assert!((4.95..=5.05).contains(&speed), "speed {speed}");
     }
 }

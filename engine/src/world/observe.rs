@@ -247,6 +247,8 @@ mod tests {
             noise_per_m: 0.0,
             size_noise_base: 0.0,
             size_noise_per_m: 0.0,
+            velocity_noise_base: 0.0,
+            velocity_noise_per_m: 0.0,
             ray_spacing: 0.01,
         };
         (sensor, Pose::new(Vector::ZERO, std::f64::consts::FRAC_PI_2))

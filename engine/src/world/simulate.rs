@@ -7,7 +7,7 @@
 
 use rand::rngs::ChaCha8Rng;
 use rayon::prelude::*;
-use sightline_dsl::{AgentKind, Grid, Motion, World};
+use sightline_dsl::{AgentKind, Grid, Motion, Perception, World};
 
 use super::fuse::CellFusion;
 use super::localization::PoseEstimator;
@@ -40,13 +40,13 @@ struct Cooperator {
     localization_error: f64,
 }
 
-/// Runs a world once and evaluates every job on the same observations.
-pub fn run(seed: u64, grid: &Grid, world: &World, jobs: &[Job<'_>]) -> Vec<WorldOutcome> {
+/// Runs a world's collective perception once and evaluates every job on the same
+/// observations.
+pub fn run(seed: u64, grid: &Grid, world: &World, perception: &Perception, jobs: &[Job<'_>]) -> Vec<WorldOutcome> {
     let cells = grid.cells();
-    let perception = &world.perception;
     let occluders = Occluders::new(&world.occluders);
     let mut raster = Raster::new(*grid, &world.occluders);
-    let mut kinematics = Kinematics::new(&world.agents, world.step);
+    let mut kinematics = Kinematics::new(&world.agents, world.step, world.driving);
     let mut cooperators: Vec<Cooperator> = perception
         .cooperating
         .iter()

@@ -13,8 +13,11 @@ use crate::Status;
 pub(crate) fn evaluate(
     invariant: Invariant,
     tolerance: f64,
-    audit: &MassAudit,
+    audit: Option<&MassAudit>,
 ) -> (Status, Option<f64>, Option<f64>, String) {
+    let Some(audit) = audit else {
+        return (Status::Error, None, None, "this run fuses no cells".into());
+    };
     match invariant {
         Invariant::MassFunction => mass_function(tolerance, audit),
     }

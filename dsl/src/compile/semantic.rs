@@ -1,0 +1,383 @@
+//! The sections of seed 002's assisted ego: traffic, crosswalks, interaction
+//! areas, driving, V2X and the semantic pipeline.
+
+use super::context::Context;
+use super::setup::whole_multiple;
+use super::world::{finite_points, known_names, route_path, signed_area, unique_ids};
+use crate::error::ErrorKind;
+use crate::model::{
+    Agent, AgentKind, Area, Baseline, Caution, Channel, Crosswalk, Driving, InteractionArea, Motion, PathLossModel,
+    PedestrianTraffic, Road, Semantic, Traffic, TrafficRoute, V2x, VehicleTraffic,
+};
+use crate::path::Path;
+use crate::raw::{RawCrosswalk, RawDriving, RawInteractionArea, RawSemantic, RawTraffic, RawV2x};
+
+pub(super) fn crosswalks(ctx: &mut Context<'_>, raw: &[RawCrosswalk]) -> Option<Vec<Crosswalk>> {
+    let list = Path::root().key("crosswalks");
+    let mut ok = unique_ids(ctx, &list, raw.iter().map(|c| c.id.as_str()));
+    for (i, crosswalk) in raw.iter().enumerate() {
+        let path = list.index(i);
+        let ends_ok = finite_points(ctx, &path.key("from"), &[crosswalk.from])
+            & finite_points(ctx, &path.key("to"), &[crosswalk.to]);
+        ok &= ends_ok & ctx.positive(&path.key("width"), crosswalk.width);
+        if ends_ok && crosswalk.from == crosswalk.to {
+            ctx.error(
+                &path.key("to"),
+                ErrorKind::Invalid("a crosswalk's ends must differ".into()),
+            );
+            ok = false;
+        }
+    }
+    ok.then(|| {
+        raw.iter()
+            .map(|c| Crosswalk {
+                id: c.id.clone(),
+                from: c.from,
+                to: c.to,
+                width: c.width,
+            })
+            .collect()
+    })
+}
+
+pub(super) fn interaction_areas(ctx: &mut Context<'_>, raw: &[RawInteractionArea]) -> Option<Vec<InteractionArea>> {
+    let list = Path::root().key("interaction_areas");
+    let mut ok = unique_ids(ctx, &list, raw.iter().map(|a| a.id.as_str()));
+    let mut areas = Vec::new();
+    for (i, area) in raw.iter().enumerate() {
+        let path = list.index(i);
+        let shape = match (&area.polygon, &area.circle) {
+            (Some(polygon), None) => {
+                let polygon_path = path.key("polygon");
+                if !finite_points(ctx, &polygon_path, polygon) {
+                    None
+                } else if polygon.len() < 3 || signed_area(polygon).abs() < 1e-9 {
+                    ctx.error(
+                        &polygon_path,
+                        ErrorKind::Invalid("an area needs at least three corners enclosing an area".into()),
+                    );
+                    None
+                } else {
+                    let mut polygon = polygon.clone();
+                    if signed_area(&polygon) < 0.0 {
+                        polygon.reverse();
+                    }
+                    Some(Area::Polygon(polygon))
+                }
+            }
+            (None, Some(circle)) => {
+                let circle_path = path.key("circle");
+                let circle_ok = finite_points(ctx, &circle_path.key("center"), &[circle.center])
+                    & ctx.positive(&circle_path.key("radius"), circle.radius);
+                circle_ok.then_some(Area::Circle {
+                    center: circle.center,
+                    radius: circle.radius,
+                })
+            }
+            _ => {
+                ctx.error(
+                    &path,
+                    ErrorKind::Invalid("an interaction area is a `polygon` or a `circle`, exactly one".into()),
+                );
+                None
+            }
+        };
+        match shape {
+            Some(shape) => areas.push(InteractionArea {
+                id: area.id.clone(),
+                shape,
+            }),
+            None => ok = false,
+        }
+    }
+    ok.then_some(areas)
+}
+
+pub(super) fn traffic(
+    ctx: &mut Context<'_>,
+    raw: &RawTraffic,
+    roads: &[Road],
+    crosswalks: &[Crosswalk],
+) -> Option<Traffic> {
+    let path = Path::root().key("traffic");
+    let mut ok = true;
+    let vehicles = raw.vehicles.as_ref().and_then(|v| {
+        let path = path.key("vehicles");
+        let [low, high] = v.overspeed_factor;
+        let mix = [
+            (AgentKind::Car, v.mix.car, "car"),
+            (AgentKind::Truck, v.mix.truck, "truck"),
+            (AgentKind::Bus, v.mix.bus, "bus"),
+            (AgentKind::Motorbike, v.mix.motorbike, "motorbike"),
+        ];
+        let mut fields_ok = ctx.non_negative(&path.key("density_per_km"), v.density_per_km)
+            & ctx.probability(&path.key("non_compliant"), v.non_compliant)
+            & ctx.expect(
+                low.is_finite() && high.is_finite() && 1.0 <= low && low <= high,
+                &path.key("overspeed_factor"),
+                "[low, high] with 1 ≤ low ≤ high",
+                if low < 1.0 { low } else { high },
+            );
+        for &(_, share, name) in &mix {
+            fields_ok &= ctx.non_negative(&path.key("mix").key(name), share);
+        }
+        let total: f64 = mix.iter().map(|&(_, share, _)| share).sum();
+        if fields_ok && total <= 0.0 {
+            ctx.error(
+                &path.key("mix"),
+                ErrorKind::Invalid("the mix needs at least one kind with a share above 0".into()),
+            );
+            fields_ok = false;
+        }
+        if v.routes.is_empty() {
+            ctx.error(
+                &path.key("routes"),
+                ErrorKind::Invalid("traffic needs at least one route".into()),
+            );
+            fields_ok = false;
+        }
+        let mut routes = Vec::new();
+        for (i, route) in v.routes.iter().enumerate() {
+            match route_path(ctx, route, 0, &path.key("routes").index(i), roads) {
+                Some((path, limits)) => routes.push(TrafficRoute { path, limits }),
+                None => fields_ok = false,
+            }
+        }
+        ok &= fields_ok;
+        fields_ok.then(|| VehicleTraffic {
+            density_per_km: v.density_per_km,
+            routes,
+            non_compliant: v.non_compliant,
+            overspeed_factor: v.overspeed_factor,
+            mix: mix
+                .iter()
+                .filter(|&&(_, share, _)| share > 0.0)
+                .map(|&(kind, share, _)| (kind, share / total))
+                .collect(),
+        })
+    });
+    let pedestrians = raw.pedestrians.as_ref().and_then(|p| {
+        let path = path.key("pedestrians");
+        let mut fields_ok = ctx.non_negative(&path.key("per_minute"), p.per_minute)
+            & ctx.positive(&path.key("speed"), p.speed)
+            & ctx.non_negative(&path.key("approach"), p.approach);
+        if crosswalks.is_empty() {
+            ctx.error(
+                &path,
+                ErrorKind::Invalid("pedestrian traffic crosses at `crosswalks`, and there are none".into()),
+            );
+            fields_ok = false;
+        }
+        ok &= fields_ok;
+        fields_ok.then_some(PedestrianTraffic {
+            per_minute: p.per_minute,
+            speed: p.speed,
+            approach: p.approach,
+        })
+    });
+    ok.then_some(Traffic { vehicles, pedestrians })
+}
+
+pub(super) fn driving(ctx: &mut Context<'_>, raw: &RawDriving) -> Option<Driving> {
+    let path = Path::root().key("driving");
+    let ok = ctx.positive(&path.key("headway"), raw.headway)
+        & ctx.non_negative(&path.key("min_gap"), raw.min_gap)
+        & ctx.positive(&path.key("deceleration"), raw.deceleration);
+    ok.then_some(Driving {
+        following: raw.following,
+        headway: raw.headway,
+        min_gap: raw.min_gap,
+        deceleration: raw.deceleration,
+    })
+}
+
+pub(super) fn v2x(ctx: &mut Context<'_>, raw: &RawV2x) -> Option<V2x> {
+    let path = Path::root().key("v2x");
+    let c = &raw.channel;
+    let channel_path = path.key("channel");
+    // WINNER+ B1 uses effective antenna heights h − 1 m, which must stay above 0.
+    let lowest = if c.model == PathLossModel::Tr36885Urban {
+        1.0
+    } else {
+        0.0
+    };
+    let mut ok = ctx.probability(&path.key("penetration"), raw.penetration)
+        & ctx.non_negative(&path.key("latency"), raw.latency)
+        & ctx.finite(&channel_path.key("tx_power_dbm"), c.tx_power_dbm)
+        & ctx.non_negative(&channel_path.key("shadowing_sigma_db"), c.shadowing_sigma_db)
+        & ctx.non_negative(&channel_path.key("nlos_shadowing_sigma_db"), c.nlos_shadowing_sigma_db)
+        & ctx.non_negative(&channel_path.key("device_loss_db"), c.device_loss_db)
+        & ctx.finite(&channel_path.key("sensitivity_dbm"), c.sensitivity_dbm)
+        & ctx.positive(&channel_path.key("carrier_ghz"), c.carrier_ghz);
+    for (key, height) in [
+        ("vehicle_antenna_m", c.vehicle_antenna_m),
+        ("rsu_antenna_m", c.rsu_antenna_m),
+    ] {
+        ok &= ctx.expect(
+            height.is_finite() && height > lowest,
+            &channel_path.key(key),
+            &format!("a height above {lowest} m"),
+            height,
+        );
+    }
+    ok.then_some(V2x {
+        penetration: raw.penetration,
+        latency: raw.latency,
+        channel: Channel {
+            model: c.model,
+            tx_power_dbm: c.tx_power_dbm,
+            shadowing_sigma_db: c.shadowing_sigma_db,
+            nlos_shadowing_sigma_db: c.nlos_shadowing_sigma_db,
+            device_loss_db: c.device_loss_db,
+            sensitivity_dbm: c.sensitivity_dbm,
+            carrier_ghz: c.carrier_ghz,
+            vehicle_antenna_m: c.vehicle_antenna_m,
+            rsu_antenna_m: c.rsu_antenna_m,
+        },
+    })
+}
+
+pub(super) fn semantic_of(ctx: &mut Context<'_>, raw: &RawSemantic, agents: &[Agent], step: f64) -> Option<Semantic> {
+    let path = Path::root().key("semantic");
+    let find = |ctx: &mut Context<'_>, id: &str, at: &Path| {
+        let found = agents.iter().position(|a| a.id == id);
+        if found.is_none() {
+            let known: Vec<&str> = agents.iter().map(|a| a.id.as_str()).collect();
+            ctx.error(
+                at,
+                ErrorKind::DanglingReference(format!("no agent `{id}` ({})", known_names(id, &known))),
+            );
+        }
+        found
+    };
+    let ego = find(ctx, &raw.ego, &path.key("ego")).and_then(|ego| {
+        let agent = &agents[ego];
+        let problem = if !matches!(agent.motion, Motion::Along { .. }) || !agent.kind.is_vehicle() {
+            Some("is not a vehicle on a route")
+        } else if !agent.connected {
+            Some("is not `connected: true`")
+        } else if agent.sensors.is_empty() {
+            Some("has no sensors")
+        } else {
+            None
+        };
+        if let Some(problem) = problem {
+            ctx.error(
+                &path.key("ego"),
+                ErrorKind::Invalid(format!("the ego `{}` {problem}", raw.ego)),
+            );
+            return None;
+        }
+        Some(ego)
+    });
+    let rsus: Option<Vec<usize>> = match &raw.rsus {
+        Some(ids) => {
+            let mut found = Vec::new();
+            for (i, id) in ids.iter().enumerate() {
+                let at = path.key("rsus").index(i);
+                let Some(index) = find(ctx, id, &at) else { continue };
+                if agents[index].kind != AgentKind::Rsu || agents[index].sensors.is_empty() {
+                    ctx.error(
+                        &at,
+                        ErrorKind::Invalid(format!("`{id}` is not a roadside unit (`kind: rsu`) with sensors")),
+                    );
+                    continue;
+                }
+                found.push(index);
+            }
+            (found.len() == ids.len()).then_some(found)
+        }
+        None => Some(
+            agents
+                .iter()
+                .enumerate()
+                .filter(|(_, a)| a.kind == AgentKind::Rsu && !a.sensors.is_empty())
+                .map(|(i, _)| i)
+                .collect(),
+        ),
+    };
+    let rsus = rsus.filter(|r| {
+        if r.is_empty() {
+            ctx.error(
+                &path,
+                ErrorKind::Invalid("the semantic pipeline needs a roadside unit (`kind: rsu`) with sensors".into()),
+            );
+        }
+        !r.is_empty()
+    });
+    let mut ok = ctx.positive(&path.key("proximity"), raw.proximity)
+        & ctx.positive(&path.key("horizon"), raw.horizon)
+        & ctx.positive(&path.key("d_min"), raw.d_min)
+        & ctx.positive(&path.key("overspeed").key("window"), raw.overspeed.window)
+        & ctx.non_negative(&path.key("overspeed").key("threshold"), raw.overspeed.threshold)
+        & ctx.positive(&path.key("rate"), raw.rate)
+        & ctx.positive(&path.key("caution").key("headway"), raw.caution.headway)
+        & ctx.expect(
+            raw.caution.speed_factor > 0.0 && raw.caution.speed_factor <= 1.0,
+            &path.key("caution").key("speed_factor"),
+            "a number above 0 and at most 1",
+            raw.caution.speed_factor,
+        )
+        & ctx.non_negative(&path.key("caution").key("hold"), raw.caution.hold)
+        & ctx.positive(&path.key("baseline").key("distance"), raw.baseline.distance)
+        & ctx.positive(&path.key("baseline").key("speed"), raw.baseline.speed)
+        & ctx.positive(&path.key("baseline").key("heading_deg"), raw.baseline.heading_deg)
+        & ctx.positive(&path.key("baseline").key("interval"), raw.baseline.interval);
+    if raw.hypotheses.is_empty() {
+        ctx.error(
+            &path.key("hypotheses"),
+            ErrorKind::Invalid("give at least one speed hypothesis".into()),
+        );
+        ok = false;
+    }
+    for (i, &factor) in raw.hypotheses.iter().enumerate() {
+        ok &= ctx.positive(&path.key("hypotheses").index(i), factor);
+    }
+    ok &= ctx.expect(
+        raw.history.is_finite() && raw.history >= raw.overspeed.window,
+        &path.key("history"),
+        &format!("at least the overspeed window, {} s", raw.overspeed.window),
+        raw.history,
+    );
+    let period_steps = (ok && raw.rate > 0.0)
+        .then(|| whole_multiple(1.0 / raw.rate, step))
+        .flatten();
+    if ok && period_steps.is_none() {
+        ctx.error(
+            &path.key("rate"),
+            ErrorKind::OutOfRange {
+                expected: format!("a rate whose period is a whole number of {step} s steps"),
+                found: raw.rate.to_string(),
+            },
+        );
+        ok = false;
+    }
+    if !ok {
+        return None;
+    }
+    Some(Semantic {
+        ego: ego?,
+        rsus: rsus?,
+        proximity: raw.proximity,
+        horizon: raw.horizon,
+        d_min: raw.d_min,
+        overspeed_window: raw.overspeed.window,
+        overspeed_threshold: raw.overspeed.threshold,
+        hypotheses: raw.hypotheses.clone(),
+        period_steps: period_steps? as usize,
+        risk_for: raw.risk_for,
+        rsu_sight: raw.rsu_sight,
+        history: raw.history,
+        caution: Caution {
+            headway: raw.caution.headway,
+            speed_factor: raw.caution.speed_factor,
+            hold: raw.caution.hold,
+        },
+        baseline: Baseline {
+            distance: raw.baseline.distance,
+            speed: raw.baseline.speed,
+            heading: raw.baseline.heading_deg.to_radians(),
+            interval: raw.baseline.interval,
+        },
+    })
+}

@@ -1,0 +1,176 @@
+//! What a semantic run measured (seed 002, section V, and the safety
+//! metric).
+
+use serde::Serialize;
+use sightline_dsl::Metric;
+
+/// Width of the packet-delivery distance bins, metres.
+pub const DELIVERY_BIN: f64 = 25.0;
+
+/// Width of the traffic-density bins, objects per km.
+pub const DENSITY_BIN: f64 = 10.0;
+
+/// The measurements of one semantic run.
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+pub struct SemanticMetrics {
+    /// Steps with the ego in the scene.
+    pub steps: u64,
+    /// Simulated seconds with the ego in the scene.
+    pub duration: f64,
+    /// Vehicles and pedestrians the traffic generator added.
+    pub generated: u64,
+    /// Anticipation times, seconds, ascending: for each object the ego first
+    /// learned of from an RSU while it could not see it, the time it first could
+    /// minus the time the message arrived.
+    pub anticipation: Vec<f64>,
+    /// Objects learned of while hidden that the ego never saw before the run ended.
+    pub never_seen: u64,
+    /// Per step with the ego present: objects per km in the scene and objects the
+    /// ego knew only through an RSU (summarised by [`Self::contribution_by_density`]).
+    #[serde(skip)]
+    pub contribution: Vec<(f64, u32)>,
+    /// Object-cycles perceived by the RSUs (the ego excluded).
+    pub perceived: u64,
+    /// Object-cycles sent to the ego.
+    pub transmitted: u64,
+    /// Object-cycles sent with at least one label.
+    pub labelled: u64,
+    /// Sent object-cycles by label.
+    pub labels: LabelCounts,
+    /// Bytes of semantic messages sent.
+    pub bytes: u64,
+    /// Bytes the ETSI baseline would have sent.
+    pub baseline_bytes: u64,
+    /// Object-cycles the ETSI baseline would have sent.
+    pub baseline_objects: u64,
+    /// Semantic messages sent to the ego.
+    pub messages: u64,
+    /// Semantic messages the ego received.
+    pub delivered: u64,
+    /// Messages sent and received by RSU–ego distance: entry i covers
+    /// [i, i + 1) × `DELIVERY_BIN` metres.
+    pub delivery_by_distance: Vec<DeliveryBin>,
+    /// Objects coming within d_min of the ego (once per approach).
+    pub close_approaches: u64,
+    /// Close approaches with no conflict flagged to the ego beforehand.
+    pub missed_criticals: u64,
+    /// Seconds the ego drove cautiously after a flagged conflict.
+    pub cautious_time: f64,
+}
+
+/// Sent object-cycles by label.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+pub struct LabelCounts {
+    /// NLoS behind a static occluder.
+    pub nlos_static: u64,
+    /// NLoS behind other road users only.
+    pub nlos_dynamic: u64,
+    /// Interaction relevance.
+    pub relevant: u64,
+    /// Dangerous drivers.
+    pub speeding: u64,
+    /// Predicted conflicts.
+    pub conflict: u64,
+}
+
+/// Packet delivery in one distance bin.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+pub struct DeliveryBin {
+    /// Messages sent.
+    pub sent: u64,
+    /// Messages received.
+    pub received: u64,
+}
+
+/// The contribution in one density bin.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct DensityRow {
+    /// Lower edge of the bin, objects per km.
+    pub from: f64,
+    /// Steps in the bin.
+    pub steps: usize,
+    /// Median objects known only through an RSU.
+    pub median: f64,
+    /// Mean objects known only through an RSU.
+    pub mean: f64,
+}
+
+impl SemanticMetrics {
+    /// The value of `metric`, or `None` where it is not defined for this run.
+    pub fn value(&self, metric: Metric) -> Option<f64> {
+        let ratio = |num: u64, den: u64| (den > 0).then(|| num as f64 / den as f64);
+        let rate = |bytes: u64| (self.duration > 0.0).then(|| bytes as f64 / self.duration);
+        match metric {
+            Metric::AnticipationMedian => quantile(&self.anticipation, 0.5),
+            Metric::AnticipationP95 => quantile(&self.anticipation, 0.95),
+            Metric::InfrastructureContribution => (!self.contribution.is_empty()).then(|| {
+                self.contribution.iter().map(|&(_, n)| f64::from(n)).sum::<f64>() / self.contribution.len() as f64
+            }),
+            Metric::TransmittedShare => ratio(self.transmitted, self.perceived),
+            Metric::LabelledShare => ratio(self.labelled, self.perceived),
+            Metric::ChannelLoad => rate(self.bytes),
+            Metric::BaselineChannelLoad => rate(self.baseline_bytes),
+            Metric::PacketDeliveryRatio => ratio(self.delivered, self.messages),
+            Metric::MissedCriticals => Some(self.missed_criticals as f64),
+            _ => None,
+        }
+    }
+
+    /// The contribution by density bin, densest last, empty bins left out.
+    pub fn contribution_by_density(&self) -> Vec<DensityRow> {
+        let mut bins: std::collections::BTreeMap<i64, Vec<f64>> = std::collections::BTreeMap::new();
+        for &(density, count) in &self.contribution {
+            bins.entry((density / DENSITY_BIN).floor() as i64)
+                .or_default()
+                .push(f64::from(count));
+        }
+        bins.into_iter()
+            .map(|(bin, mut counts)| {
+                counts.sort_by(f64::total_cmp);
+                DensityRow {
+                    from: bin as f64 * DENSITY_BIN,
+                    steps: counts.len(),
+                    median: quantile(&counts, 0.5).expect("a bin holds a step"),
+                    mean: counts.iter().sum::<f64>() / counts.len() as f64,
+                }
+            })
+            .collect()
+    }
+}
+
+/// The `q` quantile of ascending `sorted` values, linear between order statistics
+/// (Hyndman and Fan's type 7, the default of R and NumPy); `None` when empty.
+pub fn quantile(sorted: &[f64], q: f64) -> Option<f64> {
+    let last = sorted.len().checked_sub(1)?;
+    let position = q * last as f64;
+    let below = position.floor() as usize;
+    let above = (below + 1).min(last);
+    Some(sorted[below] + (sorted[above] - sorted[below]) * (position - below as f64))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn quantiles_interpolate_between_order_statistics() {
+        let values = [1.0, 2.0, 3.0, 4.0, 10.0];
+        assert_eq!(quantile(&values, 0.5), Some(3.0));
+        // Position 0.95 × 4 = 3.8: 4 + 0.8 × (10 − 4) = 8.8.
+        assert!((quantile(&values, 0.95).unwrap() - 8.8).abs() < 1e-12);
+        assert_eq!(quantile(&[], 0.5), None);
+    }
+
+    #[test]
+    fn contribution_bins_by_density() {
+        let metrics = SemanticMetrics {
+            contribution: vec![(12.0, 4), (18.0, 6), (15.0, 5), (44.0, 12)],
+            ..Default::default()
+        };
+        let rows = metrics.contribution_by_density();
+        assert_eq!(rows.len(), 2);
+        assert_eq!((rows[0].from, rows[0].steps, rows[0].median), (10.0, 3, 5.0));
+        assert_eq!((rows[1].from, rows[1].median), (40.0, 12.0));
+        assert_eq!(metrics.value(Metric::InfrastructureContribution), Some(6.75));
+    }
+}

@@ -1,0 +1,21 @@
+//! Seed 002's infrastructure-assisted ego: generated traffic, roadside units with
+//! a local dynamic map and a four-layer semantic pipeline, the V2X link to the
+//! ego, and what the ego gains from it.
+
+mod ldm;
+mod message;
+mod metrics;
+mod pipeline;
+mod relevance;
+mod risk;
+mod simulate;
+mod traffic;
+
+pub use ldm::{Ldm, Measurement, Track};
+pub use message::{EtsiSender, Item, Labels, baseline_bytes, semantic_bytes};
+pub use metrics::{DELIVERY_BIN, DENSITY_BIN, DeliveryBin, DensityRow, LabelCounts, SemanticMetrics, quantile};
+pub use pipeline::{EgoPlan, Pipeline};
+pub use relevance::{Areas, approaches, contains, crosswalk_area};
+pub use risk::{Conflict, RouteMap, Trajectory, along, conflict, hypotheses, straight};
+pub use simulate::{KNOWN_FOR, run};
+pub use traffic::generate;

@@ -1,0 +1,250 @@
+//! Predictive risk (seed 002, section III-D): speed hypotheses, trajectories
+//! along the map's paths over the horizon, and conflicts with the ego's plan.
+//!
+//! Our readings where the paper leaves room:
+//! - "precomputed road waypoints" are the routes the scenario declares (every
+//!   vehicle's and every traffic route): a vehicle may follow any route that
+//!   passes within `LANE_TOLERANCE` of its position with a heading within
+//!   `HEADING_TOLERANCE`; routes sharing a position and diverging later are the
+//!   branches "when multiple feasible paths exist". Off every route, it keeps
+//!   its heading. Past a route's end, it goes straight on.
+//! - A dangerous driver's aggressive profile drives at v_max + δ̄, the mean speed
+//!   at which it exceeded the limit in the window (at least its current speed).
+//! - Conflict (eq. 3) is tested on the segments between prediction samples, not
+//!   only at the samples, so a fast crossing is not missed between two samples.
+
+use sightline_dsl::geometry::Polyline;
+
+use super::ldm::Track;
+use crate::math::Point;
+
+/// Largest distance from a route for a vehicle to be on it, metres.
+pub const LANE_TOLERANCE: f64 = 2.0;
+
+/// Largest heading difference for a vehicle to follow a route, radians (45°).
+pub const HEADING_TOLERANCE: f64 = std::f64::consts::FRAC_PI_4;
+
+/// Positions every `dt` seconds from now (index 0) to the horizon.
+pub type Trajectory = Vec<Point>;
+
+/// The routes of the map, each with its bounding box for a quick rejection.
+pub struct RouteMap {
+    routes: Vec<(Polyline, [f64; 4])>,
+}
+
+impl RouteMap {
+    /// A map of `routes`.
+    pub fn new(routes: impl IntoIterator<Item = Polyline>) -> Self {
+        let routes = routes
+            .into_iter()
+            .map(|route| {
+                let bounds = route.points().iter().fold(
+                    [f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY],
+                    |[x0, y0, x1, y1], p| [x0.min(p[0]), y0.min(p[1]), x1.max(p[0]), y1.max(p[1])],
+                );
+                (route, bounds)
+            })
+            .collect();
+        Self { routes }
+    }
+
+    /// The routes a vehicle at `position` heading `heading` may follow, with its
+    /// offset along each.
+    pub fn branches(&self, position: Point, heading: f64) -> Vec<(&Polyline, f64)> {
+        self.routes
+            .iter()
+            .filter(|(_, [x0, y0, x1, y1])| {
+                position.x >= x0 - LANE_TOLERANCE
+                    && position.x <= x1 + LANE_TOLERANCE
+                    && position.y >= y0 - LANE_TOLERANCE
+                    && position.y <= y1 + LANE_TOLERANCE
+            })
+            .filter_map(|(route, _)| {
+                let at = route.project([position.x, position.y]);
+                let turn = route.heading_at(at.offset) - heading;
+                let aligned = turn.cos() >= HEADING_TOLERANCE.cos();
+                (at.distance <= LANE_TOLERANCE && aligned).then_some((route, at.offset))
+            })
+            .collect()
+    }
+}
+
+/// Positions along `path` from `offset` at constant `speed`, every `dt` up to
+/// `horizon`; straight on past its end.
+pub fn along(path: &Polyline, offset: f64, speed: f64, horizon: f64, dt: f64) -> Trajectory {
+    let end = path.length();
+    let exit = path.point_at(end);
+    let exit_heading = path.heading_at(end);
+    samples(horizon, dt)
+        .map(|t| {
+            let s = offset + speed * t;
+            if s <= end {
+                let [x, y] = path.point_at(s);
+                Point::new(x, y)
+            } else {
+                Point::new(exit[0], exit[1]) + Point::new(exit_heading.cos(), exit_heading.sin()) * (s - end)
+            }
+        })
+        .collect()
+}
+
+/// Positions at constant `velocity` from `position`, every `dt` up to `horizon`.
+pub fn straight(position: Point, velocity: Point, horizon: f64, dt: f64) -> Trajectory {
+    samples(horizon, dt).map(|t| position + velocity * t).collect()
+}
+
+fn samples(horizon: f64, dt: f64) -> impl Iterator<Item = f64> {
+    let n = (horizon / dt).round() as usize;
+    (0..=n).map(move |k| k as f64 * dt)
+}
+
+/// The speeds a vehicle is predicted at, and whether it is a dangerous driver
+/// (seed 002, eq. 2): a compliant vehicle gets `factors` × v; a dangerous one
+/// its speed v and the aggressive v_max + δ̄.
+pub fn hypotheses(track: &Track, factors: &[f64], window: f64, threshold: f64) -> (Vec<f64>, bool) {
+    let now = track.latest();
+    match track.mean_violation(window) {
+        Some(mean) if mean > threshold => (vec![now.speed, (now.limit + mean).max(now.speed)], true),
+        _ => (factors.iter().map(|f| f * now.speed).collect(), false),
+    }
+}
+
+/// A predicted conflict.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Conflict {
+    /// Time until the centres first come within d_min, seconds.
+    pub time: f64,
+    /// Smallest predicted distance between the centres, metres.
+    pub separation: f64,
+}
+
+/// Seed 002, eq. 3: the first time in the horizon at which the two trajectories
+/// (same sampling `dt`) come within `d_min`, with their smallest separation.
+/// Between samples both move linearly.
+pub fn conflict(ego: &[Point], other: &[Point], dt: f64, d_min: f64) -> Option<Conflict> {
+    let mut first: Option<f64> = None;
+    let mut separation = f64::INFINITY;
+    for (k, (e, o)) in ego.windows(2).zip(other.windows(2)).enumerate() {
+        let a = o[0] - e[0];
+        let b = (o[1] - e[1]) - a;
+        // |a + b u|, u in [0, 1]: closest approach and first entry into the d_min disc.
+        let bb = b.dot(b);
+        let u_closest = if bb > 0.0 {
+            (-a.dot(b) / bb).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        separation = separation.min((a + b * u_closest).length());
+        if first.is_none() {
+            let c = a.dot(a) - d_min * d_min;
+            let entry = if c <= 0.0 {
+                Some(0.0)
+            } else if bb > 0.0 {
+                let half = a.dot(b);
+                let discriminant = half * half - bb * c;
+                (discriminant >= 0.0)
+                    .then(|| (-half - discriminant.sqrt()) / bb)
+                    .filter(|u| (0.0..=1.0).contains(u))
+            } else {
+                None
+            };
+            first = entry.map(|u| (k as f64 + u) * dt);
+        }
+    }
+    first.map(|time| Conflict { time, separation })
+}
+
+#[cfg(test)]
+mod tests {
+    use approx::assert_relative_eq;
+
+    use super::*;
+
+    /// The ego drives east along y = 0 at 10 m/s from x = −30; another vehicle
+    /// drives north along x = 0 at 10 m/s from y = −30. Both reach the origin at
+    /// 3 s; the centres are within 2 m when 10√2 · (3 − t) ≤ 2, from
+    /// t = 3 − 0.1414 = 2.859 s; the separation reaches 0.
+    #[test]
+    fn crossing_trajectories_conflict_at_the_right_time() {
+        let ego = straight(Point::new(-30.0, 0.0), Point::new(10.0, 0.0), 3.0, 0.1);
+        let other = straight(Point::new(0.0, -30.0), Point::new(0.0, 10.0), 3.0, 0.1);
+        let found = conflict(&ego, &other, 0.1, 2.0).unwrap();
+        assert_relative_eq!(found.time, 3.0 - 2.0 / 200f64.sqrt(), epsilon = 1e-9);
+        assert!(found.separation < 1e-9);
+        // One second later, the other is 10 m behind: never within 2 m.
+        let late = straight(Point::new(0.0, -40.0), Point::new(0.0, 10.0), 3.0, 0.1);
+        assert_eq!(conflict(&ego, &late, 0.1, 2.0), None);
+    }
+
+    /// Sampled every 1 s, two vehicles pass each other between samples: only the
+    /// segment test sees it.
+    #[test]
+    fn conflicts_between_samples_are_found() {
+        let ego = straight(Point::new(0.0, 0.0), Point::new(15.0, 0.0), 2.0, 1.0);
+        let other = straight(Point::new(37.5, 1.0), Point::new(-15.0, 0.0), 2.0, 1.0);
+        // Gap 37.5 − 30 t along x, 1 across: 37.5, 7.5 and 22.5 m at the samples,
+        // within 2 m when |37.5 − 30 t| ≤ √3.
+        let found = conflict(&ego, &other, 1.0, 2.0).unwrap();
+        assert_relative_eq!(found.time, (37.5 - 3f64.sqrt()) / 30.0, epsilon = 1e-9);
+        assert_relative_eq!(found.separation, 1.0, epsilon = 1e-9);
+    }
+
+    /// Over its 5 s window a car exceeds a 10 m/s limit by 3 m/s on average:
+    /// dangerous (3 > 2), predicted at its speed and at v_max + δ̄ = 13 m/s. At
+    /// 1 m/s over, it is compliant and gets 0.7, 1.0 and 1.1 times its speed.
+    #[test]
+    fn an_overspeeding_vehicle_gets_the_aggressive_hypothesis() {
+        use sightline_dsl::AgentKind;
+
+        use crate::semantic::ldm::{Ldm, Measurement};
+        let hypotheses_at = |excess: f64| {
+            let mut ldm = Ldm::default();
+            for k in 0..=50 {
+                let time = f64::from(k) * 0.1;
+                let speed = 10.0 + excess;
+                let m = Measurement {
+                    time,
+                    position: Point::new(speed * time, 0.0),
+                    speed,
+                    heading: 0.0,
+                    length: 4.5,
+                    width: 1.8,
+                    limit: 10.0,
+                };
+                ldm.record(1, AgentKind::Car, m);
+            }
+            let track = ldm.current(5.0).next().unwrap().1.clone();
+            hypotheses(&track, &[0.7, 1.0, 1.1], 5.0, 2.0)
+        };
+        let (speeds, dangerous) = hypotheses_at(3.0);
+        assert!(dangerous);
+        assert_eq!(speeds.len(), 2);
+        assert_relative_eq!(speeds[1], 13.0, epsilon = 1e-9);
+        let (speeds, dangerous) = hypotheses_at(1.0);
+        assert!(!dangerous);
+        assert_relative_eq!(speeds[0], 0.7 * 11.0, epsilon = 1e-9);
+        assert_relative_eq!(speeds[2], 1.1 * 11.0, epsilon = 1e-9);
+    }
+
+    #[test]
+    fn along_follows_the_path_then_goes_straight() {
+        let path = Polyline::new([[0.0, 0.0], [10.0, 0.0], [10.0, 10.0]]).unwrap();
+        let trajectory = along(&path, 5.0, 10.0, 2.0, 0.5);
+        assert_eq!(trajectory.len(), 5);
+        assert_relative_eq!(trajectory[1].x, 10.0);
+        assert_relative_eq!(trajectory[2].y, 5.0);
+        // 20 m from offset 5: 5 m past the end, straight on north.
+        assert_relative_eq!(trajectory[4].y, 15.0);
+    }
+
+    #[test]
+    fn branches_are_the_aligned_routes_through_a_position() {
+        let east = Polyline::new([[-50.0, 0.0], [50.0, 0.0]]).unwrap();
+        let turn = Polyline::new([[-50.0, 0.0], [0.0, 0.0], [0.0, 50.0]]).unwrap();
+        let west = Polyline::new([[50.0, 0.5], [-50.0, 0.5]]).unwrap();
+        let map = RouteMap::new([east, turn, west]);
+        let found = map.branches(Point::new(-20.0, 0.3), 0.0);
+        assert_eq!(found.len(), 2, "east and turn, not the opposite lane");
+        assert!(found.iter().all(|&(_, offset)| (offset - 30.0).abs() < 1e-9));
+    }
+}

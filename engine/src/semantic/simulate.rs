@@ -1,0 +1,396 @@
+//! The step loop of a semantic world: kinematics with generated traffic, each
+//! RSU's perception into its LDM, the pipeline, the V2X link both ways, the ego's
+//! caution, and the metrics.
+//!
+//! Our choices where seed 002 is silent:
+//! - An RSU perceives every object in its sensors' range (or, with
+//!   `rsu_sight: line_of_sight`, in view and line of sight), each with its sensor's
+//!   detection probability; each measurement adds Gaussian noise with
+//!   σ(d) = base + per_m · d to x, y, speed, length and width (eq. 1).
+//! - Each cycle the ego sends its state and plan (uplink); the RSU plans with the
+//!   last one it received. An RSU sends a message only when it selects an object.
+//! - The ego knows an object through an RSU for `KNOWN_FOR` seconds after a
+//!   message naming it arrives; it sees an object when the object's centre is in
+//!   range and field of view of one of its sensors with a clear line of sight.
+//! - Connected vehicles (v2x.penetration) send the ego their own state each
+//!   cycle; the ego then knows them without an RSU.
+//! - Density is the number of vehicles and pedestrians in the scene per km of
+//!   road (lane 0 of every road).
+
+use std::collections::VecDeque;
+
+use rand::RngExt;
+use rand::rngs::ChaCha8Rng;
+use rand_distr::{Distribution, Normal};
+use sightline_dsl::geometry::Polyline;
+use sightline_dsl::{Agent, AgentKind, Motion, RsuSight, Semantic, World};
+
+use super::ldm::{Ldm, Measurement};
+use super::message::{EtsiSender, Item, baseline_bytes, semantic_bytes};
+use super::metrics::{DELIVERY_BIN, SemanticMetrics};
+use super::pipeline::{EgoPlan, Pipeline};
+use super::relevance::{Areas, crosswalk_area};
+use super::risk::RouteMap;
+use super::traffic;
+use crate::math::{Point, Pose, Vector};
+use crate::rng::{Purpose, stream};
+use crate::v2x::{Link, transmit};
+use crate::world::{AgentState, Bodies, Body, Kinematics, Occluders, Restraint, Visibility, in_view, visibility};
+
+/// How long a message keeps an object known to the ego, seconds.
+pub const KNOWN_FOR: f64 = 0.5;
+
+/// Speed of light, m/s, for propagation delay.
+const LIGHT: f64 = 299_792_458.0;
+
+/// What the run tracks per agent.
+#[derive(Debug, Clone, Copy, Default)]
+struct Knowledge {
+    /// When a message naming it last arrived.
+    last_received: Option<f64>,
+    /// When a message naming it first arrived, and whether the ego had seen it before.
+    first_received: Option<(f64, bool)>,
+    /// When the ego first saw it.
+    first_seen: Option<f64>,
+    /// When its own V2X message last arrived.
+    last_direct: Option<f64>,
+    /// Whether a conflict with it was flagged to the ego.
+    flagged: bool,
+    /// Whether it is within d_min of the ego now.
+    close: bool,
+}
+
+/// An RSU's state across cycles.
+struct Rsu {
+    agent: usize,
+    ldm: Ldm,
+    baseline: EtsiSender,
+    plan: Option<EgoPlan>,
+    detections: ChaCha8Rng,
+    channel: ChaCha8Rng,
+}
+
+/// Runs a world's semantic pipeline once.
+pub fn run(seed: u64, world: &World, semantic: &Semantic) -> SemanticMetrics {
+    let generated = traffic::generate(seed, world);
+    let agents: Vec<Agent> = world.agents.iter().cloned().chain(generated).collect();
+    let dt = world.step;
+    let occluders = Occluders::new(&world.occluders);
+    let map = RouteMap::new(map_routes(world));
+    let Motion::Along { path: ego_route, .. } = &agents[semantic.ego].motion else {
+        unreachable!("the compiler checks that the ego follows a route")
+    };
+    let pipeline = Pipeline {
+        semantic,
+        areas: Areas {
+            interaction: &world.interaction_areas,
+            crosswalks: world.crosswalks.iter().map(crosswalk_area).collect(),
+        },
+        occluders: &occluders,
+        map: &map,
+        ego_route,
+        dt,
+    };
+    let channel = &world.v2x.channel;
+    let network_km = world.roads.iter().map(|r| r.lanes[0].length()).sum::<f64>() / 1000.0;
+    let mut rsus: Vec<Rsu> = semantic
+        .rsus
+        .iter()
+        .map(|&agent| Rsu {
+            agent,
+            ldm: Ldm::default(),
+            baseline: EtsiSender::new(semantic.baseline),
+            plan: None,
+            detections: stream(seed, Purpose::Detections, agent as u64),
+            channel: stream(seed, Purpose::Channel, agent as u64),
+        })
+        .collect();
+    let mut ego_channel = stream(seed, Purpose::Channel, semantic.ego as u64);
+    let mut cam_channel = stream(seed, Purpose::Channel, agents.len() as u64);
+    let mut kinematics = Kinematics::new(&agents, dt, world.driving);
+    let mut knowledge = vec![Knowledge::default(); agents.len()];
+    let mut in_flight: VecDeque<(f64, Vec<Item>)> = VecDeque::new();
+    let mut metrics = SemanticMetrics {
+        generated: (agents.len() - world.agents.len()) as u64,
+        ..Default::default()
+    };
+    let mut cautious_until = f64::NEG_INFINITY;
+    let mut states = Vec::new();
+
+    for k in 0..world.steps {
+        let time = k as f64 * dt;
+        kinematics.advance(k, &mut states);
+        let bodies = Bodies::new(
+            states
+                .iter()
+                .enumerate()
+                .filter(|&(i, _)| agents[i].kind != AgentKind::Rsu)
+                .filter_map(|(i, s)| s.map(|s| body(i, &agents[i], s.pose)))
+                .collect(),
+        );
+        let ego = states[semantic.ego];
+
+        // Messages arriving by now.
+        while in_flight.front().is_some_and(|&(at, _)| at <= time + 1e-9) {
+            let (at, items) = in_flight.pop_front().expect("checked non-empty");
+            for item in items {
+                let known = &mut knowledge[item.agent];
+                known.last_received = Some(at);
+                if known.first_received.is_none() {
+                    known.first_received = Some((at, known.first_seen.is_some()));
+                }
+                if item.labels.conflict.is_some() {
+                    known.flagged = true;
+                    cautious_until = cautious_until.max(at + semantic.caution.hold);
+                }
+            }
+        }
+
+        if let Some(ego) = ego {
+            metrics.steps += 1;
+            metrics.duration += dt;
+            let cautious = time < cautious_until;
+            if cautious {
+                metrics.cautious_time += dt;
+            }
+            kinematics.restrain(
+                semantic.ego,
+                cautious.then_some(Restraint {
+                    headway: semantic.caution.headway,
+                    speed_factor: semantic.caution.speed_factor,
+                }),
+            );
+            let mut present = 0u32;
+            let mut through_rsu = 0u32;
+            for body in bodies.all().iter().filter(|b| b.agent != semantic.ego) {
+                present += 1;
+                let known = &mut knowledge[body.agent];
+                let seen = sees(&agents[semantic.ego], ego.pose, &occluders, &bodies, semantic.ego, body);
+                if seen && known.first_seen.is_none() {
+                    known.first_seen = Some(time);
+                }
+                let fresh = |at: Option<f64>| at.is_some_and(|at| time - at <= KNOWN_FOR + 1e-9);
+                if !seen && fresh(known.last_received) && !fresh(known.last_direct) {
+                    through_rsu += 1;
+                }
+                let close = (body.pose.translation - ego.position()).length() <= semantic.d_min;
+                if close && !known.close {
+                    metrics.close_approaches += 1;
+                    metrics.missed_criticals += u64::from(!known.flagged);
+                }
+                known.close = close;
+            }
+            metrics
+                .contribution
+                .push((f64::from(present) / network_km.max(1e-9), through_rsu));
+        }
+
+        if k % semantic.period_steps != 0 {
+            continue;
+        }
+        for rsu in &mut rsus {
+            let Some(station) = states[rsu.agent] else { continue };
+            perceive(rsu, &agents, &states, &occluders, &bodies, semantic, time);
+            let Some(ego) = ego else { continue };
+            let link = |to: Point, rx_is_rsu: bool| Link {
+                distance_m: (to - station.position()).length(),
+                los: !occluders.block(station.position(), to),
+                tx_antenna_m: if rx_is_rsu {
+                    channel.vehicle_antenna_m
+                } else {
+                    channel.rsu_antenna_m
+                },
+                rx_antenna_m: if rx_is_rsu {
+                    channel.rsu_antenna_m
+                } else {
+                    channel.vehicle_antenna_m
+                },
+            };
+            if transmit(channel, &link(ego.position(), true), &mut ego_channel).received {
+                rsu.plan = Some(EgoPlan {
+                    time,
+                    offset: ego.offset,
+                    speed: ego.speed,
+                });
+            }
+            let Some(plan) = rsu.plan else { continue };
+            let perceived: Vec<(usize, &Measurement)> = rsu
+                .ldm
+                .current(time)
+                .filter(|&(agent, _)| agent != semantic.ego)
+                .map(|(agent, track)| (agent, track.latest()))
+                .collect();
+            metrics.perceived += perceived.len() as u64;
+            let baseline = rsu.baseline.select(perceived);
+            if baseline > 0 {
+                metrics.baseline_objects += baseline as u64;
+                metrics.baseline_bytes += baseline_bytes(baseline) as u64;
+            }
+            let items = pipeline.run(&rsu.ldm, time, &plan);
+            if items.is_empty() {
+                continue;
+            }
+            count_labels(&mut metrics, &items);
+            metrics.bytes += semantic_bytes(items.len()) as u64;
+            metrics.messages += 1;
+            let downlink = link(ego.position(), false);
+            let bin = (downlink.distance_m / DELIVERY_BIN) as usize;
+            if metrics.delivery_by_distance.len() <= bin {
+                metrics.delivery_by_distance.resize(bin + 1, Default::default());
+            }
+            metrics.delivery_by_distance[bin].sent += 1;
+            if transmit(channel, &downlink, &mut rsu.channel).received {
+                metrics.delivered += 1;
+                metrics.delivery_by_distance[bin].received += 1;
+                let arrival = time + world.v2x.latency + downlink.distance_m / LIGHT;
+                let at = in_flight.partition_point(|&(t, _)| t <= arrival);
+                in_flight.insert(at, (arrival, items));
+            }
+        }
+        // Connected road users tell the ego about themselves.
+        if let Some(ego) = ego {
+            for (i, state) in states.iter().enumerate() {
+                let Some(state) = state else { continue };
+                if i == semantic.ego || !agents[i].connected || agents[i].kind == AgentKind::Rsu {
+                    continue;
+                }
+                let distance = (state.position() - ego.position()).length();
+                let link = Link {
+                    distance_m: distance,
+                    los: !occluders.block(state.position(), ego.position()),
+                    tx_antenna_m: channel.vehicle_antenna_m,
+                    rx_antenna_m: channel.vehicle_antenna_m,
+                };
+                if transmit(channel, &link, &mut cam_channel).received {
+                    knowledge[i].last_direct = Some(time + world.v2x.latency + distance / LIGHT);
+                }
+            }
+        }
+    }
+
+    for known in &knowledge {
+        if let Some((received, false)) = known.first_received {
+            match known.first_seen {
+                Some(seen) => metrics.anticipation.push(seen - received),
+                None => metrics.never_seen += 1,
+            }
+        }
+    }
+    metrics.anticipation.sort_by(f64::total_cmp);
+    metrics
+}
+
+/// The routes of the map: every vehicle's and every traffic route, each once.
+fn map_routes(world: &World) -> Vec<Polyline> {
+    let mut routes: Vec<Polyline> = Vec::new();
+    let declared = world
+        .agents
+        .iter()
+        .filter(|a| a.kind.is_vehicle())
+        .filter_map(|a| match &a.motion {
+            Motion::Along { path, .. } => Some(path),
+            Motion::Fixed { .. } => None,
+        });
+    let generated = world
+        .traffic
+        .iter()
+        .flat_map(|t| t.vehicles.iter())
+        .flat_map(|v| v.routes.iter().map(|r| &r.path));
+    for path in declared.chain(generated) {
+        if !routes.contains(path) {
+            routes.push(path.clone());
+        }
+    }
+    routes
+}
+
+fn body(agent: usize, spec: &Agent, pose: Pose) -> Body {
+    Body {
+        agent,
+        pose,
+        half_extents: Vector::new(spec.length, spec.width) / 2.0,
+    }
+}
+
+/// Whether the ego at `pose` could see `target` with one of its sensors.
+fn sees(ego: &Agent, pose: Pose, occluders: &Occluders, bodies: &Bodies, ego_index: usize, target: &Body) -> bool {
+    ego.sensors.iter().any(|sensor| {
+        let mount = pose * Pose::new(Vector::new(sensor.mount_x, sensor.mount_y), sensor.mount_yaw);
+        in_view(sensor, mount, target.pose.translation).is_some()
+            && visibility(occluders, bodies, mount.translation, ego_index, target) == Visibility::Los
+    })
+}
+
+/// One RSU cycle of perception: noisy measurements into the LDM (eq. 1).
+fn perceive(
+    rsu: &mut Rsu,
+    agents: &[Agent],
+    states: &[Option<AgentState>],
+    occluders: &Occluders,
+    bodies: &Bodies,
+    semantic: &Semantic,
+    time: f64,
+) {
+    let station = &agents[rsu.agent];
+    let Some(pose) = states[rsu.agent].map(|s| s.pose) else {
+        return;
+    };
+    for target in bodies.all() {
+        let state = states[target.agent].expect("bodies are of present agents");
+        let spec = &agents[target.agent];
+        let sensor = station.sensors.iter().find(|sensor| {
+            let mount = pose * Pose::new(Vector::new(sensor.mount_x, sensor.mount_y), sensor.mount_yaw);
+            match semantic.rsu_sight {
+                RsuSight::Range => (state.position() - mount.translation).length() <= sensor.range,
+                RsuSight::LineOfSight => {
+                    in_view(sensor, mount, state.position()).is_some()
+                        && visibility(occluders, bodies, mount.translation, rsu.agent, target) == Visibility::Los
+                }
+            }
+        });
+        let Some(sensor) = sensor else { continue };
+        if rsu.detections.random::<f64>() >= sensor.detection_probability {
+            continue;
+        }
+        let distance = (state.position() - pose.translation).length();
+        let mut noise = |base: f64, per_m: f64| {
+            let sigma = base + per_m * distance;
+            if sigma > 0.0 {
+                Normal::new(0.0, sigma)
+                    .expect("σ is finite and positive")
+                    .sample(&mut rsu.detections)
+            } else {
+                0.0
+            }
+        };
+        let position = state.position()
+            + Vector::new(
+                noise(sensor.noise_base, sensor.noise_per_m),
+                noise(sensor.noise_base, sensor.noise_per_m),
+            );
+        let measurement = Measurement {
+            time,
+            position,
+            speed: (state.speed + noise(sensor.velocity_noise_base, sensor.velocity_noise_per_m)).max(0.0),
+            heading: state.heading(),
+            length: (spec.length + noise(sensor.size_noise_base, sensor.size_noise_per_m)).max(0.1),
+            width: (spec.width + noise(sensor.size_noise_base, sensor.size_noise_per_m)).max(0.1),
+            limit: state.limit,
+        };
+        rsu.ldm.record(target.agent, spec.kind, measurement);
+    }
+    rsu.ldm.forget(time, semantic.history);
+}
+
+fn count_labels(metrics: &mut SemanticMetrics, items: &[Item]) {
+    metrics.transmitted += items.len() as u64;
+    for item in items {
+        let labels = &item.labels;
+        metrics.labelled += u64::from(labels.any());
+        metrics.labels.nlos_static += u64::from(labels.nlos == Some(Visibility::NlosStatic));
+        metrics.labels.nlos_dynamic += u64::from(labels.nlos == Some(Visibility::NlosDynamic));
+        metrics.labels.relevant += u64::from(labels.relevant);
+        metrics.labels.speeding += u64::from(labels.speeding);
+        metrics.labels.conflict += u64::from(labels.conflict.is_some());
+    }
+}

@@ -1,0 +1,220 @@
+//! Background traffic, generated before the run from the scenario's seed.
+//!
+//! Vehicles (ours, where seed 002 relies on SUMO's defaults):
+//! - each route starts populated: gaps between vehicles are exponential with mean
+//!   1000 / density metres (a Poisson process along the route), never shorter than
+//!   a vehicle length plus 2 m;
+//! - new vehicles enter at the route's start as a Poisson process of rate
+//!   density × v / 1000 per second, v the route's first speed limit, which keeps
+//!   the density of free-flowing traffic; arrivals are at least 2 s apart;
+//! - the kind is drawn from the mix; a non-compliant driver's limit factor is
+//!   uniform in `overspeed_factor`, a compliant one's uniform in [0.85, 1.0]
+//!   (driving variability); each wants to drive at the limit times its factor;
+//! - cars and motorbikes accelerate at up to 2 m/s², trucks and buses 1 m/s².
+//!
+//! Pedestrians arrive at each crosswalk as a Poisson process, from either kerb with
+//! equal probability; each walks `approach` metres of pavement, crosses, and walks
+//! `approach` metres beyond.
+
+use rand::RngExt;
+use rand::rngs::ChaCha8Rng;
+use sightline_dsl::geometry::{Polyline, Xy};
+use sightline_dsl::{Agent, AgentKind, Crosswalk, Motion, PedestrianTraffic, TrafficRoute, VehicleTraffic, World};
+
+use crate::rng::{Purpose, stream};
+
+/// Shortest gap between generated vehicles, metres, and between arrivals, seconds.
+const MIN_GAP: f64 = 2.0;
+const MIN_HEADWAY: f64 = 2.0;
+
+/// The generated agents of `world`: vehicles route by route, then pedestrians
+/// crosswalk by crosswalk.
+pub fn generate(seed: u64, world: &World) -> Vec<Agent> {
+    let Some(traffic) = &world.traffic else {
+        return Vec::new();
+    };
+    let duration = world.step * world.steps as f64;
+    let mut agents = Vec::new();
+    if let Some(vehicles) = &traffic.vehicles {
+        for (r, route) in vehicles.routes.iter().enumerate() {
+            let mut rng = stream(seed, Purpose::Traffic, r as u64);
+            route_traffic(
+                &mut rng,
+                vehicles,
+                route,
+                r,
+                duration,
+                world.v2x.penetration,
+                &mut agents,
+            );
+        }
+    }
+    if let Some(pedestrians) = &traffic.pedestrians {
+        let first = traffic.vehicles.as_ref().map_or(0, |v| v.routes.len());
+        for (c, crosswalk) in world.crosswalks.iter().enumerate() {
+            let mut rng = stream(seed, Purpose::Traffic, (first + c) as u64);
+            crossings(&mut rng, pedestrians, crosswalk, duration, &mut agents);
+        }
+    }
+    agents
+}
+
+fn exponential(rng: &mut ChaCha8Rng, mean: f64) -> f64 {
+    -mean * (1.0 - rng.random::<f64>()).ln()
+}
+
+fn route_traffic(
+    rng: &mut ChaCha8Rng,
+    traffic: &VehicleTraffic,
+    route: &TrafficRoute,
+    index: usize,
+    duration: f64,
+    penetration: f64,
+    agents: &mut Vec<Agent>,
+) {
+    if traffic.density_per_km <= 0.0 {
+        return;
+    }
+    let spacing = 1000.0 / traffic.density_per_km;
+    let length = route.path.length();
+    let mut count = 0;
+    let mut vehicle = |rng: &mut ChaCha8Rng, time: f64, offset: f64| {
+        let agent = draw_vehicle(
+            rng,
+            traffic,
+            route,
+            format!("route{index}-{count}"),
+            time,
+            offset,
+            penetration,
+        );
+        count += 1;
+        agent
+    };
+    // The initial population, from the end of the route backwards.
+    let mut offset = length - exponential(rng, spacing);
+    while offset > 0.0 {
+        let agent = vehicle(rng, 0.0, offset);
+        let next = offset - exponential(rng, spacing).max(agent.length + MIN_GAP);
+        agents.push(agent);
+        offset = next;
+    }
+    // Inflow at the start.
+    let entry_speed = route.limits.first().map_or(10.0, |&(_, limit)| limit);
+    let mean_interval = spacing / entry_speed;
+    let mut time = exponential(rng, mean_interval);
+    while time < duration {
+        agents.push(vehicle(rng, time, 0.0));
+        time += exponential(rng, mean_interval).max(MIN_HEADWAY);
+    }
+}
+
+fn draw_vehicle(
+    rng: &mut ChaCha8Rng,
+    traffic: &VehicleTraffic,
+    route: &TrafficRoute,
+    id: String,
+    start_time: f64,
+    start_offset: f64,
+    penetration: f64,
+) -> Agent {
+    let mut pick = rng.random::<f64>();
+    let kind = traffic
+        .mix
+        .iter()
+        .find(|&&(_, share)| {
+            pick -= share;
+            pick < 0.0
+        })
+        .or(traffic.mix.last())
+        .map_or(AgentKind::Car, |&(kind, _)| kind);
+    let [low, high] = if rng.random::<f64>() < traffic.non_compliant {
+        traffic.overspeed_factor
+    } else {
+        [0.85, 1.0]
+    };
+    let limit_factor = low + (high - low) * rng.random::<f64>();
+    let connected = rng.random::<f64>() < penetration;
+    let fastest = route.limits.iter().map(|&(_, limit)| limit).fold(0.0, f64::max);
+    let (length, width) = kind.footprint();
+    let limit_here = route
+        .limits
+        .iter()
+        .find(|&&(end, _)| start_offset < end)
+        .map_or(fastest, |&(_, limit)| limit);
+    Agent {
+        id,
+        kind,
+        length,
+        width,
+        motion: Motion::Along {
+            path: route.path.clone(),
+            limits: route.limits.clone(),
+            start_time,
+            start_offset,
+            initial_speed: limit_here * limit_factor,
+            target_speed: fastest * limit_factor,
+            limit_factor,
+            acceleration: if matches!(kind, AgentKind::Truck | AgentKind::Bus) {
+                1.0
+            } else {
+                2.0
+            },
+        },
+        connected,
+        sensors: Vec::new(),
+    }
+}
+
+fn crossings(
+    rng: &mut ChaCha8Rng,
+    traffic: &PedestrianTraffic,
+    crosswalk: &Crosswalk,
+    duration: f64,
+    agents: &mut Vec<Agent>,
+) {
+    if traffic.per_minute <= 0.0 {
+        return;
+    }
+    let mean_interval = 60.0 / traffic.per_minute;
+    let mut time = exponential(rng, mean_interval);
+    let mut count = 0;
+    while time < duration {
+        let (from, to) = if rng.random::<bool>() {
+            (crosswalk.from, crosswalk.to)
+        } else {
+            (crosswalk.to, crosswalk.from)
+        };
+        let path = walk(from, to, traffic.approach);
+        let (length, width) = AgentKind::Pedestrian.footprint();
+        agents.push(Agent {
+            id: format!("{}-{count}", crosswalk.id),
+            kind: AgentKind::Pedestrian,
+            length,
+            width,
+            motion: Motion::Along {
+                limits: vec![(path.length(), f64::INFINITY)],
+                path,
+                start_time: time,
+                start_offset: 0.0,
+                initial_speed: traffic.speed,
+                target_speed: traffic.speed,
+                limit_factor: 1.0,
+                acceleration: 1.0,
+            },
+            connected: false,
+            sensors: Vec::new(),
+        });
+        count += 1;
+        time += exponential(rng, mean_interval);
+    }
+}
+
+/// The straight walk from `approach` metres before `from` to `approach` metres past `to`.
+fn walk(from: Xy, to: Xy, approach: f64) -> Polyline {
+    let length = ((to[0] - from[0]).powi(2) + (to[1] - from[1]).powi(2)).sqrt();
+    let unit = [(to[0] - from[0]) / length, (to[1] - from[1]) / length];
+    let start = [from[0] - unit[0] * approach, from[1] - unit[1] * approach];
+    let end = [to[0] + unit[0] * approach, to[1] + unit[1] * approach];
+    Polyline::new([start, end]).expect("a crosswalk's ends differ")
+}
