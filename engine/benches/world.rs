@@ -8,11 +8,10 @@
 use criterion::{Criterion, criterion_group, criterion_main};
 use rand::SeedableRng;
 use rand::rngs::ChaCha8Rng;
-use sightline_dsl::{AgentKind, Experiment, Scenario, World};
-use sightline_engine::math::Vector;
+use sightline_dsl::{Experiment, Scenario, World};
 use sightline_engine::simulate;
 use sightline_engine::world::{
-    Bodies, Body, CellFusion, Kinematics, Observation, Occluders, Raster, StepScene, Visibility, visibility,
+    Bodies, CellFusion, Kinematics, Observation, Occluders, Raster, StepScene, Visibility, visibility,
 };
 
 /// The bundled scenario reduced to its point with six cooperating vehicles and
@@ -63,20 +62,7 @@ fn step(c: &mut Criterion) {
     for k in 0..=120 {
         kinematics.advance(k, &mut states);
     }
-    let bodies = Bodies::new(
-        states
-            .iter()
-            .enumerate()
-            .filter(|&(i, _)| agents[i].kind != AgentKind::Rsu)
-            .filter_map(|(i, s)| {
-                s.map(|s| Body {
-                    agent: i,
-                    pose: s.pose,
-                    half_extents: Vector::new(agents[i].length, agents[i].width) / 2.0,
-                })
-            })
-            .collect(),
-    );
+    let bodies = Bodies::of_scene(agents, &states);
     let occluders = Occluders::new(&world.occluders);
     let mut raster = Raster::new(grid, &world.occluders);
     raster.set_bodies(bodies.all());

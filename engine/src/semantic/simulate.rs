@@ -32,10 +32,12 @@ use super::pipeline::{EgoPlan, Pipeline};
 use super::relevance::{Areas, crosswalk_area};
 use super::risk::RouteMap;
 use super::traffic;
-use crate::math::{Point, Pose, Vector};
+use crate::math::{Pose, Vector};
 use crate::rng::{Purpose, stream};
 use crate::v2x::{Link, transmit};
-use crate::world::{AgentState, Bodies, Body, Kinematics, Occluders, Restraint, Visibility, in_view, visibility};
+use crate::world::{
+    AgentState, Bodies, Body, Kinematics, Occluders, Restraint, Visibility, in_view, mount_pose, visibility,
+};
 
 /// How long a message keeps an object known to the ego, seconds.
 pub const KNOWN_FOR: f64 = 0.5;
@@ -120,14 +122,7 @@ pub fn run(seed: u64, world: &World, semantic: &Semantic) -> SemanticMetrics {
     for k in 0..world.steps {
         let time = k as f64 * dt;
         kinematics.advance(k, &mut states);
-        let bodies = Bodies::new(
-            states
-                .iter()
-                .enumerate()
-                .filter(|&(i, _)| agents[i].kind != AgentKind::Rsu)
-                .filter_map(|(i, s)| s.map(|s| body(i, &agents[i], s.pose)))
-                .collect(),
-        );
+        let bodies = Bodies::of_scene(&agents, &states);
         let ego = states[semantic.ego];
 
         // Messages arriving by now.
@@ -192,21 +187,13 @@ pub fn run(seed: u64, world: &World, semantic: &Semantic) -> SemanticMetrics {
             let Some(station) = states[rsu.agent] else { continue };
             perceive(rsu, &agents, &states, &occluders, &bodies, semantic, time);
             let Some(ego) = ego else { continue };
-            let link = |to: Point, rx_is_rsu: bool| Link {
-                distance_m: (to - station.position()).length(),
-                los: !occluders.block(station.position(), to),
-                tx_antenna_m: if rx_is_rsu {
-                    channel.vehicle_antenna_m
-                } else {
-                    channel.rsu_antenna_m
-                },
-                rx_antenna_m: if rx_is_rsu {
-                    channel.rsu_antenna_m
-                } else {
-                    channel.vehicle_antenna_m
-                },
+            let uplink = Link {
+                distance_m: (ego.position() - station.position()).length(),
+                los: !occluders.block(station.position(), ego.position()),
+                tx_antenna_m: channel.vehicle_antenna_m,
+                rx_antenna_m: channel.rsu_antenna_m,
             };
-            if transmit(channel, &link(ego.position(), true), &mut ego_channel).received {
+            if transmit(channel, &uplink, &mut ego_channel).received {
                 rsu.plan = Some(EgoPlan {
                     time,
                     offset: ego.offset,
@@ -233,7 +220,11 @@ pub fn run(seed: u64, world: &World, semantic: &Semantic) -> SemanticMetrics {
             count_labels(&mut metrics, &items);
             metrics.bytes += semantic_bytes(items.len()) as u64;
             metrics.messages += 1;
-            let downlink = link(ego.position(), false);
+            let downlink = Link {
+                tx_antenna_m: channel.rsu_antenna_m,
+                rx_antenna_m: channel.vehicle_antenna_m,
+                ..uplink
+            };
             let bin = (downlink.distance_m / DELIVERY_BIN) as usize;
             if metrics.delivery_by_distance.len() <= bin {
                 metrics.delivery_by_distance.resize(bin + 1, Default::default());
@@ -304,18 +295,10 @@ fn map_routes(world: &World) -> Vec<Polyline> {
     routes
 }
 
-fn body(agent: usize, spec: &Agent, pose: Pose) -> Body {
-    Body {
-        agent,
-        pose,
-        half_extents: Vector::new(spec.length, spec.width) / 2.0,
-    }
-}
-
 /// Whether the ego at `pose` could see `target` with one of its sensors.
 fn sees(ego: &Agent, pose: Pose, occluders: &Occluders, bodies: &Bodies, ego_index: usize, target: &Body) -> bool {
     ego.sensors.iter().any(|sensor| {
-        let mount = pose * Pose::new(Vector::new(sensor.mount_x, sensor.mount_y), sensor.mount_yaw);
+        let mount = pose * mount_pose(sensor);
         in_view(sensor, mount, target.pose.translation).is_some()
             && visibility(occluders, bodies, mount.translation, ego_index, target) == Visibility::Los
     })
@@ -339,7 +322,7 @@ fn perceive(
         let state = states[target.agent].expect("bodies are of present agents");
         let spec = &agents[target.agent];
         let sensor = station.sensors.iter().find(|sensor| {
-            let mount = pose * Pose::new(Vector::new(sensor.mount_x, sensor.mount_y), sensor.mount_yaw);
+            let mount = pose * mount_pose(sensor);
             match semantic.rsu_sight {
                 RsuSight::Range => (state.position() - mount.translation).length() <= sensor.range,
                 RsuSight::LineOfSight => {

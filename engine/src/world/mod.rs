@@ -15,7 +15,7 @@ pub use fuse::CellFusion;
 pub use localization::PoseEstimator;
 pub use metrics::{Snapshot, WorldMetrics, WorldOutcome};
 pub use motion::{AgentState, Kinematics, Restraint};
-pub use observe::{Observation, Observed, Sightings, StepScene, in_view};
+pub use observe::{Observation, Observed, Sightings, StepScene, in_view, mount_pose};
 pub use raster::{Raster, box_cells, cell_center, traverse};
 pub use sight::{Bodies, Body, Occluders, Visibility, visibility};
 pub use simulate::run;

@@ -77,6 +77,11 @@ pub fn in_view(sensor: &Sensor, pose: Pose, point: Point) -> Option<f64> {
     (distance <= sensor.range && off_axis <= sensor.fov / 2.0).then_some(distance)
 }
 
+/// A sensor's pose in its agent's frame.
+pub fn mount_pose(sensor: &Sensor) -> Pose {
+    Pose::new(Vector::new(sensor.mount_x, sensor.mount_y), sensor.mount_yaw)
+}
+
 /// Everything an observation reads from the step.
 pub struct StepScene<'a> {
     /// The grid.
@@ -142,17 +147,13 @@ impl Observation {
     ) {
         self.clear();
         for sensor in &agent.sensors {
-            let mount = Pose::new(Vector::new(sensor.mount_x, sensor.mount_y), sensor.mount_yaw);
+            let mount = mount_pose(sensor);
             let (true_sensor, estimated_sensor) = (truth * mount, estimate * mount);
             self.sensor_positions.push(estimated_sensor.translation);
             self.carve(scene, index, sensor, true_sensor, estimated_sensor);
             self.detect(scene, index, sensor, true_sensor, estimated_sensor, rng);
         }
-        let own = Body {
-            agent: index,
-            pose: estimate,
-            half_extents: Vector::new(agent.length, agent.width) / 2.0,
-        };
+        let own = Body::of(index, agent, estimate);
         for cell in box_cells(scene.grid, &own) {
             self.mark(cell, Observed::Occupied);
         }

@@ -11,8 +11,9 @@ use parry2d_f64::partitioning::{Bvh, BvhBuildStrategy};
 use parry2d_f64::query::{Ray, RayCast};
 use parry2d_f64::shape::{Cuboid, Polyline};
 use serde::Serialize;
-use sightline_dsl::Occluder;
+use sightline_dsl::{Agent, AgentKind, Occluder};
 
+use super::motion::AgentState;
 use crate::math::{Point, Pose, Vector};
 
 /// Whether a target can be seen, and what hides it if not.
@@ -77,6 +78,15 @@ pub struct Body {
 }
 
 impl Body {
+    /// The footprint of agent `index` (described by `agent`) at `pose`.
+    pub fn of(index: usize, agent: &Agent, pose: Pose) -> Self {
+        Self {
+            agent: index,
+            pose,
+            half_extents: Vector::new(agent.length, agent.width) / 2.0,
+        }
+    }
+
     /// The four corners, counter-clockwise.
     pub fn corners(&self) -> [Point; 4] {
         let Vector { x: l, y: w } = self.half_extents;
@@ -107,6 +117,20 @@ impl Bodies {
             bvh: Bvh::from_leaves(BvhBuildStrategy::default(), &aabbs),
             bodies,
         }
+    }
+
+    /// The footprints of every agent in the scene at a step except roadside
+    /// units, in agent order: `states[i]` is agent `i`'s state, `None` when absent.
+    pub fn of_scene(agents: &[Agent], states: &[Option<AgentState>]) -> Self {
+        Self::new(
+            agents
+                .iter()
+                .zip(states)
+                .enumerate()
+                .filter(|(_, (agent, _))| agent.kind != AgentKind::Rsu)
+                .filter_map(|(i, (agent, state))| state.map(|s| Body::of(i, agent, s.pose)))
+                .collect(),
+        )
     }
 
     /// The footprints, in the order given.

@@ -7,7 +7,7 @@
 
 use rand::rngs::ChaCha8Rng;
 use rayon::prelude::*;
-use sightline_dsl::{AgentKind, Grid, Motion, Perception, World};
+use sightline_dsl::{Grid, Motion, Perception, World};
 
 use super::fuse::CellFusion;
 use super::localization::PoseEstimator;
@@ -81,20 +81,7 @@ pub fn run(seed: u64, grid: &Grid, world: &World, perception: &Perception, jobs:
 
     for k in 0..world.steps {
         kinematics.advance(k, &mut states);
-        let bodies = Bodies::new(
-            states
-                .iter()
-                .enumerate()
-                .filter(|&(i, _)| world.agents[i].kind != AgentKind::Rsu)
-                .filter_map(|(i, s)| {
-                    s.map(|s| Body {
-                        agent: i,
-                        pose: s.pose,
-                        half_extents: Vector::new(world.agents[i].length, world.agents[i].width) / 2.0,
-                    })
-                })
-                .collect(),
-        );
+        let bodies = Bodies::of_scene(&world.agents, &states);
         raster.set_bodies(bodies.all());
         // Agents update their pose estimates whether or not the ego is there.
         let scene = StepScene {
