@@ -29,6 +29,10 @@ mod golden;
 #[path = "e2e/docs.rs"]
 mod docs;
 
-// The bundled seed-001 scenario run end to end (the one slow test).
+// The bundled scenarios run end to end (the slow tests), each once.
 #[path = "e2e/bundled.rs"]
 mod bundled;
+
+// The findings pages quote the bundled runs.
+#[path = "e2e/findings.rs"]
+mod findings;

@@ -51,6 +51,16 @@ pub(crate) fn stream(seed: u64, purpose: Purpose, index: u64) -> ChaCha8Rng {
     rng
 }
 
+/// The seed of independent run `run` of a scenario seeded `seed`: run 0 is `seed`
+/// itself, so a single run reproduces the scenario's own draws.
+pub(crate) fn run_seed(seed: u64, run: u32) -> u64 {
+    if run == 0 {
+        return seed;
+    }
+    let mut state = seed ^ u64::from(run).wrapping_mul(0xA24B_AED4_963E_E407);
+    splitmix64(&mut state)
+}
+
 /// SplitMix64 (Steele, Lea, Flood 2014): a fixed, well-mixed seed expansion.
 fn splitmix64(state: &mut u64) -> u64 {
     *state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
@@ -73,5 +83,16 @@ mod tests {
         assert_ne!(draw(7, Purpose::Masses, 3), draw(7, Purpose::Masses, 4));
         assert_ne!(draw(7, Purpose::Masses, 3), draw(7, Purpose::Truth, 3));
         assert_ne!(draw(7, Purpose::Masses, 3), draw(8, Purpose::Masses, 3));
+    }
+
+    #[test]
+    fn run_seeds_start_at_the_scenario_seed_and_differ() {
+        assert_eq!(run_seed(7, 0), 7);
+        let seeds: Vec<u64> = (0..100).map(|r| run_seed(7, r)).collect();
+        let mut distinct = seeds.clone();
+        distinct.sort_unstable();
+        distinct.dedup();
+        assert_eq!(distinct.len(), seeds.len());
+        assert_ne!(run_seed(7, 1), run_seed(8, 1));
     }
 }

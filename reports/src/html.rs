@@ -8,8 +8,9 @@ use serde::Serialize;
 
 use sightline_dsl::display_value;
 
-use sightline_engine::semantic::{DELIVERY_BIN, DENSITY_BIN, DensityRow, SemanticMetrics};
+use sightline_engine::semantic::{DELIVERY_BIN, DENSITY_BIN, DensityRow, SemanticMetrics, quantile};
 
+use crate::chart::Chart;
 use crate::picture::Pictures;
 use crate::results::{Detail, PointResult, RequirementResult, Results, Summary};
 
@@ -32,13 +33,19 @@ const TABLE_METRICS: [&str; 11] = [
 ];
 
 /// Renders the report. `reproduce` is the command that re-creates the run;
-/// `pictures` holds the grid pictures of each point (world points only).
-pub fn html(results: &Results, reproduce: &str, pictures: &[Option<Pictures>]) -> Result<String, minijinja::Error> {
+/// `pictures` holds the grid pictures of each point (world points only), `charts`
+/// the charts of each point.
+pub fn html(
+    results: &Results,
+    reproduce: &str,
+    pictures: &[Option<Pictures>],
+    charts: &[Vec<Chart>],
+) -> Result<String, minijinja::Error> {
     let mut env = Environment::new();
     env.set_undefined_behavior(UndefinedBehavior::Strict);
     // The name ends in `.html`, so minijinja escapes every interpolation.
     env.add_template("report.html", TEMPLATE)?;
-    let view = View::new(results, reproduce, pictures);
+    let view = View::new(results, reproduce, pictures, charts);
     env.get_template("report.html")?
         .render(context! { report => Value::from(Serde(&view)) })
 }
@@ -112,10 +119,11 @@ struct PointView {
     summary: String,
     tables: Vec<TableView>,
     pictures: Option<Pictures>,
+    charts: Vec<Chart>,
 }
 
 impl<'a> View<'a> {
-    fn new(results: &'a Results, reproduce: &str, pictures: &[Option<Pictures>]) -> Self {
+    fn new(results: &'a Results, reproduce: &str, pictures: &[Option<Pictures>], charts: &[Vec<Chart>]) -> Self {
         View {
             name: &results.scenario.name,
             description: &results.scenario.description,
@@ -129,7 +137,21 @@ impl<'a> View<'a> {
                 .sweep
                 .iter()
                 .zip(pictures)
-                .map(|(point, pictures)| point_view(point, pictures.clone()))
+                .zip(charts)
+                .map(|((point, pictures), charts)| {
+                    let (summary, tables) = point_body(point);
+                    PointView {
+                        label: if point.label.is_empty() {
+                            "the scenario".into()
+                        } else {
+                            point.label.clone()
+                        },
+                        summary,
+                        tables,
+                        pictures: pictures.clone(),
+                        charts: charts.clone(),
+                    }
+                })
                 .collect(),
         }
     }
@@ -296,21 +318,15 @@ const BAND_COLUMNS: [&str; 7] = [
     "mean conflict",
 ];
 
-fn point_view(p: &PointResult, pictures: Option<Pictures>) -> PointView {
-    let label = if p.label.is_empty() {
-        "the scenario".into()
-    } else {
-        p.label.clone()
-    };
+/// The summary line and the tables of a point's details.
+fn point_body(p: &PointResult) -> (String, Vec<TableView>) {
     match &p.detail {
-        Detail::Field { bands, coverage: c } => PointView {
-            label,
-            pictures,
-            summary: format!(
+        Detail::Field { bands, coverage: c } => (
+            format!(
                 "{} sensors; {}–{} observe each cell (mean {:.2})",
                 c.sensors, c.min_sources, c.max_sources, c.mean_sources
             ),
-            tables: vec![TableView {
+            vec![TableView {
                 caption: String::new(),
                 text_columns: 1,
                 head: BAND_COLUMNS.map(String::from).to_vec(),
@@ -332,7 +348,7 @@ fn point_view(p: &PointResult, pictures: Option<Pictures>) -> PointView {
                     })
                     .collect(),
             }],
-        },
+        ),
         Detail::World { counts: c } => {
             let s = &c.sightings;
             let rows = [
@@ -354,27 +370,21 @@ fn point_view(p: &PointResult, pictures: Option<Pictures>) -> PointView {
                 "mean pose-estimate error, m".into(),
                 or_dash(c.localization_error),
             ]);
-            PointView {
-                label,
-                pictures,
-                summary: format!("{} steps", c.steps),
-                tables: vec![counts_table(rows)],
-            }
+            (format!("{} steps", c.steps), vec![counts_table(rows)])
         }
         Detail::Semantic {
             counts: c,
             contribution_by_density,
-        } => PointView {
-            label,
-            pictures,
-            summary: format!(
-                "{} steps, {} generated road users, {} anticipated objects",
+        } => (
+            format!(
+                "{} pooled run(s): {} steps with the ego, {} generated road users, {} anticipated objects",
+                c.runs,
                 c.steps,
                 c.generated,
                 c.anticipation.len()
             ),
-            tables: semantic_tables(c, contribution_by_density),
-        },
+            semantic_tables(c, contribution_by_density),
+        ),
     }
 }
 
@@ -398,7 +408,10 @@ fn semantic_tables(c: &SemanticMetrics, density: &[DensityRow]) -> Vec<TableView
             c.anticipation.len() as f64,
         ),
         ("objects learned of while hidden and never seen", c.never_seen as f64),
-        ("object-cycles perceived by the RSUs", c.perceived as f64),
+        (
+            "object-cycles perceived by the RSUs (in the cycles the shares count)",
+            c.perceived as f64,
+        ),
         ("… sent to the ego", c.transmitted as f64),
         ("… with at least one label", c.labelled as f64),
         ("… labelled NLoS behind an occluder", l.nlos_static as f64),
@@ -453,8 +466,22 @@ fn semantic_tables(c: &SemanticMetrics, density: &[DensityRow]) -> Vec<TableView
             })
             .collect(),
     };
+    let quantiles = [0.0, 0.25, 0.5, 0.75, 0.95, 1.0];
+    let anticipation = TableView {
+        caption: "Anticipation time, seconds (type 7 quantiles over the pooled objects)".into(),
+        text_columns: 0,
+        head: ["objects", "min", "25 %", "median", "75 %", "95 %", "max"]
+            .map(String::from)
+            .to_vec(),
+        rows: vec![
+            std::iter::once(number(c.anticipation.len() as f64))
+                .chain(quantiles.iter().map(|&q| or_dash(quantile(&c.anticipation, q))))
+                .collect(),
+        ],
+    };
     vec![
         counts_table(counts.iter().map(|(k, v)| vec![(*k).to_string(), number(*v)]).collect()),
+        anticipation,
         by_density,
         by_distance,
     ]

@@ -6,6 +6,7 @@
 //! `sightline-oracles`).
 #![warn(missing_docs)]
 
+pub use chart::{Chart, ChartError, anticipation, kde, silverman_bandwidth};
 pub use html::html;
 pub use junit::junit;
 pub use picture::{Pictures, pictures};
@@ -14,6 +15,7 @@ pub use results::{
     ReferenceResult, RequirementResult, Results, ScenarioInfo, Summary, Table, Tool,
 };
 
+mod chart;
 mod html;
 mod junit;
 mod picture;
@@ -52,6 +54,9 @@ pub enum Error {
     /// A grid picture could not be encoded.
     #[error("failed to draw a grid picture: {0}")]
     Picture(#[from] png::EncodingError),
+    /// A chart could not be drawn.
+    #[error(transparent)]
+    Chart(#[from] ChartError),
 }
 
 /// Renders all evidence of a run. `reproduce` is the command that re-creates it.
@@ -86,7 +91,15 @@ pub fn render(
             _ => Ok(None),
         })
         .collect::<Result<Vec<_>, _>>()?;
-    let report_html = html(&results, reproduce, &pictures)?;
+    let charts = run
+        .points
+        .iter()
+        .map(|outcome| match outcome {
+            Outcome::Semantic(m) => Ok(anticipation(&m.anticipation)?.into_iter().collect()),
+            _ => Ok(Vec::new()),
+        })
+        .collect::<Result<Vec<Vec<Chart>>, ChartError>>()?;
+    let report_html = html(&results, reproduce, &pictures, &charts)?;
     Ok(Evidence {
         results,
         results_json,

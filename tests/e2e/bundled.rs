@@ -4,7 +4,8 @@
 
 use std::sync::OnceLock;
 
-use crate::support::{arg, assert_evidence_files, read, read_json, root, sightline, temp_dir};
+use crate::findings::tables;
+use crate::support::{arg, assert_evidence_files, read_json, sightline, temp_dir, unescape_html};
 
 const SCENARIO: &str = "scenarios/evidential-field.yaml";
 
@@ -78,52 +79,6 @@ fn published(metric: &str, gamma: f64, label: &str) -> f64 {
         .unwrap()
 }
 
-/// A markdown table of a findings document: its header cells, its body rows, and
-/// the last bold line (`**…**`) before it.
-struct Table {
-    heading: String,
-    header: Vec<String>,
-    rows: Vec<Vec<String>>,
-}
-
-/// The tables of the section `## {title}…` of the document at `path` (relative to
-/// the repository root).
-fn tables(path: &str, title: &str) -> Vec<Table> {
-    let doc = read(&root().join(path));
-    let section = doc
-        .split("\n## ")
-        .find(|s| s.starts_with(title))
-        .unwrap_or_else(|| panic!("{path} has no section \"{title}\""));
-    let mut tables: Vec<Table> = Vec::new();
-    let mut heading = String::new();
-    let mut in_table = false;
-    for line in section.lines() {
-        if !line.starts_with('|') {
-            if line.starts_with("**") {
-                heading = line.to_string();
-            }
-            in_table = false;
-            continue;
-        }
-        let cells: Vec<String> = line
-            .trim_matches('|')
-            .split('|')
-            .map(|c| c.trim().to_string())
-            .collect();
-        if !in_table {
-            tables.push(Table {
-                heading: heading.clone(),
-                header: cells,
-                rows: Vec::new(),
-            });
-            in_table = true;
-        } else if !cells[0].starts_with("---") {
-            tables.last_mut().unwrap().rows.push(cells);
-        }
-    }
-    tables
-}
-
 /// Every table under "Measured against Table III" quotes the bundled run (and its
 /// "paper" columns the scenario's references), so the findings cannot drift from
 /// what sightline computes.
@@ -182,7 +137,7 @@ fn findings_tables_quote_the_bundled_run() {
 }
 
 /// results.json of one run of the bundled roundabout.
-fn roundabout() -> &'static serde_json::Value {
+pub fn roundabout() -> &'static serde_json::Value {
     static RESULTS: OnceLock<serde_json::Value> = OnceLock::new();
     RESULTS.get_or_init(|| {
         let tmp = temp_dir();
@@ -207,84 +162,55 @@ fn roundabout_scenario_runs_end_to_end() {
     assert_eq!(points[5]["counts"], points[8]["counts"]);
 }
 
-/// Every table under "Measured beside the paper" in docs/findings/seed-000.md: the
-/// first column is a swept setting, the others metrics of the bundled run (or
-/// `… (paper)`: the scenario's reference at that point, `—` where there is none).
-#[test]
-fn seed_000_findings_quote_the_bundled_run() {
-    let results = roundabout();
-    let points = results["sweep"].as_array().unwrap();
-    let references = results["references"].as_array().unwrap();
-    let mut checked = 0;
-    for table in tables("docs/findings/seed-000.md", "Measured beside the paper") {
-        let axis = table.header[0].trim_matches('`');
-        for cells in &table.rows {
-            let value: f64 = cells[0].parse().unwrap();
-            let point = points
-                .iter()
-                .find(|p| p["sweep"].is_number() && p["settings"][axis].as_f64() == Some(value))
-                .unwrap_or_else(|| panic!("no point with {axis} = {value}"));
-            let index = point["index"].as_u64().unwrap();
-            for (column, cell) in table.header.iter().zip(cells).skip(1) {
-                let actual = if let Some(metric) = column.strip_suffix(" (paper)") {
-                    references
-                        .iter()
-                        .find(|r| {
-                            r["metric"] == metric && r["points"].as_array().unwrap().iter().any(|p| p["point"] == index)
-                        })
-                        .map(|r| r["published"].as_f64().unwrap())
-                } else if column == "localization_error" {
-                    point["counts"]["localization_error"].as_f64()
-                } else {
-                    point["metrics"][column.as_str()].as_f64()
-                };
-                match (cell.as_str(), actual) {
-                    ("—", None) => {}
-                    (quoted, Some(actual)) => {
-                        let decimals = quoted.split('.').nth(1).map_or(0, str::len) as i32;
-                        let quoted: f64 = quoted.parse().unwrap_or_else(|_| panic!("not a number: {quoted}"));
-                        assert!(
-                            (actual - quoted).abs() <= 0.5 * 10f64.powi(-decimals) + 1e-12,
-                            "{column} at {axis} = {value}: the findings quote {quoted}, the run gives {actual}"
-                        );
-                    }
-                    (quoted, None) => {
-                        panic!("{column} at {axis} = {value}: the findings quote {quoted}, the run has none")
-                    }
-                }
-                checked += 1;
-            }
+/// results.json of one run of the bundled seed 002 junction.
+pub fn urban() -> &'static serde_json::Value {
+    static RESULTS: OnceLock<serde_json::Value> = OnceLock::new();
+    RESULTS.get_or_init(|| {
+        let tmp = temp_dir();
+        let out = tmp.path().join("out");
+        sightline(["run", "scenarios/urban-rsu-semantic.yaml", "--out", arg(&out)]).assert_exit(0);
+        assert_evidence_files(&out);
+        let html = unescape_html(&std::fs::read_to_string(out.join("report.html")).unwrap());
+        for shown in [
+            "Objects the ego knows only through an RSU, by traffic density",
+            "Messages to the ego by RSU–ego distance",
+            "Anticipation time, seconds",
+            "Gaussian kernel density estimate",
+            "data:image/svg+xml;base64,",
+        ] {
+            assert!(html.contains(shown), "the report lacks {shown:?}");
         }
-    }
-    assert_eq!(checked, 6 * 6 + 6 * 4);
+        read_json(&out.join("results.json"))
+    })
 }
 
-/// The bundled seed 002 junction: every density point measures the semantic
-/// pipeline, and the report shows the density and delivery tables.
+/// The bundled seed 002 junction: every point measures the semantic pipeline over
+/// five pooled runs, and the report shows the distribution and the tables.
 #[test]
 fn urban_semantic_scenario_runs_end_to_end() {
-    let tmp = temp_dir();
-    let out = tmp.path().join("out");
-    sightline(["run", "scenarios/urban-rsu-semantic.yaml", "--out", arg(&out)]).assert_exit(0);
-    assert_evidence_files(&out);
-    let results = read_json(&out.join("results.json"));
+    let results = urban();
     assert_eq!(results["verdict"], "pass");
     let points = results["sweep"].as_array().unwrap();
-    assert_eq!(points.len(), 4);
+    assert_eq!(points.len(), 8);
     for point in points {
         assert_eq!(point["experiment"], "semantic");
         assert!(point.get("audit").is_none(), "a semantic world fuses no cells");
         let counts = &point["counts"];
+        assert_eq!(counts["runs"], 5);
         let share = point["metrics"]["transmitted_share"].as_f64().unwrap();
         let expected = counts["transmitted"].as_f64().unwrap() / counts["perceived"].as_f64().unwrap();
         assert!((share - expected).abs() < 1e-12);
         assert!(counts["labelled"].as_u64() <= counts["transmitted"].as_u64());
+        let per_run = counts["missed_criticals"].as_f64().unwrap() / 5.0;
+        assert_eq!(point["metrics"]["missed_criticals"].as_f64(), Some(per_run));
         assert!(!point["contribution_by_density"].as_array().unwrap().is_empty());
     }
     // Denser traffic puts more on the channel, for the baseline sender too.
     let load = |i: usize, metric: &str| points[i]["metrics"][metric].as_f64().unwrap();
     assert!(load(3, "baseline_channel_load") > load(0, "baseline_channel_load"));
-    let html = std::fs::read_to_string(out.join("report.html")).unwrap();
-    assert!(html.contains("Objects the ego knows only through an RSU, by traffic density"));
-    assert!(html.contains("Messages to the ego by RSU–ego distance"));
+    // Counting every cycle, not only those serving the ego, can only lower the shares.
+    assert_eq!(points[6]["label"], "semantic.shares_over=ego_in_range");
+    assert_eq!(points[7]["label"], "semantic.shares_over=all");
+    assert!(load(7, "transmitted_share") < load(6, "transmitted_share"));
+    assert_eq!(points[6]["counts"]["transmitted"], points[1]["counts"]["transmitted"]);
 }

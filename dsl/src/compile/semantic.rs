@@ -12,6 +12,9 @@ use crate::model::{
 use crate::path::Path;
 use crate::raw::{RawCrosswalk, RawDriving, RawInteractionArea, RawSemantic, RawTraffic, RawV2x};
 
+/// Most independent runs a point may pool.
+const MAX_RUNS: u32 = 1000;
+
 pub(super) fn crosswalks(ctx: &mut Context<'_>, raw: &[RawCrosswalk]) -> Option<Vec<Crosswalk>> {
     let list = Path::root().key("crosswalks");
     let mut ok = unique_ids(ctx, &list, raw.iter().map(|c| c.id.as_str()));
@@ -323,6 +326,12 @@ pub(super) fn semantic_of(ctx: &mut Context<'_>, raw: &RawSemantic, agents: &[Ag
         & ctx.positive(&path.key("baseline").key("speed"), raw.baseline.speed)
         & ctx.positive(&path.key("baseline").key("heading_deg"), raw.baseline.heading_deg)
         & ctx.positive(&path.key("baseline").key("interval"), raw.baseline.interval);
+    ok &= ctx.expect(
+        (1..=MAX_RUNS).contains(&raw.runs),
+        &path.key("runs"),
+        &format!("a whole number from 1 to {MAX_RUNS}"),
+        f64::from(raw.runs),
+    );
     if raw.hypotheses.is_empty() {
         ctx.error(
             &path.key("hypotheses"),
@@ -379,5 +388,7 @@ pub(super) fn semantic_of(ctx: &mut Context<'_>, raw: &RawSemantic, agents: &[Ag
             heading: raw.baseline.heading_deg.to_radians(),
             interval: raw.baseline.interval,
         },
+        shares_over: raw.shares_over,
+        runs: raw.runs,
     })
 }

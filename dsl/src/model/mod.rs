@@ -17,7 +17,7 @@ pub use requirement::{Bound, Check, Invariant, Metric, Reference, Requirement};
 pub use scenario::{Assignment, Axis, Experiment, Grid, Point, Scenario, Setup, Sweep, display_value};
 pub use semantic::{
     Area, Baseline, Caution, Crosswalk, Driving, Following, InteractionArea, PedestrianTraffic, RiskScope, RsuSight,
-    Semantic, Traffic, TrafficRoute, VehicleTraffic,
+    Semantic, ShareCycles, Traffic, TrafficRoute, VehicleTraffic,
 };
 pub use v2x::{Channel, PathLossModel, V2x};
 pub use world::{

@@ -140,10 +140,12 @@ pub enum Metric {
     AnticipationP95,
     /// Semantic: mean number of objects per step the ego knows only through an RSU.
     InfrastructureContribution,
-    /// Semantic: share of the objects the RSUs perceive that they send (0–1).
+    /// Semantic: share of the objects the RSUs perceive that they send (0–1), over
+    /// the cycles `semantic.shares_over` selects.
     TransmittedShare,
     /// Semantic: share of the objects the RSUs perceive that they send with at
-    /// least one label: NLoS, relevance, speed violation or conflict (0–1).
+    /// least one label: NLoS, relevance, speed violation or conflict (0–1), over
+    /// the cycles `semantic.shares_over` selects.
     LabelledShare,
     /// Semantic: bytes per second the RSUs' semantic messages put on the channel.
     ChannelLoad,
@@ -152,8 +154,9 @@ pub enum Metric {
     BaselineChannelLoad,
     /// Semantic: share of RSU messages to the ego that arrive (0–1).
     PacketDeliveryRatio,
-    /// Semantic: objects that came within d_min of the ego without a conflict
-    /// flagged in a message the ego received beforehand.
+    /// Semantic: objects per run that came within d_min of the ego without a
+    /// conflict flagged in a message the ego received beforehand (the mean over
+    /// `semantic.runs`).
     MissedCriticals,
 }
 

@@ -131,6 +131,17 @@ pub enum RsuSight {
     LineOfSight,
 }
 
+/// Which RSU cycles the transmitted and labelled shares count.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum ShareCycles {
+    /// Cycles with the ego within range of one of the RSU's sensors (ours: seed
+    /// 002 places RSUs along the ego's way, so the ego is always served).
+    EgoInRange,
+    /// Every cycle of the run, wherever the ego is.
+    All,
+}
+
 /// The roadside units' semantic pipeline.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Semantic {
@@ -162,6 +173,11 @@ pub struct Semantic {
     pub caution: Caution,
     /// The ETSI baseline sender.
     pub baseline: Baseline,
+    /// Which cycles the transmitted and labelled shares count.
+    pub shares_over: ShareCycles,
+    /// Independent runs pooled into each point's measurements (run 0 uses the
+    /// scenario's seed).
+    pub runs: u32,
 }
 
 /// The ego's reaction to a flagged conflict.

@@ -6,7 +6,7 @@ use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use super::RawRegion;
-use crate::model::{Following, PathLossModel, RiskScope, RsuSight};
+use crate::model::{Following, PathLossModel, RiskScope, RsuSight, ShareCycles};
 
 /// Background traffic generated on declared routes and crosswalks, deterministic
 /// for the scenario's seed.
@@ -332,6 +332,14 @@ pub(crate) struct RawSemantic {
     /// The ETSI collective perception baseline the semantic selection is compared with.
     #[serde(default)]
     pub baseline: RawBaseline,
+    /// Which RSU cycles the transmitted and labelled shares count: `ego_in_range`
+    /// (the ego within range of one of the RSU's sensors) or `all`.
+    #[serde(default = "default_shares_over")]
+    pub shares_over: ShareCycles,
+    /// Independent runs pooled into each point's measurements (traffic, detections
+    /// and packet losses drawn anew; run 0 uses the scenario's seed).
+    #[serde(default = "default_runs")]
+    pub runs: u32,
 }
 
 fn default_proximity() -> f64 {
@@ -357,6 +365,12 @@ fn default_rsu_sight() -> RsuSight {
 }
 fn default_history() -> f64 {
     5.0
+}
+fn default_shares_over() -> ShareCycles {
+    ShareCycles::EgoInRange
+}
+fn default_runs() -> u32 {
+    1
 }
 
 /// The dangerous-driver window (seed 002, eq. 2).

@@ -13,6 +13,8 @@ pub const DENSITY_BIN: f64 = 10.0;
 /// The measurements of one semantic run.
 #[derive(Debug, Clone, PartialEq, Default, Serialize)]
 pub struct SemanticMetrics {
+    /// Independent runs pooled into these measurements.
+    pub runs: u32,
     /// Steps with the ego in the scene.
     pub steps: u64,
     /// Simulated seconds with the ego in the scene.
@@ -29,11 +31,12 @@ pub struct SemanticMetrics {
     /// ego knew only through an RSU (summarised by [`Self::contribution_by_density`]).
     #[serde(skip)]
     pub contribution: Vec<(f64, u32)>,
-    /// Object-cycles perceived by the RSUs (the ego excluded).
+    /// Object-cycles perceived by the RSUs (the ego excluded), in the cycles the
+    /// shares count (`semantic.shares_over`).
     pub perceived: u64,
-    /// Object-cycles sent to the ego.
+    /// Object-cycles sent to the ego, in the cycles the shares count.
     pub transmitted: u64,
-    /// Object-cycles sent with at least one label.
+    /// Object-cycles sent with at least one label, in the cycles the shares count.
     pub labelled: u64,
     /// Sent object-cycles by label.
     pub labels: LabelCounts,
@@ -96,6 +99,66 @@ pub struct DensityRow {
 }
 
 impl SemanticMetrics {
+    /// Adds the measurements of another independent run: counts and durations
+    /// add up, samples join, so every ratio and quantile is over the pooled runs.
+    pub fn pool(&mut self, other: SemanticMetrics) {
+        // Destructured so that a new field cannot be forgotten here.
+        let SemanticMetrics {
+            runs,
+            steps,
+            duration,
+            generated,
+            anticipation,
+            never_seen,
+            contribution,
+            perceived,
+            transmitted,
+            labelled,
+            labels,
+            bytes,
+            baseline_bytes,
+            baseline_objects,
+            messages,
+            delivered,
+            delivery_by_distance,
+            close_approaches,
+            missed_criticals,
+            cautious_time,
+        } = other;
+        self.runs += runs;
+        self.steps += steps;
+        self.duration += duration;
+        self.generated += generated;
+        self.anticipation.extend(anticipation);
+        self.anticipation.sort_by(f64::total_cmp);
+        self.never_seen += never_seen;
+        self.contribution.extend(contribution);
+        self.perceived += perceived;
+        self.transmitted += transmitted;
+        self.labelled += labelled;
+        self.labels.nlos_static += labels.nlos_static;
+        self.labels.nlos_dynamic += labels.nlos_dynamic;
+        self.labels.relevant += labels.relevant;
+        self.labels.speeding += labels.speeding;
+        self.labels.conflict += labels.conflict;
+        self.bytes += bytes;
+        self.baseline_bytes += baseline_bytes;
+        self.baseline_objects += baseline_objects;
+        self.messages += messages;
+        self.delivered += delivered;
+        if self.delivery_by_distance.len() < delivery_by_distance.len() {
+            self.delivery_by_distance
+                .resize(delivery_by_distance.len(), DeliveryBin::default());
+        }
+        for (mine, theirs) in self.delivery_by_distance.iter_mut().zip(delivery_by_distance) {
+            mine.sent += theirs.sent;
+            mine.received += theirs.received;
+        }
+        self.close_approaches += close_approaches;
+        self.missed_criticals += missed_criticals;
+        self.cautious_time += cautious_time;
+    }
+
     /// The value of `metric`, or `None` where it is not defined for this run.
     pub fn value(&self, metric: Metric) -> Option<f64> {
         let ratio = |num: u64, den: u64| (den > 0).then(|| num as f64 / den as f64);
@@ -111,7 +174,7 @@ impl SemanticMetrics {
             Metric::ChannelLoad => rate(self.bytes),
             Metric::BaselineChannelLoad => rate(self.baseline_bytes),
             Metric::PacketDeliveryRatio => ratio(self.delivered, self.messages),
-            Metric::MissedCriticals => Some(self.missed_criticals as f64),
+            Metric::MissedCriticals => Some(self.missed_criticals as f64 / f64::from(self.runs.max(1))),
             _ => None,
         }
     }
@@ -172,5 +235,50 @@ mod tests {
         assert_eq!((rows[0].from, rows[0].steps, rows[0].median), (10.0, 3, 5.0));
         assert_eq!((rows[1].from, rows[1].median), (40.0, 12.0));
         assert_eq!(metrics.value(Metric::InfrastructureContribution), Some(6.75));
+    }
+
+    #[test]
+    fn pooled_runs_add_counts_and_join_samples() {
+        let mut first = SemanticMetrics {
+            runs: 1,
+            duration: 10.0,
+            anticipation: vec![1.0, 3.0],
+            perceived: 10,
+            transmitted: 4,
+            bytes: 1000,
+            delivery_by_distance: vec![DeliveryBin { sent: 2, received: 2 }],
+            missed_criticals: 1,
+            ..Default::default()
+        };
+        let second = SemanticMetrics {
+            runs: 1,
+            duration: 30.0,
+            anticipation: vec![2.0],
+            perceived: 30,
+            transmitted: 6,
+            bytes: 1000,
+            delivery_by_distance: vec![
+                DeliveryBin { sent: 1, received: 0 },
+                DeliveryBin { sent: 1, received: 1 },
+            ],
+            missed_criticals: 2,
+            ..Default::default()
+        };
+        first.pool(second);
+        assert_eq!(first.runs, 2);
+        assert_eq!(first.anticipation, [1.0, 2.0, 3.0]);
+        assert_eq!(first.value(Metric::AnticipationMedian), Some(2.0));
+        // (4 + 6) / (10 + 30), not the mean of 0.4 and 0.2.
+        assert_eq!(first.value(Metric::TransmittedShare), Some(0.25));
+        assert_eq!(first.value(Metric::ChannelLoad), Some(50.0));
+        // Three over two runs.
+        assert_eq!(first.value(Metric::MissedCriticals), Some(1.5));
+        assert_eq!(
+            first.delivery_by_distance,
+            [
+                DeliveryBin { sent: 3, received: 2 },
+                DeliveryBin { sent: 1, received: 1 }
+            ]
+        );
     }
 }

@@ -170,7 +170,7 @@ fn earliest(a: Conflict, b: Conflict) -> Conflict {
 
 #[cfg(test)]
 mod tests {
-    use sightline_dsl::{Baseline, Caution, RsuSight};
+    use sightline_dsl::{Baseline, Caution, RsuSight, ShareCycles};
 
     use super::*;
     use crate::semantic::ldm::Measurement;
@@ -200,6 +200,8 @@ mod tests {
                 heading: 0.07,
                 interval: 1.0,
             },
+            shares_over: ShareCycles::EgoInRange,
+            runs: 1,
         }
     }
 

@@ -14,6 +14,10 @@
 //!   range and field of view of one of its sensors with a clear line of sight.
 //! - Connected vehicles (v2x.penetration) send the ego their own state each
 //!   cycle; the ego then knows them without an RSU.
+//! - The transmitted and labelled shares count, by default, the cycles in which
+//!   the ego is within range of one of the RSU's sensors (`shares_over:
+//!   ego_in_range`): seed 002 places RSUs along the ego's way, so its ego is
+//!   always served. `shares_over: all` counts every cycle.
 //! - Density is the number of vehicles and pedestrians in the scene per km of
 //!   road (lane 0 of every road).
 
@@ -22,8 +26,9 @@ use std::collections::VecDeque;
 use rand::RngExt;
 use rand::rngs::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
+use rayon::prelude::*;
 use sightline_dsl::geometry::Polyline;
-use sightline_dsl::{Agent, AgentKind, Motion, RsuSight, Semantic, World};
+use sightline_dsl::{Agent, AgentKind, Motion, RsuSight, Semantic, ShareCycles, World};
 
 use super::ldm::{Ldm, Measurement};
 use super::message::{EtsiSender, Item, baseline_bytes, semantic_bytes};
@@ -33,7 +38,7 @@ use super::relevance::{Areas, crosswalk_area};
 use super::risk::RouteMap;
 use super::traffic;
 use crate::math::{Pose, Vector};
-use crate::rng::{Purpose, stream};
+use crate::rng::{Purpose, run_seed, stream};
 use crate::v2x::{Link, transmit};
 use crate::world::{
     AgentState, Bodies, Body, Kinematics, Occluders, Restraint, Visibility, in_view, mount_pose, visibility,
@@ -65,6 +70,8 @@ struct Knowledge {
 /// An RSU's state across cycles.
 struct Rsu {
     agent: usize,
+    /// Its longest sensor range, metres.
+    range: f64,
     ldm: Ldm,
     baseline: EtsiSender,
     plan: Option<EgoPlan>,
@@ -72,8 +79,23 @@ struct Rsu {
     channel: ChaCha8Rng,
 }
 
-/// Runs a world's semantic pipeline once.
+/// Runs a world's semantic pipeline `semantic.runs` times, each run with its own
+/// seed (run 0 with `seed` itself), and pools the measurements in run order. Runs go in
+/// parallel; the result does not depend on the thread count.
 pub fn run(seed: u64, world: &World, semantic: &Semantic) -> SemanticMetrics {
+    let runs: Vec<SemanticMetrics> = (0..semantic.runs)
+        .into_par_iter()
+        .map(|r| run_once(run_seed(seed, r), world, semantic))
+        .collect();
+    let mut pooled = SemanticMetrics::default();
+    for metrics in runs {
+        pooled.pool(metrics);
+    }
+    pooled
+}
+
+/// One run of a world's semantic pipeline.
+fn run_once(seed: u64, world: &World, semantic: &Semantic) -> SemanticMetrics {
     let generated = traffic::generate(seed, world);
     let agents: Vec<Agent> = world.agents.iter().cloned().chain(generated).collect();
     let dt = world.step;
@@ -100,6 +122,7 @@ pub fn run(seed: u64, world: &World, semantic: &Semantic) -> SemanticMetrics {
         .iter()
         .map(|&agent| Rsu {
             agent,
+            range: agents[agent].sensors.iter().map(|s| s.range).fold(0.0, f64::max),
             ldm: Ldm::default(),
             baseline: EtsiSender::new(semantic.baseline),
             plan: None,
@@ -113,6 +136,7 @@ pub fn run(seed: u64, world: &World, semantic: &Semantic) -> SemanticMetrics {
     let mut knowledge = vec![Knowledge::default(); agents.len()];
     let mut in_flight: VecDeque<(f64, Vec<Item>)> = VecDeque::new();
     let mut metrics = SemanticMetrics {
+        runs: 1,
         generated: (agents.len() - world.agents.len()) as u64,
         ..Default::default()
     };
@@ -207,7 +231,14 @@ pub fn run(seed: u64, world: &World, semantic: &Semantic) -> SemanticMetrics {
                 .filter(|&(agent, _)| agent != semantic.ego)
                 .map(|(agent, track)| (agent, track.latest()))
                 .collect();
-            metrics.perceived += perceived.len() as u64;
+            // Whether this cycle counts toward the transmitted and labelled shares.
+            let shared = match semantic.shares_over {
+                ShareCycles::All => true,
+                ShareCycles::EgoInRange => uplink.distance_m <= rsu.range,
+            };
+            if shared {
+                metrics.perceived += perceived.len() as u64;
+            }
             let baseline = rsu.baseline.select(perceived);
             if baseline > 0 {
                 metrics.baseline_objects += baseline as u64;
@@ -217,7 +248,9 @@ pub fn run(seed: u64, world: &World, semantic: &Semantic) -> SemanticMetrics {
             if items.is_empty() {
                 continue;
             }
-            count_labels(&mut metrics, &items);
+            if shared {
+                count_labels(&mut metrics, &items);
+            }
             metrics.bytes += semantic_bytes(items.len()) as u64;
             metrics.messages += 1;
             let downlink = Link {

@@ -16,7 +16,14 @@
 //! follower's heading (a pedestrian's as 0). There are no right-of-way rules:
 //! crossing vehicles do not see each other, so a junction never locks up, and
 //! they may meet in it — the conflicts the semantic pipeline is there to flag.
+//! With car following, a vehicle whose start time has come enters only when its
+//! lane is clear (every road user in it at least `min_gap` plus one headway of the
+//! follower's speed away, ahead and behind); until then it waits, as SUMO delays
+//! an insertion. Agents listed first enter first.
 
+use std::collections::HashMap;
+
+use sightline_dsl::geometry::Polyline;
 use sightline_dsl::{Agent, AgentKind, Driving, Following, Motion};
 
 use crate::math::{Point, Pose, Vector};
@@ -81,6 +88,10 @@ pub struct Kinematics<'a> {
     progress: Vec<Progress>,
     restraints: Vec<Option<Restraint>>,
     previous: Vec<Option<AgentState>>,
+    /// The road users of the previous step by area.
+    nearby: Nearby,
+    /// Agents that entered the scene at the step being computed.
+    entered: Vec<usize>,
 }
 
 impl<'a> Kinematics<'a> {
@@ -93,6 +104,8 @@ impl<'a> Kinematics<'a> {
             progress: vec![Progress::Waiting; agents.len()],
             restraints: vec![None; agents.len()],
             previous: vec![None; agents.len()],
+            nearby: Nearby::default(),
+            entered: Vec::new(),
         }
     }
 
@@ -106,6 +119,7 @@ impl<'a> Kinematics<'a> {
     pub fn advance(&mut self, k: usize, states: &mut Vec<Option<AgentState>>) {
         let time = k as f64 * self.step;
         states.clear();
+        self.entered.clear();
         for i in 0..self.agents.len() {
             let agent = &self.agents[i];
             states.push(match &agent.motion {
@@ -126,10 +140,16 @@ impl<'a> Kinematics<'a> {
                     self.progress[i] = match self.progress[i] {
                         // A tolerance of a millionth of a step keeps `start: 0.3` with
                         // `step: 0.1` from waiting a step for 0.30000000000000004.
-                        Progress::Waiting if time + 1e-6 * self.step >= *start_time => Progress::Moving {
-                            offset: *start_offset,
-                            speed: *initial_speed,
-                        },
+                        Progress::Waiting
+                            if time + 1e-6 * self.step >= *start_time
+                                && self.entry_clear(i, path, *start_offset, *initial_speed, states) =>
+                        {
+                            self.entered.push(i);
+                            Progress::Moving {
+                                offset: *start_offset,
+                                speed: *initial_speed,
+                            }
+                        }
                         Progress::Moving { offset, speed } => {
                             let speed = self.next_speed(i, offset, speed);
                             let offset = offset + speed * self.step;
@@ -157,6 +177,7 @@ impl<'a> Kinematics<'a> {
             });
         }
         self.previous.clone_from(states);
+        self.nearby.index(&self.previous);
     }
 
     /// The speed of moving agent `i` one step after being at `offset` at `speed`.
@@ -195,32 +216,109 @@ impl<'a> Kinematics<'a> {
     /// The gap to agent `i`'s leader and the leader's speed along `i`'s heading.
     fn leader(&self, i: usize) -> Option<(f64, f64)> {
         let me = self.previous[i]?;
-        let (sin, cos) = me.heading().sin_cos();
-        let agent = &self.agents[i];
-        self.previous
-            .iter()
-            .zip(self.agents)
-            .enumerate()
-            .filter(|&(j, (_, other))| j != i && other.kind != AgentKind::Rsu)
-            .filter_map(|(_, (state, other))| {
-                let state = (*state)?;
-                let d = state.position() - me.position();
-                let ahead = d.x * cos + d.y * sin;
-                let across = -d.x * sin + d.y * cos;
-                let overlap = (agent.width + other.width) / 2.0;
-                let turn = (state.heading() - me.heading()).cos();
-                let followed = other.kind == AgentKind::Pedestrian || turn >= SAME_WAY.cos();
-                (followed && ahead > 0.0 && ahead <= LOOKAHEAD && across.abs() < overlap).then(|| {
-                    let gap = ahead - (agent.length + other.length) / 2.0;
-                    let along = if other.kind.is_vehicle() {
-                        state.speed * turn
-                    } else {
-                        0.0
-                    };
-                    (gap, along.max(0.0))
-                })
+        self.nearby
+            .around(me.position())
+            .filter_map(|j| {
+                let (ahead, along) = self.in_lane(i, &me, j, &self.previous[j]?)?;
+                (ahead > 0.0).then(|| (ahead - (self.agents[i].length + self.agents[j].length) / 2.0, along))
             })
             .min_by(|a, b| a.0.total_cmp(&b.0))
+    }
+
+    /// Whether vehicle `i` may enter at `offset` along `path` at `speed`: with car
+    /// following, every road user in its lane keeps at least the desired standing
+    /// gap plus one headway of the follower's speed, ahead of it and behind it.
+    /// Road users are placed as at the previous step, except those that entered
+    /// at this one (`current`). Without car following, or for a pedestrian, always.
+    fn entry_clear(&self, i: usize, path: &Polyline, offset: f64, speed: f64, current: &[Option<AgentState>]) -> bool {
+        if self.driving.following == Following::None || !self.agents[i].kind.is_vehicle() {
+            return true;
+        }
+        let [x, y] = path.point_at(offset);
+        let me = AgentState {
+            pose: Pose::new(Vector::new(x, y), path.heading_at(offset)),
+            speed,
+            offset,
+            limit: f64::INFINITY,
+        };
+        let previous = self
+            .nearby
+            .around(me.position())
+            .filter_map(|j| Some((j, self.previous[j]?)));
+        let entered = self.entered.iter().filter_map(|&j| Some((j, current[j]?)));
+        previous.chain(entered).all(|(j, other)| {
+            let Some((ahead, _)) = self.in_lane(i, &me, j, &other) else {
+                return true;
+            };
+            let gap = ahead.abs() - (self.agents[i].length + self.agents[j].length) / 2.0;
+            let follower_speed = if ahead > 0.0 { speed } else { other.speed };
+            gap >= self.driving.min_gap + follower_speed * self.driving.headway
+        })
+    }
+
+    /// Where agent `j` in state `other` is for vehicle `i` in state `me`, if it is
+    /// in `i`'s lane (footprints overlapping across `i`'s heading, within
+    /// `LOOKAHEAD` either way, a vehicle heading within `SAME_WAY` or any
+    /// pedestrian): how far its centre is ahead of `i`'s (negative behind) and its
+    /// speed along `i`'s heading.
+    fn in_lane(&self, i: usize, me: &AgentState, j: usize, other: &AgentState) -> Option<(f64, f64)> {
+        let (agent, them) = (&self.agents[i], &self.agents[j]);
+        if j == i || them.kind == AgentKind::Rsu {
+            return None;
+        }
+        // Trigonometry-free: this runs for every pair of road users every step.
+        let (cos, sin) = (me.pose.rotation.cos(), me.pose.rotation.sin());
+        let d = other.position() - me.position();
+        let ahead = d.x * cos + d.y * sin;
+        let across = -d.x * sin + d.y * cos;
+        let turn = cos * other.pose.rotation.cos() + sin * other.pose.rotation.sin();
+        let followed = them.kind == AgentKind::Pedestrian || turn >= SAME_WAY.cos();
+        let overlap = (agent.width + them.width) / 2.0;
+        (followed && ahead.abs() <= LOOKAHEAD && across.abs() < overlap).then(|| {
+            let along = if them.kind.is_vehicle() {
+                other.speed * turn
+            } else {
+                0.0
+            };
+            (ahead, along.max(0.0))
+        })
+    }
+}
+
+/// Road users by square cells of `LOOKAHEAD` metres, so that finding who is in a
+/// lane looks at the 3 × 3 cells around a position, not at every agent.
+#[derive(Debug, Clone, Default)]
+struct Nearby {
+    cells: HashMap<(i64, i64), Vec<usize>>,
+}
+
+impl Nearby {
+    /// Indexes every present agent of `states`.
+    fn index(&mut self, states: &[Option<AgentState>]) {
+        self.cells.values_mut().for_each(Vec::clear);
+        for (i, state) in states.iter().enumerate() {
+            if let Some(state) = state {
+                self.cells.entry(Self::cell(state.position())).or_default().push(i);
+            }
+        }
+    }
+
+    /// Every agent within `LOOKAHEAD` of `position` (and some farther), in a
+    /// fixed order.
+    fn around(&self, position: Point) -> impl Iterator<Item = usize> + '_ {
+        let (cx, cy) = Self::cell(position);
+        (-1..=1)
+            .flat_map(move |dx| (-1..=1).map(move |dy| (cx + dx, cy + dy)))
+            .filter_map(|cell| self.cells.get(&cell))
+            .flatten()
+            .copied()
+    }
+
+    fn cell(position: Point) -> (i64, i64) {
+        (
+            (position.x / LOOKAHEAD).floor() as i64,
+            (position.y / LOOKAHEAD).floor() as i64,
+        )
     }
 }
 
@@ -370,6 +468,35 @@ mod tests {
         let last = *gaps.last().unwrap();
         assert!((1.5..=3.0).contains(&last), "final gap {last}");
         assert!(states[0].unwrap().speed < 0.05);
+    }
+
+    /// A car due at offset 0 while another drives away from offset 5 waits until
+    /// the gap is at least min_gap + speed · headway = 2 + 10 · 1.5 = 17 m.
+    #[test]
+    fn idm_delays_an_entry_until_the_lane_is_clear() {
+        let leader = with(walker(0.0, 10.0, 30.0), |offset, _, _, _| *offset = 5.0);
+        let follower = with(walker(0.0, 10.0, 30.0), |offset, _, _, _| *offset = 0.0);
+        let agents = [leader, follower];
+        let mut kinematics = Kinematics::new(&agents, 0.1, driving(Following::Idm));
+        let mut states = Vec::new();
+        let mut entered = None;
+        for k in 0..40 {
+            kinematics.advance(k, &mut states);
+            if entered.is_none()
+                && let Some(follower) = states[1]
+            {
+                entered = Some((k, states[0].unwrap().offset - follower.offset - 4.5));
+            }
+        }
+        let (k, gap) = entered.expect("the follower enters once the leader is far enough");
+        // The leader's gap grows by 1 m a step from 0.5 m: 17.5 m at k = 17, which
+        // the follower sees at k = 18 (entries look at the previous step).
+        assert_eq!(k, 18, "gap {gap}");
+        assert!(gap >= 17.0 - 1e-9);
+        // Without car following, both enter at once.
+        let mut kinematics = Kinematics::new(&agents, 0.1, driving(Following::None));
+        kinematics.advance(0, &mut states);
+        assert!(states.iter().all(Option::is_some));
     }
 
     #[test]

@@ -1,0 +1,142 @@
+//! The findings pages quote the bundled runs: every figure in their measured
+//! tables is checked against a fresh run, so the docs cannot drift from what
+//! sightline computes.
+
+use crate::bundled::{roundabout, urban};
+use crate::support::{read, root};
+
+/// A markdown table of a findings document: its header cells, its body rows, and
+/// the last bold line (`**…**`) before it.
+pub struct Table {
+    pub heading: String,
+    pub header: Vec<String>,
+    pub rows: Vec<Vec<String>>,
+}
+
+/// The tables of the section `## {title}…` of the document at `path` (relative to
+/// the repository root).
+pub fn tables(path: &str, title: &str) -> Vec<Table> {
+    let doc = read(&root().join(path));
+    let section = doc
+        .split("\n## ")
+        .find(|s| s.starts_with(title))
+        .unwrap_or_else(|| panic!("{path} has no section \"{title}\""));
+    let mut tables: Vec<Table> = Vec::new();
+    let mut heading = String::new();
+    let mut in_table = false;
+    for line in section.lines() {
+        if !line.starts_with('|') {
+            if line.starts_with("**") {
+                heading = line.to_string();
+            }
+            in_table = false;
+            continue;
+        }
+        let cells: Vec<String> = line
+            .trim_matches('|')
+            .split('|')
+            .map(|c| c.trim().to_string())
+            .collect();
+        if !in_table {
+            tables.push(Table {
+                heading: heading.clone(),
+                header: cells,
+                rows: Vec::new(),
+            });
+            in_table = true;
+        } else if !cells[0].starts_with("---") {
+            tables.last_mut().unwrap().rows.push(cells);
+        }
+    }
+    tables
+}
+
+/// Whether `quoted` is `actual` rounded to the decimals it shows.
+#[track_caller]
+fn assert_quotes(quoted: &str, actual: f64, what: &str) {
+    let decimals = quoted.split('.').nth(1).map_or(0, str::len) as i32;
+    let value: f64 = quoted
+        .parse()
+        .unwrap_or_else(|_| panic!("{what}: not a number: {quoted}"));
+    assert!(
+        (actual - value).abs() <= 0.5 * 10f64.powi(-decimals) + 1e-12,
+        "{what}: the findings quote {quoted}, the run gives {actual}"
+    );
+}
+
+/// Checks every table of a section whose first column is a swept setting (a
+/// number or a name) and whose other columns are metrics of the point with that
+/// setting, else its counts, or `… (paper)`: the scenario's reference at that
+/// point (`—` where there is none). Returns the number of cells checked.
+fn check_swept_tables(results: &serde_json::Value, path: &str, section: &str) -> usize {
+    let points = results["sweep"].as_array().unwrap();
+    let references = results["references"].as_array().unwrap();
+    let mut checked = 0;
+    for table in tables(path, section) {
+        let axis = table.header[0].trim_matches('`');
+        for cells in &table.rows {
+            let setting = &cells[0];
+            let point = points
+                .iter()
+                .find(|p| {
+                    let value = &p["settings"][axis];
+                    value.as_str() == Some(setting.as_str()) || value.as_f64().is_some_and(|v| setting.parse() == Ok(v))
+                })
+                .unwrap_or_else(|| panic!("{path}: no point with {axis} = {setting}"));
+            let index = point["index"].as_u64().unwrap();
+            for (column, cell) in table.header.iter().zip(cells).skip(1) {
+                let actual = if let Some(metric) = column.strip_suffix(" (paper)") {
+                    references
+                        .iter()
+                        .find(|r| {
+                            r["metric"] == metric && r["points"].as_array().unwrap().iter().any(|p| p["point"] == index)
+                        })
+                        .map(|r| r["published"].as_f64().unwrap())
+                } else {
+                    point["metrics"][column.as_str()]
+                        .as_f64()
+                        .or_else(|| point["counts"][column.as_str()].as_f64())
+                };
+                let what = format!("{path}: {column} at {axis} = {setting}");
+                match (cell.as_str(), actual) {
+                    ("—", None) => {}
+                    (quoted, Some(actual)) => assert_quotes(quoted, actual, &what),
+                    (quoted, None) => panic!("{what}: the findings quote {quoted}, the run has none"),
+                }
+                checked += 1;
+            }
+        }
+    }
+    checked
+}
+
+#[test]
+fn seed_000_findings_quote_the_bundled_run() {
+    let checked = check_swept_tables(roundabout(), "docs/findings/seed-000.md", "Measured beside the paper");
+    assert_eq!(checked, 6 * 6 + 6 * 4);
+}
+
+#[test]
+fn seed_002_findings_quote_the_bundled_run() {
+    let path = "docs/findings/seed-002.md";
+    let results = urban();
+    let checked = check_swept_tables(results, path, "Measured beside the paper");
+    assert_eq!(checked, 4 * 11 + 2 * 3 + 2 * 2);
+
+    // The paper pools anticipation over its densities: so does this table.
+    let points = results["sweep"].as_array().unwrap();
+    let mut pooled: Vec<f64> = points
+        .iter()
+        .filter(|p| p["sweep"] == 0)
+        .flat_map(|p| p["counts"]["anticipation"].as_array().unwrap().iter())
+        .map(|v| v.as_f64().unwrap())
+        .collect();
+    pooled.sort_by(f64::total_cmp);
+    let quantile = |q| sightline_engine::semantic::quantile(&pooled, q).expect("objects were anticipated");
+    let table = tables(path, "Pooled over the densities").remove(0);
+    assert_eq!(table.header, ["objects", "anticipation_median", "anticipation_p95"]);
+    let row = &table.rows[0];
+    assert_quotes(&row[0], pooled.len() as f64, "pooled objects");
+    assert_quotes(&row[1], quantile(0.5), "pooled median");
+    assert_quotes(&row[2], quantile(0.95), "pooled p95");
+}
