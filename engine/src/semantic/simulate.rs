@@ -34,6 +34,8 @@ use super::risk::RouteMap;
 use super::traffic;
 use crate::math::{Pose, Vector};
 use crate::rng::{Purpose, stream};
+use crate::sink::TraceSink;
+use crate::trace::{Approach, Arrival, Packet, PacketKind, SemanticLog};
 use crate::v2x::{Link, transmit};
 use crate::world::{
     AgentState, Bodies, Body, Kinematics, Occluders, Restraint, Visibility, in_view, mount_pose, visibility,
@@ -72,8 +74,8 @@ struct Rsu {
     channel: ChaCha8Rng,
 }
 
-/// Runs a world's semantic pipeline once.
-pub fn run(seed: u64, world: &World, semantic: &Semantic) -> SemanticMetrics {
+/// Runs a world's semantic pipeline once, reporting each step to `sink`.
+pub fn run(seed: u64, world: &World, semantic: &Semantic, sink: &mut impl TraceSink) -> SemanticMetrics {
     let generated = traffic::generate(seed, world);
     let agents: Vec<Agent> = world.agents.iter().cloned().chain(generated).collect();
     let dt = world.step;
@@ -118,6 +120,8 @@ pub fn run(seed: u64, world: &World, semantic: &Semantic) -> SemanticMetrics {
     };
     let mut cautious_until = f64::NEG_INFINITY;
     let mut states = Vec::new();
+    let mut log = SemanticLog::default();
+    sink.start(&agents);
 
     for k in 0..world.steps {
         let time = k as f64 * dt;
@@ -128,7 +132,7 @@ pub fn run(seed: u64, world: &World, semantic: &Semantic) -> SemanticMetrics {
         // Messages arriving by now.
         while in_flight.front().is_some_and(|&(at, _)| at <= time + 1e-9) {
             let (at, items) = in_flight.pop_front().expect("checked non-empty");
-            for item in items {
+            for item in &items {
                 let known = &mut knowledge[item.agent];
                 known.last_received = Some(at);
                 if known.first_received.is_none() {
@@ -139,6 +143,7 @@ pub fn run(seed: u64, world: &World, semantic: &Semantic) -> SemanticMetrics {
                     cautious_until = cautious_until.max(at + semantic.caution.hold);
                 }
             }
+            log.arrivals.push(Arrival { at, items });
         }
 
         if let Some(ego) = ego {
@@ -172,6 +177,10 @@ pub fn run(seed: u64, world: &World, semantic: &Semantic) -> SemanticMetrics {
                 if close && !known.close {
                     metrics.close_approaches += 1;
                     metrics.missed_criticals += u64::from(!known.flagged);
+                    log.approaches.push(Approach {
+                        agent: body.agent,
+                        flagged: known.flagged,
+                    });
                 }
                 known.close = close;
             }
@@ -180,10 +189,9 @@ pub fn run(seed: u64, world: &World, semantic: &Semantic) -> SemanticMetrics {
                 .push((f64::from(present) / network_km.max(1e-9), through_rsu));
         }
 
-        if k % semantic.period_steps != 0 {
-            continue;
-        }
-        for rsu in &mut rsus {
+        // RSUs run their cycle, and connected road users send, at the V2X rate.
+        let cycle = k % semantic.period_steps == 0;
+        for rsu in rsus.iter_mut().filter(|_| cycle) {
             let Some(station) = states[rsu.agent] else { continue };
             perceive(rsu, &agents, &states, &occluders, &bodies, semantic, time);
             let Some(ego) = ego else { continue };
@@ -193,7 +201,15 @@ pub fn run(seed: u64, world: &World, semantic: &Semantic) -> SemanticMetrics {
                 tx_antenna_m: channel.vehicle_antenna_m,
                 rx_antenna_m: channel.rsu_antenna_m,
             };
-            if transmit(channel, &uplink, &mut ego_channel).received {
+            let reception = transmit(channel, &uplink, &mut ego_channel);
+            log.packets.push(Packet {
+                from: semantic.ego,
+                to: rsu.agent,
+                kind: PacketKind::Uplink,
+                link: uplink,
+                reception,
+            });
+            if reception.received {
                 rsu.plan = Some(EgoPlan {
                     time,
                     offset: ego.offset,
@@ -218,7 +234,8 @@ pub fn run(seed: u64, world: &World, semantic: &Semantic) -> SemanticMetrics {
                 continue;
             }
             count_labels(&mut metrics, &items);
-            metrics.bytes += semantic_bytes(items.len()) as u64;
+            let bytes = semantic_bytes(items.len());
+            metrics.bytes += bytes as u64;
             metrics.messages += 1;
             let downlink = Link {
                 tx_antenna_m: channel.rsu_antenna_m,
@@ -230,7 +247,18 @@ pub fn run(seed: u64, world: &World, semantic: &Semantic) -> SemanticMetrics {
                 metrics.delivery_by_distance.resize(bin + 1, Default::default());
             }
             metrics.delivery_by_distance[bin].sent += 1;
-            if transmit(channel, &downlink, &mut rsu.channel).received {
+            let reception = transmit(channel, &downlink, &mut rsu.channel);
+            log.packets.push(Packet {
+                from: rsu.agent,
+                to: semantic.ego,
+                kind: PacketKind::Downlink {
+                    items: items.clone(),
+                    bytes,
+                },
+                link: downlink,
+                reception,
+            });
+            if reception.received {
                 metrics.delivered += 1;
                 metrics.delivery_by_distance[bin].received += 1;
                 let arrival = time + world.v2x.latency + downlink.distance_m / LIGHT;
@@ -239,7 +267,7 @@ pub fn run(seed: u64, world: &World, semantic: &Semantic) -> SemanticMetrics {
             }
         }
         // Connected road users tell the ego about themselves.
-        if let Some(ego) = ego {
+        if let Some(ego) = ego.filter(|_| cycle) {
             for (i, state) in states.iter().enumerate() {
                 let Some(state) = state else { continue };
                 if i == semantic.ego || !agents[i].connected || agents[i].kind == AgentKind::Rsu {
@@ -252,11 +280,21 @@ pub fn run(seed: u64, world: &World, semantic: &Semantic) -> SemanticMetrics {
                     tx_antenna_m: channel.vehicle_antenna_m,
                     rx_antenna_m: channel.vehicle_antenna_m,
                 };
-                if transmit(channel, &link, &mut cam_channel).received {
+                let reception = transmit(channel, &link, &mut cam_channel);
+                log.packets.push(Packet {
+                    from: i,
+                    to: semantic.ego,
+                    kind: PacketKind::Direct,
+                    link,
+                    reception,
+                });
+                if reception.received {
                     knowledge[i].last_direct = Some(time + world.v2x.latency + distance / LIGHT);
                 }
             }
         }
+        sink.semantic_step(&log.step(k, time, &states));
+        log.clear();
     }
 
     for known in &knowledge {
