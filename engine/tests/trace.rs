@@ -2,9 +2,12 @@
 //! to the run's metrics, grids come only when asked for, and the recorded states
 //! are the simulated ones.
 
+mod common;
+
 use std::collections::BTreeSet;
 
 use approx::assert_relative_eq;
+use common::in_pool;
 use sightline_dsl::{Agent, AgentKind, Experiment, Motion, Scenario, World, compile};
 use sightline_engine::math::Pose;
 use sightline_engine::semantic::{Item, SemanticMetrics};
@@ -165,14 +168,6 @@ impl TraceSink for Recorder {
     }
 }
 
-fn in_pool<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
-    rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .unwrap()
-        .install(f)
-}
-
 fn world_outcome(outcome: &Outcome) -> &WorldOutcome {
     match outcome {
         Outcome::World(world) => world,
@@ -195,15 +190,15 @@ fn recording_a_world_point_changes_neither_its_outcome_nor_with_threads() {
     let scenario = roundabout();
     let run = simulate(&scenario);
     for point in 0..2 {
-        let (outcome, record) = in_pool(1, || {
-            let mut recorder = Recorder::asking_grids_at(&[40]);
-            (simulate_point(&scenario, point, &mut recorder), recorder)
-        });
+        let recorded = |threads| {
+            in_pool(threads, || {
+                let mut recorder = Recorder::asking_grids_at(&[40]);
+                (simulate_point(&scenario, point, &mut recorder), recorder)
+            })
+        };
+        let (outcome, record) = recorded(1);
         assert_eq!(outcome, run.points[point], "point {point}");
-        let (outcome_2, record_2) = in_pool(2, || {
-            let mut recorder = Recorder::asking_grids_at(&[40]);
-            (simulate_point(&scenario, point, &mut recorder), recorder)
-        });
+        let (outcome_2, record_2) = recorded(2);
         assert_eq!(outcome_2, outcome);
         assert!(
             record_2 == record,
