@@ -39,8 +39,8 @@ struct Cooperator {
     localization: ChaCha8Rng,
     detections: ChaCha8Rng,
     present: bool,
+    /// The pose it placed its observation with.
     estimate: Pose,
-    localization_error: f64,
 }
 
 /// Fused values of the observed cells of one step, in cell order.
@@ -75,7 +75,6 @@ pub fn run(
             detections: stream(seed, Purpose::Detections, agent as u64),
             present: false,
             estimate: Pose::IDENTITY,
-            localization_error: 0.0,
         })
         .collect();
     let mut states = Vec::new();
@@ -120,7 +119,6 @@ pub fn run(
                 Motion::Fixed { .. } => state.pose,
                 Motion::Along { .. } => c.estimator.estimate(state.pose, world.step, &mut c.localization),
             };
-            c.localization_error = (estimate.translation - state.pose.translation).length();
             c.estimate = estimate;
             c.observation
                 .observe(&scene, (c.agent, agent), state.pose, estimate, &mut c.detections);
@@ -140,7 +138,8 @@ pub fn run(
         steps += 1;
         for c in cooperators.iter().filter(|c| c.present) {
             sightings.add(c.observation.sightings);
-            error_sum += c.localization_error;
+            let truth = states[c.agent].expect("a present cooperator is in the scene").pose;
+            error_sum += (c.estimate.translation - truth.translation).length();
             error_count += 1;
         }
 
