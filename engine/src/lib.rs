@@ -6,8 +6,14 @@
 //! the metrics of each sweep point. It returns data ([`Run`], [`FieldOutcome`]); it
 //! does not print, write files or judge requirements (that is `sightline-oracles`).
 //!
+//! [`simulate_point`] runs one sweep point and hands a [`TraceSink`] a record of
+//! every step as it goes ([`trace`]): agent states, detections, packets, signals,
+//! and fused grids at the steps the sink asks for. The engine keeps none of it, so
+//! memory stays bounded; the MCAP writer and the temporal oracles are sinks.
+//!
 //! Results are deterministic: the same scenario and seed give bit-identical
-//! outcomes whatever the number of rayon threads.
+//! outcomes and records whatever the number of rayon threads, and recording does
+//! not change an outcome.
 //!
 //! ```
 //! use sightline_engine::fusion::{combine, Mass};
@@ -19,7 +25,8 @@
 #![warn(missing_docs)]
 
 pub use metrics::{BandMetrics, ConflictMetrics, Coverage, FieldMetrics, FieldOutcome, MassAudit};
-pub use run::{Job, Outcome, Run, simulate};
+pub use run::{Job, Outcome, Run, simulate, simulate_point};
+pub use sink::{NoTrace, TraceSink};
 
 pub mod field;
 pub mod fusion;
@@ -28,5 +35,7 @@ mod metrics;
 mod rng;
 mod run;
 pub mod semantic;
+mod sink;
+pub mod trace;
 pub mod v2x;
 pub mod world;

@@ -6,6 +6,7 @@ use sightline_dsl::{Decision, Experiment, Fusion, Metric, Scenario, Setup};
 use crate::field;
 use crate::metrics::{FieldOutcome, MassAudit};
 use crate::semantic::{self, SemanticMetrics};
+use crate::sink::{NoTrace, TraceSink};
 use crate::world::{self, WorldOutcome};
 
 /// One method to evaluate on shared data.
@@ -73,30 +74,7 @@ pub struct Run {
 pub fn simulate(scenario: &Scenario) -> Run {
     let mut outcomes: Vec<Option<Outcome>> = vec![None; scenario.points.len()];
     for group in shared_data_groups(scenario) {
-        let first = &scenario.points[group[0]].setup;
-        let jobs: Vec<Job<'_>> = group
-            .iter()
-            .map(|&i| Job {
-                fusion: &scenario.points[i].setup.fusion,
-                decision: scenario.points[i].setup.decision,
-            })
-            .collect();
-        let results: Vec<Outcome> = match &first.experiment {
-            Experiment::Field(f) => field::run(first.seed, &first.grid, f, &jobs)
-                .into_iter()
-                .map(Outcome::Field)
-                .collect(),
-            Experiment::World(w) => match (&w.perception, &w.semantic) {
-                (Some(perception), _) => world::run(first.seed, &first.grid, w, perception, &jobs)
-                    .into_iter()
-                    .map(Outcome::World)
-                    .collect(),
-                // Fusion settings do not touch the semantic pipeline: one run serves all.
-                (None, Some(s)) => vec![Outcome::Semantic(semantic::run(first.seed, w, s)); jobs.len()],
-                (None, None) => unreachable!("the compiler requires `perception` or `semantic`"),
-            },
-        };
-        for (&i, outcome) in group.iter().zip(results) {
+        for (&i, outcome) in group.iter().zip(simulate_group(scenario, &group, &mut NoTrace)) {
             outcomes[i] = Some(outcome);
         }
     }
@@ -105,6 +83,48 @@ pub fn simulate(scenario: &Scenario) -> Run {
             .into_iter()
             .map(|o| o.expect("every point belongs to one group"))
             .collect(),
+    }
+}
+
+/// Simulates point `point` of `scenario` alone, reporting each step to `sink`
+/// (see [`trace`](crate::trace)). The outcome is the one [`simulate`] gives the
+/// point, bit for bit: a point's sampled data do not depend on the points it
+/// shares them with, and a sink only observes.
+///
+/// # Panics
+///
+/// If `point` is not an index of [`Scenario::points`].
+pub fn simulate_point(scenario: &Scenario, point: usize, sink: &mut impl TraceSink) -> Outcome {
+    let mut outcomes = simulate_group(scenario, &[point], sink);
+    outcomes.pop().expect("one outcome per point")
+}
+
+/// Simulates the points of `group`, which share their sampled data, once; one
+/// outcome per point, in group order.
+fn simulate_group(scenario: &Scenario, group: &[usize], sink: &mut impl TraceSink) -> Vec<Outcome> {
+    let first = &scenario.points[group[0]].setup;
+    let jobs: Vec<Job<'_>> = group
+        .iter()
+        .map(|&i| Job {
+            fusion: &scenario.points[i].setup.fusion,
+            decision: scenario.points[i].setup.decision,
+        })
+        .collect();
+    match &first.experiment {
+        // The field experiment has no steps: it reports nothing to the sink.
+        Experiment::Field(f) => field::run(first.seed, &first.grid, f, &jobs)
+            .into_iter()
+            .map(Outcome::Field)
+            .collect(),
+        Experiment::World(w) => match (&w.perception, &w.semantic) {
+            (Some(perception), _) => world::run(first.seed, &first.grid, w, perception, &jobs, sink)
+                .into_iter()
+                .map(Outcome::World)
+                .collect(),
+            // Fusion settings do not touch the semantic pipeline: one run serves all.
+            (None, Some(s)) => vec![Outcome::Semantic(semantic::run(first.seed, w, s, sink)); jobs.len()],
+            (None, None) => unreachable!("the compiler requires `perception` or `semantic`"),
+        },
     }
 }
 

@@ -91,9 +91,9 @@ fn world(outcome: &Outcome) -> &WorldOutcome {
 #[test]
 fn world_results_do_not_depend_on_the_thread_count() {
     let scenario = nominal(0.3, "kalman").scenario();
-    let one = in_pool(1, &scenario);
-    assert_eq!(one, in_pool(2, &scenario));
-    assert_eq!(one, in_pool(4, &scenario));
+    let one = in_pool(1, || simulate(&scenario));
+    assert_eq!(one, in_pool(2, || simulate(&scenario)));
+    assert_eq!(one, in_pool(4, || simulate(&scenario)));
 }
 
 /// With exact self-localization every agent's grid is drawn at its true pose,

@@ -39,6 +39,8 @@ use super::risk::RouteMap;
 use super::traffic;
 use crate::math::{Pose, Vector};
 use crate::rng::{Purpose, run_seed, stream};
+use crate::sink::{NoTrace, TraceSink};
+use crate::trace::{Approach, Arrival, Packet, PacketKind, SemanticLog};
 use crate::v2x::{Link, transmit};
 use crate::world::{
     AgentState, Bodies, Body, Kinematics, Occluders, Restraint, Visibility, in_view, mount_pose, visibility,
@@ -80,22 +82,23 @@ struct Rsu {
 }
 
 /// Runs a world's semantic pipeline `semantic.runs` times, each run with its own
-/// seed (run 0 with `seed` itself), and pools the measurements in run order. Runs go in
-/// parallel; the result does not depend on the thread count.
-pub fn run(seed: u64, world: &World, semantic: &Semantic) -> SemanticMetrics {
-    let runs: Vec<SemanticMetrics> = (0..semantic.runs)
+/// seed (run 0 with `seed` itself), and pools the measurements in run order.
+/// Run 0 reports each step to `sink`; the others run in parallel afterwards and
+/// report nothing. The result does not depend on the thread count.
+pub fn run(seed: u64, world: &World, semantic: &Semantic, sink: &mut impl TraceSink) -> SemanticMetrics {
+    let mut pooled = run_once(seed, world, semantic, sink);
+    let others: Vec<SemanticMetrics> = (1..semantic.runs)
         .into_par_iter()
-        .map(|r| run_once(run_seed(seed, r), world, semantic))
+        .map(|r| run_once(run_seed(seed, r), world, semantic, &mut NoTrace))
         .collect();
-    let mut pooled = SemanticMetrics::default();
-    for metrics in runs {
+    for metrics in others {
         pooled.pool(metrics);
     }
     pooled
 }
 
-/// One run of a world's semantic pipeline.
-fn run_once(seed: u64, world: &World, semantic: &Semantic) -> SemanticMetrics {
+/// One run of a world's semantic pipeline, reporting each step to `sink`.
+fn run_once(seed: u64, world: &World, semantic: &Semantic, sink: &mut impl TraceSink) -> SemanticMetrics {
     let generated = traffic::generate(seed, world);
     let agents: Vec<Agent> = world.agents.iter().cloned().chain(generated).collect();
     let dt = world.step;
@@ -142,6 +145,8 @@ fn run_once(seed: u64, world: &World, semantic: &Semantic) -> SemanticMetrics {
     };
     let mut cautious_until = f64::NEG_INFINITY;
     let mut states = Vec::new();
+    let mut log = SemanticLog::default();
+    sink.start(&agents);
 
     for k in 0..world.steps {
         let time = k as f64 * dt;
@@ -152,7 +157,7 @@ fn run_once(seed: u64, world: &World, semantic: &Semantic) -> SemanticMetrics {
         // Messages arriving by now.
         while in_flight.front().is_some_and(|&(at, _)| at <= time + 1e-9) {
             let (at, items) = in_flight.pop_front().expect("checked non-empty");
-            for item in items {
+            for item in &items {
                 let known = &mut knowledge[item.agent];
                 known.last_received = Some(at);
                 if known.first_received.is_none() {
@@ -163,6 +168,7 @@ fn run_once(seed: u64, world: &World, semantic: &Semantic) -> SemanticMetrics {
                     cautious_until = cautious_until.max(at + semantic.caution.hold);
                 }
             }
+            log.arrivals.push(Arrival { at, items });
         }
 
         if let Some(ego) = ego {
@@ -196,6 +202,10 @@ fn run_once(seed: u64, world: &World, semantic: &Semantic) -> SemanticMetrics {
                 if close && !known.close {
                     metrics.close_approaches += 1;
                     metrics.missed_criticals += u64::from(!known.flagged);
+                    log.approaches.push(Approach {
+                        agent: body.agent,
+                        flagged: known.flagged,
+                    });
                 }
                 known.close = close;
             }
@@ -204,10 +214,9 @@ fn run_once(seed: u64, world: &World, semantic: &Semantic) -> SemanticMetrics {
                 .push((f64::from(present) / network_km.max(1e-9), through_rsu));
         }
 
-        if k % semantic.period_steps != 0 {
-            continue;
-        }
-        for rsu in &mut rsus {
+        // RSUs run their cycle, and connected road users send, at the V2X rate.
+        let cycle = k % semantic.period_steps == 0;
+        for rsu in rsus.iter_mut().filter(|_| cycle) {
             let Some(station) = states[rsu.agent] else { continue };
             perceive(rsu, &agents, &states, &occluders, &bodies, semantic, time);
             let Some(ego) = ego else { continue };
@@ -217,7 +226,15 @@ fn run_once(seed: u64, world: &World, semantic: &Semantic) -> SemanticMetrics {
                 tx_antenna_m: channel.vehicle_antenna_m,
                 rx_antenna_m: channel.rsu_antenna_m,
             };
-            if transmit(channel, &uplink, &mut ego_channel).received {
+            let reception = transmit(channel, &uplink, &mut ego_channel);
+            log.packets.push(Packet {
+                from: semantic.ego,
+                to: rsu.agent,
+                kind: PacketKind::Uplink,
+                link: uplink,
+                reception,
+            });
+            if reception.received {
                 rsu.plan = Some(EgoPlan {
                     time,
                     offset: ego.offset,
@@ -251,7 +268,8 @@ fn run_once(seed: u64, world: &World, semantic: &Semantic) -> SemanticMetrics {
             if shared {
                 count_labels(&mut metrics, &items);
             }
-            metrics.bytes += semantic_bytes(items.len()) as u64;
+            let bytes = semantic_bytes(items.len());
+            metrics.bytes += bytes as u64;
             metrics.messages += 1;
             let downlink = Link {
                 tx_antenna_m: channel.rsu_antenna_m,
@@ -263,7 +281,18 @@ fn run_once(seed: u64, world: &World, semantic: &Semantic) -> SemanticMetrics {
                 metrics.delivery_by_distance.resize(bin + 1, Default::default());
             }
             metrics.delivery_by_distance[bin].sent += 1;
-            if transmit(channel, &downlink, &mut rsu.channel).received {
+            let reception = transmit(channel, &downlink, &mut rsu.channel);
+            log.packets.push(Packet {
+                from: rsu.agent,
+                to: semantic.ego,
+                kind: PacketKind::Downlink {
+                    items: items.clone(),
+                    bytes,
+                },
+                link: downlink,
+                reception,
+            });
+            if reception.received {
                 metrics.delivered += 1;
                 metrics.delivery_by_distance[bin].received += 1;
                 let arrival = time + world.v2x.latency + downlink.distance_m / LIGHT;
@@ -272,7 +301,7 @@ fn run_once(seed: u64, world: &World, semantic: &Semantic) -> SemanticMetrics {
             }
         }
         // Connected road users tell the ego about themselves.
-        if let Some(ego) = ego {
+        if let Some(ego) = ego.filter(|_| cycle) {
             for (i, state) in states.iter().enumerate() {
                 let Some(state) = state else { continue };
                 if i == semantic.ego || !agents[i].connected || agents[i].kind == AgentKind::Rsu {
@@ -285,11 +314,21 @@ fn run_once(seed: u64, world: &World, semantic: &Semantic) -> SemanticMetrics {
                     tx_antenna_m: channel.vehicle_antenna_m,
                     rx_antenna_m: channel.vehicle_antenna_m,
                 };
-                if transmit(channel, &link, &mut cam_channel).received {
+                let reception = transmit(channel, &link, &mut cam_channel);
+                log.packets.push(Packet {
+                    from: i,
+                    to: semantic.ego,
+                    kind: PacketKind::Direct,
+                    link,
+                    reception,
+                });
+                if reception.received {
                     knowledge[i].last_direct = Some(time + world.v2x.latency + distance / LIGHT);
                 }
             }
         }
+        sink.semantic_step(&log.step(k, time, &states));
+        log.clear();
     }
 
     for known in &knowledge {

@@ -87,25 +87,36 @@ pub struct Snapshot {
     pub fused: Vec<Option<f32>>,
 }
 
-/// Running counts of one method.
-#[derive(Debug, Clone, Default, PartialEq)]
-pub(crate) struct WorldTally {
-    pub(crate) occupied: u64,
-    pub(crate) detected: u64,
-    pub(crate) false_positives: u64,
-    pub(crate) blind_occupied: u64,
-    pub(crate) blind_detected: u64,
-    pub(crate) estimates: EstimateTally,
+/// Cell-steps of one method by outcome: one step's or, summed with
+/// [`CellTally::add`], a run's (the counts of [`WorldMetrics`]).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct CellTally {
+    /// Truly occupied by an agent other than the ego and RSUs.
+    pub occupied: u64,
+    /// Of those, decided Occupy by the fused grid.
+    pub detected: u64,
+    /// Decided Occupy but truly free.
+    pub false_positives: u64,
+    /// Truly occupied and not observed by the ego itself.
+    pub blind_occupied: u64,
+    /// Of those, decided Occupy by the fused grid.
+    pub blind_detected: u64,
 }
 
-impl WorldTally {
-    /// Adds `other`'s counts; call in a fixed order for reproducible sums.
-    pub(crate) fn merge(&mut self, other: &WorldTally) {
+impl CellTally {
+    /// Adds `other`'s counts.
+    pub fn add(&mut self, other: &CellTally) {
         self.occupied += other.occupied;
         self.detected += other.detected;
         self.false_positives += other.false_positives;
         self.blind_occupied += other.blind_occupied;
         self.blind_detected += other.blind_detected;
-        self.estimates.merge(&other.estimates);
     }
+}
+
+/// Running counts of one method.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub(crate) struct WorldTally {
+    pub(crate) cells: CellTally,
+    pub(crate) estimates: EstimateTally,
 }

@@ -13,9 +13,9 @@ mod simulate;
 
 pub use fuse::CellFusion;
 pub use localization::PoseEstimator;
-pub use metrics::{Snapshot, WorldMetrics, WorldOutcome};
+pub use metrics::{CellTally, Snapshot, WorldMetrics, WorldOutcome};
 pub use motion::{AgentState, Kinematics, Restraint};
-pub use observe::{Observation, Observed, Sightings, StepScene, in_view, mount_pose};
+pub use observe::{Observation, Observed, Sighting, Sightings, StepScene, in_view, mount_pose};
 pub use raster::{Raster, box_cells, cell_center, traverse};
 pub use sight::{Bodies, Body, Occluders, Visibility, visibility};
 pub use simulate::run;

@@ -35,6 +35,7 @@ pub enum Observed {
 }
 
 /// One agent's observation grid, reused from step to step.
+#[derive(Debug)]
 pub struct Observation {
     cells: Vec<Observed>,
     touched: Vec<usize>,
@@ -42,6 +43,22 @@ pub struct Observation {
     pub sensor_positions: Vec<Point>,
     /// Counts of targets in range and field of view, by visibility, and detections.
     pub sightings: Sightings,
+    sighted: Vec<Sighting>,
+}
+
+/// One target in range and field of view of one of an agent's sensors at one step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Sighting {
+    /// Index of the sensor on the observing agent.
+    pub sensor: usize,
+    /// Index of the target agent.
+    pub target: usize,
+    /// Whether the target was in line of sight, and what hid it if not.
+    pub visibility: Visibility,
+    /// Where the observer placed the target when it detected it: the measured
+    /// footprint in the world frame, seen from the observer's estimated pose (its
+    /// `agent` is the target). `None` when hidden or missed.
+    pub detected: Option<Body>,
 }
 
 /// Targets in range and field of view, by what hides them, over a run or a step.
@@ -102,6 +119,7 @@ impl Observation {
             touched: Vec::new(),
             sensor_positions: Vec::new(),
             sightings: Sightings::default(),
+            sighted: Vec::new(),
         }
     }
 
@@ -113,6 +131,12 @@ impl Observation {
     /// The cells observed this step (free or occupied), each once.
     pub fn touched(&self) -> &[usize] {
         &self.touched
+    }
+
+    /// Every target in range and field of view of a sensor this step, sensor by
+    /// sensor: what [`Self::sightings`] counts.
+    pub fn sighted(&self) -> &[Sighting] {
+        &self.sighted
     }
 
     fn mark(&mut self, cell: usize, observed: Observed) {
@@ -133,6 +157,7 @@ impl Observation {
         self.touched.clear();
         self.sensor_positions.clear();
         self.sightings = Sightings::default();
+        self.sighted.clear();
     }
 
     /// Observes the step as agent `index`, truly at `truth`, believing itself at
@@ -146,12 +171,12 @@ impl Observation {
         rng: &mut ChaCha8Rng,
     ) {
         self.clear();
-        for sensor in &agent.sensors {
+        for (s, sensor) in agent.sensors.iter().enumerate() {
             let mount = mount_pose(sensor);
             let (true_sensor, estimated_sensor) = (truth * mount, estimate * mount);
             self.sensor_positions.push(estimated_sensor.translation);
             self.carve(scene, index, sensor, true_sensor, estimated_sensor);
-            self.detect(scene, index, sensor, true_sensor, estimated_sensor, rng);
+            self.detect(scene, index, (s, sensor), true_sensor, estimated_sensor, rng);
         }
         let own = Body::of(index, agent, estimate);
         for cell in box_cells(scene.grid, &own) {
@@ -182,13 +207,13 @@ impl Observation {
         }
     }
 
-    /// Classifies every other agent in range and field of view and marks the
-    /// footprints of those detected.
+    /// Classifies every other agent in range and field of view of sensor `s` and
+    /// marks the footprints of those detected.
     fn detect(
         &mut self,
         scene: &StepScene<'_>,
         index: usize,
-        sensor: &Sensor,
+        (s, sensor): (usize, &Sensor),
         truth: Pose,
         estimate: Pose,
         rng: &mut ChaCha8Rng,
@@ -197,36 +222,63 @@ impl Observation {
             let Some(distance) = in_view(sensor, truth, target.pose.translation) else {
                 continue;
             };
-            match visibility(scene.occluders, scene.bodies, truth.translation, index, target) {
-                Visibility::NlosStatic => self.sightings.nlos_static += 1,
-                Visibility::NlosDynamic => self.sightings.nlos_dynamic += 1,
+            let seen = visibility(scene.occluders, scene.bodies, truth.translation, index, target);
+            let detected = match seen {
+                Visibility::NlosStatic => {
+                    self.sightings.nlos_static += 1;
+                    None
+                }
+                Visibility::NlosDynamic => {
+                    self.sightings.nlos_dynamic += 1;
+                    None
+                }
                 Visibility::Los => {
                     self.sightings.los += 1;
-                    if rng.random::<f64>() >= sensor.detection_probability {
-                        continue;
-                    }
-                    self.sightings.detected += 1;
-                    let sigma = sensor.noise_base + sensor.noise_per_m * distance;
-                    let size_sigma = sensor.size_noise_base + sensor.size_noise_per_m * distance;
-                    let mut noise = || -> f64 { StandardNormal.sample(&mut *rng) };
-                    let measured = target.pose.translation + Vector::new(noise(), noise()) * sigma;
-                    let size = (target.half_extents * 2.0 + Vector::new(noise(), noise()) * size_sigma)
-                        .max(Vector::splat(0.1));
-                    // Where the sensor believes the object is: the measurement seen
-                    // from the estimated pose instead of the true one.
-                    let seen = estimate * (truth.inverse() * measured);
-                    let heading = target.pose.rotation.angle() + estimate.rotation.angle() - truth.rotation.angle();
-                    let placed = Body {
-                        pose: Pose::new(seen, heading),
-                        half_extents: size / 2.0,
-                        ..*target
-                    };
-                    for cell in box_cells(scene.grid, &placed) {
-                        self.mark(cell, Observed::Occupied);
-                    }
+                    self.measure(scene.grid, sensor, (truth, estimate), target, distance, rng)
                 }
-            }
+            };
+            self.sighted.push(Sighting {
+                sensor: s,
+                target: target.agent,
+                visibility: seen,
+                detected,
+            });
         }
+    }
+
+    /// Detects a visible `target` at `distance` with the sensor's probability and
+    /// marks its measured footprint; returns that footprint, or `None` when missed.
+    fn measure(
+        &mut self,
+        grid: &Grid,
+        sensor: &Sensor,
+        (truth, estimate): (Pose, Pose),
+        target: &Body,
+        distance: f64,
+        rng: &mut ChaCha8Rng,
+    ) -> Option<Body> {
+        if rng.random::<f64>() >= sensor.detection_probability {
+            return None;
+        }
+        self.sightings.detected += 1;
+        let sigma = sensor.noise_base + sensor.noise_per_m * distance;
+        let size_sigma = sensor.size_noise_base + sensor.size_noise_per_m * distance;
+        let mut noise = || -> f64 { StandardNormal.sample(&mut *rng) };
+        let measured = target.pose.translation + Vector::new(noise(), noise()) * sigma;
+        let size = (target.half_extents * 2.0 + Vector::new(noise(), noise()) * size_sigma).max(Vector::splat(0.1));
+        // Where the sensor believes the object is: the measurement seen from the
+        // estimated pose instead of the true one.
+        let seen = estimate * (truth.inverse() * measured);
+        let heading = target.pose.rotation.angle() + estimate.rotation.angle() - truth.rotation.angle();
+        let placed = Body {
+            pose: Pose::new(seen, heading),
+            half_extents: size / 2.0,
+            ..*target
+        };
+        for cell in box_cells(grid, &placed) {
+            self.mark(cell, Observed::Occupied);
+        }
+        Some(placed)
     }
 }
 

@@ -11,15 +11,17 @@ use sightline_dsl::{Grid, Motion, Perception, World};
 
 use super::fuse::CellFusion;
 use super::localization::PoseEstimator;
-use super::metrics::{Snapshot, WorldMetrics, WorldOutcome, WorldTally};
+use super::metrics::{CellTally, Snapshot, WorldMetrics, WorldOutcome, WorldTally};
 use super::motion::Kinematics;
 use super::observe::{Observation, Observed, Sightings, StepScene};
 use super::raster::{Raster, box_cells, cell_center};
 use super::sight::{Bodies, Body, Occluders};
 use crate::fusion::{Estimate, State, decide, pignistic};
-use crate::math::Vector;
+use crate::math::{Pose, Vector};
 use crate::rng::{Purpose, stream};
 use crate::run::Job;
+use crate::sink::TraceSink;
+use crate::trace::{CooperatorStep, FusedGrid, FusedStep, Measured, WorldStep};
 
 /// Cells fused per parallel task.
 const CHUNK: usize = 4096;
@@ -37,12 +39,27 @@ struct Cooperator {
     localization: ChaCha8Rng,
     detections: ChaCha8Rng,
     present: bool,
-    localization_error: f64,
+    /// The pose it placed its observation with.
+    estimate: Pose,
+}
+
+/// Fused values of the observed cells of one step, in cell order.
+#[derive(Debug, Clone, Default)]
+struct CellValues {
+    probability: Vec<f32>,
+    uncertainty: Vec<f32>,
 }
 
 /// Runs a world's collective perception once and evaluates every job on the same
-/// observations.
-pub fn run(seed: u64, grid: &Grid, world: &World, perception: &Perception, jobs: &[Job<'_>]) -> Vec<WorldOutcome> {
+/// observations, reporting each step to `sink`.
+pub fn run(
+    seed: u64,
+    grid: &Grid,
+    world: &World,
+    perception: &Perception,
+    jobs: &[Job<'_>],
+    sink: &mut impl TraceSink,
+) -> Vec<WorldOutcome> {
     let cells = grid.cells();
     let occluders = Occluders::new(&world.occluders);
     let mut raster = Raster::new(*grid, &world.occluders);
@@ -57,7 +74,7 @@ pub fn run(seed: u64, grid: &Grid, world: &World, perception: &Perception, jobs:
             localization: stream(seed, Purpose::Localization, agent as u64),
             detections: stream(seed, Purpose::Detections, agent as u64),
             present: false,
-            localization_error: 0.0,
+            estimate: Pose::IDENTITY,
         })
         .collect();
     let mut states = Vec::new();
@@ -75,6 +92,9 @@ pub fn run(seed: u64, grid: &Grid, world: &World, perception: &Perception, jobs:
     };
     let mut tallies = vec![WorldTally::default(); jobs.len()];
     let mut snapshots: Vec<Option<Snapshot>> = vec![None; jobs.len()];
+    // The fused values of a pictured step, per job; kept for one step only.
+    let mut values = vec![CellValues::default(); jobs.len()];
+    sink.start(&world.agents);
     let (mut steps, mut ego_observed, mut joint_observed) = (0u64, 0u64, 0u64);
     let mut sightings = Sightings::default();
     let (mut error_sum, mut error_count) = (0.0, 0u64);
@@ -99,18 +119,27 @@ pub fn run(seed: u64, grid: &Grid, world: &World, perception: &Perception, jobs:
                 Motion::Fixed { .. } => state.pose,
                 Motion::Along { .. } => c.estimator.estimate(state.pose, world.step, &mut c.localization),
             };
-            c.localization_error = (estimate.translation - state.pose.translation).length();
+            c.estimate = estimate;
             c.observation
                 .observe(&scene, (c.agent, agent), state.pose, estimate, &mut c.detections);
             c.present = true;
         });
+        let time = k as f64 * world.step;
         if states[perception.ego].is_none() {
+            sink.world_step(&WorldStep {
+                step: k,
+                time,
+                agents: &states,
+                cooperators: &cooperation(&cooperators),
+                measured: None,
+            });
             continue;
         }
         steps += 1;
         for c in cooperators.iter().filter(|c| c.present) {
             sightings.add(c.observation.sightings);
-            error_sum += c.localization_error;
+            let truth = states[c.agent].expect("a present cooperator is in the scene").pose;
+            error_sum += (c.estimate.translation - truth.translation).length();
             error_count += 1;
         }
 
@@ -152,7 +181,8 @@ pub fn run(seed: u64, grid: &Grid, world: &World, perception: &Perception, jobs:
             }
         }
         let ego = &cooperators[0].observation;
-        ego_observed += ego.touched().iter().filter(|&&c| counted(c)).count() as u64;
+        let ego_step = ego.touched().iter().filter(|&&c| counted(c)).count() as u64;
+        ego_observed += ego_step;
         joint_observed += observed_cells.len() as u64;
         // Occupied cells nobody observed count as missed (and as blind: the ego did
         // not observe them either).
@@ -162,6 +192,8 @@ pub fn run(seed: u64, grid: &Grid, world: &World, perception: &Perception, jobs:
             .count() as u64;
 
         let snapshot = k == perception.snapshot_step;
+        let wants_grids = sink.wants_grids(k);
+        let mut step_cells = Vec::with_capacity(jobs.len());
         for (j, job) in jobs.iter().enumerate() {
             let tallier = Tallier {
                 fusion: CellFusion {
@@ -174,20 +206,66 @@ pub fn run(seed: u64, grid: &Grid, world: &World, perception: &Perception, jobs:
                 threshold: job.decision.threshold,
                 truth: &truth,
             };
-            let chunks: Vec<(WorldTally, Vec<f32>)> = observed_cells
+            let chunks: Vec<(WorldTally, CellValues)> = observed_cells
                 .par_chunks(CHUNK)
-                .map(|chunk| tallier.tally(chunk, snapshot))
+                .map(|chunk| tallier.tally(chunk, snapshot || wants_grids))
                 .collect();
-            let tally = &mut tallies[j];
-            tally.occupied += unseen;
-            tally.blind_occupied += unseen;
+            let mut cells = CellTally {
+                occupied: unseen,
+                blind_occupied: unseen,
+                ..CellTally::default()
+            };
+            // Chunk by chunk, so that the floating-point sums do not depend on
+            // the thread count.
             for (chunk, _) in &chunks {
-                tally.merge(chunk);
+                cells.add(&chunk.cells);
+                tallies[j].estimates.merge(&chunk.estimates);
+            }
+            tallies[j].cells.add(&cells);
+            if snapshot || wants_grids {
+                let values = &mut values[j];
+                values.probability.clear();
+                values.uncertainty.clear();
+                for (_, chunk) in &chunks {
+                    values.probability.extend(&chunk.probability);
+                    values.uncertainty.extend(&chunk.uncertainty);
+                }
             }
             if snapshot {
-                snapshots[j] = Some(picture(k, &truth, &raster, ego, &observed_cells, &chunks));
+                snapshots[j] = Some(picture(
+                    k,
+                    &truth,
+                    &raster,
+                    ego,
+                    &observed_cells,
+                    &values[j].probability,
+                ));
             }
+            step_cells.push(cells);
         }
+        let fused: Vec<FusedStep<'_>> = step_cells
+            .into_iter()
+            .zip(&values)
+            .map(|(cells, values)| FusedStep {
+                cells,
+                grid: wants_grids.then(|| FusedGrid {
+                    cells: &observed_cells,
+                    probability: &values.probability,
+                    uncertainty: &values.uncertainty,
+                }),
+            })
+            .collect();
+        sink.world_step(&WorldStep {
+            step: k,
+            time,
+            agents: &states,
+            cooperators: &cooperation(&cooperators),
+            measured: Some(Measured {
+                ego_observed: ego_step,
+                joint_observed: observed_cells.len() as u64,
+                fused: &fused,
+            }),
+        });
     }
 
     tallies
@@ -199,11 +277,11 @@ pub fn run(seed: u64, grid: &Grid, world: &World, perception: &Perception, jobs:
             WorldOutcome {
                 metrics: WorldMetrics {
                     steps,
-                    occupied: tally.occupied,
-                    detected: tally.detected,
-                    false_positives: tally.false_positives,
-                    blind_occupied: tally.blind_occupied,
-                    blind_detected: tally.blind_detected,
+                    occupied: tally.cells.occupied,
+                    detected: tally.cells.detected,
+                    false_positives: tally.cells.false_positives,
+                    blind_occupied: tally.cells.blind_occupied,
+                    blind_detected: tally.cells.blind_detected,
                     ego_observed,
                     joint_observed,
                     sightings,
@@ -218,6 +296,19 @@ pub fn run(seed: u64, grid: &Grid, world: &World, perception: &Perception, jobs:
         .collect()
 }
 
+/// The cooperating agents in the scene, for the step record.
+fn cooperation(cooperators: &[Cooperator]) -> Vec<CooperatorStep<'_>> {
+    cooperators
+        .iter()
+        .filter(|c| c.present)
+        .map(|c| CooperatorStep {
+            agent: c.agent,
+            estimate: c.estimate,
+            observation: &c.observation,
+        })
+        .collect()
+}
+
 /// Tallies one method's fused grid of one step against the truth.
 struct Tallier<'a> {
     fusion: CellFusion<'a>,
@@ -227,10 +318,10 @@ struct Tallier<'a> {
 
 impl Tallier<'_> {
     /// Tallies a chunk of observed cells; with `picture`, also returns their fused
-    /// occupancy probabilities.
-    fn tally(&self, cells: &[usize], picture: bool) -> (WorldTally, Vec<f32>) {
+    /// values.
+    fn tally(&self, cells: &[usize], picture: bool) -> (WorldTally, CellValues) {
         let mut tally = WorldTally::default();
-        let mut probabilities = Vec::new();
+        let mut values = CellValues::default();
         let mut sources = Vec::with_capacity(self.fusion.observations.len());
         let ego = self.fusion.observations[0];
         for &cell in cells {
@@ -238,24 +329,26 @@ impl Tallier<'_> {
             tally.estimates.record(&estimate);
             let decided = decide(estimate.decision_mass(), self.threshold) == Some(State::Occupied);
             let blind = ego.get(cell) == Observed::Unknown;
+            let counts = &mut tally.cells;
             if self.truth[cell] == OCCUPIED {
-                tally.occupied += 1;
-                tally.detected += u64::from(decided);
+                counts.occupied += 1;
+                counts.detected += u64::from(decided);
                 if blind {
-                    tally.blind_occupied += 1;
-                    tally.blind_detected += u64::from(decided);
+                    counts.blind_occupied += 1;
+                    counts.blind_detected += u64::from(decided);
                 }
             } else if decided {
-                tally.false_positives += 1;
+                counts.false_positives += 1;
             }
             if picture {
-                probabilities.push(match estimate {
+                values.probability.push(match estimate {
                     Estimate::Occupancy(o) => o.probability as f32,
                     Estimate::Evidential { combination, .. } => pignistic(combination.mass) as f32,
                 });
+                values.uncertainty.push(estimate.uncertainty() as f32);
             }
         }
-        (tally, probabilities)
+        (tally, values)
     }
 }
 
@@ -266,7 +359,7 @@ fn picture(
     raster: &Raster,
     ego: &Observation,
     observed_cells: &[usize],
-    chunks: &[(WorldTally, Vec<f32>)],
+    probabilities: &[f32],
 ) -> Snapshot {
     let truth_picture = (0..truth.len())
         .map(|cell| match (raster.is_occluder(cell), truth[cell]) {
@@ -283,7 +376,7 @@ fn picture(
         })
         .collect();
     let mut fused = vec![None; truth.len()];
-    for (&cell, &p) in observed_cells.iter().zip(chunks.iter().flat_map(|(_, ps)| ps)) {
+    for (&cell, &p) in observed_cells.iter().zip(probabilities) {
         fused[cell] = Some(p);
     }
     Snapshot {

@@ -1,13 +1,10 @@
 //! Helpers shared by the engine's integration tests.
 
-use sightline_dsl::Scenario;
-use sightline_engine::{Run, simulate};
-
-/// Simulates `scenario` on a rayon pool of `threads` threads.
-pub fn in_pool(threads: usize, scenario: &Scenario) -> Run {
+/// Runs `f` on a rayon pool of `threads` threads.
+pub fn in_pool<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
     rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()
         .unwrap()
-        .install(|| simulate(scenario))
+        .install(f)
 }
