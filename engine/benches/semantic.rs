@@ -11,6 +11,7 @@ use criterion::{Criterion, criterion_group, criterion_main};
 use rand::rngs::ChaCha8Rng;
 use rand::{RngExt, SeedableRng};
 use sightline_dsl::{AgentKind, Experiment, Motion, RiskScope, Scenario, Semantic, World};
+use sightline_engine::NoTrace;
 use sightline_engine::math::Point;
 use sightline_engine::semantic::{self, Areas, EgoPlan, Ldm, Measurement, Pipeline, RouteMap, crosswalk_area};
 use sightline_engine::world::Occluders;
@@ -39,7 +40,7 @@ fn whole_run(c: &mut Criterion) {
     if let Some(vehicles) = world.traffic.as_mut().and_then(|t| t.vehicles.as_mut()) {
         vehicles.density_per_km = DENSITY;
     }
-    let metrics = semantic::run(11, &world, &semantic);
+    let metrics = semantic::run(11, &world, &semantic, &mut NoTrace);
     let density = metrics.contribution.iter().map(|&(d, _)| d).sum::<f64>() / metrics.contribution.len() as f64;
     println!(
         "route density {DENSITY}/km: mean scene density {density:.1} objects/km, {} road users generated",
@@ -48,7 +49,7 @@ fn whole_run(c: &mut Criterion) {
     let mut group = c.benchmark_group("junction");
     group.sample_size(10);
     group.bench_function("120s_at_10hz_one_run", |b| {
-        b.iter(|| semantic::run(11, &world, &semantic))
+        b.iter(|| semantic::run(11, &world, &semantic, &mut NoTrace))
     });
     group.finish();
 }
