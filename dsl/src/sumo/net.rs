@@ -90,6 +90,9 @@ pub struct Junction {
     pub shape: Vec<Xy>,
 }
 
+/// A lane by its edge's id and its index.
+type LaneOf<'a> = (&'a str, u32);
+
 /// Reads a SUMO network (`<net><edge><lane …/></edge>…<junction …/>…<connection …/></net>`).
 ///
 /// A lane needs `id`, `index`, `speed` and `shape` (`x,y x,y …`, at least two
@@ -128,19 +131,18 @@ pub fn parse_net(text: &str) -> Result<Network, SumoError> {
         });
     }
     let by_id: HashMap<&str, &Edge> = edges.iter().map(|edge| (edge.id.as_str(), edge)).collect();
-    // Every connection's `via` by (from, from lane, to, to lane), internal ones too,
+    // Every connection with a `via`, internal ones too, by its (from, to) lanes,
     // for following a path across a junction lane by lane.
-    let mut vias: HashMap<(&str, u32, &str, u32), Option<(Node, &str)>> = HashMap::new();
+    let mut vias: HashMap<(LaneOf, LaneOf), Node> = HashMap::new();
     let mut normal = Vec::new();
     for node in xml::children(root, "connection") {
         let from = xml::string(node, "from")?;
         let to = xml::string(node, "to")?;
         let from_lane = xml::index(node, "fromLane")?;
         let to_lane = xml::index(node, "toLane")?;
-        vias.insert(
-            (from, from_lane, to, to_lane),
-            node.attribute("via").map(|via| (node, via)),
-        );
+        if node.has_attribute("via") {
+            vias.insert(((from, from_lane), (to, to_lane)), node);
+        }
         if internal_edges.contains(from) || internal_edges.contains(to) {
             continue;
         }
@@ -154,15 +156,16 @@ pub fn parse_net(text: &str) -> Result<Network, SumoError> {
             };
             return Err(xml::element_error(node, message));
         }
-        normal.push((node, from, from_lane, to, to_lane));
+        normal.push((from, from_lane, to, to_lane));
     }
     let mut connections = Vec::new();
-    for (node, from, from_lane, to, to_lane) in normal {
+    for (from, from_lane, to, to_lane) in normal {
         let mut via: Vec<Xy> = Vec::new();
-        let mut next = vias[&(from, from_lane, to, to_lane)];
+        let mut next = vias.get(&((from, from_lane), (to, to_lane))).copied();
         // Each step moves to another internal lane; a cycle would revisit one.
         let mut visited = HashSet::new();
-        while let Some((at, lane_id)) = next {
+        while let Some(at) = next {
+            let lane_id = xml::string(at, "via")?;
             let problem = match internal.get(lane_id) {
                 None => ", which is not an internal lane of the network",
                 Some(_) if !visited.insert(lane_id) => " again: the path across the junction loops",
@@ -177,7 +180,7 @@ pub fn parse_net(text: &str) -> Result<Network, SumoError> {
             let lane = &internal_lanes[index];
             let skip = usize::from(via.last() == lane.shape.first());
             via.extend(&lane.shape[skip..]);
-            next = vias.get(&(edge, lane.index, to, to_lane)).copied().flatten();
+            next = vias.get(&((edge, lane.index), (to, to_lane))).copied();
         }
         connections.push(Connection {
             from: from.to_owned(),

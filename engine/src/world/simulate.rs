@@ -97,7 +97,9 @@ pub fn run(seed: u64, grid: &Grid, world: &World, perception: &Perception, jobs:
             let estimate = match agent.motion {
                 // A roadside unit's position is surveyed.
                 Motion::Fixed { .. } => state.pose,
-                Motion::Along { .. } => c.estimator.estimate(state.pose, world.step, &mut c.localization),
+                Motion::Along { .. } | Motion::Trace { .. } => {
+                    c.estimator.estimate(state.pose, world.step, &mut c.localization)
+                }
             };
             c.localization_error = (estimate.translation - state.pose.translation).length();
             c.observation
