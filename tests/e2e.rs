@@ -29,6 +29,6 @@ mod golden;
 #[path = "e2e/docs.rs"]
 mod docs;
 
-// The bundled seed-001 scenario run end to end (the one slow test).
+// The bundled scenarios run end to end (the seed-001 one is the slow test).
 #[path = "e2e/bundled.rs"]
 mod bundled;
