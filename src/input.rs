@@ -14,13 +14,19 @@ pub struct Input {
     pub scenario: Scenario,
 }
 
-/// Reads and compiles every file. Prints every error (as `file:line:col: error: …`)
+/// Reads and compiles every file (`seed` overriding each one's), the files it
+/// imports read from disk too. Prints every error (as `file:line:col: error: …`)
 /// and returns `None` if any file is invalid.
-pub fn load_all(paths: &[PathBuf], options: &Options) -> Option<Vec<Input>> {
+pub fn load_all(paths: &[PathBuf], seed: Option<u64>) -> Option<Vec<Input>> {
+    let disk = |path: &Path| std::fs::read(path);
+    let options = Options {
+        seed,
+        loader: Some(&disk),
+    };
     let mut inputs = Vec::new();
     let mut valid = true;
     for path in paths {
-        match load(path, options) {
+        match load(path, &options) {
             Ok(input) => inputs.push(input),
             Err(message) => {
                 eprintln!("{message}");
@@ -31,17 +37,11 @@ pub fn load_all(paths: &[PathBuf], options: &Options) -> Option<Vec<Input>> {
     valid.then_some(inputs)
 }
 
-fn load(path: &Path, options: &Options) -> Result<Input, String> {
+fn load(path: &Path, options: &Options<'_>) -> Result<Input, String> {
     let name = path.display().to_string();
     let bytes = std::fs::read(path).map_err(|e| format!("{name}: error: failed to read the file: {e}"))?;
-    let text = std::str::from_utf8(&bytes).map_err(|e| {
-        let valid = &bytes[..e.valid_up_to()];
-        let line_start = valid.iter().rposition(|&b| b == b'\n').map_or(0, |i| i + 1);
-        let line = valid.iter().filter(|&&b| b == b'\n').count() + 1;
-        // The prefix is valid UTF-8, so its characters can be counted.
-        let column = String::from_utf8_lossy(&valid[line_start..]).chars().count() + 1;
-        format!("{name}:{line}:{column}: error: the file is not UTF-8 text")
-    })?;
+    let text =
+        sightline_dsl::utf8_text(&bytes).map_err(|at| format!("{name}:{at}: error: the file is not UTF-8 text"))?;
     let scenario = sightline_dsl::compile(&name, text, options).map_err(|errors| errors.to_string())?;
     Ok(Input {
         path: path.to_path_buf(),

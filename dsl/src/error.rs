@@ -28,6 +28,18 @@ impl fmt::Display for Location {
     }
 }
 
+/// `bytes` as UTF-8 text, or the location of the first byte that is not UTF-8.
+pub fn utf8_text(bytes: &[u8]) -> Result<&str, Location> {
+    std::str::from_utf8(bytes).map_err(|e| {
+        let valid = &bytes[..e.valid_up_to()];
+        let line_start = valid.iter().rposition(|&b| b == b'\n').map_or(0, |i| i + 1);
+        let line = valid.iter().filter(|&&b| b == b'\n').count() + 1;
+        // The prefix is valid UTF-8, so its characters can be counted.
+        let column = String::from_utf8_lossy(&valid[line_start..]).chars().count() + 1;
+        Location::new(line, column)
+    })
+}
+
 /// One problem in a scenario file.
 ///
 /// Displays as `file:line:col: error: path: message`, the form editors and CI
@@ -57,9 +69,17 @@ fn path_prefix(path: &str) -> String {
 /// What is wrong with a scenario. Messages are lowercase fragments.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum ErrorKind {
-    /// The file could not be read.
-    #[error("failed to read the file: {0}")]
-    Io(String),
+    /// A file the scenario imports could not be read.
+    #[error("failed to read {file}: {reason}")]
+    Io {
+        /// The file, as the scenario resolves it.
+        file: String,
+        /// Why, as the operating system says.
+        reason: String,
+    },
+    /// A file the scenario imports is malformed; the error is located in that file.
+    #[error("{0}")]
+    Import(String),
     /// The text is not valid YAML, or uses YAML features the language excludes.
     #[error("{0}")]
     Syntax(String),
@@ -173,6 +193,12 @@ mod tests {
             error.to_string(),
             "s.yaml:3:7: error: field.masses.gamma: expected a number ≥ 0, found -3"
         );
+    }
+
+    #[test]
+    fn invalid_utf8_is_located_at_its_first_bad_byte() {
+        assert_eq!(utf8_text(b"a\nb"), Ok("a\nb"));
+        assert_eq!(utf8_text(b"ab\nc\xc3\xa9d\xff"), Err(Location::new(2, 4)));
     }
 
     #[test]

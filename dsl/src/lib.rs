@@ -3,10 +3,12 @@
 //!
 //! This crate owns the language: its syntax (a spanned YAML tree with strict
 //! core-schema scalars), its JSON Schema, its checks and its error messages. It
-//! does not read files, simulate or print: the CLI hands it text and prints the
-//! [`Errors`] it returns, each located as `file:line:col` with a YAML path.
-//! The [`sumo`] module reads traffic from the simulator SUMO the same way: text
-//! in, located errors out.
+//! does not touch the file system, simulate or print: the CLI hands it text and
+//! prints the [`Errors`] it returns, each located as `file:line:col` with a YAML
+//! path. The [`sumo`] module reads traffic from the simulator SUMO the same way:
+//! text in, located errors out. A scenario that imports SUMO files (`traces`)
+//! has them read through the [`Loader`] the caller puts in [`Options`]; the
+//! compiled [`Scenario`] keeps their bytes (`imports`) for the evidence.
 //!
 //! ```
 //! let text = "sightline: 1\nname: tiny\ngrid: { size: [10, 10], cell: 1 }\n\
@@ -21,8 +23,8 @@
 //! ```
 #![warn(missing_docs)]
 
-pub use compile::{Options, compile};
-pub use error::{Error, ErrorKind, Errors, Location};
+pub use compile::{Loader, Options, compile};
+pub use error::{Error, ErrorKind, Errors, Location, utf8_text};
 pub use model::*;
 pub use schema::{reference_markdown, schema};
 

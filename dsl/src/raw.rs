@@ -46,16 +46,22 @@ pub(crate) struct RawScenario {
     /// World: simulated time.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub time: Option<RawTime>,
-    /// World: directed roads with their lanes.
+    /// World: agents' trajectories imported from the traffic simulator SUMO, and
+    /// optionally its roads and buildings.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub traces: Option<RawTraces>,
+    /// World: directed roads with their lanes (besides those of `traces.net`).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub roads: Vec<RawRoad>,
-    /// World: buildings and walls that block sight.
+    /// World: buildings and walls that block sight (besides the polygons of
+    /// `traces.poly`).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub occluders: Vec<RawOccluder>,
     /// World: sensor models by id.
     #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
     pub sensor_models: BTreeMap<String, RawSensorModel>,
-    /// World: vehicles, pedestrians and roadside units.
+    /// World: vehicles, pedestrians and roadside units (besides the objects of
+    /// `traces.fcd`).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub agents: Vec<RawAgent>,
     /// World: how connected agents localize themselves.
@@ -70,7 +76,8 @@ pub(crate) struct RawScenario {
     /// World: pedestrian crossings.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub crosswalks: Vec<RawCrosswalk>,
-    /// World: regions around junctions, roundabout entries and crossings.
+    /// World: regions around junctions, roundabout entries and crossings (besides
+    /// the junctions of `traces.net`).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub interaction_areas: Vec<RawInteractionArea>,
     /// World: how vehicles keep their distance.
@@ -389,6 +396,46 @@ pub(crate) struct RawTime {
     pub step: f64,
 }
 
+/// Files written by the traffic simulator SUMO, in its network coordinates
+/// (metres, x east, y north), which become the scenario's world frame. Paths are
+/// relative to the scenario file's directory.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, expecting = "a traces mapping with `fcd`")]
+#[schemars(rename = "Traces")]
+pub(crate) struct RawTraces {
+    /// SUMO floating car data (`sumo --fcd-output`). Every vehicle and person in
+    /// it becomes an agent replaying its samples, unless a declared agent replays
+    /// it (`trace:`); a vehicle type maps to a kind by its name (see the guide).
+    pub fcd: String,
+    /// A SUMO network (`.net.xml`): its roads become `roads` (lane centrelines
+    /// and speed limits), its connections the roadside units' map, and its
+    /// lanes give traced vehicles their speed limits.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub net: Option<String>,
+    /// SUMO polygons (`.poly.xml`): those of a type in `occluder_types` become
+    /// occluders.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub poly: Option<String>,
+    /// The polygon types that block sight.
+    #[serde(default = "default_occluder_types")]
+    pub occluder_types: Vec<String>,
+    /// With `net`: every junction at least three roads enter becomes an
+    /// interaction area with the junction's outline, named by its id.
+    #[serde(default = "default_junction_areas")]
+    pub junction_areas: bool,
+    /// The trace's time that becomes the scenario's time 0, seconds.
+    #[serde(default)]
+    pub begin: f64,
+}
+
+fn default_occluder_types() -> Vec<String> {
+    vec!["building".into()]
+}
+
+fn default_junction_areas() -> bool {
+    true
+}
+
 /// A directed road: one geometry, its lanes and its speed limit.
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, expecting = "a road mapping with `id` and one geometry")]
@@ -561,6 +608,10 @@ pub(crate) struct RawAgent {
     /// Pedestrians: the points [[x, y], …] it walks through, metres.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub path: Option<Vec<[f64; 2]>>,
+    /// Vehicles and pedestrians: the id of the object in `traces.fcd` whose
+    /// samples it replays, instead of a route or a path.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub trace: Option<String>,
     /// Roadside units: where it stands [x, y], metres.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub position: Option<[f64; 2]>,

@@ -101,10 +101,26 @@ fn seed_spans_the_whole_u64_range() {
 
 #[test]
 fn seed_option_replaces_the_file_seed() {
-    let scenario = compile("t.yaml", BASE, &Options { seed: Some(99) }).unwrap();
+    let scenario = compile(
+        "t.yaml",
+        BASE,
+        &Options {
+            seed: Some(99),
+            ..Default::default()
+        },
+    )
+    .unwrap();
     assert_eq!(scenario.points[0].setup.seed, 99);
     let swept = format!("{BASE}sweep:\n  seed: [1, 2]\n");
-    let error = compile("t.yaml", &swept, &Options { seed: Some(99) }).unwrap_err();
+    let error = compile(
+        "t.yaml",
+        &swept,
+        &Options {
+            seed: Some(99),
+            ..Default::default()
+        },
+    )
+    .unwrap_err();
     assert_eq!(error.0[0].path, "sweep.seed");
 }
 

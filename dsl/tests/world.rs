@@ -113,7 +113,20 @@ fn cooperating_counts_only_connected_agents_with_sensors() {
 #[test]
 fn each_kind_moves_its_own_way() {
     let error = first_error(&WORLD.replace("kind: pedestrian, path:", "kind: car, path:"));
-    assert!(error.contains("an agent of kind \"car\" moves by `route`"), "{error}");
+    assert!(
+        error.ends_with("agents[3]: an agent of kind car moves by `route` or `trace`, not by `path`"),
+        "{error}"
+    );
+    let error = first_error(&WORLD.replace("kind: rsu, position: [15, 15]", "kind: rsu"));
+    assert!(
+        error.ends_with("agents[2]: an agent of kind rsu moves by `position`"),
+        "{error}"
+    );
+    let error = first_error(&WORLD.replace("kind: pedestrian, path:", "kind: pedestrian, trace: ped0, path:"));
+    assert!(
+        error.ends_with("agents[3]: an agent of kind pedestrian moves by `path` or `trace`, not by both"),
+        "{error}"
+    );
 }
 
 #[test]

@@ -10,10 +10,10 @@ use std::hint::black_box;
 use criterion::{Criterion, criterion_group, criterion_main};
 use rand::rngs::ChaCha8Rng;
 use rand::{RngExt, SeedableRng};
-use sightline_dsl::{AgentKind, Experiment, Motion, RiskScope, Scenario, Semantic, World};
+use sightline_dsl::{AgentKind, Experiment, RiskScope, Scenario, Semantic, World};
 use sightline_engine::NoTrace;
 use sightline_engine::math::Point;
-use sightline_engine::semantic::{self, Areas, EgoPlan, Ldm, Measurement, Pipeline, RouteMap, crosswalk_area};
+use sightline_engine::semantic::{self, Areas, EgoPlan, Ldm, Measurement, Pipeline, crosswalk_area};
 use sightline_engine::world::Occluders;
 
 /// Route density of the whole-run bench, vehicles per km of each route; the bench
@@ -41,7 +41,7 @@ fn whole_run(c: &mut Criterion) {
         vehicles.density_per_km = DENSITY;
     }
     let metrics = semantic::run(11, &world, &semantic, &mut NoTrace);
-    let density = metrics.contribution.iter().map(|&(d, _)| d).sum::<f64>() / metrics.contribution.len() as f64;
+    let density = metrics.contribution.iter().filter_map(|&(d, _)| d).sum::<f64>() / metrics.contribution.len() as f64;
     println!(
         "route density {DENSITY}/km: mean scene density {density:.1} objects/km, {} road users generated",
         metrics.generated
@@ -69,9 +69,10 @@ fn one_cycle(c: &mut Criterion) {
         .flat_map(|t| t.vehicles.iter())
         .flat_map(|v| v.routes.iter().map(|r| r.path.clone()))
         .collect();
-    let Motion::Along { path: ego_route, .. } = &world.agents[semantic.ego].motion else {
-        panic!("the ego follows a route")
-    };
+    let ego_route = world.agents[semantic.ego]
+        .motion
+        .path()
+        .expect("the ego follows a route");
     let mut rng = ChaCha8Rng::seed_from_u64(1);
     let now = 60.0;
     let mut ldm = Ldm::default();
@@ -105,7 +106,7 @@ fn one_cycle(c: &mut Criterion) {
         }
     }
     let occluders = Occluders::new(&world.occluders);
-    let map = RouteMap::new(routes);
+    let map = semantic::route_map(&world, &semantic);
     let pipeline = Pipeline {
         semantic: &semantic,
         areas: Areas {

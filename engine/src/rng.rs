@@ -22,6 +22,8 @@ pub(crate) enum Purpose {
     Traffic,
     /// Packet losses; one stream per sender.
     Channel,
+    /// Which vehicles imported from a trace are connected; one stream.
+    Connectivity,
 }
 
 impl Purpose {
@@ -34,6 +36,7 @@ impl Purpose {
             Self::Detections => 5,
             Self::Traffic => 6,
             Self::Channel => 7,
+            Self::Connectivity => 8,
         }
     }
 }

@@ -164,10 +164,19 @@ fn or_dash(value: Option<f64>) -> String {
 
 fn provenance(results: &Results, reproduce: &str) -> Vec<(&'static str, String)> {
     let tool = &results.tool;
-    vec![
+    let mut rows = vec![
         ("Tool", format!("{} {} (git {})", tool.name, tool.version, tool.git)),
         ("Scenario file", results.scenario.path.clone()),
         ("Scenario SHA-256", results.scenario.sha256.clone()),
+    ];
+    // The scenario is the first input; the rest are the files it imports.
+    rows.extend(results.inputs.iter().skip(1).map(|input| {
+        (
+            "Imported file",
+            format!("{} ({}), SHA-256 {}", input.path, input.kind, input.sha256),
+        )
+    }));
+    rows.extend([
         (
             "Seed",
             results
@@ -176,7 +185,8 @@ fn provenance(results: &Results, reproduce: &str) -> Vec<(&'static str, String)>
         ),
         ("Sweep points", results.sweep.len().to_string()),
         ("Reproduce with", reproduce.to_string()),
-    ]
+    ]);
+    rows
 }
 
 fn requirement_view(r: &RequirementResult) -> RequirementView {

@@ -11,7 +11,7 @@ pub use html::html;
 pub use junit::junit;
 pub use picture::{Pictures, pictures};
 pub use results::{
-    CheckInfo, Detail, FORMAT, MetricEntry, Ordered, PointResult, PointVerdict, Provenance, ReferencePoint,
+    CheckInfo, Detail, FORMAT, InputInfo, MetricEntry, Ordered, PointResult, PointVerdict, Provenance, ReferencePoint,
     ReferenceResult, RequirementResult, Results, ScenarioInfo, Summary, Table, Tool,
 };
 

@@ -44,6 +44,8 @@ pub struct Results {
     pub tool: Tool,
     /// The scenario.
     pub scenario: ScenarioInfo,
+    /// Every file the run read: the scenario, then the files it imports.
+    pub inputs: Vec<InputInfo>,
     /// The seed, when every point shares one (`null` when the seed is swept).
     pub seed: Option<u64>,
     /// The overall verdict: the worst requirement verdict (pass with no requirements).
@@ -73,6 +75,18 @@ pub struct ScenarioInfo {
     pub name: String,
     /// Its `description`.
     pub description: String,
+}
+
+/// A file a run read.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct InputInfo {
+    /// `scenario`, or the kind of imported file (`sumo_fcd`, `sumo_net`, `sumo_poly`).
+    pub kind: &'static str,
+    /// The path: as given for the scenario, resolved against the scenario's
+    /// directory for an imported file.
+    pub path: String,
+    /// SHA-256 of its bytes, lowercase hex.
+    pub sha256: String,
 }
 
 /// Requirement counts by verdict.
@@ -273,6 +287,17 @@ impl Results {
                 name: scenario.name.clone(),
                 description: scenario.description.clone(),
             },
+            inputs: std::iter::once(InputInfo {
+                kind: "scenario",
+                path: provenance.scenario_path.clone(),
+                sha256: provenance.scenario_sha256.clone(),
+            })
+            .chain(scenario.imports.iter().map(|import| InputInfo {
+                kind: import.kind.name(),
+                path: import.path.clone(),
+                sha256: crate::sha256_hex(&import.bytes),
+            }))
+            .collect(),
             seed: seeds.iter().all(|&s| s == seeds[0]).then_some(seeds[0]),
             verdict: verdicts.iter().map(|v| v.status).max().unwrap_or(Status::Pass),
             summary: Summary {

@@ -4,7 +4,6 @@ use std::collections::HashSet;
 use std::path::{Path, PathBuf};
 
 use anyhow::Context;
-use sightline_dsl::Options;
 use sightline_oracles::Status;
 use sightline_reports::{Provenance, Tool, render, sha256_hex};
 
@@ -16,7 +15,7 @@ use crate::output::{say, write_atomically};
 /// Validates every file first (nothing is written if one is invalid), then runs
 /// each scenario and writes its evidence.
 pub fn run(args: &RunArgs) -> anyhow::Result<Exit> {
-    let Some(inputs) = load_all(&args.files, &Options { seed: args.seed }) else {
+    let Some(inputs) = load_all(&args.files, args.seed) else {
         return Ok(Exit::Invalid);
     };
     let Some(dirs) = evidence_dirs(args, &inputs) else {

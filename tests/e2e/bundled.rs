@@ -1,11 +1,14 @@
-//! The bundled seed-001 scenario, end to end: 1000 × 1000 cells, 60 sweep points.
-//! It takes a while, so it runs once (shared by the tests below): the shape of its
-//! evidence, and every figure `docs/findings/seed-001.md` quotes from it.
+//! The bundled scenarios, end to end. The seed-001 field (1000 × 1000 cells, 60
+//! sweep points) takes a while, so it runs once (shared by the tests below): the
+//! shape of its evidence, and every figure `docs/findings/seed-001.md` quotes from
+//! it. Then the seed-002 junction and the SUMO grid.
 
 use std::sync::OnceLock;
 
 use crate::findings::tables;
-use crate::support::{arg, assert_evidence_files, read_json, sightline, temp_dir, unescape_html};
+use crate::support::{
+    arg, assert_evidence_files, read, read_json, root, sha256_hex, sightline, temp_dir, unescape_html,
+};
 
 const SCENARIO: &str = "scenarios/evidential-field.yaml";
 
@@ -213,4 +216,54 @@ fn urban_semantic_scenario_runs_end_to_end() {
     assert_eq!(points[7]["label"], "semantic.shares_over=all");
     assert!(load(7, "transmitted_share") < load(6, "transmitted_share"));
     assert_eq!(points[6]["counts"]["transmitted"], points[1]["counts"]["transmitted"]);
+}
+
+/// The bundled SUMO grid: a trace, its network and its polygons imported from
+/// `scenarios/sumo/`. The evidence lists every file read with its SHA-256, and
+/// the ego (SUMO's veh7) is in the scene from its first sample to its last.
+#[test]
+fn sumo_grid_scenario_runs_end_to_end_and_hashes_its_imports() {
+    const GRID: &str = "scenarios/sumo-grid-semantic.yaml";
+    let tmp = temp_dir();
+    let out = tmp.path().join("out");
+    sightline(["run", GRID, "--out", arg(&out)]).assert_exit(0);
+    assert_evidence_files(&out);
+    let results = read_json(&out.join("results.json"));
+    assert_eq!(results["verdict"], "pass");
+    let inputs: Vec<(&str, &str, &str)> = results["inputs"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|i| {
+            (
+                i["kind"].as_str().unwrap(),
+                i["path"].as_str().unwrap(),
+                i["sha256"].as_str().unwrap(),
+            )
+        })
+        .collect();
+    let hash = |path: &str| sha256_hex(&std::fs::read(root().join(path)).unwrap());
+    let files = [
+        ("scenario", GRID),
+        ("sumo_fcd", "scenarios/sumo/grid3x3.fcd.xml"),
+        ("sumo_net", "scenarios/sumo/grid3x3.net.xml"),
+        ("sumo_poly", "scenarios/sumo/grid3x3.poly.xml"),
+    ];
+    let expected: Vec<(&str, &str, String)> = files.iter().map(|&(kind, path)| (kind, path, hash(path))).collect();
+    assert_eq!(
+        inputs,
+        expected
+            .iter()
+            .map(|(kind, path, sha)| (*kind, *path, sha.as_str()))
+            .collect::<Vec<_>>()
+    );
+    let html = unescape_html(&read(&out.join("report.html")));
+    for (_, path, sha) in &expected {
+        assert!(html.contains(sha.as_str()), "the report lacks the hash of {path}");
+    }
+    let point = &results["sweep"][0];
+    assert_eq!(point["experiment"], "semantic");
+    // veh7 is in the trace from 7.0 s to 53.1 s: 462 steps of 0.1 s.
+    assert_eq!(point["counts"]["steps"], 462);
+    assert_eq!(point["counts"]["generated"], 0);
 }

@@ -4,6 +4,8 @@
 //! Data-driven: each `tests/fixtures/invalid/NAME.yaml` has a `NAME.stderr`
 //! holding the exact expected stderr, one `file:line:col: error: yaml.path:
 //! message` line per problem. `check` and `run` must both print exactly that.
+//! The SUMO files some of them import are in `tests/fixtures/invalid/sumo/`; a
+//! problem in such a file is located in it.
 //!
 //! To (re)write the `.stderr` files from the actual output, run
 //!
@@ -21,17 +23,27 @@ use crate::support::{arg, assert_matches_file, blessing, files_under, root, sigh
 
 const FIXTURES: &str = "tests/fixtures/invalid";
 
+/// The directory in [`FIXTURES`] that holds the SUMO files fixtures import.
+const IMPORTED: &str = "sumo";
+
 /// Panics unless every line of `stderr` has the form `file:line:col: error: …`
-/// with 1-based numbers, so that a blessed file cannot hold a malformed message.
+/// with 1-based numbers, `file` the scenario or a SUMO file it imports, so that a
+/// blessed file cannot hold a malformed message.
 #[track_caller]
 fn assert_located(file: &str, stderr: &str) {
     assert!(!stderr.is_empty(), "no error printed for {file}");
     assert!(stderr.ends_with('\n'), "stderr does not end in a newline: {stderr:?}");
+    let imported = format!("{FIXTURES}/{IMPORTED}/");
     for line in stderr.lines() {
         let rest = line
             .strip_prefix(file)
+            .or_else(|| {
+                let rest = line.strip_prefix(&imported)?;
+                let name = &rest[..rest.find(':')?];
+                root().join(&imported).join(name).is_file().then(|| &rest[name.len()..])
+            })
             .and_then(|r| r.strip_prefix(':'))
-            .unwrap_or_else(|| panic!("{line:?} does not start with `{file}:`"));
+            .unwrap_or_else(|| panic!("{line:?} does not start with `{file}:` or the path of a file it imports"));
         let mut parts = rest.splitn(3, ':');
         for what in ["line", "column"] {
             let number: usize = parts
@@ -111,6 +123,8 @@ invalid_inputs! {
     every_problem_of_a_file_is_reported_in_source_order => "several-errors",
     seed_beyond_64_bits_is_out_of_range => "seed-beyond-64-bits",
     route_that_does_not_connect_is_located_at_its_road => "route-not-connected",
+    missing_trace_file_is_located_at_its_name => "traces-missing-file",
+    malformed_trace_file_is_located_in_it => "traces-malformed-fcd",
     unknown_sensor_model_is_a_dangling_reference => "unknown-sensor-model",
 }
 
@@ -120,6 +134,9 @@ fn every_invalid_fixture_is_tested_and_has_its_stderr() {
     let mut yaml = Vec::new();
     let mut stderr = Vec::new();
     for path in files_under(&dir) {
+        if path.starts_with(IMPORTED) {
+            continue;
+        }
         let name = path.file_stem().unwrap().to_string_lossy().into_owned();
         match path.extension().and_then(|e| e.to_str()) {
             Some("yaml") => yaml.push(name),

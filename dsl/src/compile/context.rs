@@ -21,6 +21,11 @@ impl<'a> Context<'a> {
         }
     }
 
+    /// Whether the file gives the node at `path`.
+    pub(super) fn has(&self, path: &Path) -> bool {
+        deepest(self.tree, path.segments()).1
+    }
+
     /// Records an error at the deepest node of `path` that exists in the tree.
     pub(super) fn error(&mut self, path: &Path, kind: ErrorKind) {
         self.error_at(locate(self.tree, path), path, kind);

@@ -1,5 +1,6 @@
 //! YAML text → [`Scenario`](crate::Scenario), in named passes:
 //! `yaml::parse` (spanned tree) → `de` (raw serde types, located errors) →
+//! `traces` (imported SUMO files, read once through the caller's [`Loader`]) →
 //! `setup` (ranges, units, defaults) → `sweep` (one tree per point) →
 //! `requirements` (ids, checks, `where` filters) → `Scenario`.
 
@@ -9,6 +10,7 @@ mod scenario;
 mod semantic;
 mod setup;
 mod sweep;
+mod traces;
 mod world;
 
-pub use scenario::{Options, compile};
+pub use scenario::{Loader, Options, compile};

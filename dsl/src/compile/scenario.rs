@@ -1,9 +1,13 @@
-//! The driver: text → tree → raw → setup per sweep point → requirements.
+//! The driver: text → tree → raw → imported files → setup per sweep point →
+//! requirements.
+
+use std::{fmt, io};
 
 use super::context::Context;
 use super::requirements::{references, requirements};
 use super::setup::setup;
 use super::sweep::{self, AxisNodes};
+use super::traces::{self, Imported};
 use crate::de::from_node;
 use crate::error::{Error, ErrorKind, Errors, Location};
 use crate::model::{Assignment, Axis, Experiment, Point, Scenario, Sweep, display_value};
@@ -14,25 +18,61 @@ use crate::yaml::{self, Node, Value};
 /// The language version this release reads.
 pub const LANGUAGE_VERSION: i128 = 1;
 
-/// Settings that override the file.
-#[derive(Debug, Clone, Default)]
-pub struct Options {
+/// Settings of one compilation that the file does not give.
+#[derive(Clone, Copy, Default)]
+pub struct Options<'a> {
     /// Replace the scenario's `seed` (the CLI's `--seed`). An error when `seed` is swept.
     pub seed: Option<u64>,
+    /// Reads the files the scenario imports (`traces`). Without one, a scenario
+    /// that imports files fails to read them: the compiler never touches the file
+    /// system itself.
+    pub loader: Option<&'a dyn Loader>,
 }
 
-/// Compiles the text of one scenario file. `file` names it in errors.
+impl fmt::Debug for Options<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("Options")
+            .field("seed", &self.seed)
+            .field("loader", &self.loader.map(|_| "…"))
+            .finish()
+    }
+}
+
+/// Reads the files a scenario imports, for [`compile`]. A closure is one:
 ///
-/// Returns every problem found; no problem means the scenario can run.
-pub fn compile(file: &str, source: &str, options: &Options) -> Result<Scenario, Errors> {
+/// ```
+/// use std::path::Path;
+/// let disk = |path: &Path| std::fs::read(path);
+/// let options = sightline_dsl::Options { loader: Some(&disk), ..Default::default() };
+/// # let _ = options;
+/// ```
+pub trait Loader {
+    /// The bytes of the file at `path` (the scenario file's directory joined with
+    /// the path the scenario gives).
+    fn load(&self, path: &std::path::Path) -> io::Result<Vec<u8>>;
+}
+
+impl<F: Fn(&std::path::Path) -> io::Result<Vec<u8>>> Loader for F {
+    fn load(&self, path: &std::path::Path) -> io::Result<Vec<u8>> {
+        self(path)
+    }
+}
+
+/// Compiles the text of one scenario file. `file` names it in errors and
+/// locates the files it imports (relative to its directory).
+///
+/// Returns every problem found, those of the scenario file first in source
+/// order, then those of the files it imports; no problem means the scenario can
+/// run.
+pub fn compile(file: &str, source: &str, options: &Options<'_>) -> Result<Scenario, Errors> {
     compile_inner(file, source, options).map_err(|mut errors| {
-        errors.sort_by_key(|e| e.location);
+        errors.sort_by(|a, b| (a.file != file, &a.file, a.location).cmp(&(b.file != file, &b.file, b.location)));
         errors.dedup();
         Errors(errors)
     })
 }
 
-fn compile_inner(file: &str, source: &str, options: &Options) -> Result<Scenario, Vec<Error>> {
+fn compile_inner(file: &str, source: &str, options: &Options<'_>) -> Result<Scenario, Vec<Error>> {
     let tree = yaml::parse(source).map_err(|e| {
         vec![Error {
             file: file.to_string(),
@@ -47,9 +87,11 @@ fn compile_inner(file: &str, source: &str, options: &Options) -> Result<Scenario
         return Err(ctx.errors);
     }
     let raw: RawScenario = from_node(&tree, &Path::root()).map_err(|e| vec![ctx.de_error(e)])?;
+    // Imported files are read and parsed once: `traces` cannot be swept.
+    let imported = traces::load(&mut ctx, raw.traces.as_ref(), options.loader);
     // Check the file as written before expanding the sweep, so that a problem
     // outside the swept keys is reported once, not once per point.
-    let base = setup(&mut ctx, &raw);
+    let base = setup(&mut ctx, &raw, imported.as_ref());
     let sweeps = sweep::sweeps(&mut ctx);
     if let (Some(_), Some(axis)) = (options.seed, sweeps.iter().flatten().find(|a| a.dotted == "seed")) {
         ctx.error_at(
@@ -61,7 +103,7 @@ fn compile_inner(file: &str, source: &str, options: &Options) -> Result<Scenario
     // Requirements are checked even when the setup is invalid (ids, texts and
     // check forms do not depend on the points), so one pass reports everything.
     let points = match base {
-        Some(_) if ctx.errors.is_empty() => match points(file, &tree, &sweeps, options) {
+        Some(_) if ctx.errors.is_empty() => match points(file, &tree, &sweeps, options, imported.as_ref()) {
             Ok(points) => Some(points),
             Err(errors) => {
                 ctx.errors.extend(errors);
@@ -99,6 +141,7 @@ fn compile_inner(file: &str, source: &str, options: &Options) -> Result<Scenario
         points,
         requirements,
         references,
+        imports: imported.map(|i| i.files).unwrap_or_default(),
     }))
 }
 
@@ -133,7 +176,13 @@ fn check_version(ctx: &mut Context<'_>) {
 }
 
 /// Compiles every point of every sweep (one point when there is no sweep).
-fn points(file: &str, tree: &Node, sweeps: &[Vec<AxisNodes<'_>>], options: &Options) -> Result<Vec<Point>, Vec<Error>> {
+fn points(
+    file: &str,
+    tree: &Node,
+    sweeps: &[Vec<AxisNodes<'_>>],
+    options: &Options<'_>,
+    imported: Option<&Imported>,
+) -> Result<Vec<Point>, Vec<Error>> {
     let mut points = Vec::new();
     let mut errors = Vec::new();
     let no_sweep: [Vec<AxisNodes<'_>>; 1] = [Vec::new()];
@@ -143,7 +192,7 @@ fn points(file: &str, tree: &Node, sweeps: &[Vec<AxisNodes<'_>>], options: &Opti
             let point_tree = sweep::substitute(tree, axes, &choice);
             let mut ctx = Context::new(file, &point_tree);
             let compiled = match from_node::<RawScenario>(&point_tree, &Path::root()) {
-                Ok(raw) => setup(&mut ctx, &raw).map(|setup| (raw, setup)),
+                Ok(raw) => setup(&mut ctx, &raw, imported).map(|setup| (raw, setup)),
                 Err(e) => {
                     ctx.errors.push(ctx.de_error(e));
                     None

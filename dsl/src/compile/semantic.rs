@@ -1,12 +1,15 @@
 //! The sections of seed 002's assisted ego: traffic, crosswalks, interaction
 //! areas, driving, V2X and the semantic pipeline.
 
+use std::collections::HashSet;
+
 use super::context::Context;
 use super::setup::whole_multiple;
-use super::world::{finite_points, known_names, route_path, signed_area, unique_ids};
+use super::traces::Imported;
+use super::world::{counter_clockwise, distinct_from_imported, finite_points, known_names, route_path, unique_ids};
 use crate::error::ErrorKind;
 use crate::model::{
-    Agent, AgentKind, Area, Baseline, Caution, Channel, Crosswalk, Driving, InteractionArea, Motion, PathLossModel,
+    Agent, AgentKind, Area, Baseline, Caution, Channel, Crosswalk, Driving, InteractionArea, PathLossModel,
     PedestrianTraffic, Road, Semantic, Traffic, TrafficRoute, V2x, VehicleTraffic,
 };
 use crate::path::Path;
@@ -43,9 +46,23 @@ pub(super) fn crosswalks(ctx: &mut Context<'_>, raw: &[RawCrosswalk]) -> Option<
     })
 }
 
-pub(super) fn interaction_areas(ctx: &mut Context<'_>, raw: &[RawInteractionArea]) -> Option<Vec<InteractionArea>> {
+/// The declared interaction areas, then the junctions of `traces.net`.
+pub(super) fn interaction_areas(
+    ctx: &mut Context<'_>,
+    raw: &[RawInteractionArea],
+    imported: Option<&Imported>,
+) -> Option<Vec<InteractionArea>> {
     let list = Path::root().key("interaction_areas");
-    let mut ok = unique_ids(ctx, &list, raw.iter().map(|a| a.id.as_str()));
+    let junctions = imported.map_or(&[][..], |i| &i.areas);
+    let junction_ids: HashSet<&str> = junctions.iter().map(|a| a.id.as_str()).collect();
+    let mut ok = unique_ids(ctx, &list, raw.iter().map(|a| a.id.as_str()))
+        & distinct_from_imported(
+            ctx,
+            &list,
+            raw.iter().map(|a| a.id.as_str()),
+            &junction_ids,
+            "a junction of `traces.net` (`traces.junction_areas`)",
+        );
     let mut areas = Vec::new();
     for (i, area) in raw.iter().enumerate() {
         let path = list.index(i);
@@ -54,18 +71,14 @@ pub(super) fn interaction_areas(ctx: &mut Context<'_>, raw: &[RawInteractionArea
                 let polygon_path = path.key("polygon");
                 if !finite_points(ctx, &polygon_path, polygon) {
                     None
-                } else if polygon.len() < 3 || signed_area(polygon).abs() < 1e-9 {
+                } else if let Some(outline) = counter_clockwise(polygon) {
+                    Some(Area::Polygon(outline))
+                } else {
                     ctx.error(
                         &polygon_path,
                         ErrorKind::Invalid("an area needs at least three corners enclosing an area".into()),
                     );
                     None
-                } else {
-                    let mut polygon = polygon.clone();
-                    if signed_area(&polygon) < 0.0 {
-                        polygon.reverse();
-                    }
-                    Some(Area::Polygon(polygon))
                 }
             }
             (None, Some(circle)) => {
@@ -93,6 +106,7 @@ pub(super) fn interaction_areas(ctx: &mut Context<'_>, raw: &[RawInteractionArea
             None => ok = false,
         }
     }
+    areas.extend_from_slice(junctions);
     ok.then_some(areas)
 }
 
@@ -255,8 +269,8 @@ pub(super) fn semantic_of(ctx: &mut Context<'_>, raw: &RawSemantic, agents: &[Ag
     };
     let ego = find(ctx, &raw.ego, &path.key("ego")).and_then(|ego| {
         let agent = &agents[ego];
-        let problem = if !matches!(agent.motion, Motion::Along { .. }) || !agent.kind.is_vehicle() {
-            Some("is not a vehicle on a route")
+        let problem = if agent.motion.path().is_none() || !agent.kind.is_vehicle() {
+            Some("is not a vehicle on a route or a trace that moves")
         } else if !agent.connected {
             Some("is not `connected: true`")
         } else if agent.sensors.is_empty() {

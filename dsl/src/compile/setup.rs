@@ -1,6 +1,7 @@
 //! Ranges, units and defaults of the simulation settings: raw → [`Setup`].
 
 use super::context::Context;
+use super::traces::Imported;
 use super::world::world;
 use crate::error::ErrorKind;
 use crate::model::{
@@ -19,16 +20,16 @@ pub const MAX_CELLS: usize = 25_000_000;
 pub const MAX_SENSORS: usize = 1_000;
 
 /// Compiles the simulation settings of one scenario (or one sweep point).
-pub(super) fn setup(ctx: &mut Context<'_>, raw: &RawScenario) -> Option<Setup> {
+pub(super) fn setup(ctx: &mut Context<'_>, raw: &RawScenario, imported: Option<&Imported>) -> Option<Setup> {
     let root = Path::root();
     let grid = grid(ctx, &raw.grid, &root.key("grid"));
-    let world_given = raw.time.is_some() || !raw.agents.is_empty() || raw.perception.is_some();
+    let world_given = raw.time.is_some() || !raw.agents.is_empty() || raw.perception.is_some() || raw.traces.is_some();
     let experiment = match &raw.field {
         Some(_) if world_given => {
             ctx.error(
                 &root.key("field"),
                 ErrorKind::Invalid(
-                    "a scenario simulates either a `field` or a world (`time`, `agents`, `perception`), not both"
+                    "a scenario simulates either a `field` or a world (`time`, `agents`, `traces`, `perception`), not both"
                         .into(),
                 ),
             );
@@ -37,7 +38,7 @@ pub(super) fn setup(ctx: &mut Context<'_>, raw: &RawScenario) -> Option<Setup> {
         Some(field_raw) => grid
             .and_then(|g| field(ctx, field_raw, &g, &root.key("field")))
             .map(Experiment::Field),
-        None => world(ctx, raw).map(|w| Experiment::World(Box::new(w))),
+        None => world(ctx, raw, imported).map(|w| Experiment::World(Box::new(w))),
     };
     let fusion = fusion(ctx, &raw.fusion, &root.key("fusion"));
     let decision = decision(ctx, &raw.decision, &root.key("decision"));

@@ -1,23 +1,27 @@
 //! The world sections: ids, ranges, geometry resolved into lane polylines, routes
 //! checked for connectivity and resolved into one path per vehicle.
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 use super::context::{Context, locate};
 use super::semantic::{crosswalks, driving, interaction_areas, semantic_of, traffic, v2x};
 use super::setup::whole_multiple;
+use super::traces::{Imported, imported_agents, trace_motion};
 use crate::de::closest;
 use crate::error::{ErrorKind, Location};
 use crate::geometry::{MAX_CHORD_ERROR, Polyline, Xy, arc, distance};
-use crate::model::{Agent, AgentKind, Direction, Localization, Motion, Occluder, Perception, Road, Sensor, World};
+use crate::model::{
+    Agent, AgentKind, Direction, LaneLink, Localization, Motion, Occluder, Perception, Road, Sensor, World,
+};
 use crate::path::Path;
 use crate::raw::{RawAgent, RawOccluder, RawPerception, RawRoad, RawScenario, RawSensorModel, RawTime};
 
 /// The most steps a run may have.
 pub const MAX_STEPS: usize = 100_000;
 
-/// Compiles the world sections of a scenario that has no `field`.
-pub(super) fn world(ctx: &mut Context<'_>, raw: &RawScenario) -> Option<World> {
+/// Compiles the world sections of a scenario that has no `field`, with what its
+/// `traces` import (`None` when it has none).
+pub(super) fn world(ctx: &mut Context<'_>, raw: &RawScenario, imported: Option<&Imported>) -> Option<World> {
     let root = Path::root();
     let Some(time) = &raw.time else {
         ctx.error(
@@ -29,13 +33,26 @@ pub(super) fn world(ctx: &mut Context<'_>, raw: &RawScenario) -> Option<World> {
         return None;
     };
     let steps = time_steps(ctx, time, &root.key("time"));
-    let roads = roads(ctx, &raw.roads);
-    let occluders = occluders(ctx, &raw.occluders);
     let sensors = sensor_models(ctx, raw);
-    let agents = agents(ctx, &raw.agents, roads.as_deref().unwrap_or_default(), &sensors?);
     let localization = localization(ctx, raw);
+    let driving = driving(ctx, &raw.driving);
+    let v2x = v2x(ctx, &raw.v2x);
+    if raw.traces.is_some() && imported.is_none() {
+        // A file of `traces` failed to load, and its errors are recorded: what
+        // the sections that depend on it would say without it would mislead.
+        return None;
+    }
+    let roads = roads(ctx, &raw.roads, imported);
+    let occluders = occluders(ctx, &raw.occluders, imported);
+    let scene = Scene {
+        roads: roads.as_deref().unwrap_or_default(),
+        sensors: &sensors?,
+        imported,
+        duration: time.duration,
+    };
+    let agents = agents(ctx, &raw.agents, &scene);
     let perception = match (&raw.perception, &agents, steps) {
-        (Some(perception), Some(agents), Some(steps)) => {
+        (Some(perception), Some((agents, _)), Some(steps)) => {
             perception_of(ctx, perception, agents, time.step, steps).map(Some)
         }
         (None, _, _) => Some(None),
@@ -43,15 +60,13 @@ pub(super) fn world(ctx: &mut Context<'_>, raw: &RawScenario) -> Option<World> {
     };
     let roads_known = roads.as_deref().unwrap_or_default();
     let crosswalks = crosswalks(ctx, &raw.crosswalks);
-    let interaction_areas = interaction_areas(ctx, &raw.interaction_areas);
+    let interaction_areas = interaction_areas(ctx, &raw.interaction_areas, imported);
     let traffic = raw
         .traffic
         .as_ref()
         .map(|t| traffic(ctx, t, roads_known, crosswalks.as_deref().unwrap_or_default()));
-    let driving = driving(ctx, &raw.driving);
-    let v2x = v2x(ctx, &raw.v2x);
     let semantic = match (&raw.semantic, &agents) {
-        (Some(semantic), Some(agents)) => semantic_of(ctx, semantic, agents, time.step).map(Some),
+        (Some(semantic), Some((agents, _))) => semantic_of(ctx, semantic, agents, time.step).map(Some),
         (None, _) => Some(None),
         _ => None,
     };
@@ -80,7 +95,8 @@ pub(super) fn world(ctx: &mut Context<'_>, raw: &RawScenario) -> Option<World> {
         steps: steps?,
         roads: roads?,
         occluders: occluders?,
-        agents: agents?,
+        imported: agents.as_ref().map_or(0, |(_, imported)| *imported),
+        agents: agents?.0,
         localization: localization?,
         perception: perception?,
         traffic: traffic.map_or(Some(None), |t| t.map(Some))?,
@@ -151,9 +167,41 @@ pub(super) fn finite_points(ctx: &mut Context<'_>, path: &Path, points: &[[f64; 
     ok
 }
 
-fn roads(ctx: &mut Context<'_>, raw: &[RawRoad]) -> Option<Vec<Road>> {
+/// Records an error at `list[i].id` for each declared id that something imported
+/// (`what`: an edge of `traces.net`, …) also has; returns whether none does.
+pub(super) fn distinct_from_imported<'a>(
+    ctx: &mut Context<'_>,
+    list: &Path,
+    declared: impl Iterator<Item = &'a str>,
+    imported: &HashSet<&str>,
+    what: &str,
+) -> bool {
+    let mut ok = true;
+    for (i, id) in declared.enumerate() {
+        if imported.contains(id) {
+            ctx.error(
+                &list.index(i).key("id"),
+                ErrorKind::Invalid(format!("`{id}` is also the id of {what}; choose another id")),
+            );
+            ok = false;
+        }
+    }
+    ok
+}
+
+/// The declared roads, then those of `traces.net`.
+fn roads(ctx: &mut Context<'_>, raw: &[RawRoad], imported: Option<&Imported>) -> Option<Vec<Road>> {
     let list = Path::root().key("roads");
-    let mut ok = unique_ids(ctx, &list, raw.iter().map(|r| r.id.as_str()));
+    let net_roads = imported.map_or(&[][..], |i| &i.roads);
+    let net_ids: HashSet<&str> = net_roads.iter().map(|r| r.id.as_str()).collect();
+    let mut ok = unique_ids(ctx, &list, raw.iter().map(|r| r.id.as_str()))
+        & distinct_from_imported(
+            ctx,
+            &list,
+            raw.iter().map(|r| r.id.as_str()),
+            &net_ids,
+            "an edge of `traces.net`",
+        );
     let mut roads = Vec::new();
     for (i, road) in raw.iter().enumerate() {
         let path = list.index(i);
@@ -170,11 +218,27 @@ fn roads(ctx: &mut Context<'_>, raw: &[RawRoad]) -> Option<Vec<Road>> {
                     lanes,
                     lane_width: road.lane_width,
                     speed_limit: road.speed_limit,
+                    links: Vec::new(),
                 });
             }
             _ => ok = false,
         }
     }
+    // The network's links index its own roads, which follow the declared ones.
+    let first = roads.len();
+    roads.extend(net_roads.iter().map(|road| {
+        Road {
+            links: road
+                .links
+                .iter()
+                .map(|link| LaneLink {
+                    to_road: first + link.to_road,
+                    ..link.clone()
+                })
+                .collect(),
+            ..road.clone()
+        }
+    }));
     ok.then_some(roads)
 }
 
@@ -242,9 +306,19 @@ fn reference_line(ctx: &mut Context<'_>, road: &RawRoad, path: &Path) -> Option<
         .flatten()
 }
 
-fn occluders(ctx: &mut Context<'_>, raw: &[RawOccluder]) -> Option<Vec<Occluder>> {
+/// The declared occluders, then the polygons of `traces.poly` that block sight.
+fn occluders(ctx: &mut Context<'_>, raw: &[RawOccluder], imported: Option<&Imported>) -> Option<Vec<Occluder>> {
     let list = Path::root().key("occluders");
-    let mut ok = unique_ids(ctx, &list, raw.iter().map(|o| o.id.as_str()));
+    let polygons = imported.map_or(&[][..], |i| &i.occluders);
+    let polygon_ids: HashSet<&str> = polygons.iter().map(|o| o.id.as_str()).collect();
+    let mut ok = unique_ids(ctx, &list, raw.iter().map(|o| o.id.as_str()))
+        & distinct_from_imported(
+            ctx,
+            &list,
+            raw.iter().map(|o| o.id.as_str()),
+            &polygon_ids,
+            "a polygon of `traces.poly`",
+        );
     let mut occluders = Vec::new();
     for (i, occluder) in raw.iter().enumerate() {
         let path = list.index(i);
@@ -256,29 +330,39 @@ fn occluders(ctx: &mut Context<'_>, raw: &[RawOccluder]) -> Option<Vec<Occluder>
         if let Some(height) = occluder.height {
             ok &= ctx.positive(&path.key("height"), height);
         }
-        let area = signed_area(&occluder.polygon);
-        if occluder.polygon.len() < 3 || area.abs() < 1e-9 {
+        let Some(polygon) = counter_clockwise(&occluder.polygon) else {
             ctx.error(
                 &polygon_path,
                 ErrorKind::Invalid("an occluder needs at least three corners enclosing an area".into()),
             );
             ok = false;
             continue;
-        }
-        let mut polygon = occluder.polygon.clone();
-        if area < 0.0 {
-            polygon.reverse();
-        }
+        };
         occluders.push(Occluder {
             id: occluder.id.clone(),
             polygon,
         });
     }
+    occluders.extend_from_slice(polygons);
     ok.then_some(occluders)
 }
 
+/// `polygon` counter-clockwise, or `None` when it has fewer than three corners or
+/// encloses no area.
+pub(super) fn counter_clockwise(polygon: &[Xy]) -> Option<Vec<Xy>> {
+    let area = signed_area(polygon);
+    if polygon.len() < 3 || area.abs() < 1e-9 {
+        return None;
+    }
+    let mut polygon = polygon.to_vec();
+    if area < 0.0 {
+        polygon.reverse();
+    }
+    Some(polygon)
+}
+
 /// The signed area of a polygon, positive when counter-clockwise (shoelace formula).
-pub(super) fn signed_area(polygon: &[Xy]) -> f64 {
+fn signed_area(polygon: &[Xy]) -> f64 {
     let n = polygon.len();
     (0..n)
         .map(|i| {
@@ -347,31 +431,69 @@ fn sensor(ctx: &mut Context<'_>, name: &str, raw: &RawSensorModel, path: &Path) 
     })
 }
 
-fn agents(
-    ctx: &mut Context<'_>,
-    raw: &[RawAgent],
-    roads: &[Road],
-    sensors: &HashMap<String, Sensor>,
-) -> Option<Vec<Agent>> {
+/// What agents are resolved against.
+struct Scene<'a> {
+    /// Every road, declared and imported.
+    roads: &'a [Road],
+    /// The sensor models by id.
+    sensors: &'a HashMap<String, Sensor>,
+    /// What `traces` imports.
+    imported: Option<&'a Imported>,
+    /// Length of the run, seconds.
+    duration: f64,
+}
+
+/// The declared agents, then the objects of the trace none of them replays; and
+/// how many of those there are.
+fn agents(ctx: &mut Context<'_>, raw: &[RawAgent], scene: &Scene<'_>) -> Option<(Vec<Agent>, usize)> {
     let list = Path::root().key("agents");
     let mut ok = unique_ids(ctx, &list, raw.iter().map(|a| a.id.as_str()));
+    if let Some(imported) = scene.imported {
+        let objects: HashSet<&str> = imported.ids().collect();
+        for (i, agent) in raw.iter().enumerate() {
+            if objects.contains(agent.id.as_str()) && agent.trace.as_ref() != Some(&agent.id) {
+                ctx.error(
+                    &list.index(i).key("id"),
+                    ErrorKind::Invalid(format!(
+                        "`{0}` is also the id of an object of `traces.fcd`: replay it with `trace: {0}`, or \
+                         choose another id",
+                        agent.id
+                    )),
+                );
+                ok = false;
+            }
+        }
+    }
+    // Each traced object, by the first agent that replays it.
+    let mut replayed: HashMap<&str, usize> = HashMap::new();
     let mut agents = Vec::new();
     for (i, agent) in raw.iter().enumerate() {
-        match agent_of(ctx, agent, &list.index(i), roads, sensors) {
+        if let Some(trace) = &agent.trace {
+            if let Some(&first) = replayed.get(trace.as_str()) {
+                ctx.error(
+                    &list.index(i).key("trace"),
+                    ErrorKind::Invalid(format!("agent `{}` replays `{trace}` already", raw[first].id)),
+                );
+                ok = false;
+            } else {
+                replayed.insert(trace, i);
+            }
+        }
+        match agent_of(ctx, agent, &list.index(i), scene) {
             Some(agent) => agents.push(agent),
             None => ok = false,
         }
     }
-    ok.then_some(agents)
+    let imported = scene.imported.map_or_else(Vec::new, |imported| {
+        let declared = raw.iter().map(|a| a.id.as_str()).chain(replayed.into_keys()).collect();
+        imported_agents(imported, &declared, scene.duration)
+    });
+    let count = imported.len();
+    agents.extend(imported);
+    ok.then_some((agents, count))
 }
 
-fn agent_of(
-    ctx: &mut Context<'_>,
-    raw: &RawAgent,
-    path: &Path,
-    roads: &[Road],
-    sensors: &HashMap<String, Sensor>,
-) -> Option<Agent> {
+fn agent_of(ctx: &mut Context<'_>, raw: &RawAgent, path: &Path, scene: &Scene<'_>) -> Option<Agent> {
     let (default_length, default_width) = raw.kind.footprint();
     let (length, width) = match &raw.size {
         Some(size) => {
@@ -387,10 +509,10 @@ fn agent_of(
     let mut resolved = Vec::new();
     let mut sensors_ok = true;
     for (i, name) in raw.sensors.iter().enumerate() {
-        match sensors.get(name) {
+        match scene.sensors.get(name) {
             Some(sensor) => resolved.push(sensor.clone()),
             None => {
-                let mut known: Vec<&str> = sensors.keys().map(String::as_str).collect();
+                let mut known: Vec<&str> = scene.sensors.keys().map(String::as_str).collect();
                 known.sort_unstable();
                 ctx.error(
                     &path.key("sensors").index(i),
@@ -403,7 +525,7 @@ fn agent_of(
             }
         }
     }
-    let motion = motion(ctx, raw, path, roads);
+    let motion = motion(ctx, raw, path, scene, length);
     Some(Agent {
         id: raw.id.clone(),
         kind: raw.kind,
@@ -415,36 +537,44 @@ fn agent_of(
     })
 }
 
-/// How an agent moves: roadside units stand, vehicles follow their route, pedestrians their path.
-fn motion(ctx: &mut Context<'_>, raw: &RawAgent, path: &Path, roads: &[Road]) -> Option<Motion> {
+/// How an agent moves: roadside units stand, vehicles follow their route,
+/// pedestrians their path, and either may replay a trace instead.
+fn motion(ctx: &mut Context<'_>, raw: &RawAgent, path: &Path, scene: &Scene<'_>, length: f64) -> Option<Motion> {
     let allowed: &[&str] = match raw.kind {
         AgentKind::Rsu => &["position"],
-        AgentKind::Pedestrian => &["path"],
-        _ => &["route"],
+        AgentKind::Pedestrian => &["path", "trace"],
+        _ => &["route", "trace"],
     };
-    for (key, given) in [
+    let given: Vec<&str> = [
         ("route", raw.route.is_some()),
         ("path", raw.path.is_some()),
         ("position", raw.position.is_some()),
-    ] {
-        if given != allowed.contains(&key) {
-            let kind = serde_json::to_value(raw.kind)
-                .map(|v| v.to_string())
-                .unwrap_or_default();
-            ctx.error(
-                path,
-                ErrorKind::Invalid(format!(
-                    "an agent of kind {kind} moves by `{}`{}",
-                    allowed[0],
-                    if given {
-                        format!(", not by `{key}`")
-                    } else {
-                        String::new()
-                    }
-                )),
-            );
-            return None;
-        }
+        ("trace", raw.trace.is_some()),
+    ]
+    .into_iter()
+    .filter_map(|(key, given)| given.then_some(key))
+    .collect();
+    let ways = allowed
+        .iter()
+        .map(|k| format!("`{k}`"))
+        .collect::<Vec<_>>()
+        .join(" or ");
+    let problem = match (given.iter().find(|key| !allowed.contains(key)), given.len()) {
+        (Some(key), _) => Some(format!(", not by `{key}`")),
+        (None, 0) => Some(String::new()),
+        (None, 1) => None,
+        (None, _) => Some(", not by both".into()),
+    };
+    if let Some(problem) = problem {
+        let kind = serde_json::to_value(raw.kind)
+            .ok()
+            .and_then(|v| v.as_str().map(str::to_owned))
+            .unwrap_or_default();
+        ctx.error(
+            path,
+            ErrorKind::Invalid(format!("an agent of kind {kind} moves by {ways}{problem}")),
+        );
+        return None;
     }
     if let Some(position) = raw.position {
         let ok = finite_points(ctx, &path.key("position"), &[position])
@@ -453,6 +583,9 @@ fn motion(ctx: &mut Context<'_>, raw: &RawAgent, path: &Path, roads: &[Road]) ->
             position,
             heading: raw.heading_deg.to_radians(),
         });
+    }
+    if let Some(id) = &raw.trace {
+        return trace(ctx, id, path, scene, raw.kind, length);
     }
     let Some(speed) = &raw.speed else {
         ctx.error(
@@ -470,7 +603,7 @@ fn motion(ctx: &mut Context<'_>, raw: &RawAgent, path: &Path, roads: &[Road]) ->
         & ctx.non_negative(&path.key("start").key("time"), raw.start.time)
         & ctx.non_negative(&path.key("start").key("offset"), raw.start.offset);
     let (along, limits) = match (&raw.route, &raw.path) {
-        (Some(route), _) => route_path(ctx, route, raw.lane, &path.key("route"), roads)?,
+        (Some(route), _) => route_path(ctx, route, raw.lane, &path.key("route"), scene.roads)?,
         (None, Some(points)) => {
             let path_path = path.key("path");
             if !finite_points(ctx, &path_path, points) {
@@ -486,7 +619,7 @@ fn motion(ctx: &mut Context<'_>, raw: &RawAgent, path: &Path, roads: &[Road]) ->
             let length = line.length();
             (line, vec![(length, f64::INFINITY)])
         }
-        (None, None) => unreachable!("checked above: a moving agent has a route or a path"),
+        (None, None) => unreachable!("checked above: a moving agent not replaying a trace has a route or a path"),
     };
     if !ok {
         return None;
@@ -513,9 +646,64 @@ fn motion(ctx: &mut Context<'_>, raw: &RawAgent, path: &Path, roads: &[Road]) ->
     })
 }
 
+/// The motion of an agent replaying object `id` of the trace.
+fn trace(
+    ctx: &mut Context<'_>,
+    id: &str,
+    path: &Path,
+    scene: &Scene<'_>,
+    kind: AgentKind,
+    length: f64,
+) -> Option<Motion> {
+    let mut ok = true;
+    for key in ["speed", "start", "lane"] {
+        if ctx.has(&path.key(key)) {
+            ctx.error_at_key(
+                &path.key(key),
+                ErrorKind::Invalid(format!(
+                    "an agent replaying a trace moves as recorded: `{key}` does not apply"
+                )),
+            );
+            ok = false;
+        }
+    }
+    let at = path.key("trace");
+    let Some(imported) = scene.imported else {
+        ctx.error(
+            &at,
+            ErrorKind::DanglingReference(format!("no `traces` section to take `{id}` from")),
+        );
+        return None;
+    };
+    let Some(object) = imported.object(id) else {
+        let known: Vec<&str> = imported.ids().collect();
+        ctx.error(
+            &at,
+            ErrorKind::DanglingReference(format!(
+                "no object `{id}` in `traces.fcd` ({})",
+                known_names(id, &known)
+            )),
+        );
+        return None;
+    };
+    if !imported.overlaps(object, scene.duration) {
+        ctx.error(
+            &at,
+            ErrorKind::Invalid(format!(
+                "`{id}` is not in the trace between the run's 0 and {} s (with `traces.begin`)",
+                scene.duration
+            )),
+        );
+        return None;
+    }
+    ok.then(|| trace_motion(imported, object, kind, length))
+}
+
 /// Resolves a route into one polyline on lane `lane` of each road, with the speed
-/// limit of each part. Road a connects to road b when a's last point lies within one
-/// lane width of b (a ring is left where b's first point projects onto it).
+/// limit of each part. Road a connects to road b across a junction when a links
+/// that lane to b's (roads of a SUMO network), or else when a's last point lies
+/// within one lane width of b (a ring is left where b's first point projects onto
+/// it).
 pub(super) fn route_path(
     ctx: &mut Context<'_>,
     route: &[String],
@@ -560,8 +748,16 @@ pub(super) fn route_path(
         // Where this road is left, and where the next one is entered: a ring is
         // left where the next road starts; any other road at its end, onto the
         // closest point of the next.
+        let link = parts.get(i + 1).and_then(|&(next_road, _)| {
+            road.links.iter().find(|link| {
+                link.from_lane == lane as usize
+                    && link.to_lane == lane as usize
+                    && roads[link.to_road].id == next_road.id
+            })
+        });
         let (exit, next_entry) = match parts.get(i + 1) {
             None => (line.length(), 0.0),
+            Some(_) if link.is_some() => (line.length(), 0.0),
             Some(&(next_road, next)) => {
                 let (exit, gap, next_entry) = if line.is_closed() {
                     let at = line.project(next.start());
@@ -592,6 +788,8 @@ pub(super) fn route_path(
             points.extend(line.slice(entry, exit));
         }
         limits.push((length_of(&points), road.speed_limit));
+        // The path across the junction drives at the next road's limit.
+        points.extend(link.iter().flat_map(|link| &link.via));
         entry = next_entry;
     }
     let Some(polyline) = Polyline::new(points) else {

@@ -14,12 +14,15 @@ pub use fusion::{
     Decision, Fusion, FusionMethod, Rule, SourceCombination, Switch, SwitchMeasure, WeightScaling, Weighting,
 };
 pub use requirement::{Bound, Check, Invariant, Metric, Reference, Requirement};
-pub use scenario::{Assignment, Axis, Experiment, Grid, Point, Scenario, Setup, Sweep, display_value};
+pub use scenario::{
+    Assignment, Axis, Experiment, Grid, Import, ImportKind, Point, Scenario, Setup, Sweep, display_value,
+};
 pub use semantic::{
     Area, Baseline, Caution, Crosswalk, Driving, Following, InteractionArea, PedestrianTraffic, RiskScope, RsuSight,
     Semantic, ShareCycles, Traffic, TrafficRoute, VehicleTraffic,
 };
 pub use v2x::{Channel, PathLossModel, V2x};
 pub use world::{
-    Agent, AgentKind, Direction, Localization, Motion, Occluder, Perception, PoseFilter, Road, Sensor, World,
+    Agent, AgentKind, Direction, LaneLink, Localization, Motion, Occluder, Perception, PoseFilter, Road, Sensor,
+    TraceSample, World,
 };

@@ -24,6 +24,44 @@ pub struct Scenario {
     pub requirements: Vec<Requirement>,
     /// Published figures, in file order.
     pub references: Vec<Reference>,
+    /// The files the scenario imports (`traces`), in the order read.
+    pub imports: Vec<Import>,
+}
+
+/// A file a scenario imports, as it was read.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Import {
+    /// What it holds.
+    pub kind: ImportKind,
+    /// Its path: the scenario file's directory joined with the path written in
+    /// the scenario.
+    pub path: String,
+    /// Its bytes, which the evidence hashes.
+    #[serde(skip)]
+    pub bytes: Vec<u8>,
+}
+
+/// Kinds of imported file.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ImportKind {
+    /// SUMO floating car data (`traces.fcd`).
+    SumoFcd,
+    /// A SUMO network (`traces.net`).
+    SumoNet,
+    /// SUMO polygons (`traces.poly`).
+    SumoPoly,
+}
+
+impl ImportKind {
+    /// Its name in evidence: `sumo_fcd`, `sumo_net`, `sumo_poly`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::SumoFcd => "sumo_fcd",
+            Self::SumoNet => "sumo_net",
+            Self::SumoPoly => "sumo_poly",
+        }
+    }
 }
 
 /// One sweep: settings varied together, one point per combination of values.

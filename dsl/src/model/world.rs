@@ -19,8 +19,12 @@ pub struct World {
     pub roads: Vec<Road>,
     /// Static obstacles to sight.
     pub occluders: Vec<Occluder>,
-    /// Every agent, in file order.
+    /// Every agent: the declared ones in file order, then the objects of
+    /// `traces` that no declared agent replays, in order of first appearance.
     pub agents: Vec<Agent>,
+    /// How many agents, at the end of `agents`, are objects imported from
+    /// `traces`; each is connected as generated traffic is (`v2x.penetration`).
+    pub imported: usize,
     /// Self-localization of connected agents.
     pub localization: Localization,
     /// Collective perception, when measured.
@@ -50,6 +54,23 @@ pub struct Road {
     pub lane_width: f64,
     /// Speed limit, m/s.
     pub speed_limit: f64,
+    /// Where its lanes continue across junctions (roads of a SUMO network;
+    /// empty for declared roads).
+    pub links: Vec<LaneLink>,
+}
+
+/// A lane of one road continuing into a lane of another across a junction.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct LaneLink {
+    /// The lane it leaves, an index into the road's `lanes`.
+    pub from_lane: usize,
+    /// The road it enters, an index into [`World::roads`].
+    pub to_road: usize,
+    /// The lane it enters, an index into that road's `lanes`.
+    pub to_lane: usize,
+    /// The centreline across the junction, from the end of one lane to the start
+    /// of the other; empty when the network gives none (a straight join).
+    pub via: Vec<Xy>,
 }
 
 /// A static obstacle.
@@ -169,6 +190,47 @@ pub enum Motion {
         /// Largest change of speed, m/s².
         acceleration: f64,
     },
+    /// It replays recorded samples (a SUMO trace): in the scene from its first
+    /// sample to its last, interpolated between them.
+    Trace {
+        /// The samples, in time order; at least one.
+        samples: Vec<TraceSample>,
+        /// The polyline through the samples' positions, along which their
+        /// offsets are measured; `None` when it never moves.
+        path: Option<Polyline>,
+        /// The longest time between two samples it is interpolated across,
+        /// seconds; across a longer gap it is out of the scene.
+        max_gap: f64,
+    },
+}
+
+impl Motion {
+    /// The polyline it moves along: a route's or path's, a trace's; `None` for a
+    /// fixed agent or a trace that never moves.
+    pub fn path(&self) -> Option<&Polyline> {
+        match self {
+            Self::Fixed { .. } => None,
+            Self::Along { path, .. } => Some(path),
+            Self::Trace { path, .. } => path.as_ref(),
+        }
+    }
+}
+
+/// Where a traced agent was at one time.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct TraceSample {
+    /// Scenario time, seconds.
+    pub time: f64,
+    /// Position of the footprint's centre, metres.
+    pub position: Xy,
+    /// Heading, radians counter-clockwise from +x.
+    pub heading: f64,
+    /// Speed, m/s.
+    pub speed: f64,
+    /// Distance travelled along its path since its first sample, metres.
+    pub offset: f64,
+    /// The speed limit of the lane it is on, m/s (infinite when not known).
+    pub limit: f64,
 }
 
 /// A sensor on an agent.

@@ -1,5 +1,5 @@
-//! SUMO road networks (`.net.xml`): edges, their lanes, and the connections
-//! between them.
+//! SUMO road networks (`.net.xml`): edges, their lanes, the connections between
+//! them with their paths across junctions, and the junctions.
 
 use std::collections::{HashMap, HashSet};
 
@@ -13,16 +13,22 @@ pub const DEFAULT_LANE_WIDTH: f64 = 3.2;
 
 /// A road network read from a `.net.xml` file.
 ///
-/// Internal edges (`function="internal"`, the paths across junctions) and the
-/// connections through them are left out: what remains are the roads between
-/// junctions and which lane continues into which. Crossings and walking areas,
-/// when the network has them, are kept as edges.
+/// Internal edges (`function="internal"`, the paths across junctions) are not
+/// among the edges: their lanes are listed apart, and each connection carries
+/// the path across its junction. What remains as edges are the roads between
+/// junctions. Crossings and walking areas, when the network has them, are kept
+/// as edges with their `function`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Network {
     /// Edges other than internal ones, in file order.
     pub edges: Vec<Edge>,
+    /// The lanes of internal edges, in file order: where a vehicle crossing a
+    /// junction is (SUMO's lane ids starting with `:`).
+    pub internal_lanes: Vec<Lane>,
     /// Connections between those edges, in file order.
     pub connections: Vec<Connection>,
+    /// Junctions other than internal ones, in file order.
+    pub junctions: Vec<Junction>,
 }
 
 /// A road in one direction.
@@ -30,6 +36,8 @@ pub struct Network {
 pub struct Edge {
     /// Its SUMO id.
     pub id: String,
+    /// Its `function`: empty for a road, `crossing`, `walkingarea` or `connector`.
+    pub function: String,
     /// Its lanes, in file order (SUMO writes lane 0, the rightmost, first).
     pub lanes: Vec<Lane>,
 }
@@ -51,7 +59,7 @@ pub struct Lane {
 }
 
 /// A lane of one edge continuing into a lane of the next.
-#[derive(Debug, Clone, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct Connection {
     /// The incoming edge's id.
     pub from: String,
@@ -61,49 +69,84 @@ pub struct Connection {
     pub from_lane: u32,
     /// The lane index on `to`.
     pub to_lane: u32,
+    /// The centreline across the junction, from the end of the `from` lane to
+    /// the start of the `to` lane: the shapes of the internal lanes SUMO routes
+    /// the connection through (`via`, followed lane by lane), joined. Empty when
+    /// the network has none (one written with `--no-internal-links`).
+    pub via: Vec<Xy>,
 }
 
-/// Reads a SUMO network (`<net><edge><lane …/></edge>…<connection …/></net>`).
+/// A junction where edges meet.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Junction {
+    /// Its SUMO id.
+    pub id: String,
+    /// Its `type` (`priority`, `traffic_light`, `dead_end`, …).
+    pub kind: String,
+    /// The lanes that enter it (`incLanes`), in file order.
+    pub incoming: Vec<String>,
+    /// Its outline in network coordinates, metres, without a closing point equal
+    /// to the first; empty when the file gives none.
+    pub shape: Vec<Xy>,
+}
+
+/// A lane by its edge's id and its index.
+type LaneOf<'a> = (&'a str, u32);
+
+/// Reads a SUMO network (`<net><edge><lane …/></edge>…<junction …/>…<connection …/></net>`).
 ///
 /// A lane needs `id`, `index`, `speed` and `shape` (`x,y x,y …`, at least two
 /// points; a height `x,y,z` is dropped); `width` is optional. A connection needs
-/// `from`, `to`, `fromLane` and `toLane`. Junctions, the location and other
-/// elements and attributes are ignored.
+/// `from`, `to`, `fromLane` and `toLane`; `via` is optional. A junction needs
+/// `id`; `type`, `incLanes` and `shape` are optional. The location, roundabouts,
+/// traffic-light programs and other elements and attributes are ignored.
 ///
-/// Errors: malformed XML, a missing or bad attribute, and a connection to an
-/// edge or lane the network does not have.
+/// Errors: malformed XML, a missing or bad attribute, a connection to an edge or
+/// lane the network does not have, and a `via` naming an internal lane it does
+/// not have.
 pub fn parse_net(text: &str) -> Result<Network, SumoError> {
     let doc = xml::parse(text)?;
     let root = xml::root(&doc, "net")?;
     let mut edges = Vec::new();
-    let mut internal = HashSet::new();
+    // Each internal lane's edge id, and its index in `internal_lanes`.
+    let mut internal: HashMap<String, (&str, usize)> = HashMap::new();
+    let mut internal_edges = HashSet::new();
+    let mut internal_lanes = Vec::new();
     for node in xml::children(root, "edge") {
         let id = xml::string(node, "id")?;
-        if node.attribute("function") == Some("internal") {
-            internal.insert(id);
+        let lanes: Vec<Lane> = xml::children(node, "lane").map(lane).collect::<Result<_, _>>()?;
+        let function = node.attribute("function").unwrap_or_default();
+        if function == "internal" {
+            internal_edges.insert(id);
+            for lane in lanes {
+                internal.insert(lane.id.clone(), (id, internal_lanes.len()));
+                internal_lanes.push(lane);
+            }
             continue;
         }
-        let lanes = xml::children(node, "lane").map(lane).collect::<Result<_, _>>()?;
         edges.push(Edge {
             id: id.to_owned(),
+            function: function.to_owned(),
             lanes,
         });
     }
     let by_id: HashMap<&str, &Edge> = edges.iter().map(|edge| (edge.id.as_str(), edge)).collect();
-    let mut connections = Vec::new();
+    // Every connection with a `via`, internal ones too, by its (from, to) lanes,
+    // for following a path across a junction lane by lane.
+    let mut vias: HashMap<(LaneOf, LaneOf), Node> = HashMap::new();
+    let mut normal = Vec::new();
     for node in xml::children(root, "connection") {
         let from = xml::string(node, "from")?;
         let to = xml::string(node, "to")?;
-        if internal.contains(from) || internal.contains(to) {
+        let from_lane = xml::index(node, "fromLane")?;
+        let to_lane = xml::index(node, "toLane")?;
+        if node.has_attribute("via") {
+            vias.insert(((from, from_lane), (to, to_lane)), node);
+        }
+        if internal_edges.contains(from) || internal_edges.contains(to) {
             continue;
         }
-        let connection = Connection {
-            from: from.to_owned(),
-            to: to.to_owned(),
-            from_lane: xml::index(node, "fromLane")?,
-            to_lane: xml::index(node, "toLane")?,
-        };
-        for (edge, lane) in [(from, connection.from_lane), (to, connection.to_lane)] {
+        for (edge, lane) in [(from, from_lane), (to, to_lane)] {
             let message = match by_id.get(edge) {
                 None => format!("connection to unknown edge `{edge}`"),
                 Some(found) if !found.lanes.iter().any(|l| l.index == lane) => {
@@ -113,9 +156,69 @@ pub fn parse_net(text: &str) -> Result<Network, SumoError> {
             };
             return Err(xml::element_error(node, message));
         }
-        connections.push(connection);
+        normal.push((from, from_lane, to, to_lane));
     }
-    Ok(Network { edges, connections })
+    let mut connections = Vec::new();
+    for (from, from_lane, to, to_lane) in normal {
+        let mut via: Vec<Xy> = Vec::new();
+        let mut next = vias.get(&((from, from_lane), (to, to_lane))).copied();
+        // Each step moves to another internal lane; a cycle would revisit one.
+        let mut visited = HashSet::new();
+        while let Some(at) = next {
+            let lane_id = xml::string(at, "via")?;
+            let problem = match internal.get(lane_id) {
+                None => ", which is not an internal lane of the network",
+                Some(_) if !visited.insert(lane_id) => " again: the path across the junction loops",
+                Some(_) => "",
+            };
+            if !problem.is_empty() {
+                let attribute = xml::attribute(at, "via")?;
+                let message = format!("`via` names `{lane_id}`{problem}");
+                return Err(xml::value_error(at, &attribute, message));
+            }
+            let (edge, index) = internal[lane_id];
+            let lane = &internal_lanes[index];
+            let skip = usize::from(via.last() == lane.shape.first());
+            via.extend(&lane.shape[skip..]);
+            next = vias.get(&((edge, lane.index), (to, to_lane))).copied();
+        }
+        connections.push(Connection {
+            from: from.to_owned(),
+            to: to.to_owned(),
+            from_lane,
+            to_lane,
+            via,
+        });
+    }
+    let junctions = xml::children(root, "junction")
+        .filter(|node| node.attribute("type") != Some("internal"))
+        .map(junction)
+        .collect::<Result<_, _>>()?;
+    Ok(Network {
+        edges,
+        internal_lanes,
+        connections,
+        junctions,
+    })
+}
+
+/// One `<junction>`.
+fn junction(node: Node) -> Result<Junction, SumoError> {
+    let shape = match node.attribute("shape") {
+        Some(_) => xml::outline(node, "shape")?,
+        None => Vec::new(),
+    };
+    Ok(Junction {
+        id: xml::string(node, "id")?.to_owned(),
+        kind: node.attribute("type").unwrap_or_default().to_owned(),
+        incoming: node
+            .attribute("incLanes")
+            .unwrap_or_default()
+            .split_ascii_whitespace()
+            .map(str::to_owned)
+            .collect(),
+        shape,
+    })
 }
 
 /// One `<lane>`.
@@ -152,9 +255,26 @@ mod tests {
     <edge id="BC" from="B" to="C" priority="-1">
         <lane id="BC_0" index="0" speed="8.33" length="96.80" shape="103.20,-1.60 200.00,-1.60"/>
     </edge>
-    <junction id="B" type="priority" x="100.00" y="0.00" incLanes="AB_0 AB_1" intLanes=":B_0_0" shape="100,0"/>
+    <edge id=":B_1" function="internal">
+        <lane id=":B_1_0" index="0" speed="6.51" length="4.00" shape="98.40,1.75 100.00,3.00"/>
+    </edge>
+    <edge id=":B_2" function="internal">
+        <lane id=":B_2_0" index="0" speed="6.51" length="4.00" shape="100.00,3.00 101.60,5.00"/>
+    </edge>
+    <edge id="BD" from="B" to="D" priority="-1">
+        <lane id="BD_0" index="0" speed="13.89" length="95.00" shape="101.60,5.00 101.60,100.00"/>
+    </edge>
+    <edge id=":B_w0" function="walkingarea">
+        <lane id=":B_w0_0" index="0" speed="1.00" length="1.00" width="2.00" shape="95,-5 96,-5"/>
+    </edge>
+    <junction id="B" type="priority" x="100.00" y="0.00" incLanes="AB_0 AB_1" intLanes=":B_0_0" shape="95,-5 105,-5 105,5 95,5 95,-5"/>
+    <junction id=":B_2_0" type="internal" x="100.00" y="3.00" incLanes=":B_1_0" intLanes=""/>
+    <junction id="D" type="dead_end" x="101.60" y="100.00"/>
     <connection from="AB" to="BC" fromLane="0" toLane="0" via=":B_0_0" dir="s" state="M"/>
+    <connection from="AB" to="BD" fromLane="1" toLane="0" via=":B_1_0" dir="l" state="m"/>
     <connection from=":B_0" to="BC" fromLane="0" toLane="0" dir="s" state="M"/>
+    <connection from=":B_1" to="BD" fromLane="0" toLane="0" via=":B_2_0" dir="l" state="m"/>
+    <connection from=":B_2" to="BD" fromLane="0" toLane="0" dir="l" state="M"/>
 </net>
 "#;
 
@@ -165,8 +285,10 @@ mod tests {
     #[test]
     fn reads_edges_lanes_and_connections_without_internal_ones() {
         let net = parse_net(NET).unwrap();
-        let ids: Vec<_> = net.edges.iter().map(|e| e.id.as_str()).collect();
-        assert_eq!(ids, ["AB", "BC"]);
+        let ids: Vec<_> = net.edges.iter().map(|e| (e.id.as_str(), e.function.as_str())).collect();
+        assert_eq!(ids, [("AB", ""), ("BC", ""), ("BD", ""), (":B_w0", "walkingarea")]);
+        let internal: Vec<_> = net.internal_lanes.iter().map(|l| (l.id.as_str(), l.speed)).collect();
+        assert_eq!(internal, [(":B_0_0", 13.89), (":B_1_0", 6.51), (":B_2_0", 6.51)]);
         let ab = &net.edges[0];
         assert_eq!(
             ab.lanes[0],
@@ -181,14 +303,55 @@ mod tests {
         assert_eq!(ab.lanes[1].width, 3.5);
         assert_eq!(ab.lanes[1].shape, [[0.0, 1.75], [98.4, 1.75]]);
         assert_eq!(
-            net.connections,
-            [Connection {
+            net.connections[0],
+            Connection {
                 from: "AB".into(),
                 to: "BC".into(),
                 from_lane: 0,
-                to_lane: 0
-            }]
+                to_lane: 0,
+                via: vec![[98.4, -1.6], [103.2, -1.6]],
+            }
         );
+    }
+
+    #[test]
+    fn a_path_across_a_junction_follows_its_internal_lanes() {
+        let net = parse_net(NET).unwrap();
+        assert_eq!(net.connections.len(), 2);
+        let left = &net.connections[1];
+        assert_eq!((left.from.as_str(), left.from_lane, left.to.as_str()), ("AB", 1, "BD"));
+        // :B_1_0 then :B_2_0, their shared point once.
+        assert_eq!(left.via, [[98.4, 1.75], [100.0, 3.0], [101.6, 5.0]]);
+        let text = NET.replace(
+            r#"from=":B_1" to="BD" fromLane="0" toLane="0" via=":B_2_0""#,
+            r#"from=":B_1" to="BD" fromLane="0" toLane="0" via=":B_9_0""#,
+        );
+        assert_eq!(
+            error(&text),
+            "32:66: `via` names `:B_9_0`, which is not an internal lane of the network"
+        );
+        let text = NET.replace(
+            r#"from=":B_2" to="BD" fromLane="0" toLane="0""#,
+            r#"from=":B_2" to="BD" fromLane="0" toLane="0" via=":B_1_0""#,
+        );
+        assert_eq!(
+            error(&text),
+            "33:66: `via` names `:B_1_0` again: the path across the junction loops"
+        );
+        let text = NET.replace(" via=\":B_0_0\"", "");
+        assert_eq!(parse_net(&text).unwrap().connections[0].via, Vec::<Xy>::new());
+    }
+
+    #[test]
+    fn junctions_other_than_internal_ones_are_read() {
+        let net = parse_net(NET).unwrap();
+        let b = &net.junctions[0];
+        assert_eq!((b.id.as_str(), b.kind.as_str()), ("B", "priority"));
+        assert_eq!(b.incoming, ["AB_0", "AB_1"]);
+        assert_eq!(b.shape, [[95.0, -5.0], [105.0, -5.0], [105.0, 5.0], [95.0, 5.0]]);
+        let d = &net.junctions[1];
+        assert_eq!((d.id.as_str(), d.kind.as_str(), d.shape.len()), ("D", "dead_end", 0));
+        assert_eq!(net.junctions.len(), 2);
     }
 
     #[test]
@@ -218,16 +381,16 @@ mod tests {
             r#"to="BC" fromLane="0" toLane="0" via"#,
             r#"to="CD" fromLane="0" toLane="0" via"#,
         );
-        assert_eq!(error(&text), "15:5: connection to unknown edge `CD`");
+        assert_eq!(error(&text), "29:5: connection to unknown edge `CD`");
         let text = NET.replace(r#"toLane="0" via"#, r#"toLane="2" via"#);
         assert_eq!(
             error(&text),
-            "15:5: connection to lane 2 of edge `BC`, which has no such lane"
+            "29:5: connection to lane 2 of edge `BC`, which has no such lane"
         );
         let text = NET.replace(r#"fromLane="0" toLane="0" via"#, r#"fromLane="one" toLane="0" via"#);
         assert_eq!(
             error(&text),
-            "15:45: attribute `fromLane` of <connection> is not a non-negative integer: \"one\""
+            "29:45: attribute `fromLane` of <connection> is not a non-negative integer: \"one\""
         );
     }
 

@@ -46,10 +46,7 @@ fn polygon(node: Node) -> Result<Polygon, SumoError> {
         );
         return Err(xml::value_error(node, &geo, message));
     }
-    let mut shape = xml::shape(node, "shape")?;
-    if shape.len() > 1 && shape.first() == shape.last() {
-        shape.pop();
-    }
+    let shape = xml::outline(node, "shape")?;
     Ok(Polygon {
         id: id.to_owned(),
         kind: node.attribute("type").unwrap_or_default().to_owned(),

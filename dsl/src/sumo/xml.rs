@@ -175,6 +175,15 @@ pub(crate) fn shape(node: Node, name: &str) -> Result<Vec<Xy>, SumoError> {
     Ok(points)
 }
 
+/// A required outline: a [`shape`] without a closing point equal to the first.
+pub(crate) fn outline(node: Node, name: &str) -> Result<Vec<Xy>, SumoError> {
+    let mut points = shape(node, name)?;
+    if points.len() > 1 && points.first() == points.last() {
+        points.pop();
+    }
+    Ok(points)
+}
+
 /// `x,y` or `x,y,z` as `[x, y]`.
 fn parse_point(token: &str) -> Option<Xy> {
     let mut parts = token

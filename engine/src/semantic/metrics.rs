@@ -27,10 +27,11 @@ pub struct SemanticMetrics {
     pub anticipation: Vec<f64>,
     /// Objects learned of while hidden that the ego never saw before the run ended.
     pub never_seen: u64,
-    /// Per step with the ego present: objects per km in the scene and objects the
-    /// ego knew only through an RSU (summarised by [`Self::contribution_by_density`]).
+    /// Per step with the ego present: objects per km in the scene (`None` in a
+    /// world without roads) and objects the ego knew only through an RSU
+    /// (summarised by [`Self::contribution_by_density`]).
     #[serde(skip)]
-    pub contribution: Vec<(f64, u32)>,
+    pub contribution: Vec<(Option<f64>, u32)>,
     /// Object-cycles perceived by the RSUs (the ego excluded), in the cycles the
     /// shares count (`semantic.shares_over`).
     pub perceived: u64,
@@ -179,10 +180,12 @@ impl SemanticMetrics {
         }
     }
 
-    /// The contribution by density bin, densest last, empty bins left out.
+    /// The contribution by density bin, densest last, empty bins left out (all of
+    /// them where the density is undefined).
     pub fn contribution_by_density(&self) -> Vec<DensityRow> {
         let mut bins: std::collections::BTreeMap<i64, Vec<f64>> = std::collections::BTreeMap::new();
         for &(density, count) in &self.contribution {
+            let Some(density) = density else { continue };
             bins.entry((density / DENSITY_BIN).floor() as i64)
                 .or_default()
                 .push(f64::from(count));
@@ -227,14 +230,20 @@ mod tests {
     #[test]
     fn contribution_bins_by_density() {
         let metrics = SemanticMetrics {
-            contribution: vec![(12.0, 4), (18.0, 6), (15.0, 5), (44.0, 12)],
+            contribution: vec![
+                (Some(12.0), 4),
+                (Some(18.0), 6),
+                (Some(15.0), 5),
+                (Some(44.0), 12),
+                (None, 3),
+            ],
             ..Default::default()
         };
         let rows = metrics.contribution_by_density();
         assert_eq!(rows.len(), 2);
         assert_eq!((rows[0].from, rows[0].steps, rows[0].median), (10.0, 3, 5.0));
         assert_eq!((rows[1].from, rows[1].median), (40.0, 12.0));
-        assert_eq!(metrics.value(Metric::InfrastructureContribution), Some(6.75));
+        assert_eq!(metrics.value(Metric::InfrastructureContribution), Some(6.0));
     }
 
     #[test]

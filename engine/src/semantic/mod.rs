@@ -16,6 +16,8 @@ pub use message::{EtsiSender, Item, Labels, baseline_bytes, semantic_bytes};
 pub use metrics::{DELIVERY_BIN, DENSITY_BIN, DeliveryBin, DensityRow, LabelCounts, SemanticMetrics, quantile};
 pub use pipeline::{EgoPlan, Pipeline};
 pub use relevance::{Areas, approaches, contains, crosswalk_area};
-pub use risk::{Conflict, RouteMap, Trajectory, along, conflict, hypotheses, straight};
-pub use simulate::{KNOWN_FOR, run};
-pub use traffic::generate;
+pub use risk::{
+    Conflict, MAX_BRANCHES, MapRoute, RouteMap, Trajectory, along, conflict, hypotheses, lane_routes, straight,
+};
+pub use simulate::{KNOWN_FOR, route_map, run};
+pub use traffic::scene;

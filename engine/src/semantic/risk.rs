@@ -2,18 +2,20 @@
 //! along the map's paths over the horizon, and conflicts with the ego's plan.
 //!
 //! Our readings where the paper leaves room:
-//! - "precomputed road waypoints" are the routes the scenario declares (every
-//!   vehicle's and every traffic route): a vehicle may follow any route that
-//!   passes within `LANE_TOLERANCE` of its position with a heading within
-//!   `HEADING_TOLERANCE`; routes sharing a position and diverging later are the
-//!   branches "when multiple feasible paths exist". Off every route, it keeps
-//!   its heading. Past a route's end, it goes straight on.
+//! - "precomputed road waypoints" are the map's routes: a vehicle may follow any
+//!   route whose first stretch (its `home`) passes within `LANE_TOLERANCE` of its
+//!   position with a heading within `HEADING_TOLERANCE`; routes sharing a
+//!   position and diverging later are the branches "when multiple feasible paths
+//!   exist". Off every route, it keeps its heading. Past a route's end, it goes
+//!   straight on. Which routes the map holds is the semantic run's choice (see
+//!   `simulate.rs`); [`lane_routes`] builds them from a road network.
 //! - A dangerous driver's aggressive profile drives at v_max + δ̄, the mean speed
 //!   at which it exceeded the limit in the window (at least its current speed).
 //! - Conflict (eq. 3) is tested on the segments between prediction samples, not
 //!   only at the samples, so a fast crossing is not missed between two samples.
 
-use sightline_dsl::geometry::Polyline;
+use sightline_dsl::Road;
+use sightline_dsl::geometry::{Polyline, Xy, distance};
 
 use super::ldm::Track;
 use crate::math::Point;
@@ -27,18 +29,41 @@ pub const HEADING_TOLERANCE: f64 = std::f64::consts::FRAC_PI_4;
 /// Positions every `dt` seconds from now (index 0) to the horizon.
 pub type Trajectory = Vec<Point>;
 
-/// The routes of the map, each with its bounding box for a quick rejection.
+/// Most routes [`lane_routes`] builds from one lane.
+pub const MAX_BRANCHES: usize = 64;
+
+/// A route of the map.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MapRoute {
+    /// The path.
+    pub path: Polyline,
+    /// How far from its start a vehicle must be to follow it, metres: a lane
+    /// and the junction after it for a route built from a network, the whole
+    /// path otherwise. Further on, the routes that start there take over.
+    pub home: f64,
+}
+
+impl MapRoute {
+    /// A route a vehicle may follow from anywhere along it.
+    pub fn whole(path: Polyline) -> Self {
+        let home = path.length();
+        Self { path, home }
+    }
+}
+
+/// The routes of the map, each with the bounding box of its home stretch for a
+/// quick rejection.
 pub struct RouteMap {
-    routes: Vec<(Polyline, [f64; 4])>,
+    routes: Vec<(MapRoute, [f64; 4])>,
 }
 
 impl RouteMap {
     /// A map of `routes`.
-    pub fn new(routes: impl IntoIterator<Item = Polyline>) -> Self {
+    pub fn new(routes: impl IntoIterator<Item = MapRoute>) -> Self {
         let routes = routes
             .into_iter()
             .map(|route| {
-                let bounds = route.points().iter().fold(
+                let bounds = route.path.slice(0.0, route.home).iter().fold(
                     [f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY],
                     |[x0, y0, x1, y1], p| [x0.min(p[0]), y0.min(p[1]), x1.max(p[0]), y1.max(p[1])],
                 );
@@ -60,12 +85,74 @@ impl RouteMap {
                     && position.y <= y1 + LANE_TOLERANCE
             })
             .filter_map(|(route, _)| {
-                let at = route.project([position.x, position.y]);
-                let turn = route.heading_at(at.offset) - heading;
+                let path = &route.path;
+                let at = path.project([position.x, position.y]);
+                let turn = path.heading_at(at.offset) - heading;
                 let aligned = turn.cos() >= HEADING_TOLERANCE.cos();
-                (at.distance <= LANE_TOLERANCE && aligned).then_some((route, at.offset))
+                let home = at.offset <= route.home;
+                (home && at.distance <= LANE_TOLERANCE && aligned).then_some((path, at.offset))
             })
             .collect()
+    }
+}
+
+/// The routes of a road network: every lane of every road, continued through
+/// each of its links across the junction into the next lane, and on, branching at
+/// every fork, until the route reaches `reach` metres past the junction after the
+/// lane it starts on (the home stretch). At most [`MAX_BRANCHES`] routes start on
+/// one lane; a route ends early at a lane without links.
+pub fn lane_routes(roads: &[Road], reach: f64) -> Vec<MapRoute> {
+    let mut routes = Vec::new();
+    for road in roads {
+        for (lane, line) in road.lanes.iter().enumerate() {
+            let mut branches = Branches {
+                roads,
+                reach,
+                start: routes.len(),
+                routes: &mut routes,
+            };
+            branches.extend(road, lane, &mut line.points().to_vec(), None);
+        }
+    }
+    routes
+}
+
+/// The routes from one lane, built depth first.
+struct Branches<'a> {
+    roads: &'a [Road],
+    reach: f64,
+    routes: &'a mut Vec<MapRoute>,
+    /// Where the lane's routes start in `routes`.
+    start: usize,
+}
+
+impl Branches<'_> {
+    /// Continues `points` (ending at the end of lane `lane` of `road`) through
+    /// each of that lane's links; `home` is the length of the home stretch once
+    /// known.
+    fn extend(&mut self, road: &Road, lane: usize, points: &mut Vec<Xy>, home: Option<f64>) {
+        if self.routes.len() - self.start >= MAX_BRANCHES {
+            return;
+        }
+        let length = |points: &[Xy]| points.windows(2).map(|p| distance(p[0], p[1])).sum::<f64>();
+        let links: Vec<_> = road.links.iter().filter(|link| link.from_lane == lane).collect();
+        let so_far = length(points);
+        if links.is_empty() || home.is_some_and(|home| so_far - home >= self.reach) {
+            if let Some(path) = Polyline::new(points.iter().copied()) {
+                let home = home.unwrap_or(so_far).min(path.length());
+                self.routes.push(MapRoute { path, home });
+            }
+            return;
+        }
+        for link in links {
+            let kept = points.len();
+            points.extend(&link.via);
+            let home = home.unwrap_or_else(|| length(points));
+            let next = &self.roads[link.to_road];
+            points.extend(next.lanes[link.to_lane].points());
+            self.extend(next, link.to_lane, points, Some(home));
+            points.truncate(kept);
+        }
     }
 }
 
@@ -242,9 +329,64 @@ mod tests {
         let east = Polyline::new([[-50.0, 0.0], [50.0, 0.0]]).unwrap();
         let turn = Polyline::new([[-50.0, 0.0], [0.0, 0.0], [0.0, 50.0]]).unwrap();
         let west = Polyline::new([[50.0, 0.5], [-50.0, 0.5]]).unwrap();
-        let map = RouteMap::new([east, turn, west]);
+        let map = RouteMap::new([east, turn, west].map(MapRoute::whole));
         let found = map.branches(Point::new(-20.0, 0.3), 0.0);
         assert_eq!(found.len(), 2, "east and turn, not the opposite lane");
         assert!(found.iter().all(|&(_, offset)| (offset - 30.0).abs() < 1e-9));
+    }
+
+    fn road(id: &str, line: [Xy; 2], links: Vec<sightline_dsl::LaneLink>) -> Road {
+        Road {
+            id: id.into(),
+            lanes: vec![Polyline::new(line).unwrap()],
+            lane_width: 3.2,
+            speed_limit: 13.9,
+            links,
+        }
+    }
+
+    fn link(to_road: usize, via: Vec<Xy>) -> sightline_dsl::LaneLink {
+        sightline_dsl::LaneLink {
+            from_lane: 0,
+            to_road,
+            to_lane: 0,
+            via,
+        }
+    }
+
+    /// A lane 100 m east into a junction that forks north (road 1) and east
+    /// (road 2), both 100 m: with a 30 m reach, two routes start on it, each its
+    /// 100 m, the 10 m across the junction and the next lane; the next lanes
+    /// have no links and are routes of their own.
+    #[test]
+    fn lane_routes_branch_at_forks_and_reach_past_the_junction() {
+        let roads = [
+            road(
+                "in",
+                [[0.0, 0.0], [100.0, 0.0]],
+                vec![
+                    link(1, vec![[100.0, 0.0], [105.0, 0.0], [110.0, 5.0]]),
+                    link(2, vec![[100.0, 0.0], [110.0, 0.0]]),
+                ],
+            ),
+            road("north", [[110.0, 5.0], [110.0, 105.0]], Vec::new()),
+            road("east", [[110.0, 0.0], [210.0, 0.0]], Vec::new()),
+        ];
+        let routes = lane_routes(&roads, 30.0);
+        let summary: Vec<(Xy, f64)> = routes.iter().map(|r| (r.path.end(), r.home)).collect();
+        let across = 105.0 + 50f64.sqrt();
+        assert_eq!(summary.len(), 4);
+        assert_eq!(summary[0].0, [110.0, 105.0]);
+        assert_relative_eq!(summary[0].1, across);
+        assert_eq!(summary[1], ([210.0, 0.0], 110.0));
+        assert_eq!(summary[2], ([110.0, 105.0], 100.0));
+        assert_eq!(summary[3], ([210.0, 0.0], 100.0));
+        // A vehicle on the first lane has both branches; one on the east lane only
+        // its own route, not the tail of the first lane's.
+        let map = RouteMap::new(routes);
+        assert_eq!(map.branches(Point::new(50.0, 0.0), 0.0).len(), 2);
+        let east = map.branches(Point::new(150.0, 0.0), 0.0);
+        assert_eq!(east.len(), 1);
+        assert_relative_eq!(east[0].1, 40.0);
     }
 }

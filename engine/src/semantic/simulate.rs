@@ -13,13 +13,26 @@
 //!   message naming it arrives; it sees an object when the object's centre is in
 //!   range and field of view of one of its sensors with a clear line of sight.
 //! - Connected vehicles (v2x.penetration) send the ego their own state each
-//!   cycle; the ego then knows them without an RSU.
+//!   cycle; the ego then knows them without an RSU. Vehicles imported from a
+//!   trace are drawn connected as generated ones are.
 //! - The transmitted and labelled shares count, by default, the cycles in which
 //!   the ego is within range of one of the RSU's sensors (`shares_over:
 //!   ego_in_range`): seed 002 places RSUs along the ego's way, so its ego is
 //!   always served. `shares_over: all` counts every cycle.
 //! - Density is the number of vehicles and pedestrians in the scene per km of
-//!   road (lane 0 of every road).
+//!   road (lane 0 of every road, those of a SUMO network too); without roads it
+//!   is undefined, and the contribution is not binned by density.
+//! - The RSU's map: with a road network (roads linked across junctions, from
+//!   `traces.net`), every lane continued through its links far enough for the
+//!   fastest prediction over the horizon (`lane_routes`), since the network
+//!   says where vehicles can go; without one, the ways the scenario gives:
+//!   declared routes, traffic routes and the paths of traced vehicles. With a
+//!   network, traced paths are left out: they would tell the RSU where each
+//!   vehicle is going to turn. Declared and traffic routes are in both.
+//! - A traced ego's plan is its traced path at its current speed, so the RSU
+//!   knows where it is going as it knows a declared ego's route. It replays its
+//!   trace, so caution cannot slow it down; `cautious_time` still counts the time
+//!   it would have been cautious.
 
 use std::collections::VecDeque;
 
@@ -35,7 +48,7 @@ use super::message::{EtsiSender, Item, baseline_bytes, semantic_bytes};
 use super::metrics::{DELIVERY_BIN, SemanticMetrics};
 use super::pipeline::{EgoPlan, Pipeline};
 use super::relevance::{Areas, crosswalk_area};
-use super::risk::RouteMap;
+use super::risk::{MapRoute, RouteMap, lane_routes};
 use super::traffic;
 use crate::math::{Pose, Vector};
 use crate::rng::{Purpose, run_seed, stream};
@@ -48,6 +61,11 @@ use crate::world::{
 
 /// How long a message keeps an object known to the ego, seconds.
 pub const KNOWN_FOR: f64 = 0.5;
+
+/// A network's map routes reach this many times the fastest speed limit × the
+/// horizon past the lane a vehicle is on: a non-compliant driver at 1.5 × the
+/// limit under the 1.1 hypothesis still stays on the map.
+const REACH_FACTOR: f64 = 2.0;
 
 /// Speed of light, m/s, for propagation delay.
 const LIGHT: f64 = 299_792_458.0;
@@ -99,14 +117,14 @@ pub fn run(seed: u64, world: &World, semantic: &Semantic, sink: &mut impl TraceS
 
 /// One run of a world's semantic pipeline, reporting each step to `sink`.
 fn run_once(seed: u64, world: &World, semantic: &Semantic, sink: &mut impl TraceSink) -> SemanticMetrics {
-    let generated = traffic::generate(seed, world);
-    let agents: Vec<Agent> = world.agents.iter().cloned().chain(generated).collect();
+    let agents = traffic::scene(seed, world);
     let dt = world.step;
     let occluders = Occluders::new(&world.occluders);
-    let map = RouteMap::new(map_routes(world));
-    let Motion::Along { path: ego_route, .. } = &agents[semantic.ego].motion else {
-        unreachable!("the compiler checks that the ego follows a route")
-    };
+    let map = route_map(world, semantic);
+    let ego_route = agents[semantic.ego]
+        .motion
+        .path()
+        .expect("the compiler checks that the ego follows a route or a moving trace");
     let pipeline = Pipeline {
         semantic,
         areas: Areas {
@@ -120,6 +138,7 @@ fn run_once(seed: u64, world: &World, semantic: &Semantic, sink: &mut impl Trace
     };
     let channel = &world.v2x.channel;
     let network_km = world.roads.iter().map(|r| r.lanes[0].length()).sum::<f64>() / 1000.0;
+    let density = |present: u32| (network_km > 0.0).then(|| f64::from(present) / network_km);
     let mut rsus: Vec<Rsu> = semantic
         .rsus
         .iter()
@@ -209,9 +228,7 @@ fn run_once(seed: u64, world: &World, semantic: &Semantic, sink: &mut impl Trace
                 }
                 known.close = close;
             }
-            metrics
-                .contribution
-                .push((f64::from(present) / network_km.max(1e-9), through_rsu));
+            metrics.contribution.push((density(present), through_rsu));
         }
 
         // RSUs run their cycle, and connected road users send, at the V2X rate.
@@ -343,28 +360,36 @@ fn run_once(seed: u64, world: &World, semantic: &Semantic, sink: &mut impl Trace
     metrics
 }
 
-/// The routes of the map: every vehicle's and every traffic route, each once.
-fn map_routes(world: &World) -> Vec<Polyline> {
-    let mut routes: Vec<Polyline> = Vec::new();
+/// The RSU's map of `world` (see the module docs): with a network, its lanes
+/// continued; then the way of every vehicle of the world (a traced one's only
+/// without a network) and every traffic route, each once.
+pub fn route_map(world: &World, semantic: &Semantic) -> RouteMap {
+    let network = world.roads.iter().any(|road| !road.links.is_empty());
+    let mut routes = if network {
+        let fastest = world.roads.iter().map(|road| road.speed_limit).fold(0.0, f64::max);
+        lane_routes(&world.roads, semantic.horizon * REACH_FACTOR * fastest)
+    } else {
+        Vec::new()
+    };
+    let mut ways: Vec<&Polyline> = Vec::new();
     let declared = world
         .agents
         .iter()
         .filter(|a| a.kind.is_vehicle())
-        .filter_map(|a| match &a.motion {
-            Motion::Along { path, .. } => Some(path),
-            Motion::Fixed { .. } => None,
-        });
+        .filter(|a| !network || !matches!(a.motion, Motion::Trace { .. }))
+        .filter_map(|a| a.motion.path());
     let generated = world
         .traffic
         .iter()
         .flat_map(|t| t.vehicles.iter())
         .flat_map(|v| v.routes.iter().map(|r| &r.path));
     for path in declared.chain(generated) {
-        if !routes.contains(path) {
-            routes.push(path.clone());
+        if !ways.contains(&path) {
+            ways.push(path);
         }
     }
-    routes
+    routes.extend(ways.into_iter().cloned().map(MapRoute::whole));
+    RouteMap::new(routes)
 }
 
 /// Whether the ego at `pose` could see `target` with one of its sensors.

@@ -27,9 +27,24 @@ use crate::rng::{Purpose, stream};
 const MIN_GAP: f64 = 2.0;
 const MIN_HEADWAY: f64 = 2.0;
 
+/// The agents of a semantic run of `world`: its own, each vehicle imported from
+/// a trace connected with probability `v2x.penetration` as a generated one is
+/// (one draw per imported agent, in order, from a stream of its own; pedestrians
+/// are never connected), then the generated ones.
+pub fn scene(seed: u64, world: &World) -> Vec<Agent> {
+    let mut agents = world.agents.clone();
+    let mut rng = stream(seed, Purpose::Connectivity, 0);
+    for agent in &mut agents[world.agents.len() - world.imported..] {
+        let connected = rng.random::<f64>() < world.v2x.penetration;
+        agent.connected = connected && agent.kind.is_vehicle();
+    }
+    agents.extend(generate(seed, world));
+    agents
+}
+
 /// The generated agents of `world`: vehicles route by route, then pedestrians
 /// crosswalk by crosswalk.
-pub fn generate(seed: u64, world: &World) -> Vec<Agent> {
+fn generate(seed: u64, world: &World) -> Vec<Agent> {
     let Some(traffic) = &world.traffic else {
         return Vec::new();
     };

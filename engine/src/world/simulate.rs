@@ -117,7 +117,9 @@ pub fn run(
             let estimate = match agent.motion {
                 // A roadside unit's position is surveyed.
                 Motion::Fixed { .. } => state.pose,
-                Motion::Along { .. } => c.estimator.estimate(state.pose, world.step, &mut c.localization),
+                Motion::Along { .. } | Motion::Trace { .. } => {
+                    c.estimator.estimate(state.pose, world.step, &mut c.localization)
+                }
             };
             c.estimate = estimate;
             c.observation
