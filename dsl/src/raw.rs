@@ -15,8 +15,8 @@ mod semantic;
 pub(crate) use semantic::*;
 
 use crate::model::{
-    AgentKind, Direction, ErrorModel, FusionMethod, Invariant, Metric, PoseFilter, SourceCombination, SwitchMeasure,
-    WeightScaling,
+    AgentKind, Direction, ErrorModel, FusionMethod, Invariant, Metric, PoseFilter, RateBound, SourceCombination,
+    SwitchMeasure, WeightScaling,
 };
 
 /// A sightline scenario: what to simulate, the requirements that must hold, and
@@ -367,6 +367,22 @@ pub(crate) struct RawCheck {
     /// Numerical tolerance of the invariant (≥ 0). Default 1e-9.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tolerance: Option<f64>,
+    /// Check the metric over this many independent seeds (at least 2): the
+    /// point's own seed, then seeds derived from it. It passes only when a
+    /// one-sided confidence bound clears the threshold: of the mean (Student t),
+    /// or with `holds_in`, of the share of seeds at which the threshold holds.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub seeds: Option<u32>,
+    /// Confidence level of the bound, above 0.5 and below 1. Default 0.95.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub confidence: Option<f64>,
+    /// The share of seeds (0–1] at which the threshold must hold, bounded below
+    /// at `confidence`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub holds_in: Option<f64>,
+    /// The bound of that share: `clopper_pearson` (exact, the default) or `wilson`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub method: Option<RateBound>,
 }
 
 /// A published figure, shown beside the measured value at the matching sweep points.

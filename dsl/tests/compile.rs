@@ -1,8 +1,8 @@
 //! The compiled model: what a valid file becomes, and how problems are reported.
 
 use sightline_dsl::{
-    Bound, Check, ErrorKind, Errors, Experiment, Layout, Location, Metric, Options, Rule, Scenario, SourceCombination,
-    Switch, SwitchMeasure, WeightScaling, Weighting, compile,
+    Bound, Check, ErrorKind, Errors, Experiment, Layout, Location, Metric, Options, OverSeeds, RateBound, Rule,
+    Scenario, SourceCombination, Statistic, Switch, SwitchMeasure, WeightScaling, Weighting, compile,
 };
 
 const BASE: &str = "sightline: 1
@@ -88,9 +88,37 @@ fn where_selects_points_by_effective_settings() {
         requirement.check,
         Check::Metric {
             metric: Metric::MeanConflict,
-            bound: Bound::AtMost(0.5)
+            bound: Bound::AtMost(0.5),
+            over_seeds: None,
         }
     );
+}
+
+#[test]
+fn checks_over_seeds_take_their_defaults_and_bounds() {
+    let scenario = ok(&format!(
+        "{BASE}requirements:\n  - id: R1\n    text: accurate over seeds\n    check: {{ metric: accuracy, at_least: 0.5, seeds: 12 }}\n  - id: R2\n    text: mostly accurate\n    check: {{ metric: accuracy, at_least: 0.5, seeds: 30, confidence: 0.9, holds_in: 0.8, method: wilson }}\n"
+    ));
+    let over = |i: usize| match scenario.requirements[i].check {
+        Check::Metric { over_seeds, .. } => over_seeds.unwrap(),
+        Check::Invariant { .. } => panic!("a metric check"),
+    };
+    assert_eq!(
+        over(0),
+        OverSeeds {
+            seeds: 12,
+            confidence: 0.95,
+            statistic: Statistic::Mean
+        }
+    );
+    assert_eq!(
+        over(1).statistic,
+        Statistic::Share {
+            share: 0.8,
+            method: RateBound::Wilson
+        }
+    );
+    assert_eq!(over(1).confidence, 0.9);
 }
 
 #[test]

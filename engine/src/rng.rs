@@ -54,13 +54,27 @@ pub(crate) fn stream(seed: u64, purpose: Purpose, index: u64) -> ChaCha8Rng {
     rng
 }
 
-/// The seed of independent run `run` of a scenario seeded `seed`: run 0 is `seed`
-/// itself, so a single run reproduces the scenario's own draws.
-pub(crate) fn run_seed(seed: u64, run: u32) -> u64 {
-    if run == 0 {
+/// Why a seed is derived from the scenario's: each reason has its own family of
+/// seeds, so that no two derivations share draws.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Derived {
+    /// A pooled run of a semantic point (`semantic.runs`).
+    Run,
+    /// A replicate of a point for a check over seeds.
+    Replicate,
+}
+
+/// Seed `index` of family `derived` for a scenario seeded `seed`: index 0 is
+/// `seed` itself, so the first run or replicate reproduces the scenario's own draws.
+pub(crate) fn derived_seed(seed: u64, derived: Derived, index: u32) -> u64 {
+    if index == 0 {
         return seed;
     }
-    let mut state = seed ^ u64::from(run).wrapping_mul(0xA24B_AED4_963E_E407);
+    let salt = match derived {
+        Derived::Run => 0xA24B_AED4_963E_E407,
+        Derived::Replicate => 0x9FB2_1C65_1E98_DF25,
+    };
+    let mut state = seed ^ u64::from(index).wrapping_mul(salt);
     splitmix64(&mut state)
 }
 
@@ -89,13 +103,18 @@ mod tests {
     }
 
     #[test]
-    fn run_seeds_start_at_the_scenario_seed_and_differ() {
-        assert_eq!(run_seed(7, 0), 7);
-        let seeds: Vec<u64> = (0..100).map(|r| run_seed(7, r)).collect();
-        let mut distinct = seeds.clone();
-        distinct.sort_unstable();
-        distinct.dedup();
-        assert_eq!(distinct.len(), seeds.len());
-        assert_ne!(run_seed(7, 1), run_seed(8, 1));
+    fn derived_seeds_start_at_the_scenario_seed_and_differ() {
+        assert_eq!(derived_seed(7, Derived::Run, 0), 7);
+        assert_eq!(derived_seed(7, Derived::Replicate, 0), 7);
+        let mut seeds: Vec<u64> = [Derived::Run, Derived::Replicate]
+            .iter()
+            .flat_map(|&d| (1..100).map(move |i| derived_seed(7, d, i)))
+            .collect();
+        seeds.push(7);
+        let count = seeds.len();
+        seeds.sort_unstable();
+        seeds.dedup();
+        assert_eq!(seeds.len(), count, "no two derivations share a seed");
+        assert_ne!(derived_seed(7, Derived::Run, 1), derived_seed(8, Derived::Run, 1));
     }
 }

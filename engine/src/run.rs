@@ -1,10 +1,12 @@
 //! Running a whole scenario: every sweep point, sharing sampled data where it can.
 
+use rayon::prelude::*;
 use serde::Serialize;
-use sightline_dsl::{Decision, Experiment, Fusion, Metric, Scenario, Setup};
+use sightline_dsl::{Check, Decision, Experiment, Fusion, Metric, Scenario, Setup};
 
 use crate::field;
 use crate::metrics::{FieldOutcome, MassAudit};
+use crate::rng::{Derived, derived_seed};
 use crate::semantic::{self, SemanticMetrics};
 use crate::sink::{NoTrace, TraceSink};
 use crate::world::{self, WorldOutcome};
@@ -63,6 +65,10 @@ impl Outcome {
 pub struct Run {
     /// One outcome per [`Scenario::points`] entry.
     pub points: Vec<Outcome>,
+    /// Per point, the outcomes of the replicates its checks over seeds need
+    /// (replicate 1, 2, …; replicate 0 is the point's own outcome), empty when
+    /// no check asks for any.
+    pub replicates: Vec<Vec<Outcome>>,
 }
 
 /// Simulates every point of `scenario`.
@@ -71,11 +77,31 @@ pub struct Run {
 /// the same ground truth and the same sampled observations, fused by each method.
 /// Comparisons between methods at a sweep point are therefore paired, not subject
 /// to sampling noise.
+///
+/// A point that a check over seeds (`seeds: n`) applies to is also simulated at
+/// n − 1 replicate seeds derived from its own, in parallel; replicates of points
+/// that share data share them too.
 pub fn simulate(scenario: &Scenario) -> Run {
     let mut outcomes: Vec<Option<Outcome>> = vec![None; scenario.points.len()];
+    let mut replicates: Vec<Vec<Outcome>> = vec![Vec::new(); scenario.points.len()];
+    let seeds = seeds_needed(scenario);
     for group in shared_data_groups(scenario) {
-        for (&i, outcome) in group.iter().zip(simulate_group(scenario, &group, &mut NoTrace)) {
+        let seed = scenario.points[group[0]].setup.seed;
+        for (&i, outcome) in group.iter().zip(simulate_group(scenario, &group, seed, &mut NoTrace)) {
             outcomes[i] = Some(outcome);
+        }
+        let wanted = group.iter().map(|&i| seeds[i]).max().unwrap_or(1);
+        let extra: Vec<Vec<Outcome>> = (1..wanted)
+            .into_par_iter()
+            .map(|r| {
+                let seed = derived_seed(seed, Derived::Replicate, r);
+                simulate_group(scenario, &group, seed, &mut NoTrace)
+            })
+            .collect();
+        for outcomes in extra {
+            for (&i, outcome) in group.iter().zip(outcomes) {
+                replicates[i].push(outcome);
+            }
         }
     }
     Run {
@@ -83,7 +109,24 @@ pub fn simulate(scenario: &Scenario) -> Run {
             .into_iter()
             .map(|o| o.expect("every point belongs to one group"))
             .collect(),
+        replicates,
     }
+}
+
+/// Per point, the most seeds a check over seeds applying to it asks for (1: none).
+fn seeds_needed(scenario: &Scenario) -> Vec<u32> {
+    let mut seeds = vec![1; scenario.points.len()];
+    for requirement in &scenario.requirements {
+        if let Check::Metric {
+            over_seeds: Some(over), ..
+        } = requirement.check
+        {
+            for &point in &requirement.points {
+                seeds[point] = seeds[point].max(over.seeds);
+            }
+        }
+    }
+    seeds
 }
 
 /// Simulates point `point` of `scenario` alone, reporting each step to `sink`
@@ -95,13 +138,13 @@ pub fn simulate(scenario: &Scenario) -> Run {
 ///
 /// If `point` is not an index of [`Scenario::points`].
 pub fn simulate_point(scenario: &Scenario, point: usize, sink: &mut impl TraceSink) -> Outcome {
-    let mut outcomes = simulate_group(scenario, &[point], sink);
+    let mut outcomes = simulate_group(scenario, &[point], scenario.points[point].setup.seed, sink);
     outcomes.pop().expect("one outcome per point")
 }
 
-/// Simulates the points of `group`, which share their sampled data, once; one
-/// outcome per point, in group order.
-fn simulate_group(scenario: &Scenario, group: &[usize], sink: &mut impl TraceSink) -> Vec<Outcome> {
+/// Simulates the points of `group`, which share their sampled data, once with
+/// `seed`; one outcome per point, in group order.
+fn simulate_group(scenario: &Scenario, group: &[usize], seed: u64, sink: &mut impl TraceSink) -> Vec<Outcome> {
     let first = &scenario.points[group[0]].setup;
     let jobs: Vec<Job<'_>> = group
         .iter()
@@ -112,17 +155,17 @@ fn simulate_group(scenario: &Scenario, group: &[usize], sink: &mut impl TraceSin
         .collect();
     match &first.experiment {
         // The field experiment has no steps: it reports nothing to the sink.
-        Experiment::Field(f) => field::run(first.seed, &first.grid, f, &jobs)
+        Experiment::Field(f) => field::run(seed, &first.grid, f, &jobs)
             .into_iter()
             .map(Outcome::Field)
             .collect(),
         Experiment::World(w) => match (&w.perception, &w.semantic) {
-            (Some(perception), _) => world::run(first.seed, &first.grid, w, perception, &jobs, sink)
+            (Some(perception), _) => world::run(seed, &first.grid, w, perception, &jobs, sink)
                 .into_iter()
                 .map(Outcome::World)
                 .collect(),
             // Fusion settings do not touch the semantic pipeline: one run serves all.
-            (None, Some(s)) => vec![Outcome::Semantic(semantic::run(first.seed, w, s, sink)); jobs.len()],
+            (None, Some(s)) => vec![Outcome::Semantic(semantic::run(seed, w, s, sink)); jobs.len()],
             (None, None) => unreachable!("the compiler requires `perception` or `semantic`"),
         },
     }

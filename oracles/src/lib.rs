@@ -10,6 +10,7 @@
 //! and its reported value is the one with the smallest margin.
 #![warn(missing_docs)]
 
+pub use check::seeds::SeedStatistics;
 pub use verdict::{Evaluation, Status, Verdict, check};
 
 mod check;

@@ -1,10 +1,11 @@
 //! Verdicts and how they are reached.
 
 use serde::Serialize;
-use sightline_dsl::{Check, Requirement, Scenario};
+use sightline_dsl::{Check, OverSeeds, Requirement, Scenario, Statistic};
 use sightline_engine::Run;
 
-use crate::check::{invariant, metric};
+use crate::check::seeds::SeedStatistics;
+use crate::check::{invariant, metric, seeds};
 
 /// The outcome of a check.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
@@ -42,6 +43,8 @@ pub struct Evaluation {
     pub margin: Option<f64>,
     /// The check in words, with the numbers.
     pub message: String,
+    /// For a check over seeds: what the seeds measured and the bound compared.
+    pub seeds: Option<SeedStatistics>,
 }
 
 /// A requirement checked at every point it applies to.
@@ -74,12 +77,34 @@ fn verdict(requirement: &Requirement, run: &Run) -> Verdict {
         .iter()
         .map(|&point| {
             let outcome = &run.points[point];
-            let (status, value, margin, message) = match requirement.check {
-                Check::Metric { metric: m, bound } => metric::evaluate(m, bound, outcome.value(m)),
+            let (status, value, margin, message, seeds) = match requirement.check {
+                Check::Metric {
+                    metric: m,
+                    bound,
+                    over_seeds: None,
+                } => {
+                    let (status, value, margin, message) = metric::evaluate(m, bound, outcome.value(m));
+                    (status, value, margin, message, None)
+                }
+                Check::Metric {
+                    metric: m,
+                    bound,
+                    over_seeds: Some(over),
+                } => {
+                    let values: Vec<Option<f64>> = std::iter::once(outcome)
+                        .chain(&run.replicates[point])
+                        .take(over.seeds as usize)
+                        .map(|o| o.value(m))
+                        .collect();
+                    seeds::evaluate(m, bound, over, &values)
+                }
                 Check::Invariant {
                     invariant: i,
                     tolerance,
-                } => invariant::evaluate(i, tolerance, outcome.audit()),
+                } => {
+                    let (status, value, margin, message) = invariant::evaluate(i, tolerance, outcome.audit());
+                    (status, value, margin, message, None)
+                }
             };
             Evaluation {
                 point,
@@ -87,6 +112,7 @@ fn verdict(requirement: &Requirement, run: &Run) -> Verdict {
                 value,
                 margin,
                 message,
+                seeds,
             }
         })
         .collect();
@@ -102,6 +128,14 @@ fn verdict(requirement: &Requirement, run: &Run) -> Verdict {
         .expect("the dsl gives every requirement at least one point")
         .clone();
     let threshold = match requirement.check {
+        Check::Metric {
+            over_seeds:
+                Some(OverSeeds {
+                    statistic: Statistic::Share { share, .. },
+                    ..
+                }),
+            ..
+        } => share,
         Check::Metric { bound, .. } => bound.threshold(),
         Check::Invariant { tolerance, .. } => tolerance,
     };

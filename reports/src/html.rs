@@ -6,13 +6,13 @@ use minijinja::value::Serde;
 use minijinja::{Environment, UndefinedBehavior, Value, context};
 use serde::Serialize;
 
-use sightline_dsl::display_value;
+use sightline_dsl::{RateBound, Statistic, display_value};
 
 use sightline_engine::semantic::{DELIVERY_BIN, DENSITY_BIN, DensityRow, SemanticMetrics, quantile};
 
 use crate::chart::Chart;
 use crate::picture::Pictures;
-use crate::results::{Detail, PointResult, RequirementResult, Results, Summary};
+use crate::results::{CheckInfo, Detail, PointResult, RequirementResult, Results, Summary};
 
 const TEMPLATE: &str = include_str!("../templates/report.html");
 
@@ -195,7 +195,7 @@ fn requirement_view(r: &RequirementResult) -> RequirementView {
         anchor: format!("req-{}", r.id),
         text: r.text.clone(),
         line: r.line,
-        check: describe_check(r.check.kind, r.check.name, r.check.relation, r.check.threshold),
+        check: describe_check(&r.check),
         measured: or_dash(r.value),
         threshold: number(r.threshold),
         margin: or_dash(r.margin),
@@ -497,11 +497,31 @@ fn semantic_tables(c: &SemanticMetrics, density: &[DensityRow]) -> Vec<TableView
     ]
 }
 
-fn describe_check(kind: &str, name: &str, relation: &str, threshold: f64) -> String {
-    match (kind, relation) {
-        ("metric", "at_least") => format!("{name} ≥ {}", number(threshold)),
-        ("metric", _) => format!("{name} ≤ {}", number(threshold)),
-        _ => format!("invariant {name} (tolerance {})", number(threshold)),
+fn describe_check(check: &CheckInfo) -> String {
+    let (name, threshold) = (check.name, number(check.threshold));
+    let relation = match (check.kind, check.relation) {
+        ("metric", "at_least") => format!("{name} ≥ {threshold}"),
+        ("metric", _) => format!("{name} ≤ {threshold}"),
+        _ => return format!("invariant {name} (tolerance {threshold})"),
+    };
+    let Some(over) = check.over_seeds else {
+        return relation;
+    };
+    let confidence = number(over.confidence * 100.0);
+    match over.statistic {
+        Statistic::Mean => format!(
+            "mean over {} seeds: {relation} at {confidence} % confidence (Student t)",
+            over.seeds
+        ),
+        Statistic::Share { share, method } => format!(
+            "{relation} at ≥ {} % of {} seeds, at {confidence} % confidence ({})",
+            number(share * 100.0),
+            over.seeds,
+            match method {
+                RateBound::ClopperPearson => "Clopper–Pearson",
+                RateBound::Wilson => "Wilson",
+            }
+        ),
     }
 }
 

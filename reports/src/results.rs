@@ -4,11 +4,11 @@
 //! paths, so the same scenario and seed give a byte-identical file.
 
 use serde::{Serialize, Serializer};
-use sightline_dsl::{Bound, Check, Point, Requirement, Scenario};
+use sightline_dsl::{Bound, Check, OverSeeds, Point, Requirement, Scenario};
 use sightline_engine::semantic::{DensityRow, SemanticMetrics};
 use sightline_engine::world::WorldMetrics;
 use sightline_engine::{BandMetrics, Coverage, MassAudit, Outcome, Run};
-use sightline_oracles::{Status, Verdict};
+use sightline_oracles::{SeedStatistics, Status, Verdict};
 
 /// The format identifier written into every results.json.
 pub const FORMAT: &str = "sightline-results/1";
@@ -138,6 +138,9 @@ pub struct CheckInfo {
     pub relation: &'static str,
     /// The threshold or tolerance.
     pub threshold: f64,
+    /// For a check over seeds: how many, at which confidence, bounding what.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub over_seeds: Option<OverSeeds>,
 }
 
 /// A requirement checked at one point.
@@ -155,6 +158,9 @@ pub struct PointVerdict {
     pub margin: Option<f64>,
     /// The check in words.
     pub message: String,
+    /// For a check over seeds: the estimate and the bound compared.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub seeds: Option<SeedStatistics>,
 }
 
 /// A metric in the top-level `metrics` map.
@@ -358,6 +364,7 @@ fn requirement_result(requirement: &Requirement, verdict: &Verdict, labels: &[St
                 value: e.value,
                 margin: e.margin,
                 message: e.message.clone(),
+                seeds: e.seeds,
             })
             .collect(),
     }
@@ -404,7 +411,11 @@ fn point_result((point, outcome): (&Point, &Outcome)) -> PointResult {
 
 fn check_info(check: &Check) -> CheckInfo {
     match *check {
-        Check::Metric { metric, bound } => CheckInfo {
+        Check::Metric {
+            metric,
+            bound,
+            over_seeds,
+        } => CheckInfo {
             kind: "metric",
             name: metric.name(),
             relation: match bound {
@@ -412,12 +423,14 @@ fn check_info(check: &Check) -> CheckInfo {
                 Bound::AtMost(_) => "at_most",
             },
             threshold: bound.threshold(),
+            over_seeds,
         },
         Check::Invariant { invariant, tolerance } => CheckInfo {
             kind: "invariant",
             name: invariant.name(),
             relation: "tolerance",
             threshold: tolerance,
+            over_seeds: None,
         },
     }
 }

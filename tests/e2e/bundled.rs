@@ -266,4 +266,27 @@ fn sumo_grid_scenario_runs_end_to_end_and_hashes_its_imports() {
     // veh7 is in the trace from 7.0 s to 53.1 s: 462 steps of 0.1 s.
     assert_eq!(point["counts"]["steps"], 462);
     assert_eq!(point["counts"]["generated"], 0);
+
+    // Checks over 30 seeds: the replicates draw anew, and the bounds are the stated ones.
+    let requirement = |id: &str| {
+        results["requirements"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|r| r["id"] == id)
+            .unwrap_or_else(|| panic!("no requirement {id}"))
+    };
+    let pdr = &requirement("GRID-PDR-30")["points"][0]["seeds"];
+    assert_eq!(
+        (pdr["seeds"].as_u64(), pdr["method"].as_str()),
+        (Some(30), Some("student_t"))
+    );
+    let mean = pdr["estimate"].as_f64().unwrap();
+    assert_ne!(Some(mean), point["metrics"]["packet_delivery_ratio"].as_f64());
+    assert!(pdr["bound"].as_f64().unwrap() < mean);
+    let miss = requirement("GRID-MISS-30");
+    assert_eq!(miss["verdict"], "pass");
+    // Every seed holds: the exact lower bound solves p^30 = 0.05.
+    assert!((miss["value"].as_f64().unwrap() - 0.05f64.powf(1.0 / 30.0)).abs() < 1e-9);
+    assert_eq!(miss["threshold"], 0.9);
 }

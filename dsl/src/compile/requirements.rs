@@ -7,7 +7,7 @@ use super::sweep::json_eq;
 use crate::de::closest;
 use crate::error::{ErrorKind, Location};
 use crate::model::display_value;
-use crate::model::{Bound, Check, Experiment, Metric, Point, Reference, Requirement};
+use crate::model::{Bound, Check, Experiment, Metric, OverSeeds, Point, RateBound, Reference, Requirement, Statistic};
 use crate::path::Path;
 use crate::raw::{RawCheck, RawReference, RawRequirement};
 
@@ -150,10 +150,22 @@ fn check(ctx: &mut Context<'_>, raw: &RawCheck, path: &Path) -> Option<Check> {
                 }
             };
             let key = if raw.at_least.is_some() { "at_least" } else { "at_most" };
-            ctx.finite(&path.key(key), bound.threshold())
-                .then_some(Check::Metric { metric, bound })
+            let threshold_ok = ctx.finite(&path.key(key), bound.threshold());
+            let over_seeds = over_seeds(ctx, raw, path)?;
+            threshold_ok.then_some(Check::Metric {
+                metric,
+                bound,
+                over_seeds,
+            })
         }
         (None, Some(invariant)) => {
+            if raw.seeds.is_some() {
+                ctx.error(
+                    &path.key("seeds"),
+                    ErrorKind::Invalid("an invariant holds in every run: `seeds` belongs to metric checks".into()),
+                );
+                return None;
+            }
             if raw.at_least.is_some() || raw.at_most.is_some() {
                 ctx.error(
                     path,
@@ -175,6 +187,70 @@ fn check(ctx: &mut Context<'_>, raw: &RawCheck, path: &Path) -> Option<Check> {
             None
         }
     }
+}
+
+/// Default confidence of a check over seeds.
+const DEFAULT_CONFIDENCE: f64 = 0.95;
+
+/// Most seeds a check may run over.
+const MAX_SEEDS: u32 = 10_000;
+
+/// The check over seeds, if any: `Some(None)` for a check on the point's own run,
+/// `None` after an error.
+fn over_seeds(ctx: &mut Context<'_>, raw: &RawCheck, path: &Path) -> Option<Option<OverSeeds>> {
+    let Some(seeds) = raw.seeds else {
+        let stray = [
+            ("confidence", raw.confidence.is_some()),
+            ("holds_in", raw.holds_in.is_some()),
+            ("method", raw.method.is_some()),
+        ];
+        if let Some((key, _)) = stray.iter().find(|(_, given)| *given) {
+            ctx.error(
+                &path.key(key),
+                ErrorKind::Invalid(format!("`{key}` belongs to checks over `seeds`")),
+            );
+            return None;
+        }
+        return Some(None);
+    };
+    if raw.method.is_some() && raw.holds_in.is_none() {
+        ctx.error(
+            &path.key("method"),
+            ErrorKind::Invalid("`method` bounds the share of `holds_in`; a mean takes none".into()),
+        );
+        return None;
+    }
+    let confidence = raw.confidence.unwrap_or(DEFAULT_CONFIDENCE);
+    let ok = ctx.expect(
+        (2..=MAX_SEEDS).contains(&seeds),
+        &path.key("seeds"),
+        &format!("a whole number from 2 to {MAX_SEEDS}"),
+        f64::from(seeds),
+    ) & ctx.expect(
+        confidence > 0.5 && confidence < 1.0,
+        &path.key("confidence"),
+        "a level above 0.5 and below 1",
+        confidence,
+    ) & raw.holds_in.is_none_or(|share| {
+        ctx.expect(
+            share > 0.0 && share <= 1.0,
+            &path.key("holds_in"),
+            "a share above 0 and at most 1",
+            share,
+        )
+    });
+    let statistic = match raw.holds_in {
+        None => Statistic::Mean,
+        Some(share) => Statistic::Share {
+            share,
+            method: raw.method.unwrap_or(RateBound::ClopperPearson),
+        },
+    };
+    ok.then_some(Some(OverSeeds {
+        seeds,
+        confidence,
+        statistic,
+    }))
 }
 
 /// Errors unless `metric` is produced at every selected point: by its kind of

@@ -13,7 +13,7 @@ pub use field::{ErrorModel, Field, Layout, Masses, Truth};
 pub use fusion::{
     Decision, Fusion, FusionMethod, Rule, SourceCombination, Switch, SwitchMeasure, WeightScaling, Weighting,
 };
-pub use requirement::{Bound, Check, Invariant, Metric, Reference, Requirement};
+pub use requirement::{Bound, Check, Invariant, Metric, OverSeeds, RateBound, Reference, Requirement, Statistic};
 pub use scenario::{
     Assignment, Axis, Experiment, Grid, Import, ImportKind, Point, Scenario, Setup, Sweep, display_value,
 };

@@ -30,6 +30,9 @@ pub enum Check {
         metric: Metric,
         /// The threshold.
         bound: Bound,
+        /// Checked over independent seeds with a confidence bound instead of on
+        /// the point's own run.
+        over_seeds: Option<OverSeeds>,
     },
     /// An invariant over every fused cell.
     Invariant {
@@ -38,6 +41,47 @@ pub enum Check {
         /// Numerical tolerance.
         tolerance: f64,
     },
+}
+
+/// A metric check repeated over independent seeds: it passes only when a
+/// one-sided confidence bound clears the threshold.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct OverSeeds {
+    /// Independent runs of the point: its own seed, then seeds derived from it.
+    pub seeds: u32,
+    /// Confidence level of the one-sided bound (0.5–1).
+    pub confidence: f64,
+    /// What is bounded.
+    pub statistic: Statistic,
+}
+
+/// What a check over seeds bounds.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Statistic {
+    /// The metric's mean over the seeds: its lower (`at_least`) or upper
+    /// (`at_most`) one-sided Student-t confidence bound must clear the threshold.
+    Mean,
+    /// The share of seeds at which the threshold holds: its lower one-sided
+    /// confidence bound must be at least `share`.
+    Share {
+        /// The share of seeds required to hold (0–1).
+        share: f64,
+        /// The binomial confidence bound.
+        method: RateBound,
+    },
+}
+
+/// One-sided confidence bounds of a binomial proportion.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum RateBound {
+    /// The exact Clopper–Pearson bound (from the Beta distribution): never below
+    /// the stated confidence, often above.
+    ClopperPearson,
+    /// The Wilson score bound: closer to the stated confidence on average, below
+    /// it for some sample sizes.
+    Wilson,
 }
 
 /// A threshold and its direction.

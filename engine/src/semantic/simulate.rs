@@ -51,7 +51,7 @@ use super::relevance::{Areas, crosswalk_area};
 use super::risk::{MapRoute, RouteMap, lane_routes};
 use super::traffic;
 use crate::math::{Pose, Vector};
-use crate::rng::{Purpose, run_seed, stream};
+use crate::rng::{Derived, Purpose, derived_seed, stream};
 use crate::sink::{NoTrace, TraceSink};
 use crate::trace::{Approach, Arrival, Packet, PacketKind, SemanticLog};
 use crate::v2x::{Link, transmit};
@@ -107,7 +107,7 @@ pub fn run(seed: u64, world: &World, semantic: &Semantic, sink: &mut impl TraceS
     let mut pooled = run_once(seed, world, semantic, sink);
     let others: Vec<SemanticMetrics> = (1..semantic.runs)
         .into_par_iter()
-        .map(|r| run_once(run_seed(seed, r), world, semantic, &mut NoTrace))
+        .map(|r| run_once(derived_seed(seed, Derived::Run, r), world, semantic, &mut NoTrace))
         .collect();
     for metrics in others {
         pooled.pool(metrics);

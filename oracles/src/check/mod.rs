@@ -2,6 +2,7 @@
 
 pub(crate) mod invariant;
 pub(crate) mod metric;
+pub(crate) mod seeds;
 
 /// A number for messages: six significant digits, no trailing zeros, so that
 /// rounding noise (0.00682499999999997) does not reach a log. Full precision stays

@@ -1,0 +1,254 @@
+//! Metric checks over independent seeds: a one-sided confidence bound of the mean
+//! (Student t) or of the share of seeds at which the threshold holds
+//! (Clopper–Pearson or Wilson) must clear the requirement.
+
+use serde::Serialize;
+use sightline_dsl::{Bound, Metric, OverSeeds, RateBound, Statistic};
+use statrs::distribution::{Beta, ContinuousCDF, Normal, StudentsT};
+
+use super::short;
+use crate::Status;
+
+/// What a check over seeds measured.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct SeedStatistics {
+    /// Seeds run.
+    pub seeds: u32,
+    /// Confidence level of the bound.
+    pub confidence: f64,
+    /// The bound's method: `student_t`, `clopper_pearson` or `wilson`.
+    pub method: &'static str,
+    /// The mean of the metric, or the share of seeds at which the threshold holds.
+    pub estimate: f64,
+    /// The one-sided confidence bound of the estimate that is compared.
+    pub bound: f64,
+}
+
+/// Checks `metric` against `bound` over the values of every seed (the point's
+/// own first). Returns (status, compared bound, margin, message, statistics);
+/// a seed where the metric is undefined makes it an error. The margin is the
+/// bound's: against the threshold for a mean, against `share` for a share.
+pub(crate) fn evaluate(
+    metric: Metric,
+    bound: Bound,
+    over: OverSeeds,
+    values: &[Option<f64>],
+) -> (Status, Option<f64>, Option<f64>, String, Option<SeedStatistics>) {
+    let name = metric.name();
+    let Some(values) = values
+        .iter()
+        .map(|v| v.filter(|v| !v.is_nan()))
+        .collect::<Option<Vec<f64>>>()
+    else {
+        let message = format!("{name} is not defined at one of the {} seeds", values.len());
+        return (Status::Error, None, None, message, None);
+    };
+    let n = values.len() as u32;
+    let (statistics, threshold, margin, description) = match over.statistic {
+        Statistic::Mean => {
+            let upper = matches!(bound, Bound::AtMost(_));
+            let (mean, limit) = mean_bound(&values, over.confidence, upper);
+            let statistics = SeedStatistics {
+                seeds: n,
+                confidence: over.confidence,
+                method: "student_t",
+                estimate: mean,
+                bound: limit,
+            };
+            let side = if upper { "upper" } else { "lower" };
+            let description = format!(
+                "mean {name} over {n} seeds = {}, its {side} {}% bound {}",
+                short(mean),
+                short(over.confidence * 100.0),
+                short(limit)
+            );
+            (statistics, bound.threshold(), bound.margin(limit), description)
+        }
+        Statistic::Share { share, method } => {
+            let holding = values.iter().filter(|&&v| bound.margin(v) >= 0.0).count() as u32;
+            let limit = match method {
+                RateBound::ClopperPearson => clopper_pearson_lower(holding, n, over.confidence),
+                RateBound::Wilson => wilson_lower(holding, n, over.confidence),
+            };
+            let statistics = SeedStatistics {
+                seeds: n,
+                confidence: over.confidence,
+                method: match method {
+                    RateBound::ClopperPearson => "clopper_pearson",
+                    RateBound::Wilson => "wilson",
+                },
+                estimate: f64::from(holding) / f64::from(n),
+                bound: limit,
+            };
+            let relation = match bound {
+                Bound::AtLeast(t) => format!("{name} ≥ {}", short(t)),
+                Bound::AtMost(t) => format!("{name} ≤ {}", short(t)),
+            };
+            let description = format!(
+                "{relation} at {holding} of {n} seeds, the share's lower {}% bound {} ({})",
+                short(over.confidence * 100.0),
+                short(limit),
+                statistics.method
+            );
+            (statistics, share, limit - share, description)
+        }
+    };
+    let status = if margin >= 0.0 { Status::Pass } else { Status::Fail };
+    let message = format!(
+        "{description} {} {} (margin {})",
+        if margin >= 0.0 { "clears" } else { "misses" },
+        short(threshold),
+        short(margin)
+    );
+    (status, Some(statistics.bound), Some(margin), message, Some(statistics))
+}
+
+/// The mean of `values` and its one-sided Student-t bound at `confidence`:
+/// mean ∓ t(confidence, n − 1) · s / √n (upper with `upper`). It assumes the
+/// seeds' values are roughly normal; with no spread the bound is the mean.
+fn mean_bound(values: &[f64], confidence: f64, upper: bool) -> (f64, f64) {
+    let n = values.len() as f64;
+    let mean = values.iter().sum::<f64>() / n;
+    let variance = values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1.0);
+    let t = StudentsT::new(0.0, 1.0, n - 1.0)
+        .expect("at least two seeds")
+        .inverse_cdf(confidence);
+    let half = t * (variance / n).sqrt();
+    (mean, if upper { mean + half } else { mean - half })
+}
+
+/// The exact one-sided lower bound of a binomial share with `k` successes in
+/// `n` trials: the 1 − confidence quantile of Beta(k, n − k + 1); 0 when k = 0.
+fn clopper_pearson_lower(k: u32, n: u32, confidence: f64) -> f64 {
+    if k == 0 {
+        return 0.0;
+    }
+    Beta::new(f64::from(k), f64::from(n - k + 1))
+        .expect("positive shape parameters")
+        .inverse_cdf(1.0 - confidence)
+}
+
+/// The Wilson score one-sided lower bound of a binomial share with `k`
+/// successes in `n` trials.
+fn wilson_lower(k: u32, n: u32, confidence: f64) -> f64 {
+    let z = Normal::standard().inverse_cdf(confidence);
+    let (n, p) = (f64::from(n), f64::from(k) / f64::from(n));
+    let centre = p + z * z / (2.0 * n);
+    let spread = z * (p * (1.0 - p) / n + z * z / (4.0 * n * n)).sqrt();
+    ((centre - spread) / (1.0 + z * z / n)).max(0.0)
+}
+
+#[cfg(test)]
+mod tests {
+    use approx::assert_relative_eq;
+
+    use super::*;
+
+    #[test]
+    fn clopper_pearson_with_every_seed_holding_is_alpha_to_the_one_over_n() {
+        // k = n: the bound solves p^n = α.
+        assert_relative_eq!(
+            clopper_pearson_lower(30, 30, 0.95),
+            0.05f64.powf(1.0 / 30.0),
+            epsilon = 1e-9
+        );
+        assert_eq!(clopper_pearson_lower(0, 30, 0.95), 0.0);
+        // k = 1 of n: 1 − (1 − α)^(1/n).
+        assert_relative_eq!(
+            clopper_pearson_lower(1, 10, 0.9),
+            1.0 - 0.9f64.powf(0.1),
+            epsilon = 1e-9
+        );
+    }
+
+    #[test]
+    fn wilson_bound_by_hand() {
+        // 8 of 10 at 95 %, z = 1.644854: (0.8 + z²/20 − z·√(0.016 + z²/400)) / (1 + z²/10).
+        assert_relative_eq!(wilson_lower(8, 10, 0.95), 0.540792805687488, epsilon = 1e-6);
+        // Wilson sits above the exact bound here.
+        assert!(wilson_lower(8, 10, 0.95) > clopper_pearson_lower(8, 10, 0.95));
+    }
+
+    #[test]
+    fn student_t_bound_by_hand() {
+        // Ten values with mean 5.5 and s = √(55/6); t(0.95, 9) = 1.833113.
+        let values: Vec<f64> = (1..=10).map(f64::from).collect();
+        let (mean, lower) = mean_bound(&values, 0.95, false);
+        assert_eq!(mean, 5.5);
+        assert_relative_eq!(lower, 5.5 - 1.833113 * (55.0f64 / 6.0 / 10.0).sqrt(), epsilon = 1e-5);
+        let (_, upper) = mean_bound(&values, 0.95, true);
+        assert_relative_eq!(upper - mean, mean - lower, epsilon = 1e-12);
+        // No spread: the bound is the mean.
+        assert_eq!(mean_bound(&[2.0, 2.0, 2.0], 0.95, false), (2.0, 2.0));
+    }
+
+    fn over(statistic: Statistic) -> OverSeeds {
+        OverSeeds {
+            seeds: 10,
+            confidence: 0.95,
+            statistic,
+        }
+    }
+
+    #[test]
+    fn a_mean_above_the_threshold_can_still_fail_its_bound() {
+        let values: Vec<Option<f64>> = (1..=10).map(|v| Some(f64::from(v))).collect();
+        // Mean 5.5 ≥ 5, but the lower bound 3.745 is not.
+        let (status, value, margin, message, stats) = evaluate(
+            Metric::OccupiedRecall,
+            Bound::AtLeast(5.0),
+            over(Statistic::Mean),
+            &values,
+        );
+        assert_eq!(status, Status::Fail);
+        assert_relative_eq!(value.unwrap(), 3.745, epsilon = 1e-3);
+        assert_relative_eq!(margin.unwrap(), 3.745 - 5.0, epsilon = 1e-3);
+        assert_eq!(stats.unwrap().estimate, 5.5);
+        assert!(
+            message.starts_with("mean occupied_recall over 10 seeds = 5.5"),
+            "{message}"
+        );
+        let (status, ..) = evaluate(
+            Metric::OccupiedRecall,
+            Bound::AtLeast(3.7),
+            over(Statistic::Mean),
+            &values,
+        );
+        assert_eq!(status, Status::Pass);
+    }
+
+    #[test]
+    fn a_share_counts_the_seeds_that_hold() {
+        let values: Vec<Option<f64>> = (1..=10).map(|v| Some(f64::from(v))).collect();
+        let share = |share, method| Statistic::Share { share, method };
+        // at_most 8 holds at 8 of 10 seeds; Wilson's lower 95 % bound is 0.5408.
+        let (status, value, margin, ..) = evaluate(
+            Metric::MissedCriticals,
+            Bound::AtMost(8.0),
+            over(share(0.5, RateBound::Wilson)),
+            &values,
+        );
+        assert_eq!(status, Status::Pass);
+        assert_relative_eq!(value.unwrap(), 0.540792805687488, epsilon = 1e-6);
+        assert_relative_eq!(margin.unwrap(), 0.040792805687488, epsilon = 1e-6);
+        let (status, ..) = evaluate(
+            Metric::MissedCriticals,
+            Bound::AtMost(8.0),
+            over(share(0.6, RateBound::Wilson)),
+            &values,
+        );
+        assert_eq!(status, Status::Fail);
+    }
+
+    #[test]
+    fn an_undefined_seed_is_an_error() {
+        let values = [Some(1.0), None, Some(2.0)];
+        let (status, value, ..) = evaluate(
+            Metric::AnticipationMedian,
+            Bound::AtMost(3.0),
+            over(Statistic::Mean),
+            &values,
+        );
+        assert_eq!((status, value), (Status::Error, None));
+    }
+}
