@@ -15,8 +15,8 @@ mod semantic;
 pub(crate) use semantic::*;
 
 use crate::model::{
-    AgentKind, Direction, ErrorModel, FusionMethod, Invariant, Metric, PoseFilter, RateBound, SourceCombination,
-    SwitchMeasure, WeightScaling,
+    AgentKind, Direction, ErrorModel, FusionMethod, Invariant, Metric, ObjectProperty, PoseFilter, RateBound, Signal,
+    SourceCombination, SwitchMeasure, WeightScaling,
 };
 
 /// A sightline scenario: what to simulate, the requirements that must hold, and
@@ -347,7 +347,9 @@ pub(crate) struct RawRequirement {
     pub filter: BTreeMap<String, serde_json::Value>,
 }
 
-/// A check: a `metric` with `at_least` or `at_most`, or an `invariant`.
+/// A check: a `metric` with `at_least` or `at_most` (optionally over `seeds`), a
+/// `signal` with `always` or `eventually`, a `per_object` property, or an
+/// `invariant`.
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, expecting = "a check mapping")]
 #[schemars(rename = "Check")]
@@ -383,6 +385,35 @@ pub(crate) struct RawCheck {
     /// The bound of that share: `clopper_pearson` (exact, the default) or `wilson`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub method: Option<RateBound>,
+    /// A signal over time, checked with `always` or `eventually`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub signal: Option<Signal>,
+    /// The signal meets the threshold at every step where it is defined.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub always: Option<RawThreshold>,
+    /// The signal meets the threshold at some step where it is defined.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub eventually: Option<RawThreshold>,
+    /// Only the run's first this many seconds count (> 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub within: Option<f64>,
+    /// A property every object that came within d_min of the ego must meet
+    /// (`at_least` or `at_most`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub per_object: Option<ObjectProperty>,
+}
+
+/// A threshold at each step of a signal: `at_least` or `at_most`.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, expecting = "a threshold mapping with `at_least` or `at_most`")]
+#[schemars(rename = "Threshold")]
+pub(crate) struct RawThreshold {
+    /// The signal is at least this value.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub at_least: Option<f64>,
+    /// The signal is at most this value.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub at_most: Option<f64>,
 }
 
 /// A published figure, shown beside the measured value at the matching sweep points.

@@ -101,7 +101,7 @@ fn checks_over_seeds_take_their_defaults_and_bounds() {
     ));
     let over = |i: usize| match scenario.requirements[i].check {
         Check::Metric { over_seeds, .. } => over_seeds.unwrap(),
-        Check::Invariant { .. } => panic!("a metric check"),
+        _ => panic!("a metric check"),
     };
     assert_eq!(
         over(0),

@@ -2,12 +2,12 @@
 
 use rayon::prelude::*;
 use serde::Serialize;
-use sightline_dsl::{Check, Decision, Experiment, Fusion, Metric, Scenario, Setup};
+use sightline_dsl::{Check, Decision, Experiment, Fusion, Metric, ObjectProperty, Scenario, Setup, Signal};
 
 use crate::field;
 use crate::metrics::{FieldOutcome, MassAudit};
 use crate::rng::{Derived, derived_seed};
-use crate::semantic::{self, SemanticMetrics};
+use crate::semantic::{self, SemanticMetrics, Series};
 use crate::sink::{NoTrace, TraceSink};
 use crate::world::{self, WorldOutcome};
 
@@ -48,6 +48,29 @@ impl Outcome {
             .iter()
             .filter_map(|&m| self.value(m).map(|v| (m, v)))
             .collect()
+    }
+
+    /// `signal` over each run of this point (one series for a world, one per
+    /// pooled run for a semantic point); `None` where it is not measured.
+    pub fn series(&self, signal: Signal) -> Option<Vec<Series>> {
+        match self {
+            Self::Field(_) => None,
+            Self::World(o) => o.series(signal).map(|series| vec![series]),
+            Self::Semantic(m) => match signal {
+                Signal::RsuOnlyObjects => Some(m.rsu_only.clone()),
+                Signal::TimeToConflict => Some(m.time_to_conflict.clone()),
+                Signal::OccupiedRecall | Signal::BlindRecall | Signal::OccupiedPrecision => None,
+            },
+        }
+    }
+
+    /// `property` of every object that came within d_min of the ego, in order
+    /// (`None` for an object without the property); `None` where it is not measured.
+    pub fn per_object(&self, property: ObjectProperty) -> Option<&[Option<f64>]> {
+        match (self, property) {
+            (Self::Semantic(m), ObjectProperty::WarningTime) => Some(&m.warnings),
+            (Self::Field(_) | Self::World(_), _) => None,
+        }
     }
 
     /// The mass-function audit of every fused cell; `None` where nothing is fused.

@@ -5,7 +5,7 @@ use sightline_dsl::{Check, OverSeeds, Requirement, Scenario, Statistic};
 use sightline_engine::Run;
 
 use crate::check::seeds::SeedStatistics;
-use crate::check::{invariant, metric, seeds};
+use crate::check::{invariant, metric, object, seeds, temporal};
 
 /// The outcome of a check.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
@@ -45,6 +45,8 @@ pub struct Evaluation {
     pub message: String,
     /// For a check over seeds: what the seeds measured and the bound compared.
     pub seeds: Option<SeedStatistics>,
+    /// For a temporal check: the time of the decisive step, seconds.
+    pub time: Option<f64>,
 }
 
 /// A requirement checked at every point it applies to.
@@ -77,6 +79,7 @@ fn verdict(requirement: &Requirement, run: &Run) -> Verdict {
         .iter()
         .map(|&point| {
             let outcome = &run.points[point];
+            let mut time = None;
             let (status, value, margin, message, seeds) = match requirement.check {
                 Check::Metric {
                     metric: m,
@@ -98,6 +101,22 @@ fn verdict(requirement: &Requirement, run: &Run) -> Verdict {
                         .collect();
                     seeds::evaluate(m, bound, over, &values)
                 }
+                Check::Temporal {
+                    signal,
+                    operator,
+                    bound,
+                    within,
+                } => {
+                    let runs = outcome.series(signal).unwrap_or_default();
+                    let found = temporal::evaluate(signal, operator, bound, within, &runs);
+                    time = found.time;
+                    (found.status, found.value, found.margin, found.message, None)
+                }
+                Check::PerObject { property, bound } => {
+                    let values = outcome.per_object(property).unwrap_or_default();
+                    let (status, value, margin, message) = object::evaluate(property, bound, values);
+                    (status, value, margin, message, None)
+                }
                 Check::Invariant {
                     invariant: i,
                     tolerance,
@@ -113,6 +132,7 @@ fn verdict(requirement: &Requirement, run: &Run) -> Verdict {
                 margin,
                 message,
                 seeds,
+                time,
             }
         })
         .collect();
@@ -136,7 +156,9 @@ fn verdict(requirement: &Requirement, run: &Run) -> Verdict {
                 }),
             ..
         } => share,
-        Check::Metric { bound, .. } => bound.threshold(),
+        Check::Metric { bound, .. } | Check::Temporal { bound, .. } | Check::PerObject { bound, .. } => {
+            bound.threshold()
+        }
         Check::Invariant { tolerance, .. } => tolerance,
     };
     Verdict {

@@ -499,11 +499,21 @@ fn semantic_tables(c: &SemanticMetrics, density: &[DensityRow]) -> Vec<TableView
 
 fn describe_check(check: &CheckInfo) -> String {
     let (name, threshold) = (check.name, number(check.threshold));
-    let relation = match (check.kind, check.relation) {
-        ("metric", "at_least") => format!("{name} ≥ {threshold}"),
-        ("metric", _) => format!("{name} ≤ {threshold}"),
+    let relation = match check.relation {
+        "at_least" => format!("{name} ≥ {threshold}"),
+        "at_most" => format!("{name} ≤ {threshold}"),
         _ => return format!("invariant {name} (tolerance {threshold})"),
     };
+    match check.kind {
+        "always" | "eventually" => {
+            let window = check
+                .within
+                .map_or(String::new(), |w| format!(" within {} s", number(w)));
+            return format!("{} {relation}{window}", check.kind);
+        }
+        "per_object" => return format!("every object within d_min: {relation}"),
+        _ => {}
+    }
     let Some(over) = check.over_seeds else {
         return relation;
     };

@@ -4,7 +4,7 @@
 //! paths, so the same scenario and seed give a byte-identical file.
 
 use serde::{Serialize, Serializer};
-use sightline_dsl::{Bound, Check, OverSeeds, Point, Requirement, Scenario};
+use sightline_dsl::{Bound, Check, OverSeeds, Point, Requirement, Scenario, Temporal};
 use sightline_engine::semantic::{DensityRow, SemanticMetrics};
 use sightline_engine::world::WorldMetrics;
 use sightline_engine::{BandMetrics, Coverage, MassAudit, Outcome, Run};
@@ -130,9 +130,9 @@ pub struct RequirementResult {
 /// A check in the form it was written.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct CheckInfo {
-    /// `metric` or `invariant`.
+    /// `metric`, `always`, `eventually`, `per_object` or `invariant`.
     pub kind: &'static str,
-    /// The metric or invariant name.
+    /// The metric, signal, property or invariant name.
     pub name: &'static str,
     /// `at_least`, `at_most` or `tolerance`.
     pub relation: &'static str,
@@ -141,6 +141,9 @@ pub struct CheckInfo {
     /// For a check over seeds: how many, at which confidence, bounding what.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub over_seeds: Option<OverSeeds>,
+    /// For a temporal check: the window's length from the start, seconds.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub within: Option<f64>,
 }
 
 /// A requirement checked at one point.
@@ -161,6 +164,9 @@ pub struct PointVerdict {
     /// For a check over seeds: the estimate and the bound compared.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub seeds: Option<SeedStatistics>,
+    /// For a temporal check: the time of the decisive step, seconds.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub time: Option<f64>,
 }
 
 /// A metric in the top-level `metrics` map.
@@ -365,6 +371,7 @@ fn requirement_result(requirement: &Requirement, verdict: &Verdict, labels: &[St
                 margin: e.margin,
                 message: e.message.clone(),
                 seeds: e.seeds,
+                time: e.time,
             })
             .collect(),
     }
@@ -418,12 +425,34 @@ fn check_info(check: &Check) -> CheckInfo {
         } => CheckInfo {
             kind: "metric",
             name: metric.name(),
-            relation: match bound {
-                Bound::AtLeast(_) => "at_least",
-                Bound::AtMost(_) => "at_most",
-            },
+            relation: relation(bound),
             threshold: bound.threshold(),
             over_seeds,
+            within: None,
+        },
+        Check::Temporal {
+            signal,
+            operator,
+            bound,
+            within,
+        } => CheckInfo {
+            kind: match operator {
+                Temporal::Always => "always",
+                Temporal::Eventually => "eventually",
+            },
+            name: signal.name(),
+            relation: relation(bound),
+            threshold: bound.threshold(),
+            over_seeds: None,
+            within,
+        },
+        Check::PerObject { property, bound } => CheckInfo {
+            kind: "per_object",
+            name: property.name(),
+            relation: relation(bound),
+            threshold: bound.threshold(),
+            over_seeds: None,
+            within: None,
         },
         Check::Invariant { invariant, tolerance } => CheckInfo {
             kind: "invariant",
@@ -431,7 +460,15 @@ fn check_info(check: &Check) -> CheckInfo {
             relation: "tolerance",
             threshold: tolerance,
             over_seeds: None,
+            within: None,
         },
+    }
+}
+
+fn relation(bound: Bound) -> &'static str {
+    match bound {
+        Bound::AtLeast(_) => "at_least",
+        Bound::AtMost(_) => "at_most",
     }
 }
 

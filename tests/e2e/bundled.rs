@@ -163,6 +163,22 @@ fn roundabout_scenario_runs_end_to_end() {
     assert_eq!(points[8]["label"], "localization.position_sigma=0.2");
     assert_eq!(points[5]["metrics"], points[8]["metrics"]);
     assert_eq!(points[5]["counts"], points[8]["counts"]);
+    // The temporal check reports the step where recall comes closest to failing.
+    let temporal = requirement(results, "RB-REC-T-06");
+    assert_eq!(temporal["check"]["kind"], "always");
+    let time = temporal["points"][0]["time"].as_f64().unwrap();
+    assert!((0.0..=20.0).contains(&time), "{time}");
+    assert!(temporal["margin"].as_f64().unwrap() >= 0.0);
+}
+
+/// The requirement `id` of `results`.
+fn requirement<'a>(results: &'a serde_json::Value, id: &str) -> &'a serde_json::Value {
+    results["requirements"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|r| r["id"] == id)
+        .unwrap_or_else(|| panic!("no requirement {id}"))
 }
 
 /// results.json of one run of the bundled seed 002 junction.
@@ -216,6 +232,16 @@ fn urban_semantic_scenario_runs_end_to_end() {
     assert_eq!(points[7]["label"], "semantic.shares_over=all");
     assert!(load(7, "transmitted_share") < load(6, "transmitted_share"));
     assert_eq!(points[6]["counts"]["transmitted"], points[1]["counts"]["transmitted"]);
+    // Per object: the least-warned of the flagged road users decides.
+    let warn = requirement(results, "URB-WARN-01");
+    let warnings = points[5]["counts"]["warnings"].as_array().unwrap();
+    let least = warnings.iter().map(|w| w.as_f64().unwrap()).fold(f64::INFINITY, f64::min);
+    assert_eq!(warn["value"].as_f64(), Some(least));
+    assert_eq!(warnings.len() as u64, points[5]["counts"]["close_approaches"].as_u64().unwrap());
+    // Eventually: every point reports when the signal came best.
+    let rsu = requirement(results, "URB-RSU-T-01");
+    assert_eq!(rsu["points"].as_array().unwrap().len(), 8);
+    assert!(rsu["points"].as_array().unwrap().iter().all(|p| p["time"].is_number()));
 }
 
 /// The bundled SUMO grid: a trace, its network and its polygons imported from
@@ -268,14 +294,7 @@ fn sumo_grid_scenario_runs_end_to_end_and_hashes_its_imports() {
     assert_eq!(point["counts"]["generated"], 0);
 
     // Checks over 30 seeds: the replicates draw anew, and the bounds are the stated ones.
-    let requirement = |id: &str| {
-        results["requirements"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .find(|r| r["id"] == id)
-            .unwrap_or_else(|| panic!("no requirement {id}"))
-    };
+    let requirement = |id: &str| requirement(&results, id);
     let pdr = &requirement("GRID-PDR-30")["points"][0]["seeds"];
     assert_eq!(
         (pdr["seeds"].as_u64(), pdr["method"].as_str()),

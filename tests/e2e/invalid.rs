@@ -95,6 +95,7 @@ invalid_inputs! {
     semantic_rate_must_fit_the_step => "semantic-rate-off-step",
     semantic_runs_must_be_at_least_one => "semantic-runs-zero",
     checks_over_seeds_are_validated => "check-over-seeds-errors",
+    temporal_and_per_object_checks_are_validated => "temporal-check-errors",
     interaction_area_has_one_shape => "interaction-area-two-shapes",
     semantic_traffic_errors_are_all_reported => "semantic-traffic-errors",
     malformed_yaml_is_a_syntax_error => "syntax-unclosed-flow",

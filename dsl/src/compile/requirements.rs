@@ -7,7 +7,9 @@ use super::sweep::json_eq;
 use crate::de::closest;
 use crate::error::{ErrorKind, Location};
 use crate::model::display_value;
-use crate::model::{Bound, Check, Experiment, Metric, OverSeeds, Point, RateBound, Reference, Requirement, Statistic};
+use crate::model::{
+    Bound, Check, Experiment, Metric, OverSeeds, Point, RateBound, Reference, Requirement, Statistic, Temporal,
+};
 use crate::path::Path;
 use crate::raw::{RawCheck, RawReference, RawRequirement};
 
@@ -62,6 +64,46 @@ pub(super) fn requirements(
             if let Check::Metric { metric, .. } = check
                 && !defined_everywhere(ctx, metric, &selected, points, &path.key("check").key("metric"))
             {
+                continue;
+            }
+            let semantic_at =
+                |i: usize| matches!(&points[i].setup.experiment, Experiment::World(w) if w.semantic.is_some());
+            let world_at =
+                |i: usize| matches!(&points[i].setup.experiment, Experiment::World(w) if w.perception.is_some());
+            let unmeasured = match check {
+                Check::Temporal { signal, .. } => selected
+                    .iter()
+                    .find(|&&i| {
+                        if signal.in_world() {
+                            !world_at(i)
+                        } else {
+                            !semantic_at(i)
+                        }
+                    })
+                    .map(|_| {
+                        let kind = if signal.in_world() {
+                            "collective perception"
+                        } else {
+                            "semantic"
+                        };
+                        (
+                            "signal",
+                            format!("signal `{}` is measured in {kind} worlds only", signal.name()),
+                        )
+                    }),
+                Check::PerObject { property, .. } => selected.iter().find(|&&i| !semantic_at(i)).map(|_| {
+                    (
+                        "per_object",
+                        format!(
+                            "`{}` is measured in worlds with a semantic pipeline only",
+                            property.name()
+                        ),
+                    )
+                }),
+                _ => None,
+            };
+            if let Some((key, message)) = unmeasured {
+                ctx.error(&path.key("check").key(key), ErrorKind::Invalid(message));
                 continue;
             }
             if let Check::Invariant { invariant, .. } = check
@@ -129,64 +171,129 @@ fn valid_id(id: &str) -> bool {
 }
 
 fn check(ctx: &mut Context<'_>, raw: &RawCheck, path: &Path) -> Option<Check> {
-    match (raw.metric, raw.invariant) {
-        (Some(metric), None) => {
-            if raw.tolerance.is_some() {
-                ctx.error(
-                    &path.key("tolerance"),
-                    ErrorKind::Invalid("`tolerance` belongs to invariant checks".into()),
-                );
-                return None;
-            }
-            let bound = match (raw.at_least, raw.at_most) {
-                (Some(t), None) => Bound::AtLeast(t),
-                (None, Some(t)) => Bound::AtMost(t),
-                _ => {
-                    ctx.error(
-                        path,
-                        ErrorKind::Invalid("a metric check gives exactly one of `at_least`, `at_most`".into()),
-                    );
-                    return None;
-                }
-            };
-            let key = if raw.at_least.is_some() { "at_least" } else { "at_most" };
-            let threshold_ok = ctx.finite(&path.key(key), bound.threshold());
-            let over_seeds = over_seeds(ctx, raw, path)?;
-            threshold_ok.then_some(Check::Metric {
-                metric,
-                bound,
-                over_seeds,
-            })
+    let kinds = [
+        raw.metric.is_some(),
+        raw.signal.is_some(),
+        raw.per_object.is_some(),
+        raw.invariant.is_some(),
+    ];
+    if kinds.iter().filter(|&&k| k).count() != 1 {
+        ctx.error(
+            path,
+            ErrorKind::Invalid(
+                "a check names one of a `metric` (with `at_least` or `at_most`), a `signal` (with `always` or \
+                 `eventually`), a `per_object` property or an `invariant`"
+                    .into(),
+            ),
+        );
+        return None;
+    }
+    if raw.signal.is_none() {
+        let temporal = [
+            ("always", raw.always.is_some()),
+            ("eventually", raw.eventually.is_some()),
+            ("within", raw.within.is_some()),
+        ];
+        if let Some((key, _)) = temporal.iter().find(|(_, given)| *given) {
+            ctx.error(
+                &path.key(key),
+                ErrorKind::Invalid(format!(
+                    "`{key}` applies to a `signal` over time, not to a single value"
+                )),
+            );
+            return None;
         }
-        (None, Some(invariant)) => {
-            if raw.seeds.is_some() {
-                ctx.error(
-                    &path.key("seeds"),
-                    ErrorKind::Invalid("an invariant holds in every run: `seeds` belongs to metric checks".into()),
-                );
-                return None;
-            }
-            if raw.at_least.is_some() || raw.at_most.is_some() {
+    }
+    if raw.metric.is_none() {
+        let statistical = [
+            ("seeds", raw.seeds.is_some()),
+            ("confidence", raw.confidence.is_some()),
+            ("holds_in", raw.holds_in.is_some()),
+            ("method", raw.method.is_some()),
+        ];
+        if let Some((key, _)) = statistical.iter().find(|(_, given)| *given) {
+            ctx.error(
+                &path.key(key),
+                ErrorKind::Invalid(format!("`{key}` belongs to metric checks over seeds")),
+            );
+            return None;
+        }
+    }
+    if raw.invariant.is_none() && raw.tolerance.is_some() {
+        ctx.error(
+            &path.key("tolerance"),
+            ErrorKind::Invalid("`tolerance` belongs to invariant checks".into()),
+        );
+        return None;
+    }
+    if let Some(invariant) = raw.invariant {
+        if raw.at_least.is_some() || raw.at_most.is_some() {
+            ctx.error(
+                path,
+                ErrorKind::Invalid("an invariant check takes no `at_least` or `at_most`".into()),
+            );
+            return None;
+        }
+        let tolerance = raw.tolerance.unwrap_or(DEFAULT_TOLERANCE);
+        return ctx
+            .non_negative(&path.key("tolerance"), tolerance)
+            .then_some(Check::Invariant { invariant, tolerance });
+    }
+    if let Some(signal) = raw.signal {
+        if raw.at_least.is_some() || raw.at_most.is_some() {
+            ctx.error(
+                path,
+                ErrorKind::Invalid("a signal's threshold goes under `always` or `eventually`".into()),
+            );
+            return None;
+        }
+        let (operator, threshold, key) = match (&raw.always, &raw.eventually) {
+            (Some(t), None) => (Temporal::Always, t, "always"),
+            (None, Some(t)) => (Temporal::Eventually, t, "eventually"),
+            _ => {
                 ctx.error(
                     path,
-                    ErrorKind::Invalid("an invariant check takes no `at_least` or `at_most`".into()),
+                    ErrorKind::Invalid("a signal check gives exactly one of `always`, `eventually`".into()),
                 );
                 return None;
             }
-            let tolerance = raw.tolerance.unwrap_or(DEFAULT_TOLERANCE);
-            ctx.non_negative(&path.key("tolerance"), tolerance)
-                .then_some(Check::Invariant { invariant, tolerance })
-        }
+        };
+        let bound = bound(ctx, threshold.at_least, threshold.at_most, &path.key(key))?;
+        let within_ok = raw.within.is_none_or(|w| ctx.positive(&path.key("within"), w));
+        return within_ok.then_some(Check::Temporal {
+            signal,
+            operator,
+            bound,
+            within: raw.within,
+        });
+    }
+    let bound = bound(ctx, raw.at_least, raw.at_most, path)?;
+    if let Some(property) = raw.per_object {
+        return Some(Check::PerObject { property, bound });
+    }
+    let metric = raw.metric.expect("one kind of check is named");
+    let over_seeds = over_seeds(ctx, raw, path)?;
+    Some(Check::Metric {
+        metric,
+        bound,
+        over_seeds,
+    })
+}
+
+/// Exactly one of `at_least`, `at_most`, finite, under `path`.
+fn bound(ctx: &mut Context<'_>, at_least: Option<f64>, at_most: Option<f64>, path: &Path) -> Option<Bound> {
+    let (bound, key) = match (at_least, at_most) {
+        (Some(t), None) => (Bound::AtLeast(t), "at_least"),
+        (None, Some(t)) => (Bound::AtMost(t), "at_most"),
         _ => {
             ctx.error(
                 path,
-                ErrorKind::Invalid(
-                    "a check names either a `metric` (with `at_least` or `at_most`) or an `invariant`".into(),
-                ),
+                ErrorKind::Invalid("give exactly one of `at_least`, `at_most`".into()),
             );
-            None
+            return None;
         }
-    }
+    };
+    ctx.finite(&path.key(key), bound.threshold()).then_some(bound)
 }
 
 /// Default confidence of a check over seeds.

@@ -13,7 +13,10 @@ pub use field::{ErrorModel, Field, Layout, Masses, Truth};
 pub use fusion::{
     Decision, Fusion, FusionMethod, Rule, SourceCombination, Switch, SwitchMeasure, WeightScaling, Weighting,
 };
-pub use requirement::{Bound, Check, Invariant, Metric, OverSeeds, RateBound, Reference, Requirement, Statistic};
+pub use requirement::{
+    Bound, Check, Invariant, Metric, ObjectProperty, OverSeeds, RateBound, Reference, Requirement, Signal, Statistic,
+    Temporal,
+};
 pub use scenario::{
     Assignment, Axis, Experiment, Grid, Import, ImportKind, Point, Scenario, Setup, Sweep, display_value,
 };

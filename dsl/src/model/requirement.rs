@@ -34,6 +34,24 @@ pub enum Check {
         /// the point's own run.
         over_seeds: Option<OverSeeds>,
     },
+    /// A signal over time against a threshold, with a temporal operator.
+    Temporal {
+        /// The signal.
+        signal: Signal,
+        /// `always` or `eventually`.
+        operator: Temporal,
+        /// The threshold at each step.
+        bound: Bound,
+        /// Only the first this many seconds of the run (`None`: all of it).
+        within: Option<f64>,
+    },
+    /// A property of every object that came within d_min of the ego.
+    PerObject {
+        /// The property.
+        property: ObjectProperty,
+        /// The threshold every object must meet.
+        bound: Bound,
+    },
     /// An invariant over every fused cell.
     Invariant {
         /// Which invariant.
@@ -82,6 +100,83 @@ pub enum RateBound {
     /// The Wilson score bound: closer to the stated confidence on average, below
     /// it for some sample sizes.
     Wilson,
+}
+
+/// Temporal operators over a signal's steps (signal temporal logic's G and F).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum Temporal {
+    /// At every step where the signal is defined; robustness is the smallest margin.
+    Always,
+    /// At some step where the signal is defined; robustness is the largest margin.
+    Eventually,
+}
+
+/// Signals: a value per step, for temporal checks.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum Signal {
+    /// World: the step's `occupied_recall` (defined when a cell is truly occupied).
+    OccupiedRecall,
+    /// World: the step's `blind_recall` (defined when the ego misses an occupied cell).
+    BlindRecall,
+    /// World: the step's `occupied_precision` (defined when a cell is decided Occupy).
+    OccupiedPrecision,
+    /// Semantic: objects the ego knows only through an RSU, at each step with the ego.
+    RsuOnlyObjects,
+    /// Semantic: the shortest predicted time to conflict, seconds, in an RSU's
+    /// message to the ego (defined at the cycles whose message flags a conflict).
+    TimeToConflict,
+}
+
+impl Signal {
+    /// Every signal in documentation order.
+    pub const ALL: [Signal; 5] = [
+        Self::OccupiedRecall,
+        Self::BlindRecall,
+        Self::OccupiedPrecision,
+        Self::RsuOnlyObjects,
+        Self::TimeToConflict,
+    ];
+
+    /// The name as written in scenario files.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::OccupiedRecall => "occupied_recall",
+            Self::BlindRecall => "blind_recall",
+            Self::OccupiedPrecision => "occupied_precision",
+            Self::RsuOnlyObjects => "rsu_only_objects",
+            Self::TimeToConflict => "time_to_conflict",
+        }
+    }
+
+    /// Whether a world measuring collective perception has it.
+    pub fn in_world(self) -> bool {
+        matches!(self, Self::OccupiedRecall | Self::BlindRecall | Self::OccupiedPrecision)
+    }
+
+    /// Whether a world running the semantic pipeline has it.
+    pub fn in_semantic(self) -> bool {
+        !self.in_world()
+    }
+}
+
+/// Properties of the objects that came within d_min of the ego.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum ObjectProperty {
+    /// Seconds from the first RSU message flagging a conflict with the object to
+    /// its close approach (an unflagged object has none, and fails).
+    WarningTime,
+}
+
+impl ObjectProperty {
+    /// The name as written in scenario files.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::WarningTime => "warning_time",
+        }
+    }
 }
 
 /// A threshold and its direction.

@@ -60,7 +60,22 @@ pub struct SemanticMetrics {
     pub missed_criticals: u64,
     /// Seconds the ego drove cautiously after a flagged conflict.
     pub cautious_time: f64,
+    /// Per close approach, in order: seconds from the first message flagging a
+    /// conflict with the object to the approach; `None` when none was flagged.
+    pub warnings: Vec<Option<f64>>,
+    /// Per pooled run, per step with the ego: (time, objects the ego knew only
+    /// through an RSU).
+    #[serde(skip)]
+    pub rsu_only: Vec<Series>,
+    /// Per pooled run, at each RSU cycle whose message to the ego flags a
+    /// conflict: (time, the shortest predicted time to conflict in it).
+    #[serde(skip)]
+    pub time_to_conflict: Vec<Series>,
 }
+
+/// A signal over a run: (time in seconds, value) at the steps it is defined,
+/// in time order.
+pub type Series = Vec<(f64, f64)>;
 
 /// Sent object-cycles by label.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
@@ -125,6 +140,9 @@ impl SemanticMetrics {
             close_approaches,
             missed_criticals,
             cautious_time,
+            warnings,
+            rsu_only,
+            time_to_conflict,
         } = other;
         self.runs += runs;
         self.steps += steps;
@@ -158,6 +176,9 @@ impl SemanticMetrics {
         self.close_approaches += close_approaches;
         self.missed_criticals += missed_criticals;
         self.cautious_time += cautious_time;
+        self.warnings.extend(warnings);
+        self.rsu_only.extend(rsu_only);
+        self.time_to_conflict.extend(time_to_conflict);
     }
 
     /// The value of `metric`, or `None` where it is not defined for this run.

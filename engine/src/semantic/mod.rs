@@ -13,7 +13,7 @@ mod traffic;
 
 pub use ldm::{Ldm, Measurement, Track};
 pub use message::{EtsiSender, Item, Labels, baseline_bytes, semantic_bytes};
-pub use metrics::{DELIVERY_BIN, DENSITY_BIN, DeliveryBin, DensityRow, LabelCounts, SemanticMetrics, quantile};
+pub use metrics::{DELIVERY_BIN, DENSITY_BIN, DeliveryBin, DensityRow, LabelCounts, SemanticMetrics, Series, quantile};
 pub use pipeline::{EgoPlan, Pipeline};
 pub use relevance::{Areas, approaches, contains, crosswalk_area};
 pub use risk::{

@@ -45,7 +45,7 @@ use sightline_dsl::{Agent, AgentKind, Motion, RsuSight, Semantic, ShareCycles, W
 
 use super::ldm::{Ldm, Measurement};
 use super::message::{EtsiSender, Item, baseline_bytes, semantic_bytes};
-use super::metrics::{DELIVERY_BIN, SemanticMetrics};
+use super::metrics::{DELIVERY_BIN, SemanticMetrics, Series};
 use super::pipeline::{EgoPlan, Pipeline};
 use super::relevance::{Areas, crosswalk_area};
 use super::risk::{MapRoute, RouteMap, lane_routes};
@@ -81,8 +81,8 @@ struct Knowledge {
     first_seen: Option<f64>,
     /// When its own V2X message last arrived.
     last_direct: Option<f64>,
-    /// Whether a conflict with it was flagged to the ego.
-    flagged: bool,
+    /// When a message flagging a conflict with it first reached the ego.
+    flagged: Option<f64>,
     /// Whether it is within d_min of the ego now.
     close: bool,
 }
@@ -163,6 +163,7 @@ fn run_once(seed: u64, world: &World, semantic: &Semantic, sink: &mut impl Trace
         ..Default::default()
     };
     let mut cautious_until = f64::NEG_INFINITY;
+    let (mut rsu_only, mut time_to_conflict): (Series, Series) = (Vec::new(), Vec::new());
     let mut states = Vec::new();
     let mut log = SemanticLog::default();
     sink.start(&agents);
@@ -183,7 +184,7 @@ fn run_once(seed: u64, world: &World, semantic: &Semantic, sink: &mut impl Trace
                     known.first_received = Some((at, known.first_seen.is_some()));
                 }
                 if item.labels.conflict.is_some() {
-                    known.flagged = true;
+                    known.flagged.get_or_insert(at);
                     cautious_until = cautious_until.max(at + semantic.caution.hold);
                 }
             }
@@ -220,15 +221,17 @@ fn run_once(seed: u64, world: &World, semantic: &Semantic, sink: &mut impl Trace
                 let close = (body.pose.translation - ego.position()).length() <= semantic.d_min;
                 if close && !known.close {
                     metrics.close_approaches += 1;
-                    metrics.missed_criticals += u64::from(!known.flagged);
+                    metrics.missed_criticals += u64::from(known.flagged.is_none());
+                    metrics.warnings.push(known.flagged.map(|at| time - at));
                     log.approaches.push(Approach {
                         agent: body.agent,
-                        flagged: known.flagged,
+                        flagged: known.flagged.is_some(),
                     });
                 }
                 known.close = close;
             }
             metrics.contribution.push((density(present), through_rsu));
+            rsu_only.push((time, f64::from(through_rsu)));
         }
 
         // RSUs run their cycle, and connected road users send, at the V2X rate.
@@ -284,6 +287,14 @@ fn run_once(seed: u64, world: &World, semantic: &Semantic, sink: &mut impl Trace
             }
             if shared {
                 count_labels(&mut metrics, &items);
+            }
+            let soonest = items
+                .iter()
+                .filter_map(|item| item.labels.conflict)
+                .map(|conflict| conflict.time)
+                .reduce(f64::min);
+            if let Some(soonest) = soonest {
+                time_to_conflict.push((time, soonest));
             }
             let bytes = semantic_bytes(items.len());
             metrics.bytes += bytes as u64;
@@ -357,6 +368,8 @@ fn run_once(seed: u64, world: &World, semantic: &Semantic, sink: &mut impl Trace
         }
     }
     metrics.anticipation.sort_by(f64::total_cmp);
+    metrics.rsu_only = vec![rsu_only];
+    metrics.time_to_conflict = vec![time_to_conflict];
     metrics
 }
 

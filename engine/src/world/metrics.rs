@@ -7,10 +7,11 @@
 //! ego's own footprint, and only at steps at which the ego is in the scene.
 
 use serde::Serialize;
-use sightline_dsl::Metric;
+use sightline_dsl::{Metric, Signal};
 
 use super::observe::Sightings;
 use crate::metrics::{ConflictMetrics, EstimateTally, MassAudit};
+use crate::semantic::Series;
 
 /// Everything measured at one sweep point of a world.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -23,6 +24,29 @@ pub struct WorldOutcome {
     /// draws them).
     #[serde(skip)]
     pub snapshot: Option<Snapshot>,
+    /// Each measured step's time and cell tallies, for temporal checks.
+    #[serde(skip)]
+    pub by_step: Vec<(f64, CellTally)>,
+}
+
+impl WorldOutcome {
+    /// `signal` at every measured step where it is defined (recall needs occupied
+    /// cells, precision cells decided Occupy); `None` for a semantic signal.
+    pub fn series(&self, signal: Signal) -> Option<Series> {
+        let ratio = |num: u64, den: u64| (den > 0).then(|| num as f64 / den as f64);
+        let value = |c: &CellTally| match signal {
+            Signal::OccupiedRecall => ratio(c.detected, c.occupied),
+            Signal::BlindRecall => ratio(c.blind_detected, c.blind_occupied),
+            Signal::OccupiedPrecision => ratio(c.detected, c.detected + c.false_positives),
+            Signal::RsuOnlyObjects | Signal::TimeToConflict => None,
+        };
+        signal.in_world().then(|| {
+            self.by_step
+                .iter()
+                .filter_map(|(time, cells)| value(cells).map(|v| (*time, v)))
+                .collect()
+        })
+    }
 }
 
 /// World metrics of one run.

@@ -92,6 +92,7 @@ pub fn run(
     };
     let mut tallies = vec![WorldTally::default(); jobs.len()];
     let mut snapshots: Vec<Option<Snapshot>> = vec![None; jobs.len()];
+    let mut by_step: Vec<Vec<(f64, CellTally)>> = vec![Vec::new(); jobs.len()];
     // The fused values of a pictured step, per job; kept for one step only.
     let mut values = vec![CellValues::default(); jobs.len()];
     sink.start(&world.agents);
@@ -243,6 +244,7 @@ pub fn run(
                     &values[j].probability,
                 ));
             }
+            by_step[j].push((time, cells));
             step_cells.push(cells);
         }
         let fused: Vec<FusedStep<'_>> = step_cells
@@ -274,7 +276,8 @@ pub fn run(
         .iter()
         .zip(jobs)
         .zip(snapshots)
-        .map(|((tally, job), snapshot)| {
+        .zip(by_step)
+        .map(|(((tally, job), snapshot), by_step)| {
             let (mean_uncertainty, conflict, audit) = tally.estimates.finish(job.fusion.rule.is_evidential());
             WorldOutcome {
                 metrics: WorldMetrics {
@@ -293,6 +296,7 @@ pub fn run(
                 },
                 audit,
                 snapshot,
+                by_step,
             }
         })
         .collect()

@@ -2,7 +2,9 @@
 
 pub(crate) mod invariant;
 pub(crate) mod metric;
+pub(crate) mod object;
 pub(crate) mod seeds;
+pub(crate) mod temporal;
 
 /// A number for messages: six significant digits, no trailing zeros, so that
 /// rounding noise (0.00682499999999997) does not reach a log. Full precision stays
