@@ -48,3 +48,17 @@ pub fn say(line: impl Display) {
         eprintln!("warning: failed to write to stdout: {error}");
     }
 }
+
+/// A progress bar over `len` sweep points of `name` on stderr, shown only on a
+/// terminal outside CI (`CI` unset): logs and pipes stay quiet.
+pub fn progress(len: usize, name: &str) -> indicatif::ProgressBar {
+    use std::io::IsTerminal;
+    if std::env::var_os("CI").is_some() || !std::io::stderr().is_terminal() {
+        return indicatif::ProgressBar::hidden();
+    }
+    let bar = indicatif::ProgressBar::new(len as u64).with_message(name.to_string());
+    if let Ok(style) = indicatif::ProgressStyle::with_template("{msg} [{bar:30}] {pos}/{len} points, {elapsed}") {
+        bar.set_style(style.progress_chars("=> "));
+    }
+    bar
+}

@@ -25,7 +25,7 @@
 #![warn(missing_docs)]
 
 pub use metrics::{BandMetrics, ConflictMetrics, Coverage, FieldMetrics, FieldOutcome, MassAudit};
-pub use run::{Job, Outcome, Run, simulate, simulate_point};
+pub use run::{Job, Outcome, Run, simulate, simulate_point, simulate_reporting};
 pub use sink::{NoTrace, TraceSink};
 
 pub mod field;

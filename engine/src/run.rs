@@ -105,6 +105,12 @@ pub struct Run {
 /// n − 1 replicate seeds derived from its own, in parallel; replicates of points
 /// that share data share them too.
 pub fn simulate(scenario: &Scenario) -> Run {
+    simulate_reporting(scenario, &mut |_| {})
+}
+
+/// [`simulate`], calling `done(n)` each time another n points (with their
+/// replicates) are simulated, for a progress display. The run is the same.
+pub fn simulate_reporting(scenario: &Scenario, done: &mut dyn FnMut(usize)) -> Run {
     let mut outcomes: Vec<Option<Outcome>> = vec![None; scenario.points.len()];
     let mut replicates: Vec<Vec<Outcome>> = vec![Vec::new(); scenario.points.len()];
     let seeds = seeds_needed(scenario);
@@ -126,6 +132,7 @@ pub fn simulate(scenario: &Scenario) -> Run {
                 replicates[i].push(outcome);
             }
         }
+        done(group.len());
     }
     Run {
         points: outcomes

@@ -10,7 +10,7 @@ use sightline_reports::{Provenance, Tool, render, sha256_hex};
 use crate::cli::RunArgs;
 use crate::exit::Exit;
 use crate::input::{Input, load_all};
-use crate::output::{say, write_atomically};
+use crate::output::{progress, say, write_atomically};
 
 /// Validates every file first (nothing is written if one is invalid), then runs
 /// each scenario and writes its evidence.
@@ -28,9 +28,11 @@ pub fn run(args: &RunArgs) -> anyhow::Result<Exit> {
     let mut exit = Exit::Pass;
     for (input, dir) in inputs.iter().zip(&dirs) {
         let scenario = &input.scenario;
-        let run = pool.install(|| sightline_engine::simulate(scenario));
-        let verdicts = sightline_oracles::check(scenario, &run);
         let path = input.path.display().to_string();
+        let bar = progress(scenario.points.len(), &path);
+        let run = pool.install(|| sightline_engine::simulate_reporting(scenario, &mut |n| bar.inc(n as u64)));
+        bar.finish_and_clear();
+        let verdicts = sightline_oracles::check(scenario, &run);
         let provenance = Provenance {
             tool: Tool {
                 name: "sightline".into(),
