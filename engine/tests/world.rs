@@ -6,7 +6,7 @@ mod common;
 use common::in_pool;
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngAlgorithm, RngSeed, TestRunner};
-use sightline_dsl::{Metric, Scenario, compile};
+use sightline_dsl::{Metric, Scenario, Signal, compile};
 use sightline_engine::world::WorldOutcome;
 use sightline_engine::{Outcome, simulate};
 
@@ -41,7 +41,7 @@ agents:
   - { id: car, kind: car, route: [north_south], start: { offset: 5 }, speed: { target: 7 } }
 localization: { position_sigma: {sigma}, heading_sigma_deg: {heading}, filter: {filter} }
 perception: { ego: ego }
-fusion: { method: bayes }
+fusion: { method: {method} }
 decision: { threshold: 0 }
 sweep:
   perception.cooperating: [1, 2, 3, 4, 5]
@@ -52,6 +52,7 @@ struct Setting {
     offsets: [u32; 5],
     sigma: f64,
     filter: &'static str,
+    method: &'static str,
 }
 
 impl Setting {
@@ -60,7 +61,8 @@ impl Setting {
             .replace("{seed}", &self.seed.to_string())
             .replace("{sigma}", &self.sigma.to_string())
             .replace("{heading}", &(self.sigma * 5.0).to_string())
-            .replace("{filter}", self.filter);
+            .replace("{filter}", self.filter)
+            .replace("{method}", self.method);
         for (i, offset) in self.offsets.iter().enumerate() {
             text = text.replace(&format!("{{o{i}}}"), &offset.to_string());
         }
@@ -78,6 +80,7 @@ fn nominal(sigma: f64, filter: &'static str) -> Setting {
         offsets: [10, 15, 20, 30, 5],
         sigma,
         filter,
+        method: "bayes",
     }
 }
 
@@ -144,6 +147,7 @@ fn cooperation_never_loses_coverage_or_recall_with_exact_poses() {
                 offsets,
                 sigma: 0.0,
                 filter: "kalman",
+                method: "bayes",
             };
             let run = simulate(&setting.scenario());
             let outcomes: Vec<&WorldOutcome> = run.points.iter().map(world).collect();
@@ -157,6 +161,67 @@ fn cooperation_never_loses_coverage_or_recall_with_exact_poses() {
                     fewer.detected
                 );
                 prop_assert_eq!(more.occupied, fewer.occupied);
+            }
+            Ok(())
+        })
+        .unwrap();
+}
+
+/// On random small scenes (seed, start offsets, localization noise, fusion
+/// method), every metric stays in its range, every fused cell holds a valid
+/// mass function or probability, every step's signal stays in [0, 1], and the
+/// steps' tallies add up to the run's.
+#[test]
+fn metrics_and_masses_stay_valid_on_random_scenes() {
+    let config = Config {
+        cases: 10,
+        failure_persistence: None,
+        rng_algorithm: RngAlgorithm::ChaCha,
+        rng_seed: RngSeed::Fixed(21),
+        ..Config::default()
+    };
+    let methods = ["bayes", "dempster", "distance_weighted"];
+    let strategy = (
+        0u64..1000,
+        proptest::array::uniform5(0u32..60),
+        0u32..=5,
+        0usize..methods.len(),
+    );
+    TestRunner::new(config)
+        .run(&strategy, |(seed, offsets, tenths, method)| {
+            let setting = Setting {
+                seed,
+                offsets,
+                sigma: f64::from(tenths) / 10.0,
+                filter: "kalman",
+                method: methods[method],
+            };
+            let run = simulate(&setting.scenario());
+            for outcome in &run.points {
+                let o = world(outcome);
+                for metric in [Metric::OccupiedRecall, Metric::OccupiedPrecision, Metric::BlindRecall] {
+                    if let Some(v) = o.metrics.value(metric) {
+                        prop_assert!((0.0..=1.0).contains(&v), "{} = {v}", metric.name());
+                    }
+                }
+                prop_assert!(o.metrics.value(Metric::FovGain).is_none_or(|g| g >= 0.0));
+                prop_assert!(o.metrics.detected <= o.metrics.occupied);
+                prop_assert!(o.metrics.blind_detected <= o.metrics.blind_occupied);
+                let audit = &o.audit;
+                prop_assert_eq!(audit.non_finite, 0);
+                prop_assert!(audit.min_mass.is_none_or(|m| m >= -1e-12));
+                prop_assert!(audit.max_mass.is_none_or(|m| m <= 1.0 + 1e-12));
+                prop_assert!(audit.max_sum_error <= 1e-9, "Σm − 1 = {}", audit.max_sum_error);
+                for signal in [Signal::OccupiedRecall, Signal::BlindRecall, Signal::OccupiedPrecision] {
+                    for &(_, v) in &o.series(signal).expect("a world signal")[..] {
+                        prop_assert!((0.0..=1.0).contains(&v), "{} = {v}", signal.name());
+                    }
+                }
+                let (occupied, detected) = o
+                    .by_step
+                    .iter()
+                    .fold((0, 0), |(n, d), (_, c)| (n + c.occupied, d + c.detected));
+                prop_assert_eq!((occupied, detected), (o.metrics.occupied, o.metrics.detected));
             }
             Ok(())
         })
