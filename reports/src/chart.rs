@@ -7,6 +7,8 @@ use base64::engine::general_purpose::STANDARD;
 use plotters::prelude::*;
 use serde::Serialize;
 
+use crate::results::{Detail, PointResult, Results};
+
 /// Size of a chart, pixels.
 const SIZE: (u32, u32) = (640, 300);
 
@@ -61,7 +63,10 @@ pub fn anticipation(sorted: &[f64]) -> Result<Option<Chart>, ChartError> {
     };
     let bandwidth = silverman_bandwidth(sorted);
     let pad = bandwidth.map_or(0.5, |h| 3.0 * h);
-    let (x0, x1) = ((first - pad).min(0.0), last + pad);
+    // Anticipation times are never negative: the estimate is reflected at 0
+    // (Silverman 1986, §2.10) so that no density leaks below it.
+    let reflect = first >= 0.0;
+    let (x0, x1) = (if reflect { 0.0 } else { first - pad }, last + pad);
     let bins = ((sorted.len() as f64).sqrt().ceil() as usize).clamp(5, 40);
     let width = (last - first).max(1e-9) / bins as f64;
     let mut counts = vec![0usize; bins];
@@ -85,7 +90,8 @@ pub fn anticipation(sorted: &[f64]) -> Result<Option<Chart>, ChartError> {
             (0..=CURVE_POINTS)
                 .map(|i| {
                     let x = x0 + (x1 - x0) * i as f64 / CURVE_POINTS as f64;
-                    (x, kde(sorted, h, x))
+                    let mirrored = if reflect { kde(sorted, h, -x) } else { 0.0 };
+                    (x, kde(sorted, h, x) + mirrored)
                 })
                 .collect()
         })
@@ -129,7 +135,7 @@ pub fn anticipation(sorted: &[f64]) -> Result<Option<Chart>, ChartError> {
     }
     let caption = match bandwidth {
         Some(h) => format!(
-            "Anticipation times of {} objects: histogram as a density, and a Gaussian kernel density estimate (Silverman bandwidth {h:.2} s).",
+            "Anticipation times of {} objects: histogram as a density, and a Gaussian kernel density estimate (Silverman bandwidth {h:.2} s, reflected at 0).",
             sorted.len()
         ),
         None => format!(
@@ -141,6 +147,178 @@ pub fn anticipation(sorted: &[f64]) -> Result<Option<Chart>, ChartError> {
         caption,
         src: format!("data:image/svg+xml;base64,{}", STANDARD.encode(svg)),
     }))
+}
+
+/// A named line of (x, y) points.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Line {
+    /// Its legend entry.
+    pub name: String,
+    /// Its points, in x order.
+    pub points: Vec<(f64, f64)>,
+}
+
+/// Line colours, in order (a colour-blind-safe palette, Okabe and Ito).
+const PALETTE: [RGBColor; 7] = [
+    RGBColor(0, 114, 178),
+    RGBColor(230, 159, 0),
+    RGBColor(0, 158, 115),
+    RGBColor(204, 121, 167),
+    RGBColor(86, 180, 233),
+    RGBColor(213, 94, 0),
+    RGBColor(240, 228, 66),
+];
+
+/// Lines with markers over a shared x axis, and published values as black
+/// crosses; a legend names each line. `None` when there is nothing to draw.
+pub fn lines_chart(
+    caption: String,
+    (x_desc, y_desc): (&str, &str),
+    lines: &[Line],
+    published: &[(f64, f64)],
+) -> Result<Option<Chart>, ChartError> {
+    let all = || lines.iter().flat_map(|l| &l.points).chain(published);
+    let Some((x0, x1, y0, y1)) = all().fold(None, |acc: Option<(f64, f64, f64, f64)>, &(x, y)| {
+        Some(acc.map_or((x, x, y, y), |(a, b, c, d)| (a.min(x), b.max(x), c.min(y), d.max(y))))
+    }) else {
+        return Ok(None);
+    };
+    let pad = |lo: f64, hi: f64| {
+        let span = if hi > lo { hi - lo } else { lo.abs().max(1.0) };
+        (lo - 0.05 * span, hi + 0.05 * span)
+    };
+    let ((x0, x1), (y0, y1)) = (pad(x0, x1), pad(y0.min(0.0), y1));
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
+        root.fill(&WHITE).map_err(error)?;
+        let mut chart = ChartBuilder::on(&root)
+            .margin(12)
+            .x_label_area_size(40)
+            .y_label_area_size(56)
+            .build_cartesian_2d(x0..x1, y0..y1)
+            .map_err(error)?;
+        chart
+            .configure_mesh()
+            .x_desc(x_desc)
+            .y_desc(y_desc)
+            .light_line_style(WHITE)
+            .draw()
+            .map_err(error)?;
+        for (i, line) in lines.iter().enumerate() {
+            let colour = PALETTE[i % PALETTE.len()];
+            chart
+                .draw_series(LineSeries::new(line.points.iter().copied(), colour.stroke_width(2)))
+                .map_err(error)?
+                .label(line.name.clone())
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], colour.stroke_width(2)));
+            chart
+                .draw_series(line.points.iter().map(|&p| Circle::new(p, 3, colour.filled())))
+                .map_err(error)?;
+        }
+        if !published.is_empty() {
+            chart
+                .draw_series(published.iter().map(|&p| Cross::new(p, 5, BLACK.stroke_width(2))))
+                .map_err(error)?
+                .label("published")
+                .legend(|(x, y)| Cross::new((x + 8, y), 4, BLACK.stroke_width(2)));
+        }
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK.mix(0.3))
+            .position(SeriesLabelPosition::LowerRight)
+            .draw()
+            .map_err(error)?;
+        root.present().map_err(error)?;
+    }
+    Ok(Some(Chart {
+        caption,
+        src: format!("data:image/svg+xml;base64,{}", STANDARD.encode(svg)),
+    }))
+}
+
+/// One chart per metric a requirement or reference cites, for each sweep with a
+/// numeric axis: the metric over the first numeric axis, one line per
+/// combination of the other settings, published values as crosses. One list per
+/// sweep, in sweep order.
+pub(crate) fn sweep_charts(results: &Results) -> Result<Vec<Vec<Chart>>, ChartError> {
+    let metrics = results.cited_metrics();
+    results
+        .sweeps
+        .iter()
+        .map(|sweep| {
+            let Some(axis) = sweep
+                .axes
+                .iter()
+                .find(|a| a.values.iter().all(serde_json::Value::is_number))
+            else {
+                return Ok(Vec::new());
+            };
+            let points: Vec<&PointResult> = sweep.points.iter().map(|&p| &results.sweep[p]).collect();
+            let mut charts = Vec::new();
+            for &metric in &metrics {
+                let mut lines: Vec<Line> = Vec::new();
+                for point in &points {
+                    let (Some(x), Some(y)) = (setting(point, &axis.path), point.metrics.get(metric)) else {
+                        continue;
+                    };
+                    let name = others(point, &axis.path);
+                    match lines.iter_mut().find(|l| l.name == name) {
+                        Some(line) => line.points.push((x, y)),
+                        None => lines.push(Line {
+                            name,
+                            points: vec![(x, y)],
+                        }),
+                    }
+                }
+                for line in &mut lines {
+                    line.points.sort_by(|a, b| a.0.total_cmp(&b.0));
+                }
+                let published: Vec<(f64, f64)> = results
+                    .references
+                    .iter()
+                    .filter(|r| r.metric == metric)
+                    .flat_map(|r| r.points.iter().map(move |p| (p.point, r.published)))
+                    .filter(|(p, _)| sweep.points.contains(p))
+                    .filter_map(|(p, value)| Some((setting(&results.sweep[p], &axis.path)?, value)))
+                    .collect();
+                let caption = format!("{metric} over {}", axis.path);
+                charts.extend(lines_chart(caption, (&axis.path, metric), &lines, &published)?);
+            }
+            Ok(charts)
+        })
+        .collect()
+}
+
+/// The numeric value of setting `path` at `point`.
+fn setting(point: &PointResult, path: &str) -> Option<f64> {
+    point
+        .settings
+        .0
+        .iter()
+        .find(|(k, _)| k == path)
+        .and_then(|(_, v)| v.as_f64())
+}
+
+/// The point's other swept settings and its method, as a legend entry.
+fn others(point: &PointResult, path: &str) -> String {
+    let mut parts: Vec<String> = point
+        .settings
+        .0
+        .iter()
+        .filter(|(k, _)| k != path)
+        .map(|(k, v)| format!("{k}={}", sightline_dsl::display_value(v)))
+        .collect();
+    let fused = !matches!(point.detail, Detail::Semantic { .. });
+    if fused && !point.fusion.is_empty() && !point.settings.0.iter().any(|(k, _)| k.starts_with("fusion")) {
+        parts.push(point.fusion.clone());
+    }
+    if parts.is_empty() {
+        "measured".into()
+    } else {
+        parts.join(", ")
+    }
 }
 
 fn error(e: impl std::fmt::Display) -> ChartError {
@@ -171,6 +349,29 @@ mod tests {
         // Symmetric samples give a symmetric estimate.
         let symmetric = [-1.0, 1.0];
         assert!((kde(&symmetric, 0.5, 0.3) - kde(&symmetric, 0.5, -0.3)).abs() < 1e-15);
+    }
+
+    #[test]
+    fn lines_draw_every_line_in_the_legend() {
+        assert_eq!(lines_chart("none".into(), ("x", "y"), &[], &[]).unwrap(), None);
+        let chart = lines_chart(
+            "recall".into(),
+            ("cooperating vehicles", "occupied_recall"),
+            &[Line {
+                name: "bayes".into(),
+                points: vec![(1.0, 0.43), (6.0, 0.92)],
+            }],
+            &[(6.0, 0.94)],
+        )
+        .unwrap()
+        .unwrap();
+        let svg = String::from_utf8(
+            STANDARD
+                .decode(chart.src.strip_prefix("data:image/svg+xml;base64,").unwrap())
+                .unwrap(),
+        )
+        .unwrap();
+        assert!(svg.contains("bayes") && svg.contains("published") && svg.contains("cooperating vehicles"));
     }
 
     #[test]

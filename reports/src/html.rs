@@ -34,18 +34,22 @@ const TABLE_METRICS: [&str; 11] = [
 
 /// Renders the report. `reproduce` is the command that re-creates the run;
 /// `pictures` holds the grid pictures of each point (world points only), `charts`
-/// the charts of each point.
+/// the charts of each point, `sweep_charts` those of each sweep.
 pub fn html(
     results: &Results,
     reproduce: &str,
     pictures: &[Option<Pictures>],
     charts: &[Vec<Chart>],
+    sweep_charts: &[Vec<Chart>],
 ) -> Result<String, minijinja::Error> {
     let mut env = Environment::new();
     env.set_undefined_behavior(UndefinedBehavior::Strict);
     // The name ends in `.html`, so minijinja escapes every interpolation.
     env.add_template("report.html", TEMPLATE)?;
-    let view = View::new(results, reproduce, pictures, charts);
+    let mut view = View::new(results, reproduce, pictures, charts);
+    for (sweep, charts) in view.sweeps.iter_mut().zip(sweep_charts) {
+        sweep.charts.clone_from(charts);
+    }
     env.get_template("report.html")?
         .render(context! { report => Value::from(Serde(&view)) })
 }
@@ -101,6 +105,7 @@ struct TableView {
 struct SweepView {
     title: String,
     table: TableView,
+    charts: Vec<Chart>,
 }
 
 #[derive(Serialize)]
@@ -226,6 +231,7 @@ fn sweep_tables(results: &Results) -> Vec<SweepView> {
         return vec![SweepView {
             title: "Results".into(),
             table: sweep_table(results, &[], &all),
+            charts: Vec::new(),
         }];
     }
     results
@@ -237,6 +243,7 @@ fn sweep_tables(results: &Results) -> Vec<SweepView> {
             SweepView {
                 title: format!("Results over {}", paths.join(" × ")),
                 table: sweep_table(results, &paths, &points),
+                charts: Vec::new(),
             }
         })
         .collect()
@@ -246,13 +253,7 @@ fn sweep_tables(results: &Results) -> Vec<SweepView> {
 /// requirement or reference uses, each followed by its published value if any.
 fn sweep_table(results: &Results, axes: &[&str], points: &[&PointResult]) -> TableView {
     let mut metrics: Vec<&str> = TABLE_METRICS.to_vec();
-    let used = results
-        .requirements
-        .iter()
-        .filter(|r| r.check.kind == "metric")
-        .map(|r| r.check.name)
-        .chain(results.references.iter().map(|r| r.metric));
-    for name in used {
+    for name in results.cited_metrics() {
         if !metrics.contains(&name) {
             metrics.push(name);
         }

@@ -6,7 +6,7 @@
 //! `sightline-oracles`).
 #![warn(missing_docs)]
 
-pub use chart::{Chart, ChartError, anticipation, kde, silverman_bandwidth};
+pub use chart::{Chart, ChartError, Line, anticipation, kde, lines_chart, silverman_bandwidth};
 pub use html::html;
 pub use junit::junit;
 pub use picture::{Pictures, pictures};
@@ -99,7 +99,8 @@ pub fn render(
             _ => Ok(Vec::new()),
         })
         .collect::<Result<Vec<Vec<Chart>>, ChartError>>()?;
-    let report_html = html(&results, reproduce, &pictures, &charts)?;
+    let sweep_charts = chart::sweep_charts(&results)?;
+    let report_html = html(&results, reproduce, &pictures, &charts, &sweep_charts)?;
     Ok(Evidence {
         results,
         results_json,

@@ -285,6 +285,24 @@ impl<T: Serialize> Serialize for Ordered<T> {
 }
 
 impl Results {
+    /// The metrics that metric requirements and published references name, each
+    /// once, in file order.
+    pub fn cited_metrics(&self) -> Vec<&'static str> {
+        let mut metrics: Vec<&'static str> = Vec::new();
+        let named = self
+            .requirements
+            .iter()
+            .filter(|r| r.check.kind == "metric")
+            .map(|r| r.check.name)
+            .chain(self.references.iter().map(|r| r.metric));
+        for name in named {
+            if !metrics.contains(&name) {
+                metrics.push(name);
+            }
+        }
+        metrics
+    }
+
     /// Assembles the results of a run.
     pub fn new(scenario: &Scenario, run: &Run, verdicts: &[Verdict], provenance: &Provenance) -> Self {
         let labels: Vec<String> = scenario.points.iter().map(|p| p.label()).collect();

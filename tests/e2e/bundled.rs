@@ -147,6 +147,14 @@ pub fn roundabout() -> &'static serde_json::Value {
         let out = tmp.path().join("out");
         sightline(["run", "scenarios/roundabout-six-agents.yaml", "--out", arg(&out)]).assert_exit(0);
         assert_evidence_files(&out);
+        // Each sweep's cited metrics are drawn over its axis.
+        let html = unescape_html(&read(&out.join("report.html")));
+        for caption in [
+            "occupied_recall over perception.cooperating",
+            "occupied_recall over localization.position_sigma",
+        ] {
+            assert!(html.contains(caption), "the report lacks the chart {caption:?}");
+        }
         read_json(&out.join("results.json"))
     })
 }
