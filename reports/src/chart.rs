@@ -7,6 +7,8 @@ use base64::engine::general_purpose::STANDARD;
 use plotters::prelude::*;
 use serde::Serialize;
 
+use sightline_engine::semantic::{DELIVERY_BIN, DENSITY_BIN, SemanticMetrics};
+
 use crate::results::{Detail, PointResult, Results};
 
 /// Size of a chart, pixels.
@@ -147,6 +149,53 @@ pub fn anticipation(sorted: &[f64]) -> Result<Option<Chart>, ChartError> {
         caption,
         src: format!("data:image/svg+xml;base64,{}", STANDARD.encode(svg)),
     }))
+}
+
+/// A semantic point's charts: its anticipation times, the objects the ego knows
+/// only through an RSU by traffic density (median and mean per bin), and the
+/// delivery ratio of the RSU's messages by distance.
+pub(crate) fn semantic_charts(m: &SemanticMetrics) -> Result<Vec<Chart>, ChartError> {
+    let rows = m.contribution_by_density();
+    let centre = |from: f64| from + DENSITY_BIN / 2.0;
+    let by_density = [
+        Line {
+            name: "median".into(),
+            points: rows.iter().map(|r| (centre(r.from), r.median)).collect(),
+        },
+        Line {
+            name: "mean".into(),
+            points: rows.iter().map(|r| (centre(r.from), r.mean)).collect(),
+        },
+    ];
+    let delivery = [Line {
+        name: "delivered / sent".into(),
+        points: m
+            .delivery_by_distance
+            .iter()
+            .enumerate()
+            .filter(|(_, b)| b.sent > 0)
+            .map(|(i, b)| ((i as f64 + 0.5) * DELIVERY_BIN, b.received as f64 / b.sent as f64))
+            .collect(),
+    }];
+    let charts = [
+        anticipation(&m.anticipation)?,
+        lines_chart(
+            format!(
+                "Objects the ego knows only through an RSU, by the scene's density ({} objects/km bins, at their centres).",
+                DENSITY_BIN
+            ),
+            ("objects per km", "objects known only through an RSU"),
+            &by_density,
+            &[],
+        )?,
+        lines_chart(
+            format!("Share of the RSU's messages that reach the ego, by distance ({DELIVERY_BIN} m bins)."),
+            ("RSU–ego distance (m)", "delivery ratio"),
+            &delivery,
+            &[],
+        )?,
+    ];
+    Ok(charts.into_iter().flatten().collect())
 }
 
 /// A named line of (x, y) points.

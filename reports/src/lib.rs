@@ -95,7 +95,7 @@ pub fn render(
         .points
         .iter()
         .map(|outcome| match outcome {
-            Outcome::Semantic(m) => Ok(anticipation(&m.anticipation)?.into_iter().collect()),
+            Outcome::Semantic(m) => chart::semantic_charts(m),
             _ => Ok(Vec::new()),
         })
         .collect::<Result<Vec<Vec<Chart>>, ChartError>>()?;
