@@ -31,6 +31,9 @@ pub enum Command {
         #[arg(long)]
         markdown: bool,
     },
+    /// Check sightline against known answers computed by hand (fusion, line of
+    /// sight, radio channel, confidence bounds); for tool qualification.
+    Selftest,
 }
 
 #[derive(Debug, Args)]

@@ -10,7 +10,7 @@
 //! and its reported value is the one with the smallest margin.
 #![warn(missing_docs)]
 
-pub use check::seeds::SeedStatistics;
+pub use check::seeds::{SeedStatistics, clopper_pearson_lower, mean_bound, wilson_lower};
 pub use verdict::{Evaluation, Status, Verdict, check};
 
 mod check;

@@ -3,6 +3,7 @@
 mod check;
 mod run;
 mod schema;
+mod selftest;
 
 use crate::cli::{Cli, Command};
 use crate::exit::Exit;
@@ -13,5 +14,6 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<Exit> {
         Command::Run(args) => run::run(&args),
         Command::Check { files } => Ok(check::check(&files)),
         Command::Schema { markdown } => schema::schema(markdown),
+        Command::Selftest => Ok(selftest::selftest()),
     }
 }

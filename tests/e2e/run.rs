@@ -460,3 +460,19 @@ fn markup_in_scenario_text_is_escaped_in_the_report() {
         "escaped requirement text missing"
     );
 }
+
+/// `selftest` reproduces every hand-computed known answer and says so.
+#[test]
+fn selftest_reproduces_its_known_answers() {
+    let outcome = sightline(["selftest"]);
+    outcome.assert_exit(0);
+    let lines: Vec<&str> = outcome.stdout.lines().collect();
+    let cases = lines.iter().filter(|l| l.starts_with("PASS ")).count();
+    assert!(cases >= 14, "{outcome}");
+    assert!(!outcome.stdout.contains("FAIL "), "{outcome}");
+    let summary = lines.last().unwrap();
+    assert!(
+        summary.ends_with(&format!("selftest: {cases} of {cases} known answers hold")),
+        "{summary}"
+    );
+}

@@ -106,7 +106,8 @@ pub(crate) fn evaluate(
 /// The mean of `values` and its one-sided Student-t bound at `confidence`:
 /// mean ∓ t(confidence, n − 1) · s / √n (upper with `upper`). It assumes the
 /// seeds' values are roughly normal; with no spread the bound is the mean.
-fn mean_bound(values: &[f64], confidence: f64, upper: bool) -> (f64, f64) {
+/// Needs at least two values.
+pub fn mean_bound(values: &[f64], confidence: f64, upper: bool) -> (f64, f64) {
     let n = values.len() as f64;
     let mean = values.iter().sum::<f64>() / n;
     let variance = values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1.0);
@@ -119,7 +120,7 @@ fn mean_bound(values: &[f64], confidence: f64, upper: bool) -> (f64, f64) {
 
 /// The exact one-sided lower bound of a binomial share with `k` successes in
 /// `n` trials: the 1 − confidence quantile of Beta(k, n − k + 1); 0 when k = 0.
-fn clopper_pearson_lower(k: u32, n: u32, confidence: f64) -> f64 {
+pub fn clopper_pearson_lower(k: u32, n: u32, confidence: f64) -> f64 {
     if k == 0 {
         return 0.0;
     }
@@ -130,7 +131,7 @@ fn clopper_pearson_lower(k: u32, n: u32, confidence: f64) -> f64 {
 
 /// The Wilson score one-sided lower bound of a binomial share with `k`
 /// successes in `n` trials.
-fn wilson_lower(k: u32, n: u32, confidence: f64) -> f64 {
+pub fn wilson_lower(k: u32, n: u32, confidence: f64) -> f64 {
     let z = Normal::standard().inverse_cdf(confidence);
     let (n, p) = (f64::from(n), f64::from(k) / f64::from(n));
     let centre = p + z * z / (2.0 * n);
