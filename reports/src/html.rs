@@ -61,6 +61,8 @@ struct View<'a> {
     verdict: &'static str,
     summary: Summary,
     provenance: Vec<(&'static str, String)>,
+    /// The operational scenario as declared, for the argument's context.
+    context: Vec<String>,
     requirements: Vec<RequirementView>,
     sweeps: Vec<SweepView>,
     comparisons: Vec<ComparisonView>,
@@ -135,6 +137,7 @@ impl<'a> View<'a> {
             verdict: results.verdict.name(),
             summary: results.summary,
             provenance: provenance(results, reproduce),
+            context: context(results),
             requirements: results.requirements.iter().map(requirement_view).collect(),
             sweeps: sweep_tables(results),
             comparisons: comparisons(results),
@@ -165,6 +168,32 @@ impl<'a> View<'a> {
 /// A measured value, or a dash where it is undefined.
 fn or_dash(value: Option<f64>) -> String {
     value.map_or_else(|| "—".into(), number)
+}
+
+/// The context of the argument: the scenario file and what it imports, its
+/// seeds and the settings it sweeps.
+fn context(results: &Results) -> Vec<String> {
+    let mut context: Vec<String> = results
+        .inputs
+        .iter()
+        .map(|input| format!("{} ({})", input.path, input.kind))
+        .collect();
+    context.push(match results.seed {
+        Some(seed) => format!("seed {seed}"),
+        None => "seeds as swept".into(),
+    });
+    for sweep in &results.sweeps {
+        let axes: Vec<String> = sweep
+            .axes
+            .iter()
+            .map(|a| {
+                let values: Vec<String> = a.values.iter().map(display_value).collect();
+                format!("{} ∈ {{{}}}", a.path, values.join(", "))
+            })
+            .collect();
+        context.push(format!("swept: {}", axes.join(" × ")));
+    }
+    context
 }
 
 fn provenance(results: &Results, reproduce: &str) -> Vec<(&'static str, String)> {

@@ -301,6 +301,10 @@ fn sumo_grid_scenario_runs_end_to_end_and_hashes_its_imports() {
     for (_, path, sha) in &expected {
         assert!(html.contains(sha.as_str()), "the report lacks the hash of {path}");
     }
+    // The argument: one sub-goal and one solution per requirement, the imports as context.
+    assert!(html.contains("S1</b> Argue over each of the 6 requirements"));
+    assert!(html.contains("G1.6</b> GRID-MISS-30"));
+    assert!(html.contains("<li>scenarios/sumo/grid3x3.fcd.xml (sumo_fcd)</li>"));
     let point = &results["sweep"][0];
     assert_eq!(point["experiment"], "semantic");
     // veh7 is in the trace from 7.0 s to 53.1 s: 462 steps of 0.1 s.
