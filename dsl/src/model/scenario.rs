@@ -26,6 +26,8 @@ pub struct Scenario {
     pub references: Vec<Reference>,
     /// The files the scenario imports (`traces`), in the order read.
     pub imports: Vec<Import>,
+    /// The settings `sightline falsify` varies, in file order (`run` ignores them).
+    pub vary: Vec<super::Vary>,
 }
 
 /// A file a scenario imports, as it was read.
