@@ -2,9 +2,10 @@
 //! directory, renamed into place, so a reader never sees half a file), and lines
 //! on stdout.
 
+use std::ffi::OsString;
 use std::fmt::Display;
 use std::io::{ErrorKind, Write};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use anyhow::Context;
 
@@ -36,6 +37,17 @@ pub fn write_atomically(dir: &Path, files: &[(&str, &str)]) -> anyhow::Result<()
             .with_context(|| format!("failed to write {}", path.display()))?;
     }
     Ok(())
+}
+
+/// The default output directory of a scenario file: `out/STEM/` (STEM: the file
+/// name without its extension).
+pub fn default_dir(file: &Path) -> PathBuf {
+    Path::new("out").join(stem(file))
+}
+
+/// A scenario file's name without its extension.
+pub fn stem(file: &Path) -> OsString {
+    file.file_stem().map_or_else(|| "scenario".into(), |s| s.to_os_string())
 }
 
 /// Prints a line on stdout. A closed stdout (`sightline run … | head`) is not an

@@ -235,9 +235,15 @@ fn urban_semantic_scenario_runs_end_to_end() {
     // Per object: the least-warned of the flagged road users decides.
     let warn = requirement(results, "URB-WARN-01");
     let warnings = points[5]["counts"]["warnings"].as_array().unwrap();
-    let least = warnings.iter().map(|w| w.as_f64().unwrap()).fold(f64::INFINITY, f64::min);
+    let least = warnings
+        .iter()
+        .map(|w| w.as_f64().unwrap())
+        .fold(f64::INFINITY, f64::min);
     assert_eq!(warn["value"].as_f64(), Some(least));
-    assert_eq!(warnings.len() as u64, points[5]["counts"]["close_approaches"].as_u64().unwrap());
+    assert_eq!(
+        warnings.len() as u64,
+        points[5]["counts"]["close_approaches"].as_u64().unwrap()
+    );
     // Eventually: every point reports when the signal came best.
     let rsu = requirement(results, "URB-RSU-T-01");
     assert_eq!(rsu["points"].as_array().unwrap().len(), 8);
