@@ -52,9 +52,13 @@ pub fn falsify(args: &FalsifyArgs) -> anyhow::Result<Exit> {
     let search = Search {
         cases: args.cases,
         shrink_cases: SHRINK_CASES,
-        seed: args.seed.unwrap_or(scenario.points[0].setup.seed),
+        seed: args
+            .seed
+            .or_else(|| scenario.points.first().map(|p| p.setup.seed))
+            .unwrap_or_default(),
         guided: args.search == SearchMode::Guided,
-        deadline: args.budget.map(|budget| started + budget),
+        // A budget beyond what the clock can represent is no budget.
+        deadline: args.budget.and_then(|budget| started.checked_add(budget)),
     };
     let disk = |file: &Path| std::fs::read(file);
     let options = Options {
@@ -72,7 +76,8 @@ pub fn falsify(args: &FalsifyArgs) -> anyhow::Result<Exit> {
             .map_err(|errors| Stop::Internal(anyhow::anyhow!("failed to write a case of {path}: {errors}")))?;
         let case = sightline_dsl::compile(&path, &case_text, &options).map_err(|errors| {
             Stop::Invalid(format!(
-                "{errors}{path}: error: vary: the case {} is invalid",
+                "{errors}\n{path}: error: vary: the case {} is invalid (the locations above are in the case \
+                 written out as a scenario)",
                 values(&scenario.vary, indices)
             ))
         })?;

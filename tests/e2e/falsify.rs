@@ -105,6 +105,10 @@ fn a_space_that_cannot_break_a_requirement_exits_0() {
     assert_eq!(report["cases"].as_array().unwrap().len(), 8);
     assert!(report["counterexample"].is_null());
     assert!(!out.join("counterexample.yaml").exists());
+    // A budget ends the search before its cases are used up.
+    falsify(arg(&file), &out, &["--cases", "100000", "--budget", "0.5"]).assert_exit(0);
+    let report = read_json(&out.join("falsify.json"));
+    assert!(report["cases"].as_array().unwrap().len() < 100_000);
 }
 
 #[test]
