@@ -16,6 +16,10 @@
 //! step of equal margin is taken, so the search walks across plateaus). It
 //! moves toward the boundary where the margin crosses zero, while the random
 //! cases in between keep exploring.
+//!
+//! Cases are chosen in rounds of [`Search::round`] and scored together, so the
+//! caller can simulate a round in parallel; a guided step starts from the best
+//! case before its round. Shrinking goes one case at a time.
 
 use std::time::Instant;
 
@@ -31,6 +35,9 @@ use crate::verdict::{Status, Verdict};
 pub struct Search {
     /// The most cases to try before shrinking (random and guided together).
     pub cases: u64,
+    /// How many cases are chosen and scored together (at least 1). The cases
+    /// tried depend on it, not on how the caller runs a round.
+    pub round: usize,
     /// The most cases to try while shrinking a counterexample.
     pub shrink_cases: u64,
     /// The seed of the search's random stream.
@@ -139,70 +146,91 @@ impl Strategy for StartAt {
 }
 
 /// Searches the space of `counts[i]` values per setting for a case that
-/// `evaluate` scores as breaking a requirement, then shrinks it. An `evaluate`
-/// error ends the search and is returned.
+/// `evaluate` scores as breaking a requirement, then shrinks it. `evaluate`
+/// scores a round of up to [`Search::round`] cases at once (the caller may run
+/// them in parallel) and returns their scores in order. An `evaluate` error ends
+/// the search and is returned.
 pub fn falsify<E>(
     counts: &[u64],
     search: &Search,
-    mut evaluate: impl FnMut(&[u64]) -> Result<Score, E>,
+    mut evaluate: impl FnMut(&[Vec<u64>]) -> Result<Vec<Score>, E>,
 ) -> Result<Outcome, E> {
     let mut runner = runner(search.seed);
     let uniform: Vec<_> = counts.iter().map(|&n| 0..=n.saturating_sub(1)).collect();
     let out_of_time = || search.deadline.is_some_and(|d| Instant::now() >= d);
     let mut cases: Vec<Case> = Vec::new();
     let mut best: Option<(Vec<u64>, f64)> = None;
-    // Guided steps that found no smaller margin since the last that did.
+    // Guided steps that found a larger margin since the last that found a smaller.
     let mut stale = 0;
-    for k in 0..search.cases {
-        if out_of_time() {
-            break;
-        }
-        let step = best
-            .as_ref()
-            .filter(|_| search.guided && k >= GUIDED_AFTER && k % 2 == 1)
-            .map(|(from, _)| neighbour(&mut runner, from, counts, stale));
-        let (phase, indices) = match step {
-            Some(indices) => (Phase::Guided, indices),
-            // Integer ranges always yield a tree; should one not, the search ends.
-            None => match uniform.new_tree(&mut runner) {
-                Ok(tree) => (Phase::Random, tree.current()),
-                Err(_) => break,
-            },
-        };
-        let score = evaluate(&indices)?;
-        let robustness = score.robustness();
-        let breaks = score.breaks();
-        cases.push(Case {
-            phase,
-            indices: indices.clone(),
-            score,
-        });
-        if breaks {
-            let first = cases.len();
-            let counterexample = shrink(&mut runner, indices, search, &mut cases, &mut evaluate, out_of_time)?;
-            return Ok(Outcome {
-                cases,
-                first_counterexample: Some(first),
-                counterexample: Some(counterexample),
+    let mut drawn = 0;
+    'search: while drawn < search.cases && !out_of_time() {
+        // A round's cases are chosen before any of them is scored, so the
+        // search does not depend on how the caller runs them.
+        let size = (search.cases - drawn).min(search.round.max(1) as u64);
+        let mut round = Vec::new();
+        for k in drawn..drawn + size {
+            let step = best
+                .as_ref()
+                .filter(|_| search.guided && k >= GUIDED_AFTER && k % 2 == 1)
+                .map(|(from, _)| neighbour(&mut runner, from, counts, stale));
+            round.push(match step {
+                Some(indices) => (Phase::Guided, indices),
+                // Integer ranges always yield a tree; should one not, the search ends.
+                None => match uniform.new_tree(&mut runner) {
+                    Ok(tree) => (Phase::Random, tree.current()),
+                    Err(_) => break 'search,
+                },
             });
         }
-        match &best {
-            // Accept a guided step of equal margin, so the search walks across
-            // plateaus (at full radius) instead of sampling one point again.
-            Some((_, margin)) if robustness == *margin && phase == Phase::Guided => {
-                best = Some((indices, robustness));
+        drawn += size;
+        let indices: Vec<Vec<u64>> = round.iter().map(|(_, indices)| indices.clone()).collect();
+        let scores = evaluate(&indices)?;
+        let mut first = None;
+        for ((phase, indices), score) in round.into_iter().zip(scores) {
+            let robustness = score.robustness();
+            if score.breaks() && first.is_none() {
+                first = Some(cases.len());
             }
-            Some((_, margin)) if robustness >= *margin => {
-                if phase == Phase::Guided {
-                    stale += 1;
+            cases.push(Case {
+                phase,
+                indices: indices.clone(),
+                score,
+            });
+            match &best {
+                // Take a guided step of equal margin, so the search walks across
+                // plateaus (at full radius) instead of sampling one point again.
+                Some((_, margin)) if robustness == *margin && phase == Phase::Guided => {
+                    best = Some((indices, robustness));
+                }
+                Some((_, margin)) if robustness >= *margin => {
+                    if phase == Phase::Guided {
+                        stale += 1;
+                    }
+                }
+                _ => {
+                    if phase == Phase::Guided {
+                        stale = 0;
+                    }
+                    best = Some((indices, robustness));
                 }
             }
-            _ => {
-                if phase == Phase::Guided {
-                    stale = 0;
-                }
-                best = Some((indices, robustness));
-            }
+        }
+        if let Some(first) = first {
+            let start = cases[first].indices.clone();
+            let counterexample = shrink(
+                &mut runner,
+                start,
+                first,
+                search,
+                &mut cases,
+                &mut evaluate,
+                out_of_time,
+            )?;
+            return Ok(Outcome {
+                cases,
+                first_counterexample: Some(first + 1),
+                counterexample: Some(counterexample),
+            });
         }
     }
     Ok(Outcome {
@@ -243,18 +271,19 @@ fn neighbour(runner: &mut TestRunner, from: &[u64], counts: &[u64], stale: u32) 
         .collect()
 }
 
-/// Shrinks the counterexample `start` with proptest's value trees: each
+/// Shrinks the counterexample `start` (at `counterexample` in `cases`) with
+/// proptest's value trees, one case at a time: each
 /// simplification that still breaks a requirement is kept, one that does not is
 /// undone. Returns the index in `cases` of the last case that broke one.
 fn shrink<E>(
     runner: &mut TestRunner,
     start: Vec<u64>,
+    mut counterexample: usize,
     search: &Search,
     cases: &mut Vec<Case>,
-    evaluate: &mut impl FnMut(&[u64]) -> Result<Score, E>,
+    evaluate: &mut impl FnMut(&[Vec<u64>]) -> Result<Vec<Score>, E>,
     out_of_time: impl Fn() -> bool,
 ) -> Result<usize, E> {
-    let mut counterexample = cases.len() - 1;
     let strategy: Vec<StartAt> = start.into_iter().map(StartAt).collect();
     let Ok(mut tree) = strategy.new_tree(runner) else {
         return Ok(counterexample);
@@ -263,7 +292,10 @@ fn shrink<E>(
     let mut tried = 0;
     while more && tried < search.shrink_cases && !out_of_time() {
         let indices = tree.current();
-        let score = evaluate(&indices)?;
+        // Shrinking is a sequence of single cases: each depends on the last.
+        let Some(score) = evaluate(std::slice::from_ref(&indices))?.pop() else {
+            break;
+        };
         tried += 1;
         let breaks = score.breaks();
         cases.push(Case {
@@ -287,20 +319,26 @@ mod tests {
 
     /// A score that breaks when the first index is at least `boundary`, with a
     /// margin that falls linearly toward it.
-    fn threshold(boundary: u64) -> impl FnMut(&[u64]) -> Result<Score, ()> {
-        move |indices| {
-            let margin = boundary as f64 - 0.5 - indices[0] as f64;
-            Ok(Score {
-                requirement: Some("R".into()),
-                status: if margin < 0.0 { Status::Fail } else { Status::Pass },
-                margin: Some(margin),
-            })
+    fn threshold(boundary: u64) -> impl FnMut(&[Vec<u64>]) -> Result<Vec<Score>, ()> {
+        move |round| {
+            Ok(round
+                .iter()
+                .map(|indices| {
+                    let margin = boundary as f64 - 0.5 - indices[0] as f64;
+                    Score {
+                        requirement: Some("R".into()),
+                        status: if margin < 0.0 { Status::Fail } else { Status::Pass },
+                        margin: Some(margin),
+                    }
+                })
+                .collect())
         }
     }
 
     fn search(guided: bool, seed: u64) -> Search {
         Search {
             cases: 200,
+            round: 2,
             shrink_cases: 200,
             seed,
             guided,

@@ -9,6 +9,7 @@ use std::path::Path;
 use std::time::Instant;
 
 use anyhow::Context;
+use rayon::prelude::*;
 use sightline_dsl::{Options, Vary, display_value};
 use sightline_oracles::{Score, Search};
 
@@ -16,6 +17,11 @@ use crate::cli::{FalsifyArgs, SearchMode};
 use crate::exit::Exit;
 use crate::input::load_all;
 use crate::output::{default_dir, say, write_atomically};
+
+/// Cases simulated side by side: one per core of the 2-core machines sightline
+/// targets. A constant, not the thread count, so that the cases tried (and the
+/// files written) do not depend on `--jobs`.
+const CASES_PER_ROUND: usize = 2;
 
 /// The most cases tried while shrinking a counterexample.
 const SHRINK_CASES: u64 = 256;
@@ -51,6 +57,7 @@ pub fn falsify(args: &FalsifyArgs) -> anyhow::Result<Exit> {
     let started = Instant::now();
     let search = Search {
         cases: args.cases,
+        round: CASES_PER_ROUND,
         shrink_cases: SHRINK_CASES,
         seed: args
             .seed
@@ -60,31 +67,24 @@ pub fn falsify(args: &FalsifyArgs) -> anyhow::Result<Exit> {
         // A budget beyond what the clock can represent is no budget.
         deadline: args.budget.and_then(|budget| started.checked_add(budget)),
     };
-    let disk = |file: &Path| std::fs::read(file);
-    let options = Options {
-        seed: None,
-        loader: Some(&disk),
-    };
     // Shrinking may come back to a case already tried: simulate each once.
     let mut scores: HashMap<Vec<u64>, Score> = HashMap::new();
     let counts: Vec<u64> = scenario.vary.iter().map(Vary::count).collect();
-    let outcome = sightline_oracles::falsify(&counts, &search, |indices| {
-        if let Some(score) = scores.get(indices) {
-            return Ok(score.clone());
+    let outcome = sightline_oracles::falsify(&counts, &search, |round| {
+        let mut new: Vec<&Vec<u64>> = round.iter().filter(|indices| !scores.contains_key(*indices)).collect();
+        new.dedup();
+        let simulated: Vec<Result<Score, Stop>> = pool.install(|| {
+            new.par_iter()
+                .map(|indices| simulate_case(&path, text, &scenario.vary, indices))
+                .collect()
+        });
+        for (indices, score) in new.into_iter().zip(simulated) {
+            scores.insert(indices.clone(), score?);
         }
-        let case_text = sightline_dsl::instantiate(&path, text, &scenario.vary, indices)
-            .map_err(|errors| Stop::Internal(anyhow::anyhow!("failed to write a case of {path}: {errors}")))?;
-        let case = sightline_dsl::compile(&path, &case_text, &options).map_err(|errors| {
-            Stop::Invalid(format!(
-                "{errors}\n{path}: error: vary: the case {} is invalid (the locations above are in the case \
-                 written out as a scenario)",
-                values(&scenario.vary, indices)
-            ))
-        })?;
-        let run = pool.install(|| sightline_engine::simulate(&case));
-        let score = Score::of(&sightline_oracles::check(&case, &run));
-        scores.insert(indices.to_vec(), score.clone());
-        Ok(score)
+        Ok(round
+            .iter()
+            .filter_map(|indices| scores.get(indices).cloned())
+            .collect())
     });
     let outcome = match outcome {
         Ok(outcome) => outcome,
@@ -159,14 +159,34 @@ pub fn falsify(args: &FalsifyArgs) -> anyhow::Result<Exit> {
         &[("counterexample.yaml", &counterexample), ("falsify.json", &report_json)],
     )?;
     say(format_args!(
-        "FOUND {path}: {requirement} {} (margin {margin}) at {} after {} cases, shrunk in {} ({evaluations} simulations, {rate:.1}/s) -> {}",
+        "FOUND {path}: {requirement} {} (margin {margin}) at {}; first broken by case {}, {} cases in all ({evaluations} simulations, {rate:.1}/s) -> {}",
         found.score.status.name(),
         values(&scenario.vary, &found.indices),
         outcome.first_counterexample.unwrap_or_default(),
-        outcome.cases.len() - outcome.first_counterexample.unwrap_or_default(),
+        outcome.cases.len(),
         dir.display()
     ));
     Ok(Exit::Fail)
+}
+
+/// Writes out, compiles, simulates and checks one case.
+fn simulate_case(path: &str, text: &str, vary: &[Vary], indices: &[u64]) -> Result<Score, Stop> {
+    let case_text = sightline_dsl::instantiate(path, text, vary, indices)
+        .map_err(|errors| Stop::Internal(anyhow::anyhow!("failed to write a case of {path}: {errors}")))?;
+    let disk = |file: &Path| std::fs::read(file);
+    let options = Options {
+        seed: None,
+        loader: Some(&disk),
+    };
+    let case = sightline_dsl::compile(path, &case_text, &options).map_err(|errors| {
+        Stop::Invalid(format!(
+            "{errors}\n{path}: error: vary: the case {} is invalid (the locations above are in the case \
+             written out as a scenario)",
+            values(vary, indices)
+        ))
+    })?;
+    let run = sightline_engine::simulate(&case);
+    Ok(Score::of(&sightline_oracles::check(&case, &run)))
 }
 
 /// `path=value, …` of one case.
