@@ -394,6 +394,54 @@ mod tests {
     }
 
     #[test]
+    fn the_first_breaking_case_of_a_round_is_the_one_shrunk() {
+        // Every case breaks: the first of the first round is the counterexample's
+        // start, and its partner in the round is still recorded.
+        let outcome = falsify(&[1001, 3], &search(false, 9), threshold(0)).unwrap();
+        assert_eq!(outcome.first_counterexample, Some(1));
+        assert_eq!(outcome.cases[1].phase, Phase::Random);
+        assert_eq!(outcome.cases[2].phase, Phase::Shrink);
+        assert_eq!(outcome.cases[outcome.counterexample.unwrap()].indices, vec![0, 0]);
+    }
+
+    fn verdict(id: &str, status: Status, margin: Option<f64>) -> Verdict {
+        let decisive = crate::verdict::Evaluation {
+            point: 0,
+            status,
+            value: margin,
+            margin,
+            message: String::new(),
+            seeds: None,
+            time: None,
+        };
+        Verdict {
+            id: id.into(),
+            status,
+            threshold: 0.0,
+            decisive: decisive.clone(),
+            evaluations: vec![decisive],
+        }
+    }
+
+    #[test]
+    fn a_case_scores_its_worst_requirement() {
+        let pass = verdict("A", Status::Pass, Some(0.3));
+        let close = verdict("B", Status::Pass, Some(0.1));
+        let fail = verdict("C", Status::Fail, Some(-0.2));
+        let error = verdict("D", Status::Error, None);
+        let score = Score::of(&[pass.clone(), close.clone()]);
+        assert_eq!((score.requirement.as_deref(), score.margin), (Some("B"), Some(0.1)));
+        assert!(!score.breaks());
+        let score = Score::of(&[pass.clone(), fail.clone(), close]);
+        assert_eq!((score.requirement.as_deref(), score.status), (Some("C"), Status::Fail));
+        let score = Score::of(&[pass, error, fail]);
+        assert_eq!((score.requirement.as_deref(), score.status), (Some("D"), Status::Error));
+        let none = Score::of(&[]);
+        assert!(!none.breaks());
+        assert_eq!(none.robustness(), f64::INFINITY);
+    }
+
+    #[test]
     fn errors_rank_below_every_margin() {
         let error = Score {
             requirement: Some("R".into()),
