@@ -5,7 +5,7 @@
 use std::ffi::OsString;
 use std::fmt::Display;
 use std::io::{ErrorKind, Write};
-use std::path::{Path, PathBuf};
+use std::path::{Component, Path, PathBuf};
 
 use anyhow::Context;
 
@@ -50,6 +50,17 @@ pub fn stem(file: &Path) -> OsString {
     file.file_stem().map_or_else(|| "scenario".into(), |s| s.to_os_string())
 }
 
+/// The path of `to` seen from the directory `from_dir` (both absolute, or both
+/// relative to the same directory): `../sumo/x.xml`.
+pub fn relative(from_dir: &Path, to: &Path) -> PathBuf {
+    let from: Vec<_> = from_dir.components().collect();
+    let target: Vec<_> = to.components().collect();
+    let common = from.iter().zip(&target).take_while(|(a, b)| a == b).count();
+    let mut path: PathBuf = from[common..].iter().map(|_| Component::ParentDir).collect();
+    path.extend(&target[common..]);
+    path
+}
+
 /// Prints a line on stdout. A closed stdout (`sightline run … | head`) is not an
 /// error: the evidence files and the exit status are what matter, so the run goes
 /// on and exits with the status it earns.
@@ -58,5 +69,17 @@ pub fn say(line: impl Display) {
         && error.kind() != ErrorKind::BrokenPipe
     {
         eprintln!("warning: failed to write to stdout: {error}");
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn relative_paths_climb_to_the_common_directory() {
+        let path = relative(Path::new("/work/out/grid"), Path::new("/work/scenarios/sumo/x.xml"));
+        assert_eq!(path, Path::new("../../scenarios/sumo/x.xml"));
+        assert_eq!(relative(Path::new("/a"), Path::new("/a/b.xml")), Path::new("b.xml"));
     }
 }

@@ -246,7 +246,7 @@ fn sweep_and_sweeps_do_not_mix() {
 
 #[test]
 fn vary_keeps_integer_settings_whole_and_instantiates_a_concrete_scenario() {
-    use sightline_dsl::{Domain, RANGE_STEPS, instantiate};
+    use sightline_dsl::{Domain, RANGE_STEPS, Vary, instantiate};
     let text = format!(
         "{BASE}vary:\n  field.sensors.layout.regular.rows: [1, 3]\n  field.masses.gamma: [0, 20]\n  fusion.method: {{ one_of: [dempster, bayes] }}\n"
     );
@@ -276,7 +276,7 @@ fn vary_keeps_integer_settings_whole_and_instantiates_a_concrete_scenario() {
     let counts: Vec<u64> = scenario.vary.iter().map(|v| v.count()).collect();
     assert_eq!(counts, [3, RANGE_STEPS + 1, 2]);
 
-    let case = instantiate("t.yaml", &text, &scenario.vary, &[1, 250, 1]).unwrap();
+    let case = instantiate("t.yaml", &text, &Vary::settings(&scenario.vary, &[1, 250, 1])).unwrap();
     assert!(!case.contains("vary"), "{case}");
     let concrete = ok(&case);
     assert!(concrete.vary.is_empty());

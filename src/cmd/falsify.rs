@@ -10,13 +10,13 @@ use std::time::Instant;
 
 use anyhow::Context;
 use rayon::prelude::*;
-use sightline_dsl::{Options, Vary, display_value};
+use sightline_dsl::{Options, Scenario, Vary, display_value};
 use sightline_oracles::{Score, Search};
 
 use crate::cli::{FalsifyArgs, SearchMode};
 use crate::exit::Exit;
 use crate::input::load_all;
-use crate::output::{default_dir, say, write_atomically};
+use crate::output::{default_dir, relative, say, write_atomically};
 
 /// Cases simulated side by side: one per core of the 2-core machines sightline
 /// targets. A constant, not the thread count, so that the cases tried (and the
@@ -129,7 +129,9 @@ pub fn falsify(args: &FalsifyArgs) -> anyhow::Result<Exit> {
         return Ok(Exit::Pass);
     };
     let counterexample_path = dir.join("counterexample.yaml");
-    let case_text = sightline_dsl::instantiate(&path, text, &scenario.vary, &found.indices)
+    let mut settings = Vary::settings(&scenario.vary, &found.indices);
+    settings.extend(imports_from(&dir, scenario)?);
+    let case_text = sightline_dsl::instantiate(&path, text, &settings)
         .map_err(|errors| anyhow::anyhow!("failed to write the counterexample of {path}: {errors}"))?;
     let requirement = found.score.requirement.as_deref().unwrap_or("?");
     let margin = found
@@ -148,11 +150,6 @@ pub fn falsify(args: &FalsifyArgs) -> anyhow::Result<Exit> {
         "# Reproduce: sightline run {}\n",
         counterexample_path.display()
     ));
-    if !scenario.imports.is_empty() {
-        header.push_str(&format!(
-            "# Its `traces` paths are relative to the directory of {path}: run it from a copy there.\n"
-        ));
-    }
     let counterexample = header + &case_text;
     write_atomically(
         &dir,
@@ -171,7 +168,7 @@ pub fn falsify(args: &FalsifyArgs) -> anyhow::Result<Exit> {
 
 /// Writes out, compiles, simulates and checks one case.
 fn simulate_case(path: &str, text: &str, vary: &[Vary], indices: &[u64]) -> Result<Score, Stop> {
-    let case_text = sightline_dsl::instantiate(path, text, vary, indices)
+    let case_text = sightline_dsl::instantiate(path, text, &Vary::settings(vary, indices))
         .map_err(|errors| Stop::Internal(anyhow::anyhow!("failed to write a case of {path}: {errors}")))?;
     let disk = |file: &Path| std::fs::read(file);
     let options = Options {
@@ -187,6 +184,32 @@ fn simulate_case(path: &str, text: &str, vary: &[Vary], indices: &[u64]) -> Resu
     })?;
     let run = sightline_engine::simulate(&case);
     Ok(Score::of(&sightline_oracles::check(&case, &run)))
+}
+
+/// The `traces` settings of `scenario` with each imported file's path relative
+/// to `dir`, where its counterexample goes, so that it reads the same files.
+fn imports_from(dir: &Path, scenario: &Scenario) -> anyhow::Result<Vec<(String, serde_json::Value)>> {
+    if scenario.imports.is_empty() {
+        return Ok(Vec::new());
+    }
+    std::fs::create_dir_all(dir).with_context(|| format!("failed to create {}", dir.display()))?;
+    let dir = dir
+        .canonicalize()
+        .with_context(|| format!("failed to resolve {}", dir.display()))?;
+    scenario
+        .imports
+        .iter()
+        .map(|import| {
+            let file = Path::new(&import.path)
+                .canonicalize()
+                .with_context(|| format!("failed to resolve {}", import.path))?;
+            let relative = relative(&dir, &file);
+            let text = relative
+                .to_str()
+                .with_context(|| format!("{} is not a UTF-8 path", relative.display()))?;
+            Ok((format!("traces.{}", import.kind.key()), text.into()))
+        })
+        .collect()
 }
 
 /// `path=value, …` of one case.

@@ -128,3 +128,41 @@ fn a_scenario_without_vary_or_with_an_invalid_one_exits_2_and_writes_nothing() {
     falsify(SCENARIO, &target, &["--budget", "-1"]).assert_exit(2);
     assert!(!target.exists());
 }
+
+#[test]
+fn a_counterexample_reads_the_imported_files_from_its_own_directory() {
+    // A copy of the SUMO grid scenario and its traces, without the checks over
+    // 30 seeds (slow), with a receiver that cannot hear the RSU.
+    let dir = temp_dir();
+    std::fs::create_dir(dir.path().join("sumo")).unwrap();
+    for ext in ["fcd", "net", "poly"] {
+        let name = format!("grid3x3.{ext}.xml");
+        std::fs::copy(
+            Path::new("scenarios/sumo").join(&name),
+            dir.path().join("sumo").join(&name),
+        )
+        .unwrap();
+    }
+    let text = read(Path::new("scenarios/sumo-grid-semantic.yaml"));
+    let text = format!(
+        "{}vary:\n  v2x.channel.sensitivity_dbm: {{ one_of: [-50] }}\n",
+        &text[..text.find("  # Over 30 seeds").unwrap()]
+    );
+    let file = dir.path().join("grid.yaml");
+    std::fs::write(&file, text).unwrap();
+    let out = dir.path().join("out").join("grid");
+    falsify(arg(&file), &out, &["--cases", "1"]).assert_exit(1);
+    let counterexample = read(&out.join("counterexample.yaml"));
+    assert!(
+        counterexample.contains("  fcd: \"../../sumo/grid3x3.fcd.xml\"\n"),
+        "{counterexample}"
+    );
+    let run = sightline([
+        "run",
+        arg(&out.join("counterexample.yaml")),
+        "--out",
+        arg(&dir.path().join("run")),
+    ]);
+    run.assert_exit(1);
+    assert!(run.stdout.contains("fail GRID-PDR-01"), "{run}");
+}

@@ -196,11 +196,12 @@ fn value_compiles(
     ok
 }
 
-/// The scenario file `source` (already compiled into a scenario whose `vary` is
-/// `vary`) with each varied setting set to its value at grid index
-/// `indices[i]` and without `vary`, as YAML text: a concrete scenario that
-/// `sightline run` runs as is. Comments and layout are not kept.
-pub fn instantiate(file: &str, source: &str, vary: &[Vary], indices: &[u64]) -> Result<String, Errors> {
+/// The scenario file `source` (already compiled) without `vary` and with each
+/// dotted path of `settings` set to its value (a case's values of the varied
+/// settings, and any other setting the caller moves, such as the paths of
+/// imported files), as YAML text: a concrete scenario that `sightline run` runs as
+/// is. Comments and layout are not kept.
+pub fn instantiate(file: &str, source: &str, settings: &[(String, serde_json::Value)]) -> Result<String, Errors> {
     let error = |location: Location, path: String, kind: ErrorKind| {
         Errors(vec![Error {
             file: file.to_string(),
@@ -213,15 +214,14 @@ pub fn instantiate(file: &str, source: &str, vary: &[Vary], indices: &[u64]) -> 
     if let Value::Map(entries) = &mut tree.value {
         entries.retain(|(key, _)| key.name != "vary");
     }
-    for (vary, &index) in vary.iter().zip(indices) {
+    for (dotted, value) in settings {
         let location = Location::new(1, 1);
-        let Some(path) = Path::parse_dotted(&vary.path) else {
+        let Some(path) = Path::parse_dotted(dotted) else {
             let kind = ErrorKind::Invalid("expected a dotted path such as `fusion.method`".into());
-            return Err(error(location, vary.path.clone(), kind));
+            return Err(error(location, dotted.clone(), kind));
         };
-        let value = Node::from_json(&vary.value(index), location);
-        sweep::set(&mut tree, path.segments(), value, location)
-            .map_err(|message| error(location, vary.path.clone(), ErrorKind::Invalid(message)))?;
+        sweep::set(&mut tree, path.segments(), Node::from_json(value, location), location)
+            .map_err(|message| error(location, dotted.clone(), ErrorKind::Invalid(message)))?;
     }
     Ok(emit(&tree))
 }

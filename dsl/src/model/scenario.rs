@@ -56,6 +56,15 @@ pub enum ImportKind {
 }
 
 impl ImportKind {
+    /// Its key under `traces`: `fcd`, `net`, `poly`.
+    pub fn key(self) -> &'static str {
+        match self {
+            Self::SumoFcd => "fcd",
+            Self::SumoNet => "net",
+            Self::SumoPoly => "poly",
+        }
+    }
+
     /// Its name in evidence: `sumo_fcd`, `sumo_net`, `sumo_poly`.
     pub fn name(self) -> &'static str {
         match self {

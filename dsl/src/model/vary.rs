@@ -46,6 +46,15 @@ impl Vary {
         }
     }
 
+    /// Each setting of `vary` with its value at its grid index in `indices`: one
+    /// case, as [`instantiate`](crate::instantiate) takes it.
+    pub fn settings(vary: &[Vary], indices: &[u64]) -> Vec<(String, serde_json::Value)> {
+        vary.iter()
+            .zip(indices)
+            .map(|(v, &i)| (v.path.clone(), v.value(i)))
+            .collect()
+    }
+
     /// The value at grid index `index` (clamped to the last one).
     pub fn value(&self, index: u64) -> serde_json::Value {
         let index = index.min(self.count() - 1);
