@@ -37,10 +37,10 @@ enum Stop {
 /// Searches, then writes `falsify.json` and, when a case breaks a requirement,
 /// `counterexample.yaml`.
 pub fn falsify(args: &FalsifyArgs) -> anyhow::Result<Exit> {
-    let Some(mut inputs) = load_all(std::slice::from_ref(&args.file), None) else {
+    let Some(input) = load_all(std::slice::from_ref(&args.file), None).and_then(|inputs| inputs.into_iter().next())
+    else {
         return Ok(Exit::Invalid);
     };
-    let input = inputs.remove(0);
     let path = input.path.display().to_string();
     let scenario = &input.scenario;
     if scenario.vary.is_empty() {
