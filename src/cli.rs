@@ -1,8 +1,9 @@
 //! Command-line syntax (clap derive). Usage errors exit with status 2.
 
 use std::path::PathBuf;
+use std::time::Duration;
 
-use clap::{Args, Parser, Subcommand};
+use clap::{Args, Parser, Subcommand, ValueEnum};
 
 /// Verification toolkit for V2X collective perception: simulate a scenario, check
 /// its requirements, write evidence.
@@ -19,6 +20,10 @@ pub enum Command {
     /// junit.xml and report.html. Exit 0: all pass, 1: a requirement fails,
     /// 2: invalid input, 3: internal error.
     Run(RunArgs),
+    /// Search a scenario's `vary` space for a case that breaks a requirement,
+    /// shrink it and write counterexample.yaml and falsify.json. Exit 0: none
+    /// found, 1: found, 2: invalid input, 3: internal error.
+    Falsify(FalsifyArgs),
     /// Validate scenario files without running them. Exit 0: all valid, 2: not.
     Check {
         /// Scenario files.
@@ -51,4 +56,49 @@ pub struct RunArgs {
     /// Worker threads, at least 1 (default: one per core). Results do not depend on it.
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..))]
     pub jobs: Option<u16>,
+}
+
+#[derive(Debug, Args)]
+pub struct FalsifyArgs {
+    /// Scenario file with a `vary` section.
+    pub file: PathBuf,
+    /// The most cases to try before shrinking.
+    #[arg(long, value_name = "N", default_value_t = 64, value_parser = clap::value_parser!(u64).range(1..))]
+    pub cases: u64,
+    /// Stop searching after this many seconds (the search is then no longer
+    /// deterministic).
+    #[arg(long, value_name = "SECONDS", value_parser = seconds)]
+    pub budget: Option<Duration>,
+    /// Seed of the search (default: the scenario's seed). Each case runs with
+    /// the scenario's own seed.
+    #[arg(long, value_name = "N")]
+    pub seed: Option<u64>,
+    /// How cases are chosen.
+    #[arg(long, value_enum, default_value_t = SearchMode::Guided)]
+    pub search: SearchMode,
+    /// Output directory. Default: out/STEM/.
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
+    /// Worker threads, at least 1 (default: one per core). Results do not depend on it.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..))]
+    pub jobs: Option<u16>,
+}
+
+/// How `falsify` chooses cases.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum SearchMode {
+    /// Random cases, and after a few of them every other case a step toward a
+    /// smaller margin from the case with the smallest so far.
+    Guided,
+    /// Random cases only (uniform over the grid of each setting).
+    Random,
+}
+
+/// A positive number of seconds.
+fn seconds(text: &str) -> Result<Duration, String> {
+    text.parse::<f64>()
+        .ok()
+        .filter(|s| *s > 0.0)
+        .and_then(|s| Duration::try_from_secs_f64(s).ok())
+        .ok_or_else(|| format!("expected a positive number of seconds, found `{text}`"))
 }

@@ -2,9 +2,10 @@
 //! directory, renamed into place, so a reader never sees half a file), and lines
 //! on stdout.
 
+use std::ffi::OsString;
 use std::fmt::Display;
 use std::io::{ErrorKind, Write};
-use std::path::Path;
+use std::path::{Component, Path, PathBuf};
 
 use anyhow::Context;
 
@@ -38,6 +39,28 @@ pub fn write_atomically(dir: &Path, files: &[(&str, &str)]) -> anyhow::Result<()
     Ok(())
 }
 
+/// The default output directory of a scenario file: `out/STEM/` (STEM: the file
+/// name without its extension).
+pub fn default_dir(file: &Path) -> PathBuf {
+    Path::new("out").join(stem(file))
+}
+
+/// A scenario file's name without its extension.
+pub fn stem(file: &Path) -> OsString {
+    file.file_stem().map_or_else(|| "scenario".into(), |s| s.to_os_string())
+}
+
+/// The path of `to` seen from the directory `from_dir` (both absolute, or both
+/// relative to the same directory): `../sumo/x.xml`.
+pub fn relative(from_dir: &Path, to: &Path) -> PathBuf {
+    let from: Vec<_> = from_dir.components().collect();
+    let target: Vec<_> = to.components().collect();
+    let common = from.iter().zip(&target).take_while(|(a, b)| a == b).count();
+    let mut path: PathBuf = from[common..].iter().map(|_| Component::ParentDir).collect();
+    path.extend(&target[common..]);
+    path
+}
+
 /// Prints a line on stdout. A closed stdout (`sightline run … | head`) is not an
 /// error: the evidence files and the exit status are what matter, so the run goes
 /// on and exits with the status it earns.
@@ -61,4 +84,16 @@ pub fn progress(len: usize, name: &str) -> indicatif::ProgressBar {
         bar.set_style(style.progress_chars("=> "));
     }
     bar
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn relative_paths_climb_to_the_common_directory() {
+        let path = relative(Path::new("/work/out/grid"), Path::new("/work/scenarios/sumo/x.xml"));
+        assert_eq!(path, Path::new("../../scenarios/sumo/x.xml"));
+        assert_eq!(relative(Path::new("/a"), Path::new("/a/b.xml")), Path::new("b.xml"));
+    }
 }

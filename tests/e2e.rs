@@ -36,3 +36,7 @@ mod bundled;
 // The findings pages quote the bundled runs.
 #[path = "e2e/findings.rs"]
 mod findings;
+
+// `falsify`: the bundled counterexample found and shrunk, determinism, exit codes.
+#[path = "e2e/falsify.rs"]
+mod falsify;

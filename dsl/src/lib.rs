@@ -23,13 +23,14 @@
 //! ```
 #![warn(missing_docs)]
 
-pub use compile::{Loader, Options, compile};
+pub use compile::{Loader, Options, compile, instantiate};
 pub use error::{Error, ErrorKind, Errors, Location, utf8_text};
 pub use model::*;
 pub use schema::{reference_markdown, schema};
 
 mod compile;
 mod de;
+mod emit;
 mod error;
 pub mod geometry;
 mod model;

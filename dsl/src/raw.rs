@@ -110,6 +110,44 @@ pub(crate) struct RawScenario {
     /// Published figures to show beside the measured ones.
     #[serde(default)]
     pub references: Vec<RawReference>,
+    /// The space `sightline falsify` searches for a scenario that breaks a
+    /// requirement: a dotted path (the sections a sweep may set) and either a
+    /// range `[lo, hi]` (whole numbers when the setting is an integer) or
+    /// `{ one_of: [ … ] }`. `sightline run` ignores it and runs the values
+    /// written in the scenario.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    #[schemars(schema_with = "vary_schema")]
+    pub vary: BTreeMap<String, serde_json::Value>,
+}
+
+/// The schema of `vary`: a range or a list of choices per dotted path.
+fn vary_schema(_: &mut schemars::SchemaGenerator) -> schemars::Schema {
+    schemars::json_schema!({
+        "type": "object",
+        "additionalProperties": {
+            "oneOf": [
+                {
+                    "description": "A range [lo, hi] (inclusive, lo ≤ hi).",
+                    "type": "array",
+                    "items": { "type": "number" },
+                    "minItems": 2,
+                    "maxItems": 2
+                },
+                {
+                    "type": "object",
+                    "properties": {
+                        "one_of": {
+                            "description": "The values the setting may take; a search shrinks toward the first.",
+                            "type": "array",
+                            "minItems": 1
+                        }
+                    },
+                    "required": ["one_of"],
+                    "additionalProperties": false
+                }
+            ]
+        }
+    })
 }
 
 /// A regular grid of square cells, axis-aligned in the world frame.

@@ -26,8 +26,9 @@ pub(crate) struct NoSetting {
 }
 
 /// Checks that a dotted key path (`field.masses.gamma`) names a setting of the
-/// language, by walking the properties of the schema.
-pub(crate) fn check_setting(segments: &[&str]) -> Result<(), NoSetting> {
+/// language, by walking the properties of the schema; returns the setting's
+/// schema (references resolved).
+pub(crate) fn check_setting(segments: &[&str]) -> Result<Value, NoSetting> {
     static SCHEMA: OnceLock<Value> = OnceLock::new();
     let schema = SCHEMA.get_or_init(schema);
     let mut node = schema;
@@ -49,7 +50,9 @@ pub(crate) fn check_setting(segments: &[&str]) -> Result<(), NoSetting> {
             }
         }
     }
-    Ok(())
+    Ok(reference(node)
+        .map_or(node, |name| &schema["definitions"][name.as_str()])
+        .clone())
 }
 
 /// The field-by-field reference of the language as Markdown, generated from

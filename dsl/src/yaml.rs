@@ -72,6 +72,35 @@ impl Node {
         }
     }
 
+    /// A node holding `value` (a `vary` value set into a tree), every part at `location`.
+    pub(crate) fn from_json(value: &serde_json::Value, location: Location) -> Self {
+        use serde_json::Value as J;
+        let value = match value {
+            J::Null => Value::Null,
+            J::Bool(b) => Value::Bool(*b),
+            J::Number(n) => match (n.as_i64(), n.as_u64()) {
+                (Some(i), _) => Value::Int(i.into()),
+                (None, Some(u)) => Value::Int(u.into()),
+                (None, None) => Value::Float(n.as_f64().unwrap_or(f64::NAN)),
+            },
+            J::String(s) => Value::Str(s.clone()),
+            J::Array(items) => Value::Seq(items.iter().map(|v| Node::from_json(v, location)).collect()),
+            J::Object(entries) => Value::Map(
+                entries
+                    .iter()
+                    .map(|(k, v)| {
+                        let key = Key {
+                            name: k.clone(),
+                            location,
+                        };
+                        (key, Node::from_json(v, location))
+                    })
+                    .collect(),
+            ),
+        };
+        Node::new(value, location)
+    }
+
     /// The node as JSON (for sweep values and `where` filters), keys in source order.
     pub(crate) fn to_json(&self) -> serde_json::Value {
         use serde_json::Value as J;
@@ -314,7 +343,7 @@ fn reject_tag(tag: Option<&Tag>, location: Location, path: Path) -> Result<(), P
 }
 
 /// Resolves a scalar by the YAML 1.2 core schema.
-fn resolve_scalar(text: &str, style: ScalarStyle, tag: Option<&Tag>) -> Result<Value, String> {
+pub(crate) fn resolve_scalar(text: &str, style: ScalarStyle, tag: Option<&Tag>) -> Result<Value, String> {
     if let Some(tag) = tag {
         if !tag.is_yaml_core_schema() {
             return Err(format!("YAML tags such as `{tag}` are not supported"));

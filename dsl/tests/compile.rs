@@ -243,3 +243,52 @@ fn sweep_and_sweeps_do_not_mix() {
             .contains("give `sweep` (one sweep) or `sweeps` (several), not both")
     );
 }
+
+#[test]
+fn vary_keeps_integer_settings_whole_and_instantiates_a_concrete_scenario() {
+    use sightline_dsl::{Domain, RANGE_STEPS, Vary, instantiate};
+    let text = format!(
+        "{BASE}vary:\n  field.sensors.layout.regular.rows: [1, 3]\n  field.masses.gamma: [0, 20]\n  fusion.method: {{ one_of: [dempster, bayes] }}\n"
+    );
+    let scenario = ok(&text);
+    // `run` runs the values written in the file.
+    let Experiment::Field(field) = &scenario.points[0].setup.experiment else {
+        panic!("a field scenario")
+    };
+    assert_eq!(field.masses.gamma, 10.0);
+    let domains: Vec<&Domain> = scenario.vary.iter().map(|v| &v.domain).collect();
+    assert_eq!(
+        domains,
+        [
+            &Domain::Range {
+                lo: 1.0,
+                hi: 3.0,
+                integer: true
+            },
+            &Domain::Range {
+                lo: 0.0,
+                hi: 20.0,
+                integer: false
+            },
+            &Domain::Choices(vec!["dempster".into(), "bayes".into()]),
+        ]
+    );
+    let counts: Vec<u64> = scenario.vary.iter().map(|v| v.count()).collect();
+    assert_eq!(counts, [3, RANGE_STEPS + 1, 2]);
+
+    let case = instantiate("t.yaml", &text, &Vary::settings(&scenario.vary, &[1, 250, 1])).unwrap();
+    assert!(!case.contains("vary"), "{case}");
+    let concrete = ok(&case);
+    assert!(concrete.vary.is_empty());
+    let setup = &concrete.points[0].setup;
+    assert_eq!(setup.fusion.rule, Rule::Bayes);
+    let Experiment::Field(field) = &setup.experiment else {
+        panic!("a field scenario")
+    };
+    assert_eq!(field.masses.gamma, 5.0);
+    assert!(case.contains("rows: 2,") || case.contains("rows: 2\n"), "{case}");
+    let Layout::Positions(positions) = &field.layout else {
+        panic!("a regular layout becomes positions")
+    };
+    assert_eq!(positions.len(), 4);
+}

@@ -8,10 +8,16 @@
 //! A requirement is checked at every sweep point it applies to; its verdict is
 //! the worst of those evaluations (an error outranks a failure, a failure a pass),
 //! and its reported value is the one with the smallest margin.
+//!
+//! [`falsify`] searches a scenario's `vary` space for a case that breaks a
+//! requirement and shrinks it; the caller compiles, simulates and checks each
+//! case.
 #![warn(missing_docs)]
 
 pub use check::seeds::{SeedStatistics, clopper_pearson_lower, mean_bound, wilson_lower};
+pub use falsify::{Case, Outcome, Phase, Score, Search, falsify};
 pub use verdict::{Evaluation, Status, Verdict, check};
 
 mod check;
+mod falsify;
 mod verdict;

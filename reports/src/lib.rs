@@ -1,4 +1,5 @@
-//! sightline's evidence: `results.json`, `junit.xml` and `report.html` of a run.
+//! sightline's evidence: `results.json`, `junit.xml` and `report.html` of a run,
+//! and `falsify.json` of a falsification.
 //!
 //! This crate maps a compiled scenario, its run and its verdicts to bytes. It owns
 //! the wire formats (see [`Results`]) and the report template; it does not write
@@ -7,6 +8,7 @@
 #![warn(missing_docs)]
 
 pub use chart::{Chart, ChartError, Line, anticipation, kde, lines_chart, silverman_bandwidth};
+pub use falsify::falsify_json;
 pub use html::html;
 pub use junit::junit;
 pub use picture::{Pictures, pictures};
@@ -16,6 +18,7 @@ pub use results::{
 };
 
 mod chart;
+mod falsify;
 mod html;
 mod junit;
 mod picture;

@@ -1,6 +1,7 @@
 //! One module per subcommand.
 
 mod check;
+mod falsify;
 mod run;
 mod schema;
 mod selftest;
@@ -12,6 +13,7 @@ use crate::exit::Exit;
 pub fn dispatch(cli: Cli) -> anyhow::Result<Exit> {
     match cli.command {
         Command::Run(args) => run::run(&args),
+        Command::Falsify(args) => falsify::falsify(&args),
         Command::Check { files } => Ok(check::check(&files)),
         Command::Schema { markdown } => schema::schema(markdown),
         Command::Selftest => Ok(selftest::selftest()),

@@ -1,7 +1,7 @@
 //! `sightline run FILE… [--out DIR] [--seed N] [--jobs N]`
 
 use std::collections::HashSet;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use anyhow::Context;
 use sightline_oracles::Status;
@@ -10,7 +10,7 @@ use sightline_reports::{Provenance, Tool, render, sha256_hex};
 use crate::cli::RunArgs;
 use crate::exit::Exit;
 use crate::input::{Input, load_all};
-use crate::output::{progress, say, write_atomically};
+use crate::output::{default_dir, progress, say, stem, write_atomically};
 
 /// Validates every file first (nothing is written if one is invalid), then runs
 /// each scenario and writes its evidence.
@@ -88,11 +88,10 @@ pub fn run(args: &RunArgs) -> anyhow::Result<Exit> {
 /// Where each scenario's evidence goes; `None` (after printing why) when two
 /// scenarios would share a directory.
 fn evidence_dirs(args: &RunArgs, inputs: &[Input]) -> Option<Vec<PathBuf>> {
-    let stem = |path: &Path| path.file_stem().map_or_else(|| "scenario".into(), |s| s.to_os_string());
     let dirs: Vec<PathBuf> = match (&args.out, inputs.len()) {
         (Some(out), 1) => vec![out.clone()],
         (Some(out), _) => inputs.iter().map(|i| out.join(stem(&i.path))).collect(),
-        (None, _) => inputs.iter().map(|i| Path::new("out").join(stem(&i.path))).collect(),
+        (None, _) => inputs.iter().map(|i| default_dir(&i.path)).collect(),
     };
     let mut seen = HashSet::new();
     for (dir, input) in dirs.iter().zip(inputs) {

@@ -1,7 +1,8 @@
 //! YAML text → [`Scenario`](crate::Scenario), in named passes:
 //! `yaml::parse` (spanned tree) → `de` (raw serde types, located errors) →
 //! `traces` (imported SUMO files, read once through the caller's [`Loader`]) →
-//! `setup` (ranges, units, defaults) → `sweep` (one tree per point) →
+//! `setup` (ranges, units, defaults) → `sweep` (one tree per point) → `vary`
+//! (the space falsify searches) →
 //! `requirements` (ids, checks, `where` filters) → `Scenario`.
 
 mod context;
@@ -11,6 +12,8 @@ mod semantic;
 mod setup;
 mod sweep;
 mod traces;
+mod vary;
 mod world;
 
 pub use scenario::{Loader, Options, compile};
+pub use vary::instantiate;

@@ -1,5 +1,5 @@
 //! The driver: text → tree → raw → imported files → setup per sweep point →
-//! requirements.
+//! `vary` → requirements.
 
 use std::{fmt, io};
 
@@ -8,6 +8,7 @@ use super::requirements::{references, requirements};
 use super::setup::setup;
 use super::sweep::{self, AxisNodes};
 use super::traces::{self, Imported};
+use super::vary;
 use crate::de::from_node;
 use crate::error::{Error, ErrorKind, Errors, Location};
 use crate::model::{Assignment, Axis, Experiment, Point, Scenario, Sweep, display_value};
@@ -100,6 +101,8 @@ fn compile_inner(file: &str, source: &str, options: &Options<'_>) -> Result<Scen
             ErrorKind::Invalid("`--seed` cannot override a swept `seed`".into()),
         );
     }
+    let valid = base.is_some() && ctx.errors.is_empty();
+    let vary = vary::vary(&mut ctx, &sweeps, imported.as_ref(), valid);
     // Requirements are checked even when the setup is invalid (ids, texts and
     // check forms do not depend on the points), so one pass reports everything.
     let points = match base {
@@ -142,6 +145,7 @@ fn compile_inner(file: &str, source: &str, options: &Options<'_>) -> Result<Scen
         requirements,
         references,
         imports: imported.map(|i| i.files).unwrap_or_default(),
+        vary,
     }))
 }
 
@@ -244,6 +248,7 @@ fn settings(raw: &RawScenario, setup: &crate::model::Setup) -> serde_json::Value
         "requirements",
         "sweep",
         "references",
+        "vary",
     ] {
         object.remove(key);
     }

@@ -87,47 +87,9 @@ fn axes<'a>(ctx: &mut Context<'a>, sweep: &'a Node, prefix: &Path) -> Vec<AxisNo
     let mut axes: Vec<AxisNodes<'a>> = Vec::new();
     for (key, node) in entries {
         let here = prefix.key(&key.name);
-        let Some(path) = Path::parse_dotted(&key.name) else {
-            ctx.error_at(
-                key.location,
-                &here,
-                ErrorKind::Invalid("expected a dotted path such as `fusion.method`".into()),
-            );
+        let Some((path, _)) = setting(ctx, key, &here, ("sweep", "a sweep")) else {
             continue;
         };
-        let Some(Segment::Key(section)) = path.segments().first() else {
-            continue;
-        };
-        if !SWEEPABLE.contains(&section.as_str()) {
-            ctx.error_at(
-                key.location,
-                &here,
-                ErrorKind::Invalid(format!(
-                    "cannot sweep `{section}`; a sweep sets the simulation: {}",
-                    SWEEPABLE.map(|s| format!("`{s}`")).join(", ")
-                )),
-            );
-            continue;
-        }
-        let names: Vec<&str> = key.name.split('.').collect();
-        if let Err(no) = check_setting(&names) {
-            let message = if no.allowed.is_empty() {
-                format!("`{}` names no setting: `{}` is not a mapping", key.name, no.parent)
-            } else {
-                let allowed: Vec<&str> = no.allowed.iter().map(String::as_str).collect();
-                let hint = closest(&no.unknown, allowed.iter().copied())
-                    .map(|c| format!(" (did you mean `{}.{c}`?)", no.parent))
-                    .unwrap_or_default();
-                format!(
-                    "`{}` names no setting: `{}` has {}{hint}",
-                    key.name,
-                    no.parent,
-                    one_of(allowed.iter())
-                )
-            };
-            ctx.error_at(key.location, &here, ErrorKind::DanglingReference(message));
-            continue;
-        }
         let Value::Seq(values) = &node.value else {
             continue; // serde has already rejected a non-list
         };
@@ -173,6 +135,61 @@ fn axes<'a>(ctx: &mut Context<'a>, sweep: &'a Node, prefix: &Path) -> Vec<AxisNo
     axes
 }
 
+/// Checks that the key `key` (written at `here`) names a setting that a sweep
+/// or `vary` may set (`words`: the verb and the noun of messages); returns its
+/// path and its JSON Schema.
+pub(super) fn setting(
+    ctx: &mut Context<'_>,
+    key: &Key,
+    here: &Path,
+    (verb, noun): (&str, &str),
+) -> Option<(Path, serde_json::Value)> {
+    let Some(path) = Path::parse_dotted(&key.name) else {
+        ctx.error_at(
+            key.location,
+            here,
+            ErrorKind::Invalid("expected a dotted path such as `fusion.method`".into()),
+        );
+        return None;
+    };
+    let Some(Segment::Key(section)) = path.segments().first() else {
+        return None;
+    };
+    if !SWEEPABLE.contains(&section.as_str()) {
+        ctx.error_at(
+            key.location,
+            here,
+            ErrorKind::Invalid(format!(
+                "cannot {verb} `{section}`; {noun} sets the simulation: {}",
+                SWEEPABLE.map(|s| format!("`{s}`")).join(", ")
+            )),
+        );
+        return None;
+    }
+    let names: Vec<&str> = key.name.split('.').collect();
+    match check_setting(&names) {
+        Ok(schema) => Some((path, schema)),
+        Err(no) => {
+            let message = if no.allowed.is_empty() {
+                format!("`{}` names no setting: `{}` is not a mapping", key.name, no.parent)
+            } else {
+                let allowed: Vec<&str> = no.allowed.iter().map(String::as_str).collect();
+                let hint = closest(&no.unknown, allowed.iter().copied())
+                    .map(|c| format!(" (did you mean `{}.{c}`?)", no.parent))
+                    .unwrap_or_default();
+                format!(
+                    "`{}` names no setting: `{}` has {}{hint}",
+                    key.name,
+                    no.parent,
+                    one_of(allowed.iter())
+                )
+            };
+            ctx.error_at(key.location, here, ErrorKind::DanglingReference(message));
+            None
+        }
+    }
+}
+
 /// Every choice of one value per axis, first axis outermost.
 pub(super) fn choices(axes: &[AxisNodes<'_>]) -> Vec<Vec<usize>> {
     axes.iter().fold(vec![Vec::new()], |acc, axis| {
@@ -204,7 +221,7 @@ pub(super) fn substitute(tree: &Node, axes: &[AxisNodes<'_>], choice: &[usize]) 
 }
 
 /// Sets the node at `segments`, creating missing mappings on the way.
-fn set(node: &mut Node, segments: &[Segment], value: Node, key_location: Location) -> Result<(), String> {
+pub(super) fn set(node: &mut Node, segments: &[Segment], value: Node, key_location: Location) -> Result<(), String> {
     let Some((Segment::Key(first), rest)) = segments.split_first() else {
         return Err("a sweep path names mapping keys only".into());
     };
@@ -232,7 +249,7 @@ fn set(node: &mut Node, segments: &[Segment], value: Node, key_location: Locatio
     }
 }
 
-fn is_prefix(prefix: &Path, path: &Path) -> bool {
+pub(super) fn is_prefix(prefix: &Path, path: &Path) -> bool {
     path.segments().starts_with(prefix.segments())
 }
 

@@ -7,6 +7,7 @@ mod requirement;
 mod scenario;
 mod semantic;
 mod v2x;
+mod vary;
 mod world;
 
 pub use field::{ErrorModel, Field, Layout, Masses, Truth};
@@ -25,6 +26,7 @@ pub use semantic::{
     Semantic, ShareCycles, Traffic, TrafficRoute, VehicleTraffic,
 };
 pub use v2x::{Channel, PathLossModel, V2x};
+pub use vary::{Domain, RANGE_STEPS, Vary};
 pub use world::{
     Agent, AgentKind, Direction, LaneLink, Localization, Motion, Occluder, Perception, PoseFilter, Road, Sensor,
     TraceSample, World,

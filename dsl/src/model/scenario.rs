@@ -26,6 +26,8 @@ pub struct Scenario {
     pub references: Vec<Reference>,
     /// The files the scenario imports (`traces`), in the order read.
     pub imports: Vec<Import>,
+    /// The settings `sightline falsify` varies, in file order (`run` ignores them).
+    pub vary: Vec<super::Vary>,
 }
 
 /// A file a scenario imports, as it was read.
@@ -54,6 +56,15 @@ pub enum ImportKind {
 }
 
 impl ImportKind {
+    /// Its key under `traces`: `fcd`, `net`, `poly`.
+    pub fn key(self) -> &'static str {
+        match self {
+            Self::SumoFcd => "fcd",
+            Self::SumoNet => "net",
+            Self::SumoPoly => "poly",
+        }
+    }
+
     /// Its name in evidence: `sumo_fcd`, `sumo_net`, `sumo_poly`.
     pub fn name(self) -> &'static str {
         match self {

@@ -1,0 +1,227 @@
+//! `vary`: the space `sightline falsify` searches, read from the spanned tree
+//! like the sweeps, and one concrete scenario per choice of values.
+//!
+//! Both ends of a range and every choice are checked as a sweep value is: set
+//! into a copy of the tree and compiled, so a value out of the setting's range
+//! is reported where it is written in `vary`.
+
+use super::context::Context;
+use super::setup::setup;
+use super::sweep::{self, AxisNodes, is_prefix, json_eq};
+use super::traces::Imported;
+use crate::de::from_node;
+use crate::emit::emit;
+use crate::error::{Error, ErrorKind, Errors, Location};
+use crate::model::{Domain, Vary};
+use crate::path::Path;
+use crate::raw::RawScenario;
+use crate::yaml::{self, Node, Value};
+
+/// Reads and checks `vary`. `check_values` compiles every end and choice; the
+/// caller clears it when the scenario is already invalid (the values would only
+/// repeat its errors).
+pub(super) fn vary(
+    ctx: &mut Context<'_>,
+    sweeps: &[Vec<AxisNodes<'_>>],
+    imported: Option<&Imported>,
+    check_values: bool,
+) -> Vec<Vary> {
+    let tree = ctx.tree;
+    let Some(Node {
+        value: Value::Map(entries),
+        ..
+    }) = tree.get("vary")
+    else {
+        return Vec::new(); // absent, or serde has already rejected a non-mapping
+    };
+    let mut varied: Vec<(Path, Vary)> = Vec::new();
+    for (key, node) in entries {
+        let here = Path::root().key("vary").key(&key.name);
+        let Some((path, schema)) = sweep::setting(ctx, key, &here, ("vary", "`vary`")) else {
+            continue;
+        };
+        if let Some((_, other)) = varied.iter().find(|(p, _)| is_prefix(p, &path) || is_prefix(&path, p)) {
+            let message = format!("overlaps the vary key `{}`", other.path);
+            ctx.error_at(key.location, &here, ErrorKind::Invalid(message));
+            continue;
+        }
+        if let Some(axis) = sweeps
+            .iter()
+            .flatten()
+            .find(|a| is_prefix(&a.path, &path) || is_prefix(&path, &a.path))
+        {
+            let message = format!(
+                "`{}` is also swept (`{}`); a setting is swept or varied, not both",
+                key.name, axis.here
+            );
+            ctx.error_at(key.location, &here, ErrorKind::Invalid(message));
+            continue;
+        }
+        let Some((domain, values)) = domain(ctx, node, &here, is_integer(&schema)) else {
+            continue;
+        };
+        if check_values
+            && !values
+                .iter()
+                .all(|value| value_compiles(ctx, &path, value, key.location, imported))
+        {
+            continue;
+        }
+        varied.push((
+            path,
+            Vary {
+                path: key.name.clone(),
+                domain,
+            },
+        ));
+    }
+    varied.into_iter().map(|(_, vary)| vary).collect()
+}
+
+/// Whether a setting's schema says it takes whole numbers only.
+fn is_integer(schema: &serde_json::Value) -> bool {
+    match &schema["type"] {
+        serde_json::Value::String(t) => t == "integer",
+        serde_json::Value::Array(types) => types.iter().any(|t| t == "integer") && !types.iter().any(|t| t == "number"),
+        _ => false,
+    }
+}
+
+/// The domain of one `vary` entry and the value nodes to check (both ends, or
+/// every choice).
+fn domain<'a>(ctx: &mut Context<'_>, node: &'a Node, here: &Path, integer: bool) -> Option<(Domain, Vec<&'a Node>)> {
+    let expected = "a range `[lo, hi]` of two numbers, or `{ one_of: [ … ] }`";
+    let number = |node: &Node| match node.value {
+        Value::Int(i) => Some(i as f64),
+        Value::Float(f) if f.is_finite() => Some(f),
+        _ => None,
+    };
+    match &node.value {
+        Value::Seq(ends) if ends.len() == 2 => {
+            let (Some(lo), Some(hi)) = (number(&ends[0]), number(&ends[1])) else {
+                let bad = if number(&ends[0]).is_none() { 0 } else { 1 };
+                ctx.error(
+                    &here.index(bad),
+                    ErrorKind::InvalidType {
+                        expected: "a finite number".into(),
+                        found: ends[bad].describe(),
+                    },
+                );
+                return None;
+            };
+            if lo > hi {
+                ctx.error(
+                    &here.index(1),
+                    ErrorKind::OutOfRange {
+                        expected: format!("a high end ≥ the low end {lo}"),
+                        found: hi.to_string(),
+                    },
+                );
+                return None;
+            }
+            Some((Domain::Range { lo, hi, integer }, vec![&ends[0], &ends[1]]))
+        }
+        Value::Map(entries) if entries.len() == 1 && entries[0].0.name == "one_of" => {
+            let choices_path = here.key("one_of");
+            let Value::Seq(choices) = &entries[0].1.value else {
+                ctx.error(
+                    &choices_path,
+                    ErrorKind::InvalidType {
+                        expected: "a list of values".into(),
+                        found: entries[0].1.describe(),
+                    },
+                );
+                return None;
+            };
+            if choices.is_empty() {
+                ctx.error(
+                    &choices_path,
+                    ErrorKind::Invalid("`one_of` needs at least one value".into()),
+                );
+                return None;
+            }
+            if let Some(i) = (1..choices.len()).find(|&i| {
+                choices[..i]
+                    .iter()
+                    .any(|earlier| json_eq(&earlier.to_json(), &choices[i].to_json()))
+            }) {
+                ctx.error(
+                    &choices_path.index(i),
+                    ErrorKind::Invalid("this value is listed twice".into()),
+                );
+                return None;
+            }
+            let domain = Domain::Choices(choices.iter().map(Node::to_json).collect());
+            Some((domain, choices.iter().collect()))
+        }
+        _ => {
+            ctx.error(
+                here,
+                ErrorKind::InvalidType {
+                    expected: expected.into(),
+                    found: node.describe(),
+                },
+            );
+            None
+        }
+    }
+}
+
+/// Compiles the scenario with `value` set at `path`; records its errors (located
+/// at the value) and returns whether there were none.
+fn value_compiles(
+    ctx: &mut Context<'_>,
+    path: &Path,
+    value: &Node,
+    key_location: Location,
+    imported: Option<&Imported>,
+) -> bool {
+    let mut probe = ctx.tree.clone();
+    if let Err(message) = sweep::set(&mut probe, path.segments(), value.clone(), key_location) {
+        ctx.error_at(value.location, path, ErrorKind::Invalid(message));
+        return false;
+    }
+    let mut probe_ctx = Context::new(ctx.file, &probe);
+    match from_node::<RawScenario>(&probe, &Path::root()) {
+        Ok(raw) => {
+            setup(&mut probe_ctx, &raw, imported);
+        }
+        Err(e) => {
+            let error = probe_ctx.de_error(e);
+            probe_ctx.errors.push(error);
+        }
+    }
+    let ok = probe_ctx.errors.is_empty();
+    ctx.errors.extend(probe_ctx.errors);
+    ok
+}
+
+/// The scenario file `source` (already compiled) without `vary` and with each
+/// dotted path of `settings` set to its value (a case's values of the varied
+/// settings, and any other setting the caller moves, such as the paths of
+/// imported files), as YAML text: a concrete scenario that `sightline run` runs as
+/// is. Comments and layout are not kept.
+pub fn instantiate(file: &str, source: &str, settings: &[(String, serde_json::Value)]) -> Result<String, Errors> {
+    let error = |location: Location, path: String, kind: ErrorKind| {
+        Errors(vec![Error {
+            file: file.to_string(),
+            location,
+            path,
+            kind,
+        }])
+    };
+    let mut tree = yaml::parse(source).map_err(|e| error(e.location, e.path.to_string(), e.kind))?;
+    if let Value::Map(entries) = &mut tree.value {
+        entries.retain(|(key, _)| key.name != "vary");
+    }
+    for (dotted, value) in settings {
+        let location = Location::new(1, 1);
+        let Some(path) = Path::parse_dotted(dotted) else {
+            let kind = ErrorKind::Invalid("expected a dotted path such as `fusion.method`".into());
+            return Err(error(location, dotted.clone(), kind));
+        };
+        sweep::set(&mut tree, path.segments(), Node::from_json(value, location), location)
+            .map_err(|message| error(location, dotted.clone(), ErrorKind::Invalid(message)))?;
+    }
+    Ok(emit(&tree))
+}

@@ -1,0 +1,222 @@
+//! `sightline falsify FILE [--cases N] [--budget SECONDS] [--seed N] [--search MODE] [--out DIR] [--jobs N]`
+//!
+//! Each case sets every `vary` setting to a value of its grid, written out as a
+//! concrete scenario (`sightline_dsl::instantiate`), compiled, simulated and
+//! checked like `run` does; the search itself is `sightline_oracles::falsify`.
+
+use std::collections::HashMap;
+use std::path::Path;
+use std::time::Instant;
+
+use anyhow::Context;
+use rayon::prelude::*;
+use sightline_dsl::{Options, Scenario, Vary, display_value};
+use sightline_oracles::{Score, Search};
+
+use crate::cli::{FalsifyArgs, SearchMode};
+use crate::exit::Exit;
+use crate::input::load_all;
+use crate::output::{default_dir, relative, say, write_atomically};
+
+/// Cases simulated side by side: one per core of the 2-core machines sightline
+/// targets. A constant, not the thread count, so that the cases tried (and the
+/// files written) do not depend on `--jobs`.
+const CASES_PER_ROUND: usize = 2;
+
+/// The most cases tried while shrinking a counterexample.
+const SHRINK_CASES: u64 = 256;
+
+/// Why the search stopped before its end.
+enum Stop {
+    /// A case's scenario is invalid (its errors, printed).
+    Invalid(String),
+    /// Anything else (exit 3).
+    Internal(anyhow::Error),
+}
+
+/// Searches, then writes `falsify.json` and, when a case breaks a requirement,
+/// `counterexample.yaml`.
+pub fn falsify(args: &FalsifyArgs) -> anyhow::Result<Exit> {
+    let Some(input) = load_all(std::slice::from_ref(&args.file), None).and_then(|inputs| inputs.into_iter().next())
+    else {
+        return Ok(Exit::Invalid);
+    };
+    let path = input.path.display().to_string();
+    let scenario = &input.scenario;
+    if scenario.vary.is_empty() {
+        eprintln!("{path}: error: nothing to falsify: the scenario has no `vary` section");
+        return Ok(Exit::Invalid);
+    }
+    let text =
+        sightline_dsl::utf8_text(&input.bytes).map_err(|_| anyhow::anyhow!("{path} was valid UTF-8 when compiled"))?;
+    let dir = args.out.clone().unwrap_or_else(|| default_dir(&args.file));
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(args.jobs.map_or(0, usize::from))
+        .build()
+        .context("failed to start worker threads")?;
+    let started = Instant::now();
+    let search = Search {
+        cases: args.cases,
+        round: CASES_PER_ROUND,
+        shrink_cases: SHRINK_CASES,
+        seed: args
+            .seed
+            .or_else(|| scenario.points.first().map(|p| p.setup.seed))
+            .unwrap_or_default(),
+        guided: args.search == SearchMode::Guided,
+        // A budget beyond what the clock can represent is no budget.
+        deadline: args.budget.and_then(|budget| started.checked_add(budget)),
+    };
+    // Shrinking may come back to a case already tried: simulate each once.
+    let mut scores: HashMap<Vec<u64>, Score> = HashMap::new();
+    let counts: Vec<u64> = scenario.vary.iter().map(Vary::count).collect();
+    let outcome = sightline_oracles::falsify(&counts, &search, |round| {
+        let mut new: Vec<&Vec<u64>> = round.iter().filter(|indices| !scores.contains_key(*indices)).collect();
+        new.dedup();
+        let simulated: Vec<Result<Score, Stop>> = pool.install(|| {
+            new.par_iter()
+                .map(|indices| simulate_case(&path, text, &scenario.vary, indices))
+                .collect()
+        });
+        for (indices, score) in new.into_iter().zip(simulated) {
+            scores.insert(indices.clone(), score?);
+        }
+        Ok(round
+            .iter()
+            .filter_map(|indices| scores.get(indices).cloned())
+            .collect())
+    });
+    let outcome = match outcome {
+        Ok(outcome) => outcome,
+        Err(Stop::Invalid(message)) => {
+            eprintln!("{message}");
+            return Ok(Exit::Invalid);
+        }
+        Err(Stop::Internal(error)) => return Err(error),
+    };
+    let elapsed = started.elapsed().as_secs_f64();
+    let mut command = format!("sightline falsify {path} --cases {} --seed {}", args.cases, search.seed);
+    if !search.guided {
+        command.push_str(" --search random");
+    }
+    if let Some(budget) = args.budget {
+        command.push_str(&format!(" --budget {}", budget.as_secs_f64()));
+    }
+    let report_json = sightline_reports::falsify_json(scenario, &outcome, &search, &command)?;
+    let evaluations = scores.len();
+    let rate = evaluations as f64 / elapsed.max(1e-9);
+    let Some(found) = outcome.counterexample.map(|i| &outcome.cases[i]) else {
+        write_atomically(&dir, &[("falsify.json", &report_json)])?;
+        // A counterexample left by an earlier search would contradict this one.
+        match std::fs::remove_file(dir.join("counterexample.yaml")) {
+            Err(error) if error.kind() != std::io::ErrorKind::NotFound => {
+                return Err(error).context("failed to remove an earlier counterexample.yaml");
+            }
+            _ => {}
+        }
+        let closest = outcome
+            .cases
+            .iter()
+            .filter_map(|c| c.score.margin.zip(c.score.requirement.as_ref()))
+            .min_by(|a, b| a.0.total_cmp(&b.0))
+            .map(|(margin, id)| format!("; smallest margin {margin:.6} ({id})"))
+            .unwrap_or_default();
+        say(format_args!(
+            "NONE {path}: no case of {} breaks a requirement{closest} ({evaluations} simulations, {rate:.1}/s) -> {}",
+            outcome.cases.len(),
+            dir.display()
+        ));
+        return Ok(Exit::Pass);
+    };
+    let counterexample_path = dir.join("counterexample.yaml");
+    let mut settings = Vary::settings(&scenario.vary, &found.indices);
+    settings.extend(imports_from(&dir, scenario)?);
+    let case_text = sightline_dsl::instantiate(&path, text, &settings)
+        .map_err(|errors| anyhow::anyhow!("failed to write the counterexample of {path}: {errors}"))?;
+    let requirement = found.score.requirement.as_deref().unwrap_or("?");
+    let margin = found
+        .score
+        .margin
+        .map_or_else(|| "none".to_string(), |m| format!("{m:.6}"));
+    let mut header = format!(
+        "# A counterexample to {path}, found by\n#   {command}\n\
+         # It breaks {requirement} ({}, margin {margin}) with\n",
+        found.score.status.name()
+    );
+    for (vary, &index) in scenario.vary.iter().zip(&found.indices) {
+        header.push_str(&format!("#   {}: {}\n", vary.path, display_value(&vary.value(index))));
+    }
+    header.push_str(&format!(
+        "# Reproduce: sightline run {}\n",
+        counterexample_path.display()
+    ));
+    let counterexample = header + &case_text;
+    write_atomically(
+        &dir,
+        &[("counterexample.yaml", &counterexample), ("falsify.json", &report_json)],
+    )?;
+    say(format_args!(
+        "FOUND {path}: {requirement} {} (margin {margin}) at {}; first broken by case {}, {} cases in all ({evaluations} simulations, {rate:.1}/s) -> {}",
+        found.score.status.name(),
+        values(&scenario.vary, &found.indices),
+        outcome.first_counterexample.unwrap_or_default(),
+        outcome.cases.len(),
+        dir.display()
+    ));
+    Ok(Exit::Fail)
+}
+
+/// Writes out, compiles, simulates and checks one case.
+fn simulate_case(path: &str, text: &str, vary: &[Vary], indices: &[u64]) -> Result<Score, Stop> {
+    let case_text = sightline_dsl::instantiate(path, text, &Vary::settings(vary, indices))
+        .map_err(|errors| Stop::Internal(anyhow::anyhow!("failed to write a case of {path}: {errors}")))?;
+    let disk = |file: &Path| std::fs::read(file);
+    let options = Options {
+        seed: None,
+        loader: Some(&disk),
+    };
+    let case = sightline_dsl::compile(path, &case_text, &options).map_err(|errors| {
+        Stop::Invalid(format!(
+            "{errors}\n{path}: error: vary: the case {} is invalid (the locations above are in the case \
+             written out as a scenario)",
+            values(vary, indices)
+        ))
+    })?;
+    let run = sightline_engine::simulate(&case);
+    Ok(Score::of(&sightline_oracles::check(&case, &run)))
+}
+
+/// The `traces` settings of `scenario` with each imported file's path relative
+/// to `dir`, where its counterexample goes, so that it reads the same files.
+fn imports_from(dir: &Path, scenario: &Scenario) -> anyhow::Result<Vec<(String, serde_json::Value)>> {
+    if scenario.imports.is_empty() {
+        return Ok(Vec::new());
+    }
+    std::fs::create_dir_all(dir).with_context(|| format!("failed to create {}", dir.display()))?;
+    let dir = dir
+        .canonicalize()
+        .with_context(|| format!("failed to resolve {}", dir.display()))?;
+    scenario
+        .imports
+        .iter()
+        .map(|import| {
+            let file = Path::new(&import.path)
+                .canonicalize()
+                .with_context(|| format!("failed to resolve {}", import.path))?;
+            let relative = relative(&dir, &file);
+            let text = relative
+                .to_str()
+                .with_context(|| format!("{} is not a UTF-8 path", relative.display()))?;
+            Ok((format!("traces.{}", import.kind.key()), text.into()))
+        })
+        .collect()
+}
+
+/// `path=value, …` of one case.
+fn values(vary: &[Vary], indices: &[u64]) -> String {
+    vary.iter()
+        .zip(indices)
+        .map(|(v, &i)| format!("{}={}", v.path, display_value(&v.value(i))))
+        .collect::<Vec<_>>()
+        .join(", ")
+}

@@ -1,0 +1,168 @@
+//! `falsify`: the bundled counterexample found and shrunk to its boundary, the
+//! same search giving the same files, and the exit codes of the contract
+//! (0 none found, 1 found, 2 invalid input).
+
+use std::path::Path;
+
+use crate::support::{arg, read, read_json, sightline, temp_dir};
+
+/// The bundled scenario whose `vary` space holds a counterexample.
+const SCENARIO: &str = "scenarios/urban-falsify.yaml";
+
+/// The varied receiver sensitivity, and one step of its grid (a 40 dB range in
+/// 1000 steps).
+const SENSITIVITY: &str = "v2x.channel.sensitivity_dbm";
+const STEP_DB: f64 = 0.04;
+
+/// Runs `falsify` on `file` into `out` with extra arguments.
+fn falsify(file: &str, out: &Path, extra: &[&str]) -> crate::support::Outcome {
+    let mut args = vec!["falsify", file, "--out", arg(out)];
+    args.extend_from_slice(extra);
+    sightline(args)
+}
+
+#[test]
+fn run_ignores_vary_and_the_bundled_values_pass() {
+    let out = temp_dir();
+    sightline(["run", SCENARIO, "--out", arg(out.path())]).assert_exit(0);
+}
+
+#[test]
+fn falsify_finds_the_bundled_counterexample_and_shrinks_it_to_the_boundary() {
+    let out = temp_dir();
+    let found = falsify(SCENARIO, out.path(), &[]);
+    found.assert_exit(1);
+    assert!(
+        found
+            .stdout
+            .starts_with("FOUND scenarios/urban-falsify.yaml: FALS-PDR-01 fail"),
+        "{found}"
+    );
+    let report = read_json(&out.path().join("falsify.json"));
+    let counterexample = &report["counterexample"];
+    assert_eq!(counterexample["requirement"], "FALS-PDR-01");
+    assert!(counterexample["margin"].as_f64().unwrap() < 0.0);
+    // Shrunk toward the first choice and the low end, but not past the boundary.
+    assert_eq!(counterexample["values"]["traffic.pedestrians.per_minute"], 2);
+    let sensitivity = counterexample["values"][SENSITIVITY].as_f64().unwrap();
+    assert!(
+        (-100.0..=-60.0).contains(&sensitivity) && sensitivity > -100.0,
+        "{sensitivity}"
+    );
+
+    let file = out.path().join("counterexample.yaml");
+    let text = read(&file);
+    assert!(text.starts_with("# A counterexample to scenarios/urban-falsify.yaml, found by\n"));
+    assert!(text.contains("# It breaks FALS-PDR-01 (fail, margin -"), "{text}");
+    assert!(!text.contains("\nvary:"), "{text}");
+    let failing = sightline(["run", arg(&file), "--out", arg(&out.path().join("failing"))]);
+    failing.assert_exit(1);
+    assert!(failing.stdout.contains("fail FALS-PDR-01"), "{failing}");
+
+    // One grid step less extreme passes: the counterexample is at the boundary.
+    let written = format!("sensitivity_dbm: {sensitivity:?}\n");
+    assert!(text.contains(&written), "{written:?} not in\n{text}");
+    let easier = text.replace(&written, &format!("sensitivity_dbm: {:.2}\n", sensitivity - STEP_DB));
+    let easier_file = out.path().join("easier.yaml");
+    std::fs::write(&easier_file, easier).unwrap();
+    sightline(["run", arg(&easier_file), "--out", arg(&out.path().join("easier"))]).assert_exit(0);
+}
+
+#[test]
+fn the_same_seed_writes_the_same_files_whatever_the_thread_count() {
+    let (a, b) = (temp_dir(), temp_dir());
+    falsify(SCENARIO, a.path(), &["--seed", "5"]).assert_exit(1);
+    falsify(SCENARIO, b.path(), &["--seed", "5", "--jobs", "1"]).assert_exit(1);
+    for name in ["counterexample.yaml", "falsify.json"] {
+        let text = |dir: &Path| read(&dir.join(name)).replace(arg(dir), "OUT");
+        assert_eq!(text(a.path()), text(b.path()), "{name} differs");
+    }
+    let c = temp_dir();
+    falsify(SCENARIO, c.path(), &["--seed", "6"]).assert_exit(1);
+    assert_ne!(
+        read_json(&a.path().join("falsify.json"))["cases"],
+        read_json(&c.path().join("falsify.json"))["cases"]
+    );
+}
+
+#[test]
+fn a_space_that_cannot_break_a_requirement_exits_0() {
+    let dir = temp_dir();
+    let safe = read(Path::new(SCENARIO)).replace(
+        "v2x.channel.sensitivity_dbm: [-100, -60]",
+        "v2x.channel.sensitivity_dbm: [-100, -80]",
+    );
+    let file = dir.path().join("safe.yaml");
+    std::fs::write(&file, safe).unwrap();
+    // An earlier counterexample in the output directory is removed.
+    let out = dir.path().join("out");
+    std::fs::create_dir(&out).unwrap();
+    std::fs::write(out.join("counterexample.yaml"), "stale").unwrap();
+    let none = falsify(arg(&file), &out, &["--cases", "8", "--search", "random"]);
+    none.assert_exit(0);
+    assert!(none.stdout.starts_with("NONE "), "{none}");
+    let report = read_json(&out.join("falsify.json"));
+    assert_eq!(report["cases"].as_array().unwrap().len(), 8);
+    assert!(report["counterexample"].is_null());
+    assert!(!out.join("counterexample.yaml").exists());
+    // A budget ends the search before its cases are used up.
+    falsify(arg(&file), &out, &["--cases", "100000", "--budget", "0.5"]).assert_exit(0);
+    let report = read_json(&out.join("falsify.json"));
+    assert!(report["cases"].as_array().unwrap().len() < 100_000);
+}
+
+#[test]
+fn a_scenario_without_vary_or_with_an_invalid_one_exits_2_and_writes_nothing() {
+    let out = temp_dir();
+    let target = out.path().join("x");
+    let none = falsify("tests/fixtures/valid/small-field.yaml", &target, &[]);
+    none.assert_exit(2);
+    assert!(
+        none.stderr
+            .contains("error: nothing to falsify: the scenario has no `vary` section"),
+        "{none}"
+    );
+    let invalid = falsify("tests/fixtures/invalid/vary-errors.yaml", &target, &[]);
+    invalid.assert_exit(2);
+    assert!(invalid.stderr.contains("vary-errors.yaml:11:3: error:"), "{invalid}");
+    falsify(SCENARIO, &target, &["--budget", "-1"]).assert_exit(2);
+    assert!(!target.exists());
+}
+
+#[test]
+fn a_counterexample_reads_the_imported_files_from_its_own_directory() {
+    // A copy of the SUMO grid scenario and its traces, without the checks over
+    // 30 seeds (slow), with a receiver that cannot hear the RSU.
+    let dir = temp_dir();
+    std::fs::create_dir(dir.path().join("sumo")).unwrap();
+    for ext in ["fcd", "net", "poly"] {
+        let name = format!("grid3x3.{ext}.xml");
+        std::fs::copy(
+            Path::new("scenarios/sumo").join(&name),
+            dir.path().join("sumo").join(&name),
+        )
+        .unwrap();
+    }
+    let text = read(Path::new("scenarios/sumo-grid-semantic.yaml"));
+    let text = format!(
+        "{}vary:\n  v2x.channel.sensitivity_dbm: {{ one_of: [-50] }}\n",
+        &text[..text.find("  # Over 30 seeds").unwrap()]
+    );
+    let file = dir.path().join("grid.yaml");
+    std::fs::write(&file, text).unwrap();
+    let out = dir.path().join("out").join("grid");
+    falsify(arg(&file), &out, &["--cases", "1"]).assert_exit(1);
+    let counterexample = read(&out.join("counterexample.yaml"));
+    assert!(
+        counterexample.contains("  fcd: \"../../sumo/grid3x3.fcd.xml\"\n"),
+        "{counterexample}"
+    );
+    let run = sightline([
+        "run",
+        arg(&out.join("counterexample.yaml")),
+        "--out",
+        arg(&dir.path().join("run")),
+    ]);
+    run.assert_exit(1);
+    assert!(run.stdout.contains("fail GRID-PDR-01"), "{run}");
+}
