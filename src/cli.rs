@@ -48,4 +48,8 @@ pub struct RunArgs {
     /// Worker threads, at least 1 (default: one per core). Results do not depend on it.
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..))]
     pub jobs: Option<u16>,
+    /// Record into DIR/run.mcap even when a scenario has no `record:` section
+    /// (with that section's defaults: the first sweep point, a grid a second).
+    #[arg(long)]
+    pub record: bool,
 }

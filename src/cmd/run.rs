@@ -15,7 +15,7 @@ use crate::output::{say, write_atomically};
 /// Validates every file first (nothing is written if one is invalid), then runs
 /// each scenario and writes its evidence.
 pub fn run(args: &RunArgs) -> anyhow::Result<Exit> {
-    let Some(inputs) = load_all(&args.files, args.seed) else {
+    let Some(inputs) = load_all(&args.files, args.seed, args.record) else {
         return Ok(Exit::Invalid);
     };
     let Some(dirs) = evidence_dirs(args, &inputs) else {

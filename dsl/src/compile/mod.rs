@@ -2,9 +2,11 @@
 //! `yaml::parse` (spanned tree) → `de` (raw serde types, located errors) →
 //! `traces` (imported SUMO files, read once through the caller's [`Loader`]) →
 //! `setup` (ranges, units, defaults) → `sweep` (one tree per point) →
-//! `requirements` (ids, checks, `where` filters) → `Scenario`.
+//! `requirements` (ids, checks, `where` filters) → `record` (the recorded
+//! point and grid rate) → `Scenario`.
 
 mod context;
+mod record;
 mod requirements;
 mod scenario;
 mod semantic;

@@ -4,6 +4,7 @@
 use std::{fmt, io};
 
 use super::context::Context;
+use super::record::record;
 use super::requirements::{references, requirements};
 use super::setup::setup;
 use super::sweep::{self, AxisNodes};
@@ -27,6 +28,9 @@ pub struct Options<'a> {
     /// that imports files fails to read them: the compiler never touches the file
     /// system itself.
     pub loader: Option<&'a dyn Loader>,
+    /// Record a point into `run.mcap` even when the file has no `record`
+    /// section (the CLI's `--record`), with that section's defaults.
+    pub record: bool,
 }
 
 impl fmt::Debug for Options<'_> {
@@ -34,6 +38,7 @@ impl fmt::Debug for Options<'_> {
         f.debug_struct("Options")
             .field("seed", &self.seed)
             .field("loader", &self.loader.map(|_| "…"))
+            .field("record", &self.record)
             .finish()
     }
 }
@@ -114,6 +119,7 @@ fn compile_inner(file: &str, source: &str, options: &Options<'_>) -> Result<Scen
     };
     let requirements = requirements(&mut ctx, &raw.requirements, points.as_deref());
     let references = references(&mut ctx, &raw.references, points.as_deref());
+    let record = record(&mut ctx, raw.record.as_ref(), options.record, points.as_deref());
     let mut first_point = 0;
     let sweeps = sweeps
         .iter()
@@ -142,6 +148,7 @@ fn compile_inner(file: &str, source: &str, options: &Options<'_>) -> Result<Scen
         requirements,
         references,
         imports: imported.map(|i| i.files).unwrap_or_default(),
+        record,
     }))
 }
 
@@ -244,6 +251,7 @@ fn settings(raw: &RawScenario, setup: &crate::model::Setup) -> serde_json::Value
         "requirements",
         "sweep",
         "references",
+        "record",
     ] {
         object.remove(key);
     }

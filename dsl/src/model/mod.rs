@@ -15,7 +15,7 @@ pub use fusion::{
 };
 pub use requirement::{Bound, Check, Invariant, Metric, Reference, Requirement};
 pub use scenario::{
-    Assignment, Axis, Experiment, Grid, Import, ImportKind, Point, Scenario, Setup, Sweep, display_value,
+    Assignment, Axis, Experiment, Grid, Import, ImportKind, Point, Record, Scenario, Setup, Sweep, display_value,
 };
 pub use semantic::{
     Area, Baseline, Caution, Crosswalk, Driving, Following, InteractionArea, PedestrianTraffic, RiskScope, RsuSight,
