@@ -1,12 +1,13 @@
 //! Running a whole scenario: every sweep point, sharing sampled data where it can.
 
 use serde::Serialize;
-use sightline_dsl::{Decision, Experiment, Fusion, Metric, Scenario, Setup};
+use sightline_dsl::{Agent, Decision, Experiment, Fusion, Metric, Scenario, Setup};
 
 use crate::field;
 use crate::metrics::{FieldOutcome, MassAudit};
 use crate::semantic::{self, SemanticMetrics};
 use crate::sink::{NoTrace, TraceSink};
+use crate::trace::{Measured, SemanticStep, WorldStep};
 use crate::world::{self, WorldOutcome};
 
 /// One method to evaluate on shared data.
@@ -72,9 +73,35 @@ pub struct Run {
 /// Comparisons between methods at a sweep point are therefore paired, not subject
 /// to sampling noise.
 pub fn simulate(scenario: &Scenario) -> Run {
+    simulate_all(scenario, None, &mut NoTrace)
+}
+
+/// Simulates every point of `scenario` as [`simulate`] does, reporting the steps
+/// of point `point` to `sink` (see [`trace`](crate::trace)): what `sightline run`
+/// records. The run is the one [`simulate`] gives, bit for bit, and the record is
+/// the one [`simulate_point`] gives: where the point shares its sampled data with
+/// others, the sink sees only the point's own fused grid.
+///
+/// # Panics
+///
+/// If `point` is not an index of [`Scenario::points`].
+pub fn simulate_traced(scenario: &Scenario, point: usize, sink: &mut impl TraceSink) -> Run {
+    assert!(
+        point < scenario.points.len(),
+        "point {point} is not a point of the scenario"
+    );
+    simulate_all(scenario, Some(point), sink)
+}
+
+/// Every point, group by group; the group holding point `traced` reports to `sink`.
+fn simulate_all(scenario: &Scenario, traced: Option<usize>, sink: &mut impl TraceSink) -> Run {
     let mut outcomes: Vec<Option<Outcome>> = vec![None; scenario.points.len()];
     for group in shared_data_groups(scenario) {
-        for (&i, outcome) in group.iter().zip(simulate_group(scenario, &group, &mut NoTrace)) {
+        let results = match traced.and_then(|point| group.iter().position(|&i| i == point)) {
+            Some(job) => simulate_group(scenario, &group, &mut OneJob { sink: &mut *sink, job }),
+            None => simulate_group(scenario, &group, &mut NoTrace),
+        };
+        for (&i, outcome) in group.iter().zip(results) {
             outcomes[i] = Some(outcome);
         }
     }
@@ -83,6 +110,35 @@ pub fn simulate(scenario: &Scenario) -> Run {
             .into_iter()
             .map(|o| o.expect("every point belongs to one group"))
             .collect(),
+    }
+}
+
+/// Passes a group's record on to a sink that wants one job's: each step's fused
+/// grids cut down to that job's.
+struct OneJob<'s, S> {
+    sink: &'s mut S,
+    job: usize,
+}
+
+impl<S: TraceSink> TraceSink for OneJob<'_, S> {
+    fn start(&mut self, agents: &[Agent]) {
+        self.sink.start(agents);
+    }
+
+    fn wants_grids(&self, step: usize) -> bool {
+        self.sink.wants_grids(step)
+    }
+
+    fn world_step(&mut self, step: &WorldStep<'_>) {
+        let measured = step.measured.map(|m| Measured {
+            fused: &m.fused[self.job..=self.job],
+            ..m
+        });
+        self.sink.world_step(&WorldStep { measured, ..*step });
+    }
+
+    fn semantic_step(&mut self, step: &SemanticStep<'_>) {
+        self.sink.semantic_step(step);
     }
 }
 
