@@ -16,9 +16,17 @@ pub struct Cli {
 #[derive(Debug, Subcommand)]
 pub enum Command {
     /// Simulate scenarios, check their requirements and write results.json,
-    /// junit.xml and report.html. Exit 0: all pass, 1: a requirement fails,
-    /// 2: invalid input, 3: internal error.
+    /// junit.xml and report.html (and run.mcap when recording). Exit 0: all
+    /// pass, 1: a requirement fails, 2: invalid input, 3: internal error.
     Run(RunArgs),
+    /// Re-check the requirements of a recording (run.mcap) from what it holds
+    /// and print the verdicts as `run` does. Exit 0: all pass, 1: a requirement
+    /// fails, 2: the recording is damaged, does not match the results.json beside
+    /// it, or cannot be read, 3: internal error.
+    Replay {
+        /// The recording.
+        file: PathBuf,
+    },
     /// Validate scenario files without running them. Exit 0: all valid, 2: not.
     Check {
         /// Scenario files.

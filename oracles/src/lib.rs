@@ -7,10 +7,14 @@
 //!
 //! A requirement is checked at every sweep point it applies to; its verdict is
 //! the worst of those evaluations (an error outranks a failure, a failure a pass),
-//! and its reported value is the one with the smallest margin.
+//! and its reported value is the one with the smallest margin. The oracles read
+//! a run only through [`Measurements`], so `sightline replay` judges a
+//! recording's values with the same code.
 #![warn(missing_docs)]
 
+pub use measurements::Measurements;
 pub use verdict::{Evaluation, Status, Verdict, check};
 
 mod check;
+mod measurements;
 mod verdict;

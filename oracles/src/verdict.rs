@@ -2,8 +2,8 @@
 
 use serde::Serialize;
 use sightline_dsl::{Check, Requirement, Scenario};
-use sightline_engine::Run;
 
+use crate::Measurements;
 use crate::check::{invariant, metric};
 
 /// The outcome of a check.
@@ -59,27 +59,27 @@ pub struct Verdict {
     pub evaluations: Vec<Evaluation>,
 }
 
-/// Checks every requirement of `scenario` against `run`, in requirement order.
-pub fn check(scenario: &Scenario, run: &Run) -> Vec<Verdict> {
+/// Checks every requirement of `scenario` against the measurements of a run
+/// (a [`Run`](sightline_engine::Run), or a recording's), in requirement order.
+pub fn check(scenario: &Scenario, measurements: &(impl Measurements + ?Sized)) -> Vec<Verdict> {
     scenario
         .requirements
         .iter()
-        .map(|requirement| verdict(requirement, run))
+        .map(|requirement| verdict(requirement, measurements))
         .collect()
 }
 
-fn verdict(requirement: &Requirement, run: &Run) -> Verdict {
+fn verdict(requirement: &Requirement, measurements: &(impl Measurements + ?Sized)) -> Verdict {
     let evaluations: Vec<Evaluation> = requirement
         .points
         .iter()
         .map(|&point| {
-            let outcome = &run.points[point];
             let (status, value, margin, message) = match requirement.check {
-                Check::Metric { metric: m, bound } => metric::evaluate(m, bound, outcome.value(m)),
+                Check::Metric { metric: m, bound } => metric::evaluate(m, bound, measurements.value(point, m)),
                 Check::Invariant {
                     invariant: i,
                     tolerance,
-                } => invariant::evaluate(i, tolerance, outcome.audit()),
+                } => invariant::evaluate(i, tolerance, measurements.audit(point).as_ref()),
             };
             Evaluation {
                 point,

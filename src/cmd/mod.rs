@@ -1,6 +1,7 @@
 //! One module per subcommand.
 
 mod check;
+mod replay;
 mod run;
 mod schema;
 
@@ -13,5 +14,6 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<Exit> {
         Command::Run(args) => run::run(&args),
         Command::Check { files } => Ok(check::check(&files)),
         Command::Schema { markdown } => schema::schema(markdown),
+        Command::Replay { file } => Ok(replay::replay(&file)),
     }
 }

@@ -48,7 +48,7 @@ pub struct Record {
 impl Record {
     /// Whether the grids of `step` are recorded.
     pub fn grids_at(&self, step: usize) -> bool {
-        self.grid_every.is_some_and(|every| step % every == 0)
+        self.grid_every.is_some_and(|every| step.is_multiple_of(every))
     }
 }
 
