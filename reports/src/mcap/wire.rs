@@ -402,3 +402,30 @@ pub struct ApproachRecord {
 pub(crate) fn schema_of<T: JsonSchema>() -> Vec<u8> {
     serde_json::to_vec(&schemars::schema_for!(T)).expect("a JSON Schema serializes")
 }
+
+#[cfg(test)]
+mod tests {
+    use super::Real;
+
+    /// Replay judges the recorded values: every f64 reads back bit for bit.
+    #[test]
+    fn real_survives_json_exactly() {
+        for value in [
+            0.1 + 0.2,
+            1.0 / 3.0,
+            5e-324,
+            f64::MAX,
+            -0.0,
+            0.9438271028037383,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        ] {
+            let text = serde_json::to_string(&Real(value)).unwrap();
+            let back: Real = serde_json::from_str(&text).unwrap();
+            assert_eq!(back.0.to_bits(), value.to_bits(), "{value} as {text}");
+        }
+        let nan: Real = serde_json::from_str(&serde_json::to_string(&Real(f64::NAN)).unwrap()).unwrap();
+        assert!(nan.0.is_nan());
+        assert!(serde_json::from_str::<Real>("\"many\"").is_err());
+    }
+}
