@@ -757,16 +757,18 @@ pub(crate) fn zero_world_metrics() -> WorldMetrics {
 }
 
 /// Adds one step's counts (cells observed by the ego and jointly, and the fused
-/// grid's tallies) to `metrics`.
+/// grid's tallies) to `metrics`. Saturating: replay sums counts read from a file,
+/// and a forged count must give a mismatch, not an overflow.
 pub(crate) fn add_counts(metrics: &mut WorldMetrics, ego_observed: u64, joint_observed: u64, cells: &CellTally) {
-    metrics.steps += 1;
-    metrics.ego_observed += ego_observed;
-    metrics.joint_observed += joint_observed;
-    metrics.occupied += cells.occupied;
-    metrics.detected += cells.detected;
-    metrics.false_positives += cells.false_positives;
-    metrics.blind_occupied += cells.blind_occupied;
-    metrics.blind_detected += cells.blind_detected;
+    let add = |total: &mut u64, count: u64| *total = total.saturating_add(count);
+    add(&mut metrics.steps, 1);
+    add(&mut metrics.ego_observed, ego_observed);
+    add(&mut metrics.joint_observed, joint_observed);
+    add(&mut metrics.occupied, cells.occupied);
+    add(&mut metrics.detected, cells.detected);
+    add(&mut metrics.false_positives, cells.false_positives);
+    add(&mut metrics.blind_occupied, cells.blind_occupied);
+    add(&mut metrics.blind_detected, cells.blind_detected);
 }
 
 fn verdict_record(requirement: &sightline_dsl::Requirement, verdict: &Verdict) -> VerdictRecord {
