@@ -17,13 +17,21 @@ pub struct Cli {
 #[derive(Debug, Subcommand)]
 pub enum Command {
     /// Simulate scenarios, check their requirements and write results.json,
-    /// junit.xml and report.html. Exit 0: all pass, 1: a requirement fails,
-    /// 2: invalid input, 3: internal error.
+    /// junit.xml and report.html (and run.mcap when recording). Exit 0: all
+    /// pass, 1: a requirement fails, 2: invalid input, 3: internal error.
     Run(RunArgs),
     /// Search a scenario's `vary` space for a case that breaks a requirement,
     /// shrink it and write counterexample.yaml and falsify.json. Exit 0: none
     /// found, 1: found, 2: invalid input, 3: internal error.
     Falsify(FalsifyArgs),
+    /// Re-check the requirements of a recording (run.mcap) from what it holds
+    /// and print the verdicts as `run` does. Exit 0: all pass, 1: a requirement
+    /// fails, 2: the recording is damaged, does not match the results.json beside
+    /// it, or cannot be read, 3: internal error.
+    Replay {
+        /// The recording.
+        file: PathBuf,
+    },
     /// Validate scenario files without running them. Exit 0: all valid, 2: not.
     Check {
         /// Scenario files.
@@ -56,6 +64,10 @@ pub struct RunArgs {
     /// Worker threads, at least 1 (default: one per core). Results do not depend on it.
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..))]
     pub jobs: Option<u16>,
+    /// Record into DIR/run.mcap even when a scenario has no `record:` section
+    /// (with that section's defaults: the first sweep point, a grid a second).
+    #[arg(long)]
+    pub record: bool,
 }
 
 #[derive(Debug, Args)]

@@ -14,14 +14,16 @@ pub struct Input {
     pub scenario: Scenario,
 }
 
-/// Reads and compiles every file (`seed` overriding each one's), the files it
-/// imports read from disk too. Prints every error (as `file:line:col: error: …`)
-/// and returns `None` if any file is invalid.
-pub fn load_all(paths: &[PathBuf], seed: Option<u64>) -> Option<Vec<Input>> {
+/// Reads and compiles every file (`seed` overriding each one's, `record`
+/// recording each one as `--record` does), the files it imports read from disk
+/// too. Prints every error (as `file:line:col: error: …`) and returns `None` if
+/// any file is invalid.
+pub fn load_all(paths: &[PathBuf], seed: Option<u64>, record: bool) -> Option<Vec<Input>> {
     let disk = |path: &Path| std::fs::read(path);
     let options = Options {
         seed,
         loader: Some(&disk),
+        record,
     };
     let mut inputs = Vec::new();
     let mut valid = true;

@@ -10,6 +10,7 @@ mod cmd;
 mod exit;
 mod input;
 mod output;
+mod summary;
 
 fn main() -> ExitCode {
     let cli = cli::Cli::parse();

@@ -33,6 +33,11 @@ mod docs;
 #[path = "e2e/bundled.rs"]
 mod bundled;
 
+// run.mcap and `replay`: channels, counts, size, bytes whatever the thread
+// count, the Python reader, replay on every bundled scenario, damaged recordings.
+#[path = "e2e/record.rs"]
+mod record;
+
 // The findings pages quote the bundled runs.
 #[path = "e2e/findings.rs"]
 mod findings;

@@ -118,6 +118,11 @@ pub(crate) struct RawScenario {
     #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
     #[schemars(schema_with = "vary_schema")]
     pub vary: BTreeMap<String, serde_json::Value>,
+    /// Record one sweep point, step by step, into `run.mcap` (Foxglove's
+    /// formats) beside the other evidence; `sightline run --record` records
+    /// with the defaults when this is absent.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub record: Option<RawRecord>,
 }
 
 /// The schema of `vary`: a range or a list of choices per dotted path.
@@ -468,6 +473,32 @@ pub(crate) struct RawReference {
     pub filter: BTreeMap<String, serde_json::Value>,
     /// The published value.
     pub value: f64,
+}
+
+/// What `sightline run` records into `run.mcap`: one sweep point, step by
+/// step (the scene, detections, fused grids, V2X packets, semantic messages),
+/// and every point's metrics and verdicts. Give `point` or `where`, not both;
+/// neither records the first point.
+#[derive(Debug, Clone, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, expecting = "a record mapping")]
+#[schemars(rename = "Record")]
+pub(crate) struct RawRecord {
+    /// The recorded sweep point by index (0: the first point, in the order of
+    /// results.json's `sweep`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub point: Option<u64>,
+    /// The recorded sweep point by its settings: dotted path → value
+    /// (`perception.cooperating: 6`); the first point that matches.
+    #[serde(default, rename = "where", skip_serializing_if = "BTreeMap::is_empty")]
+    pub filter: BTreeMap<String, serde_json::Value>,
+    /// Fused grids (probability and uncertainty) recorded per simulated second,
+    /// Hz: every `round(1 / (grid_rate · time.step))` steps, at most every step;
+    /// 0 records none. Default 1.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub grid_rate: Option<f64>,
+    /// Also record each cooperating agent's own grid, at `grid_rate`.
+    #[serde(default)]
+    pub agent_grids: bool,
 }
 
 /// Simulated time.

@@ -143,3 +143,53 @@ fn world_metrics_are_refused_in_the_field_and_field_metrics_in_worlds() {
         format!("{WORLD}requirements:\n  - {{ id: A, text: x, check: {{ metric: accuracy, at_least: 0.9 }} }}\n");
     assert!(first_error(&text).contains("metric `accuracy` is not measured in a world scenario"));
 }
+
+fn compiled(text: &str, options: &Options<'_>) -> sightline_dsl::Scenario {
+    compile("w.yaml", text, options).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// See: issue 6 §2. No `record` section and no `--record`: nothing is recorded.
+#[test]
+fn without_a_record_section_nothing_is_recorded() {
+    assert_eq!(compiled(WORLD, &Options::default()).record, None);
+}
+
+/// `--record` without a section records the first point with a grid a second.
+#[test]
+fn the_record_flag_records_the_first_point_with_the_defaults() {
+    let options = Options {
+        record: true,
+        ..Default::default()
+    };
+    let record = compiled(WORLD, &options).record.expect("recorded");
+    assert_eq!((record.point, record.grid_rate, record.grid_every), (0, 1.0, Some(10)));
+    assert!(!record.agent_grids);
+    assert!(record.grids_at(0) && record.grids_at(20) && !record.grids_at(5));
+}
+
+/// `where` picks the first matching point; a rate of 0 records no grid.
+#[test]
+fn record_where_selects_the_first_matching_point() {
+    let text = format!(
+        "{WORLD}sweep: {{ perception.cooperating: [1, 2, 3] }}\nrecord: {{ where: {{ perception.cooperating: 2 }}, grid_rate: 0, agent_grids: true }}\n"
+    );
+    let record = compiled(&text, &Options::default()).record.expect("recorded");
+    assert_eq!((record.point, record.grid_every, record.agent_grids), (1, None, true));
+    assert!(!record.grids_at(0));
+}
+
+#[test]
+fn record_errors_are_located() {
+    let text = format!("{WORLD}record: {{ point: 3 }}\n");
+    assert_eq!(
+        first_error(&text),
+        "w.yaml:18:18: error: record.point: expected a point index below 1 (the scenario has 1 sweep point), found 3"
+    );
+    let text = format!("{WORLD}record: {{ grid_rate: 20 }}\n");
+    assert_eq!(
+        first_error(&text),
+        "w.yaml:18:22: error: record.grid_rate: expected at most the step rate, 10 Hz (one grid per step), found 20"
+    );
+    let text = format!("{WORLD}record: {{ point: 0, where: {{ seed: 0 }} }}\n");
+    assert!(first_error(&text).contains("give `point` (an index) or `where` (settings), not both"));
+}

@@ -8,7 +8,8 @@
 //!
 //! [`simulate_point`] runs one sweep point and hands a [`TraceSink`] a record of
 //! every step as it goes ([`trace`]): agent states, detections, packets, signals,
-//! and fused grids at the steps the sink asks for. The engine keeps none of it, so
+//! and fused grids at the steps the sink asks for; [`simulate_traced`] runs every
+//! point and records one of them that way. The engine keeps none of it, so
 //! memory stays bounded; the MCAP writer and the temporal oracles are sinks.
 //!
 //! Results are deterministic: the same scenario and seed give bit-identical
@@ -25,7 +26,7 @@
 #![warn(missing_docs)]
 
 pub use metrics::{BandMetrics, ConflictMetrics, Coverage, FieldMetrics, FieldOutcome, MassAudit};
-pub use run::{Job, Outcome, Run, simulate, simulate_point, simulate_reporting};
+pub use run::{Job, Outcome, Run, simulate, simulate_point, simulate_reporting, simulate_traced};
 pub use sink::{NoTrace, TraceSink};
 
 pub mod field;

@@ -2,13 +2,14 @@
 
 use rayon::prelude::*;
 use serde::Serialize;
-use sightline_dsl::{Check, Decision, Experiment, Fusion, Metric, ObjectProperty, Scenario, Setup, Signal};
+use sightline_dsl::{Agent, Check, Decision, Experiment, Fusion, Metric, ObjectProperty, Scenario, Setup, Signal};
 
 use crate::field;
 use crate::metrics::{FieldOutcome, MassAudit};
 use crate::rng::{Derived, derived_seed};
 use crate::semantic::{self, SemanticMetrics, Series};
 use crate::sink::{NoTrace, TraceSink};
+use crate::trace::{Measured, SemanticStep, WorldStep};
 use crate::world::{self, WorldOutcome};
 
 /// One method to evaluate on shared data.
@@ -105,18 +106,56 @@ pub struct Run {
 /// n − 1 replicate seeds derived from its own, in parallel; replicates of points
 /// that share data share them too.
 pub fn simulate(scenario: &Scenario) -> Run {
-    simulate_reporting(scenario, &mut |_| {})
+    simulate_all(scenario, None, &mut NoTrace, &mut |_| {})
 }
 
 /// [`simulate`], calling `done(n)` each time another n points (with their
 /// replicates) are simulated, for a progress display. The run is the same.
 pub fn simulate_reporting(scenario: &Scenario, done: &mut dyn FnMut(usize)) -> Run {
+    simulate_all(scenario, None, &mut NoTrace, done)
+}
+
+/// Simulates every point of `scenario` as [`simulate_reporting`] does, reporting
+/// the steps of point `point` to `sink` (see [`trace`](crate::trace)): what
+/// `sightline run` records. The run is the one [`simulate`] gives, bit for bit,
+/// and the record is the one [`simulate_point`] gives: where the point shares its
+/// sampled data with others, the sink sees only the point's own fused grid.
+/// Replicates of checks over seeds are not recorded.
+///
+/// # Panics
+///
+/// If `point` is not an index of [`Scenario::points`].
+pub fn simulate_traced(
+    scenario: &Scenario,
+    point: usize,
+    sink: &mut impl TraceSink,
+    done: &mut dyn FnMut(usize),
+) -> Run {
+    assert!(
+        point < scenario.points.len(),
+        "point {point} is not a point of the scenario"
+    );
+    simulate_all(scenario, Some(point), sink, done)
+}
+
+/// Every point, group by group, with the replicates checks over seeds need; the
+/// group holding point `traced` reports to `sink`; `done` after each group.
+fn simulate_all(
+    scenario: &Scenario,
+    traced: Option<usize>,
+    sink: &mut impl TraceSink,
+    done: &mut dyn FnMut(usize),
+) -> Run {
     let mut outcomes: Vec<Option<Outcome>> = vec![None; scenario.points.len()];
     let mut replicates: Vec<Vec<Outcome>> = vec![Vec::new(); scenario.points.len()];
     let seeds = seeds_needed(scenario);
     for group in shared_data_groups(scenario) {
         let seed = scenario.points[group[0]].setup.seed;
-        for (&i, outcome) in group.iter().zip(simulate_group(scenario, &group, seed, &mut NoTrace)) {
+        let results = match traced.and_then(|point| group.iter().position(|&i| i == point)) {
+            Some(job) => simulate_group(scenario, &group, seed, &mut OneJob { sink: &mut *sink, job }),
+            None => simulate_group(scenario, &group, seed, &mut NoTrace),
+        };
+        for (&i, outcome) in group.iter().zip(results) {
             outcomes[i] = Some(outcome);
         }
         let wanted = group.iter().map(|&i| seeds[i]).max().unwrap_or(1);
@@ -157,6 +196,35 @@ fn seeds_needed(scenario: &Scenario) -> Vec<u32> {
         }
     }
     seeds
+}
+
+/// Passes a group's record on to a sink that wants one job's: each step's fused
+/// grids cut down to that job's.
+struct OneJob<'s, S> {
+    sink: &'s mut S,
+    job: usize,
+}
+
+impl<S: TraceSink> TraceSink for OneJob<'_, S> {
+    fn start(&mut self, agents: &[Agent]) {
+        self.sink.start(agents);
+    }
+
+    fn wants_grids(&self, step: usize) -> bool {
+        self.sink.wants_grids(step)
+    }
+
+    fn world_step(&mut self, step: &WorldStep<'_>) {
+        let measured = step.measured.map(|m| Measured {
+            fused: &m.fused[self.job..=self.job],
+            ..m
+        });
+        self.sink.world_step(&WorldStep { measured, ..*step });
+    }
+
+    fn semantic_step(&mut self, step: &SemanticStep<'_>) {
+        self.sink.semantic_step(step);
+    }
 }
 
 /// Simulates point `point` of `scenario` alone, reporting each step to `sink`

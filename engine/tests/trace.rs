@@ -16,7 +16,7 @@ use sightline_engine::world::Visibility::{Los, NlosDynamic, NlosStatic};
 use sightline_engine::world::{
     AgentState, CellTally, Kinematics, Sighting, Sightings, WorldOutcome, in_view, mount_pose,
 };
-use sightline_engine::{Outcome, TraceSink, simulate, simulate_point};
+use sightline_engine::{Outcome, TraceSink, simulate, simulate_point, simulate_traced};
 
 /// The bundled roundabout, 14 s long (the snapshot stays at 12 s), all six
 /// vehicles cooperating, fused by Bayes (point 0) and Dempster (point 1): one
@@ -217,6 +217,26 @@ fn recording_a_semantic_point_changes_nothing() {
     let mut recorder = Recorder::default();
     assert_eq!(simulate_point(&scenario, 1, &mut recorder), run.points[1]);
     assert!(!recorder.semantic.is_empty());
+}
+
+/// Recording one point of a whole run (what `sightline run` records, issue 6)
+/// gives `simulate`'s run and the point's own record, even when the point shares
+/// its data with another: the sink sees only its own fused grid.
+#[test]
+fn tracing_one_point_of_a_run_gives_the_run_and_that_points_record() {
+    let scenario = roundabout();
+    let run = simulate(&scenario);
+    for point in 0..2 {
+        let mut alone = Recorder::asking_grids_at(&[40]);
+        simulate_point(&scenario, point, &mut alone);
+        let mut traced = Recorder::asking_grids_at(&[40]);
+        assert_eq!(
+            simulate_traced(&scenario, point, &mut traced, &mut |_| {}),
+            run,
+            "point {point}"
+        );
+        assert!(traced == alone, "the record of point {point} differs within the run");
+    }
 }
 
 /// Over the measured steps, the step records add up to the run's counts.

@@ -7,7 +7,9 @@
 //!
 //! A requirement is checked at every sweep point it applies to; its verdict is
 //! the worst of those evaluations (an error outranks a failure, a failure a pass),
-//! and its reported value is the one with the smallest margin.
+//! and its reported value is the one with the smallest margin. The oracles read
+//! a run only through [`Measurements`], so `sightline replay` judges a
+//! recording's values with the same code.
 //!
 //! [`falsify`] searches a scenario's `vary` space for a case that breaks a
 //! requirement and shrinks it; the caller compiles, simulates and checks each
@@ -16,8 +18,10 @@
 
 pub use check::seeds::{SeedStatistics, clopper_pearson_lower, mean_bound, wilson_lower};
 pub use falsify::{Case, Outcome, Phase, Score, Search, falsify};
+pub use measurements::Measurements;
 pub use verdict::{Evaluation, Status, Verdict, check};
 
 mod check;
 mod falsify;
+mod measurements;
 mod verdict;

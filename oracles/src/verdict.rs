@@ -2,8 +2,8 @@
 
 use serde::Serialize;
 use sightline_dsl::{Check, OverSeeds, Requirement, Scenario, Statistic};
-use sightline_engine::Run;
 
+use crate::Measurements;
 use crate::check::seeds::SeedStatistics;
 use crate::check::{invariant, metric, object, seeds, temporal};
 
@@ -64,21 +64,21 @@ pub struct Verdict {
     pub evaluations: Vec<Evaluation>,
 }
 
-/// Checks every requirement of `scenario` against `run`, in requirement order.
-pub fn check(scenario: &Scenario, run: &Run) -> Vec<Verdict> {
+/// Checks every requirement of `scenario` against the measurements of a run
+/// (a [`Run`](sightline_engine::Run), or a recording's), in requirement order.
+pub fn check(scenario: &Scenario, measurements: &(impl Measurements + ?Sized)) -> Vec<Verdict> {
     scenario
         .requirements
         .iter()
-        .map(|requirement| verdict(requirement, run))
+        .map(|requirement| verdict(requirement, measurements))
         .collect()
 }
 
-fn verdict(requirement: &Requirement, run: &Run) -> Verdict {
+fn verdict(requirement: &Requirement, measurements: &(impl Measurements + ?Sized)) -> Verdict {
     let evaluations: Vec<Evaluation> = requirement
         .points
         .iter()
         .map(|&point| {
-            let outcome = &run.points[point];
             let mut time = None;
             let (status, value, margin, message, seeds) = match requirement.check {
                 Check::Metric {
@@ -86,7 +86,7 @@ fn verdict(requirement: &Requirement, run: &Run) -> Verdict {
                     bound,
                     over_seeds: None,
                 } => {
-                    let (status, value, margin, message) = metric::evaluate(m, bound, outcome.value(m));
+                    let (status, value, margin, message) = metric::evaluate(m, bound, measurements.value(point, 0, m));
                     (status, value, margin, message, None)
                 }
                 Check::Metric {
@@ -94,10 +94,8 @@ fn verdict(requirement: &Requirement, run: &Run) -> Verdict {
                     bound,
                     over_seeds: Some(over),
                 } => {
-                    let values: Vec<Option<f64>> = std::iter::once(outcome)
-                        .chain(&run.replicates[point])
-                        .take(over.seeds as usize)
-                        .map(|o| o.value(m))
+                    let values: Vec<Option<f64>> = (0..over.seeds as usize)
+                        .map(|r| measurements.value(point, r, m))
                         .collect();
                     seeds::evaluate(m, bound, over, &values)
                 }
@@ -107,21 +105,22 @@ fn verdict(requirement: &Requirement, run: &Run) -> Verdict {
                     bound,
                     within,
                 } => {
-                    let runs = outcome.series(signal).unwrap_or_default();
+                    let runs = measurements.series(point, signal).unwrap_or_default();
                     let found = temporal::evaluate(signal, operator, bound, within, &runs);
                     time = found.time;
                     (found.status, found.value, found.margin, found.message, None)
                 }
                 Check::PerObject { property, bound } => {
-                    let values = outcome.per_object(property).unwrap_or_default();
-                    let (status, value, margin, message) = object::evaluate(property, bound, values);
+                    let values = measurements.per_object(point, property).unwrap_or_default();
+                    let (status, value, margin, message) = object::evaluate(property, bound, &values);
                     (status, value, margin, message, None)
                 }
                 Check::Invariant {
                     invariant: i,
                     tolerance,
                 } => {
-                    let (status, value, margin, message) = invariant::evaluate(i, tolerance, outcome.audit());
+                    let (status, value, margin, message) =
+                        invariant::evaluate(i, tolerance, measurements.audit(point).as_ref());
                     (status, value, margin, message, None)
                 }
             };

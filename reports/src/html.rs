@@ -210,6 +210,17 @@ fn provenance(results: &Results, reproduce: &str) -> Vec<(&'static str, String)>
             format!("{} ({}), SHA-256 {}", input.path, input.kind, input.sha256),
         )
     }));
+    rows.extend(results.recording.iter().map(|recording| {
+        let point = if recording.label.is_empty() {
+            format!("point {}", recording.point)
+        } else {
+            format!("point {}: {}", recording.point, recording.label)
+        };
+        (
+            "Recording",
+            format!("{} ({point}), SHA-256 {}", recording.file, recording.sha256),
+        )
+    }));
     rows.extend([
         (
             "Seed",

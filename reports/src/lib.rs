@@ -1,10 +1,14 @@
-//! sightline's evidence: `results.json`, `junit.xml` and `report.html` of a run,
-//! and `falsify.json` of a falsification.
+//! sightline's evidence: `results.json`, `junit.xml`, `report.html` and
+//! `run.mcap` of a run, and `falsify.json` of a falsification.
 //!
 //! This crate maps a compiled scenario, its run and its verdicts to bytes. It owns
-//! the wire formats (see [`Results`]) and the report template; it does not write
-//! files (the CLI writes them atomically) and it does not judge (that is
-//! `sightline-oracles`).
+//! the wire formats (see [`Results`] and [`mcap`]) and the report template; it
+//! does not open files (the CLI hands it a writer and renames what it wrote into
+//! place atomically) and it does not judge (that is `sightline-oracles`).
+//!
+//! The recording is written as the engine runs: [`mcap::Recorder`] is a
+//! [`TraceSink`](sightline_engine::TraceSink), and [`mcap::read`] reads it back
+//! for `sightline replay`.
 #![warn(missing_docs)]
 
 pub use chart::{Chart, ChartError, Line, anticipation, kde, lines_chart, silverman_bandwidth};
@@ -13,14 +17,15 @@ pub use html::html;
 pub use junit::junit;
 pub use picture::{Pictures, pictures};
 pub use results::{
-    CheckInfo, Detail, FORMAT, InputInfo, MetricEntry, Ordered, PointResult, PointVerdict, Provenance, ReferencePoint,
-    ReferenceResult, RequirementResult, Results, ScenarioInfo, Summary, Table, Tool,
+    CheckInfo, Detail, FORMAT, InputInfo, MetricEntry, Ordered, PointResult, PointVerdict, Provenance, RecordingInfo,
+    ReferencePoint, ReferenceResult, RequirementResult, Results, ScenarioInfo, Summary, Table, Tool,
 };
 
 mod chart;
 mod falsify;
 mod html;
 mod junit;
+pub mod mcap;
 mod picture;
 mod results;
 

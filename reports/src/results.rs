@@ -22,10 +22,26 @@ pub struct Provenance {
     pub scenario_path: String,
     /// SHA-256 of the scenario file's bytes, lowercase hex.
     pub scenario_sha256: String,
+    /// The recording written beside the evidence, when there is one.
+    pub recording: Option<RecordingInfo>,
+}
+
+/// The recording (`run.mcap`) written beside results.json.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RecordingInfo {
+    /// Its file name in the evidence directory.
+    pub file: String,
+    /// SHA-256 of its bytes, lowercase hex: `sightline replay` refuses a
+    /// recording that does not match it.
+    pub sha256: String,
+    /// The recorded sweep point's index.
+    pub point: usize,
+    /// Its sweep label (empty without a sweep).
+    pub label: String,
 }
 
 /// The tool and its build.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, serde::Deserialize, schemars::JsonSchema)]
 pub struct Tool {
     /// `sightline`.
     pub name: String,
@@ -46,6 +62,9 @@ pub struct Results {
     pub scenario: ScenarioInfo,
     /// Every file the run read: the scenario, then the files it imports.
     pub inputs: Vec<InputInfo>,
+    /// The recording beside results.json (absent when the run recorded none).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub recording: Option<RecordingInfo>,
     /// The seed, when every point shares one (`null` when the seed is swept).
     pub seed: Option<u64>,
     /// The overall verdict: the worst requirement verdict (pass with no requirements).
@@ -328,6 +347,7 @@ impl Results {
                 sha256: crate::sha256_hex(&import.bytes),
             }))
             .collect(),
+            recording: provenance.recording.clone(),
             seed: seeds.iter().all(|&s| s == seeds[0]).then_some(seeds[0]),
             verdict: verdicts.iter().map(|v| v.status).max().unwrap_or(Status::Pass),
             summary: Summary {

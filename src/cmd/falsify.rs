@@ -37,7 +37,8 @@ enum Stop {
 /// Searches, then writes `falsify.json` and, when a case breaks a requirement,
 /// `counterexample.yaml`.
 pub fn falsify(args: &FalsifyArgs) -> anyhow::Result<Exit> {
-    let Some(input) = load_all(std::slice::from_ref(&args.file), None).and_then(|inputs| inputs.into_iter().next())
+    let Some(input) =
+        load_all(std::slice::from_ref(&args.file), None, false).and_then(|inputs| inputs.into_iter().next())
     else {
         return Ok(Exit::Invalid);
     };
@@ -106,7 +107,7 @@ pub fn falsify(args: &FalsifyArgs) -> anyhow::Result<Exit> {
     let evaluations = scores.len();
     let rate = evaluations as f64 / elapsed.max(1e-9);
     let Some(found) = outcome.counterexample.map(|i| &outcome.cases[i]) else {
-        write_atomically(&dir, &[("falsify.json", &report_json)])?;
+        write_atomically(&dir, &[("falsify.json", &report_json)], Vec::new())?;
         // A counterexample left by an earlier search would contradict this one.
         match std::fs::remove_file(dir.join("counterexample.yaml")) {
             Err(error) if error.kind() != std::io::ErrorKind::NotFound => {
@@ -154,6 +155,7 @@ pub fn falsify(args: &FalsifyArgs) -> anyhow::Result<Exit> {
     write_atomically(
         &dir,
         &[("counterexample.yaml", &counterexample), ("falsify.json", &report_json)],
+        Vec::new(),
     )?;
     say(format_args!(
         "FOUND {path}: {requirement} {} (margin {margin}) at {}; first broken by case {}, {} cases in all ({evaluations} simulations, {rate:.1}/s) -> {}",
@@ -174,6 +176,7 @@ fn simulate_case(path: &str, text: &str, vary: &[Vary], indices: &[u64]) -> Resu
     let options = Options {
         seed: None,
         loader: Some(&disk),
+        record: false,
     };
     let case = sightline_dsl::compile(path, &case_text, &options).map_err(|errors| {
         Stop::Invalid(format!(

@@ -2,6 +2,7 @@
 
 mod check;
 mod falsify;
+mod replay;
 mod run;
 mod schema;
 mod selftest;
@@ -17,5 +18,6 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<Exit> {
         Command::Check { files } => Ok(check::check(&files)),
         Command::Schema { markdown } => schema::schema(markdown),
         Command::Selftest => Ok(selftest::selftest()),
+        Command::Replay { file } => Ok(replay::replay(&file)),
     }
 }

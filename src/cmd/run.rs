@@ -1,21 +1,29 @@
-//! `sightline run FILE… [--out DIR] [--seed N] [--jobs N]`
+//! `sightline run FILE… [--out DIR] [--seed N] [--jobs N] [--record]`
 
 use std::collections::HashSet;
-use std::path::PathBuf;
+use std::io::{BufWriter, Write};
+use std::path::{Path, PathBuf};
 
 use anyhow::Context;
-use sightline_oracles::Status;
-use sightline_reports::{Provenance, Tool, render, sha256_hex};
+use sightline_engine::Run;
+use sightline_oracles::Verdict;
+use sightline_reports::mcap::{Recorder, Source};
+use sightline_reports::{Provenance, RecordingInfo, Tool, render, sha256_hex};
+use tempfile::NamedTempFile;
 
 use crate::cli::RunArgs;
 use crate::exit::Exit;
 use crate::input::{Input, load_all};
-use crate::output::{default_dir, progress, say, stem, write_atomically};
+use crate::output::{default_dir, progress, staging_file, stem, write_atomically};
+use crate::summary::print_verdicts;
+
+/// The recording's name in the evidence directory.
+pub const RECORDING: &str = "run.mcap";
 
 /// Validates every file first (nothing is written if one is invalid), then runs
 /// each scenario and writes its evidence.
 pub fn run(args: &RunArgs) -> anyhow::Result<Exit> {
-    let Some(inputs) = load_all(&args.files, args.seed) else {
+    let Some(inputs) = load_all(&args.files, args.seed, args.record) else {
         return Ok(Exit::Invalid);
     };
     let Some(dirs) = evidence_dirs(args, &inputs) else {
@@ -29,23 +37,25 @@ pub fn run(args: &RunArgs) -> anyhow::Result<Exit> {
     for (input, dir) in inputs.iter().zip(&dirs) {
         let scenario = &input.scenario;
         let path = input.path.display().to_string();
-        let bar = progress(scenario.points.len(), &path);
-        let run = pool.install(|| sightline_engine::simulate_reporting(scenario, &mut |n| bar.inc(n as u64)));
-        bar.finish_and_clear();
-        let verdicts = sightline_oracles::check(scenario, &run);
+        let tool = Tool {
+            name: "sightline".into(),
+            version: env!("CARGO_PKG_VERSION").into(),
+            git: env!("SIGHTLINE_GIT").into(),
+        };
+        let (run, verdicts, recording) = simulate(&pool, input, &tool, args, dir)?;
         let provenance = Provenance {
-            tool: Tool {
-                name: "sightline".into(),
-                version: env!("CARGO_PKG_VERSION").into(),
-                git: env!("SIGHTLINE_GIT").into(),
-            },
+            tool,
             scenario_path: path.clone(),
             scenario_sha256: sha256_hex(&input.bytes),
+            recording: recording.as_ref().map(|(_, info)| info.clone()),
         };
-        let reproduce = match scenario.points.iter().map(|p| p.setup.seed).collect::<HashSet<_>>() {
+        let mut reproduce = match scenario.points.iter().map(|p| p.setup.seed).collect::<HashSet<_>>() {
             seeds if seeds.len() == 1 => format!("sightline run {path} --seed {}", scenario.points[0].setup.seed),
             _ => format!("sightline run {path}"),
         };
+        if args.record {
+            reproduce.push_str(" --record");
+        }
         let evidence = render(scenario, &run, &verdicts, &provenance, &reproduce)?;
         write_atomically(
             dir,
@@ -54,35 +64,65 @@ pub fn run(args: &RunArgs) -> anyhow::Result<Exit> {
                 ("junit.xml", &evidence.junit_xml),
                 ("report.html", &evidence.report_html),
             ],
+            recording.map(|(file, _)| (file, RECORDING)).into_iter().collect(),
         )?;
-        let summary = evidence.results.summary;
-        let verdict = evidence.results.verdict.name().to_uppercase();
-        say(format_args!(
-            "{verdict} {path}: {} of {} requirements hold over {} sweep point{} -> {}",
-            summary.passed,
-            summary.requirements,
-            scenario.points.len(),
-            if scenario.points.len() == 1 { "" } else { "s" },
-            dir.display()
-        ));
-        for requirement in evidence
-            .results
-            .requirements
-            .iter()
-            .filter(|r| r.verdict != Status::Pass)
-        {
-            say(format_args!(
-                "  {} {}: {}",
-                requirement.verdict.name(),
-                requirement.id,
-                requirement.message
-            ));
-        }
-        if evidence.results.verdict != Status::Pass {
+        if print_verdicts(&path, scenario, &verdicts, format_args!("-> {}", dir.display())) != Exit::Pass {
             exit = Exit::Fail;
         }
     }
     Ok(exit)
+}
+
+/// A run, its verdicts, and its recording (staged in `dir`, with what
+/// results.json says of it) when the scenario asks for one.
+type Simulated = (Run, Vec<Verdict>, Option<(NamedTempFile, RecordingInfo)>);
+
+/// Simulates and checks `input`; records its `record` point into a staging file
+/// in `dir` as the engine runs, when it has one.
+fn simulate(
+    pool: &rayon::ThreadPool,
+    input: &Input,
+    tool: &Tool,
+    args: &RunArgs,
+    dir: &Path,
+) -> anyhow::Result<Simulated> {
+    let scenario = &input.scenario;
+    let bar = progress(scenario.points.len(), &input.path.display().to_string());
+    let mut done = |n: usize| bar.inc(n as u64);
+    let Some(record) = scenario.record else {
+        let run = pool.install(|| sightline_engine::simulate_reporting(scenario, &mut done));
+        bar.finish_and_clear();
+        let verdicts = sightline_oracles::check(scenario, &run);
+        return Ok((run, verdicts, None));
+    };
+    let file = staging_file(dir)?;
+    let failed = || format!("failed to write {}", dir.join(RECORDING).display());
+    let text = std::str::from_utf8(&input.bytes).context("the scenario file is not UTF-8 text")?;
+    let source = Source {
+        tool,
+        file: &input.path.display().to_string(),
+        text,
+        seed: args.seed,
+        record_flag: args.record,
+    };
+    let mut recorder = Recorder::new(BufWriter::new(file.as_file()), scenario, record, &source).with_context(failed)?;
+    let run = pool.install(|| sightline_engine::simulate_traced(scenario, record.point, &mut recorder, &mut done));
+    bar.finish_and_clear();
+    let verdicts = sightline_oracles::check(scenario, &run);
+    recorder
+        .finish(&run, &verdicts)
+        .with_context(failed)?
+        .flush()
+        .with_context(failed)?;
+    // The hash is of the bytes on disk: the MCAP writer seeks back as it writes.
+    let bytes = std::fs::read(file.path()).with_context(failed)?;
+    let info = RecordingInfo {
+        file: RECORDING.into(),
+        sha256: sha256_hex(&bytes),
+        point: record.point,
+        label: scenario.points[record.point].label(),
+    };
+    Ok((run, verdicts, Some((file, info))))
 }
 
 /// Where each scenario's evidence goes; `None` (after printing why) when two

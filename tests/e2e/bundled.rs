@@ -1,27 +1,63 @@
 //! The bundled scenarios, end to end. The seed-001 field (1000 × 1000 cells, 60
 //! sweep points) takes a while, so it runs once (shared by the tests below): the
 //! shape of its evidence, and every figure `docs/findings/seed-001.md` quotes from
-//! it. Then the seed-002 junction and the SUMO grid.
+//! it. Then the seed-000 roundabout, the seed-002 junction and the SUMO grid.
+//! Each runs once with `--record`, its evidence kept for the tests of the
+//! recording and of replay (`record.rs`).
 
 use std::sync::OnceLock;
 
 use crate::findings::tables;
 use crate::support::{
-    arg, assert_evidence_files, read, read_json, root, sha256_hex, sightline, temp_dir, unescape_html,
+    RECORDING, arg, assert_recorded_evidence_files, read, read_json, root, sha256_hex, sightline, temp_dir,
+    unescape_html,
 };
 
 const SCENARIO: &str = "scenarios/evidential-field.yaml";
 
+/// One run of a bundled scenario with `--record`, its evidence kept in memory.
+pub struct Bundled {
+    /// The scenario file.
+    pub scenario: &'static str,
+    /// What `run` printed.
+    pub stdout: String,
+    /// results.json, parsed.
+    pub results: serde_json::Value,
+    /// results.json as written.
+    pub results_json: String,
+    /// report.html.
+    pub report: String,
+    /// run.mcap.
+    pub recording: Vec<u8>,
+}
+
+/// Runs a bundled scenario with `--record` (it must pass) and keeps its evidence.
+fn run_bundled(scenario: &'static str) -> Bundled {
+    let tmp = temp_dir();
+    let out = tmp.path().join("out");
+    let run = sightline(["run", scenario, "--out", arg(&out), "--record"]);
+    run.assert_exit(0);
+    assert_recorded_evidence_files(&out);
+    let results_json = read(&out.join("results.json"));
+    Bundled {
+        scenario,
+        stdout: run.stdout.clone(),
+        results: read_json(&out.join("results.json")),
+        results_json,
+        report: read(&out.join("report.html")),
+        recording: std::fs::read(out.join(RECORDING)).expect("run.mcap is readable"),
+    }
+}
+
+/// The bundled seed 001 field.
+pub fn field() -> &'static Bundled {
+    static RUN: OnceLock<Bundled> = OnceLock::new();
+    RUN.get_or_init(|| run_bundled(SCENARIO))
+}
+
 /// results.json of one run of the bundled scenario.
 fn results() -> &'static serde_json::Value {
-    static RESULTS: OnceLock<serde_json::Value> = OnceLock::new();
-    RESULTS.get_or_init(|| {
-        let tmp = temp_dir();
-        let out = tmp.path().join("out");
-        sightline(["run", SCENARIO, "--out", arg(&out)]).assert_exit(0);
-        assert_evidence_files(&out);
-        read_json(&out.join("results.json"))
-    })
+    &field().results
 }
 
 #[test]
@@ -139,24 +175,26 @@ fn findings_tables_quote_the_bundled_run() {
     assert_eq!(checked, 5 * (8 + 8 + 6 + 6));
 }
 
-/// results.json of one run of the bundled roundabout.
-pub fn roundabout() -> &'static serde_json::Value {
-    static RESULTS: OnceLock<serde_json::Value> = OnceLock::new();
-    RESULTS.get_or_init(|| {
-        let tmp = temp_dir();
-        let out = tmp.path().join("out");
-        sightline(["run", "scenarios/roundabout-six-agents.yaml", "--out", arg(&out)]).assert_exit(0);
-        assert_evidence_files(&out);
+/// The bundled seed 000 roundabout.
+pub fn roundabout_run() -> &'static Bundled {
+    static RUN: OnceLock<Bundled> = OnceLock::new();
+    RUN.get_or_init(|| {
+        let run = run_bundled("scenarios/roundabout-six-agents.yaml");
         // Each sweep's cited metrics are drawn over its axis.
-        let html = unescape_html(&read(&out.join("report.html")));
+        let html = unescape_html(&run.report);
         for caption in [
             "occupied_recall over perception.cooperating",
             "occupied_recall over localization.position_sigma",
         ] {
             assert!(html.contains(caption), "the report lacks the chart {caption:?}");
         }
-        read_json(&out.join("results.json"))
+        run
     })
+}
+
+/// results.json of one run of the bundled roundabout.
+pub fn roundabout() -> &'static serde_json::Value {
+    &roundabout_run().results
 }
 
 #[test]
@@ -189,15 +227,12 @@ fn requirement<'a>(results: &'a serde_json::Value, id: &str) -> &'a serde_json::
         .unwrap_or_else(|| panic!("no requirement {id}"))
 }
 
-/// results.json of one run of the bundled seed 002 junction.
-pub fn urban() -> &'static serde_json::Value {
-    static RESULTS: OnceLock<serde_json::Value> = OnceLock::new();
-    RESULTS.get_or_init(|| {
-        let tmp = temp_dir();
-        let out = tmp.path().join("out");
-        sightline(["run", "scenarios/urban-rsu-semantic.yaml", "--out", arg(&out)]).assert_exit(0);
-        assert_evidence_files(&out);
-        let html = unescape_html(&std::fs::read_to_string(out.join("report.html")).unwrap());
+/// The bundled seed 002 junction; its report shows the semantic charts.
+pub fn urban_run() -> &'static Bundled {
+    static RUN: OnceLock<Bundled> = OnceLock::new();
+    RUN.get_or_init(|| {
+        let run = run_bundled("scenarios/urban-rsu-semantic.yaml");
+        let html = unescape_html(&run.report);
         for shown in [
             "Objects the ego knows only through an RSU, by traffic density",
             "Messages to the ego by RSU–ego distance",
@@ -207,8 +242,19 @@ pub fn urban() -> &'static serde_json::Value {
         ] {
             assert!(html.contains(shown), "the report lacks {shown:?}");
         }
-        read_json(&out.join("results.json"))
+        run
     })
+}
+
+/// results.json of one run of the bundled seed 002 junction.
+pub fn urban() -> &'static serde_json::Value {
+    &urban_run().results
+}
+
+/// The bundled SUMO grid.
+pub fn sumo_grid_run() -> &'static Bundled {
+    static RUN: OnceLock<Bundled> = OnceLock::new();
+    RUN.get_or_init(|| run_bundled("scenarios/sumo-grid-semantic.yaml"))
 }
 
 /// The bundled seed 002 junction: every point measures the semantic pipeline over
@@ -263,12 +309,8 @@ fn urban_semantic_scenario_runs_end_to_end() {
 /// the ego (SUMO's veh7) is in the scene from its first sample to its last.
 #[test]
 fn sumo_grid_scenario_runs_end_to_end_and_hashes_its_imports() {
-    const GRID: &str = "scenarios/sumo-grid-semantic.yaml";
-    let tmp = temp_dir();
-    let out = tmp.path().join("out");
-    sightline(["run", GRID, "--out", arg(&out)]).assert_exit(0);
-    assert_evidence_files(&out);
-    let results = read_json(&out.join("results.json"));
+    let run = sumo_grid_run();
+    let (results, grid) = (&run.results, run.scenario);
     assert_eq!(results["verdict"], "pass");
     let inputs: Vec<(&str, &str, &str)> = results["inputs"]
         .as_array()
@@ -284,7 +326,7 @@ fn sumo_grid_scenario_runs_end_to_end_and_hashes_its_imports() {
         .collect();
     let hash = |path: &str| sha256_hex(&std::fs::read(root().join(path)).unwrap());
     let files = [
-        ("scenario", GRID),
+        ("scenario", grid),
         ("sumo_fcd", "scenarios/sumo/grid3x3.fcd.xml"),
         ("sumo_net", "scenarios/sumo/grid3x3.net.xml"),
         ("sumo_poly", "scenarios/sumo/grid3x3.poly.xml"),
@@ -297,7 +339,7 @@ fn sumo_grid_scenario_runs_end_to_end_and_hashes_its_imports() {
             .map(|(kind, path, sha)| (*kind, *path, sha.as_str()))
             .collect::<Vec<_>>()
     );
-    let html = unescape_html(&read(&out.join("report.html")));
+    let html = unescape_html(&run.report);
     for (_, path, sha) in &expected {
         assert!(html.contains(sha.as_str()), "the report lacks the hash of {path}");
     }
@@ -312,7 +354,7 @@ fn sumo_grid_scenario_runs_end_to_end_and_hashes_its_imports() {
     assert_eq!(point["counts"]["generated"], 0);
 
     // Checks over 30 seeds: the replicates draw anew, and the bounds are the stated ones.
-    let requirement = |id: &str| requirement(&results, id);
+    let requirement = |id: &str| requirement(results, id);
     let pdr = &requirement("GRID-PDR-30")["points"][0]["seeds"];
     assert_eq!(
         (pdr["seeds"].as_u64(), pdr["method"].as_str()),

@@ -130,6 +130,11 @@ invalid_inputs! {
     missing_trace_file_is_located_at_its_name => "traces-missing-file",
     malformed_trace_file_is_located_in_it => "traces-malformed-fcd",
     unknown_sensor_model_is_a_dangling_reference => "unknown-sensor-model",
+    record_point_beyond_the_sweep_is_out_of_range => "record-point-out-of-range",
+    record_point_and_where_are_exclusive => "record-point-and-where",
+    record_grid_rate_above_the_step_rate_is_refused => "record-grid-rate-above-step-rate",
+    record_unknown_key_lists_the_keys => "record-unknown-key",
+    record_where_matching_no_point_and_a_negative_rate_are_reported => "record-where-matches-no-point",
 }
 
 #[test]

@@ -16,6 +16,9 @@ pub const BLESS_VAR: &str = "SIGHTLINE_BLESS";
 /// The names of the evidence files `run` writes into its directory.
 pub const EVIDENCE_FILES: [&str; 3] = ["results.json", "junit.xml", "report.html"];
 
+/// The recording `run` writes beside them when it records.
+pub const RECORDING: &str = "run.mcap";
+
 /// The main valid fixture (small, every requirement passes).
 pub const SMALL_FIELD: &str = "tests/fixtures/valid/small-field.yaml";
 
@@ -141,7 +144,21 @@ pub fn files_under(dir: &Path) -> Vec<PathBuf> {
 /// Panics unless `dir` holds exactly the three evidence files.
 #[track_caller]
 pub fn assert_evidence_files(dir: &Path) {
-    let mut expected: Vec<PathBuf> = EVIDENCE_FILES.iter().map(PathBuf::from).collect();
+    assert_files(dir, &EVIDENCE_FILES);
+}
+
+/// Panics unless `dir` holds exactly the three evidence files and the recording.
+#[track_caller]
+pub fn assert_recorded_evidence_files(dir: &Path) {
+    assert_files(
+        dir,
+        &[EVIDENCE_FILES[0], EVIDENCE_FILES[1], EVIDENCE_FILES[2], RECORDING],
+    );
+}
+
+#[track_caller]
+fn assert_files(dir: &Path, names: &[&str]) {
+    let mut expected: Vec<PathBuf> = names.iter().map(PathBuf::from).collect();
     expected.sort();
     assert_eq!(files_under(dir), expected, "evidence files in {}", dir.display());
 }

@@ -3,9 +3,11 @@
 //! `traces` (imported SUMO files, read once through the caller's [`Loader`]) →
 //! `setup` (ranges, units, defaults) → `sweep` (one tree per point) → `vary`
 //! (the space falsify searches) →
-//! `requirements` (ids, checks, `where` filters) → `Scenario`.
+//! `requirements` (ids, checks, `where` filters) → `record` (the recorded
+//! point and grid rate) → `Scenario`.
 
 mod context;
+mod record;
 mod requirements;
 mod scenario;
 mod semantic;

@@ -408,8 +408,9 @@ fn defined_everywhere(
     true
 }
 
-/// The points whose settings match every entry of a `where` filter.
-fn select(
+/// The points whose settings match every entry of a `where` filter; `None`
+/// (after recording why) when a key names no setting or nothing matches.
+pub(super) fn select(
     ctx: &mut Context<'_>,
     filter: &BTreeMap<String, serde_json::Value>,
     points: &[Point],

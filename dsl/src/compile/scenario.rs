@@ -4,6 +4,7 @@
 use std::{fmt, io};
 
 use super::context::Context;
+use super::record::record;
 use super::requirements::{references, requirements};
 use super::setup::setup;
 use super::sweep::{self, AxisNodes};
@@ -28,6 +29,9 @@ pub struct Options<'a> {
     /// that imports files fails to read them: the compiler never touches the file
     /// system itself.
     pub loader: Option<&'a dyn Loader>,
+    /// Record a point into `run.mcap` even when the file has no `record`
+    /// section (the CLI's `--record`), with that section's defaults.
+    pub record: bool,
 }
 
 impl fmt::Debug for Options<'_> {
@@ -35,6 +39,7 @@ impl fmt::Debug for Options<'_> {
         f.debug_struct("Options")
             .field("seed", &self.seed)
             .field("loader", &self.loader.map(|_| "…"))
+            .field("record", &self.record)
             .finish()
     }
 }
@@ -117,6 +122,7 @@ fn compile_inner(file: &str, source: &str, options: &Options<'_>) -> Result<Scen
     };
     let requirements = requirements(&mut ctx, &raw.requirements, points.as_deref());
     let references = references(&mut ctx, &raw.references, points.as_deref());
+    let record = record(&mut ctx, raw.record.as_ref(), options.record, points.as_deref());
     let mut first_point = 0;
     let sweeps = sweeps
         .iter()
@@ -146,6 +152,7 @@ fn compile_inner(file: &str, source: &str, options: &Options<'_>) -> Result<Scen
         references,
         imports: imported.map(|i| i.files).unwrap_or_default(),
         vary,
+        record,
     }))
 }
 
@@ -249,6 +256,7 @@ fn settings(raw: &RawScenario, setup: &crate::model::Setup) -> serde_json::Value
         "sweep",
         "references",
         "vary",
+        "record",
     ] {
         object.remove(key);
     }

@@ -28,6 +28,30 @@ pub struct Scenario {
     pub imports: Vec<Import>,
     /// The settings `sightline falsify` varies, in file order (`run` ignores them).
     pub vary: Vec<super::Vary>,
+    /// What `sightline run` records into `run.mcap`; `None`: no recording.
+    pub record: Option<Record>,
+}
+
+/// What `sightline run` records into `run.mcap` (language section `record`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Record {
+    /// The recorded point, an index into [`Scenario::points`].
+    pub point: usize,
+    /// Fused grids recorded per simulated second, Hz (0: none).
+    pub grid_rate: f64,
+    /// Steps between recorded grids (grids at steps 0, `every`, 2 · `every`, …);
+    /// `None` when no grid is recorded: a rate of 0, or a point without steps
+    /// (the field experiment).
+    pub grid_every: Option<usize>,
+    /// Whether each cooperating agent's own grid is recorded too, at the grid rate.
+    pub agent_grids: bool,
+}
+
+impl Record {
+    /// Whether the grids of `step` are recorded.
+    pub fn grids_at(&self, step: usize) -> bool {
+        self.grid_every.is_some_and(|every| step.is_multiple_of(every))
+    }
 }
 
 /// A file a scenario imports, as it was read.

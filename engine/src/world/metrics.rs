@@ -85,7 +85,7 @@ impl WorldMetrics {
         match metric {
             Metric::FovGain => ratio(self.joint_observed, self.ego_observed).map(|r| r - 1.0),
             Metric::OccupiedRecall => ratio(self.detected, self.occupied),
-            Metric::OccupiedPrecision => ratio(self.detected, self.detected + self.false_positives),
+            Metric::OccupiedPrecision => ratio(self.detected, self.detected.saturating_add(self.false_positives)),
             Metric::BlindRecall => ratio(self.blind_detected, self.blind_occupied),
             Metric::MeanUncertainty => self.mean_uncertainty,
             Metric::MeanConflict => self.conflict.as_ref()?.mean,

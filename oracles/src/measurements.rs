@@ -1,0 +1,48 @@
+//! What the oracles judge: each sweep point's metric values and mass audit, its
+//! replicates' values for checks over seeds, its signals over time and its
+//! per-object properties.
+
+use sightline_dsl::{Metric, ObjectProperty, Signal};
+use sightline_engine::semantic::Series;
+use sightline_engine::{MassAudit, Run};
+
+/// The measurements of every sweep point of a run, as the oracles read them: a
+/// fresh [`Run`], or the values a recording carries (`sightline replay`). The
+/// oracles read nothing else, so the same measurements give the same verdicts.
+pub trait Measurements {
+    /// The value of `metric` at point `point` in replicate `replicate` (0: the
+    /// point's own run; 1, 2, …: the replicate seeds of checks over seeds);
+    /// `None` where it is not defined or not measured.
+    fn value(&self, point: usize, replicate: usize, metric: Metric) -> Option<f64>;
+
+    /// The mass-function audit of point `point`; `None` where nothing is fused.
+    fn audit(&self, point: usize) -> Option<MassAudit>;
+
+    /// `signal` over each run of point `point`; `None` where it is not measured.
+    fn series(&self, point: usize, signal: Signal) -> Option<Vec<Series>>;
+
+    /// `property` of each object that came within d_min of the ego at point
+    /// `point`; `None` where it is not measured.
+    fn per_object(&self, point: usize, property: ObjectProperty) -> Option<Vec<Option<f64>>>;
+}
+
+impl Measurements for Run {
+    fn value(&self, point: usize, replicate: usize, metric: Metric) -> Option<f64> {
+        match replicate {
+            0 => self.points[point].value(metric),
+            r => self.replicates[point].get(r - 1)?.value(metric),
+        }
+    }
+
+    fn audit(&self, point: usize) -> Option<MassAudit> {
+        self.points[point].audit().copied()
+    }
+
+    fn series(&self, point: usize, signal: Signal) -> Option<Vec<Series>> {
+        self.points[point].series(signal)
+    }
+
+    fn per_object(&self, point: usize, property: ObjectProperty) -> Option<Vec<Option<f64>>> {
+        self.points[point].per_object(property).map(<[_]>::to_vec)
+    }
+}

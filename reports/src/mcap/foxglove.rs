@@ -1,0 +1,450 @@
+//! The Foxglove well-known message types sightline writes (JSON encoding), with
+//! the JSON Schemas it registers for them (`schemas/`, written from the field
+//! reference at docs.foxglove.dev). Foxglove recognises them by schema name and
+//! draws them without plugins.
+
+use base64::Engine;
+use serde::Serialize;
+
+use sightline_engine::math::{Pose, Vector};
+
+/// `foxglove.SceneUpdate`'s JSON Schema.
+pub(crate) const SCENE_UPDATE_SCHEMA: &str = include_str!("schemas/foxglove.SceneUpdate.json");
+/// `foxglove.Grid`'s JSON Schema.
+pub(crate) const GRID_SCHEMA: &str = include_str!("schemas/foxglove.Grid.json");
+/// `foxglove.Log`'s JSON Schema.
+pub(crate) const LOG_SCHEMA: &str = include_str!("schemas/foxglove.Log.json");
+
+/// The frame every entity and grid is drawn in: the scenario's world frame
+/// (metres, x east, y north, z up).
+pub(crate) const FRAME: &str = "world";
+
+/// Simulated time as Foxglove's `time`.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub(crate) struct Time {
+    sec: u64,
+    nsec: u64,
+}
+
+impl Time {
+    /// The time `nanos` nanoseconds after the start.
+    pub(crate) fn from_nanos(nanos: u64) -> Self {
+        Self {
+            sec: nanos / 1_000_000_000,
+            nsec: nanos % 1_000_000_000,
+        }
+    }
+}
+
+/// A zero `duration`: an entity that stays until replaced or deleted.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub(crate) struct Forever {
+    sec: i64,
+    nsec: u32,
+}
+
+const FOREVER: Forever = Forever { sec: 0, nsec: 0 };
+
+#[derive(Debug, Clone, Copy, Serialize)]
+pub(crate) struct Vector3 {
+    pub(crate) x: f64,
+    pub(crate) y: f64,
+    pub(crate) z: f64,
+}
+
+#[derive(Debug, Clone, Copy, Serialize)]
+struct Quaternion {
+    x: f64,
+    y: f64,
+    z: f64,
+    w: f64,
+}
+
+/// A position and a heading about z.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub(crate) struct Pose3 {
+    position: Vector3,
+    orientation: Quaternion,
+}
+
+/// Millimetres are plenty for a picture and keep the recording small.
+fn mm(value: f64) -> f64 {
+    (value * 1000.0).round() / 1000.0
+}
+
+impl Pose3 {
+    /// At (x, y, z), turned by `heading` radians counter-clockwise about z.
+    pub(crate) fn at(x: f64, y: f64, z: f64, heading: f64) -> Self {
+        let half = heading / 2.0;
+        Self {
+            position: Vector3 {
+                x: mm(x),
+                y: mm(y),
+                z: mm(z),
+            },
+            orientation: Quaternion {
+                x: 0.0,
+                y: 0.0,
+                z: half.sin(),
+                w: half.cos(),
+            },
+        }
+    }
+
+    /// A planar pose lifted to height `z`.
+    pub(crate) fn planar(pose: Pose, z: f64) -> Self {
+        Self::at(pose.translation.x, pose.translation.y, z, pose.rotation.angle())
+    }
+
+    /// The world frame's origin.
+    pub(crate) fn identity() -> Self {
+        Self::at(0.0, 0.0, 0.0, 0.0)
+    }
+}
+
+/// An RGBA colour, each channel 0–1.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub(crate) struct Color {
+    r: f64,
+    g: f64,
+    b: f64,
+    a: f64,
+}
+
+impl Color {
+    pub(crate) const fn rgba(r: f64, g: f64, b: f64, a: f64) -> Self {
+        Self { r, g, b, a }
+    }
+}
+
+/// `foxglove.CubePrimitive`.
+#[derive(Debug, Clone, Serialize)]
+pub(crate) struct Cube {
+    pub(crate) pose: Pose3,
+    pub(crate) size: Vector3,
+    pub(crate) color: Color,
+}
+
+/// `foxglove.LineType`.
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum LineType {
+    Strip,
+    Loop,
+}
+
+impl Serialize for LineType {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.serialize_u8(match self {
+            Self::Strip => 0,
+            Self::Loop => 1,
+        })
+    }
+}
+
+/// `foxglove.LinePrimitive`, one colour, points in the frame of `pose`.
+#[derive(Debug, Clone, Serialize)]
+pub(crate) struct Line {
+    #[serde(rename = "type")]
+    kind: LineType,
+    pose: Pose3,
+    thickness: f64,
+    scale_invariant: bool,
+    points: Vec<Vector3>,
+    color: Color,
+    colors: [Color; 0],
+    indices: [u32; 0],
+}
+
+impl Line {
+    /// A line through planar `points` (at z = 0 in the frame of `pose`),
+    /// `thickness` metres wide.
+    pub(crate) fn new(
+        kind: LineType,
+        pose: Pose3,
+        points: impl IntoIterator<Item = Vector>,
+        thickness: f64,
+        color: Color,
+    ) -> Self {
+        Self {
+            kind,
+            pose,
+            thickness,
+            scale_invariant: false,
+            points: points
+                .into_iter()
+                .map(|p| Vector3 {
+                    x: mm(p.x),
+                    y: mm(p.y),
+                    z: 0.0,
+                })
+                .collect(),
+            color,
+            colors: [],
+            indices: [],
+        }
+    }
+}
+
+/// `foxglove.TextPrimitive`: a label that faces the camera, 14 pixels high.
+#[derive(Debug, Clone, Serialize)]
+pub(crate) struct Text {
+    pose: Pose3,
+    billboard: bool,
+    font_size: f64,
+    scale_invariant: bool,
+    color: Color,
+    text: String,
+}
+
+impl Text {
+    pub(crate) fn label(pose: Pose3, text: impl Into<String>, color: Color) -> Self {
+        Self {
+            pose,
+            billboard: true,
+            font_size: 14.0,
+            scale_invariant: true,
+            color,
+            text: text.into(),
+        }
+    }
+}
+
+/// `foxglove.KeyValuePair`.
+#[derive(Debug, Clone, Serialize)]
+pub(crate) struct KeyValue {
+    key: &'static str,
+    value: String,
+}
+
+/// `foxglove.SceneEntity` in the world frame, drawn until replaced or deleted.
+#[derive(Debug, Clone, Serialize)]
+pub(crate) struct Entity {
+    timestamp: Time,
+    frame_id: &'static str,
+    id: String,
+    lifetime: Forever,
+    frame_locked: bool,
+    metadata: Vec<KeyValue>,
+    arrows: [(); 0],
+    cubes: Vec<Cube>,
+    spheres: [(); 0],
+    cylinders: [(); 0],
+    lines: Vec<Line>,
+    triangles: [(); 0],
+    texts: Vec<Text>,
+    models: [(); 0],
+}
+
+impl Entity {
+    pub(crate) fn new(timestamp: Time, id: impl Into<String>) -> Self {
+        Self {
+            timestamp,
+            frame_id: FRAME,
+            id: id.into(),
+            lifetime: FOREVER,
+            frame_locked: false,
+            metadata: Vec::new(),
+            arrows: [],
+            cubes: Vec::new(),
+            spheres: [],
+            cylinders: [],
+            lines: Vec::new(),
+            triangles: [],
+            texts: Vec::new(),
+            models: [],
+        }
+    }
+
+    pub(crate) fn meta(mut self, key: &'static str, value: impl ToString) -> Self {
+        self.metadata.push(KeyValue {
+            key,
+            value: value.to_string(),
+        });
+        self
+    }
+
+    pub(crate) fn cube(mut self, cube: Cube) -> Self {
+        self.cubes.push(cube);
+        self
+    }
+
+    pub(crate) fn line(mut self, line: Line) -> Self {
+        self.lines.push(line);
+        self
+    }
+
+    pub(crate) fn text(mut self, text: Text) -> Self {
+        self.texts.push(text);
+        self
+    }
+}
+
+/// `foxglove.SceneEntityDeletion` of type ALL: everything earlier on the topic.
+#[derive(Debug, Clone, Serialize)]
+struct DeleteAll {
+    timestamp: Time,
+    #[serde(rename = "type")]
+    kind: u8,
+    id: &'static str,
+}
+
+/// `foxglove.SceneUpdate`.
+#[derive(Debug, Clone, Serialize)]
+pub(crate) struct SceneUpdate {
+    deletions: Vec<DeleteAll>,
+    entities: Vec<Entity>,
+}
+
+impl SceneUpdate {
+    /// Adds `entities` to what the topic shows.
+    pub(crate) fn add(entities: Vec<Entity>) -> Self {
+        Self {
+            deletions: Vec::new(),
+            entities,
+        }
+    }
+
+    /// Replaces everything the topic showed before `timestamp` by `entities`.
+    pub(crate) fn replace(timestamp: Time, entities: Vec<Entity>) -> Self {
+        Self {
+            deletions: vec![DeleteAll {
+                timestamp,
+                kind: 1,
+                id: "",
+            }],
+            entities,
+        }
+    }
+}
+
+/// `foxglove.NumericType` of a grid field.
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum Numeric {
+    Uint8,
+    Float32,
+}
+
+impl Numeric {
+    fn bytes(self) -> u32 {
+        match self {
+            Self::Uint8 => 1,
+            Self::Float32 => 4,
+        }
+    }
+}
+
+impl Serialize for Numeric {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.serialize_u8(match self {
+            Self::Uint8 => 1,
+            Self::Float32 => 7,
+        })
+    }
+}
+
+/// `foxglove.PackedElementField`.
+#[derive(Debug, Clone, Serialize)]
+struct Field {
+    name: &'static str,
+    offset: u32,
+    #[serde(rename = "type")]
+    kind: Numeric,
+}
+
+#[derive(Debug, Clone, Copy, Serialize)]
+struct Vector2 {
+    x: f64,
+    y: f64,
+}
+
+/// `foxglove.Grid`: cells of one numeric type, each cell its fields in order.
+#[derive(Debug, Clone, Serialize)]
+pub(crate) struct Grid {
+    timestamp: Time,
+    frame_id: &'static str,
+    pose: Pose3,
+    column_count: u32,
+    cell_size: Vector2,
+    row_stride: u32,
+    cell_stride: u32,
+    fields: Vec<Field>,
+    /// Base64 of the cell bytes.
+    data: String,
+}
+
+impl Grid {
+    /// A grid of `columns` columns of square `cell`-metre cells whose corner is at
+    /// `corner` in the world frame, each cell holding `names` (in order) of type
+    /// `kind`; `data` holds the cells row by row, little-endian.
+    pub(crate) fn new(
+        timestamp: Time,
+        corner: [f64; 2],
+        cell: f64,
+        columns: u32,
+        names: &[&'static str],
+        kind: Numeric,
+        data: &[u8],
+    ) -> Self {
+        let cell_stride = kind.bytes() * names.len() as u32;
+        Self {
+            timestamp,
+            frame_id: FRAME,
+            pose: Pose3::at(corner[0], corner[1], 0.0, 0.0),
+            column_count: columns,
+            cell_size: Vector2 { x: cell, y: cell },
+            row_stride: cell_stride * columns,
+            cell_stride,
+            fields: names
+                .iter()
+                .zip(0u32..)
+                .map(|(&name, i)| Field {
+                    name,
+                    offset: i * kind.bytes(),
+                    kind,
+                })
+                .collect(),
+            data: base64::engine::general_purpose::STANDARD.encode(data),
+        }
+    }
+}
+
+/// `foxglove.LogLevel`.
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum Level {
+    Info,
+    Error,
+}
+
+impl Serialize for Level {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.serialize_u8(match self {
+            Self::Info => 2,
+            Self::Error => 4,
+        })
+    }
+}
+
+/// `foxglove.Log`.
+#[derive(Debug, Clone, Serialize)]
+pub(crate) struct Log {
+    timestamp: Time,
+    level: Level,
+    message: String,
+    name: &'static str,
+    file: String,
+    line: u32,
+}
+
+impl Log {
+    /// A line from sightline about `file` (line `line`).
+    pub(crate) fn new(timestamp: Time, level: Level, message: String, file: String, line: usize) -> Self {
+        Self {
+            timestamp,
+            level,
+            message,
+            name: "sightline",
+            file,
+            line: u32::try_from(line).unwrap_or(u32::MAX),
+        }
+    }
+}

@@ -1,0 +1,16 @@
+//! `run.mcap`: a run recorded in Foxglove's formats, written as the engine runs
+//! and read back by `sightline replay`.
+
+pub use read::{ReadError, RecordedRun, Recording, read};
+pub use wire::{
+    ApproachRecord, ArrivalRecord, AuditRecord, CellSignals, ConflictRecord, ImportRecord, ItemRecord, MessageRecord,
+    MetricValue, OutcomeRecord, PacketRecord, PointVerdictRecord, RECORDING_FORMAT, Real, RequirementSignal,
+    RequirementSignals, ScenarioRecord, SemanticSignals, SignalsRecord, VerdictRecord,
+};
+pub use write::{Recorder, Source, WriteError};
+
+mod foxglove;
+mod read;
+pub mod topic;
+mod wire;
+mod write;

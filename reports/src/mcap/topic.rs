@@ -1,0 +1,40 @@
+//! The topics of a recording (`docs/recording.md` describes each).
+
+/// `sightline.Scenario`, once at time 0: the scenario text and how it was run.
+pub const SCENARIO: &str = "/sightline/scenario";
+/// `sightline.Outcome`, once per sweep point at the end: its exact metrics.
+pub const OUTCOME: &str = "/sightline/outcome";
+/// `sightline.Verdict`, once per requirement at the end.
+pub const VERDICTS: &str = "/sightline/verdicts";
+/// `foxglove.Log`, once per requirement at the end: the verdict in words.
+pub const LOG: &str = "/log";
+/// `sightline.Signals`, every step: what the step measured.
+pub const SIGNALS: &str = "/sightline/signals";
+/// `sightline.RequirementSignals`, every step: requirements over the steps so far.
+pub const REQUIREMENTS: &str = "/sightline/requirements";
+/// `foxglove.SceneUpdate`, once at time 0: roads, occluders, areas, the region.
+pub const MAP: &str = "/scene/map";
+/// `foxglove.SceneUpdate`, every step: agents, their ids and fields of view.
+pub const AGENTS: &str = "/scene/agents";
+/// `foxglove.Grid`, at the grid rate: fused probability and uncertainty.
+pub const FUSED_GRID: &str = "/fusion/grid";
+/// `sightline.Packet`, one per V2X packet.
+pub const PACKETS: &str = "/v2x/packets";
+/// `sightline.SemanticMessage`, one per semantic message an RSU sends the ego.
+pub const MESSAGES: &str = "/semantic/messages";
+/// `sightline.Arrival`, one per semantic message reaching the ego.
+pub const ARRIVALS: &str = "/semantic/arrivals";
+/// `sightline.Approach`, one per object coming within d_min of the ego.
+pub const APPROACHES: &str = "/semantic/approaches";
+
+/// `foxglove.SceneUpdate`, every step a cooperating agent is in the scene: what
+/// it detected, where it placed it, and where it believes it is.
+pub fn detections(agent: &str) -> String {
+    format!("/perception/{agent}/detections")
+}
+
+/// `foxglove.Grid`, at the grid rate with `record.agent_grids`: a cooperating
+/// agent's own grid.
+pub fn agent_grid(agent: &str) -> String {
+    format!("/perception/{agent}/grid")
+}

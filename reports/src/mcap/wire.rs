@@ -1,0 +1,456 @@
+//! sightline's own channels in a recording: their JSON wire types, whose JSON
+//! Schemas (generated from these types) the recording registers. Those
+//! `sightline replay` reads back also deserialize.
+
+use std::borrow::Cow;
+use std::fmt;
+
+use schemars::{JsonSchema, Schema, SchemaGenerator, json_schema};
+use serde::de::{self, Visitor};
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
+use sightline_dsl::{Metric, ObjectProperty, Signal};
+use sightline_engine::MassAudit;
+
+use crate::Tool;
+
+/// The format of sightline's recordings, written in `/sightline/scenario`;
+/// replay reads this version only.
+pub const RECORDING_FORMAT: &str = "sightline-recording/1";
+
+/// A number that survives JSON exactly: finite values as JSON numbers (read back
+/// bit for bit), NaN and infinities as the strings `NaN`, `inf`, `-inf` (JSON has
+/// no number for them).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Real(pub f64);
+
+impl Serialize for Real {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        match self.0 {
+            v if v.is_finite() => serializer.serialize_f64(v),
+            v if v.is_nan() => serializer.serialize_str("NaN"),
+            v if v > 0.0 => serializer.serialize_str("inf"),
+            _ => serializer.serialize_str("-inf"),
+        }
+    }
+}
+
+impl<'de> Deserialize<'de> for Real {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        struct RealVisitor;
+        impl Visitor<'_> for RealVisitor {
+            type Value = Real;
+            fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                f.write_str("a number, `NaN`, `inf` or `-inf`")
+            }
+            fn visit_f64<E: de::Error>(self, v: f64) -> Result<Real, E> {
+                Ok(Real(v))
+            }
+            fn visit_u64<E: de::Error>(self, v: u64) -> Result<Real, E> {
+                Ok(Real(v as f64))
+            }
+            fn visit_i64<E: de::Error>(self, v: i64) -> Result<Real, E> {
+                Ok(Real(v as f64))
+            }
+            fn visit_str<E: de::Error>(self, v: &str) -> Result<Real, E> {
+                match v {
+                    "NaN" => Ok(Real(f64::NAN)),
+                    "inf" => Ok(Real(f64::INFINITY)),
+                    "-inf" => Ok(Real(f64::NEG_INFINITY)),
+                    _ => Err(E::invalid_value(de::Unexpected::Str(v), &self)),
+                }
+            }
+        }
+        deserializer.deserialize_any(RealVisitor)
+    }
+}
+
+impl JsonSchema for Real {
+    fn schema_name() -> Cow<'static, str> {
+        "Real".into()
+    }
+
+    fn json_schema(_: &mut SchemaGenerator) -> Schema {
+        json_schema!({
+            "description": "A number; NaN and infinities as the strings `NaN`, `inf`, `-inf`",
+            "oneOf": [{ "type": "number" }, { "enum": ["NaN", "inf", "-inf"] }]
+        })
+    }
+}
+
+/// `/sightline/scenario` (once, at time 0): what was run and how, enough for
+/// `sightline replay` to compile the scenario again.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[schemars(title = "sightline.Scenario")]
+pub struct ScenarioRecord {
+    /// [`RECORDING_FORMAT`].
+    pub format: String,
+    /// The tool that recorded it.
+    pub tool: Tool,
+    /// The scenario file as the user named it.
+    pub file: String,
+    /// Its text, as compiled.
+    pub text: String,
+    /// SHA-256 of the text, lowercase hex.
+    pub sha256: String,
+    /// The seed `--seed` imposed (`null`: the file's own).
+    pub seed: Option<u64>,
+    /// Whether `--record` asked for the recording (the file may have no `record`).
+    pub record_flag: bool,
+    /// The recorded point: its index in results.json's `sweep`.
+    pub point: usize,
+    /// Its sweep label (empty without a sweep).
+    pub label: String,
+    /// The files the scenario imports; each is attached to the recording
+    /// (attachment name: the path).
+    pub imports: Vec<ImportRecord>,
+}
+
+/// A file the scenario imports.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct ImportRecord {
+    /// `sumo_fcd`, `sumo_net` or `sumo_poly`.
+    pub kind: String,
+    /// Its path, as the scenario resolved it (the attachment's name).
+    pub path: String,
+    /// SHA-256 of its bytes, lowercase hex.
+    pub sha256: String,
+}
+
+/// `/sightline/outcome` (once per sweep point, at the end): what the point
+/// measured, exactly, for the oracles of `sightline replay`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[schemars(title = "sightline.Outcome")]
+pub struct OutcomeRecord {
+    /// The point's index.
+    pub point: usize,
+    /// Its sweep label.
+    pub label: String,
+    /// Every metric defined at the point, in documentation order.
+    pub metrics: Vec<MetricValue>,
+    /// The mass-function audit of its fused cells (`null` where nothing is fused).
+    pub audit: Option<AuditRecord>,
+    /// Every metric of each replicate seed its checks over seeds ran (replicate
+    /// 1, 2, …; empty without such a check).
+    pub replicates: Vec<Vec<MetricValue>>,
+    /// The signals its temporal checks read, over each run.
+    pub series: Vec<SeriesRecord>,
+    /// The per-object properties its checks read.
+    pub per_object: Vec<ObjectRecord>,
+}
+
+/// A signal of one point: one list of (time s, value) per run.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct SeriesRecord {
+    /// The signal's name, as in scenario files.
+    pub signal: Signal,
+    /// Per run, its defined steps as (time, value).
+    pub runs: Vec<Vec<(Real, Real)>>,
+}
+
+/// A per-object property of one point.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct ObjectRecord {
+    /// The property's name, as in scenario files.
+    pub property: ObjectProperty,
+    /// Per close approach, in order (`null`: the object has none).
+    pub values: Vec<Option<Real>>,
+}
+
+/// One metric's value.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct MetricValue {
+    /// The metric's name, as in scenario files.
+    pub metric: Metric,
+    /// Its value.
+    pub value: Real,
+}
+
+/// [`MassAudit`] on the wire.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct AuditRecord {
+    /// Fused cells audited.
+    pub cells: u64,
+    /// Cells with a NaN or infinite mass.
+    pub non_finite: u64,
+    /// Smallest finite mass of any cell.
+    pub min_mass: Option<Real>,
+    /// Largest finite mass of any cell.
+    pub max_mass: Option<Real>,
+    /// Largest |Σ masses − 1| of any finite cell.
+    pub max_sum_error: Real,
+}
+
+impl From<MassAudit> for AuditRecord {
+    fn from(audit: MassAudit) -> Self {
+        Self {
+            cells: audit.cells,
+            non_finite: audit.non_finite,
+            min_mass: audit.min_mass.map(Real),
+            max_mass: audit.max_mass.map(Real),
+            max_sum_error: Real(audit.max_sum_error),
+        }
+    }
+}
+
+impl From<AuditRecord> for MassAudit {
+    fn from(audit: AuditRecord) -> Self {
+        Self {
+            cells: audit.cells,
+            non_finite: audit.non_finite,
+            min_mass: audit.min_mass.map(|r| r.0),
+            max_mass: audit.max_mass.map(|r| r.0),
+            max_sum_error: audit.max_sum_error.0,
+        }
+    }
+}
+
+/// `/sightline/verdicts` (once per requirement, at the end): the verdict as the
+/// run reached it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[schemars(title = "sightline.Verdict")]
+pub struct VerdictRecord {
+    /// The requirement's id.
+    pub id: String,
+    /// Its text.
+    pub text: String,
+    /// `pass`, `fail` or `error`.
+    pub verdict: String,
+    /// The deciding measured value.
+    pub value: Option<Real>,
+    /// The threshold (for invariants: the tolerance).
+    pub threshold: Real,
+    /// The deciding signed margin (≥ 0 holds).
+    pub margin: Option<Real>,
+    /// The deciding check in words.
+    pub message: String,
+    /// Every point it was checked at.
+    pub points: Vec<PointVerdictRecord>,
+}
+
+/// A requirement checked at one point.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct PointVerdictRecord {
+    /// The point's index.
+    pub point: usize,
+    /// `pass`, `fail` or `error`.
+    pub verdict: String,
+    /// The measured value.
+    pub value: Option<Real>,
+    /// The signed margin.
+    pub margin: Option<Real>,
+    /// The check in words.
+    pub message: String,
+}
+
+/// `/sightline/signals` (every step): what the step measured.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[schemars(title = "sightline.Signals")]
+pub struct SignalsRecord {
+    /// The step; step k is at time k · `time.step`.
+    pub step: usize,
+    /// A perception world's fused grid at this step (`null` in a semantic world,
+    /// or when the ego is not in the scene: such steps count in no metric).
+    pub cells: Option<CellSignals>,
+    /// A semantic world's traffic at this step (`null` in a perception world).
+    pub semantic: Option<SemanticSignals>,
+}
+
+/// The fused grid of one step against the truth, counted over the cells the
+/// metrics count (the region of interest, occluders and the ego's footprint left
+/// out). Ratios are `null` where undefined.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct CellSignals {
+    /// Cells the ego observed.
+    pub ego_observed: u64,
+    /// Cells any cooperating agent observed (the cells fused).
+    pub joint_observed: u64,
+    /// Cells truly occupied by another agent.
+    pub occupied: u64,
+    /// Of those, decided occupied.
+    pub detected: u64,
+    /// Cells decided occupied that are truly free.
+    pub false_positives: u64,
+    /// Truly occupied cells the ego did not observe itself.
+    pub blind_occupied: u64,
+    /// Of those, decided occupied.
+    pub blind_detected: u64,
+    /// This step's `occupied_recall`.
+    pub recall: Option<f64>,
+    /// This step's `occupied_precision`.
+    pub precision: Option<f64>,
+    /// This step's `blind_recall`.
+    pub blind_recall: Option<f64>,
+    /// This step's `fov_gain`.
+    pub fov_gain: Option<f64>,
+}
+
+/// A semantic world's step.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct SemanticSignals {
+    /// Packets sent (every kind).
+    pub packets: u64,
+    /// Of those, received.
+    pub received: u64,
+    /// Semantic messages the RSUs sent the ego.
+    pub messages: u64,
+    /// Of those, received.
+    pub messages_received: u64,
+    /// Semantic messages that reached the ego since the previous step.
+    pub arrivals: u64,
+    /// Objects that came within d_min of the ego.
+    pub approaches: u64,
+    /// Of those, without a conflict flagged to the ego beforehand.
+    pub missed: u64,
+    /// The shortest time to conflict the RSUs predicted, seconds (`null`: none).
+    pub min_time_to_conflict: Option<f64>,
+}
+
+/// `/sightline/requirements` (every step): each requirement that applies to the
+/// recorded point and whose metric the steps give, over the steps so far.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[schemars(title = "sightline.RequirementSignals")]
+pub struct RequirementSignals {
+    /// The step.
+    pub step: usize,
+    /// One entry per requirement, in file order.
+    pub requirements: Vec<RequirementSignal>,
+}
+
+/// A requirement's metric over the steps so far.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct RequirementSignal {
+    /// The requirement's id.
+    pub id: String,
+    /// Its metric.
+    pub metric: Metric,
+    /// The metric over the steps so far (`null` while undefined). A semantic
+    /// point's metric is over its first run only.
+    pub value: Option<f64>,
+    /// The threshold.
+    pub threshold: f64,
+    /// The signed margin so far (≥ 0 holds).
+    pub margin: Option<f64>,
+}
+
+/// `/v2x/packets` (one message per packet, at the step it is sent).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[schemars(title = "sightline.Packet")]
+pub struct PacketRecord {
+    /// The step.
+    pub step: usize,
+    /// The sending agent's id.
+    pub from: String,
+    /// The receiving agent's id.
+    pub to: String,
+    /// `uplink` (the ego's state to an RSU), `downlink` (an RSU's semantic
+    /// message to the ego) or `direct` (a connected road user's state to the ego).
+    pub kind: String,
+    /// A downlink's size on the channel, bytes.
+    pub bytes: Option<u64>,
+    /// Distance between the antennas, metres.
+    pub distance_m: f64,
+    /// Whether the direct path is free of buildings.
+    pub los: bool,
+    /// Received power, dBm (`null` when not finite).
+    pub rssi_dbm: Option<f64>,
+    /// Whether it reached the receiver's sensitivity.
+    pub received: bool,
+}
+
+/// `/semantic/messages` (one per semantic message an RSU sends the ego, at
+/// the step it is sent).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[schemars(title = "sightline.SemanticMessage")]
+pub struct MessageRecord {
+    /// The step.
+    pub step: usize,
+    /// The sending RSU's id.
+    pub from: String,
+    /// Whether the ego received it.
+    pub received: bool,
+    /// Its size on the channel, bytes.
+    pub bytes: u64,
+    /// The objects it names, with their labels.
+    pub items: Vec<ItemRecord>,
+}
+
+/// `/semantic/arrivals` (one per semantic message reaching the ego, at the time
+/// it arrives).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[schemars(title = "sightline.Arrival")]
+pub struct ArrivalRecord {
+    /// When it arrived, seconds.
+    pub at: f64,
+    /// The objects it names, with their labels.
+    pub items: Vec<ItemRecord>,
+}
+
+/// An object of a semantic message and its labels.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct ItemRecord {
+    /// The object's agent id.
+    pub agent: String,
+    /// Occluded from the ego: `static` (by a building) or `dynamic` (by road
+    /// users only); `null` in line of sight.
+    pub nlos: Option<String>,
+    /// Interaction relevance.
+    pub relevant: bool,
+    /// A dangerous driver (speed violation).
+    pub speeding: bool,
+    /// A predicted conflict with the ego's plan.
+    pub conflict: Option<ConflictRecord>,
+}
+
+/// A predicted conflict.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct ConflictRecord {
+    /// Time until the centres first come within d_min, seconds.
+    pub time: f64,
+    /// Smallest predicted distance between the centres, metres.
+    pub separation: f64,
+}
+
+/// `/semantic/approaches` (one per object coming within d_min of the ego).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[schemars(title = "sightline.Approach")]
+pub struct ApproachRecord {
+    /// The step.
+    pub step: usize,
+    /// The object's agent id.
+    pub agent: String,
+    /// Whether a conflict with it had reached the ego before: `false` is a
+    /// missed critical.
+    pub flagged: bool,
+}
+
+/// The JSON Schema of `T`, as registered in a recording.
+pub(crate) fn schema_of<T: JsonSchema>() -> Vec<u8> {
+    serde_json::to_vec(&schemars::schema_for!(T)).expect("a JSON Schema serializes")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Real;
+
+    /// Replay judges the recorded values: every f64 reads back bit for bit.
+    #[test]
+    fn real_survives_json_exactly() {
+        for value in [
+            0.1 + 0.2,
+            1.0 / 3.0,
+            5e-324,
+            f64::MAX,
+            -0.0,
+            0.9438271028037383,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        ] {
+            let text = serde_json::to_string(&Real(value)).unwrap();
+            let back: Real = serde_json::from_str(&text).unwrap();
+            assert_eq!(back.0.to_bits(), value.to_bits(), "{value} as {text}");
+        }
+        let nan: Real = serde_json::from_str(&serde_json::to_string(&Real(f64::NAN)).unwrap()).unwrap();
+        assert!(nan.0.is_nan());
+        assert!(serde_json::from_str::<Real>("\"many\"").is_err());
+    }
+}

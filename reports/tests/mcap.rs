@@ -1,0 +1,144 @@
+//! run.mcap written into memory and read back (issue 6): replay's measurements
+//! are the run's, bit for bit; the step records add up; damage is caught.
+
+use std::io::Cursor;
+
+use sightline_dsl::{Metric, Options, Scenario, compile};
+use sightline_engine::{Run, simulate_traced};
+use sightline_oracles::{Measurements, check};
+use sightline_reports::Tool;
+use sightline_reports::mcap::{ReadError, Recorder, Recording, Source, read, topic};
+
+/// A small junction: an ego, a cooperating car and an RSU, 6 s at 10 Hz, fused
+/// by Bayes and by Dempster (one shared-data group of two points).
+const WORLD: &str = "sightline: 1
+name: t
+time: { duration: 6, step: 0.1 }
+grid: { origin: [-50, -50], size: [100, 100], cell: 0.5 }
+roads:
+  - { id: ring, roundabout: { center: [0, 0], radius: 10 }, speed_limit: 6 }
+  - { id: arm_in, polyline: [[-1.75, 45], [-1.75, 10.3]], speed_limit: 12 }
+  - { id: east_out, polyline: [[10.3, -1.75], [45, -1.75]], speed_limit: 12 }
+occluders:
+  - { id: block, polygon: [[15, 15], [40, 15], [40, 40], [15, 40]] }
+sensor_models:
+  lidar: { range: 40 }
+agents:
+  - { id: ego, kind: car, route: [arm_in, ring, east_out], speed: { target: 8 }, connected: true, sensors: [lidar] }
+  - { id: cav, kind: car, route: [arm_in, ring, east_out], start: { offset: 20 }, speed: { target: 8 }, connected: true, sensors: [lidar] }
+  - { id: rsu, kind: rsu, position: [12, 12], sensors: [lidar], connected: true }
+  - { id: walker, kind: pedestrian, path: [[-8, 20], [8, 20]], speed: { target: 1.4 } }
+perception: { ego: ego }
+sweep: { fusion: [{ method: bayes }, { method: dempster }] }
+requirements:
+  - { id: REC, text: recall, check: { metric: occupied_recall, at_least: 0.5 } }
+  - { id: MASS, text: masses, check: { invariant: mass_function } }
+record: { point: 1, grid_rate: 2, agent_grids: true }
+";
+
+fn scenario() -> Scenario {
+    compile("t.yaml", WORLD, &Options::default()).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// Runs the scenario, recording into memory; returns the run and the bytes.
+fn recorded(scenario: &Scenario) -> (Run, Vec<u8>) {
+    let record = scenario.record.expect("the scenario records");
+    let tool = Tool {
+        name: "sightline".into(),
+        version: "test".into(),
+        git: "test".into(),
+    };
+    let source = Source {
+        tool: &tool,
+        file: "t.yaml",
+        text: WORLD,
+        seed: None,
+        record_flag: false,
+    };
+    let mut recorder = Recorder::new(Cursor::new(Vec::new()), scenario, record, &source).unwrap();
+    let run = simulate_traced(scenario, record.point, &mut recorder, &mut |_| {});
+    let verdicts = check(scenario, &run);
+    let bytes = recorder.finish(&run, &verdicts).unwrap().into_inner();
+    (run, bytes)
+}
+
+#[test]
+fn a_recording_reads_back_to_the_runs_measurements_and_verdicts() {
+    let scenario = scenario();
+    let (run, bytes) = recorded(&scenario);
+    let recording: Recording = read(&bytes).unwrap();
+    assert_eq!(recording.scenario.text, WORLD);
+    assert_eq!(
+        (recording.scenario.point, recording.scenario.label.as_str()),
+        (1, "fusion={method=dempster}")
+    );
+    let measurements = recording.measurements(scenario.points.len()).unwrap();
+    for point in 0..scenario.points.len() {
+        for metric in Metric::ALL {
+            let (original, replayed) = (run.value(point, 0, metric), measurements.value(point, 0, metric));
+            assert_eq!(
+                original.map(f64::to_bits),
+                replayed.map(f64::to_bits),
+                "{} at point {point}",
+                metric.name()
+            );
+        }
+        assert_eq!(run.audit(point), measurements.audit(point));
+    }
+    assert_eq!(check(&scenario, &run), check(&scenario, &measurements));
+    assert_eq!(recording.verdicts.len(), 2);
+    // 60 steps; grids every 5 steps; the ego, the car and the RSU cooperate.
+    let counts = &recording.counts;
+    assert_eq!(counts[topic::AGENTS], 60);
+    assert_eq!(counts[topic::SIGNALS], 60);
+    assert_eq!(counts[topic::FUSED_GRID], 12);
+    assert_eq!(counts[&topic::agent_grid("rsu")], 12);
+    assert_eq!(counts[&topic::detections("ego")], 60);
+    assert_eq!(counts[topic::OUTCOME], 2);
+    let steps = recording
+        .step_counts
+        .as_ref()
+        .expect("a perception world's steps carry cells");
+    assert_eq!(steps.steps, 60);
+}
+
+#[test]
+fn the_same_run_gives_the_same_bytes() {
+    let scenario = scenario();
+    assert!(recorded(&scenario).1 == recorded(&scenario).1);
+}
+
+#[test]
+fn a_truncated_or_damaged_recording_is_refused() {
+    let (_, bytes) = recorded(&scenario());
+    for cut in [0, 7, bytes.len() / 3, bytes.len() - 1] {
+        assert!(matches!(read(&bytes[..cut]), Err(ReadError::Mcap(_))), "cut at {cut}");
+    }
+    // Any flipped byte breaks a CRC, the magic, or a record's structure.
+    for at in (0..bytes.len()).step_by(bytes.len() / 97 + 1) {
+        let mut damaged = bytes.clone();
+        damaged[at] ^= 0x20;
+        assert!(read(&damaged).is_err(), "a flipped byte at {at} went unnoticed");
+    }
+}
+
+/// A recording whose outcome no longer matches its steps is inconsistent.
+#[test]
+fn steps_that_do_not_add_up_to_the_outcome_are_refused() {
+    let scenario = scenario();
+    let (_, bytes) = recorded(&scenario);
+    let mut recording = read(&bytes).unwrap();
+    let outcome = &mut recording.outcomes[1];
+    let recall = outcome
+        .metrics
+        .iter_mut()
+        .find(|m| m.metric == Metric::OccupiedRecall)
+        .expect("recall is recorded");
+    recall.value.0 += 1e-9;
+    let error = recording.measurements(scenario.points.len()).unwrap_err();
+    assert!(error.to_string().contains("occupied_recall"), "{error}");
+    assert!(
+        recording.measurements(3).is_err(),
+        "a point count that differs is refused"
+    );
+}

@@ -1,0 +1,132 @@
+//! `sightline replay RUN.mcap`
+
+use std::io;
+use std::path::Path;
+
+use sightline_dsl::Options;
+use sightline_reports::mcap::{Recording, read};
+use sightline_reports::sha256_hex;
+
+use crate::exit::Exit;
+use crate::summary::print_verdicts;
+
+/// Re-checks the requirements of a recording from what it holds: the file is
+/// checked whole (and against the results.json beside it, if any), the recorded
+/// scenario is compiled again, and the oracles judge the recorded measurements.
+/// Prints the verdicts as `run` does; every refusal is exit 2.
+pub fn replay(file: &Path) -> Exit {
+    let name = file.display();
+    let bytes = match std::fs::read(file) {
+        Ok(bytes) => bytes,
+        Err(error) => {
+            eprintln!("{name}: error: failed to read the recording: {error}");
+            return Exit::Invalid;
+        }
+    };
+    if let Err(problem) = matches_results(file, &bytes) {
+        eprintln!("{name}: error: {problem}");
+        return Exit::Invalid;
+    }
+    let recording = match read(&bytes) {
+        Ok(recording) => recording,
+        Err(error) => {
+            eprintln!("{name}: error: failed to read the recording: {error}");
+            return Exit::Invalid;
+        }
+    };
+    let loader = |path: &Path| {
+        recording
+            .imports
+            .get(&path.display().to_string())
+            .cloned()
+            .ok_or_else(|| io::Error::new(io::ErrorKind::NotFound, "the recording does not carry this file"))
+    };
+    let options = Options {
+        seed: recording.scenario.seed,
+        loader: Some(&loader),
+        record: recording.scenario.record_flag,
+    };
+    let scenario = match sightline_dsl::compile(&recording.scenario.file, &recording.scenario.text, &options) {
+        Ok(scenario) => scenario,
+        Err(errors) => {
+            eprintln!("{name}: error: the recorded scenario does not compile with this sightline:");
+            eprintln!("{errors}");
+            return Exit::Invalid;
+        }
+    };
+    let measurements = match recording.measurements(scenario.points.len()) {
+        Ok(measurements) => measurements,
+        Err(error) => {
+            eprintln!("{name}: error: failed to read the recording: {error}");
+            return Exit::Invalid;
+        }
+    };
+    let verdicts = sightline_oracles::check(&scenario, &measurements);
+    warn_divergence(&name.to_string(), &recording, &verdicts);
+    print_verdicts(
+        &recording.scenario.file,
+        &scenario,
+        &verdicts,
+        format_args!("(replayed from {name})"),
+    )
+}
+
+/// Checks `bytes` against the recording's SHA-256 in the results.json beside
+/// `file`, when there is one.
+fn matches_results(file: &Path, bytes: &[u8]) -> Result<(), String> {
+    let results = file.with_file_name("results.json");
+    let text = match std::fs::read_to_string(&results) {
+        Ok(text) => text,
+        Err(error) if error.kind() == io::ErrorKind::NotFound => return Ok(()),
+        Err(error) => return Err(format!("failed to read {} beside it: {error}", results.display())),
+    };
+    let json: serde_json::Value = serde_json::from_str(&text).map_err(|error| {
+        format!(
+            "{} beside it is not JSON ({error}), so the recording cannot be checked against it",
+            results.display()
+        )
+    })?;
+    let Some(expected) = json["recording"]["sha256"].as_str() else {
+        return Err(format!(
+            "{} beside it records no recording: this file is not the one that run wrote",
+            results.display()
+        ));
+    };
+    let actual = sha256_hex(bytes);
+    if actual != expected {
+        return Err(format!(
+            "its SHA-256 is {actual}, and {} beside it records {expected}: the recording was changed or is not the one that run wrote",
+            results.display()
+        ));
+    }
+    Ok(())
+}
+
+/// Warns where this sightline's verdicts differ from those the recording
+/// holds (a different version judging the same measurements differently).
+fn warn_divergence(name: &str, recording: &Recording, verdicts: &[sightline_oracles::Verdict]) {
+    if recording.verdicts.len() != verdicts.len() {
+        eprintln!(
+            "{name}: warning: the recording holds {} verdicts; replay reaches {}",
+            recording.verdicts.len(),
+            verdicts.len()
+        );
+    }
+    for (recorded, verdict) in recording.verdicts.iter().zip(verdicts) {
+        if recorded.id != verdict.id
+            || recorded.verdict != verdict.status.name()
+            || recorded.message != verdict.decisive.message
+        {
+            eprintln!(
+                "{name}: warning: {}: the recording holds `{} {}: {}`; replay gives `{} {}: {}`",
+                verdict.id,
+                recorded.verdict,
+                recorded.id,
+                recorded.message,
+                verdict.status.name(),
+                verdict.id,
+                verdict.decisive.message
+            );
+        }
+    }
+}

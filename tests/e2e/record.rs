@@ -1,0 +1,430 @@
+//! run.mcap and `sightline replay` (issue 6 §2, §3, §5): the recording's
+//! channels, schemas and message counts (read with the MCAP library, and with
+//! the official Python reader when `SIGHTLINE_MCAP_PYTHON` names one), its size,
+//! its bytes whatever the thread count, replay's verdicts on every bundled
+//! scenario, and damaged or mismatched recordings refused with exit 2.
+
+use std::collections::BTreeMap;
+use std::path::Path;
+use std::process::Command;
+
+use crate::bundled::{Bundled, field, roundabout_run, sumo_grid_run, urban_run};
+use crate::support::{RECORDING, arg, read, read_json, root, sightline, temp_dir};
+
+/// Names a Python that has the official `mcap` package; `.ci/run` sets it.
+const PYTHON_VAR: &str = "SIGHTLINE_MCAP_PYTHON";
+
+/// The bundled roundabout's recording at default settings must stay under this.
+const SIZE_LIMIT: usize = 20 * 1024 * 1024;
+
+/// A channel as the MCAP library reads it: its schema's name and its messages.
+#[derive(Debug, Clone, PartialEq, Eq)]
+struct Channel {
+    schema: String,
+    count: u64,
+}
+
+/// Every channel of a recording by topic, read from its summary by the MCAP
+/// library (not by sightline's reader).
+#[track_caller]
+fn channels(recording: &[u8]) -> BTreeMap<String, Channel> {
+    let summary = mcap::Summary::read(recording)
+        .expect("the recording has a valid summary")
+        .expect("the recording has a summary");
+    let counts = summary
+        .stats
+        .expect("the summary has statistics")
+        .channel_message_counts;
+    summary
+        .channels
+        .values()
+        .map(|channel| {
+            let schema = channel.schema.as_ref().expect("every channel has a schema");
+            assert_eq!(schema.encoding, "jsonschema", "{}", channel.topic);
+            assert_eq!(channel.message_encoding, "json", "{}", channel.topic);
+            let count = counts.get(&channel.id).copied().unwrap_or(0);
+            (
+                channel.topic.clone(),
+                Channel {
+                    schema: schema.name.to_string(),
+                    count,
+                },
+            )
+        })
+        .collect()
+}
+
+/// Every message on `topic`, decoded as JSON, in the order written.
+fn messages(recording: &[u8], topic: &str) -> Vec<serde_json::Value> {
+    mcap::MessageStream::new(recording)
+        .expect("the recording starts with the MCAP magic")
+        .map(|m| m.expect("every message reads"))
+        .filter(|m| m.channel.topic == topic)
+        .map(|m| serde_json::from_slice(&m.data).expect("every message is JSON"))
+        .collect()
+}
+
+/// The expected channels: (topic, schema, count).
+#[track_caller]
+fn assert_channels(recording: &[u8], expected: &[(&str, &str, u64)]) {
+    let actual = channels(recording);
+    let expected: BTreeMap<String, Channel> = expected
+        .iter()
+        .map(|&(topic, schema, count)| {
+            (
+                topic.to_string(),
+                Channel {
+                    schema: schema.into(),
+                    count,
+                },
+            )
+        })
+        .collect();
+    assert_eq!(actual, expected);
+}
+
+/// The bundled roundabout at default settings records its first point (the ego
+/// alone) for 30 s at 10 Hz, a fused grid a second; far under 20 MB.
+#[test]
+fn bundled_roundabout_recording_has_foxglove_channels_and_the_steps() {
+    let run = roundabout_run();
+    let point = &run.results["sweep"][0];
+    assert_eq!(point["label"], "perception.cooperating=1");
+    // The ego is in the scene at every one of the 300 steps, so each is measured.
+    assert_eq!(point["counts"]["steps"], 300);
+    let recording = &run.recording;
+    assert!(
+        recording.len() < SIZE_LIMIT,
+        "the recording is {} bytes",
+        recording.len()
+    );
+    let requirements = run.results["requirements"].as_array().unwrap().len() as u64;
+    let points = 12;
+    assert_channels(
+        recording,
+        &[
+            ("/sightline/scenario", "sightline.Scenario", 1),
+            ("/scene/map", "foxglove.SceneUpdate", 1),
+            ("/scene/agents", "foxglove.SceneUpdate", 300),
+            ("/perception/ego/detections", "foxglove.SceneUpdate", 300),
+            // Steps 0, 10, …, 290.
+            ("/fusion/grid", "foxglove.Grid", 30),
+            ("/sightline/signals", "sightline.Signals", 300),
+            // RB-PREC-01 applies at every point and its metric sums over the steps.
+            ("/sightline/requirements", "sightline.RequirementSignals", 300),
+            ("/sightline/outcome", "sightline.Outcome", points),
+            ("/sightline/verdicts", "sightline.Verdict", requirements),
+            ("/log", "foxglove.Log", requirements),
+        ],
+    );
+    // The steps' cell counts add up to the point's.
+    let signals = messages(recording, "/sightline/signals");
+    for count in [
+        "occupied",
+        "detected",
+        "false_positives",
+        "ego_observed",
+        "joint_observed",
+    ] {
+        let summed: u64 = signals.iter().map(|s| s["cells"][count].as_u64().unwrap()).sum();
+        assert_eq!(Some(summed), point["counts"][count].as_u64(), "{count}");
+    }
+    let last = messages(recording, "/sightline/requirements").pop().unwrap();
+    assert_eq!(last["requirements"][0]["id"], "RB-PREC-01");
+    assert_eq!(last["requirements"][0]["value"], point["metrics"]["occupied_precision"]);
+    // results.json and the report name the recording by its hash.
+    let sha = crate::support::sha256_hex(recording);
+    assert_eq!(run.results["recording"]["sha256"], sha.as_str());
+    assert_eq!(run.results["recording"]["file"], RECORDING);
+    assert!(run.report.contains(&sha), "the report lacks the recording's hash");
+}
+
+/// The urban junction shortened to 80 s (the ego reaches the junction after
+/// 60 s) with one run per point, half the road users connected (direct packets)
+/// and a d_min of 6 m (close approaches): the recording's messages are the
+/// record's, counted as results.json counts them.
+#[test]
+fn urban_recording_counts_the_packets_messages_and_approaches() {
+    let text = read(&root().join("scenarios/urban-rsu-semantic.yaml"))
+        .replace("duration: 120", "duration: 80")
+        .replace("runs: 5 ", "runs: 1 ")
+        .replace("penetration: 0 ", "penetration: 0.5 ")
+        .replace("d_min: 2", "d_min: 6");
+    let tmp = temp_dir();
+    let scenario = tmp.path().join("urban.yaml");
+    std::fs::write(&scenario, text).unwrap();
+    let out = tmp.path().join("out");
+    let run = sightline(["run", arg(&scenario), "--out", arg(&out), "--record"]);
+    let results = read_json(&out.join("results.json"));
+    run.assert_exit(if results["verdict"] == "pass" { 0 } else { 1 });
+    let counts = &results["sweep"][0]["counts"];
+    assert_eq!(counts["runs"], 1);
+    let recording = std::fs::read(out.join(RECORDING)).unwrap();
+    let channels = channels(&recording);
+    for (topic, schema) in [
+        ("/scene/agents", "foxglove.SceneUpdate"),
+        ("/sightline/signals", "sightline.Signals"),
+    ] {
+        assert_eq!(channels[topic].schema, schema);
+        assert_eq!(channels[topic].count, 800, "{topic}: one per step");
+    }
+    assert!(!channels.contains_key("/fusion/grid"), "a semantic world fuses no grid");
+    let sent = messages(&recording, "/semantic/messages");
+    let received = sent.iter().filter(|m| m["received"] == true).count() as u64;
+    assert_eq!(Some(sent.len() as u64), counts["messages"].as_u64());
+    assert_eq!(Some(received), counts["delivered"].as_u64());
+    let approaches = messages(&recording, "/semantic/approaches");
+    assert!(!approaches.is_empty(), "a d_min of 6 m gives close approaches");
+    let missed = approaches.iter().filter(|a| a["flagged"] == false).count() as u64;
+    assert_eq!(Some(approaches.len() as u64), counts["close_approaches"].as_u64());
+    assert_eq!(Some(missed), counts["missed_criticals"].as_u64());
+    let packets = messages(&recording, "/v2x/packets");
+    let kinds = |kind: &str| packets.iter().filter(|p| p["kind"] == kind).count() as u64;
+    assert_eq!(kinds("downlink"), sent.len() as u64);
+    assert!(
+        kinds("uplink") > 0 && kinds("direct") > 0,
+        "uplinks and direct packets are recorded"
+    );
+    assert!(channels["/semantic/arrivals"].count <= received);
+    assert_eq!(channels["/v2x/packets"].schema, "sightline.Packet");
+}
+
+/// The lines `run` or `replay` printed, with the first line's destination (`->
+/// DIR` or `(replayed from FILE)`) cut off.
+fn verdict_lines(stdout: &str) -> Vec<String> {
+    stdout
+        .lines()
+        .enumerate()
+        .map(
+            |(i, line)| match (i, line.rfind(" -> "), line.rfind(" (replayed from ")) {
+                (0, Some(at), _) | (0, None, Some(at)) => line[..at].to_string(),
+                _ => line.to_string(),
+            },
+        )
+        .collect()
+}
+
+/// Writes a bundled run's recording and results.json into `dir`; returns the
+/// recording's path.
+fn lay_out(run: &Bundled, dir: &Path) -> std::path::PathBuf {
+    std::fs::create_dir_all(dir).unwrap();
+    std::fs::write(dir.join("results.json"), &run.results_json).unwrap();
+    let path = dir.join(RECORDING);
+    std::fs::write(&path, &run.recording).unwrap();
+    path
+}
+
+/// Replay prints the verdicts of the run, line for line, and exits as it did,
+/// on every bundled scenario.
+#[test]
+fn replay_gives_the_run_verdicts_on_every_bundled_scenario() {
+    let tmp = temp_dir();
+    for (i, run) in [field(), roundabout_run(), urban_run(), sumo_grid_run()]
+        .into_iter()
+        .enumerate()
+    {
+        let recording = lay_out(run, &tmp.path().join(i.to_string()));
+        let replay = sightline(["replay", arg(&recording)]);
+        replay.assert_exit(0);
+        assert_eq!(replay.stderr, "", "{replay}");
+        assert_eq!(
+            verdict_lines(&replay.stdout),
+            verdict_lines(&run.stdout),
+            "{}",
+            run.scenario
+        );
+        assert!(
+            replay
+                .stdout
+                .contains(&format!("(replayed from {})", recording.display()))
+        );
+    }
+}
+
+/// A failing run replays as failing: the field fixture whose requirement fails
+/// at one of its points.
+#[test]
+fn replay_of_a_failing_run_fails_with_the_same_lines() {
+    let tmp = temp_dir();
+    let out = tmp.path().join("out");
+    let run = sightline(["run", crate::support::FAILING, "--out", arg(&out), "--record"]);
+    run.assert_exit(1);
+    let replay = sightline(["replay", arg(&out.join(RECORDING))]);
+    replay.assert_exit(1);
+    assert_eq!(verdict_lines(&replay.stdout), verdict_lines(&run.stdout));
+}
+
+/// A truncated recording is refused, whether or not results.json is beside it.
+#[test]
+fn replay_refuses_a_truncated_recording() {
+    let run = roundabout_run();
+    let tmp = temp_dir();
+    let alone = tmp.path().join("alone.mcap");
+    std::fs::write(&alone, &run.recording[..run.recording.len() - 1000]).unwrap();
+    let replay = sightline(["replay", arg(&alone)]);
+    replay.assert_exit(2);
+    assert_eq!(replay.stdout, "");
+    assert!(
+        replay.stderr.starts_with(&format!(
+            "{}: error: failed to read the recording: it is not a complete, intact MCAP file",
+            alone.display()
+        )),
+        "{replay}"
+    );
+    assert!(replay.stderr.contains("truncated or damaged"), "{replay}");
+
+    let beside = lay_out(run, &tmp.path().join("beside"));
+    std::fs::write(&beside, &run.recording[..run.recording.len() / 2]).unwrap();
+    let replay = sightline(["replay", arg(&beside)]);
+    replay.assert_exit(2);
+    assert!(replay.stderr.contains("results.json beside it records"), "{replay}");
+}
+
+/// A recording whose bytes are not those results.json hashed is refused; a
+/// damaged byte is caught by the CRCs when no results.json is beside it.
+#[test]
+fn replay_refuses_a_recording_that_does_not_match_its_results() {
+    let run = sumo_grid_run();
+    let tmp = temp_dir();
+    let mut damaged = run.recording.clone();
+    let middle = damaged.len() / 2;
+    damaged[middle] ^= 0x55;
+
+    let beside = lay_out(run, &tmp.path().join("beside"));
+    std::fs::write(&beside, &damaged).unwrap();
+    let replay = sightline(["replay", arg(&beside)]);
+    replay.assert_exit(2);
+    let sha = crate::support::sha256_hex(&damaged);
+    let expected = crate::support::sha256_hex(&run.recording);
+    assert_eq!(
+        replay.stderr,
+        format!(
+            "{}: error: its SHA-256 is {sha}, and {} beside it records {expected}: the recording was changed or is not the one that run wrote\n",
+            beside.display(),
+            beside.with_file_name("results.json").display()
+        )
+    );
+
+    let alone = tmp.path().join("alone.mcap");
+    std::fs::write(&alone, &damaged).unwrap();
+    let replay = sightline(["replay", arg(&alone)]);
+    replay.assert_exit(2);
+    assert!(replay.stderr.contains("truncated or damaged"), "{replay}");
+}
+
+/// Usage errors: a missing file, and a file that is not MCAP.
+#[test]
+fn replay_refuses_what_is_not_a_recording() {
+    let tmp = temp_dir();
+    let missing = tmp.path().join("missing.mcap");
+    let replay = sightline(["replay", arg(&missing)]);
+    replay.assert_exit(2);
+    assert!(
+        replay
+            .stderr
+            .starts_with(&format!("{}: error: failed to read the recording: ", missing.display()))
+    );
+    let replay = sightline(["replay", crate::support::SMALL_FIELD]);
+    replay.assert_exit(2);
+    assert!(replay.stderr.contains("not a complete, intact MCAP file"), "{replay}");
+}
+
+/// The same scenario and seed give a byte-identical recording whatever the
+/// number of worker threads: a short roundabout recording every topic (all
+/// agents cooperating, a grid every step, each agent's own grid) and a short
+/// junction.
+#[test]
+fn recording_is_byte_identical_whatever_the_thread_count() {
+    let tmp = temp_dir();
+    let roundabout = read(&root().join("scenarios/roundabout-six-agents.yaml"))
+        .replace("duration: 30", "duration: 4")
+        .replace("snapshot: 12", "snapshot: 2")
+        + "record: { where: { perception.cooperating: 6 }, grid_rate: 10, agent_grids: true }\n";
+    let urban = read(&root().join("scenarios/urban-rsu-semantic.yaml"))
+        .replace("duration: 120", "duration: 70")
+        .replace("runs: 5 ", "runs: 2 ")
+        + "record: { point: 1 }\n";
+    for (name, text) in [("roundabout", roundabout), ("urban", urban)] {
+        let scenario = tmp.path().join(format!("{name}.yaml"));
+        std::fs::write(&scenario, text).unwrap();
+        let evidence: Vec<(Vec<u8>, String)> = ["1", "3"]
+            .iter()
+            .map(|jobs| {
+                let out = tmp.path().join(format!("{name}-{jobs}"));
+                let run = sightline(["run", arg(&scenario), "--out", arg(&out), "--jobs", jobs]);
+                assert!(matches!(run.code, Some(0 | 1)), "{run}");
+                (
+                    std::fs::read(out.join(RECORDING)).unwrap(),
+                    read(&out.join("results.json")),
+                )
+            })
+            .collect();
+        assert!(evidence[0].0.len() > 1000, "{name}: a recording was written");
+        for other in &evidence[1..] {
+            assert!(other.0 == evidence[0].0, "{name}: run.mcap depends on the thread count");
+            assert_eq!(
+                other.1, evidence[0].1,
+                "{name}: results.json depends on the thread count"
+            );
+        }
+    }
+}
+
+/// The official Python reader (`pip install mcap`) reads the bundled
+/// roundabout's and the SUMO grid's recordings: the same channels, schemas and
+/// counts as the MCAP library, lz4 chunks, and the imported files attached.
+/// Skipped (with a message) only when `SIGHTLINE_MCAP_PYTHON` is unset; `.ci/run`
+/// sets it, and then any failure of the reader fails the test.
+#[test]
+fn the_python_mcap_reader_reads_the_recordings() {
+    let Some(python) = std::env::var_os(PYTHON_VAR) else {
+        eprintln!(
+            "skipped: {PYTHON_VAR} is not set; set it to a Python with the official reader \
+             (python3 -m venv v && v/bin/pip install mcap==1.6.0), as .ci/run does"
+        );
+        return;
+    };
+    let tmp = temp_dir();
+    for (i, run) in [roundabout_run(), sumo_grid_run()].into_iter().enumerate() {
+        let recording = lay_out(run, &tmp.path().join(i.to_string()));
+        let output = Command::new(&python)
+            .arg(root().join("tests/python/read_recording.py"))
+            .arg(&recording)
+            .output()
+            .unwrap_or_else(|e| panic!("failed to start {}: {e}", Path::new(&python).display()));
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert!(
+            output.status.success(),
+            "the Python reader failed on {}:\n{stderr}",
+            run.scenario
+        );
+        let read: serde_json::Value = serde_json::from_slice(&output.stdout)
+            .unwrap_or_else(|e| panic!("the Python reader printed no JSON ({e}):\n{stderr}"));
+        assert_eq!(read["library"], "sightline");
+        assert_eq!(read["compression"], serde_json::json!(["lz4"]));
+        assert_eq!(read["problems"], serde_json::json!([]), "{}", run.scenario);
+        let python_channels: BTreeMap<String, Channel> = read["channels"]
+            .as_object()
+            .unwrap()
+            .iter()
+            .map(|(topic, c)| {
+                assert_eq!(c["schema_encoding"], "jsonschema");
+                assert_eq!(c["message_encoding"], "json");
+                let channel = Channel {
+                    schema: c["schema"].as_str().unwrap().into(),
+                    count: c["count"].as_u64().unwrap(),
+                };
+                (topic.clone(), channel)
+            })
+            .collect();
+        assert_eq!(python_channels, channels(&run.recording), "{}", run.scenario);
+        let imports: Vec<&str> = run.results["inputs"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .skip(1)
+            .map(|input| input["path"].as_str().unwrap())
+            .collect();
+        assert_eq!(read["attachments"], serde_json::json!(imports), "{}", run.scenario);
+    }
+}
