@@ -13,7 +13,7 @@ use rand::{RngExt, SeedableRng};
 use sightline_dsl::{AgentKind, Experiment, RiskScope, Scenario, Semantic, World};
 use sightline_engine::NoTrace;
 use sightline_engine::math::Point;
-use sightline_engine::semantic::{self, Areas, EgoPlan, Ldm, Measurement, Pipeline, crosswalk_area};
+use sightline_engine::semantic::{self, Areas, EgoPlan, Ldm, Measurement, Pipeline};
 use sightline_engine::world::Occluders;
 
 /// Route density of the whole-run bench, vehicles per km of each route; the bench
@@ -109,10 +109,7 @@ fn one_cycle(c: &mut Criterion) {
     let map = semantic::route_map(&world, &semantic);
     let pipeline = Pipeline {
         semantic: &semantic,
-        areas: Areas {
-            interaction: &world.interaction_areas,
-            crosswalks: world.crosswalks.iter().map(crosswalk_area).collect(),
-        },
+        areas: Areas::of(&world),
         occluders: &occluders,
         map: &map,
         ego_route,

@@ -4,6 +4,10 @@
 
 use base64::Engine;
 use base64::engine::general_purpose::STANDARD;
+use std::ops::Range;
+
+use plotters::coord::Shift;
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use serde::Serialize;
 
@@ -108,20 +112,12 @@ pub fn anticipation(sorted: &[f64]) -> Result<Option<Chart>, ChartError> {
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
-        root.fill(&WHITE).map_err(error)?;
-        let mut chart = ChartBuilder::on(&root)
-            .margin(12)
-            .x_label_area_size(40)
-            .y_label_area_size(56)
-            .build_cartesian_2d(x0..x1, 0.0..top.max(1e-9))
-            .map_err(error)?;
-        chart
-            .configure_mesh()
-            .x_desc("anticipation time (s)")
-            .y_desc("density (1/s)")
-            .light_line_style(WHITE)
-            .draw()
-            .map_err(error)?;
+        let mut chart = frame(
+            &root,
+            x0..x1,
+            0.0..top.max(1e-9),
+            ("anticipation time (s)", "density (1/s)"),
+        )?;
         chart
             .draw_series(
                 bars.iter()
@@ -135,6 +131,7 @@ pub fn anticipation(sorted: &[f64]) -> Result<Option<Chart>, ChartError> {
         }
         root.present().map_err(error)?;
     }
+    let src = data_uri(&svg);
     let caption = match bandwidth {
         Some(h) => format!(
             "Anticipation times of {} objects: histogram as a density, and a Gaussian kernel density estimate (Silverman bandwidth {h:.2} s, reflected at 0).",
@@ -145,10 +142,7 @@ pub fn anticipation(sorted: &[f64]) -> Result<Option<Chart>, ChartError> {
             sorted.len()
         ),
     };
-    Ok(Some(Chart {
-        caption,
-        src: format!("data:image/svg+xml;base64,{}", STANDARD.encode(svg)),
-    }))
+    Ok(Some(Chart { caption, src }))
 }
 
 /// A semantic point's charts: its anticipation times, the objects the ego knows
@@ -240,20 +234,7 @@ pub fn lines_chart(
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
-        root.fill(&WHITE).map_err(error)?;
-        let mut chart = ChartBuilder::on(&root)
-            .margin(12)
-            .x_label_area_size(40)
-            .y_label_area_size(56)
-            .build_cartesian_2d(x0..x1, y0..y1)
-            .map_err(error)?;
-        chart
-            .configure_mesh()
-            .x_desc(x_desc)
-            .y_desc(y_desc)
-            .light_line_style(WHITE)
-            .draw()
-            .map_err(error)?;
+        let mut chart = frame(&root, x0..x1, y0..y1, (x_desc, y_desc))?;
         for (i, line) in lines.iter().enumerate() {
             let colour = PALETTE[i % PALETTE.len()];
             chart
@@ -281,10 +262,8 @@ pub fn lines_chart(
             .map_err(error)?;
         root.present().map_err(error)?;
     }
-    Ok(Some(Chart {
-        caption,
-        src: format!("data:image/svg+xml;base64,{}", STANDARD.encode(svg)),
-    }))
+    let src = data_uri(&svg);
+    Ok(Some(Chart { caption, src }))
 }
 
 /// One chart per metric a requirement or reference cites, for each sweep with a
@@ -368,6 +347,36 @@ fn others(point: &PointResult, path: &str) -> String {
     } else {
         parts.join(", ")
     }
+}
+
+/// A plotting area of `root`, filled white, over `x` × `y` with its axes named
+/// and a light mesh.
+fn frame<'a, 'b>(
+    root: &'a DrawingArea<SVGBackend<'b>, Shift>,
+    x: Range<f64>,
+    y: Range<f64>,
+    (x_desc, y_desc): (&str, &str),
+) -> Result<ChartContext<'a, SVGBackend<'b>, Cartesian2d<RangedCoordf64, RangedCoordf64>>, ChartError> {
+    root.fill(&WHITE).map_err(error)?;
+    let mut chart = ChartBuilder::on(root)
+        .margin(12)
+        .x_label_area_size(40)
+        .y_label_area_size(56)
+        .build_cartesian_2d(x, y)
+        .map_err(error)?;
+    chart
+        .configure_mesh()
+        .x_desc(x_desc)
+        .y_desc(y_desc)
+        .light_line_style(WHITE)
+        .draw()
+        .map_err(error)?;
+    Ok(chart)
+}
+
+/// An SVG as a `data:` URI.
+fn data_uri(svg: &str) -> String {
+    format!("data:image/svg+xml;base64,{}", STANDARD.encode(svg))
 }
 
 fn error(e: impl std::fmt::Display) -> ChartError {

@@ -10,7 +10,7 @@
 //! "Approaching" means the constant-velocity extrapolation of the object (for the
 //! ego, its planned path) enters the area within the prediction horizon.
 
-use sightline_dsl::{Area, Crosswalk, InteractionArea};
+use sightline_dsl::{Area, Crosswalk, InteractionArea, World};
 
 use crate::math::Point;
 
@@ -65,7 +65,15 @@ pub struct Areas<'a> {
     pub crosswalks: Vec<Area>,
 }
 
-impl Areas<'_> {
+impl<'a> Areas<'a> {
+    /// The interaction areas and crosswalks `world` declares.
+    pub fn of(world: &'a World) -> Self {
+        Self {
+            interaction: &world.interaction_areas,
+            crosswalks: world.crosswalks.iter().map(crosswalk_area).collect(),
+        }
+    }
+
     /// Whether a vehicle at `position` moving as `path` is relevant to an ego at
     /// `ego` moving as `ego_path`.
     pub fn vehicle_relevant(

@@ -47,7 +47,7 @@ use super::ldm::{Ldm, Measurement};
 use super::message::{EtsiSender, Item, baseline_bytes, semantic_bytes};
 use super::metrics::{DELIVERY_BIN, SemanticMetrics, Series};
 use super::pipeline::{EgoPlan, Pipeline};
-use super::relevance::{Areas, crosswalk_area};
+use super::relevance::Areas;
 use super::risk::{MapRoute, RouteMap, lane_routes};
 use super::traffic;
 use crate::math::{Pose, Vector};
@@ -127,10 +127,7 @@ fn run_once(seed: u64, world: &World, semantic: &Semantic, sink: &mut impl Trace
         .expect("the compiler checks that the ego follows a route or a moving trace");
     let pipeline = Pipeline {
         semantic,
-        areas: Areas {
-            interaction: &world.interaction_areas,
-            crosswalks: world.crosswalks.iter().map(crosswalk_area).collect(),
-        },
+        areas: Areas::of(world),
         occluders: &occluders,
         map: &map,
         ego_route,

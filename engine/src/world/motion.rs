@@ -664,7 +664,15 @@ mod tests {
             },
             ..walker(0.0, 0.0, 30.0)
         }];
-        let mut kinematics = Kinematics::new(&agents, 0.5, driving(Following::Idm));
+        let state = restrained(&agents, 5);
+        assert_relative_eq!(state.speed, 10.0);
+        assert_relative_eq!(state.position().x, 20.0);
+    }
+
+    /// Agent 0 of `agents` after `steps` steps of 0.5 s with IDM, restrained from
+    /// the start to a 2.5 s headway and half its wanted speed.
+    fn restrained(agents: &[Agent], steps: usize) -> AgentState {
+        let mut kinematics = Kinematics::new(agents, 0.5, driving(Following::Idm));
         kinematics.restrain(
             0,
             Some(Restraint {
@@ -673,29 +681,15 @@ mod tests {
             }),
         );
         let mut states = Vec::new();
-        for k in 0..5 {
+        for k in 0..steps {
             kinematics.advance(k, &mut states);
         }
-        assert_relative_eq!(states[0].unwrap().speed, 10.0);
-        assert_relative_eq!(states[0].unwrap().position().x, 20.0);
+        states[0].expect("the agent is in the scene")
     }
 
     #[test]
     fn restraint_lowers_the_wanted_speed() {
-        let agents = [walker(0.0, 10.0, 30.0)];
-        let mut kinematics = Kinematics::new(&agents, 0.5, driving(Following::Idm));
-        kinematics.restrain(
-            0,
-            Some(Restraint {
-                headway: 2.5,
-                speed_factor: 0.5,
-            }),
-        );
-        let mut states = Vec::new();
-        for k in 0..20 {
-            kinematics.advance(k, &mut states);
-        }
-        let speed = states[0].unwrap().speed;
+        let speed = restrained(&[walker(0.0, 10.0, 30.0)], 20).speed;
         assert!((4.95..=5.05).contains(&speed), "speed {speed}");
     }
 }
