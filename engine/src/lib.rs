@@ -26,7 +26,10 @@
 #![warn(missing_docs)]
 
 pub use metrics::{BandMetrics, ConflictMetrics, Coverage, FieldMetrics, FieldOutcome, MassAudit};
-pub use run::{Job, Outcome, Run, simulate, simulate_point, simulate_reporting, simulate_traced};
+pub use run::{
+    AssembleError, Job, Outcome, Run, Unit, assemble, simulate, simulate_point, simulate_reporting, simulate_traced,
+    simulate_unit, units,
+};
 pub use sink::{NoTrace, TraceSink};
 
 pub mod field;

@@ -6,13 +6,13 @@
 //! sensor in range). Tallies are kept per grid row and merged in row order, so
 //! sums of floating-point values do not depend on the thread count.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use sightline_dsl::Metric;
 
 use crate::fusion::{Estimate, State, decide};
 
 /// Everything measured at one sweep point.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct FieldOutcome {
     /// Whole-grid metrics.
     pub metrics: FieldMetrics,
@@ -25,7 +25,7 @@ pub struct FieldOutcome {
 }
 
 /// Whole-grid metrics of one run.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct FieldMetrics {
     /// Cells in the grid.
     pub cells: u64,
@@ -48,7 +48,7 @@ pub struct FieldMetrics {
 }
 
 /// The conflict signal of an evidential run.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ConflictMetrics {
     /// Mean conflict K over observed cells (`None` when no cell is observed).
     pub mean: Option<f64>,
@@ -94,7 +94,7 @@ impl FieldMetrics {
 }
 
 /// Decisions among the cells whose nearest sensor lies in [`from`, `to`).
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct BandMetrics {
     /// Lower edge, metres.
     pub from: f64,
@@ -116,7 +116,7 @@ pub struct BandMetrics {
 
 /// Extremes of the fused masses, for the mass-function invariant. For `bayes`
 /// the audited vector is (1 − p, p, 0).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct MassAudit {
     /// Fused cells audited.
     pub cells: u64,
@@ -131,7 +131,7 @@ pub struct MassAudit {
 }
 
 /// Sensors per cell.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Coverage {
     /// Number of sensors.
     pub sensors: usize,

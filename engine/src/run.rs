@@ -1,7 +1,9 @@
 //! Running a whole scenario: every sweep point, sharing sampled data where it can.
 
+use std::collections::HashMap;
+
 use rayon::prelude::*;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use sightline_dsl::{Agent, Check, Decision, Experiment, Fusion, Metric, ObjectProperty, Scenario, Setup, Signal};
 
 use crate::field;
@@ -22,7 +24,7 @@ pub struct Job<'a> {
 }
 
 /// What one sweep point measured.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "experiment", rename_all = "snake_case")]
 pub enum Outcome {
     /// The field experiment.
@@ -146,40 +148,158 @@ fn simulate_all(
     sink: &mut impl TraceSink,
     done: &mut dyn FnMut(usize),
 ) -> Run {
-    let mut outcomes: Vec<Option<Outcome>> = vec![None; scenario.points.len()];
-    let mut replicates: Vec<Vec<Outcome>> = vec![Vec::new(); scenario.points.len()];
-    let seeds = seeds_needed(scenario);
-    for group in shared_data_groups(scenario) {
-        let seed = scenario.points[group[0]].setup.seed;
-        let results = match traced.and_then(|point| group.iter().position(|&i| i == point)) {
+    let mut pieces = Vec::new();
+    for (group, seeds) in groups(scenario) {
+        let own = Unit {
+            group: group.clone(),
+            replicate: 0,
+        };
+        let seed = own.seed(scenario);
+        let outcomes = match traced.and_then(|point| group.iter().position(|&i| i == point)) {
             Some(job) => simulate_group(scenario, &group, seed, &mut OneJob { sink: &mut *sink, job }),
             None => simulate_group(scenario, &group, seed, &mut NoTrace),
         };
-        for (&i, outcome) in group.iter().zip(results) {
-            outcomes[i] = Some(outcome);
-        }
-        let wanted = group.iter().map(|&i| seeds[i]).max().unwrap_or(1);
-        let extra: Vec<Vec<Outcome>> = (1..wanted)
-            .into_par_iter()
-            .map(|r| {
-                let seed = derived_seed(seed, Derived::Replicate, r);
-                simulate_group(scenario, &group, seed, &mut NoTrace)
+        pieces.push((own, outcomes));
+        let replicates: Vec<Unit> = (1..seeds)
+            .map(|replicate| Unit {
+                group: group.clone(),
+                replicate,
             })
             .collect();
-        for outcomes in extra {
-            for (&i, outcome) in group.iter().zip(outcomes) {
-                replicates[i].push(outcome);
-            }
-        }
+        pieces.par_extend(replicates.into_par_iter().map(|unit| {
+            let outcomes = simulate_unit(scenario, &unit);
+            (unit, outcomes)
+        }));
         done(group.len());
     }
-    Run {
-        points: outcomes
+    assemble(scenario, pieces).expect("the pieces of every group, each once")
+}
+
+/// A piece of a run that can be simulated on its own, on another machine: a
+/// group of points that share their sampled data, at one of the seeds the
+/// scenario needs. `sightline run --shard` simulates some of a scenario's units,
+/// `sightline merge` [`assemble`]s them.
+#[derive(Debug, Clone, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub struct Unit {
+    /// The points, indices into [`Scenario::points`], in order.
+    pub group: Vec<usize>,
+    /// 0 for the points' own seed, r ≥ 1 for the r-th replicate of checks over seeds.
+    pub replicate: u32,
+}
+
+impl Unit {
+    /// The seed the unit is simulated with.
+    fn seed(&self, scenario: &Scenario) -> u64 {
+        let seed = scenario.points[self.group[0]].setup.seed;
+        match self.replicate {
+            0 => seed,
+            r => derived_seed(seed, Derived::Replicate, r),
+        }
+    }
+}
+
+/// Every unit of `scenario`, in the order [`simulate`] simulates them: group by
+/// group, the group's own seed first, then its replicates.
+pub fn units(scenario: &Scenario) -> Vec<Unit> {
+    groups(scenario)
+        .into_iter()
+        .flat_map(|(group, seeds)| {
+            (0..seeds).map(move |replicate| Unit {
+                group: group.clone(),
+                replicate,
+            })
+        })
+        .collect()
+}
+
+/// Simulates `unit` of `scenario`: one outcome per point of its group, in
+/// order, bit for bit those [`simulate`] gives.
+///
+/// # Panics
+///
+/// If `unit` is not one of [`units`]`(scenario)`.
+pub fn simulate_unit(scenario: &Scenario, unit: &Unit) -> Vec<Outcome> {
+    simulate_group(scenario, &unit.group, unit.seed(scenario), &mut NoTrace)
+}
+
+/// Why simulated units do not make up a run.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum AssembleError {
+    /// A unit of the scenario is not among them.
+    #[error("the outcomes of points {:?} at replicate {} are missing", .0.group, .0.replicate)]
+    Missing(Unit),
+    /// A unit appears twice, or is not a unit of the scenario.
+    #[error("the outcomes of points {:?} at replicate {} are not expected (twice, or not of this scenario)", .0.group, .0.replicate)]
+    Unexpected(Unit),
+    /// A unit's outcomes do not match its points.
+    #[error("the outcomes of points {:?} at replicate {} do not match the points", .0.group, .0.replicate)]
+    Mismatched(Unit),
+}
+
+/// The run that every unit of `scenario`, each simulated once (in any order, by
+/// any machine), makes up: equal to [`simulate`]`(scenario)`.
+pub fn assemble(
+    scenario: &Scenario,
+    pieces: impl IntoIterator<Item = (Unit, Vec<Outcome>)>,
+) -> Result<Run, AssembleError> {
+    let mut expected: HashMap<Unit, Option<Vec<Outcome>>> = units(scenario).into_iter().map(|u| (u, None)).collect();
+    for (unit, outcomes) in pieces {
+        let fits = outcomes.len() == unit.group.len()
+            && unit
+                .group
+                .iter()
+                .zip(&outcomes)
+                .all(|(&i, outcome)| measures(&scenario.points[i].setup.experiment, outcome));
+        match expected.get_mut(&unit) {
+            Some(slot @ None) if fits => *slot = Some(outcomes),
+            Some(None) => return Err(AssembleError::Mismatched(unit)),
+            Some(Some(_)) | None => return Err(AssembleError::Unexpected(unit)),
+        }
+    }
+    let mut points: Vec<Option<Outcome>> = vec![None; scenario.points.len()];
+    let mut replicates: Vec<Vec<Outcome>> = vec![Vec::new(); scenario.points.len()];
+    for unit in units(scenario) {
+        let outcomes = expected
+            .remove(&unit)
+            .flatten()
+            .ok_or_else(|| AssembleError::Missing(unit.clone()))?;
+        for (&i, outcome) in unit.group.iter().zip(outcomes) {
+            match unit.replicate {
+                0 => points[i] = Some(outcome),
+                _ => replicates[i].push(outcome),
+            }
+        }
+    }
+    Ok(Run {
+        points: points
             .into_iter()
             .map(|o| o.expect("every point belongs to one group"))
             .collect(),
         replicates,
+    })
+}
+
+/// Whether `outcome` is what a point of `experiment` measures.
+fn measures(experiment: &Experiment, outcome: &Outcome) -> bool {
+    match (experiment, outcome) {
+        (Experiment::Field(_), Outcome::Field(_)) => true,
+        (Experiment::World(w), Outcome::World(_)) => w.perception.is_some(),
+        (Experiment::World(w), Outcome::Semantic(_)) => w.perception.is_none(),
+        _ => false,
     }
+}
+
+/// The groups of points that share sampled data, each with the seeds its checks
+/// over seeds need (the most any of its points needs; 1: its own only).
+fn groups(scenario: &Scenario) -> Vec<(Vec<usize>, u32)> {
+    let seeds = seeds_needed(scenario);
+    shared_data_groups(scenario)
+        .into_iter()
+        .map(|group| {
+            let most = group.iter().map(|&i| seeds[i]).max().unwrap_or(1);
+            (group, most)
+        })
+        .collect()
 }
 
 /// Per point, the most seeds a check over seeds applying to it asks for (1: none).

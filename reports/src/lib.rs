@@ -1,5 +1,6 @@
 //! sightline's evidence: `results.json`, `junit.xml`, `report.html` and
-//! `run.mcap` of a run, and `falsify.json` of a falsification.
+//! `run.mcap` of a run, `falsify.json` of a falsification, and the shard files
+//! of a run split across machines.
 //!
 //! This crate maps a compiled scenario, its run and its verdicts to bytes. It owns
 //! the wire formats (see [`Results`] and [`mcap`]) and the report template; it
@@ -20,6 +21,7 @@ pub use results::{
     CheckInfo, Detail, FORMAT, InputInfo, MetricEntry, Ordered, PointResult, PointVerdict, Provenance, RecordingInfo,
     ReferencePoint, ReferenceResult, RequirementResult, Results, ScenarioInfo, Summary, Table, Tool,
 };
+pub use shard::{SHARD_FORMAT, Shard, ShardError, ShardInput, read_shard, shard_bytes};
 
 mod chart;
 mod falsify;
@@ -28,6 +30,7 @@ mod junit;
 pub mod mcap;
 mod picture;
 mod results;
+mod shard;
 
 use sha2::{Digest, Sha256};
 use sightline_dsl::{Experiment, Scenario};

@@ -255,7 +255,8 @@ pub enum Detail {
     },
     /// A world's semantic pipeline.
     Semantic {
-        /// The counts and samples behind the metrics.
+        /// The counts and samples behind the metrics; the per-step series are
+        /// left out (they are in run.mcap and in shard files).
         counts: SemanticMetrics,
         /// Objects known to the ego only through an RSU, by traffic density.
         contribution_by_density: Vec<DensityRow>,
@@ -447,7 +448,12 @@ fn point_result((point, outcome): (&Point, &Outcome)) -> PointResult {
                 counts: o.metrics.clone(),
             },
             Outcome::Semantic(m) => Detail::Semantic {
-                counts: m.clone(),
+                counts: SemanticMetrics {
+                    contribution: Vec::new(),
+                    rsu_only: Vec::new(),
+                    time_to_conflict: Vec::new(),
+                    ..m.clone()
+                },
                 contribution_by_density: m.contribution_by_density(),
             },
         },

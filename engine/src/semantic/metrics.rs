@@ -1,7 +1,7 @@
 //! What a semantic run measured (seed 002, section V, and the safety
 //! metric).
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use sightline_dsl::Metric;
 
 /// Width of the packet-delivery distance bins, metres.
@@ -11,7 +11,7 @@ pub const DELIVERY_BIN: f64 = 25.0;
 pub const DENSITY_BIN: f64 = 10.0;
 
 /// The measurements of one semantic run.
-#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct SemanticMetrics {
     /// Independent runs pooled into these measurements.
     pub runs: u32,
@@ -30,7 +30,7 @@ pub struct SemanticMetrics {
     /// Per step with the ego present: objects per km in the scene (`None` in a
     /// world without roads) and objects the ego knew only through an RSU
     /// (summarised by [`Self::contribution_by_density`]).
-    #[serde(skip)]
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub contribution: Vec<(Option<f64>, u32)>,
     /// Object-cycles perceived by the RSUs (the ego excluded), in the cycles the
     /// shares count (`semantic.shares_over`).
@@ -65,11 +65,11 @@ pub struct SemanticMetrics {
     pub warnings: Vec<Option<f64>>,
     /// Per pooled run, per step with the ego: (time, objects the ego knew only
     /// through an RSU).
-    #[serde(skip)]
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub rsu_only: Vec<Series>,
     /// Per pooled run, at each RSU cycle whose message to the ego flags a
     /// conflict: (time, the shortest predicted time to conflict in it).
-    #[serde(skip)]
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub time_to_conflict: Vec<Series>,
 }
 
@@ -78,7 +78,7 @@ pub struct SemanticMetrics {
 pub type Series = Vec<(f64, f64)>;
 
 /// Sent object-cycles by label.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 pub struct LabelCounts {
     /// NLoS behind a static occluder.
     pub nlos_static: u64,
@@ -93,7 +93,7 @@ pub struct LabelCounts {
 }
 
 /// Packet delivery in one distance bin.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 pub struct DeliveryBin {
     /// Messages sent.
     pub sent: u64,
@@ -102,7 +102,7 @@ pub struct DeliveryBin {
 }
 
 /// The contribution in one density bin.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct DensityRow {
     /// Lower edge of the bin, objects per km.
     pub from: f64,

@@ -6,7 +6,7 @@
 //! Only cells in the region of interest are counted, never occluder cells or the
 //! ego's own footprint, and only at steps at which the ego is in the scene.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use sightline_dsl::{Metric, Signal};
 
 use super::observe::Sightings;
@@ -14,18 +14,15 @@ use crate::metrics::{ConflictMetrics, EstimateTally, MassAudit};
 use crate::semantic::Series;
 
 /// Everything measured at one sweep point of a world.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct WorldOutcome {
     /// The metrics.
     pub metrics: WorldMetrics,
     /// The mass-function audit of every fused cell.
     pub audit: MassAudit,
-    /// The grids at the snapshot step, for pictures (not serialized: the report
-    /// draws them).
-    #[serde(skip)]
+    /// The grids at the snapshot step, for pictures.
     pub snapshot: Option<Snapshot>,
     /// Each measured step's time and cell tallies, for temporal checks.
-    #[serde(skip)]
     pub by_step: Vec<(f64, CellTally)>,
 }
 
@@ -50,7 +47,7 @@ impl WorldOutcome {
 }
 
 /// World metrics of one run.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct WorldMetrics {
     /// Steps counted (the ego in the scene).
     pub steps: u64,
@@ -98,7 +95,7 @@ impl WorldMetrics {
 }
 
 /// The grids of one step.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Snapshot {
     /// The step.
     pub step: usize,
@@ -113,7 +110,7 @@ pub struct Snapshot {
 
 /// Cell-steps of one method by outcome: one step's or, summed with
 /// [`CellTally::add`], a run's (the counts of [`WorldMetrics`]).
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub struct CellTally {
     /// Truly occupied by an agent other than the ego and RSUs.
     pub occupied: u64,

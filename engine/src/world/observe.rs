@@ -62,7 +62,7 @@ pub struct Sighting {
 }
 
 /// Targets in range and field of view, by what hides them, over a run or a step.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct Sightings {
     /// In line of sight.
     pub los: u64,
