@@ -24,6 +24,11 @@ pub enum Command {
     /// shrink it and write counterexample.yaml and falsify.json. Exit 0: none
     /// found, 1: found, 2: invalid input, 3: internal error.
     Falsify(FalsifyArgs),
+    /// Combine the shard files of `run --shard K/N` into the evidence one
+    /// unsharded run writes (results.json, junit.xml, report.html, run.mcap).
+    /// Exit codes as `run`; 2 also when a shard is missing, repeated, damaged,
+    /// from another build, or its scenario file changed since.
+    Merge(MergeArgs),
     /// Re-check the requirements of a recording (run.mcap) from what it holds
     /// and print the verdicts as `run` does. Exit 0: all pass, 1: a requirement
     /// fails, 2: the recording is damaged, does not match the results.json beside
@@ -68,6 +73,32 @@ pub struct RunArgs {
     /// (with that section's defaults: the first sweep point, a grid a second).
     #[arg(long)]
     pub record: bool,
+    /// Simulate only slice K of N of the scenarios' work (sweep points and
+    /// seeds) and write DIR/shard-K-of-N.cbor instead of evidence; `sightline
+    /// merge` combines the N shards. Exit 0 when the shard is written.
+    #[arg(long, value_name = "K/N", value_parser = shard)]
+    pub shard: Option<ShardSpec>,
+}
+
+/// Slice K of N (1 ≤ K ≤ N).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ShardSpec {
+    /// K, from 1.
+    pub index: u32,
+    /// N.
+    pub count: u32,
+}
+
+#[derive(Debug, Args)]
+pub struct MergeArgs {
+    /// Shard files, or directories searched (with their subdirectories) for
+    /// shard-K-of-N.cbor files.
+    #[arg(required = true)]
+    pub paths: Vec<PathBuf>,
+    /// Evidence directory, as for `run`: with one scenario the evidence goes
+    /// here; with several, into DIR/STEM/. Default: out/STEM/.
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
 }
 
 #[derive(Debug, Args)]
@@ -104,6 +135,17 @@ pub enum SearchMode {
     Guided,
     /// Random cases only (uniform over the grid of each setting).
     Random,
+}
+
+/// `K/N` with 1 ≤ K ≤ N.
+fn shard(text: &str) -> Result<ShardSpec, String> {
+    let parsed = text
+        .split_once('/')
+        .and_then(|(k, n)| Some((k.parse::<u32>().ok()?, n.parse::<u32>().ok()?)));
+    match parsed {
+        Some((index, count)) if (1..=count).contains(&index) => Ok(ShardSpec { index, count }),
+        _ => Err(format!("expected K/N with 1 ≤ K ≤ N (as in 2/8), found `{text}`")),
+    }
 }
 
 /// A positive number of seconds.

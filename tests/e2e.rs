@@ -45,3 +45,7 @@ mod findings;
 // `falsify`: the bundled counterexample found and shrunk, determinism, exit codes.
 #[path = "e2e/falsify.rs"]
 mod falsify;
+
+// `run --shard K/N` and `merge`: merged evidence equals the unsharded run's; bad campaigns refused.
+#[path = "e2e/shard.rs"]
+mod shard;

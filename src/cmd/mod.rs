@@ -2,10 +2,12 @@
 
 mod check;
 mod falsify;
+mod merge;
 mod replay;
 mod run;
 mod schema;
 mod selftest;
+mod shard;
 
 use crate::cli::{Cli, Command};
 use crate::exit::Exit;
@@ -15,6 +17,7 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<Exit> {
     match cli.command {
         Command::Run(args) => run::run(&args),
         Command::Falsify(args) => falsify::falsify(&args),
+        Command::Merge(args) => merge::merge(&args),
         Command::Check { files } => Ok(check::check(&files)),
         Command::Schema { markdown } => schema::schema(markdown),
         Command::Selftest => Ok(selftest::selftest()),

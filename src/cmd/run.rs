@@ -1,4 +1,4 @@
-//! `sightline run FILE… [--out DIR] [--seed N] [--jobs N] [--record]`
+//! `sightline run FILE… [--out DIR] [--seed N] [--jobs N] [--record] [--shard K/N]`
 
 use std::collections::HashSet;
 use std::io::{BufWriter, Write};
@@ -20,81 +20,129 @@ use crate::summary::print_verdicts;
 /// The recording's name in the evidence directory.
 pub const RECORDING: &str = "run.mcap";
 
+/// How a run was asked for, as its evidence and its recording say.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Request {
+    /// `--seed`.
+    pub seed: Option<u64>,
+    /// `--record`.
+    pub record: bool,
+}
+
 /// Validates every file first (nothing is written if one is invalid), then runs
-/// each scenario and writes its evidence.
+/// each scenario (or, with `--shard`, its slice) and writes its evidence.
 pub fn run(args: &RunArgs) -> anyhow::Result<Exit> {
-    let Some(inputs) = load_all(&args.files, args.seed, args.record) else {
+    let request = Request {
+        seed: args.seed,
+        record: args.record,
+    };
+    let Some(inputs) = load_all(&args.files, request.seed, request.record) else {
         return Ok(Exit::Invalid);
     };
-    let Some(dirs) = evidence_dirs(args, &inputs) else {
+    let Some(dirs) = evidence_dirs(args.out.as_deref(), &inputs) else {
         return Ok(Exit::Invalid);
     };
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(args.jobs.map_or(0, usize::from))
-        .build()
-        .context("failed to start worker threads")?;
+    let pool = worker_pool(args.jobs)?;
+    if let Some(shard) = args.shard {
+        return super::shard::run_shard(&pool, shard, &inputs, &dirs, request);
+    }
+    let tool = tool();
     let mut exit = Exit::Pass;
     for (input, dir) in inputs.iter().zip(&dirs) {
         let scenario = &input.scenario;
-        let path = input.path.display().to_string();
-        let tool = Tool {
-            name: "sightline".into(),
-            version: env!("CARGO_PKG_VERSION").into(),
-            git: env!("SIGHTLINE_GIT").into(),
+        let bar = progress(scenario.points.len(), &input.path.display().to_string());
+        let mut done = |n: usize| bar.inc(n as u64);
+        let simulated = match scenario.record {
+            None => {
+                let run = pool.install(|| sightline_engine::simulate_reporting(scenario, &mut done));
+                let verdicts = sightline_oracles::check(scenario, &run);
+                (run, verdicts, None)
+            }
+            Some(record) => recorded(input, &tool, request, dir, |recorder| {
+                Ok(pool.install(|| sightline_engine::simulate_traced(scenario, record.point, recorder, &mut done)))
+            })?,
         };
-        let (run, verdicts, recording) = simulate(&pool, input, &tool, args, dir)?;
-        let provenance = Provenance {
-            tool,
-            scenario_path: path.clone(),
-            scenario_sha256: sha256_hex(&input.bytes),
-            recording: recording.as_ref().map(|(_, info)| info.clone()),
-        };
-        let mut reproduce = match scenario.points.iter().map(|p| p.setup.seed).collect::<HashSet<_>>() {
-            seeds if seeds.len() == 1 => format!("sightline run {path} --seed {}", scenario.points[0].setup.seed),
-            _ => format!("sightline run {path}"),
-        };
-        if args.record {
-            reproduce.push_str(" --record");
-        }
-        let evidence = render(scenario, &run, &verdicts, &provenance, &reproduce)?;
-        write_atomically(
-            dir,
-            &[
-                ("results.json", &evidence.results_json),
-                ("junit.xml", &evidence.junit_xml),
-                ("report.html", &evidence.report_html),
-            ],
-            recording.map(|(file, _)| (file, RECORDING)).into_iter().collect(),
-        )?;
-        if print_verdicts(&path, scenario, &verdicts, format_args!("-> {}", dir.display())) != Exit::Pass {
-            exit = Exit::Fail;
-        }
+        bar.finish_and_clear();
+        exit = exit.max(write_evidence(input, tool.clone(), request, dir, simulated)?);
     }
     Ok(exit)
 }
 
-/// A run, its verdicts, and its recording (staged in `dir`, with what
-/// results.json says of it) when the scenario asks for one.
-type Simulated = (Run, Vec<Verdict>, Option<(NamedTempFile, RecordingInfo)>);
+/// The worker threads: `jobs` of them, or one per core.
+pub fn worker_pool(jobs: Option<u16>) -> anyhow::Result<rayon::ThreadPool> {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(jobs.map_or(0, usize::from))
+        .build()
+        .context("failed to start worker threads")
+}
 
-/// Simulates and checks `input`; records its `record` point into a staging file
-/// in `dir` as the engine runs, when it has one.
-fn simulate(
-    pool: &rayon::ThreadPool,
+/// This build of sightline.
+pub fn tool() -> Tool {
+    Tool {
+        name: "sightline".into(),
+        version: env!("CARGO_PKG_VERSION").into(),
+        git: env!("SIGHTLINE_GIT").into(),
+    }
+}
+
+/// A run, its verdicts, and its recording (staged in the evidence directory,
+/// with what results.json says of it) when the scenario asks for one.
+pub type Simulated = (Run, Vec<Verdict>, Option<(NamedTempFile, RecordingInfo)>);
+
+/// Renders the evidence of a simulated `input` into `dir`, atomically, and
+/// prints its verdicts; [`Exit::Pass`] when every requirement holds.
+pub fn write_evidence(
+    input: &Input,
+    tool: Tool,
+    request: Request,
+    dir: &Path,
+    (run, verdicts, recording): Simulated,
+) -> anyhow::Result<Exit> {
+    let scenario = &input.scenario;
+    let path = input.path.display().to_string();
+    let provenance = Provenance {
+        tool,
+        scenario_path: path.clone(),
+        scenario_sha256: sha256_hex(&input.bytes),
+        recording: recording.as_ref().map(|(_, info)| info.clone()),
+    };
+    let mut reproduce = match scenario.points.iter().map(|p| p.setup.seed).collect::<HashSet<_>>() {
+        seeds if seeds.len() == 1 => format!("sightline run {path} --seed {}", scenario.points[0].setup.seed),
+        _ => format!("sightline run {path}"),
+    };
+    if request.record {
+        reproduce.push_str(" --record");
+    }
+    let evidence = render(scenario, &run, &verdicts, &provenance, &reproduce)?;
+    write_atomically(
+        dir,
+        &[
+            ("results.json", &evidence.results_json),
+            ("junit.xml", &evidence.junit_xml),
+            ("report.html", &evidence.report_html),
+        ],
+        recording.map(|(file, _)| (file, RECORDING)).into_iter().collect(),
+    )?;
+    Ok(print_verdicts(
+        &path,
+        scenario,
+        &verdicts,
+        format_args!("-> {}", dir.display()),
+    ))
+}
+
+/// Records `input`'s `record` point into a staging file in `dir` while
+/// `simulate` runs the scenario with the recorder as its sink, then checks the
+/// run and finishes the recording with its outcomes and verdicts.
+pub fn recorded(
     input: &Input,
     tool: &Tool,
-    args: &RunArgs,
+    request: Request,
     dir: &Path,
+    simulate: impl FnOnce(&mut Recorder<'_, BufWriter<&std::fs::File>>) -> anyhow::Result<Run>,
 ) -> anyhow::Result<Simulated> {
     let scenario = &input.scenario;
-    let bar = progress(scenario.points.len(), &input.path.display().to_string());
-    let mut done = |n: usize| bar.inc(n as u64);
-    let Some(record) = scenario.record else {
-        let run = pool.install(|| sightline_engine::simulate_reporting(scenario, &mut done));
-        bar.finish_and_clear();
-        let verdicts = sightline_oracles::check(scenario, &run);
-        return Ok((run, verdicts, None));
-    };
+    let record = scenario.record.context("the scenario records nothing")?;
     let file = staging_file(dir)?;
     let failed = || format!("failed to write {}", dir.join(RECORDING).display());
     let text = std::str::from_utf8(&input.bytes).context("the scenario file is not UTF-8 text")?;
@@ -102,12 +150,11 @@ fn simulate(
         tool,
         file: &input.path.display().to_string(),
         text,
-        seed: args.seed,
-        record_flag: args.record,
+        seed: request.seed,
+        record_flag: request.record,
     };
     let mut recorder = Recorder::new(BufWriter::new(file.as_file()), scenario, record, &source).with_context(failed)?;
-    let run = pool.install(|| sightline_engine::simulate_traced(scenario, record.point, &mut recorder, &mut done));
-    bar.finish_and_clear();
+    let run = simulate(&mut recorder)?;
     let verdicts = sightline_oracles::check(scenario, &run);
     recorder
         .finish(&run, &verdicts)
@@ -125,20 +172,22 @@ fn simulate(
     Ok((run, verdicts, Some((file, info))))
 }
 
-/// Where each scenario's evidence goes; `None` (after printing why) when two
-/// scenarios would share a directory.
-fn evidence_dirs(args: &RunArgs, inputs: &[Input]) -> Option<Vec<PathBuf>> {
-    let dirs: Vec<PathBuf> = match (&args.out, inputs.len()) {
-        (Some(out), 1) => vec![out.clone()],
-        (Some(out), _) => inputs.iter().map(|i| out.join(stem(&i.path))).collect(),
-        (None, _) => inputs.iter().map(|i| default_dir(&i.path)).collect(),
+/// Where each scenario's evidence goes (`out` with one scenario, `out/STEM/`
+/// with several, `out/STEM/` under the working directory without `out`); `None`
+/// (after printing why) when two scenarios would share a directory.
+pub fn evidence_dirs<'a>(out: Option<&Path>, inputs: impl IntoIterator<Item = &'a Input>) -> Option<Vec<PathBuf>> {
+    let files: Vec<&Path> = inputs.into_iter().map(|i| i.path.as_path()).collect();
+    let dirs: Vec<PathBuf> = match (out, files.len()) {
+        (Some(out), 1) => vec![out.to_path_buf()],
+        (Some(out), _) => files.iter().map(|f| out.join(stem(f))).collect(),
+        (None, _) => files.iter().map(|f| default_dir(f)).collect(),
     };
     let mut seen = HashSet::new();
-    for (dir, input) in dirs.iter().zip(inputs) {
+    for (dir, file) in dirs.iter().zip(&files) {
         if !seen.insert(dir) {
             eprintln!(
                 "{}: error: its evidence would overwrite another scenario's in {}; run the files separately with --out",
-                input.path.display(),
+                file.display(),
                 dir.display()
             );
             return None;

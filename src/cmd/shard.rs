@@ -1,0 +1,106 @@
+//! `sightline run --shard K/N`: one deterministic slice of a campaign's work.
+//!
+//! The work of the scenario files given, in order, is their units (see
+//! [`sightline_engine::Unit`]): per file, each group of sweep points that share
+//! their sampled data, at each seed its checks need. Numbered across the files
+//! from 0, unit u belongs to shard u mod N + 1, so every shard gets a similar
+//! share of every sweep. The slice depends only on the files and N, never on the
+//! machine or its thread count.
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use anyhow::Context;
+use rayon::prelude::*;
+use sightline_reports::{SHARD_FORMAT, Shard, ShardInput, sha256_hex, shard_bytes};
+
+use super::run::{Request, tool};
+use crate::cli::ShardSpec;
+use crate::exit::Exit;
+use crate::input::Input;
+use crate::output::{progress, say, staging_file, write_atomically};
+
+/// The name of shard `spec`'s file in a scenario's evidence directory.
+pub fn shard_file_name(spec: ShardSpec) -> String {
+    format!("shard-{}-of-{}.cbor", spec.index, spec.count)
+}
+
+/// Simulates shard `spec` of the units of `inputs` and writes each scenario's
+/// part into its directory in `dirs` (a file for every scenario, so a merge can
+/// tell a shard with no work for it from a missing one).
+pub fn run_shard(
+    pool: &rayon::ThreadPool,
+    spec: ShardSpec,
+    inputs: &[Input],
+    dirs: &[PathBuf],
+    request: Request,
+) -> anyhow::Result<Exit> {
+    let files: Vec<String> = inputs.iter().map(|i| i.path.display().to_string()).collect();
+    let mut first = 0;
+    for (input, dir) in inputs.iter().zip(dirs) {
+        let all = sightline_engine::units(&input.scenario);
+        let mine: Vec<_> = all
+            .iter()
+            .enumerate()
+            .filter(|(u, _)| (first + u) % spec.count as usize == (spec.index - 1) as usize)
+            .map(|(_, unit)| unit.clone())
+            .collect();
+        first += all.len();
+        let path = input.path.display().to_string();
+        let bar = progress(mine.len(), &path);
+        let units = pool.install(|| {
+            mine.into_par_iter()
+                .map(|unit| {
+                    let outcomes = sightline_engine::simulate_unit(&input.scenario, &unit);
+                    bar.inc(1);
+                    (unit, outcomes)
+                })
+                .collect::<Vec<_>>()
+        });
+        bar.finish_and_clear();
+        let simulated = units.len();
+        let shard = Shard {
+            format: SHARD_FORMAT.into(),
+            tool: tool(),
+            files: files.clone(),
+            file: path.clone(),
+            inputs: inputs_of(input),
+            seed: request.seed,
+            record: request.record,
+            index: spec.index,
+            count: spec.count,
+            units,
+        };
+        let name = shard_file_name(spec);
+        write_file(dir, &name, &shard_bytes(&shard))?;
+        say(format_args!(
+            "shard {}/{} of {path}: {simulated} of {} units -> {}",
+            spec.index,
+            spec.count,
+            all.len(),
+            dir.join(&name).display()
+        ));
+    }
+    Ok(Exit::Pass)
+}
+
+/// The scenario file and the files it imports, with their hashes.
+pub fn inputs_of(input: &Input) -> Vec<ShardInput> {
+    let scenario = ShardInput {
+        path: input.path.display().to_string(),
+        sha256: sha256_hex(&input.bytes),
+    };
+    let imports = input.scenario.imports.iter().map(|import| ShardInput {
+        path: import.path.clone(),
+        sha256: sha256_hex(&import.bytes),
+    });
+    std::iter::once(scenario).chain(imports).collect()
+}
+
+/// Writes `bytes` to `dir/name` atomically.
+fn write_file(dir: &Path, name: &str, bytes: &[u8]) -> anyhow::Result<()> {
+    let mut file = staging_file(dir)?;
+    file.write_all(bytes)
+        .with_context(|| format!("failed to write {}", dir.join(name).display()))?;
+    write_atomically(dir, &[], vec![(file, name)])
+}
