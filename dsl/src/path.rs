@@ -33,6 +33,12 @@ impl Path {
         Self(segments)
     }
 
+    /// This path extended by `segment`.
+    pub(crate) fn push(mut self, segment: Segment) -> Self {
+        self.0.push(segment);
+        self
+    }
+
     pub(crate) fn segments(&self) -> &[Segment] {
         &self.0
     }

@@ -98,8 +98,9 @@ pub(crate) struct RawScenario {
     /// The requirements that must hold.
     #[serde(default)]
     pub requirements: Vec<RawRequirement>,
-    /// Settings to vary: a dotted path (`field.masses.gamma`) and the list of values
-    /// it takes. One run per combination, first key outermost.
+    /// Settings to vary: a dotted path (`field.masses.gamma`; an agent by its id,
+    /// `agents.<id>.speed.target`) and the list of values it takes. One run per
+    /// combination, first key outermost.
     #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
     pub sweep: BTreeMap<String, Vec<serde_json::Value>>,
     /// Independent sweeps, each like `sweep` and each reported as its own table

@@ -25,15 +25,24 @@ pub(crate) struct NoSetting {
     pub(crate) unknown: String,
 }
 
-/// Checks that a dotted key path (`field.masses.gamma`) names a setting of the
-/// language, by walking the properties of the schema; returns the setting's
-/// schema (references resolved).
+/// The list whose entries a dotted path names by id (`agents.ego.speed.target`).
+pub(crate) const AGENTS: &str = "agents";
+
+/// Checks that a dotted key path (`field.masses.gamma`, `agents.<id>.start.time`)
+/// names a setting of the language, by walking the properties of the schema;
+/// returns the setting's schema (references resolved). The id of an agent is not
+/// checked here.
 pub(crate) fn check_setting(segments: &[&str]) -> Result<Value, NoSetting> {
     static SCHEMA: OnceLock<Value> = OnceLock::new();
     let schema = SCHEMA.get_or_init(schema);
     let mut node = schema;
     for (depth, segment) in segments.iter().enumerate() {
         let resolved = reference(node).map_or(node, |name| &schema["definitions"][name.as_str()]);
+        if depth == 1 && segments[0] == AGENTS {
+            // `agents.<id>`: the segment names an entry of the list.
+            node = &resolved["items"];
+            continue;
+        }
         let properties = resolved["properties"].as_object();
         // A map with keys of the user's choosing (`sensor_models.<id>`).
         let entries = resolved["additionalProperties"]

@@ -193,3 +193,83 @@ fn record_errors_are_located() {
     let text = format!("{WORLD}record: {{ point: 0, where: {{ seed: 0 }} }}\n");
     assert!(first_error(&text).contains("give `point` (an index) or `where` (settings), not both"));
 }
+
+/// The `start_time` and `target_speed` of agent `id` at every sweep point.
+fn motions(text: &str, id: &str) -> Vec<(f64, f64)> {
+    let scenario = compile("w.yaml", text, &Options::default()).unwrap_or_else(|e| panic!("{e}"));
+    scenario
+        .points
+        .iter()
+        .map(|point| {
+            let Experiment::World(world) = &point.setup.experiment else {
+                panic!("a world scenario")
+            };
+            let agent = world.agents.iter().find(|a| a.id == id).expect("the agent");
+            let Motion::Along {
+                start_time,
+                target_speed,
+                ..
+            } = agent.motion
+            else {
+                panic!("{id} moves along a path")
+            };
+            (start_time, target_speed)
+        })
+        .collect()
+}
+
+#[test]
+fn a_sweep_sets_an_agent_named_by_its_id() {
+    let text = format!("{WORLD}sweep:\n  agents.cav.start.time: [0, 5]\n  agents.cav.speed.target: [4, 8]\n");
+    assert_eq!(motions(&text, "cav"), [(0.0, 4.0), (0.0, 8.0), (5.0, 4.0), (5.0, 8.0)]);
+    assert_eq!(
+        motions(&text, "ego"),
+        [(0.0, 8.0); 4],
+        "the other agents keep their settings"
+    );
+
+    let filtered = format!(
+        "{text}requirements:\n  - {{ id: R, text: t, where: {{ agents.cav.speed.target: 8 }}, check: {{ invariant: mass_function }} }}\n"
+    );
+    let scenario = compile("w.yaml", &filtered, &Options::default()).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(
+        scenario.requirements[0].points,
+        [1, 3],
+        "`where` names the agent as the sweep does"
+    );
+}
+
+#[test]
+fn vary_instantiates_an_agent_named_by_its_id() {
+    use sightline_dsl::{Vary, instantiate};
+    let text = format!(
+        "{WORLD}vary:\n  agents.walker.start.time: [0, 4]\n  agents.walker.speed.target: {{ one_of: [1.4, 2.5] }}\n"
+    );
+    let scenario = compile("w.yaml", &text, &Options::default()).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(scenario.vary[0].path, "agents.walker.start.time");
+    let case = instantiate("w.yaml", &text, &Vary::settings(&scenario.vary, &[500, 1])).unwrap();
+    assert_eq!(motions(&case, "walker"), [(2.0, 2.5)]);
+    assert_eq!(motions(&case, "cav"), [(2.0, 8.0)]);
+}
+
+#[test]
+fn an_agent_setting_must_name_an_agent_and_a_setting() {
+    for (key, message) in [
+        (
+            "agents.kav.speed.target",
+            "`agents.kav.speed.target` names no agent: `kav` is not the id of an entry of `agents` (did you mean `cav`?)",
+        ),
+        (
+            "agents.cav",
+            "`agents.cav` names an agent, not one of its settings (such as `agents.cav.speed.target`)",
+        ),
+        ("agents.cav.id", "an agent's id names it; it cannot be swept or varied"),
+        (
+            "agents.cav.speed.tar",
+            "`agents.cav.speed` has `acceleration`, `initial`, `limit_factor`, `target`",
+        ),
+    ] {
+        let error = first_error(&format!("{WORLD}sweep:\n  {key}: [1]\n"));
+        assert!(error.contains(message), "{key}: {error}");
+    }
+}

@@ -124,6 +124,7 @@ invalid_inputs! {
     out_of_range_sweep_value_is_located_in_the_sweep => "sweep-value-out-of-range",
     vary_errors_are_all_reported => "vary-errors",
     out_of_range_vary_value_is_located_in_vary => "vary-value-out-of-range",
+    vary_over_a_misnamed_agent_setting_is_refused => "vary-agent-errors",
     every_problem_of_a_file_is_reported_in_source_order => "several-errors",
     seed_beyond_64_bits_is_out_of_range => "seed-beyond-64-bits",
     route_that_does_not_connect_is_located_at_its_road => "route-not-connected",

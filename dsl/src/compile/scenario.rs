@@ -15,6 +15,7 @@ use crate::error::{Error, ErrorKind, Errors, Location};
 use crate::model::{Assignment, Axis, Experiment, Point, Scenario, Sweep, display_value};
 use crate::path::Path;
 use crate::raw::RawScenario;
+use crate::schema::AGENTS;
 use crate::yaml::{self, Node, Value};
 
 /// The language version this release reads.
@@ -243,8 +244,8 @@ fn points(
 }
 
 /// The effective settings of a point as JSON, for `where` filters: the raw
-/// sections with serde defaults filled in, plus what the compiler resolves (the
-/// seed, the fusion label, the number of cooperating agents).
+/// sections with serde defaults filled in (agents keyed by id), plus what the
+/// compiler resolves (the seed, the fusion label, the number of cooperating agents).
 fn settings(raw: &RawScenario, setup: &crate::model::Setup) -> serde_json::Value {
     let mut json = serde_json::to_value(raw).expect("raw scenario types serialize to JSON");
     let object = json.as_object_mut().expect("a scenario serializes to an object");
@@ -261,6 +262,16 @@ fn settings(raw: &RawScenario, setup: &crate::model::Setup) -> serde_json::Value
         object.remove(key);
     }
     object.insert("seed".into(), setup.seed.into());
+    // Agents by id, as a sweep names them: `agents.<id>.speed.target`.
+    if let Some(agents) = object.get_mut(AGENTS)
+        && let Some(list) = agents.as_array_mut()
+    {
+        let by_id = list
+            .drain(..)
+            .filter_map(|agent| Some((agent.get("id")?.as_str()?.to_string(), agent)))
+            .collect();
+        *agents = serde_json::Value::Object(by_id);
+    }
     if let Some(fusion) = object.get_mut("fusion").and_then(|f| f.as_object_mut()) {
         fusion.insert("label".into(), setup.fusion.label.clone().into());
     }

@@ -5,14 +5,14 @@ use super::context::Context;
 use crate::de::{closest, one_of};
 use crate::error::{ErrorKind, Location};
 use crate::path::{Path, Segment};
-use crate::schema::check_setting;
+use crate::schema::{AGENTS, check_setting};
 use crate::yaml::{Key, Node, Value};
 
 /// The most sweep points one scenario may have.
 pub const MAX_POINTS: usize = 10_000;
 
 /// Top-level sections a sweep may set.
-const SWEEPABLE: [&str; 13] = [
+const SWEEPABLE: [&str; 14] = [
     "seed",
     "grid",
     "field",
@@ -26,6 +26,7 @@ const SWEEPABLE: [&str; 13] = [
     "driving",
     "v2x",
     "semantic",
+    AGENTS,
 ];
 
 /// One axis as written: the path it sets and its value nodes.
@@ -137,20 +138,19 @@ fn axes<'a>(ctx: &mut Context<'a>, sweep: &'a Node, prefix: &Path) -> Vec<AxisNo
 
 /// Checks that the key `key` (written at `here`) names a setting that a sweep
 /// or `vary` may set (`words`: the verb and the noun of messages); returns its
-/// path and its JSON Schema.
+/// path in the tree and its JSON Schema.
 pub(super) fn setting(
     ctx: &mut Context<'_>,
     key: &Key,
     here: &Path,
     (verb, noun): (&str, &str),
 ) -> Option<(Path, serde_json::Value)> {
-    let Some(path) = Path::parse_dotted(&key.name) else {
-        ctx.error_at(
-            key.location,
-            here,
-            ErrorKind::Invalid("expected a dotted path such as `fusion.method`".into()),
-        );
-        return None;
+    let path = match resolve(ctx.tree, &key.name) {
+        Ok(path) => path,
+        Err(kind) => {
+            ctx.error_at(key.location, here, kind);
+            return None;
+        }
     };
     let Some(Segment::Key(section)) = path.segments().first() else {
         return None;
@@ -190,6 +190,55 @@ pub(super) fn setting(
     }
 }
 
+/// The path in `tree` of a dotted setting: its keys, except that in
+/// `agents.<id>.…` the id names the entry of `agents` with that `id`.
+pub(super) fn resolve(tree: &Node, dotted: &str) -> Result<Path, ErrorKind> {
+    let Some(path) = Path::parse_dotted(dotted) else {
+        return Err(ErrorKind::Invalid(
+            "expected a dotted path such as `fusion.method`".into(),
+        ));
+    };
+    let [Segment::Key(section), Segment::Key(id), rest @ ..] = path.segments() else {
+        return Ok(path);
+    };
+    if section != AGENTS {
+        return Ok(path);
+    }
+    let ids: Vec<&str> = match tree.get(AGENTS) {
+        Some(Node {
+            value: Value::Seq(agents),
+            ..
+        }) => agents
+            .iter()
+            .map(|agent| match agent.get("id").map(|id| &id.value) {
+                Some(Value::Str(id)) => id.as_str(),
+                _ => "",
+            })
+            .collect(),
+        _ => Vec::new(),
+    };
+    let Some(index) = ids.iter().position(|i| i == id) else {
+        let hint = closest(id, ids.iter().copied())
+            .map(|c| format!(" (did you mean `{c}`?)"))
+            .unwrap_or_default();
+        return Err(ErrorKind::DanglingReference(format!(
+            "`{dotted}` names no agent: `{id}` is not the id of an entry of `agents`{hint}"
+        )));
+    };
+    match rest.first() {
+        None => Err(ErrorKind::Invalid(format!(
+            "`{dotted}` names an agent, not one of its settings (such as `{dotted}.speed.target`)"
+        ))),
+        Some(Segment::Key(key)) if key == "id" => Err(ErrorKind::Invalid(
+            "an agent's id names it; it cannot be swept or varied".into(),
+        )),
+        Some(_) => Ok(rest
+            .iter()
+            .cloned()
+            .fold(Path::root().key(AGENTS).index(index), Path::push)),
+    }
+}
+
 /// Every choice of one value per axis, first axis outermost.
 pub(super) fn choices(axes: &[AxisNodes<'_>]) -> Vec<Vec<usize>> {
     axes.iter().fold(vec![Vec::new()], |acc, axis| {
@@ -220,33 +269,34 @@ pub(super) fn substitute(tree: &Node, axes: &[AxisNodes<'_>], choice: &[usize]) 
     point
 }
 
-/// Sets the node at `segments`, creating missing mappings on the way.
+/// Sets the node at `segments`, creating missing mappings on the way (a list
+/// entry must exist).
 pub(super) fn set(node: &mut Node, segments: &[Segment], value: Node, key_location: Location) -> Result<(), String> {
-    let Some((Segment::Key(first), rest)) = segments.split_first() else {
-        return Err("a sweep path names mapping keys only".into());
+    let Some((first, rest)) = segments.split_first() else {
+        *node = value;
+        return Ok(());
     };
-    let Value::Map(entries) = &mut node.value else {
-        return Err(format!("cannot set `{first}`: its parent is not a mapping"));
-    };
-    let index = match entries.iter().position(|(k, _)| &k.name == first) {
-        Some(index) => index,
-        None => {
-            let empty = Node::new(Value::Map(Vec::new()), key_location);
-            let key = Key {
-                name: first.clone(),
-                location: key_location,
+    let child = match (first, &mut node.value) {
+        (Segment::Index(i), Value::Seq(items)) => items.get_mut(*i).ok_or("no such list entry")?,
+        (Segment::Index(_), _) => return Err("cannot set a list entry: its parent is not a list".into()),
+        (Segment::Key(first), Value::Map(entries)) => {
+            let index = match entries.iter().position(|(k, _)| &k.name == first) {
+                Some(index) => index,
+                None => {
+                    let empty = Node::new(Value::Map(Vec::new()), key_location);
+                    let key = Key {
+                        name: first.clone(),
+                        location: key_location,
+                    };
+                    entries.push((key, empty));
+                    entries.len() - 1
+                }
             };
-            entries.push((key, empty));
-            entries.len() - 1
+            &mut entries[index].1
         }
+        (Segment::Key(first), _) => return Err(format!("cannot set `{first}`: its parent is not a mapping")),
     };
-    let child = &mut entries[index].1;
-    if rest.is_empty() {
-        *child = value;
-        Ok(())
-    } else {
-        set(child, rest, value, key_location)
-    }
+    set(child, rest, value, key_location)
 }
 
 pub(super) fn is_prefix(prefix: &Path, path: &Path) -> bool {

@@ -216,10 +216,7 @@ pub fn instantiate(file: &str, source: &str, settings: &[(String, serde_json::Va
     }
     for (dotted, value) in settings {
         let location = Location::new(1, 1);
-        let Some(path) = Path::parse_dotted(dotted) else {
-            let kind = ErrorKind::Invalid("expected a dotted path such as `fusion.method`".into());
-            return Err(error(location, dotted.clone(), kind));
-        };
+        let path = sweep::resolve(&tree, dotted).map_err(|kind| error(location, dotted.clone(), kind))?;
         sweep::set(&mut tree, path.segments(), Node::from_json(value, location), location)
             .map_err(|message| error(location, dotted.clone(), ErrorKind::Invalid(message)))?;
     }
