@@ -198,8 +198,12 @@ fn context(results: &Results) -> Vec<String> {
 
 fn provenance(results: &Results, reproduce: &str) -> Vec<(&'static str, String)> {
     let tool = &results.tool;
+    let execution = &results.execution;
     let mut rows = vec![
         ("Tool", format!("{} {} (git {})", tool.name, tool.version, tool.git)),
+        ("Platform", execution.platform()),
+        ("Started", execution.started.clone()),
+        ("Duration", format!("{} s", execution.duration_seconds)),
         ("Scenario file", results.scenario.path.clone()),
         ("Scenario SHA-256", results.scenario.sha256.clone()),
     ];

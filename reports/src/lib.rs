@@ -12,6 +12,7 @@
 #![warn(missing_docs)]
 
 pub use chart::{Chart, ChartError, Line, anticipation, kde, lines_chart, silverman_bandwidth};
+pub use execution::{Execution, rfc3339};
 pub use falsify::falsify_json;
 pub use html::html;
 pub use junit::junit;
@@ -22,6 +23,7 @@ pub use results::{
 };
 
 mod chart;
+mod execution;
 mod falsify;
 mod html;
 mod junit;

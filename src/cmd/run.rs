@@ -3,12 +3,13 @@
 use std::collections::HashSet;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
+use std::time::{Instant, SystemTime};
 
 use anyhow::Context;
 use sightline_engine::Run;
 use sightline_oracles::Verdict;
 use sightline_reports::mcap::{Recorder, Source};
-use sightline_reports::{Provenance, RecordingInfo, Tool, render, sha256_hex};
+use sightline_reports::{Execution, Provenance, RecordingInfo, Tool, render, sha256_hex};
 use tempfile::NamedTempFile;
 
 use crate::cli::RunArgs;
@@ -42,12 +43,14 @@ pub fn run(args: &RunArgs) -> anyhow::Result<Exit> {
             version: env!("CARGO_PKG_VERSION").into(),
             git: env!("SIGHTLINE_GIT").into(),
         };
+        let (started, clock) = (SystemTime::now(), Instant::now());
         let (run, verdicts, recording) = simulate(&pool, input, &tool, args, dir)?;
         let provenance = Provenance {
             tool,
             scenario_path: path.clone(),
             scenario_sha256: sha256_hex(&input.bytes),
             recording: recording.as_ref().map(|(_, info)| info.clone()),
+            execution: Execution::on_this_machine(pool.current_num_threads(), started, clock.elapsed()),
         };
         let mut reproduce = match scenario.points.iter().map(|p| p.setup.seed).collect::<HashSet<_>>() {
             seeds if seeds.len() == 1 => format!("sightline run {path} --seed {}", scenario.points[0].setup.seed),
