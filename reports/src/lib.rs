@@ -16,7 +16,7 @@ pub use execution::{Execution, rfc3339};
 pub use falsify::falsify_json;
 pub use html::html;
 pub use junit::junit;
-pub use picture::{Pictures, pictures};
+pub use picture::{Legend, Picture, Pictures, Scale, Swatch, pictures};
 pub use results::{
     CheckInfo, Detail, FORMAT, InputInfo, MetricEntry, Ordered, PointResult, PointVerdict, Provenance, RecordingInfo,
     ReferencePoint, ReferenceResult, RequirementResult, Results, ScenarioInfo, Summary, Table, Tool,
@@ -95,6 +95,7 @@ pub fn render(
                         world.step,
                         s,
                         world.perception.as_ref().and_then(|p| p.region),
+                        point.setup.fusion.rule.is_evidential(),
                     )
                 })
                 .transpose(),
