@@ -45,3 +45,7 @@ mod findings;
 // `falsify`: the bundled counterexample found and shrunk, determinism, exit codes.
 #[path = "e2e/falsify.rs"]
 mod falsify;
+
+// `--template DIR`: custom report templates checked before anything runs, escaped, rendered.
+#[path = "e2e/template.rs"]
+mod template;

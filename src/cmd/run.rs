@@ -1,4 +1,4 @@
-//! `sightline run FILE… [--out DIR] [--seed N] [--jobs N] [--record]`
+//! `sightline run FILE… [--out DIR] [--seed N] [--jobs N] [--record] [--template DIR]`
 
 use std::collections::HashSet;
 use std::io::{BufWriter, Write};
@@ -9,7 +9,7 @@ use anyhow::Context;
 use sightline_engine::Run;
 use sightline_oracles::Verdict;
 use sightline_reports::mcap::{Recorder, Source};
-use sightline_reports::{Execution, Provenance, RecordingInfo, Tool, render, sha256_hex};
+use sightline_reports::{Execution, Page, Provenance, RecordingInfo, Tool, render, sha256_hex};
 use tempfile::NamedTempFile;
 
 use crate::cli::RunArgs;
@@ -17,17 +17,21 @@ use crate::exit::Exit;
 use crate::input::{Input, load_all};
 use crate::output::{default_dir, progress, staging_file, stem, write_atomically};
 use crate::summary::print_verdicts;
+use crate::template::templates;
 
 /// The recording's name in the evidence directory.
 pub const RECORDING: &str = "run.mcap";
 
-/// Validates every file first (nothing is written if one is invalid), then runs
-/// each scenario and writes its evidence.
+/// Validates every file and the template set first (nothing is written if one
+/// is invalid), then runs each scenario and writes its evidence.
 pub fn run(args: &RunArgs) -> anyhow::Result<Exit> {
     let Some(inputs) = load_all(&args.files, args.seed, args.record) else {
         return Ok(Exit::Invalid);
     };
     let Some(dirs) = evidence_dirs(args, &inputs) else {
+        return Ok(Exit::Invalid);
+    };
+    let Some(templates) = templates(args.template.as_deref(), Page::Run) else {
         return Ok(Exit::Invalid);
     };
     let pool = rayon::ThreadPoolBuilder::new()
@@ -59,7 +63,15 @@ pub fn run(args: &RunArgs) -> anyhow::Result<Exit> {
         if args.record {
             reproduce.push_str(" --record");
         }
-        let evidence = render(scenario, &run, &verdicts, &provenance, &reproduce)?;
+        let evidence = match render(scenario, &run, &verdicts, &provenance, &reproduce, &templates) {
+            Ok(evidence) => evidence,
+            // A custom template that fails on the data is the input's fault.
+            Err(sightline_reports::Error::Template(error)) if templates.is_custom() => {
+                eprintln!("{error}");
+                return Ok(Exit::Invalid);
+            }
+            Err(error) => return Err(error.into()),
+        };
         write_atomically(
             dir,
             &[
