@@ -713,7 +713,10 @@ mod tests {
     fn a_template_that_cannot_be_read_is_named() {
         let load = |_: &str| Err(std::io::Error::new(std::io::ErrorKind::PermissionDenied, "denied"));
         let error = Templates::custom(Page::Run, "org", Arc::new(load)).unwrap_err();
-        assert_eq!(error.to_string(), "org/report.html: error: failed to read the template: denied");
+        assert_eq!(
+            error.to_string(),
+            "org/report.html: error: failed to read the template: denied"
+        );
     }
 
     #[test]
