@@ -39,9 +39,9 @@ enum Stop {
 /// Searches, then writes `falsify.json`, `report.html` and, when a case breaks
 /// a requirement, `counterexample.yaml`.
 pub fn falsify(args: &FalsifyArgs) -> anyhow::Result<Exit> {
-    let Some(input) =
-        load_all(std::slice::from_ref(&args.file), None, false).and_then(|inputs| inputs.into_iter().next())
-    else {
+    let input = load_all(std::slice::from_ref(&args.file), None, false).and_then(|inputs| inputs.into_iter().next());
+    let templates = templates(args.template.as_deref(), Page::Falsify);
+    let (Some(input), Some(templates)) = (input, templates) else {
         return Ok(Exit::Invalid);
     };
     let path = input.path.display().to_string();
@@ -50,9 +50,6 @@ pub fn falsify(args: &FalsifyArgs) -> anyhow::Result<Exit> {
         eprintln!("{path}: error: nothing to falsify: the scenario has no `vary` section");
         return Ok(Exit::Invalid);
     }
-    let Some(templates) = templates(args.template.as_deref(), Page::Falsify) else {
-        return Ok(Exit::Invalid);
-    };
     let text =
         sightline_dsl::utf8_text(&input.bytes).map_err(|_| anyhow::anyhow!("{path} was valid UTF-8 when compiled"))?;
     let dir = args.out.clone().unwrap_or_else(|| default_dir(&args.file));

@@ -22,16 +22,16 @@ use crate::template::templates;
 /// The recording's name in the evidence directory.
 pub const RECORDING: &str = "run.mcap";
 
-/// Validates every file and the template set first (nothing is written if one
-/// is invalid), then runs each scenario and writes its evidence.
+/// Validates every file and the template set first (reporting every problem;
+/// nothing is written if one is invalid), then runs each scenario and writes
+/// its evidence.
 pub fn run(args: &RunArgs) -> anyhow::Result<Exit> {
-    let Some(inputs) = load_all(&args.files, args.seed, args.record) else {
+    let inputs = load_all(&args.files, args.seed, args.record);
+    let templates = templates(args.template.as_deref(), Page::Run);
+    let (Some(inputs), Some(templates)) = (inputs, templates) else {
         return Ok(Exit::Invalid);
     };
     let Some(dirs) = evidence_dirs(args, &inputs) else {
-        return Ok(Exit::Invalid);
-    };
-    let Some(templates) = templates(args.template.as_deref(), Page::Run) else {
         return Ok(Exit::Invalid);
     };
     let pool = rayon::ThreadPoolBuilder::new()

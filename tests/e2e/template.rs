@@ -194,6 +194,18 @@ fn a_missing_directory_or_page_is_refused() {
         files_under(tmp.path()).iter().all(|f| f.starts_with("org")),
         "nothing is written"
     );
+
+    // An invalid scenario and an invalid set: both are reported.
+    let invalid = "tests/fixtures/invalid/vary-errors.yaml";
+    let refused = sightline(["run", invalid, "--out", arg(&out), "--template", arg(&missing)]);
+    refused.assert_exit(2);
+    assert!(refused.stderr.contains("vary-errors.yaml:11:3: error:"), "{refused}");
+    assert!(
+        refused
+            .stderr
+            .contains("failed to read the template set: no such directory"),
+        "{refused}"
+    );
 }
 
 /// What only the data can tell (a misspelt field) fails when the page is
