@@ -21,7 +21,7 @@ pub enum Command {
     /// pass, 1: a requirement fails, 2: invalid input, 3: internal error.
     Run(RunArgs),
     /// Search a scenario's `vary` space for a case that breaks a requirement,
-    /// shrink it and write counterexample.yaml and falsify.json. Exit 0: none
+    /// shrink it and write counterexample.yaml, falsify.json and report.html. Exit 0: none
     /// found, 1: found, 2: invalid input, 3: internal error.
     Falsify(FalsifyArgs),
     /// Combine the shard files of `run --shard K/N` into the evidence one
@@ -73,6 +73,11 @@ pub struct RunArgs {
     /// (with that section's defaults: the first sweep point, a grid a second).
     #[arg(long)]
     pub record: bool,
+    /// Render report.html with the template set in DIR: its report.html (which
+    /// may extend `sightline/report.html`) and what that includes or extends.
+    /// Checked before anything runs; see docs/report-templates.md.
+    #[arg(long, value_name = "DIR")]
+    pub template: Option<PathBuf>,
     /// Simulate only slice K of N of the scenarios' work (sweep points and
     /// seeds) and write DIR/shard-K-of-N.cbor instead of evidence; `sightline
     /// merge` combines the N shards. Exit 0 when the shard is written.
@@ -99,6 +104,9 @@ pub struct MergeArgs {
     /// here; with several, into DIR/STEM/. Default: out/STEM/.
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
+    /// Render report.html with the template set in DIR, as `run --template`.
+    #[arg(long, value_name = "DIR")]
+    pub template: Option<PathBuf>,
 }
 
 #[derive(Debug, Args)]
@@ -125,6 +133,11 @@ pub struct FalsifyArgs {
     /// Worker threads, at least 1 (default: one per core). Results do not depend on it.
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..))]
     pub jobs: Option<u16>,
+    /// Render report.html with the template set in DIR: its falsify.html (which
+    /// may extend `sightline/falsify.html`) and what that includes or extends.
+    /// Checked before anything runs; see docs/report-templates.md.
+    #[arg(long, value_name = "DIR")]
+    pub template: Option<PathBuf>,
 }
 
 /// How `falsify` chooses cases.

@@ -11,6 +11,7 @@ mod exit;
 mod input;
 mod output;
 mod summary;
+mod template;
 
 fn main() -> ExitCode {
     let cli = cli::Cli::parse();

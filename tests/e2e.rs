@@ -49,3 +49,7 @@ mod falsify;
 // `run --shard K/N` and `merge`: merged evidence equals the unsharded run's; bad campaigns refused.
 #[path = "e2e/shard.rs"]
 mod shard;
+
+// `--template DIR`: custom report templates checked before anything runs, escaped, rendered.
+#[path = "e2e/template.rs"]
+mod template;

@@ -9,6 +9,7 @@ use std::collections::BTreeSet;
 use approx::assert_relative_eq;
 use common::in_pool;
 use sightline_dsl::{Agent, AgentKind, Experiment, Motion, Scenario, World, compile};
+use sightline_engine::fusion::State;
 use sightline_engine::math::Pose;
 use sightline_engine::semantic::{Item, SemanticMetrics};
 use sightline_engine::trace::{Approach, Arrival, Packet, PacketKind, SemanticStep, WorldStep};
@@ -324,14 +325,40 @@ fn fused_grids_come_only_at_the_steps_asked_for() {
 
     let snapshot = world_outcome(&outcome).snapshot.as_ref().unwrap();
     let record = &recorder.world[perception.snapshot_step];
-    let (observed, probability, _) = record.measured.as_ref().unwrap().fused[0].1.as_ref().unwrap();
+    let (observed, probability, uncertainty) = record.measured.as_ref().unwrap().fused[0].1.as_ref().unwrap();
     let mut expected = vec![None; cells];
-    for (&cell, &p) in observed.iter().zip(probability) {
-        expected[cell] = Some(p);
+    for ((&cell, &p), &u) in observed.iter().zip(probability).zip(uncertainty) {
+        expected[cell] = Some((p, u));
     }
+    let pictured: Vec<Option<(f32, f32)>> = snapshot
+        .fused
+        .iter()
+        .map(|c| c.map(|c| (c.probability, c.uncertainty)))
+        .collect();
+    assert!(pictured == expected, "the grid at the snapshot step is the snapshot's");
+
+    // The snapshot's decisions are those the step's metrics count.
+    let time = perception.snapshot_step as f64 * world.step;
+    let (_, tally) = world_outcome(&outcome)
+        .by_step
+        .iter()
+        .find(|(t, _)| *t == time)
+        .expect("the ego is in the scene at the snapshot");
+    let decided_occupied = |truth: u8| {
+        let cells = snapshot.truth.iter().zip(&snapshot.fused);
+        cells
+            .filter(|(t, c)| **t == truth && c.is_some_and(|c| c.decision == Some(State::Occupied)))
+            .count() as u64
+    };
+    assert_eq!(tally.detected, decided_occupied(1));
+    assert_eq!(tally.false_positives, decided_occupied(0));
+    assert_eq!(
+        tally.occupied,
+        snapshot.truth.iter().filter(|&&t| t == 1).count() as u64
+    );
     assert!(
-        snapshot.fused == expected,
-        "the grid at the snapshot step is the snapshot's"
+        tally.detected > 0 && snapshot.truth.contains(&3),
+        "the ego and detections are pictured"
     );
 }
 

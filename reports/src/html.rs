@@ -1,9 +1,7 @@
-//! report.html: one self-contained page (inline CSS, no script, no network) for an
-//! assessor. The template is embedded and auto-escaped; numbers are formatted here
-//! so the template only lays them out.
+//! report.html of a run: one self-contained page (inline CSS, no script, no
+//! network) for an assessor, rendered from its template ([`Templates`]). Numbers
+//! are formatted here so the template only lays them out.
 
-use minijinja::value::Serde;
-use minijinja::{Environment, UndefinedBehavior, Value, context};
 use serde::Serialize;
 
 use sightline_dsl::{RateBound, Statistic, display_value};
@@ -13,8 +11,7 @@ use sightline_engine::semantic::{DELIVERY_BIN, DENSITY_BIN, DensityRow, Semantic
 use crate::chart::Chart;
 use crate::picture::Pictures;
 use crate::results::{CheckInfo, Detail, PointResult, RequirementResult, Results, Summary};
-
-const TEMPLATE: &str = include_str!("../templates/report.html");
+use crate::template::{TemplateError, Templates};
 
 /// Metrics every sweep table shows; metrics that requirements or references use
 /// are added after them.
@@ -32,26 +29,23 @@ const TABLE_METRICS: [&str; 11] = [
     "mean_conflict",
 ];
 
-/// Renders the report. `reproduce` is the command that re-creates the run;
-/// `pictures` holds the grid pictures of each point (world points only), `charts`
-/// the charts of each point, `sweep_charts` those of each sweep.
+/// Renders the report with `templates` (a [`Page::Run`](crate::Page::Run)
+/// set). `reproduce` is the command that re-creates the run; `pictures` holds
+/// the grid pictures of each point (world points only), `charts` the charts of
+/// each point, `sweep_charts` those of each sweep.
 pub fn html(
     results: &Results,
     reproduce: &str,
     pictures: &[Option<Pictures>],
     charts: &[Vec<Chart>],
     sweep_charts: &[Vec<Chart>],
-) -> Result<String, minijinja::Error> {
-    let mut env = Environment::new();
-    env.set_undefined_behavior(UndefinedBehavior::Strict);
-    // The name ends in `.html`, so minijinja escapes every interpolation.
-    env.add_template("report.html", TEMPLATE)?;
+    templates: &Templates,
+) -> Result<String, TemplateError> {
     let mut view = View::new(results, reproduce, pictures, charts);
     for (sweep, charts) in view.sweeps.iter_mut().zip(sweep_charts) {
         sweep.charts.clone_from(charts);
     }
-    env.get_template("report.html")?
-        .render(context! { report => Value::from(Serde(&view)) })
+    templates.render(&view, results)
 }
 
 #[derive(Serialize)]
@@ -166,7 +160,7 @@ impl<'a> View<'a> {
 }
 
 /// A measured value, or a dash where it is undefined.
-fn or_dash(value: Option<f64>) -> String {
+pub(crate) fn or_dash(value: Option<f64>) -> String {
     value.map_or_else(|| "—".into(), number)
 }
 
@@ -198,8 +192,12 @@ fn context(results: &Results) -> Vec<String> {
 
 fn provenance(results: &Results, reproduce: &str) -> Vec<(&'static str, String)> {
     let tool = &results.tool;
+    let execution = &results.execution;
     let mut rows = vec![
         ("Tool", format!("{} {} (git {})", tool.name, tool.version, tool.git)),
+        ("Platform", execution.platform()),
+        ("Started", execution.started.clone()),
+        ("Duration", format!("{} s", execution.duration_seconds)),
         ("Scenario file", results.scenario.path.clone()),
         ("Scenario SHA-256", results.scenario.sha256.clone()),
     ];
@@ -578,7 +576,7 @@ fn describe_check(check: &CheckInfo) -> String {
 
 /// A number for people: counts with thousands separators, fractions to four
 /// decimals, tiny values in scientific notation.
-fn number(value: f64) -> String {
+pub(crate) fn number(value: f64) -> String {
     if !value.is_finite() {
         return value.to_string();
     }

@@ -1,11 +1,13 @@
 //! sightline's evidence: `results.json`, `junit.xml`, `report.html` and
-//! `run.mcap` of a run, `falsify.json` of a falsification, and the shard files
-//! of a run split across machines.
+//! `run.mcap` of a run, `falsify.json` and `report.html` of a falsification, and
+//! the shard files of a run split across machines.
 //!
 //! This crate maps a compiled scenario, its run and its verdicts to bytes. It owns
-//! the wire formats (see [`Results`] and [`mcap`]) and the report template; it
-//! does not open files (the CLI hands it a writer and renames what it wrote into
-//! place atomically) and it does not judge (that is `sightline-oracles`).
+//! the wire formats (see [`Results`] and [`mcap`]) and the page templates (see
+//! [`Templates`]: the bundled ones, or an organisation's set, checked before
+//! anything runs); it does not open files (the CLI hands it a writer, or a
+//! [`Loader`] for a template set, and renames what it wrote into place
+//! atomically) and it does not judge (that is `sightline-oracles`).
 //!
 //! The recording is written as the engine runs: [`mcap::Recorder`] is a
 //! [`TraceSink`](sightline_engine::TraceSink), and [`mcap::read`] reads it back
@@ -13,24 +15,30 @@
 #![warn(missing_docs)]
 
 pub use chart::{Chart, ChartError, Line, anticipation, kde, lines_chart, silverman_bandwidth};
-pub use falsify::falsify_json;
+pub use execution::{Execution, rfc3339};
+pub use falsify::{Falsification, falsify_json};
+pub use falsify_html::falsify_html;
 pub use html::html;
 pub use junit::junit;
-pub use picture::{Pictures, pictures};
+pub use picture::{Legend, Picture, Pictures, Scale, Swatch, pictures};
 pub use results::{
     CheckInfo, Detail, FORMAT, InputInfo, MetricEntry, Ordered, PointResult, PointVerdict, Provenance, RecordingInfo,
     ReferencePoint, ReferenceResult, RequirementResult, Results, ScenarioInfo, Summary, Table, Tool,
 };
 pub use shard::{SHARD_FORMAT, Shard, ShardError, ShardInput, read_shard, shard_bytes};
+pub use template::{Loader, Location, Page, TemplateError, TemplateErrorKind, Templates};
 
 mod chart;
+mod execution;
 mod falsify;
+mod falsify_html;
 mod html;
 mod junit;
 pub mod mcap;
 mod picture;
 mod results;
 mod shard;
+mod template;
 
 use sha2::{Digest, Sha256};
 use sightline_dsl::{Experiment, Scenario};
@@ -50,12 +58,14 @@ pub struct Evidence {
     pub report_html: String,
 }
 
-/// Why evidence could not be rendered (a defect in sightline, never in the input).
+/// Why evidence could not be rendered: a defect in sightline, or a custom
+/// template that fails on the data.
 #[derive(Debug, thiserror::Error)]
 pub enum Error {
-    /// The report template failed.
-    #[error("failed to render report.html: {0}")]
-    Template(#[from] minijinja::Error),
+    /// The report template failed: a defect in sightline for the bundled
+    /// templates, in the input for a custom set ([`Templates::is_custom`]).
+    #[error(transparent)]
+    Template(#[from] TemplateError),
     /// The JUnit serializer failed.
     #[error("failed to render junit.xml: {0}")]
     Junit(#[from] quick_junit::SerializeError),
@@ -70,13 +80,15 @@ pub enum Error {
     Chart(#[from] ChartError),
 }
 
-/// Renders all evidence of a run. `reproduce` is the command that re-creates it.
+/// Renders all evidence of a run, its report with `templates`. `reproduce` is
+/// the command that re-creates it.
 pub fn render(
     scenario: &Scenario,
     run: &Run,
     verdicts: &[Verdict],
     provenance: &Provenance,
     reproduce: &str,
+    templates: &Templates,
 ) -> Result<Evidence, Error> {
     let results = Results::new(scenario, run, verdicts, provenance);
     let mut results_json = serde_json::to_string_pretty(&results)?;
@@ -96,6 +108,7 @@ pub fn render(
                         world.step,
                         s,
                         world.perception.as_ref().and_then(|p| p.region),
+                        point.setup.fusion.rule.is_evidential(),
                     )
                 })
                 .transpose(),
@@ -111,7 +124,7 @@ pub fn render(
         })
         .collect::<Result<Vec<Vec<Chart>>, ChartError>>()?;
     let sweep_charts = chart::sweep_charts(&results)?;
-    let report_html = html(&results, reproduce, &pictures, &charts, &sweep_charts)?;
+    let report_html = html(&results, reproduce, &pictures, &charts, &sweep_charts, templates)?;
     Ok(Evidence {
         results,
         results_json,

@@ -1,7 +1,9 @@
 //! results.json: the versioned wire format of a run's evidence.
 //!
-//! Everything here is deterministic: no timestamps, no thread counts, no output
-//! paths, so the same scenario and seed give a byte-identical file.
+//! Everything but `execution` (platform, worker threads, start time and
+//! duration: see [`Execution`]) is deterministic: no output paths, nothing
+//! that depends on the thread count, so the same scenario and seed give the
+//! same file but for those fields.
 
 use serde::{Serialize, Serializer};
 use sightline_dsl::{Bound, Check, OverSeeds, Point, Requirement, Scenario, Temporal};
@@ -9,6 +11,8 @@ use sightline_engine::semantic::{DensityRow, SemanticMetrics};
 use sightline_engine::world::WorldMetrics;
 use sightline_engine::{BandMetrics, Coverage, MassAudit, Outcome, Run};
 use sightline_oracles::{SeedStatistics, Status, Verdict};
+
+use crate::execution::Execution;
 
 /// The format identifier written into every results.json.
 pub const FORMAT: &str = "sightline-results/1";
@@ -24,6 +28,8 @@ pub struct Provenance {
     pub scenario_sha256: String,
     /// The recording written beside the evidence, when there is one.
     pub recording: Option<RecordingInfo>,
+    /// The platform, the start and the duration of the run.
+    pub execution: Execution,
 }
 
 /// The recording (`run.mcap`) written beside results.json.
@@ -58,6 +64,8 @@ pub struct Results {
     pub format: &'static str,
     /// The tool.
     pub tool: Tool,
+    /// Where, when and how long it ran (the fields that differ from run to run).
+    pub execution: Execution,
     /// The scenario.
     pub scenario: ScenarioInfo,
     /// Every file the run read: the scenario, then the files it imports.
@@ -331,6 +339,7 @@ impl Results {
         Results {
             format: FORMAT,
             tool: provenance.tool.clone(),
+            execution: provenance.execution.clone(),
             scenario: ScenarioInfo {
                 path: provenance.scenario_path.clone(),
                 sha256: provenance.scenario_sha256.clone(),

@@ -9,7 +9,7 @@
 use serde::{Deserialize, Serialize};
 use sightline_engine::{Outcome, Unit};
 
-use crate::Tool;
+use crate::{Execution, Tool};
 
 /// The layout of a shard file (its `format` field).
 pub const SHARD_FORMAT: &str = "sightline-shard/1";
@@ -35,6 +35,8 @@ pub struct Shard {
     pub index: u32,
     /// N of `--shard K/N`.
     pub count: u32,
+    /// Where, when and how long this part ran.
+    pub execution: Execution,
     /// The units this shard simulated, each with its outcomes.
     pub units: Vec<(Unit, Vec<Outcome>)>,
 }

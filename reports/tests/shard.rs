@@ -5,7 +5,9 @@ mod common;
 
 use sightline_dsl::{Options, Scenario, compile};
 use sightline_engine::{Outcome, assemble, simulate, simulate_unit, units};
-use sightline_reports::{SHARD_FORMAT, Shard, ShardError, ShardInput, Tool, read_shard, shard_bytes};
+use std::time::{Duration, UNIX_EPOCH};
+
+use sightline_reports::{Execution, SHARD_FORMAT, Shard, ShardError, ShardInput, Tool, read_shard, shard_bytes};
 
 use common::WORLD;
 
@@ -32,6 +34,7 @@ fn shard(scenario: &Scenario, units: Vec<sightline_engine::Unit>) -> Shard {
         record: false,
         index: 1,
         count: 1,
+        execution: Execution::on_this_machine(2, UNIX_EPOCH, Duration::from_millis(1500)),
         units: units
             .into_iter()
             .map(|unit| {

@@ -1,4 +1,4 @@
-//! `sightline falsify FILE [--cases N] [--budget SECONDS] [--seed N] [--search MODE] [--out DIR] [--jobs N]`
+//! `sightline falsify FILE [--cases N] [--budget SECONDS] [--seed N] [--search MODE] [--out DIR] [--jobs N] [--template DIR]`
 //!
 //! Each case sets every `vary` setting to a value of its grid, written out as a
 //! concrete scenario (`sightline_dsl::instantiate`), compiled, simulated and
@@ -6,17 +6,19 @@
 
 use std::collections::HashMap;
 use std::path::Path;
-use std::time::Instant;
+use std::time::{Instant, SystemTime};
 
 use anyhow::Context;
 use rayon::prelude::*;
 use sightline_dsl::{Options, Scenario, Vary, display_value};
 use sightline_oracles::{Score, Search};
+use sightline_reports::{Execution, Falsification, Page, Tool, falsify_html, falsify_json, sha256_hex};
 
 use crate::cli::{FalsifyArgs, SearchMode};
 use crate::exit::Exit;
 use crate::input::load_all;
 use crate::output::{default_dir, relative, say, write_atomically};
+use crate::template::templates;
 
 /// Cases simulated side by side: one per core of the 2-core machines sightline
 /// targets. A constant, not the thread count, so that the cases tried (and the
@@ -34,12 +36,12 @@ enum Stop {
     Internal(anyhow::Error),
 }
 
-/// Searches, then writes `falsify.json` and, when a case breaks a requirement,
-/// `counterexample.yaml`.
+/// Searches, then writes `falsify.json`, `report.html` and, when a case breaks
+/// a requirement, `counterexample.yaml`.
 pub fn falsify(args: &FalsifyArgs) -> anyhow::Result<Exit> {
-    let Some(input) =
-        load_all(std::slice::from_ref(&args.file), None, false).and_then(|inputs| inputs.into_iter().next())
-    else {
+    let input = load_all(std::slice::from_ref(&args.file), None, false).and_then(|inputs| inputs.into_iter().next());
+    let templates = templates(args.template.as_deref(), Page::Falsify);
+    let (Some(input), Some(templates)) = (input, templates) else {
         return Ok(Exit::Invalid);
     };
     let path = input.path.display().to_string();
@@ -55,7 +57,7 @@ pub fn falsify(args: &FalsifyArgs) -> anyhow::Result<Exit> {
         .num_threads(args.jobs.map_or(0, usize::from))
         .build()
         .context("failed to start worker threads")?;
-    let started = Instant::now();
+    let (started_at, started) = (SystemTime::now(), Instant::now());
     let search = Search {
         cases: args.cases,
         round: CASES_PER_ROUND,
@@ -95,7 +97,7 @@ pub fn falsify(args: &FalsifyArgs) -> anyhow::Result<Exit> {
         }
         Err(Stop::Internal(error)) => return Err(error),
     };
-    let elapsed = started.elapsed().as_secs_f64();
+    let elapsed = started.elapsed();
     let mut command = format!("sightline falsify {path} --cases {} --seed {}", args.cases, search.seed);
     if !search.guided {
         command.push_str(" --search random");
@@ -103,13 +105,47 @@ pub fn falsify(args: &FalsifyArgs) -> anyhow::Result<Exit> {
     if let Some(budget) = args.budget {
         command.push_str(&format!(" --budget {}", budget.as_secs_f64()));
     }
-    let report_json = sightline_reports::falsify_json(scenario, &outcome, &search, &command)?;
     let evaluations = scores.len();
-    let rate = evaluations as f64 / elapsed.max(1e-9);
-    let Some(found) = outcome.counterexample.map(|i| &outcome.cases[i]) else {
-        write_atomically(&dir, &[("falsify.json", &report_json)], Vec::new())?;
+    let rate = evaluations as f64 / elapsed.as_secs_f64().max(1e-9);
+    let counterexample_path = dir.join("counterexample.yaml");
+    let reproduce = format!("sightline run {}", counterexample_path.display());
+    let tool = Tool {
+        name: "sightline".into(),
+        version: env!("CARGO_PKG_VERSION").into(),
+        git: env!("SIGHTLINE_GIT").into(),
+    };
+    let execution = Execution::on_this_machine(pool.current_num_threads(), started_at, elapsed);
+    let found = outcome.counterexample.map(|i| &outcome.cases[i]);
+    let falsification = Falsification {
+        scenario,
+        scenario_sha256: &sha256_hex(&input.bytes),
+        search: &search,
+        budget: args.budget.map(|b| b.as_secs_f64()),
+        outcome: &outcome,
+        simulations: evaluations,
+        command: &command,
+        reproduce: found.map(|_| reproduce.as_str()),
+        tool: &tool,
+        execution: &execution,
+    };
+    let report_json = falsify_json(&falsification)?;
+    let report_html = match falsify_html(&falsification, &templates) {
+        Ok(html) => html,
+        // A custom template that fails on the data is the input's fault.
+        Err(sightline_reports::Error::Template(error)) if templates.is_custom() => {
+            eprintln!("{error}");
+            return Ok(Exit::Invalid);
+        }
+        Err(error) => return Err(error.into()),
+    };
+    let reports = [
+        ("falsify.json", report_json.as_str()),
+        ("report.html", report_html.as_str()),
+    ];
+    let Some(found) = found else {
+        write_atomically(&dir, &reports, Vec::new())?;
         // A counterexample left by an earlier search would contradict this one.
-        match std::fs::remove_file(dir.join("counterexample.yaml")) {
+        match std::fs::remove_file(&counterexample_path) {
             Err(error) if error.kind() != std::io::ErrorKind::NotFound => {
                 return Err(error).context("failed to remove an earlier counterexample.yaml");
             }
@@ -129,7 +165,6 @@ pub fn falsify(args: &FalsifyArgs) -> anyhow::Result<Exit> {
         ));
         return Ok(Exit::Pass);
     };
-    let counterexample_path = dir.join("counterexample.yaml");
     let mut settings = Vary::settings(&scenario.vary, &found.indices);
     settings.extend(imports_from(&dir, scenario)?);
     let case_text = sightline_dsl::instantiate(&path, text, &settings)
@@ -147,14 +182,11 @@ pub fn falsify(args: &FalsifyArgs) -> anyhow::Result<Exit> {
     for (vary, &index) in scenario.vary.iter().zip(&found.indices) {
         header.push_str(&format!("#   {}: {}\n", vary.path, display_value(&vary.value(index))));
     }
-    header.push_str(&format!(
-        "# Reproduce: sightline run {}\n",
-        counterexample_path.display()
-    ));
+    header.push_str(&format!("# Reproduce: {reproduce}\n"));
     let counterexample = header + &case_text;
     write_atomically(
         &dir,
-        &[("counterexample.yaml", &counterexample), ("falsify.json", &report_json)],
+        &[("counterexample.yaml", &counterexample), reports[0], reports[1]],
         Vec::new(),
     )?;
     say(format_args!(

@@ -9,46 +9,62 @@
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
+use std::time::{Instant, SystemTime};
 
 use anyhow::bail;
 use sightline_engine::Run;
-use sightline_reports::{Shard, read_shard};
+use sightline_reports::{Execution, Page, Shard, read_shard};
 
-use super::run::{Request, evidence_dirs, recorded, tool, write_evidence};
+use super::run::{Reporting, Request, evidence_dirs, recorded, tool, write_evidence};
 use super::shard::inputs_of;
 use crate::cli::MergeArgs;
 use crate::exit::Exit;
 use crate::input::{Input, load_all};
+use crate::template::templates;
 
 /// One scenario of the campaign, ready to render.
 struct Merged {
     input: Input,
     request: Request,
     run: Run,
+    /// How each of its shards ran.
+    shards: Vec<Execution>,
 }
 
-/// Reads and checks every shard, then writes each scenario's evidence.
+/// Reads and checks every shard and the template set, then writes each
+/// scenario's evidence.
 pub fn merge(args: &MergeArgs) -> anyhow::Result<Exit> {
-    let merged = match collect(&args.paths).and_then(assemble_all) {
-        Ok(merged) => merged,
-        Err(message) => {
-            eprintln!("{message}");
-            return Ok(Exit::Invalid);
-        }
+    let merged = collect(&args.paths)
+        .and_then(assemble_all)
+        .inspect_err(|message| eprintln!("{message}"));
+    let templates = templates(args.template.as_deref(), Page::Run);
+    let (Ok(merged), Some(templates)) = (merged, templates) else {
+        return Ok(Exit::Invalid);
     };
     let Some(dirs) = evidence_dirs(args.out.as_deref(), merged.iter().map(|m| &m.input)) else {
         return Ok(Exit::Invalid);
     };
-    let tool = tool();
     let mut exit = Exit::Pass;
-    for (Merged { input, request, run }, dir) in merged.into_iter().zip(&dirs) {
+    for (merged, dir) in merged.into_iter().zip(&dirs) {
+        let (started, clock) = (SystemTime::now(), Instant::now());
+        let Merged {
+            input,
+            request,
+            run,
+            shards,
+        } = merged;
+        let reporting = Reporting {
+            tool: tool(),
+            request,
+            templates: &templates,
+        };
         let scenario = &input.scenario;
         let simulated = match scenario.record {
             None => {
                 let verdicts = sightline_oracles::check(scenario, &run);
                 (run, verdicts, None)
             }
-            Some(record) => recorded(&input, &tool, request, dir, |recorder| {
+            Some(record) => recorded(&input, &reporting, dir, |recorder| {
                 let outcome = sightline_engine::simulate_point(scenario, record.point, recorder);
                 if outcome != run.points[record.point] {
                     bail!(
@@ -60,7 +76,9 @@ pub fn merge(args: &MergeArgs) -> anyhow::Result<Exit> {
                 Ok(run)
             })?,
         };
-        exit = exit.max(write_evidence(&input, tool.clone(), request, dir, simulated)?);
+        let here = Execution::on_this_machine(rayon::current_num_threads(), started, clock.elapsed());
+        let execution = Execution::campaign(&shards, &here);
+        exit = exit.max(write_evidence(&input, &reporting, dir, simulated, execution)?);
     }
     Ok(exit)
 }
@@ -172,10 +190,16 @@ fn assemble_all(shards: Vec<(PathBuf, Shard)>) -> Result<Vec<Merged>, String> {
                     ));
                 }
             }
+            let shards = parts.values().map(|(_, shard)| shard.execution.clone()).collect();
             let units = parts.into_values().flat_map(|(_, shard)| shard.units.iter().cloned());
             let run = sightline_engine::assemble(&input.scenario, units)
                 .map_err(|e| format!("{file}: error: the shards do not make up its run: {e}"))?;
-            Ok(Merged { input, request, run })
+            Ok(Merged {
+                input,
+                request,
+                run,
+                shards,
+            })
         })
         .collect()
 }

@@ -1,14 +1,15 @@
-//! `sightline run FILE… [--out DIR] [--seed N] [--jobs N] [--record] [--shard K/N]`
+//! `sightline run FILE… [--out DIR] [--seed N] [--jobs N] [--record] [--template DIR] [--shard K/N]`
 
 use std::collections::HashSet;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
+use std::time::{Instant, SystemTime};
 
 use anyhow::Context;
 use sightline_engine::Run;
 use sightline_oracles::Verdict;
 use sightline_reports::mcap::{Recorder, Source};
-use sightline_reports::{Provenance, RecordingInfo, Tool, render, sha256_hex};
+use sightline_reports::{Execution, Page, Provenance, RecordingInfo, Templates, Tool, render, sha256_hex};
 use tempfile::NamedTempFile;
 
 use crate::cli::RunArgs;
@@ -16,6 +17,7 @@ use crate::exit::Exit;
 use crate::input::{Input, load_all};
 use crate::output::{default_dir, progress, staging_file, stem, write_atomically};
 use crate::summary::print_verdicts;
+use crate::template::templates;
 
 /// The recording's name in the evidence directory.
 pub const RECORDING: &str = "run.mcap";
@@ -29,14 +31,27 @@ pub struct Request {
     pub record: bool,
 }
 
-/// Validates every file first (nothing is written if one is invalid), then runs
-/// each scenario (or, with `--shard`, its slice) and writes its evidence.
+/// What the evidence of every scenario of a command shares.
+pub struct Reporting<'t> {
+    /// This build of sightline.
+    pub tool: Tool,
+    /// How the run was asked for.
+    pub request: Request,
+    /// The page templates.
+    pub templates: &'t Templates,
+}
+
+/// Validates every file and the template set first (reporting every problem;
+/// nothing is written if one is invalid), then runs each scenario (or, with
+/// `--shard`, its slice) and writes its evidence.
 pub fn run(args: &RunArgs) -> anyhow::Result<Exit> {
     let request = Request {
         seed: args.seed,
         record: args.record,
     };
-    let Some(inputs) = load_all(&args.files, request.seed, request.record) else {
+    let inputs = load_all(&args.files, request.seed, request.record);
+    let templates = templates(args.template.as_deref(), Page::Run);
+    let (Some(inputs), Some(templates)) = (inputs, templates) else {
         return Ok(Exit::Invalid);
     };
     let Some(dirs) = evidence_dirs(args.out.as_deref(), &inputs) else {
@@ -46,10 +61,15 @@ pub fn run(args: &RunArgs) -> anyhow::Result<Exit> {
     if let Some(shard) = args.shard {
         return super::shard::run_shard(&pool, shard, &inputs, &dirs, request);
     }
-    let tool = tool();
+    let reporting = Reporting {
+        tool: tool(),
+        request,
+        templates: &templates,
+    };
     let mut exit = Exit::Pass;
     for (input, dir) in inputs.iter().zip(&dirs) {
         let scenario = &input.scenario;
+        let (started, clock) = (SystemTime::now(), Instant::now());
         let bar = progress(scenario.points.len(), &input.path.display().to_string());
         let mut done = |n: usize| bar.inc(n as u64);
         let simulated = match scenario.record {
@@ -58,12 +78,13 @@ pub fn run(args: &RunArgs) -> anyhow::Result<Exit> {
                 let verdicts = sightline_oracles::check(scenario, &run);
                 (run, verdicts, None)
             }
-            Some(record) => recorded(input, &tool, request, dir, |recorder| {
+            Some(record) => recorded(input, &reporting, dir, |recorder| {
                 Ok(pool.install(|| sightline_engine::simulate_traced(scenario, record.point, recorder, &mut done)))
             })?,
         };
         bar.finish_and_clear();
-        exit = exit.max(write_evidence(input, tool.clone(), request, dir, simulated)?);
+        let execution = Execution::on_this_machine(pool.current_num_threads(), started, clock.elapsed());
+        exit = exit.max(write_evidence(input, &reporting, dir, simulated, execution)?);
     }
     Ok(exit)
 }
@@ -90,30 +111,41 @@ pub fn tool() -> Tool {
 pub type Simulated = (Run, Vec<Verdict>, Option<(NamedTempFile, RecordingInfo)>);
 
 /// Renders the evidence of a simulated `input` into `dir`, atomically, and
-/// prints its verdicts; [`Exit::Pass`] when every requirement holds.
+/// prints its verdicts; [`Exit::Pass`] when every requirement holds, and
+/// [`Exit::Invalid`] (nothing written) when a custom template fails on the data.
 pub fn write_evidence(
     input: &Input,
-    tool: Tool,
-    request: Request,
+    reporting: &Reporting<'_>,
     dir: &Path,
     (run, verdicts, recording): Simulated,
+    execution: Execution,
 ) -> anyhow::Result<Exit> {
     let scenario = &input.scenario;
     let path = input.path.display().to_string();
     let provenance = Provenance {
-        tool,
+        tool: reporting.tool.clone(),
         scenario_path: path.clone(),
         scenario_sha256: sha256_hex(&input.bytes),
         recording: recording.as_ref().map(|(_, info)| info.clone()),
+        execution,
     };
     let mut reproduce = match scenario.points.iter().map(|p| p.setup.seed).collect::<HashSet<_>>() {
         seeds if seeds.len() == 1 => format!("sightline run {path} --seed {}", scenario.points[0].setup.seed),
         _ => format!("sightline run {path}"),
     };
-    if request.record {
+    if reporting.request.record {
         reproduce.push_str(" --record");
     }
-    let evidence = render(scenario, &run, &verdicts, &provenance, &reproduce)?;
+    let templates = reporting.templates;
+    let evidence = match render(scenario, &run, &verdicts, &provenance, &reproduce, templates) {
+        Ok(evidence) => evidence,
+        // A custom template that fails on the data is the input's fault.
+        Err(sightline_reports::Error::Template(error)) if templates.is_custom() => {
+            eprintln!("{error}");
+            return Ok(Exit::Invalid);
+        }
+        Err(error) => return Err(error.into()),
+    };
     write_atomically(
         dir,
         &[
@@ -136,8 +168,7 @@ pub fn write_evidence(
 /// run and finishes the recording with its outcomes and verdicts.
 pub fn recorded(
     input: &Input,
-    tool: &Tool,
-    request: Request,
+    reporting: &Reporting<'_>,
     dir: &Path,
     simulate: impl FnOnce(&mut Recorder<'_, BufWriter<&std::fs::File>>) -> anyhow::Result<Run>,
 ) -> anyhow::Result<Simulated> {
@@ -147,11 +178,11 @@ pub fn recorded(
     let failed = || format!("failed to write {}", dir.join(RECORDING).display());
     let text = std::str::from_utf8(&input.bytes).context("the scenario file is not UTF-8 text")?;
     let source = Source {
-        tool,
+        tool: &reporting.tool,
         file: &input.path.display().to_string(),
         text,
-        seed: request.seed,
-        record_flag: request.record,
+        seed: reporting.request.seed,
+        record_flag: reporting.request.record,
     };
     let mut recorder = Recorder::new(BufWriter::new(file.as_file()), scenario, record, &source).with_context(failed)?;
     let run = simulate(&mut recorder)?;

@@ -9,10 +9,11 @@
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
+use std::time::{Instant, SystemTime};
 
 use anyhow::Context;
 use rayon::prelude::*;
-use sightline_reports::{SHARD_FORMAT, Shard, ShardInput, sha256_hex, shard_bytes};
+use sightline_reports::{Execution, SHARD_FORMAT, Shard, ShardInput, sha256_hex, shard_bytes};
 
 use super::run::{Request, tool};
 use crate::cli::ShardSpec;
@@ -47,6 +48,7 @@ pub fn run_shard(
             .collect();
         first += all.len();
         let path = input.path.display().to_string();
+        let (started, clock) = (SystemTime::now(), Instant::now());
         let bar = progress(mine.len(), &path);
         let units = pool.install(|| {
             mine.into_par_iter()
@@ -69,6 +71,7 @@ pub fn run_shard(
             record: request.record,
             index: spec.index,
             count: spec.count,
+            execution: Execution::on_this_machine(pool.current_num_threads(), started, clock.elapsed()),
             units,
         };
         let name = shard_file_name(spec);

@@ -217,6 +217,35 @@ fn roundabout_scenario_runs_end_to_end() {
     assert!(temporal["margin"].as_f64().unwrap() >= 0.0);
 }
 
+/// Every point of the roundabout shows its grids at the snapshot: truth, the
+/// ego's grid, fused probability, uncertainty (Bayes: entropy) and the error
+/// map, each with a legend; the two value pictures with a colour bar.
+#[test]
+fn roundabout_report_shows_five_grid_pictures_with_legends() {
+    let html = unescape_html(&roundabout_run().report);
+    let points = roundabout()["sweep"].as_array().unwrap().len();
+    let count = |text: &str| html.matches(text).count();
+    for title in [
+        "Ground truth",
+        "The ego's own grid",
+        "Fused occupancy",
+        "Fused uncertainty",
+        "Error map",
+    ] {
+        assert_eq!(count(&format!("<b>{title}.</b>")), points, "{title}");
+    }
+    assert_eq!(count("<img src=\"data:image/png;base64,"), 5 * points);
+    assert_eq!(count("<ul class=\"legend\">"), 5 * points);
+    assert_eq!(count("<div class=\"scale\">"), 2 * points);
+    assert_eq!(count("The binary entropy of P(occupied), bits"), points);
+    for class in [
+        "free, decided occupied (false alarm)",
+        "occupied, not decided occupied (missed)",
+    ] {
+        assert_eq!(count(class), points, "{class}");
+    }
+}
+
 /// The requirement `id` of `results`.
 fn requirement<'a>(results: &'a serde_json::Value, id: &str) -> &'a serde_json::Value {
     results["requirements"]

@@ -1,6 +1,9 @@
-//! The generated docs stay in sync with the language, and the bundled scenarios
-//! are valid and point editors at the schema. Regenerate docs/schema.json and
+//! The generated docs stay in sync with the language, the template guide with the
+//! bundled pages' blocks, and the bundled scenarios are valid and point editors
+//! at the schema. Regenerate docs/schema.json and
 //! docs/reference.md with `SIGHTLINE_BLESS=1 cargo test --test e2e docs::`.
+
+use sightline_reports::{Page, Templates};
 
 use crate::support::{arg, assert_matches_file, blessing, files_under, read, root, sightline};
 
@@ -27,6 +30,23 @@ fn reference_md_is_the_output_of_sightline_schema_markdown() {
     outcome.assert_exit(0);
     assert!(outcome.stdout.starts_with("# "), "{outcome}");
     assert_matches_file("docs/reference.md", &outcome.stdout);
+}
+
+/// docs/report-templates.md has a row for every block the bundled pages show,
+/// and marks the required ones.
+#[test]
+fn report_templates_md_documents_every_block() {
+    let guide = read(&root().join("docs/report-templates.md"));
+    for page in [Page::Run, Page::Falsify] {
+        for block in Templates::bundled(page).blocks().unwrap() {
+            let row = if page.required_blocks().contains(&block.as_str()) {
+                format!("| `{block}` | yes |")
+            } else {
+                format!("| `{block}` |")
+            };
+            assert!(guide.contains(&row), "docs/report-templates.md lacks the row {row}");
+        }
+    }
 }
 
 #[test]

@@ -1,10 +1,10 @@
 //! `falsify`: the bundled counterexample found and shrunk to its boundary, the
-//! same search giving the same files, and the exit codes of the contract
-//! (0 none found, 1 found, 2 invalid input).
+//! report of the search, the same search giving the same files, and the exit
+//! codes of the contract (0 none found, 1 found, 2 invalid input).
 
 use std::path::Path;
 
-use crate::support::{arg, read, read_json, sightline, temp_dir};
+use crate::support::{arg, normalise_execution, read, read_json, sightline, temp_dir, unescape_html};
 
 /// The bundled scenario whose `vary` space holds a counterexample.
 const SCENARIO: &str = "scenarios/urban-falsify.yaml";
@@ -68,14 +68,101 @@ fn falsify_finds_the_bundled_counterexample_and_shrinks_it_to_the_boundary() {
     sightline(["run", arg(&easier_file), "--out", arg(&out.path().join("easier"))]).assert_exit(0);
 }
 
+/// The falsification report: the search's settings, every case tried with its
+/// values and margin, the chart of margins, and the counterexample with its
+/// shrunk values and the command that reproduces it.
+#[test]
+fn the_report_lists_the_search_the_cases_and_the_counterexample() {
+    let out = temp_dir();
+    falsify(SCENARIO, out.path(), &["--cases", "6"]).assert_exit(1);
+    let json = read_json(&out.path().join("falsify.json"));
+    let html = read(&out.path().join("report.html"));
+    let text = unescape_html(&html);
+    let section = |heading: &str| {
+        let start = text
+            .find(&format!("<h2>{heading}</h2>"))
+            .unwrap_or_else(|| panic!("no {heading}"));
+        let end = text[start + 4..].find("<h2>").map_or(text.len(), |e| start + 4 + e);
+        text[start..end].to_string()
+    };
+
+    let search = section("Search");
+    for row in [
+        "<th scope=\"row\">Mode</th><td>guided: ".to_string(),
+        format!("<th scope=\"row\">Seed</th><td>{}</td>", json["seed"]),
+        "<th scope=\"row\">Cases</th><td>at most 6 before shrinking;".to_string(),
+        "<th scope=\"row\">Budget</th><td>none".to_string(),
+    ] {
+        assert!(search.contains(&row), "{row} not in\n{search}");
+    }
+    assert!(search.contains(&format!(
+        "<td class=\"mono\">{SENSITIVITY}</td><td>from -100 to -60 in 1000 equal steps</td>"
+    )));
+    assert!(
+        text.contains(&format!("sightline falsify {SCENARIO} --cases 6 --seed 11")),
+        "the command"
+    );
+
+    // One row per case, in order, with the values and margin falsify.json holds.
+    let cases = json["cases"].as_array().unwrap();
+    let table = section("Cases tried");
+    let rows: Vec<&str> = table.split("<tr").skip(2).collect();
+    assert_eq!(rows.len(), cases.len());
+    for (i, (row, case)) in rows.iter().zip(cases).enumerate() {
+        assert!(row.contains(&format!("<td class=\"num\">{}</td>", i + 1)), "{row}");
+        assert!(row.contains(case["phase"].as_str().unwrap()), "{row}");
+        let sensitivity = case["values"][SENSITIVITY].as_f64().unwrap();
+        assert!(
+            row.contains(&format!("<td class=\"num\">{sensitivity}</td>")),
+            "{sensitivity} not in {row}"
+        );
+        assert!(row.contains(case["requirement"].as_str().unwrap()));
+        let margin = case["margin"].as_f64().unwrap();
+        assert!(
+            row.contains(&format!("<td class=\"num\">{margin:.4}</td>")),
+            "{margin} not in {row}"
+        );
+    }
+    let shrunk = json["counterexample"]["values"][SENSITIVITY].as_f64().unwrap();
+    let last = rows.last().unwrap();
+    assert!(
+        last.contains("(counterexample)") && last.contains(&format!("{shrunk}")),
+        "{last}"
+    );
+    let first = json["first_counterexample"].as_u64().unwrap() as usize;
+    assert!(rows[first - 1].contains("(first counterexample)"));
+
+    assert!(
+        text.contains("<figure class=\"chart\"><img src=\"data:image/svg+xml;base64,"),
+        "the chart"
+    );
+    assert!(text.contains(&format!("The smallest margin of each of the {} cases", cases.len())));
+
+    let counterexample = section("Counterexample");
+    assert!(counterexample.contains(&format!("Case {}, shrunk from the first case", cases.len())));
+    assert!(
+        counterexample.contains(&format!("<td class=\"num\">{shrunk}</td>")),
+        "{counterexample}"
+    );
+    let reproduce = format!("sightline run {}", out.path().join("counterexample.yaml").display());
+    assert!(
+        counterexample.contains(&format!("<code>{reproduce}</code>")),
+        "{counterexample}"
+    );
+    assert!(text.contains("FOUND: case"), "the banner");
+}
+
 #[test]
 fn the_same_seed_writes_the_same_files_whatever_the_thread_count() {
     let (a, b) = (temp_dir(), temp_dir());
     falsify(SCENARIO, a.path(), &["--seed", "5"]).assert_exit(1);
     falsify(SCENARIO, b.path(), &["--seed", "5", "--jobs", "1"]).assert_exit(1);
-    for name in ["counterexample.yaml", "falsify.json"] {
-        let text = |dir: &Path| read(&dir.join(name)).replace(arg(dir), "OUT");
-        assert_eq!(text(a.path()), text(b.path()), "{name} differs");
+    for name in ["counterexample.yaml", "falsify.json", "report.html"] {
+        let text = |dir: &Path| match unescape_html(&read(&dir.join(name))).replace(arg(dir), "OUT") {
+            text if name == "counterexample.yaml" => text,
+            text => normalise_execution(&text),
+        };
+        assert!(text(a.path()) == text(b.path()), "{name} differs");
     }
     let c = temp_dir();
     falsify(SCENARIO, c.path(), &["--seed", "6"]).assert_exit(1);
@@ -105,10 +192,20 @@ fn a_space_that_cannot_break_a_requirement_exits_0() {
     assert_eq!(report["cases"].as_array().unwrap().len(), 8);
     assert!(report["counterexample"].is_null());
     assert!(!out.join("counterexample.yaml").exists());
+    let html = unescape_html(&read(&out.join("report.html")));
+    assert!(
+        html.contains("NONE: no case of 8 breaks a requirement within the budget."),
+        "the banner"
+    );
+    assert!(html.contains("None found within the budget: no case of 8 breaks a requirement."));
+    assert!(html.contains("The smallest margin was "), "the closest case");
+    assert!(html.contains("<th scope=\"row\">Mode</th><td>random: "));
     // A budget ends the search before its cases are used up.
     falsify(arg(&file), &out, &["--cases", "100000", "--budget", "0.5"]).assert_exit(0);
     let report = read_json(&out.join("falsify.json"));
     assert!(report["cases"].as_array().unwrap().len() < 100_000);
+    let html = read(&out.join("report.html"));
+    assert!(html.contains("<th scope=\"row\">Budget</th><td>0.5 s of wall-clock time</td>"));
 }
 
 #[test]

@@ -9,7 +9,7 @@ use std::path::Path;
 use std::process::Command;
 
 use crate::bundled::{Bundled, field, roundabout_run, sumo_grid_run, urban_run};
-use crate::support::{RECORDING, arg, read, read_json, root, sightline, temp_dir};
+use crate::support::{RECORDING, arg, normalise_execution, read, read_json, root, sightline, temp_dir};
 
 /// Names a Python that has the official `mcap` package; `.ci/run` sets it.
 const PYTHON_VAR: &str = "SIGHTLINE_MCAP_PYTHON";
@@ -355,7 +355,7 @@ fn recording_is_byte_identical_whatever_the_thread_count() {
                 assert!(matches!(run.code, Some(0 | 1)), "{run}");
                 (
                     std::fs::read(out.join(RECORDING)).unwrap(),
-                    read(&out.join("results.json")),
+                    normalise_execution(&read(&out.join("results.json"))),
                 )
             })
             .collect();

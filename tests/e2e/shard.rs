@@ -1,10 +1,10 @@
 //! `run --shard K/N` and `merge` (issue 5 §3): the merged evidence is the
-//! unsharded run's, byte for byte; a campaign that does not add up is refused
-//! with exit 2 and nothing written.
+//! unsharded run's, byte for byte but for where, when and how long it ran; a
+//! campaign that does not add up is refused with exit 2 and nothing written.
 
 use std::path::{Path, PathBuf};
 
-use crate::support::{SEED_SWEEP, arg, files_under, sightline, temp_dir};
+use crate::support::{SEED_SWEEP, arg, files_under, normalise_execution, read, sightline, temp_dir};
 
 /// A world with a shared-data group, replicates and a recording.
 const JUNCTION: &str = "tests/fixtures/valid/small-junction.yaml";
@@ -58,24 +58,43 @@ fn three_shards_merge_into_the_unsharded_evidence() {
         "merge prints what run prints"
     );
     assert_eq!(files_under(&merged), files_under(&whole));
+    // Where, when and how long the work ran differ; nothing else may.
+    let normalised = |dir: &Path, file: &Path| {
+        let bytes = std::fs::read(dir.join(file)).unwrap();
+        match file.extension().and_then(|e| e.to_str()) {
+            Some("json" | "html") => normalise_execution(std::str::from_utf8(&bytes).unwrap()).into_bytes(),
+            _ => bytes,
+        }
+    };
     for file in files_under(&whole) {
-        let (a, b) = (
-            std::fs::read(whole.join(&file)).unwrap(),
-            std::fs::read(merged.join(&file)).unwrap(),
-        );
+        let (a, b) = (normalised(&whole, &file), normalised(&merged, &file));
         assert!(a == b, "{} differs between the run and the merge", file.display());
     }
 }
 
+/// A failing requirement fails the merge, rendered with an organisation's templates.
 #[test]
 fn a_failing_requirement_fails_the_merge_too() {
     let tmp = temp_dir();
     let failing = "tests/fixtures/failing/accuracy-under-noise.yaml";
     let parts = shards(&[failing], 2, tmp.path());
     let out = tmp.path().join("merged");
-    let merge = sightline(["merge", arg(&parts[0]), arg(&parts[1]), "--out", arg(&out)]);
+    let template = "docs/report-templates/example";
+    let merge = sightline([
+        "merge",
+        arg(&parts[0]),
+        arg(&parts[1]),
+        "--out",
+        arg(&out),
+        "--template",
+        template,
+    ]);
     merge.assert_exit(1);
     assert!(merge.stdout.starts_with("FAIL "), "{merge}");
+    assert!(
+        read(&out.join("report.html")).contains("ACME SAFETY"),
+        "the merge renders with --template"
+    );
 }
 
 /// Runs `merge` on `paths` into a fresh directory; panics unless it exits 2

@@ -242,11 +242,101 @@ fn replace_once(text: &str, from: &str, to: &str) -> String {
     text.replacen(from, to, 1)
 }
 
+/// The keys of `execution` in results.json and falsify.json, and the report's
+/// provenance rows that show them: the only fields that differ between two
+/// runs of the same scenario and seed.
+const EXECUTION_KEYS: [&str; 5] = ["os", "arch", "threads", "started", "duration_seconds"];
+const EXECUTION_ROWS: [&str; 3] = ["Platform", "Started", "Duration"];
+
+/// Evidence (results.json, falsify.json or a report.html) with the fields that
+/// differ from run to run (the platform, the worker threads, the start time and
+/// the duration) replaced by placeholders, after checking their form. Every
+/// other byte is kept, so two normalised files of equivalent runs are equal.
+#[track_caller]
+pub fn normalise_execution(text: &str) -> String {
+    if text.starts_with('{') {
+        normalise_execution_json(text)
+    } else {
+        normalise_execution_html(text)
+    }
+}
+
+#[track_caller]
+fn normalise_execution_json(text: &str) -> String {
+    let json: serde_json::Value = serde_json::from_str(text).expect("the evidence is JSON");
+    let execution = json["execution"].as_object().expect("`execution` is an object");
+    let mut keys: Vec<&str> = execution.keys().map(String::as_str).collect();
+    let mut expected = EXECUTION_KEYS;
+    keys.sort();
+    expected.sort();
+    assert_eq!(keys, expected, "the keys of `execution`");
+    assert_eq!(execution["os"], std::env::consts::OS);
+    assert_eq!(execution["arch"], std::env::consts::ARCH);
+    assert!(execution["threads"].as_u64().is_some_and(|n| n >= 1), "threads");
+    assert_started(execution["started"].as_str().expect("started is a string"));
+    assert!(
+        execution["duration_seconds"].as_f64().is_some_and(|s| s >= 0.0),
+        "duration_seconds"
+    );
+    let mut text = text.to_string();
+    for key in EXECUTION_KEYS {
+        let value = serde_json::to_string(&execution[key]).expect("a JSON value");
+        text = replace_once(
+            &text,
+            &format!("\"{key}\": {value}"),
+            &format!("\"{key}\": \"[{}]\"", key.to_uppercase()),
+        );
+    }
+    text
+}
+
+#[track_caller]
+fn normalise_execution_html(text: &str) -> String {
+    let mut text = text.to_string();
+    for row in EXECUTION_ROWS {
+        let start = format!("<th scope=\"row\">{row}</th><td class=\"mono\">");
+        let count = text.matches(&start).count();
+        assert_eq!(count, 1, "expected exactly one `{row}` provenance row, found {count}");
+        let begin = text.find(&start).expect("counted above") + start.len();
+        let end = begin + text[begin..].find("</td>").expect("the cell is closed");
+        let value = &text[begin..end];
+        match row {
+            "Platform" => assert!(
+                value.starts_with(&format!("{} {}, ", std::env::consts::OS, std::env::consts::ARCH))
+                    && value.contains(" worker thread"),
+                "platform {value:?}"
+            ),
+            "Started" => assert_started(value),
+            _ => assert!(
+                value
+                    .strip_suffix(" s")
+                    .and_then(|s| s.parse::<f64>().ok())
+                    .is_some_and(|s| s >= 0.0),
+                "duration {value:?}"
+            ),
+        }
+        text = format!("{}[{}]{}", &text[..begin], row.to_uppercase(), &text[end..]);
+    }
+    text
+}
+
+/// Panics unless `started` is an RFC 3339 UTC time to the second.
+#[track_caller]
+fn assert_started(started: &str) {
+    let shape: String = started
+        .chars()
+        .map(|c| if c.is_ascii_digit() { '9' } else { c })
+        .collect();
+    assert_eq!(shape, "9999-99-99T99:99:99Z", "started {started:?}");
+}
+
 /// results.json with the tool version and git revision redacted (they change
-/// with every build; everything else must not). Checks that the version is this
-/// package's and the revision is not empty.
+/// with every build) and its execution normalised ([`normalise_execution`]);
+/// everything else must not change. Checks that the version is this package's
+/// and the revision is not empty.
 #[track_caller]
 pub fn redact_results_json(text: &str) -> String {
+    let text = &normalise_execution(text);
     let json: serde_json::Value = serde_json::from_str(text).expect("results.json is JSON");
     let tool = &json["tool"];
     assert_eq!(tool["name"], "sightline");

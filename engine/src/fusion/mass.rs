@@ -16,7 +16,7 @@ pub struct Mass {
 }
 
 /// The three focal elements, in the order masses are listed.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
 pub enum State {
     /// {Empty}.
     Empty,

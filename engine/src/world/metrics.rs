@@ -10,6 +10,7 @@ use serde::{Deserialize, Serialize};
 use sightline_dsl::{Metric, Signal};
 
 use super::observe::Sightings;
+use crate::fusion::State;
 use crate::metrics::{ConflictMetrics, EstimateTally, MassAudit};
 use crate::semantic::Series;
 
@@ -99,13 +100,28 @@ impl WorldMetrics {
 pub struct Snapshot {
     /// The step.
     pub step: usize,
-    /// Per cell: 0 free, 1 occupied by an agent, 2 occluder.
+    /// Per cell: 0 free, 1 occupied by an agent, 2 occluder, 3 the ego (whose
+    /// footprint no metric counts). Cells outside the region of interest are
+    /// free.
     pub truth: Vec<u8>,
     /// Per cell, the ego's own grid: 0 unknown, 1 free, 2 occupied.
     pub ego: Vec<u8>,
-    /// Per cell, the fused occupancy probability (pignistic for evidential
-    /// methods); `None` where no cooperating agent observed the cell.
-    pub fused: Vec<Option<f32>>,
+    /// Per cell, the fused grid; `None` where no cooperating agent observed the
+    /// cell (or the cell is not counted: outside the region, an occluder, the ego).
+    pub fused: Vec<Option<FusedCell>>,
+}
+
+/// A fused cell of a [`Snapshot`].
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct FusedCell {
+    /// Occupancy probability (pignistic for evidential methods).
+    pub probability: f32,
+    /// Uncertainty ([`Estimate::uncertainty`](crate::fusion::Estimate::uncertainty)):
+    /// the mass on Unknown, m(Θ), for evidential methods; the binary entropy of
+    /// the probability in bits for Bayes. Both run from 0 (certain) to 1.
+    pub uncertainty: f32,
+    /// The decision rule's state for the cell; `None` below the threshold.
+    pub decision: Option<State>,
 }
 
 /// Cell-steps of one method by outcome: one step's or, summed with

@@ -13,7 +13,7 @@ mod simulate;
 
 pub use fuse::CellFusion;
 pub use localization::PoseEstimator;
-pub use metrics::{CellTally, Snapshot, WorldMetrics, WorldOutcome};
+pub use metrics::{CellTally, FusedCell, Snapshot, WorldMetrics, WorldOutcome};
 pub use motion::{AgentState, Kinematics, Restraint};
 pub use observe::{Observation, Observed, Sighting, Sightings, StepScene, in_view, mount_pose};
 pub use raster::{Raster, box_cells, cell_center, traverse};

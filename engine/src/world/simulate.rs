@@ -11,7 +11,7 @@ use sightline_dsl::{Grid, Motion, Perception, World};
 
 use super::fuse::CellFusion;
 use super::localization::PoseEstimator;
-use super::metrics::{CellTally, Snapshot, WorldMetrics, WorldOutcome, WorldTally};
+use super::metrics::{CellTally, FusedCell, Snapshot, WorldMetrics, WorldOutcome, WorldTally};
 use super::motion::Kinematics;
 use super::observe::{Observation, Observed, Sightings, StepScene};
 use super::raster::{Raster, box_cells, cell_center};
@@ -48,6 +48,7 @@ struct Cooperator {
 struct CellValues {
     probability: Vec<f32>,
     uncertainty: Vec<f32>,
+    decision: Vec<Option<State>>,
 }
 
 /// Runs a world's collective perception once and evaluates every job on the same
@@ -229,20 +230,15 @@ pub fn run(
                 let values = &mut values[j];
                 values.probability.clear();
                 values.uncertainty.clear();
+                values.decision.clear();
                 for (_, chunk) in &chunks {
                     values.probability.extend(&chunk.probability);
                     values.uncertainty.extend(&chunk.uncertainty);
+                    values.decision.extend(&chunk.decision);
                 }
             }
             if snapshot {
-                snapshots[j] = Some(picture(
-                    k,
-                    &truth,
-                    &raster,
-                    ego,
-                    &observed_cells,
-                    &values[j].probability,
-                ));
+                snapshots[j] = Some(picture(k, &truth, &raster, ego, &observed_cells, &values[j]));
             }
             by_step[j].push((time, cells));
             step_cells.push(cells);
@@ -333,7 +329,8 @@ impl Tallier<'_> {
         for &cell in cells {
             let estimate = self.fusion.estimate(cell, &mut sources);
             tally.estimates.record(&estimate);
-            let decided = decide(estimate.decision_mass(), self.threshold) == Some(State::Occupied);
+            let decision = decide(estimate.decision_mass(), self.threshold);
+            let decided = decision == Some(State::Occupied);
             let blind = ego.get(cell) == Observed::Unknown;
             let counts = &mut tally.cells;
             if self.truth[cell] == OCCUPIED {
@@ -352,6 +349,7 @@ impl Tallier<'_> {
                     Estimate::Evidential { combination, .. } => pignistic(combination.mass) as f32,
                 });
                 values.uncertainty.push(estimate.uncertainty() as f32);
+                values.decision.push(decision);
             }
         }
         (tally, values)
@@ -365,12 +363,14 @@ fn picture(
     raster: &Raster,
     ego: &Observation,
     observed_cells: &[usize],
-    probabilities: &[f32],
+    values: &CellValues,
 ) -> Snapshot {
     let truth_picture = (0..truth.len())
         .map(|cell| match (raster.is_occluder(cell), truth[cell]) {
             (true, _) => 2,
             (false, OCCUPIED) => 1,
+            // Occluders are handled above: what else is excluded is the ego.
+            (false, EXCLUDED) => 3,
             _ => 0,
         })
         .collect();
@@ -382,8 +382,12 @@ fn picture(
         })
         .collect();
     let mut fused = vec![None; truth.len()];
-    for (&cell, &p) in observed_cells.iter().zip(probabilities) {
-        fused[cell] = Some(p);
+    for (i, &cell) in observed_cells.iter().enumerate() {
+        fused[cell] = Some(FusedCell {
+            probability: values.probability[i],
+            uncertainty: values.uncertainty[i],
+            decision: values.decision[i],
+        });
     }
     Snapshot {
         step,

@@ -1,0 +1,871 @@
+//! Page templates: the bundled set, and an organisation's own (`--template DIR`).
+//!
+//! The pages are minijinja templates. The bundled ones are embedded under
+//! stable names: `sightline/page.html` (the layout: `head` with `title` and
+//! `style`, then `header`, `content` and `footer`), and the two pages that
+//! extend it, `sightline/report.html` (`sightline run`) and
+//! `sightline/falsify.html` (`sightline falsify`). A custom set is a directory
+//! holding `report.html` and/or `falsify.html` and whatever they include or
+//! extend; a page may extend its bundled page and override some blocks, or
+//! stand alone.
+//!
+//! A custom set is checked when it is loaded, before anything is simulated:
+//! every template it reaches by name compiles; the page shows every block its
+//! contract requires ([`Page::required_blocks`]), defined or inherited; every
+//! block a custom template defines is shown (an override of a block the page
+//! does not have, or one dropped by an override around it, would silently
+//! vanish); and nothing turns escaping off. Every template is HTML-escaped
+//! whatever its file name; `autoescape` blocks and the `safe` filter are not
+//! available. What cannot be known before the data exists (a misspelt field) is
+//! an error when the page is rendered.
+//!
+//! The analysis walks minijinja's syntax tree (`unstable_machinery`, pinned by
+//! the workspace's minijinja version): blocks, `extends`, `include` and
+//! `import` with constant names. `super()` is found by its text, so a block
+//! that mentions it is taken to show its parent's body: the check may accept
+//! a page that hides a block, never refuse one that shows it.
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::fmt;
+use std::sync::Arc;
+
+use minijinja::machinery::ast::{Expr, Stmt};
+use minijinja::machinery::{Span, Token, parse, tokenize};
+use minijinja::syntax::SyntaxConfig;
+use minijinja::value::Serde;
+use minijinja::{AutoEscape, Environment, ErrorKind, UndefinedBehavior, Value, context};
+use serde::Serialize;
+
+/// The bundled templates, by their stable names.
+const BUNDLED: [(&str, &str); 3] = [
+    ("sightline/page.html", include_str!("../templates/page.html")),
+    ("sightline/report.html", include_str!("../templates/report.html")),
+    ("sightline/falsify.html", include_str!("../templates/falsify.html")),
+];
+
+/// The prefix of the bundled templates' names; a custom set cannot shadow them.
+const BUNDLED_PREFIX: &str = "sightline/";
+
+/// A page sightline renders from a template.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Page {
+    /// `report.html` of `sightline run`.
+    Run,
+    /// `report.html` of `sightline falsify`.
+    Falsify,
+}
+
+impl Page {
+    /// The file a custom set holds for this page.
+    pub fn file(self) -> &'static str {
+        match self {
+            Self::Run => "report.html",
+            Self::Falsify => "falsify.html",
+        }
+    }
+
+    /// The bundled template's stable name, for `{% extends %}`.
+    pub fn bundled(self) -> &'static str {
+        match self {
+            Self::Run => "sightline/report.html",
+            Self::Falsify => "sightline/falsify.html",
+        }
+    }
+
+    /// The blocks a template of this page must show: what makes the page
+    /// evidence (the verdict, the provenance, what was checked and found).
+    pub fn required_blocks(self) -> &'static [&'static str] {
+        match self {
+            Self::Run => &["banner", "provenance", "traceability", "evidence"],
+            Self::Falsify => &["banner", "provenance", "settings", "cases", "counterexample"],
+        }
+    }
+
+    /// The command whose page this is, for messages.
+    fn command(self) -> &'static str {
+        match self {
+            Self::Run => "sightline run",
+            Self::Falsify => "sightline falsify",
+        }
+    }
+}
+
+/// Reads a template of a custom set by name (`report.html`, `parts/head.html`):
+/// `Ok(None)` when there is no such file.
+pub type Loader = dyn Fn(&str) -> std::io::Result<Option<String>> + Send + Sync;
+
+/// The templates a page is rendered with: the bundled ones, or a checked
+/// custom set (with the bundled ones under their stable names).
+pub struct Templates {
+    env: Environment<'static>,
+    page: Page,
+    /// The custom set's directory as messages show it, if any.
+    dir: Option<String>,
+}
+
+impl fmt::Debug for Templates {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("Templates")
+            .field("page", &self.page)
+            .field("dir", &self.dir)
+            .finish_non_exhaustive()
+    }
+}
+
+impl Templates {
+    /// The bundled template of `page`.
+    pub fn bundled(page: Page) -> Self {
+        Self {
+            env: environment(None),
+            page,
+            dir: None,
+        }
+    }
+
+    /// The custom set in `dir` (as messages show it), read through `load`,
+    /// checked for `page` (see the module documentation).
+    pub fn custom(page: Page, dir: &str, load: Arc<Loader>) -> Result<Self, TemplateError> {
+        let templates = Self {
+            env: environment(Some(load)),
+            page,
+            dir: Some(dir.to_string()),
+        };
+        templates.check()?;
+        Ok(templates)
+    }
+
+    /// Whether this is a custom set (so a failure to render is the input's).
+    pub fn is_custom(&self) -> bool {
+        self.dir.is_some()
+    }
+
+    /// Renders the page with `report` (the page's view) and `results` (the
+    /// document written beside it: results.json or falsify.json).
+    pub(crate) fn render(&self, report: &impl Serialize, results: &impl Serialize) -> Result<String, TemplateError> {
+        let name = self.entry();
+        let template = self.env.get_template(name).map_err(|e| self.error(name, &e))?;
+        template
+            .render(context! {
+                report => Value::from(Serde(report)),
+                results => Value::from(Serde(results)),
+            })
+            .map_err(|e| self.error(name, &e))
+    }
+
+    /// The template rendered for the page.
+    fn entry(&self) -> &'static str {
+        if self.is_custom() {
+            self.page.file()
+        } else {
+            self.page.bundled()
+        }
+    }
+
+    /// A template's name as messages show it: in the custom set's directory,
+    /// or as the bundled name.
+    fn display(&self, name: &str) -> String {
+        match &self.dir {
+            Some(dir) if !name.starts_with(BUNDLED_PREFIX) => format!("{}/{name}", dir.trim_end_matches('/')),
+            _ => name.to_string(),
+        }
+    }
+
+    /// A minijinja error of template `name` (or of the template it names itself).
+    fn error(&self, name: &str, error: &minijinja::Error) -> TemplateError {
+        let location = error.line().map(|line| Location {
+            line,
+            column: match (error.range(), error.template_source()) {
+                (Some(range), Some(source)) => column(source, range.start),
+                _ => 0,
+            },
+        });
+        let message = match error.detail() {
+            Some(detail) => format!("{}: {detail}", error.kind()),
+            None => error.kind().to_string(),
+        };
+        let kind = match error.kind() {
+            ErrorKind::SyntaxError => TemplateErrorKind::Syntax(message),
+            // What the loader could not read (it says so).
+            ErrorKind::InvalidOperation if location.is_none() => {
+                TemplateErrorKind::Unreadable(error.detail().unwrap_or(&message).to_string())
+            }
+            _ => TemplateErrorKind::Render(message),
+        };
+        TemplateError {
+            file: self.display(error.name().unwrap_or(name)),
+            location,
+            kind,
+        }
+    }
+
+    /// The blocks the page shows (defined or inherited, and not hidden by an
+    /// override around them), by name.
+    pub fn blocks(&self) -> Result<BTreeSet<String>, TemplateError> {
+        Ok(self.analyse()?.shown.into_iter().map(|(name, _)| name).collect())
+    }
+
+    /// Checks the custom set for its page.
+    fn check(&self) -> Result<(), TemplateError> {
+        let analysis = self.analyse()?;
+        let names: BTreeSet<&str> = analysis.shown.iter().map(|(name, _)| name.as_str()).collect();
+        if let Some(block) = self.page.required_blocks().iter().find(|b| !names.contains(*b)) {
+            return Err(TemplateError {
+                file: self.display(self.entry()),
+                location: None,
+                kind: TemplateErrorKind::MissingBlock {
+                    block: (*block).into(),
+                    page: self.page,
+                },
+            });
+        }
+        for (level, name) in analysis.chain.iter().enumerate() {
+            if name.starts_with(BUNDLED_PREFIX) {
+                continue;
+            }
+            let hidden = analysis.outlines[name]
+                .blocks
+                .iter()
+                .find(|(block, _)| !analysis.shown.contains(&((*block).clone(), level)));
+            if let Some((block, outline)) = hidden {
+                return Err(TemplateError {
+                    file: self.display(name),
+                    location: Some(outline.at),
+                    kind: TemplateErrorKind::NeverShown {
+                        block: block.clone(),
+                        shown: names.iter().map(|n| n.to_string()).collect(),
+                    },
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// Outlines the page's template and every template it names, and follows
+    /// its `extends` chain to the blocks it shows.
+    fn analyse(&self) -> Result<Analysis, TemplateError> {
+        let mut outlines = BTreeMap::new();
+        let entry = self.entry();
+        if !self.outline(entry, &mut outlines)? {
+            return Err(TemplateError {
+                file: self.display(entry),
+                location: None,
+                kind: TemplateErrorKind::MissingPage(self.page),
+            });
+        }
+        let mut chain = vec![entry.to_string()];
+        while let Some((parent, at)) = &outlines[chain.last().expect("not empty")].extends {
+            if chain.contains(parent) {
+                return Err(TemplateError {
+                    file: self.display(chain.last().expect("not empty")),
+                    location: Some(*at),
+                    kind: TemplateErrorKind::Cycle(parent.clone()),
+                });
+            }
+            chain.push(parent.clone());
+        }
+        let shown = shown(&chain.iter().map(|name| &outlines[name]).collect::<Vec<_>>());
+        Ok(Analysis { outlines, chain, shown })
+    }
+
+    /// Compiles template `name` and, recursively, every template it names,
+    /// adding their outlines to `outlines`; `false` when there is no template
+    /// `name`.
+    fn outline(&self, name: &str, outlines: &mut BTreeMap<String, Outline>) -> Result<bool, TemplateError> {
+        if outlines.contains_key(name) {
+            return Ok(true);
+        }
+        let template = match self.env.get_template(name) {
+            Ok(template) => template,
+            Err(error) if error.kind() == ErrorKind::TemplateNotFound => return Ok(false),
+            Err(error) => return Err(self.error(name, &error)),
+        };
+        let outline = Outline::of(template.source(), name).map_err(|e| self.error(name, &e))?;
+        let refused = [
+            (outline.unescaped, TemplateErrorKind::Unescaped),
+            (outline.dynamic, TemplateErrorKind::DynamicName),
+        ];
+        if let Some((at, kind)) = refused.into_iter().find_map(|(at, kind)| Some((at?, kind))) {
+            return Err(TemplateError {
+                file: self.display(name),
+                location: Some(at),
+                kind,
+            });
+        }
+        let named: Vec<(String, Location, bool)> = outline
+            .extends
+            .iter()
+            .map(|(parent, at)| (parent.clone(), *at, false))
+            .chain(outline.uses.iter().cloned())
+            .collect();
+        outlines.insert(name.to_string(), outline);
+        for (other, at, optional) in named {
+            if !self.outline(&other, outlines)? && !optional {
+                return Err(TemplateError {
+                    file: self.display(name),
+                    location: Some(at),
+                    kind: TemplateErrorKind::NotFound(self.display(&other)),
+                });
+            }
+        }
+        Ok(true)
+    }
+}
+
+/// The environment every page renders in: strict about undefined values,
+/// escaping every template as HTML, the bundled templates under their names
+/// and, with `load`, a custom set's files under theirs.
+fn environment(load: Option<Arc<Loader>>) -> Environment<'static> {
+    let mut env = Environment::new();
+    env.set_undefined_behavior(UndefinedBehavior::Strict);
+    // Escaping follows the name's extension by default; a custom set's
+    // `header.txt` must be escaped too.
+    env.set_auto_escape_callback(|_| AutoEscape::Html);
+    env.remove_filter("safe");
+    env.set_loader(move |name| {
+        if let Some((_, source)) = BUNDLED.iter().find(|(bundled, _)| *bundled == name) {
+            return Ok(Some((*source).to_string()));
+        }
+        let Some(load) = load.as_ref().filter(|_| is_plain(name)) else {
+            return Ok(None);
+        };
+        load(name).map_err(|error| {
+            minijinja::Error::new(
+                ErrorKind::InvalidOperation,
+                format!("failed to read the template: {error}"),
+            )
+        })
+    });
+    env
+}
+
+/// Whether `name` may be read from a custom set: relative, `/`-separated, no
+/// segment starting with a dot (no `..`, no hidden files), outside `sightline/`.
+fn is_plain(name: &str) -> bool {
+    !name.starts_with(BUNDLED_PREFIX)
+        && name
+            .split('/')
+            .all(|segment| !segment.is_empty() && !segment.starts_with('.') && !segment.contains('\\'))
+}
+
+/// A position in a template: line, and column in characters (0 when unknown).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Location {
+    /// 1-based line.
+    pub line: usize,
+    /// 1-based column, 0 when unknown.
+    pub column: usize,
+}
+
+impl Location {
+    fn of(source: &str, span: Span) -> Self {
+        Self {
+            line: usize::from(span.start_line),
+            column: column(source, span.start_offset as usize),
+        }
+    }
+}
+
+/// The 1-based column, in characters, of byte `offset` of `source`.
+fn column(source: &str, offset: usize) -> usize {
+    let offset = offset.min(source.len());
+    let line_start = source[..offset].rfind('\n').map_or(0, |i| i + 1);
+    source[line_start..offset].chars().count() + 1
+}
+
+/// A template that cannot be used, and where.
+#[derive(Debug)]
+pub struct TemplateError {
+    /// The file as messages show it (`DIR/report.html`).
+    pub file: String,
+    /// Where in it, when known.
+    pub location: Option<Location>,
+    /// What is wrong.
+    pub kind: TemplateErrorKind,
+}
+
+impl fmt::Display for TemplateError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.location {
+            Some(Location { line, column: 0 }) => write!(f, "{}:{line}: error: {}", self.file, self.kind),
+            Some(Location { line, column }) => write!(f, "{}:{line}:{column}: error: {}", self.file, self.kind),
+            None => write!(f, "{}: error: {}", self.file, self.kind),
+        }
+    }
+}
+
+impl std::error::Error for TemplateError {}
+
+/// What is wrong with a template.
+#[derive(Debug, thiserror::Error)]
+pub enum TemplateErrorKind {
+    /// The page's file is not in the set.
+    #[error(
+        "no such file: a template set for `{}` holds `{}`, which may extend `{}`",
+        .0.command(),
+        .0.file(),
+        .0.bundled()
+    )]
+    MissingPage(Page),
+    /// A template names another that is not in the set.
+    #[error("no such template: {0}")]
+    NotFound(String),
+    /// The file could not be read.
+    #[error("{0}")]
+    Unreadable(String),
+    /// The template does not compile.
+    #[error("{0}")]
+    Syntax(String),
+    /// `extends`, `include` or `import` names its template with an expression.
+    #[error("name the template in quotes: the templates a page uses are checked before anything runs")]
+    DynamicName,
+    /// The extends chain comes back to a template.
+    #[error("`{0}` extends this template again")]
+    Cycle(String),
+    /// A required block is not shown.
+    #[error(
+        "the page does not show required block `{block}`: a page of `{}` must show the blocks {} (extend `{}` to inherit them)",
+        page.command(),
+        page.required_blocks().join(", "),
+        page.bundled()
+    )]
+    MissingBlock {
+        /// The block.
+        block: String,
+        /// The page.
+        page: Page,
+    },
+    /// A block the template defines is never shown.
+    #[error(
+        "block `{block}` is never shown: the page has no such block, or an override around it leaves it out (the page shows {})",
+        shown.join(", ")
+    )]
+    NeverShown {
+        /// The block.
+        block: String,
+        /// The blocks the page shows.
+        shown: Vec<String>,
+    },
+    /// `autoescape` or `safe` would turn escaping off.
+    #[error("`autoescape` and the `safe` filter are not available: report data is always HTML-escaped")]
+    Unescaped,
+    /// Rendering failed (a misspelt field, a value of the wrong type…).
+    #[error("failed to render the page: {0}")]
+    Render(String),
+}
+
+/// What the check needs of one template.
+#[derive(Debug, Default)]
+struct Outline {
+    /// The template it extends, and where.
+    extends: Option<(String, Location)>,
+    /// The blocks outside any block, in order: where a root template shows them.
+    top: Vec<String>,
+    /// Every block it defines.
+    blocks: BTreeMap<String, BlockOutline>,
+    /// Templates it includes or imports by constant name: where, and whether
+    /// a missing one is ignored.
+    uses: Vec<(String, Location, bool)>,
+    /// Where it turns escaping off, if it does.
+    unescaped: Option<Location>,
+    /// Where it names a template with an expression, if it does.
+    dynamic: Option<Location>,
+}
+
+/// A block as the check sees it.
+#[derive(Debug)]
+struct BlockOutline {
+    at: Location,
+    /// The blocks directly inside it.
+    nested: Vec<String>,
+    /// Whether it shows its parent's body (`super()`).
+    calls_super: bool,
+}
+
+impl Outline {
+    /// The outline of template `name` with text `source`.
+    fn of(source: &str, name: &str) -> Result<Self, minijinja::Error> {
+        let mut outline = Self::default();
+        let tree = parse(source, name, SyntaxConfig::default())?;
+        outline.walk(source, std::slice::from_ref(&tree), None);
+        // `x|safe`: the filter is removed, and this finds its uses before anything runs.
+        let tokens = tokenize(source, false, SyntaxConfig::default()).collect::<Result<Vec<_>, _>>()?;
+        for pair in tokens.windows(2) {
+            if let [(Token::Pipe, _), (Token::Ident("safe"), span)] = pair {
+                outline.unescaped.get_or_insert(Location::of(source, *span));
+            }
+        }
+        Ok(outline)
+    }
+
+    /// Records the statements of `body`, inside block `within` if any.
+    fn walk(&mut self, source: &str, body: &[Stmt<'_>], within: Option<&str>) {
+        for statement in body {
+            match statement {
+                Stmt::Template(t) => self.walk(source, &t.children, within),
+                Stmt::Block(b) => {
+                    let span = b.span();
+                    let text = &source[span.start_offset as usize..span.end_offset as usize];
+                    self.blocks.insert(
+                        b.name.to_string(),
+                        BlockOutline {
+                            at: Location::of(source, span),
+                            nested: Vec::new(),
+                            calls_super: text.contains("super("),
+                        },
+                    );
+                    match within {
+                        Some(outer) => self.blocks.get_mut(outer).expect("walked").nested.push(b.name.into()),
+                        None => self.top.push(b.name.into()),
+                    }
+                    self.walk(source, &b.body, Some(b.name));
+                }
+                Stmt::Extends(e) => {
+                    let at = Location::of(source, e.span());
+                    match constant(&e.name) {
+                        Some(parent) => self.extends = Some((parent, at)),
+                        None => self.dynamic = self.dynamic.or(Some(at)),
+                    }
+                }
+                Stmt::Include(i) => self.name_used(source, &i.name, i.span(), i.ignore_missing),
+                Stmt::Import(i) => self.name_used(source, &i.expr, i.span(), false),
+                Stmt::FromImport(i) => self.name_used(source, &i.expr, i.span(), false),
+                Stmt::AutoEscape(a) => {
+                    self.unescaped.get_or_insert(Location::of(source, a.span()));
+                }
+                Stmt::FilterBlock(f) => {
+                    if matches!(&f.filter, Expr::Filter(filter) if filter.name == "safe") {
+                        self.unescaped.get_or_insert(Location::of(source, f.span()));
+                    }
+                    self.walk(source, &f.body, within);
+                }
+                Stmt::ForLoop(l) => {
+                    self.walk(source, &l.body, within);
+                    self.walk(source, &l.else_body, within);
+                }
+                Stmt::IfCond(c) => {
+                    self.walk(source, &c.true_body, within);
+                    self.walk(source, &c.false_body, within);
+                }
+                Stmt::WithBlock(w) => self.walk(source, &w.body, within),
+                Stmt::SetBlock(s) => self.walk(source, &s.body, within),
+                // Blocks are not allowed in macros; nothing else holds statements.
+                _ => {}
+            }
+        }
+    }
+
+    fn name_used(&mut self, source: &str, name: &Expr<'_>, span: Span, optional: bool) {
+        let at = Location::of(source, span);
+        match constant(name) {
+            Some(name) => self.uses.push((name, at, optional)),
+            None => self.dynamic = self.dynamic.or(Some(at)),
+        }
+    }
+}
+
+/// A template name written as a string constant.
+fn constant(name: &Expr<'_>) -> Option<String> {
+    name.as_const()?.as_str().map(str::to_string)
+}
+
+/// A page's templates as the check sees them.
+struct Analysis {
+    /// Every template reached by name.
+    outlines: BTreeMap<String, Outline>,
+    /// The page's template, the template it extends, and so on to the root.
+    chain: Vec<String>,
+    /// The blocks shown, as (name, level in `chain` of the definition shown).
+    shown: BTreeSet<(String, usize)>,
+}
+
+/// The blocks a page shows, as (name, level of the definition shown): from the
+/// top-level blocks of the root template, each block shown as its most derived
+/// definition, with the blocks nested in it, and its parent's definition when
+/// it calls `super()`. `chain` runs from the page's template (level 0) to the
+/// root.
+fn shown(chain: &[&Outline]) -> BTreeSet<(String, usize)> {
+    let definition =
+        |name: &str, from: usize| (from..chain.len()).find(|&level| chain[level].blocks.contains_key(name));
+    let root = chain.last().expect("a chain holds the page's template");
+    let mut pending: Vec<(&str, usize)> = root.top.iter().map(|name| (name.as_str(), 0)).collect();
+    let mut shown = BTreeSet::new();
+    while let Some((name, from)) = pending.pop() {
+        let Some(level) = definition(name, from) else {
+            continue;
+        };
+        let (name, block) = chain[level].blocks.get_key_value(name).expect("found above");
+        if !shown.insert((name.clone(), level)) {
+            continue;
+        }
+        pending.extend(block.nested.iter().map(|nested| (nested.as_str(), 0)));
+        if block.calls_super {
+            pending.push((name.as_str(), level + 1));
+        }
+    }
+    shown
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A custom set in directory `org` holding `files`.
+    fn custom(page: Page, files: &[(&str, &str)]) -> Result<Templates, TemplateError> {
+        let files: BTreeMap<String, String> = files.iter().map(|(n, t)| (n.to_string(), t.to_string())).collect();
+        Templates::custom(page, "org", Arc::new(move |name: &str| Ok(files.get(name).cloned())))
+    }
+
+    /// The error's message, as the CLI prints it.
+    fn refused(page: Page, files: &[(&str, &str)]) -> String {
+        custom(page, files).expect_err("the set is refused").to_string()
+    }
+
+    #[test]
+    fn the_bundled_pages_show_their_blocks() {
+        let blocks = |page| Vec::from_iter(Templates::bundled(page).blocks().unwrap());
+        let layout = ["content", "footer", "head", "header", "style", "title"];
+        let run = [
+            "argument",
+            "banner",
+            "comparison",
+            "description",
+            "details",
+            "evidence",
+            "pictures",
+            "provenance",
+            "sweeps",
+            "traceability",
+        ];
+        let falsify = ["banner", "cases", "chart", "counterexample", "provenance", "settings"];
+        let sorted = |page: &[&str]| {
+            let mut all: Vec<String> = layout.iter().chain(page).map(|b| b.to_string()).collect();
+            all.sort();
+            all
+        };
+        assert_eq!(blocks(Page::Run), sorted(&run));
+        assert_eq!(blocks(Page::Falsify), sorted(&falsify));
+        for page in [Page::Run, Page::Falsify] {
+            let shown = Templates::bundled(page).blocks().unwrap();
+            assert!(page.required_blocks().iter().all(|b| shown.contains(*b)), "{page:?}");
+        }
+    }
+
+    #[test]
+    fn a_page_that_extends_the_bundled_one_may_override_any_block() {
+        let set = custom(
+            Page::Run,
+            &[
+                (
+                    "report.html",
+                    r#"{% extends "sightline/report.html" %}
+{% block style %}{{ super() }} h1 { color: navy; }{% endblock %}
+{% block pictures %}<p>no pictures</p>{% endblock %}
+{% block footer %}{% include "parts/footer.txt" %}{% endblock %}"#,
+                ),
+                ("parts/footer.txt", "ACME Safety"),
+            ],
+        )
+        .unwrap();
+        assert!(set.is_custom());
+        assert!(set.blocks().unwrap().contains("pictures"));
+        // A standalone page only has to show the required blocks.
+        custom(
+            Page::Falsify,
+            &[(
+                "falsify.html",
+                "{% block banner %}{% endblock %}{% block provenance %}{% endblock %}\
+                 {% for c in report.cases %}{% block cases %}{{ c }}{% endblock %}{% endfor %}\
+                 {% if report.counterexample %}{% block counterexample %}{% endblock %}{% endif %}\
+                 {% block settings %}{% endblock %}",
+            )],
+        )
+        .unwrap();
+    }
+
+    #[test]
+    fn a_missing_page_or_template_is_named() {
+        let message = refused(Page::Run, &[("falsify.html", "x")]);
+        assert!(
+            message.starts_with(
+                "org/report.html: error: no such file: a template set for `sightline run` holds `report.html`"
+            ),
+            "{message}"
+        );
+        let message = refused(
+            Page::Run,
+            &[(
+                "report.html",
+                "{% extends \"sightline/report.html\" %}\n{% block footer %}{% include \"gone.html\" %}{% endblock %}",
+            )],
+        );
+        assert_eq!(message, "org/report.html:2:22: error: no such template: org/gone.html");
+        // `ignore missing` is honoured; names outside the set are never read.
+        custom(
+            Page::Run,
+            &[("report.html", "{% extends \"sightline/report.html\" %}{% block footer %}{% include \"gone.html\" ignore missing %}{% endblock %}")],
+        )
+        .unwrap();
+        let message = refused(Page::Run, &[("report.html", "{% extends \"../report.html\" %}")]);
+        assert!(message.contains("no such template: org/../report.html"), "{message}");
+    }
+
+    #[test]
+    fn a_template_that_cannot_be_read_is_named() {
+        let load = |_: &str| Err(std::io::Error::new(std::io::ErrorKind::PermissionDenied, "denied"));
+        let error = Templates::custom(Page::Run, "org", Arc::new(load)).unwrap_err();
+        assert_eq!(
+            error.to_string(),
+            "org/report.html: error: failed to read the template: denied"
+        );
+    }
+
+    #[test]
+    fn syntax_errors_name_the_file_line_and_column() {
+        let message = refused(
+            Page::Run,
+            &[("report.html", "<p>\n{% if report.name %}\n  {% endfor %}")],
+        );
+        assert_eq!(
+            message,
+            "org/report.html:3:6: error: syntax error: unknown statement endfor"
+        );
+        // In an included template, the included file is named.
+        let message = refused(
+            Page::Run,
+            &[
+                (
+                    "report.html",
+                    "{% extends \"sightline/report.html\" %}{% block footer %}{% include \"f.html\" %}{% endblock %}",
+                ),
+                ("f.html", "ok\n{{ report.name "),
+            ],
+        );
+        assert!(message.starts_with("org/f.html:2:"), "{message}");
+        assert!(message.contains("syntax error"), "{message}");
+    }
+
+    #[test]
+    fn a_required_block_that_is_not_shown_is_refused() {
+        let message = refused(Page::Run, &[("report.html", "{% block banner %}{% endblock %}")]);
+        assert_eq!(
+            message,
+            "org/report.html: error: the page does not show required block `provenance`: a page of `sightline run` \
+             must show the blocks banner, provenance, traceability, evidence (extend `sightline/report.html` to inherit them)"
+        );
+        // Overriding the block that holds it hides it too.
+        let message = refused(
+            Page::Run,
+            &[(
+                "report.html",
+                "{% extends \"sightline/report.html\" %}{% block content %}{% block banner %}{% endblock %}{% endblock %}",
+            )],
+        );
+        assert!(
+            message.contains("does not show required block `provenance`"),
+            "{message}"
+        );
+        // Unless the override shows its parent's body.
+        custom(
+            Page::Run,
+            &[(
+                "report.html",
+                "{% extends \"sightline/report.html\" %}{% block content %}<div>{{ super() }}</div>{% endblock %}",
+            )],
+        )
+        .unwrap();
+    }
+
+    #[test]
+    fn a_block_that_would_never_be_shown_is_refused() {
+        let message = refused(
+            Page::Run,
+            &[(
+                "report.html",
+                "{% extends \"sightline/report.html\" %}\n\n{% block provenence %}x{% endblock %}",
+            )],
+        );
+        assert!(
+            message.starts_with(
+                "org/report.html:3:4: error: block `provenence` is never shown: the page has no such block"
+            ),
+            "{message}"
+        );
+        assert!(message.contains("argument, banner, comparison"), "{message}");
+        // An override of `details` that leaves `pictures` out hides an override of `pictures`.
+        let message = refused(
+            Page::Run,
+            &[(
+                "report.html",
+                "{% extends \"sightline/report.html\" %}{% block details %}none{% endblock %}{% block pictures %}x{% endblock %}",
+            )],
+        );
+        assert!(message.contains("block `pictures` is never shown"), "{message}");
+    }
+
+    #[test]
+    fn escaping_cannot_be_turned_off() {
+        for source in [
+            "{% block x %}{{ report.name|safe }}{% endblock %}",
+            "{% block x %}{{ report.name | safe }}{% endblock %}",
+            "{% autoescape false %}{{ report.name }}{% endautoescape %}",
+            "{% filter safe %}{{ report.name }}{% endfilter %}",
+        ] {
+            let page = format!("{{% extends \"sightline/report.html\" %}}{source}");
+            let message = refused(Page::Run, &[("report.html", &page)]);
+            assert!(
+                message.contains("`autoescape` and the `safe` filter are not available"),
+                "{source}: {message}"
+            );
+        }
+        // Whatever a template's name, what it shows is escaped.
+        let set = custom(
+            Page::Falsify,
+            &[(
+                "falsify.html",
+                "{% block banner %}{% include \"name.txt\" %}{% endblock %}{% block provenance %}{% endblock %}\
+                 {% block settings %}{% endblock %}{% block cases %}{% endblock %}{% block counterexample %}{% endblock %}",
+            ), ("name.txt", "{{ report.name }}")],
+        )
+        .unwrap();
+        let html = set
+            .render(&serde_json::json!({ "name": "<script>x</script>" }), &())
+            .unwrap();
+        assert_eq!(html, "&lt;script&gt;x&lt;&#x2f;script&gt;");
+    }
+
+    #[test]
+    fn template_names_are_constants_and_extends_does_not_loop() {
+        let message = refused(
+            Page::Run,
+            &[("report.html", "{% set base = \"a.html\" %}{% extends base %}")],
+        );
+        assert!(message.contains("error: name the template in quotes"), "{message}");
+        let message = refused(
+            Page::Run,
+            &[
+                ("report.html", "{% extends \"a.html\" %}"),
+                ("a.html", "{% extends \"report.html\" %}"),
+            ],
+        );
+        assert!(
+            message.starts_with("org/a.html:1:4: error: `report.html` extends this template again"),
+            "{message}"
+        );
+    }
+
+    #[test]
+    fn a_misspelt_field_fails_when_rendered_with_its_place() {
+        let set = custom(
+            Page::Falsify,
+            &[(
+                "falsify.html",
+                "{% block banner %}{% endblock %}{% block provenance %}{% endblock %}{% block settings %}{% endblock %}\
+                 {% block cases %}{% endblock %}\n{% block counterexample %}{{ report.nmae }}{% endblock %}",
+            )],
+        )
+        .unwrap();
+        let error = set.render(&serde_json::json!({ "name": "x" }), &()).unwrap_err();
+        assert!(matches!(error.kind, TemplateErrorKind::Render(_)));
+        assert!(error.to_string().starts_with("org/falsify.html:2:"), "{error}");
+    }
+}

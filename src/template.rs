@@ -1,0 +1,34 @@
+//! `--template DIR`: an organisation's page templates, read from disk for
+//! `sightline_reports::Templates`, which checks them before anything runs.
+
+use std::io::ErrorKind;
+use std::path::Path;
+use std::sync::Arc;
+
+use sightline_reports::{Page, Templates};
+
+/// The templates of `page`: the bundled ones, or the set in `dir`. `None`
+/// (after printing why) when the set cannot be used.
+pub fn templates(dir: Option<&Path>, page: Page) -> Option<Templates> {
+    let Some(dir) = dir else {
+        return Some(Templates::bundled(page));
+    };
+    if !dir.is_dir() {
+        let problem = if dir.exists() {
+            "not a directory"
+        } else {
+            "no such directory"
+        };
+        eprintln!("{}: error: failed to read the template set: {problem}", dir.display());
+        return None;
+    }
+    let root = dir.to_path_buf();
+    let load = move |name: &str| match std::fs::read_to_string(root.join(name)) {
+        Ok(text) => Ok(Some(text)),
+        Err(error) if error.kind() == ErrorKind::NotFound => Ok(None),
+        Err(error) => Err(error),
+    };
+    Templates::custom(page, &dir.display().to_string(), Arc::new(load))
+        .inspect_err(|error| eprintln!("{error}"))
+        .ok()
+}

@@ -1,0 +1,280 @@
+//! `--template DIR`: an organisation's report templates, checked before anything
+//! runs (exit 2, nothing written, the file and what is wrong named), rendered
+//! with auto-escaping on; the example set in docs/ for both pages.
+
+use std::path::Path;
+
+use crate::support::{
+    SMALL_FIELD, arg, assert_evidence_files, files_under, normalise_execution, read, sightline, temp_dir, unescape_html,
+};
+
+/// The example template set in the docs.
+const EXAMPLE: &str = "docs/report-templates/example";
+
+/// Writes a template set of `files` (name, text) into `dir`.
+fn template_set(dir: &Path, files: &[(&str, &str)]) {
+    for (name, text) in files {
+        let path = dir.join(name);
+        std::fs::create_dir_all(path.parent().unwrap()).unwrap();
+        std::fs::write(path, text).unwrap();
+    }
+}
+
+/// Runs the small field with the template set in `set` into `out`.
+fn run_with(set: &Path, out: &Path) -> crate::support::Outcome {
+    sightline(["run", SMALL_FIELD, "--out", arg(out), "--template", arg(set)])
+}
+
+/// A page that extends the bundled report shows its own blocks and everything
+/// else of the report; only the report differs from a run without it.
+#[test]
+fn a_custom_template_overrides_a_block_of_the_report() {
+    let tmp = temp_dir();
+    let set = tmp.path().join("org");
+    template_set(
+        &set,
+        &[
+            (
+                "report.html",
+                "{% extends \"sightline/report.html\" %}\n\
+                 {% block banner %}<p class=\"org\">ACME review of {{ report.name }}</p>{{ super() }}{% endblock %}\n\
+                 {% block footer %}{% include \"parts/footer.txt\" %}{% endblock %}\n",
+            ),
+            (
+                "parts/footer.txt",
+                "Seed {{ results.seed }} <b>{{ report.verdict }}</b>",
+            ),
+        ],
+    );
+    let (custom, plain) = (tmp.path().join("custom"), tmp.path().join("plain"));
+    run_with(&set, &custom).assert_exit(0);
+    sightline(["run", SMALL_FIELD, "--out", arg(&plain)]).assert_exit(0);
+    assert_evidence_files(&custom);
+
+    let html = read(&custom.join("report.html"));
+    assert!(
+        html.contains("<p class=\"org\">ACME review of Small field"),
+        "the override is shown"
+    );
+    assert!(
+        html.contains("class=\"banner pass\""),
+        "super() shows the bundled banner"
+    );
+    // A template's own markup is kept; the data it shows is escaped, even in a `.txt` include.
+    assert!(html.contains("Seed 42 <b>pass</b>"), "the include is shown");
+    let text = unescape_html(&html);
+    for section in [
+        "<h2>Provenance</h2>",
+        "<h2>Requirements</h2>",
+        "<h2>Evidence by requirement</h2>",
+    ] {
+        assert!(text.contains(section), "the inherited {section} is shown");
+    }
+    for name in ["results.json", "junit.xml"] {
+        let evidence = |dir: &Path| match read(&dir.join(name)) {
+            text if name == "junit.xml" => text,
+            text => normalise_execution(&text),
+        };
+        assert_eq!(
+            evidence(&custom),
+            evidence(&plain),
+            "{name} does not depend on the template"
+        );
+    }
+}
+
+/// A page that does not show a required block is refused before anything
+/// runs: exit 2, the file and the block named, nothing written.
+#[test]
+fn a_missing_block_is_refused_and_nothing_is_written() {
+    let tmp = temp_dir();
+    let set = tmp.path().join("org");
+    template_set(
+        &set,
+        &[(
+            "report.html",
+            "<h1>{{ report.name }}</h1>{% block banner %}{% endblock %}{% block traceability %}{% endblock %}",
+        )],
+    );
+    let out = tmp.path().join("out");
+    let refused = run_with(&set, &out);
+    refused.assert_exit(2);
+    assert_eq!(
+        refused.stderr,
+        format!(
+            "{}/report.html: error: the page does not show required block `provenance`: a page of `sightline run` \
+             must show the blocks banner, provenance, traceability, evidence (extend `sightline/report.html` to \
+             inherit them)\n",
+            set.display()
+        )
+    );
+    assert!(refused.stdout.is_empty(), "{refused}");
+    assert!(!out.exists(), "nothing is written");
+
+    // A misspelt override would silently vanish: refused where it is written.
+    template_set(
+        &set,
+        &[(
+            "report.html",
+            "{% extends \"sightline/report.html\" %}\n{% block provenence %}x{% endblock %}\n",
+        )],
+    );
+    let refused = run_with(&set, &out);
+    refused.assert_exit(2);
+    assert!(
+        refused.stderr.starts_with(&format!(
+            "{}/report.html:2:4: error: block `provenence` is never shown",
+            set.display()
+        )),
+        "{refused}"
+    );
+    assert!(!out.exists(), "nothing is written");
+}
+
+#[test]
+fn a_syntax_error_names_the_file_line_and_column() {
+    let tmp = temp_dir();
+    let set = tmp.path().join("org");
+    template_set(
+        &set,
+        &[
+            (
+                "report.html",
+                "{% extends \"sightline/report.html\" %}\n{% block footer %}{% include \"footer.html\" %}{% endblock %}\n",
+            ),
+            (
+                "footer.html",
+                "<p>\n  {% for x in report.points %}{{ x.label }}\n</p>\n",
+            ),
+        ],
+    );
+    let out = tmp.path().join("out");
+    let refused = run_with(&set, &out);
+    refused.assert_exit(2);
+    let prefix = format!("{}/footer.html:", set.display());
+    assert!(refused.stderr.starts_with(&prefix), "{refused}");
+    assert!(
+        refused
+            .stderr
+            .contains(": error: syntax error: unexpected end of input"),
+        "{refused}"
+    );
+    assert_eq!(refused.stderr.lines().count(), 1, "{refused}");
+    assert!(!out.exists(), "nothing is written");
+}
+
+#[test]
+fn a_missing_directory_or_page_is_refused() {
+    let tmp = temp_dir();
+    let out = tmp.path().join("out");
+    let missing = tmp.path().join("no-such-set");
+    let refused = run_with(&missing, &out);
+    refused.assert_exit(2);
+    assert_eq!(
+        refused.stderr,
+        format!(
+            "{}: error: failed to read the template set: no such directory\n",
+            missing.display()
+        )
+    );
+    // A set for the other command only.
+    let set = tmp.path().join("org");
+    template_set(&set, &[("falsify.html", "{% extends \"sightline/falsify.html\" %}")]);
+    let refused = run_with(&set, &out);
+    refused.assert_exit(2);
+    assert_eq!(
+        refused.stderr,
+        format!(
+            "{}/report.html: error: no such file: a template set for `sightline run` holds `report.html`, which may \
+             extend `sightline/report.html`\n",
+            set.display()
+        )
+    );
+    assert!(
+        files_under(tmp.path()).iter().all(|f| f.starts_with("org")),
+        "nothing is written"
+    );
+
+    // An invalid scenario and an invalid set: both are reported.
+    let invalid = "tests/fixtures/invalid/vary-errors.yaml";
+    let refused = sightline(["run", invalid, "--out", arg(&out), "--template", arg(&missing)]);
+    refused.assert_exit(2);
+    assert!(refused.stderr.contains("vary-errors.yaml:11:3: error:"), "{refused}");
+    assert!(
+        refused
+            .stderr
+            .contains("failed to read the template set: no such directory"),
+        "{refused}"
+    );
+}
+
+/// What only the data can tell (a misspelt field) fails when the page is
+/// rendered: exit 2 with the place, and still nothing written.
+#[test]
+fn a_misspelt_field_is_refused_when_rendered() {
+    let tmp = temp_dir();
+    let set = tmp.path().join("org");
+    template_set(
+        &set,
+        &[(
+            "report.html",
+            "{% extends \"sightline/report.html\" %}\n{% block footer %}\n{{ report.nmae }}{% endblock %}\n",
+        )],
+    );
+    let out = tmp.path().join("out");
+    let refused = run_with(&set, &out);
+    refused.assert_exit(2);
+    assert!(
+        refused.stderr.starts_with(&format!("{}/report.html:3:", set.display())),
+        "{refused}"
+    );
+    assert!(refused.stderr.contains("undefined value"), "{refused}");
+    assert!(!out.exists(), "nothing is written");
+}
+
+/// The example set in the docs renders both pages.
+#[test]
+fn the_example_template_set_renders_both_pages() {
+    let tmp = temp_dir();
+    let run = tmp.path().join("run");
+    sightline(["run", SMALL_FIELD, "--out", arg(&run), "--template", EXAMPLE]).assert_exit(0);
+    let html = read(&run.join("report.html"));
+    assert!(
+        html.contains("ACME SAFETY") && html.contains("Verification record"),
+        "masthead"
+    );
+    assert!(
+        html.contains("Georgia") && html.contains(":root { --pass:"),
+        "house style over sightline's"
+    );
+    let sha = crate::support::read_json(&run.join("results.json"))["scenario"]["sha256"]
+        .as_str()
+        .unwrap()
+        .to_string();
+    assert!(
+        html.contains(&format!("Document ACME-VR-{}", &sha[..8])),
+        "document control"
+    );
+
+    let falsify = tmp.path().join("falsify");
+    let found = sightline([
+        "falsify",
+        "scenarios/urban-falsify.yaml",
+        "--out",
+        arg(&falsify),
+        "--cases",
+        "1",
+        "--template",
+        EXAMPLE,
+    ]);
+    found.assert_exit(1);
+    let html = read(&falsify.join("report.html"));
+    assert!(
+        html.contains("Falsification record") && html.contains("Search seed 11"),
+        "{html}"
+    );
+    assert!(
+        html.contains("<h2>Cases tried</h2>"),
+        "the bundled page's blocks are kept"
+    );
+}
