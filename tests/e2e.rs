@@ -45,3 +45,8 @@ mod findings;
 // `falsify`: the bundled counterexample found and shrunk, determinism, exit codes.
 #[path = "e2e/falsify.rs"]
 mod falsify;
+
+// report.html in headless Chromium: every bundled report offline, banner and
+// traceability as results.json says, markup in the scenario's text shown as text.
+#[path = "e2e/browser.rs"]
+mod browser;
