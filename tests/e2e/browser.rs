@@ -119,6 +119,21 @@ fn assert_page_shows(page: &serde_json::Value, results: &serde_json::Value) {
     }
 }
 
+/// Opens the report in the page directory of `scenario` and checks it against
+/// `results`.
+#[track_caller]
+fn assert_report_works(python: &OsString, scenario: &str, results: &serde_json::Value) {
+    assert_page_shows(&open(python, &page_dir(scenario)), results);
+}
+
+/// Runs `scenario` and checks its report in the browser; returns results.json.
+#[track_caller]
+fn run_and_open(python: &OsString, scenario: &str) -> serde_json::Value {
+    let results = run(scenario);
+    assert_report_works(python, scenario, &results);
+    results
+}
+
 /// Every file in `scenarios/` (the bundled runs are shared with `bundled.rs`).
 #[test]
 fn every_bundled_report_works_offline_in_a_browser() {
@@ -139,15 +154,15 @@ fn every_bundled_report_works_offline_in_a_browser() {
     scenarios.sort();
     assert!(scenarios.len() >= kept.len(), "{scenarios:?}");
     for scenario in &scenarios {
-        let results = match kept.iter().find(|run| run.scenario == scenario) {
+        match kept.iter().find(|run| run.scenario == scenario) {
             Some(run) => {
                 lay_out(run);
-                run.results.clone()
+                assert_report_works(&python, scenario, &run.results);
             }
-            None => run(scenario),
-        };
-        let page = open(&python, &page_dir(scenario));
-        assert_page_shows(&page, &results);
+            None => {
+                run_and_open(&python, scenario);
+            }
+        }
     }
 }
 
@@ -155,10 +170,8 @@ fn every_bundled_report_works_offline_in_a_browser() {
 #[test]
 fn a_failing_report_shows_the_failure_in_a_browser() {
     let Some(python) = python() else { return };
-    let results = run(FAILING);
+    let results = run_and_open(&python, FAILING);
     assert_eq!(results["verdict"], "fail");
-    let page = open(&python, &page_dir(FAILING));
-    assert_page_shows(&page, &results);
 }
 
 /// Markup in the scenario's text is shown as text: the title, heading and
@@ -167,15 +180,13 @@ fn a_failing_report_shows_the_failure_in_a_browser() {
 #[test]
 fn markup_in_the_scenario_text_is_shown_as_text() {
     let Some(python) = python() else { return };
-    let results = run(HOSTILE);
+    let results = run_and_open(&python, HOSTILE);
     let name = results["scenario"]["name"].as_str().unwrap();
     let text = results["requirements"][0]["text"].as_str().unwrap();
     assert!(
         name.contains("<script>") && text.contains("</td><script>"),
         "{name} / {text}"
     );
-    let page = open(&python, &page_dir(HOSTILE));
-    assert_page_shows(&page, &results);
     let html = read(&page_dir(HOSTILE).join("report.html"));
     assert!(!html.contains("<script>"), "the report holds a script element");
 }
