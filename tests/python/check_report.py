@@ -45,7 +45,7 @@ READ_PAGE = """() => {
   const text = (element) => element.innerText.trim();
   return {
     title: document.title,
-    heading: text(document.querySelector("h1")),
+    heading: document.querySelector("h1")?.innerText.trim() ?? null,
     verdict: banner && banner.dataset.verdict,
     banner: banner && banner.checkVisibility() ? text(banner) : null,
     traceability: table && table.checkVisibility()
