@@ -53,3 +53,8 @@ mod shard;
 // `--template DIR`: custom report templates checked before anything runs, escaped, rendered.
 #[path = "e2e/template.rs"]
 mod template;
+
+// report.html in headless Chromium: every bundled report offline, banner and
+// traceability as results.json says, markup in the scenario's text shown as text.
+#[path = "e2e/browser.rs"]
+mod browser;

@@ -202,55 +202,51 @@ mod tests {
         }
     }
 
-    /// A sensor at the origin (agent 0); a building from x = 10 to 20, |y| ≤ 5.
+    /// The visibility of a car at `target` from a sensor at the origin on a car
+    /// (agent 0), among `occluders` and the bodies `between` (agents 1, 2, …);
+    /// the target is the agent after them.
+    fn seen(occluders: &Occluders, between: &[Body], target: [f64; 2]) -> Visibility {
+        let target = car(between.len() + 1, target[0], target[1]);
+        let bodies = std::iter::once(car(0, 0.0, 0.0))
+            .chain(between.iter().copied())
+            .chain([target])
+            .collect();
+        visibility(occluders, &Bodies::new(bodies), Vector::ZERO, 0, &target)
+    }
+
+    /// The building runs from x = 10 to 20, |y| ≤ 5.
     #[test]
     fn a_box_behind_a_building_is_nlos_static() {
-        let target = car(1, 30.0, 0.0);
-        let bodies = Bodies::new(vec![car(0, 0.0, 0.0), target]);
-        assert_eq!(
-            visibility(&building(), &bodies, Vector::ZERO, 0, &target),
-            Visibility::NlosStatic
-        );
+        assert_eq!(seen(&building(), &[], [30.0, 0.0]), Visibility::NlosStatic);
     }
 
     /// The line to (30, 20) passes the building's near corner at y = 6.7 > 5.
     #[test]
     fn a_box_beside_the_building_is_visible() {
-        let target = car(1, 30.0, 20.0);
-        let bodies = Bodies::new(vec![car(0, 0.0, 0.0), target]);
-        assert_eq!(
-            visibility(&building(), &bodies, Vector::ZERO, 0, &target),
-            Visibility::Los
-        );
+        assert_eq!(seen(&building(), &[], [30.0, 20.0]), Visibility::Los);
     }
 
     /// A truck across the line of sight at x = 8, in front of the building: the
     /// building still hides the target, so the class is static.
     #[test]
     fn the_building_wins_over_a_truck_in_front_of_it() {
-        let target = car(2, 30.0, 0.0);
-        let bodies = Bodies::new(vec![car(0, 0.0, 0.0), truck(1, 8.0, 0.0), target]);
         assert_eq!(
-            visibility(&building(), &bodies, Vector::ZERO, 0, &target),
+            seen(&building(), &[truck(1, 8.0, 0.0)], [30.0, 0.0]),
             Visibility::NlosStatic
         );
     }
 
     #[test]
     fn a_box_behind_a_truck_is_nlos_dynamic() {
-        let target = car(2, 30.0, 20.0);
-        let bodies = Bodies::new(vec![car(0, 0.0, 0.0), truck(1, 15.0, 10.0), target]);
         assert_eq!(
-            visibility(&building(), &bodies, Vector::ZERO, 0, &target),
+            seen(&building(), &[truck(1, 15.0, 10.0)], [30.0, 20.0]),
             Visibility::NlosDynamic
         );
     }
 
+    /// Two cars 4 m apart: their own boxes lie on the line between them.
     #[test]
     fn the_observer_and_the_target_do_not_hide_each_other() {
-        let target = car(1, 4.0, 0.0);
-        let bodies = Bodies::new(vec![car(0, 0.0, 0.0), target]);
-        let nothing = Occluders::new(&[]);
-        assert_eq!(visibility(&nothing, &bodies, Vector::ZERO, 0, &target), Visibility::Los);
+        assert_eq!(seen(&Occluders::new(&[]), &[], [4.0, 0.0]), Visibility::Los);
     }
 }

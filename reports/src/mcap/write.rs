@@ -70,54 +70,26 @@ struct SchemaSpec {
     data: fn() -> Vec<u8>,
 }
 
-const SCENE: SchemaSpec = SchemaSpec {
-    name: "foxglove.SceneUpdate",
-    data: || SCENE_UPDATE_SCHEMA.as_bytes().to_vec(),
-};
-const GRID: SchemaSpec = SchemaSpec {
-    name: "foxglove.Grid",
-    data: || GRID_SCHEMA.as_bytes().to_vec(),
-};
-const LOG: SchemaSpec = SchemaSpec {
-    name: "foxglove.Log",
-    data: || LOG_SCHEMA.as_bytes().to_vec(),
-};
-const SCENARIO: SchemaSpec = SchemaSpec {
-    name: "sightline.Scenario",
-    data: schema_of::<ScenarioRecord>,
-};
-const OUTCOME: SchemaSpec = SchemaSpec {
-    name: "sightline.Outcome",
-    data: schema_of::<OutcomeRecord>,
-};
-const VERDICT: SchemaSpec = SchemaSpec {
-    name: "sightline.Verdict",
-    data: schema_of::<VerdictRecord>,
-};
-const SIGNALS: SchemaSpec = SchemaSpec {
-    name: "sightline.Signals",
-    data: schema_of::<SignalsRecord>,
-};
-const REQUIREMENTS: SchemaSpec = SchemaSpec {
-    name: "sightline.RequirementSignals",
-    data: schema_of::<RequirementSignals>,
-};
-const PACKET: SchemaSpec = SchemaSpec {
-    name: "sightline.Packet",
-    data: schema_of::<PacketRecord>,
-};
-const MESSAGE: SchemaSpec = SchemaSpec {
-    name: "sightline.SemanticMessage",
-    data: schema_of::<MessageRecord>,
-};
-const ARRIVAL: SchemaSpec = SchemaSpec {
-    name: "sightline.Arrival",
-    data: schema_of::<ArrivalRecord>,
-};
-const APPROACH: SchemaSpec = SchemaSpec {
-    name: "sightline.Approach",
-    data: schema_of::<ApproachRecord>,
-};
+impl SchemaSpec {
+    const fn new(name: &'static str, data: fn() -> Vec<u8>) -> Self {
+        Self { name, data }
+    }
+}
+
+// Foxglove's schemas as written in `schemas/`; sightline's derived from the record
+// types (each named by its `title`).
+const SCENE: SchemaSpec = SchemaSpec::new("foxglove.SceneUpdate", || SCENE_UPDATE_SCHEMA.as_bytes().to_vec());
+const GRID: SchemaSpec = SchemaSpec::new("foxglove.Grid", || GRID_SCHEMA.as_bytes().to_vec());
+const LOG: SchemaSpec = SchemaSpec::new("foxglove.Log", || LOG_SCHEMA.as_bytes().to_vec());
+const SCENARIO: SchemaSpec = SchemaSpec::new("sightline.Scenario", schema_of::<ScenarioRecord>);
+const OUTCOME: SchemaSpec = SchemaSpec::new("sightline.Outcome", schema_of::<OutcomeRecord>);
+const VERDICT: SchemaSpec = SchemaSpec::new("sightline.Verdict", schema_of::<VerdictRecord>);
+const SIGNALS: SchemaSpec = SchemaSpec::new("sightline.Signals", schema_of::<SignalsRecord>);
+const REQUIREMENTS: SchemaSpec = SchemaSpec::new("sightline.RequirementSignals", schema_of::<RequirementSignals>);
+const PACKET: SchemaSpec = SchemaSpec::new("sightline.Packet", schema_of::<PacketRecord>);
+const MESSAGE: SchemaSpec = SchemaSpec::new("sightline.SemanticMessage", schema_of::<MessageRecord>);
+const ARRIVAL: SchemaSpec = SchemaSpec::new("sightline.Arrival", schema_of::<ArrivalRecord>);
+const APPROACH: SchemaSpec = SchemaSpec::new("sightline.Approach", schema_of::<ApproachRecord>);
 
 /// The metrics the steps of a perception world give, summed over them.
 pub(crate) const WORLD_STEP_METRICS: [Metric; 4] = [

@@ -1,0 +1,192 @@
+//! report.html in a real browser: headless Chromium opens the report of every
+//! bundled scenario, of a failing fixture and of one whose text carries markup,
+//! through `tests/python/check_report.py` (Playwright driving Debian's
+//! Chromium). Each page loads offline with no console error and requests
+//! nothing but itself; its banner, title and traceability table say what
+//! results.json says; it runs no script. Reports and full-page screenshots are
+//! kept in `target/tmp/browser/<scenario>/`.
+//!
+//! Skipped (with a message) only when `SIGHTLINE_BROWSER_PYTHON` is unset;
+//! `.ci/run` sets it, and then any failure fails the test.
+
+use std::ffi::OsString;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use crate::bundled::{Bundled, field, roundabout_run, sumo_grid_run, urban_run};
+use crate::support::{FAILING, arg, read, read_json, root, sightline};
+
+/// Names a Python with Playwright; `.ci/run` sets it.
+const PYTHON_VAR: &str = "SIGHTLINE_BROWSER_PYTHON";
+
+/// A valid fixture whose name, description and requirement text carry markup
+/// that sets the global `sightlineInjected` and the title if it ever runs.
+const HOSTILE: &str = "tests/fixtures/valid/script-in-text.yaml";
+
+/// The Python to drive the browser with, or `None` (with a message) to skip.
+fn python() -> Option<OsString> {
+    let python = std::env::var_os(PYTHON_VAR);
+    if python.is_none() {
+        eprintln!(
+            "skipped: {PYTHON_VAR} is not set; set it to a Python with Playwright and install \
+             Debian's chromium (see README, Test), as .ci/run does"
+        );
+    }
+    python
+}
+
+/// Where the report of `scenario` is opened and its screenshot kept.
+fn page_dir(scenario: &str) -> PathBuf {
+    let stem = Path::new(scenario).file_stem().expect("a scenario file has a name");
+    Path::new(env!("CARGO_TARGET_TMPDIR")).join("browser").join(stem)
+}
+
+/// Opens `dir/report.html` in Chromium, saves `dir/screenshot.png` and returns
+/// what the page showed; panics with the checker's reasons when it fails.
+fn open(python: &OsString, dir: &Path) -> serde_json::Value {
+    let output = Command::new(python)
+        .arg(root().join("tests/python/check_report.py"))
+        .arg(dir.join("report.html"))
+        .arg(dir.join("screenshot.png"))
+        .output()
+        .unwrap_or_else(|e| panic!("failed to start {}: {e}", Path::new(python).display()));
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(output.status.success(), "the report failed in the browser:\n{stderr}");
+    serde_json::from_slice(&output.stdout)
+        .unwrap_or_else(|e| panic!("the browser check printed no JSON ({e}):\n{stderr}"))
+}
+
+/// Runs `scenario` into its page directory; returns its results.json.
+fn run(scenario: &str) -> serde_json::Value {
+    let dir = page_dir(scenario);
+    let outcome = sightline(["run", scenario, "--out", arg(&dir)]);
+    assert!(matches!(outcome.code, Some(0 | 1)), "{outcome}");
+    let results = read_json(&dir.join("results.json"));
+    assert_eq!(outcome.code == Some(0), results["verdict"] == "pass", "{outcome}");
+    results
+}
+
+/// Writes the report of a run kept by `bundled.rs` into its page directory.
+fn lay_out(run: &Bundled) {
+    let dir = page_dir(run.scenario);
+    std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("failed to create {}: {e}", dir.display()));
+    std::fs::write(dir.join("report.html"), &run.report).expect("the report is written");
+}
+
+/// The page says what `results` says: the verdict in the banner, the scenario's
+/// name in the title and heading, one traceability row per requirement with its
+/// id, text and verdict; and it holds and ran no script.
+#[track_caller]
+fn assert_page_shows(page: &serde_json::Value, results: &serde_json::Value) {
+    let scenario = results["scenario"]["path"].as_str().unwrap();
+    let verdict = results["verdict"].as_str().unwrap();
+    let name = results["scenario"]["name"].as_str().unwrap();
+    assert_eq!(page["verdict"], verdict, "{scenario}");
+    let banner = page["banner"].as_str().unwrap();
+    assert!(
+        banner.starts_with(&format!("{}:", verdict.to_uppercase())),
+        "{scenario}: banner {banner:?}"
+    );
+    assert_eq!(page["title"], format!("sightline report: {name}"), "{scenario}");
+    assert_eq!(page["heading"], name, "{scenario}");
+    let rows: Vec<[&str; 3]> = page["traceability"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|row| [0, 1, 6].map(|column| row[column].as_str().unwrap()))
+        .collect();
+    // The verdict as shown: the style writes it in capitals.
+    let verdicts: Vec<String> = results["requirements"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| r["verdict"].as_str().unwrap().to_uppercase())
+        .collect();
+    let expected: Vec<[&str; 3]> = results["requirements"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .zip(&verdicts)
+        .map(|(r, verdict)| [r["id"].as_str().unwrap(), r["text"].as_str().unwrap(), verdict])
+        .collect();
+    assert_eq!(rows, expected, "{scenario}: traceability");
+    for (what, none) in [
+        ("scripts", 0.into()),
+        ("handlers", 0.into()),
+        ("globals", serde_json::json!([])),
+    ] {
+        assert_eq!(page[what], none, "{scenario}: {what}");
+    }
+}
+
+/// Opens the report in the page directory of `scenario` and checks it against
+/// `results`.
+#[track_caller]
+fn assert_report_works(python: &OsString, scenario: &str, results: &serde_json::Value) {
+    assert_page_shows(&open(python, &page_dir(scenario)), results);
+}
+
+/// Runs `scenario` and checks its report in the browser; returns results.json.
+#[track_caller]
+fn run_and_open(python: &OsString, scenario: &str) -> serde_json::Value {
+    let results = run(scenario);
+    assert_report_works(python, scenario, &results);
+    results
+}
+
+/// Every file in `scenarios/` (the bundled runs are shared with `bundled.rs`).
+#[test]
+fn every_bundled_report_works_offline_in_a_browser() {
+    let Some(python) = python() else { return };
+    let kept = [field(), roundabout_run(), urban_run(), sumo_grid_run()];
+    let mut scenarios: Vec<String> = std::fs::read_dir(root().join("scenarios"))
+        .expect("scenarios/ is readable")
+        .map(|entry| {
+            entry
+                .expect("a directory entry reads")
+                .file_name()
+                .into_string()
+                .unwrap()
+        })
+        .filter(|name| name.ends_with(".yaml"))
+        .map(|name| format!("scenarios/{name}"))
+        .collect();
+    scenarios.sort();
+    assert!(scenarios.len() >= kept.len(), "{scenarios:?}");
+    for scenario in &scenarios {
+        match kept.iter().find(|run| run.scenario == scenario) {
+            Some(run) => {
+                lay_out(run);
+                assert_report_works(&python, scenario, &run.results);
+            }
+            None => {
+                run_and_open(&python, scenario);
+            }
+        }
+    }
+}
+
+/// A failing run's report says so in its banner and its table.
+#[test]
+fn a_failing_report_shows_the_failure_in_a_browser() {
+    let Some(python) = python() else { return };
+    let results = run_and_open(&python, FAILING);
+    assert_eq!(results["verdict"], "fail");
+}
+
+/// Markup in the scenario's text is shown as text: the title, heading and
+/// table hold it to the letter, and none of it ran (no script element, no
+/// event handler, no global set, the title unchanged).
+#[test]
+fn markup_in_the_scenario_text_is_shown_as_text() {
+    let Some(python) = python() else { return };
+    let results = run_and_open(&python, HOSTILE);
+    let name = results["scenario"]["name"].as_str().unwrap();
+    let text = results["requirements"][0]["text"].as_str().unwrap();
+    assert!(
+        name.contains("<script>") && text.contains("</td><script>"),
+        "{name} / {text}"
+    );
+    let html = read(&page_dir(HOSTILE).join("report.html"));
+    assert!(!html.contains("<script>"), "the report holds a script element");
+}
