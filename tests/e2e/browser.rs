@@ -13,7 +13,7 @@ use std::ffi::OsString;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use crate::bundled::{Bundled, field, roundabout_run, sumo_grid_run, urban_run};
+use crate::bundled::{Bundled, every_run};
 use crate::support::{FAILING, arg, read, read_json, root, sightline};
 
 /// Names a Python with Playwright; `.ci/run` sets it.
@@ -134,35 +134,13 @@ fn run_and_open(python: &OsString, scenario: &str) -> serde_json::Value {
     results
 }
 
-/// Every file in `scenarios/` (the bundled runs are shared with `bundled.rs`).
+/// Every file in `scenarios/` (the runs are shared with `bundled.rs`).
 #[test]
 fn every_bundled_report_works_offline_in_a_browser() {
     let Some(python) = python() else { return };
-    let kept = [field(), roundabout_run(), urban_run(), sumo_grid_run()];
-    let mut scenarios: Vec<String> = std::fs::read_dir(root().join("scenarios"))
-        .expect("scenarios/ is readable")
-        .map(|entry| {
-            entry
-                .expect("a directory entry reads")
-                .file_name()
-                .into_string()
-                .unwrap()
-        })
-        .filter(|name| name.ends_with(".yaml"))
-        .map(|name| format!("scenarios/{name}"))
-        .collect();
-    scenarios.sort();
-    assert!(scenarios.len() >= kept.len(), "{scenarios:?}");
-    for scenario in &scenarios {
-        match kept.iter().find(|run| run.scenario == scenario) {
-            Some(run) => {
-                lay_out(run);
-                assert_report_works(&python, scenario, &run.results);
-            }
-            None => {
-                run_and_open(&python, scenario);
-            }
-        }
+    for run in every_run() {
+        lay_out(run);
+        assert_report_works(&python, run.scenario, &run.results);
     }
 }
 

@@ -286,6 +286,43 @@ pub fn sumo_grid_run() -> &'static Bundled {
     RUN.get_or_init(|| run_bundled("scenarios/sumo-grid-semantic.yaml"))
 }
 
+/// The bundled falsification input, run as written (its values pass).
+pub fn falsify_input_run() -> &'static Bundled {
+    static RUN: OnceLock<Bundled> = OnceLock::new();
+    RUN.get_or_init(|| run_bundled("scenarios/urban-falsify.yaml"))
+}
+
+/// A run of every bundled scenario, in file-name order.
+pub fn every_run() -> [&'static Bundled; 5] {
+    [
+        field(),
+        roundabout_run(),
+        sumo_grid_run(),
+        falsify_input_run(),
+        urban_run(),
+    ]
+}
+
+/// [`every_run`] runs every file in `scenarios/`.
+#[test]
+fn every_bundled_scenario_is_run() {
+    let mut files: Vec<String> = std::fs::read_dir(crate::support::root().join("scenarios"))
+        .expect("scenarios/ is readable")
+        .map(|entry| {
+            entry
+                .expect("a directory entry reads")
+                .file_name()
+                .into_string()
+                .unwrap()
+        })
+        .filter(|name| name.ends_with(".yaml"))
+        .map(|name| format!("scenarios/{name}"))
+        .collect();
+    files.sort();
+    let run: Vec<&str> = every_run().iter().map(|run| run.scenario).collect();
+    assert_eq!(run, files);
+}
+
 /// The bundled seed 002 junction: every point measures the semantic pipeline over
 /// five pooled runs, and the report shows the distribution and the tables.
 #[test]

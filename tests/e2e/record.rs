@@ -8,7 +8,7 @@ use std::collections::BTreeMap;
 use std::path::Path;
 use std::process::Command;
 
-use crate::bundled::{Bundled, field, roundabout_run, sumo_grid_run, urban_run};
+use crate::bundled::{Bundled, every_run, roundabout_run, sumo_grid_run};
 use crate::support::{RECORDING, arg, normalise_execution, read, read_json, root, sightline, temp_dir};
 
 /// Names a Python that has the official `mcap` package; `.ci/run` sets it.
@@ -219,10 +219,7 @@ fn lay_out(run: &Bundled, dir: &Path) -> std::path::PathBuf {
 #[test]
 fn replay_gives_the_run_verdicts_on_every_bundled_scenario() {
     let tmp = temp_dir();
-    for (i, run) in [field(), roundabout_run(), urban_run(), sumo_grid_run()]
-        .into_iter()
-        .enumerate()
-    {
+    for (i, run) in every_run().into_iter().enumerate() {
         let recording = lay_out(run, &tmp.path().join(i.to_string()));
         let replay = sightline(["replay", arg(&recording)]);
         replay.assert_exit(0);
@@ -370,9 +367,9 @@ fn recording_is_byte_identical_whatever_the_thread_count() {
     }
 }
 
-/// The official Python reader (`pip install mcap`) reads the bundled
-/// roundabout's and the SUMO grid's recordings: the same channels, schemas and
-/// counts as the MCAP library, lz4 chunks, and the imported files attached.
+/// The official Python reader (`pip install mcap`) reads every bundled
+/// scenario's recording: the same channels, schemas and counts as the MCAP
+/// library, lz4 chunks, and the imported files attached.
 /// Skipped (with a message) only when `SIGHTLINE_MCAP_PYTHON` is unset; `.ci/run`
 /// sets it, and then any failure of the reader fails the test.
 #[test]
@@ -385,7 +382,7 @@ fn the_python_mcap_reader_reads_the_recordings() {
         return;
     };
     let tmp = temp_dir();
-    for (i, run) in [roundabout_run(), sumo_grid_run()].into_iter().enumerate() {
+    for (i, run) in every_run().into_iter().enumerate() {
         let recording = lay_out(run, &tmp.path().join(i.to_string()));
         let output = Command::new(&python)
             .arg(root().join("tests/python/read_recording.py"))
