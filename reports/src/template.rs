@@ -2,8 +2,9 @@
 //!
 //! The pages are minijinja templates. The bundled ones are embedded under
 //! stable names: `sightline/page.html` (the layout: `head` with `title` and
-//! `style`, then `header`, `content` and `footer`), and the two pages that
-//! extend it, `sightline/report.html` (`sightline run`) and
+//! `style`, then `header`, `content` and `footer`), the provenance table both
+//! pages include (`sightline/provenance.html`), and the two pages that extend
+//! it, `sightline/report.html` (`sightline run`) and
 //! `sightline/falsify.html` (`sightline falsify`). A custom set is a directory
 //! holding `report.html` and/or `falsify.html` and whatever they include or
 //! extend; a page may extend its bundled page and override some blocks, or
@@ -37,8 +38,12 @@ use minijinja::{AutoEscape, Environment, ErrorKind, UndefinedBehavior, Value, co
 use serde::Serialize;
 
 /// The bundled templates, by their stable names.
-const BUNDLED: [(&str, &str); 3] = [
+const BUNDLED: [(&str, &str); 4] = [
     ("sightline/page.html", include_str!("../templates/page.html")),
+    (
+        "sightline/provenance.html",
+        include_str!("../templates/provenance.html"),
+    ),
     ("sightline/report.html", include_str!("../templates/report.html")),
     ("sightline/falsify.html", include_str!("../templates/falsify.html")),
 ];
