@@ -10,32 +10,75 @@ use sightline_oracles::{Status, Verdict};
 use crate::exit::Exit;
 use crate::output::say;
 
-/// Prints `PASS|FAIL|ERROR path: N of M requirements hold over K sweep points`
-/// followed by `tail`, then one line per requirement that does not hold;
-/// returns [`Exit::Pass`] when every requirement holds, [`Exit::Fail`] otherwise.
+/// Prints `PASS|FAIL|NOT EXERCISED|ERROR path: N of M requirements hold over K
+/// sweep points (fail: A; not exercised: B)` followed by `tail`, then one line
+/// per requirement that does not pass, naming its deciding point, measured
+/// value, threshold, margin and n; returns [`Exit::Pass`] when no verdict fails
+/// the run (every requirement passes, or is not exercised for an accepted
+/// reason), [`Exit::Fail`] otherwise.
 pub fn print_verdicts(path: &str, scenario: &Scenario, verdicts: &[Verdict], tail: impl Display) -> Exit {
-    let overall = verdicts.iter().map(|v| v.status).max().unwrap_or(Status::Pass);
+    let failing = verdicts.iter().filter(|v| v.fails_run());
+    let headline = failing.clone().map(|v| v.status).max().unwrap_or(Status::Pass);
     let passed = verdicts.iter().filter(|v| v.status == Status::Pass).count();
     let points = scenario.points.len();
+    let named: Vec<String> = [Status::Error, Status::Fail, Status::NotExercised]
+        .into_iter()
+        .filter_map(|status| {
+            let ids: Vec<&str> = verdicts
+                .iter()
+                .filter(|v| v.status == status)
+                .map(|v| v.id.as_str())
+                .collect();
+            let accepted = verdicts.iter().filter(|v| v.status == status && !v.fails_run()).count();
+            let note = if accepted > 0 {
+                format!(" ({accepted} accepted)")
+            } else {
+                String::new()
+            };
+            (!ids.is_empty()).then(|| format!("{}: {}{note}", status.words(), ids.join(", ")))
+        })
+        .collect();
+    let named = if named.is_empty() {
+        String::new()
+    } else {
+        format!(" ({})", named.join("; "))
+    };
     say(format_args!(
-        "{} {path}: {passed} of {} requirements hold over {points} sweep point{} {tail}",
-        overall.name().to_uppercase(),
+        "{} {path}: {passed} of {} requirements hold over {points} sweep point{}{named} {tail}",
+        headline.words().to_uppercase(),
         verdicts.len(),
         if points == 1 { "" } else { "s" },
     ));
     for (requirement, verdict) in scenario.requirements.iter().zip(verdicts) {
         if verdict.status != Status::Pass {
+            let decisive = &verdict.decisive;
+            let label = scenario.points[decisive.point].label();
+            let at = if label.is_empty() {
+                String::new()
+            } else {
+                format!(" at [{label}]")
+            };
+            let shown = |v: Option<f64>| v.map_or_else(|| "none".to_string(), |v| format!("{v:?}"));
+            let accepted = verdict
+                .accepted
+                .as_ref()
+                .map_or(String::new(), |reason| format!(" (accepted: {reason})"));
             say(format_args!(
-                "  {} {}: {}",
-                verdict.status.name(),
+                "  {} {}{at}{accepted}: measured {} ({}), threshold {}, margin {}, n = {}: {}",
+                verdict.status.words(),
                 requirement.id,
-                verdict.decisive.message
+                shown(decisive.value),
+                decisive.measured,
+                shown(Some(verdict.threshold)),
+                shown(decisive.margin),
+                decisive.n.map_or_else(|| "unknown".to_string(), |n| n.to_string()),
+                decisive.message
             ));
         }
     }
-    if overall == Status::Pass {
-        Exit::Pass
-    } else {
+    if verdicts.iter().any(Verdict::fails_run) {
         Exit::Fail
+    } else {
+        Exit::Pass
     }
 }

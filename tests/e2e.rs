@@ -17,6 +17,10 @@ mod run;
 #[path = "e2e/invalid.rs"]
 mod invalid;
 
+// Not-exercised verdicts, sample sizes, and failures named in the summary, junit.xml and report.
+#[path = "e2e/verdicts.rs"]
+mod verdicts;
+
 // Same file and seed give byte-identical evidence whatever the thread count; `--seed`.
 #[path = "e2e/determinism.rs"]
 mod determinism;

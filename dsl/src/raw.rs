@@ -389,6 +389,13 @@ pub(crate) struct RawRequirement {
     /// (`fusion.label: Proposed`). Default: every point.
     #[serde(default, rename = "where")]
     pub filter: BTreeMap<String, serde_json::Value>,
+    /// Accept a not-exercised verdict (nothing to judge at a point: no object,
+    /// no sample, an uncovered window, fewer samples than `min_samples`) for
+    /// the reason given: the verdict stays `not_exercised` and the report
+    /// prints the reason, but it does not fail the run. Without it a
+    /// not-exercised requirement fails the run.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub accept_not_exercised: Option<String>,
 }
 
 /// A check: a `metric` with `at_least` or `at_most` (optionally over `seeds`), a
@@ -445,6 +452,15 @@ pub(crate) struct RawCheck {
     /// (`at_least` or `at_most`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub per_object: Option<ObjectProperty>,
+    /// The fewest samples a point needs for the check to judge it (≥ 1): the
+    /// metric's population (cells, steps, messages, anticipation times…), the
+    /// signal's defined steps in each run, the objects of a per-object check,
+    /// or the fused cells of an invariant. Below it the requirement is not
+    /// exercised at that point. Default 1; 6 for `anticipation_median` and 59
+    /// for `anticipation_p95` (the smallest samples whose extremes bound the
+    /// quantile with 95 % confidence).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub min_samples: Option<u64>,
 }
 
 /// A threshold at each step of a signal: `at_least` or `at_most`.

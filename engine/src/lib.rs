@@ -27,8 +27,8 @@
 
 pub use metrics::{BandMetrics, ConflictMetrics, Coverage, FieldMetrics, FieldOutcome, MassAudit};
 pub use run::{
-    AssembleError, Job, Outcome, Run, Unit, assemble, simulate, simulate_point, simulate_reporting, simulate_traced,
-    simulate_unit, units,
+    AssembleError, Job, Outcome, Run, Sample, Unit, assemble, simulate, simulate_point, simulate_reporting,
+    simulate_traced, simulate_unit, units,
 };
 pub use sink::{NoTrace, TraceSink};
 

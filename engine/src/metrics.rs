@@ -84,12 +84,18 @@ impl FieldMetrics {
         })
     }
 
-    /// Every defined metric in documentation order.
-    pub fn values(&self) -> Vec<(Metric, f64)> {
-        Metric::ALL
-            .iter()
-            .filter_map(|&m| self.value(m).map(|v| (m, v)))
-            .collect()
+    /// The number of cells `metric` is computed over ([`Metric::population`]),
+    /// or `None` where this run does not measure it.
+    pub fn sample_size(&self, metric: Metric) -> Option<u64> {
+        let observed = self.cells - self.unobserved;
+        match metric {
+            Metric::MeanUncertainty => Some(observed),
+            Metric::MeanConflict | Metric::MaxConflict | Metric::TotalConflictCells | Metric::WeightedCells => {
+                self.conflict.as_ref().map(|_| observed)
+            }
+            m if m.in_field() => Some(self.cells),
+            _ => None,
+        }
     }
 }
 

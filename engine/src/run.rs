@@ -53,6 +53,29 @@ impl Outcome {
             .collect()
     }
 
+    /// `metric`'s value and the number of samples it is computed over; `None`
+    /// where this kind of run does not measure it.
+    pub fn sample(&self, metric: Metric) -> Option<Sample> {
+        let n = match self {
+            Self::Field(o) => o.metrics.sample_size(metric),
+            Self::World(o) => o.metrics.sample_size(metric, o.audit.cells),
+            Self::Semantic(m) => m.sample_size(metric),
+        }?;
+        Some(Sample {
+            value: self.value(metric),
+            n,
+        })
+    }
+
+    /// [`Outcome::sample`] of every metric this kind of run measures, in
+    /// documentation order.
+    pub fn samples(&self) -> Vec<(Metric, Sample)> {
+        Metric::ALL
+            .iter()
+            .filter_map(|&m| self.sample(m).map(|s| (m, s)))
+            .collect()
+    }
+
     /// `signal` over each run of this point (one series for a world, one per
     /// pooled run for a semantic point); `None` where it is not measured.
     pub fn series(&self, signal: Signal) -> Option<Vec<Series>> {
@@ -84,6 +107,16 @@ impl Outcome {
             Self::Semantic(_) => None,
         }
     }
+}
+
+/// A metric as measured: its value (`None` where it is undefined, an empty
+/// population) and its sample size n, counted in [`Metric::population`] units.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Sample {
+    /// The value.
+    pub value: Option<f64>,
+    /// How many samples it is computed over.
+    pub n: u64,
 }
 
 /// The outcome of every sweep point of a scenario, in point order.

@@ -58,6 +58,9 @@ pub struct Score {
     pub status: Status,
     /// That requirement's margin (`None` when it could not be checked).
     pub margin: Option<f64>,
+    /// Whether the case fails a `sightline run`: a requirement fails, could
+    /// not be checked, or is not exercised without accepting it.
+    pub breaks: bool,
 }
 
 impl Score {
@@ -75,23 +78,20 @@ impl Score {
             requirement: worst.map(|v| v.id.clone()),
             status: worst.map_or(Status::Pass, |v| v.status),
             margin: worst.and_then(|v| v.decisive.margin),
+            breaks: verdicts.iter().any(Verdict::fails_run),
         }
     }
 
-    /// Whether the case breaks a requirement: one fails or could not be checked
-    /// (either makes `sightline run` exit 1).
-    pub fn breaks(&self) -> bool {
-        self.status != Status::Pass
-    }
-
-    /// The robustness the guided search minimises: the margin, −∞ when a
-    /// requirement could not be checked, +∞ without requirements.
+    /// The robustness the guided search minimises: the margin, −∞ when the
+    /// case breaks without one (a requirement could not be checked or is not
+    /// exercised), +∞ without requirements or with only an accepted
+    /// not-exercised verdict.
     fn robustness(&self) -> f64 {
-        match (self.status, self.margin, &self.requirement) {
+        match (self.status, self.margin, self.breaks) {
             (Status::Error, _, _) => f64::NEG_INFINITY,
             (_, Some(margin), _) => margin,
-            (_, None, Some(_)) => f64::NEG_INFINITY,
-            (_, None, None) => f64::INFINITY,
+            (_, None, true) => f64::NEG_INFINITY,
+            (_, None, false) => f64::INFINITY,
         }
     }
 }
@@ -188,7 +188,7 @@ pub fn falsify<E>(
         let mut first = None;
         for ((phase, indices), score) in round.into_iter().zip(scores) {
             let robustness = score.robustness();
-            if score.breaks() && first.is_none() {
+            if score.breaks && first.is_none() {
                 first = Some(cases.len());
             }
             cases.push(Case {
@@ -297,7 +297,7 @@ fn shrink<E>(
             break;
         };
         tried += 1;
-        let breaks = score.breaks();
+        let breaks = score.breaks;
         cases.push(Case {
             phase: Phase::Shrink,
             indices,
@@ -329,6 +329,7 @@ mod tests {
                         requirement: Some("R".into()),
                         status: if margin < 0.0 { Status::Fail } else { Status::Pass },
                         margin: Some(margin),
+                        breaks: margin < 0.0,
                     }
                 })
                 .collect())
@@ -352,7 +353,7 @@ mod tests {
             let outcome = falsify(&[1001, 3], &search(guided, 7), threshold(900)).unwrap();
             let found = &outcome.cases[outcome.counterexample.unwrap()];
             assert_eq!(found.indices, vec![900, 0]);
-            assert!(outcome.cases.iter().any(|c| c.indices[0] == 899 && !c.score.breaks()));
+            assert!(outcome.cases.iter().any(|c| c.indices[0] == 899 && !c.score.breaks));
         }
     }
 
@@ -410,6 +411,8 @@ mod tests {
             status,
             value: margin,
             margin,
+            n: Some(1),
+            measured: String::new(),
             message: String::new(),
             seeds: None,
             time: None,
@@ -418,6 +421,8 @@ mod tests {
             id: id.into(),
             status,
             threshold: 0.0,
+            min_samples: 1,
+            accepted: None,
             decisive: decisive.clone(),
             evaluations: vec![decisive],
         }
@@ -431,24 +436,35 @@ mod tests {
         let error = verdict("D", Status::Error, None);
         let score = Score::of(&[pass.clone(), close.clone()]);
         assert_eq!((score.requirement.as_deref(), score.margin), (Some("B"), Some(0.1)));
-        assert!(!score.breaks());
+        assert!(!score.breaks);
         let score = Score::of(&[pass.clone(), fail.clone(), close]);
         assert_eq!((score.requirement.as_deref(), score.status), (Some("C"), Status::Fail));
         let score = Score::of(&[pass, error, fail]);
         assert_eq!((score.requirement.as_deref(), score.status), (Some("D"), Status::Error));
         let none = Score::of(&[]);
-        assert!(!none.breaks());
+        assert!(!none.breaks);
         assert_eq!(none.robustness(), f64::INFINITY);
     }
 
     #[test]
     fn errors_rank_below_every_margin() {
-        let error = Score {
-            requirement: Some("R".into()),
-            status: Status::Error,
-            margin: None,
-        };
-        assert!(error.breaks());
+        let error = Score::of(&[verdict("R", Status::Error, None)]);
+        assert!(error.breaks);
         assert_eq!(error.robustness(), f64::NEG_INFINITY);
+    }
+
+    #[test]
+    fn a_not_exercised_requirement_breaks_unless_accepted() {
+        let idle = verdict("R", Status::NotExercised, None);
+        let score = Score::of(&[verdict("A", Status::Pass, Some(0.3)), idle.clone()]);
+        assert_eq!((score.requirement.as_deref(), score.breaks), (Some("R"), true));
+        assert_eq!(score.robustness(), f64::NEG_INFINITY);
+        let accepted = Verdict {
+            accepted: Some("no pedestrians in this variant".into()),
+            ..idle
+        };
+        let score = Score::of(&[accepted]);
+        assert!(!score.breaks);
+        assert_eq!(score.robustness(), f64::INFINITY);
     }
 }

@@ -4,16 +4,16 @@
 
 use sightline_dsl::{Metric, ObjectProperty, Signal};
 use sightline_engine::semantic::Series;
-use sightline_engine::{MassAudit, Run};
+use sightline_engine::{MassAudit, Run, Sample};
 
 /// The measurements of every sweep point of a run, as the oracles read them: a
 /// fresh [`Run`], or the values a recording carries (`sightline replay`). The
 /// oracles read nothing else, so the same measurements give the same verdicts.
 pub trait Measurements {
-    /// The value of `metric` at point `point` in replicate `replicate` (0: the
-    /// point's own run; 1, 2, …: the replicate seeds of checks over seeds);
-    /// `None` where it is not defined or not measured.
-    fn value(&self, point: usize, replicate: usize, metric: Metric) -> Option<f64>;
+    /// The value of `metric` and its sample size at point `point` in replicate
+    /// `replicate` (0: the point's own run; 1, 2, …: the replicate seeds of
+    /// checks over seeds); `None` where it is not measured.
+    fn sample(&self, point: usize, replicate: usize, metric: Metric) -> Option<Sample>;
 
     /// The mass-function audit of point `point`; `None` where nothing is fused.
     fn audit(&self, point: usize) -> Option<MassAudit>;
@@ -27,10 +27,10 @@ pub trait Measurements {
 }
 
 impl Measurements for Run {
-    fn value(&self, point: usize, replicate: usize, metric: Metric) -> Option<f64> {
+    fn sample(&self, point: usize, replicate: usize, metric: Metric) -> Option<Sample> {
         match replicate {
-            0 => self.points[point].value(metric),
-            r => self.replicates[point].get(r - 1)?.value(metric),
+            0 => self.points[point].sample(metric),
+            r => self.replicates[point].get(r - 1)?.sample(metric),
         }
     }
 

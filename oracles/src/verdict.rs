@@ -1,31 +1,46 @@
 //! Verdicts and how they are reached.
 
 use serde::Serialize;
-use sightline_dsl::{Check, OverSeeds, Requirement, Scenario, Statistic};
+use sightline_dsl::{Check, Experiment, OverSeeds, Requirement, Scenario, Statistic};
 
 use crate::Measurements;
 use crate::check::seeds::SeedStatistics;
 use crate::check::{invariant, metric, object, seeds, temporal};
 
-/// The outcome of a check.
+/// The outcome of a check, from best to worst.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Status {
     /// The requirement holds.
     Pass,
+    /// Nothing to judge: the population is empty (no object came close, no
+    /// sample, a window the run does not cover) or smaller than the check's
+    /// minimum sample size. Neither a pass nor a failure; it fails the run
+    /// unless the requirement accepts it with a reason.
+    NotExercised,
     /// The requirement is violated.
     Fail,
-    /// The requirement could not be checked (a metric undefined at a point).
+    /// The requirement could not be checked: the measurements are inconsistent
+    /// with the scenario (a metric missing from a recording, say).
     Error,
 }
 
 impl Status {
-    /// `pass`, `fail` or `error`, as written in results.json.
+    /// `pass`, `not_exercised`, `fail` or `error`, as written in results.json.
     pub fn name(self) -> &'static str {
         match self {
             Self::Pass => "pass",
+            Self::NotExercised => "not_exercised",
             Self::Fail => "fail",
             Self::Error => "error",
+        }
+    }
+
+    /// The status in words: `pass`, `not exercised`, `fail`, `error`.
+    pub fn words(self) -> &'static str {
+        match self {
+            Self::NotExercised => "not exercised",
+            other => other.name(),
         }
     }
 }
@@ -37,16 +52,72 @@ pub struct Evaluation {
     pub point: usize,
     /// The outcome.
     pub status: Status,
-    /// The measured value (`None` when it could not be measured).
+    /// The measured value (`None` when there is nothing to measure).
     pub value: Option<f64>,
-    /// Signed margin: ≥ 0 holds, < 0 fails (`None` on error).
+    /// Signed margin: ≥ 0 holds, < 0 fails (`None` unless judged).
     pub margin: Option<f64>,
+    /// The sample size behind `value`, in the units `measured` names (`None`
+    /// when not even that is known).
+    pub n: Option<u64>,
+    /// What `value` holds, with its n: `value over n = 512 truly occupied
+    /// cell-steps`, `median of n = 12 anticipation times`, `lower 95 % bound of
+    /// the mean over 30 seeds`.
+    pub measured: String,
     /// The check in words, with the numbers.
     pub message: String,
     /// For a check over seeds: what the seeds measured and the bound compared.
     pub seeds: Option<SeedStatistics>,
     /// For a temporal check: the time of the decisive step, seconds.
     pub time: Option<f64>,
+}
+
+impl Evaluation {
+    /// A judged value: pass or fail by the sign of `margin`.
+    pub(crate) fn judged(value: f64, margin: f64, n: u64, measured: String, message: String) -> Self {
+        Self {
+            status: if margin >= 0.0 { Status::Pass } else { Status::Fail },
+            value: Some(value),
+            margin: Some(margin),
+            n: Some(n),
+            ..Self::unjudged(Status::Pass, measured, message)
+        }
+    }
+
+    /// Not exercised: `n` samples where the check needs more.
+    pub(crate) fn not_exercised(n: u64, measured: String, message: String) -> Self {
+        Self {
+            n: Some(n),
+            ..Self::unjudged(Status::NotExercised, measured, message)
+        }
+    }
+
+    /// A failure with no value to show: some of the `n` samples cannot meet
+    /// the requirement at all (an object never flagged, a NaN mass).
+    pub(crate) fn failed(n: u64, measured: String, message: String) -> Self {
+        Self {
+            n: Some(n),
+            ..Self::unjudged(Status::Fail, measured, message)
+        }
+    }
+
+    /// An error: the measurements cannot be judged.
+    pub(crate) fn error(message: String) -> Self {
+        Self::unjudged(Status::Error, "nothing".into(), message)
+    }
+
+    fn unjudged(status: Status, measured: String, message: String) -> Self {
+        Self {
+            point: 0,
+            status,
+            value: None,
+            margin: None,
+            n: None,
+            measured,
+            message,
+            seeds: None,
+            time: None,
+        }
+    }
 }
 
 /// A requirement checked at every point it applies to.
@@ -58,10 +129,27 @@ pub struct Verdict {
     pub status: Status,
     /// The threshold (for invariants: the tolerance).
     pub threshold: f64,
-    /// The evaluation with the smallest margin (errors first): the value that decides.
+    /// The fewest samples a point needs to be judged.
+    pub min_samples: u64,
+    /// Why a not-exercised verdict is acceptable, when the scenario says so.
+    pub accepted: Option<String>,
+    /// The evaluation with the worst status and, among those, the smallest
+    /// margin: the value that decides.
     pub decisive: Evaluation,
     /// One evaluation per point, in point order.
     pub evaluations: Vec<Evaluation>,
+}
+
+impl Verdict {
+    /// Whether the verdict fails the run: a failure, an error, or a
+    /// not-exercised verdict the requirement does not accept.
+    pub fn fails_run(&self) -> bool {
+        match self.status {
+            Status::Pass => false,
+            Status::NotExercised => self.accepted.is_none(),
+            Status::Fail | Status::Error => true,
+        }
+    }
 }
 
 /// Checks every requirement of `scenario` against the measurements of a run
@@ -70,34 +158,31 @@ pub fn check(scenario: &Scenario, measurements: &(impl Measurements + ?Sized)) -
     scenario
         .requirements
         .iter()
-        .map(|requirement| verdict(requirement, measurements))
+        .map(|requirement| verdict(scenario, requirement, measurements))
         .collect()
 }
 
-fn verdict(requirement: &Requirement, measurements: &(impl Measurements + ?Sized)) -> Verdict {
+fn verdict(scenario: &Scenario, requirement: &Requirement, measurements: &(impl Measurements + ?Sized)) -> Verdict {
+    let min = requirement.min_samples;
     let evaluations: Vec<Evaluation> = requirement
         .points
         .iter()
         .map(|&point| {
-            let mut time = None;
-            let (status, value, margin, message, seeds) = match requirement.check {
+            let evaluation = match requirement.check {
                 Check::Metric {
                     metric: m,
                     bound,
                     over_seeds: None,
-                } => {
-                    let (status, value, margin, message) = metric::evaluate(m, bound, measurements.value(point, 0, m));
-                    (status, value, margin, message, None)
-                }
+                } => metric::evaluate(m, bound, measurements.sample(point, 0, m), min),
                 Check::Metric {
                     metric: m,
                     bound,
                     over_seeds: Some(over),
                 } => {
-                    let values: Vec<Option<f64>> = (0..over.seeds as usize)
-                        .map(|r| measurements.value(point, r, m))
+                    let samples: Vec<_> = (0..over.seeds as usize)
+                        .map(|r| measurements.sample(point, r, m))
                         .collect();
-                    seeds::evaluate(m, bound, over, &values)
+                    seeds::evaluate(m, bound, over, &samples, min)
                 }
                 Check::Temporal {
                     signal,
@@ -106,33 +191,23 @@ fn verdict(requirement: &Requirement, measurements: &(impl Measurements + ?Sized
                     within,
                 } => {
                     let runs = measurements.series(point, signal).unwrap_or_default();
-                    let found = temporal::evaluate(signal, operator, bound, within, &runs);
-                    time = found.time;
-                    (found.status, found.value, found.margin, found.message, None)
+                    let window = temporal::Window {
+                        within,
+                        covered: last_step_time(scenario, point),
+                        min_steps: min,
+                    };
+                    temporal::evaluate(signal, operator, bound, window, &runs)
                 }
                 Check::PerObject { property, bound } => {
                     let values = measurements.per_object(point, property).unwrap_or_default();
-                    let (status, value, margin, message) = object::evaluate(property, bound, &values);
-                    (status, value, margin, message, None)
+                    object::evaluate(property, bound, &values, min)
                 }
                 Check::Invariant {
                     invariant: i,
                     tolerance,
-                } => {
-                    let (status, value, margin, message) =
-                        invariant::evaluate(i, tolerance, measurements.audit(point).as_ref());
-                    (status, value, margin, message, None)
-                }
+                } => invariant::evaluate(i, tolerance, measurements.audit(point).as_ref(), min),
             };
-            Evaluation {
-                point,
-                status,
-                value,
-                margin,
-                message,
-                seeds,
-                time,
-            }
+            Evaluation { point, ..evaluation }
         })
         .collect();
     let decisive = evaluations
@@ -164,7 +239,18 @@ fn verdict(requirement: &Requirement, measurements: &(impl Measurements + ?Sized
         id: requirement.id.clone(),
         status: decisive.status,
         threshold,
+        min_samples: min,
+        accepted: requirement.accept_not_exercised.clone(),
         decisive,
         evaluations,
+    }
+}
+
+/// The time of the last step a world point simulates, seconds (`None` for the
+/// field experiment, which has no time).
+fn last_step_time(scenario: &Scenario, point: usize) -> Option<f64> {
+    match &scenario.points[point].setup.experiment {
+        Experiment::World(world) => Some(world.steps.saturating_sub(1) as f64 * world.step),
+        Experiment::Field(_) => None,
     }
 }

@@ -588,6 +588,7 @@ mod tests {
                     None => Status::Error,
                 },
                 margin,
+                breaks: margin.is_none_or(|m| m < 0.0),
             },
         };
         assert_eq!(margin_chart(&[case(Phase::Random, None)], None).unwrap(), None);

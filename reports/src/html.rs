@@ -5,6 +5,7 @@
 use serde::Serialize;
 
 use sightline_dsl::{RateBound, Statistic, display_value};
+use sightline_oracles::Status;
 
 use sightline_engine::semantic::{DELIVERY_BIN, DENSITY_BIN, DensityRow, SemanticMetrics, quantile};
 
@@ -53,7 +54,12 @@ struct View<'a> {
     name: &'a str,
     description: &'a str,
     verdict: &'static str,
+    /// `pass` or `fail`: what `sightline run` exits with.
+    gate: &'static str,
     summary: Summary,
+    /// Every requirement that fails the run, and every accepted not-exercised
+    /// one, at its deciding point.
+    findings: Vec<Finding>,
     provenance: Vec<(&'static str, String)>,
     /// The operational scenario as declared, for the argument's context.
     context: Vec<String>,
@@ -61,6 +67,29 @@ struct View<'a> {
     sweeps: Vec<SweepView>,
     comparisons: Vec<ComparisonView>,
     points: Vec<PointView>,
+}
+
+/// A requirement that did not pass, as the banner names it.
+#[derive(Serialize)]
+struct Finding {
+    id: String,
+    anchor: String,
+    verdict: &'static str,
+    /// The verdict in words (`not exercised`).
+    words: &'static str,
+    /// Whether it fails the run (not an accepted not-exercised verdict).
+    fails_run: bool,
+    /// The reason a not-exercised verdict is accepted.
+    accepted: Option<String>,
+    /// The deciding point's label (empty without a sweep).
+    label: String,
+    measured: String,
+    /// What the measured value holds, with its n.
+    what: String,
+    threshold: String,
+    margin: String,
+    n: String,
+    message: String,
 }
 
 #[derive(Serialize)]
@@ -71,9 +100,13 @@ struct RequirementView {
     line: usize,
     check: String,
     measured: String,
+    /// What `measured` holds, with its n.
+    what: String,
     threshold: String,
     margin: String,
     verdict: &'static str,
+    words: &'static str,
+    accepted: Option<String>,
     message: String,
     points: Vec<EvaluationView>,
 }
@@ -82,7 +115,9 @@ struct RequirementView {
 struct EvaluationView {
     label: String,
     verdict: &'static str,
+    words: &'static str,
     measured: String,
+    what: String,
     margin: String,
     message: String,
 }
@@ -129,7 +164,14 @@ impl<'a> View<'a> {
             name: &results.scenario.name,
             description: &results.scenario.description,
             verdict: results.verdict.name(),
+            gate: results.gate.name(),
             summary: results.summary,
+            findings: results
+                .requirements
+                .iter()
+                .filter(|r| r.verdict != Status::Pass)
+                .map(finding)
+                .collect(),
             provenance: provenance(results, reproduce),
             context: context(results),
             requirements: results.requirements.iter().map(requirement_view).collect(),
@@ -232,6 +274,34 @@ fn provenance(results: &Results, reproduce: &str) -> Vec<(&'static str, String)>
     rows
 }
 
+fn finding(r: &RequirementResult) -> Finding {
+    let decisive = r.points.iter().find(|p| p.point == r.point);
+    Finding {
+        id: r.id.clone(),
+        anchor: format!("req-{}", r.id),
+        verdict: r.verdict.name(),
+        words: r.verdict.words(),
+        fails_run: r.fails_run,
+        accepted: r.accept_not_exercised.clone(),
+        label: decisive.map(|p| p.label.clone()).unwrap_or_default(),
+        measured: or_dash(r.value),
+        what: r.measured.clone(),
+        threshold: format!("{} {}", relation_sign(r.check.relation), number(r.threshold)),
+        margin: or_dash(r.margin),
+        n: r.n.map_or_else(|| "—".into(), |n| number(n as f64)),
+        message: r.message.clone(),
+    }
+}
+
+/// `≥`, `≤` or `tolerance`, for a check's relation.
+fn relation_sign(relation: &str) -> &str {
+    match relation {
+        "at_least" => "≥",
+        "at_most" => "≤",
+        other => other,
+    }
+}
+
 fn requirement_view(r: &RequirementResult) -> RequirementView {
     RequirementView {
         id: r.id.clone(),
@@ -240,9 +310,12 @@ fn requirement_view(r: &RequirementResult) -> RequirementView {
         line: r.line,
         check: describe_check(&r.check),
         measured: or_dash(r.value),
+        what: r.measured.clone(),
         threshold: number(r.threshold),
         margin: or_dash(r.margin),
         verdict: r.verdict.name(),
+        words: r.verdict.words(),
+        accepted: r.accept_not_exercised.clone(),
         message: r.message.clone(),
         points: r
             .points
@@ -254,7 +327,9 @@ fn requirement_view(r: &RequirementResult) -> RequirementView {
                     p.label.clone()
                 },
                 verdict: p.verdict.name(),
+                words: p.verdict.words(),
                 measured: or_dash(p.value),
+                what: p.measured.clone(),
                 margin: or_dash(p.margin),
                 message: p.message.clone(),
             })

@@ -15,7 +15,7 @@ use sightline_oracles::{SeedStatistics, Status, Verdict};
 use crate::execution::Execution;
 
 /// The format identifier written into every results.json.
-pub const FORMAT: &str = "sightline-results/1";
+pub const FORMAT: &str = "sightline-results/2";
 
 /// Where a run came from, supplied by the CLI.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -77,6 +77,10 @@ pub struct Results {
     pub seed: Option<u64>,
     /// The overall verdict: the worst requirement verdict (pass with no requirements).
     pub verdict: Status,
+    /// What a CI gate should do: `pass` when every requirement passes or is
+    /// not exercised with an accepted reason (`sightline run` exits 0),
+    /// `fail` otherwise (it exits 1).
+    pub gate: Status,
     /// Requirement counts.
     pub summary: Summary,
     /// One entry per requirement, in file order.
@@ -125,6 +129,10 @@ pub struct Summary {
     pub passed: usize,
     /// Failed.
     pub failed: usize,
+    /// Not exercised (nothing to judge), accepted or not.
+    pub not_exercised: usize,
+    /// Of those, not exercised with an accepted reason.
+    pub accepted: usize,
     /// Could not be checked.
     pub errors: usize,
 }
@@ -142,8 +150,22 @@ pub struct RequirementResult {
     pub check: CheckInfo,
     /// The verdict.
     pub verdict: Status,
-    /// The deciding measured value (smallest margin).
+    /// Whether the verdict fails the run (a failure, an error, or not
+    /// exercised without an accepted reason).
+    pub fails_run: bool,
+    /// Why a not-exercised verdict is acceptable, as the scenario says.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub accept_not_exercised: Option<String>,
+    /// The fewest samples a point needs to be judged.
+    pub min_samples: u64,
+    /// The deciding point's index.
+    pub point: usize,
+    /// The deciding measured value (worst status, then smallest margin).
     pub value: Option<f64>,
+    /// The deciding value's sample size.
+    pub n: Option<u64>,
+    /// What the deciding value holds, with its n.
+    pub measured: String,
     /// The threshold (for invariants: the tolerance).
     pub threshold: f64,
     /// The deciding margin (≥ 0 holds).
@@ -184,6 +206,10 @@ pub struct PointVerdict {
     pub verdict: Status,
     /// The measured value.
     pub value: Option<f64>,
+    /// Its sample size.
+    pub n: Option<u64>,
+    /// What the value holds, with its n.
+    pub measured: String,
     /// The margin.
     pub margin: Option<f64>,
     /// The check in words.
@@ -200,19 +226,28 @@ pub struct PointVerdict {
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[serde(untagged)]
 pub enum MetricEntry {
-    /// The value of a scenario without sweep.
-    Number(f64),
+    /// The value of a scenario without sweep, with its n.
+    Measured(Measured),
     /// The values over each sweep, one table per sweep.
     Tables(Vec<Table>),
 }
 
-/// A metric over one sweep: one row per point, the axis values then the metric
-/// (`null` where it is undefined).
+/// A metric's value and its sample size.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Measured {
+    /// The value (`null` where it is undefined: an empty population).
+    pub value: Option<f64>,
+    /// The number of samples it is computed over.
+    pub n: u64,
+}
+
+/// A metric over one sweep: one row per point, the axis values, then the
+/// metric (`null` where it is undefined) and its n.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Table {
     /// Index of the sweep in `sweeps`.
     pub sweep: usize,
-    /// The axis paths, then `value`.
+    /// The axis paths, then `value` and `n`.
     pub columns: Vec<String>,
     /// One row per point.
     pub rows: Vec<Vec<serde_json::Value>>,
@@ -237,6 +272,8 @@ pub struct PointResult {
     pub fusion: String,
     /// Every defined metric.
     pub metrics: Ordered<f64>,
+    /// The sample size of every metric the point measures, defined or not.
+    pub samples: Ordered<u64>,
     /// The mass audit (absent where nothing is fused).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub audit: Option<MassAudit>,
@@ -360,10 +397,20 @@ impl Results {
             recording: provenance.recording.clone(),
             seed: seeds.iter().all(|&s| s == seeds[0]).then_some(seeds[0]),
             verdict: verdicts.iter().map(|v| v.status).max().unwrap_or(Status::Pass),
+            gate: if verdicts.iter().any(Verdict::fails_run) {
+                Status::Fail
+            } else {
+                Status::Pass
+            },
             summary: Summary {
                 requirements: verdicts.len(),
                 passed: count(Status::Pass),
                 failed: count(Status::Fail),
+                not_exercised: count(Status::NotExercised),
+                accepted: verdicts
+                    .iter()
+                    .filter(|v| v.status == Status::NotExercised && !v.fails_run())
+                    .count(),
                 errors: count(Status::Error),
             },
             requirements: scenario
@@ -404,7 +451,13 @@ fn requirement_result(requirement: &Requirement, verdict: &Verdict, labels: &[St
         line: requirement.location.line,
         check: check_info(&requirement.check),
         verdict: verdict.status,
+        fails_run: verdict.fails_run(),
+        accept_not_exercised: verdict.accepted.clone(),
+        min_samples: verdict.min_samples,
+        point: verdict.decisive.point,
         value: verdict.decisive.value,
+        n: verdict.decisive.n,
+        measured: verdict.decisive.measured.clone(),
         threshold: verdict.threshold,
         margin: verdict.decisive.margin,
         message: verdict.decisive.message.clone(),
@@ -416,6 +469,8 @@ fn requirement_result(requirement: &Requirement, verdict: &Verdict, labels: &[St
                 label: labels[e.point].clone(),
                 verdict: e.status,
                 value: e.value,
+                n: e.n,
+                measured: e.measured.clone(),
                 margin: e.margin,
                 message: e.message.clone(),
                 seeds: e.seeds,
@@ -445,6 +500,13 @@ fn point_result((point, outcome): (&Point, &Outcome)) -> PointResult {
                 .values()
                 .into_iter()
                 .map(|(m, v)| (m.name().to_string(), v))
+                .collect(),
+        ),
+        samples: Ordered(
+            outcome
+                .samples()
+                .into_iter()
+                .map(|(m, s)| (m.name().to_string(), s.n))
                 .collect(),
         ),
         audit: outcome.audit().copied(),
@@ -528,18 +590,21 @@ fn relation(bound: Bound) -> &'static str {
 /// Top-level metrics: numbers without a sweep, one table per sweep with one.
 fn metrics(scenario: &Scenario, run: &Run) -> Ordered<MetricEntry> {
     if scenario.sweeps.is_empty() {
-        let values = run.points[0].values();
+        let samples = run.points[0].samples();
         return Ordered(
-            values
+            samples
                 .into_iter()
-                .map(|(m, v)| (m.name().to_string(), MetricEntry::Number(v)))
+                .map(|(m, s)| {
+                    let entry = MetricEntry::Measured(Measured { value: s.value, n: s.n });
+                    (m.name().to_string(), entry)
+                })
                 .collect(),
         );
     }
     Ordered(
         sightline_dsl::Metric::ALL
             .iter()
-            .filter(|&&m| run.points.iter().any(|o| o.value(m).is_some()))
+            .filter(|&&m| run.points.iter().any(|o| o.sample(m).is_some()))
             .map(|&m| {
                 let tables = scenario
                     .sweeps
@@ -548,17 +613,20 @@ fn metrics(scenario: &Scenario, run: &Run) -> Ordered<MetricEntry> {
                     .map(|(i, sweep)| {
                         let mut columns: Vec<String> = sweep.axes.iter().map(|a| a.path.clone()).collect();
                         columns.push("value".into());
+                        columns.push("n".into());
                         let rows = sweep
                             .points
                             .iter()
                             .map(|&p| {
                                 let mut row: Vec<serde_json::Value> =
                                     scenario.points[p].assignments.iter().map(|a| a.value.clone()).collect();
+                                let sample = run.points[p].sample(m);
                                 row.push(
-                                    run.points[p]
-                                        .value(m)
+                                    sample
+                                        .and_then(|s| s.value)
                                         .map_or(serde_json::Value::Null, serde_json::Value::from),
                                 );
+                                row.push(sample.map_or(serde_json::Value::Null, |s| s.n.into()));
                                 row
                             })
                             .collect();

@@ -52,10 +52,10 @@ fn a_recording_reads_back_to_the_runs_measurements_and_verdicts() {
     let measurements = recording.measurements(scenario.points.len()).unwrap();
     for point in 0..scenario.points.len() {
         for metric in Metric::ALL {
-            let (original, replayed) = (run.value(point, 0, metric), measurements.value(point, 0, metric));
+            let (original, replayed) = (run.sample(point, 0, metric), measurements.sample(point, 0, metric));
             assert_eq!(
-                original.map(f64::to_bits),
-                replayed.map(f64::to_bits),
+                original.map(|s| (s.value.map(f64::to_bits), s.n)),
+                replayed.map(|s| (s.value.map(f64::to_bits), s.n)),
                 "{} at point {point}",
                 metric.name()
             );
@@ -111,7 +111,7 @@ fn steps_that_do_not_add_up_to_the_outcome_are_refused() {
         .iter_mut()
         .find(|m| m.metric == Metric::OccupiedRecall)
         .expect("recall is recorded");
-    recall.value.0 += 1e-9;
+    recall.value.as_mut().expect("recall is defined").0 += 1e-9;
     let error = recording.measurements(scenario.points.len()).unwrap_err();
     assert!(error.to_string().contains("occupied_recall"), "{error}");
     assert!(

@@ -62,7 +62,7 @@ fn run(scenario: &str) -> serde_json::Value {
     let outcome = sightline(["run", scenario, "--out", arg(&dir)]);
     assert!(matches!(outcome.code, Some(0 | 1)), "{outcome}");
     let results = read_json(&dir.join("results.json"));
-    assert_eq!(outcome.code == Some(0), results["verdict"] == "pass", "{outcome}");
+    assert_eq!(outcome.code == Some(0), results["gate"] == "pass", "{outcome}");
     results
 }
 
@@ -84,23 +84,31 @@ fn assert_page_shows(page: &serde_json::Value, results: &serde_json::Value) {
     assert_eq!(page["verdict"], verdict, "{scenario}");
     let banner = page["banner"].as_str().unwrap();
     assert!(
-        banner.starts_with(&format!("{}:", verdict.to_uppercase())),
+        banner.starts_with(&format!("{}:", shown(verdict))),
         "{scenario}: banner {banner:?}"
     );
+    // The banner names every requirement that did not pass.
+    for r in results["requirements"].as_array().unwrap() {
+        let id = r["id"].as_str().unwrap();
+        assert_eq!(
+            banner.contains(id),
+            r["verdict"] != "pass",
+            "{scenario}: banner {banner:?} and {id}"
+        );
+    }
     assert_eq!(page["title"], format!("sightline report: {name}"), "{scenario}");
     assert_eq!(page["heading"], name, "{scenario}");
     let rows: Vec<[&str; 3]> = page["traceability"]
         .as_array()
         .unwrap()
         .iter()
-        .map(|row| [0, 1, 6].map(|column| row[column].as_str().unwrap()))
+        .map(|row| [0, 1, 6].map(|column| first_line(row[column].as_str().unwrap())))
         .collect();
-    // The verdict as shown: the style writes it in capitals.
     let verdicts: Vec<String> = results["requirements"]
         .as_array()
         .unwrap()
         .iter()
-        .map(|r| r["verdict"].as_str().unwrap().to_uppercase())
+        .map(|r| shown(r["verdict"].as_str().unwrap()))
         .collect();
     let expected: Vec<[&str; 3]> = results["requirements"]
         .as_array()
@@ -117,6 +125,17 @@ fn assert_page_shows(page: &serde_json::Value, results: &serde_json::Value) {
     ] {
         assert_eq!(page[what], none, "{scenario}: {what}");
     }
+}
+
+/// A verdict as the page shows it: in words, which the style writes in capitals.
+fn shown(verdict: &str) -> String {
+    verdict.replace('_', " ").to_uppercase()
+}
+
+/// The first line of a cell: a measured value or a verdict, without the note
+/// beneath it.
+fn first_line(text: &str) -> &str {
+    text.lines().next().unwrap_or_default()
 }
 
 /// Opens the report in the page directory of `scenario` and checks it against

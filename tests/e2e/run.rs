@@ -45,7 +45,7 @@ fn valid_scenario_passes_and_writes_three_evidence_files() {
     assert_evidence_files(&out);
 
     let results = read_json(&out.join("results.json"));
-    assert_eq!(results["format"], "sightline-results/1");
+    assert_eq!(results["format"], "sightline-results/2");
     assert_eq!(results["verdict"], "pass");
     assert_eq!(results["tool"]["name"], "sightline");
     assert_eq!(results["tool"]["version"], env!("CARGO_PKG_VERSION"));
@@ -91,8 +91,10 @@ fn valid_scenario_passes_and_writes_three_evidence_files() {
     assert_eq!(results["sweeps"].as_array().map(Vec::len), Some(1));
     let accuracy = &results["metrics"]["accuracy"][0];
     assert_eq!(accuracy["sweep"], 0);
-    assert_eq!(accuracy["columns"], serde_json::json!(["fusion", "value"]));
+    assert_eq!(accuracy["columns"], serde_json::json!(["fusion", "value", "n"]));
     assert_eq!(accuracy["rows"].as_array().map(Vec::len), Some(3));
+    // Each row ends in the metric's sample size: every cell of the 60 m × 60 m grid.
+    assert_eq!(accuracy["rows"][0][2], 3600);
     // The reference's `where` selects the Baseline point only.
     let references = results["references"].as_array().unwrap();
     assert_eq!(references.len(), 1);
@@ -172,7 +174,19 @@ fn failing_requirement_exits_1_and_junit_carries_value_and_threshold() {
         outcome.stdout.starts_with(&format!("FAIL {FAILING}: 1 of 2")),
         "{outcome}"
     );
-    assert!(outcome.stdout.contains("\n  fail NOISE-ACC-01: "), "{outcome}");
+    // The summary names the failing requirement, and its line gives the point,
+    // the measured value and what it is, the threshold, the margin and n.
+    assert!(
+        outcome.stdout.contains("sweep points (fail: NOISE-ACC-01) -> "),
+        "{outcome}"
+    );
+    assert!(
+        outcome.stdout.contains(
+            "\n  fail NOISE-ACC-01 at [field.masses.gamma=30]: measured 0.988125 (value over n = 1600 cells), \
+             threshold 0.995, margin -0.0068749999999999645, n = 1600: "
+        ),
+        "{outcome}"
+    );
     assert!(
         !outcome.stdout.contains("NOISE-MASS-01"),
         "a passing requirement is listed\n{outcome}"
@@ -255,15 +269,21 @@ fn failing_requirement_exits_1_and_junit_carries_value_and_threshold() {
         "the failure message {message:?} lacks the measured {measured} or the threshold {threshold}"
     );
     let description = description.as_ref().expect("the failure has a description");
+    assert!(
+        message.starts_with("fail NOISE-ACC-01 [field.masses.gamma=30]: measured "),
+        "{message:?}"
+    );
+    assert!(message.contains("n = 1600"), "{message:?}");
     let lines: Vec<&str> = description.lines().collect();
     assert!(
-        lines.contains(&format!("measured: {measured}").as_str()),
+        lines.contains(&format!("measured: {measured} (value over n = 1600 cells)").as_str()),
         "{description:?}"
     );
     assert!(
-        lines.contains(&format!("threshold: {threshold} (at_least)").as_str()),
+        lines.contains(&format!("threshold: at_least {threshold}").as_str()),
         "{description:?}"
     );
+    assert!(lines.contains(&"n: 1600"), "{description:?}");
     let requirement_property = case.properties.iter().find(|p| p.name.as_str() == "requirement");
     assert_eq!(requirement_property.map(|p| p.value.as_str()), Some("NOISE-ACC-01"));
 

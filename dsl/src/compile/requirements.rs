@@ -56,6 +56,20 @@ pub(super) fn requirements(
             );
         }
         let check = check(ctx, &requirement.check, &path.key("check"));
+        let min_samples = requirement.check.min_samples;
+        if min_samples == Some(0) {
+            ctx.error(
+                &path.key("check").key("min_samples"),
+                ErrorKind::Invalid("a check needs at least one sample: give 1 or more".into()),
+            );
+        }
+        let accepted = requirement.accept_not_exercised.as_deref().map(str::trim);
+        if accepted.is_some_and(str::is_empty) {
+            ctx.error(
+                &path.key("accept_not_exercised"),
+                ErrorKind::Invalid("give the reason a not-exercised verdict is acceptable".into()),
+            );
+        }
         let Some(points) = points else {
             continue;
         };
@@ -120,12 +134,18 @@ pub(super) fn requirements(
                 );
                 continue;
             }
+            let default_min = match check {
+                Check::Metric { metric, .. } => metric.default_min_samples(),
+                _ => 1,
+            };
             compiled.push(Requirement {
                 id: requirement.id.clone(),
                 text: requirement.text.clone(),
                 location: locate(ctx.tree, &path),
                 check,
                 points: selected,
+                min_samples: min_samples.unwrap_or(default_min).max(1),
+                accept_not_exercised: accepted.map(str::to_string),
             });
         }
     }

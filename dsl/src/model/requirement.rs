@@ -18,6 +18,12 @@ pub struct Requirement {
     pub check: Check,
     /// Indices of the points it is checked at (never empty).
     pub points: Vec<usize>,
+    /// The fewest samples (cells, steps, objects, times… as the check counts
+    /// them) a point needs for the requirement to be exercised there.
+    pub min_samples: u64,
+    /// Why a not-exercised verdict is acceptable, when the scenario says so:
+    /// the verdict stays `not_exercised`, and it does not fail the run.
+    pub accept_not_exercised: Option<String>,
 }
 
 /// How a requirement is checked.
@@ -404,6 +410,42 @@ impl Metric {
                 | Self::PacketDeliveryRatio
                 | Self::MissedCriticals
         )
+    }
+
+    /// What the metric's sample size n counts: the population it is computed
+    /// over. An empty population leaves a requirement on it not exercised.
+    pub fn population(self) -> &'static str {
+        match self {
+            Self::MeanUncertainty
+            | Self::MeanConflict
+            | Self::MaxConflict
+            | Self::TotalConflictCells
+            | Self::WeightedCells => "fused cells",
+            Self::FovGain => "cell-steps the ego observes",
+            Self::OccupiedRecall => "truly occupied cell-steps",
+            Self::OccupiedPrecision => "cell-steps decided occupied",
+            Self::BlindRecall => "truly occupied cell-steps the ego does not observe",
+            Self::AnticipationMedian | Self::AnticipationP95 => "anticipation times",
+            Self::InfrastructureContribution | Self::ChannelLoad | Self::BaselineChannelLoad => "steps with the ego",
+            Self::TransmittedShare | Self::LabelledShare => "object-cycles the RSUs perceive",
+            Self::PacketDeliveryRatio => "messages to the ego",
+            Self::MissedCriticals => "close approaches",
+            _ => "cells",
+        }
+    }
+
+    /// The fewest samples a requirement on the metric needs by default; below
+    /// it the requirement is not exercised. One for every metric but the
+    /// quantiles, which need the smallest sample whose order statistics give a
+    /// distribution-free two-sided 95 % confidence interval of the quantile
+    /// (the sample's minimum and maximum cover the q quantile with probability
+    /// 1 − qⁿ − (1 − q)ⁿ ≥ 0.95): 6 for the median, 59 for the 95th percentile.
+    pub fn default_min_samples(self) -> u64 {
+        match self {
+            Self::AnticipationMedian => 6,
+            Self::AnticipationP95 => 59,
+            _ => 1,
+        }
     }
 
     /// Whether the metric exists only for evidential (Dempster–Shafer) methods.

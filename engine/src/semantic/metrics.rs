@@ -201,6 +201,20 @@ impl SemanticMetrics {
         }
     }
 
+    /// The number of samples `metric` is computed over ([`Metric::population`]),
+    /// or `None` where a semantic world does not measure it.
+    pub fn sample_size(&self, metric: Metric) -> Option<u64> {
+        Some(match metric {
+            Metric::AnticipationMedian | Metric::AnticipationP95 => self.anticipation.len() as u64,
+            Metric::InfrastructureContribution => self.contribution.len() as u64,
+            Metric::TransmittedShare | Metric::LabelledShare => self.perceived,
+            Metric::ChannelLoad | Metric::BaselineChannelLoad => self.steps,
+            Metric::PacketDeliveryRatio => self.messages,
+            Metric::MissedCriticals => self.close_approaches,
+            _ => return None,
+        })
+    }
+
     /// The contribution by density bin, densest last, empty bins left out (all of
     /// them where the density is undefined).
     pub fn contribution_by_density(&self) -> Vec<DensityRow> {

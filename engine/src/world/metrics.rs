@@ -93,6 +93,23 @@ impl WorldMetrics {
             _ => None,
         }
     }
+
+    /// The number of cell-steps `metric` is computed over
+    /// ([`Metric::population`]), given the `fused` cell-steps of the run's
+    /// audit; `None` where a world does not measure it.
+    pub fn sample_size(&self, metric: Metric, fused: u64) -> Option<u64> {
+        match metric {
+            Metric::FovGain => Some(self.ego_observed),
+            Metric::OccupiedRecall => Some(self.occupied),
+            Metric::OccupiedPrecision => Some(self.detected.saturating_add(self.false_positives)),
+            Metric::BlindRecall => Some(self.blind_occupied),
+            Metric::MeanUncertainty => Some(fused),
+            Metric::MeanConflict | Metric::MaxConflict | Metric::TotalConflictCells | Metric::WeightedCells => {
+                self.conflict.as_ref().map(|_| fused)
+            }
+            _ => None,
+        }
+    }
 }
 
 /// The grids of one step.

@@ -4,58 +4,56 @@ use sightline_dsl::Invariant;
 use sightline_engine::MassAudit;
 
 use super::short;
-use crate::Status;
+use crate::Evaluation;
 
 /// Checks the mass-function invariant from the run's audit: no NaN or infinite
 /// mass, every mass in [−tol, 1 + tol], every cell's masses summing to 1 within
 /// tol. The value is the largest |Σ m − 1|; the margin is the smallest slack of
-/// the three conditions.
-pub(crate) fn evaluate(
-    invariant: Invariant,
-    tolerance: f64,
-    audit: Option<&MassAudit>,
-) -> (Status, Option<f64>, Option<f64>, String) {
+/// the three conditions. Fewer fused cells than `min_cells` (none, by default)
+/// is not exercised; a run without an audit is an error.
+pub(crate) fn evaluate(invariant: Invariant, tolerance: f64, audit: Option<&MassAudit>, min_cells: u64) -> Evaluation {
     let Some(audit) = audit else {
-        return (Status::Error, None, None, "this run fuses no cells".into());
+        return Evaluation::error("this run fuses no cells".into());
     };
     match invariant {
-        Invariant::MassFunction => mass_function(tolerance, audit),
+        Invariant::MassFunction => mass_function(tolerance, audit, min_cells),
     }
 }
 
-fn mass_function(tolerance: f64, audit: &MassAudit) -> (Status, Option<f64>, Option<f64>, String) {
+fn mass_function(tolerance: f64, audit: &MassAudit, min_cells: u64) -> Evaluation {
+    let n = audit.cells;
+    let measured = format!("largest |Σm − 1| over n = {n} fused cells");
+    if n < min_cells {
+        let message = format!("nothing to judge: {n} fused cells, fewer than the {min_cells} the check needs");
+        return Evaluation::not_exercised(n, measured, message);
+    }
     let (Some(min), Some(max)) = (audit.min_mass, audit.max_mass) else {
-        return (Status::Error, None, None, "no fused cell to check".into());
+        if audit.non_finite > 0 {
+            return Evaluation::failed(n, measured, format!("all {n} fused cells hold a NaN or infinite mass"));
+        }
+        return Evaluation::error(format!("the audit counts {n} fused cells but no mass"));
     };
     if audit.non_finite > 0 {
-        return (
-            Status::Fail,
-            None,
-            None,
-            format!(
-                "{} of {} fused cells hold a NaN or infinite mass",
-                audit.non_finite, audit.cells
-            ),
-        );
+        let message = format!("{} of {n} fused cells hold a NaN or infinite mass", audit.non_finite);
+        return Evaluation::failed(n, measured, message);
     }
     let margin = (tolerance - audit.max_sum_error)
         .min(min + tolerance)
         .min(1.0 + tolerance - max);
-    let status = if margin >= 0.0 { Status::Pass } else { Status::Fail };
     let message = format!(
-        "over {} fused cells: masses in [{}, {}], largest |Σm − 1| = {} (tolerance {})",
-        audit.cells,
+        "over {n} fused cells: masses in [{}, {}], largest |Σm − 1| = {} (tolerance {})",
         short(min),
         short(max),
         short(audit.max_sum_error),
         short(tolerance)
     );
-    (status, Some(audit.max_sum_error), Some(margin), message)
+    Evaluation::judged(audit.max_sum_error, margin, n, measured, message)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::Status;
 
     fn audit(min: f64, max: f64, sum_error: f64, non_finite: u64) -> MassAudit {
         MassAudit {
@@ -69,22 +67,21 @@ mod tests {
 
     #[test]
     fn holds_within_tolerance() {
-        let (status, value, margin, _) = mass_function(1e-9, &audit(0.0, 1.0, 2e-16, 0));
-        assert_eq!(status, Status::Pass);
-        assert_eq!(value, Some(2e-16));
-        assert!(margin.unwrap() > 0.0);
+        let e = mass_function(1e-9, &audit(0.0, 1.0, 2e-16, 0), 1);
+        assert_eq!((e.status, e.value, e.n), (Status::Pass, Some(2e-16), Some(10)));
+        assert!(e.margin.unwrap() > 0.0);
     }
 
     #[test]
     fn fails_on_sum_range_or_nan() {
-        assert_eq!(mass_function(1e-9, &audit(0.0, 1.0, 1e-6, 0)).0, Status::Fail);
-        assert_eq!(mass_function(1e-9, &audit(-1e-3, 1.0, 0.0, 0)).0, Status::Fail);
-        assert_eq!(mass_function(1e-9, &audit(0.0, 1.1, 0.0, 0)).0, Status::Fail);
-        assert_eq!(mass_function(1e-9, &audit(0.0, 1.0, 0.0, 1)).0, Status::Fail);
+        assert_eq!(mass_function(1e-9, &audit(0.0, 1.0, 1e-6, 0), 1).status, Status::Fail);
+        assert_eq!(mass_function(1e-9, &audit(-1e-3, 1.0, 0.0, 0), 1).status, Status::Fail);
+        assert_eq!(mass_function(1e-9, &audit(0.0, 1.1, 0.0, 0), 1).status, Status::Fail);
+        assert_eq!(mass_function(1e-9, &audit(0.0, 1.0, 0.0, 1), 1).status, Status::Fail);
     }
 
     #[test]
-    fn nothing_fused_is_an_error() {
+    fn nothing_fused_is_not_exercised() {
         let empty = MassAudit {
             cells: 0,
             non_finite: 0,
@@ -92,6 +89,7 @@ mod tests {
             max_mass: None,
             max_sum_error: 0.0,
         };
-        assert_eq!(mass_function(1e-9, &empty).0, Status::Error);
+        assert_eq!(mass_function(1e-9, &empty, 1).status, Status::NotExercised);
+        assert_eq!(evaluate(Invariant::MassFunction, 1e-9, None, 1).status, Status::Error);
     }
 }

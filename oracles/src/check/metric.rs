@@ -1,41 +1,59 @@
 //! Metric thresholds.
 
 use sightline_dsl::{Bound, Metric};
+use sightline_engine::Sample;
 
 use super::short;
-use crate::Status;
+use crate::Evaluation;
 
-/// Compares the `value` of `metric` with `bound`: passes when the margin is ≥ 0.
-/// `None` (or NaN) is an error: the metric is undefined at this point.
-pub(crate) fn evaluate(metric: Metric, bound: Bound, value: Option<f64>) -> (Status, Option<f64>, Option<f64>, String) {
+/// Compares `metric`'s value with `bound`: passes when the margin is ≥ 0. A
+/// sample smaller than `min_samples` (an empty population included) is not
+/// exercised; a metric the measurements lack, or one undefined over a
+/// non-empty population, is an error.
+pub(crate) fn evaluate(metric: Metric, bound: Bound, sample: Option<Sample>, min_samples: u64) -> Evaluation {
     let name = metric.name();
+    let Some(Sample { value, n }) = sample else {
+        return Evaluation::error(format!("{name} is not measured at this point"));
+    };
+    let measured = describe(metric, n);
+    if n < min_samples {
+        return Evaluation::not_exercised(n, measured, too_few(name, n, min_samples, metric.population()));
+    }
     let Some(value) = value.filter(|v| !v.is_nan()) else {
-        return (
-            Status::Error,
-            None,
-            None,
-            format!("{name} is not defined at this point (nothing to measure it on)"),
-        );
+        return Evaluation::error(format!("{name} is undefined over n = {n} {}", metric.population()));
     };
     let margin = bound.margin(value);
-    let (relation, holds) = match bound {
-        Bound::AtLeast(_) if margin >= 0.0 => ("≥", true),
-        Bound::AtLeast(_) => ("<", false),
-        Bound::AtMost(_) if margin >= 0.0 => ("≤", true),
-        Bound::AtMost(_) => (">", false),
+    let (relation, wanted) = match bound {
+        Bound::AtLeast(_) => (if margin >= 0.0 { "≥" } else { "<" }, "at least"),
+        Bound::AtMost(_) => (if margin >= 0.0 { "≤" } else { ">" }, "at most"),
     };
-    let wanted = match bound {
-        Bound::AtLeast(_) => "at least",
-        Bound::AtMost(_) => "at most",
-    };
-    let status = if holds { Status::Pass } else { Status::Fail };
     let message = format!(
-        "{name} = {} {relation} {threshold} (required {wanted} {threshold}; margin {})",
+        "{name} = {} {relation} {threshold} (required {wanted} {threshold}; margin {}; n = {n})",
         short(value),
         short(margin),
         threshold = short(bound.threshold())
     );
-    (status, Some(value), Some(margin), message)
+    Evaluation::judged(value, margin, n, measured, message)
+}
+
+/// What a metric's value is, with its n: `median of n = 12 anticipation times`.
+pub(crate) fn describe(metric: Metric, n: u64) -> String {
+    let what = match metric {
+        Metric::AnticipationMedian => "median",
+        Metric::AnticipationP95 => "95th percentile",
+        _ => "value",
+    };
+    let of = if what == "value" { "over" } else { "of" };
+    format!("{what} {of} n = {n} {}", metric.population())
+}
+
+/// The message of a check with too few samples.
+pub(crate) fn too_few(name: &str, n: u64, min_samples: u64, population: &str) -> String {
+    if n == 0 {
+        format!("nothing to judge: no {population} to measure {name} on")
+    } else {
+        format!("nothing to judge: {name} over n = {n} {population}, fewer than the {min_samples} the check needs")
+    }
 }
 
 #[cfg(test)]
@@ -43,6 +61,7 @@ mod tests {
     use sightline_engine::FieldMetrics;
 
     use super::*;
+    use crate::Status;
 
     fn metrics(false_alarms: u64) -> FieldMetrics {
         FieldMetrics {
@@ -58,40 +77,88 @@ mod tests {
         }
     }
 
+    fn sample(metrics: &FieldMetrics, metric: Metric) -> Option<Sample> {
+        Some(Sample {
+            value: metrics.value(metric),
+            n: metrics.sample_size(metric)?,
+        })
+    }
+
     #[test]
     fn at_most_passes_on_the_boundary_and_fails_beyond() {
-        let (status, value, margin, _) = evaluate(
-            Metric::FalseAlarms,
-            Bound::AtMost(3.0),
-            metrics(3).value(Metric::FalseAlarms),
+        let m = Metric::FalseAlarms;
+        let e = evaluate(m, Bound::AtMost(3.0), sample(&metrics(3), m), 1);
+        assert_eq!(
+            (e.status, e.value, e.margin, e.n),
+            (Status::Pass, Some(3.0), Some(0.0), Some(100))
         );
-        assert_eq!((status, value, margin), (Status::Pass, Some(3.0), Some(0.0)));
-        let (status, _, margin, message) = evaluate(
-            Metric::FalseAlarms,
-            Bound::AtMost(3.0),
-            metrics(4).value(Metric::FalseAlarms),
+        assert_eq!(e.measured, "value over n = 100 cells");
+        let e = evaluate(m, Bound::AtMost(3.0), sample(&metrics(4), m), 1);
+        assert_eq!((e.status, e.margin), (Status::Fail, Some(-1.0)));
+        assert_eq!(
+            e.message,
+            "false_alarms = 4 > 3 (required at most 3; margin -1; n = 100)"
         );
-        assert_eq!((status, margin), (Status::Fail, Some(-1.0)));
-        assert_eq!(message, "false_alarms = 4 > 3 (required at most 3; margin -1)");
     }
 
     #[test]
     fn at_least_compares_accuracy() {
-        let (status, value, _, _) = evaluate(
+        let e = evaluate(
             Metric::Accuracy,
             Bound::AtLeast(0.95),
-            metrics(1).value(Metric::Accuracy),
+            sample(&metrics(1), Metric::Accuracy),
+            1,
         );
-        assert_eq!((status, value), (Status::Fail, Some(0.9)));
+        assert_eq!((e.status, e.value), (Status::Fail, Some(0.9)));
     }
 
     #[test]
-    fn undefined_metric_is_an_error_not_a_pass() {
-        let (status, value, ..) = evaluate(
+    fn an_empty_population_is_not_exercised_not_a_pass() {
+        // The ratio is undefined over nothing; the check is not exercised.
+        let empty = Some(Sample { value: None, n: 0 });
+        let e = evaluate(Metric::OccupiedRecall, Bound::AtLeast(0.9), empty, 1);
+        assert_eq!(
+            (e.status, e.value, e.margin, e.n),
+            (Status::NotExercised, None, None, Some(0))
+        );
+        assert_eq!(
+            e.message,
+            "nothing to judge: no truly occupied cell-steps to measure occupied_recall on"
+        );
+        // A count over nothing is 0 and would pass `at_most 0`: still not exercised.
+        let none_close = Some(Sample { value: Some(0.0), n: 0 });
+        let e = evaluate(Metric::MissedCriticals, Bound::AtMost(0.0), none_close, 1);
+        assert_eq!(e.status, Status::NotExercised);
+    }
+
+    #[test]
+    fn a_quantile_of_too_few_samples_is_not_exercised() {
+        let three = Some(Sample { value: Some(1.2), n: 3 });
+        let m = Metric::AnticipationMedian;
+        let e = evaluate(m, Bound::AtLeast(1.0), three, m.default_min_samples());
+        assert_eq!((e.status, e.value, e.n), (Status::NotExercised, None, Some(3)));
+        assert_eq!(e.measured, "median of n = 3 anticipation times");
+        assert!(e.message.contains("fewer than the 6 the check needs"), "{}", e.message);
+        // The requirement may lower the minimum; then the value is judged.
+        assert_eq!(evaluate(m, Bound::AtLeast(1.0), three, 3).status, Status::Pass);
+    }
+
+    #[test]
+    fn unmeasured_or_undefined_over_samples_is_an_error() {
+        let e = evaluate(
             Metric::MeanConflict,
             Bound::AtMost(1.0),
-            metrics(0).value(Metric::MeanConflict),
+            sample(&metrics(0), Metric::MeanConflict),
+            1,
         );
-        assert_eq!((status, value), (Status::Error, None));
+        assert_eq!((e.status, e.value), (Status::Error, None));
+        let nan = Some(Sample {
+            value: Some(f64::NAN),
+            n: 10,
+        });
+        assert_eq!(
+            evaluate(Metric::Accuracy, Bound::AtLeast(0.5), nan, 1).status,
+            Status::Error
+        );
     }
 }

@@ -6,8 +6,10 @@ use serde::Serialize;
 use sightline_dsl::{Bound, Metric, OverSeeds, RateBound, Statistic};
 use statrs::distribution::{Beta, ContinuousCDF, Normal, StudentsT};
 
+use sightline_engine::Sample;
+
 use super::short;
-use crate::Status;
+use crate::Evaluation;
 
 /// What a check over seeds measured.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -24,27 +26,44 @@ pub struct SeedStatistics {
     pub bound: f64,
 }
 
-/// Checks `metric` against `bound` over the values of every seed (the point's
-/// own first). Returns (status, compared bound, margin, message, statistics);
-/// a seed where the metric is undefined makes it an error. The margin is the
-/// bound's: against the threshold for a mean, against `share` for a share.
+/// Checks `metric` against `bound` over the samples of every seed (the point's
+/// own first). The compared value is the bound; its margin is against the
+/// threshold for a mean, against `share` for a share, and its n is the number
+/// of seeds. A seed with fewer than `min_samples` samples leaves the check not
+/// exercised; a seed where the metric is missing or undefined over samples is
+/// an error.
 pub(crate) fn evaluate(
     metric: Metric,
     bound: Bound,
     over: OverSeeds,
-    values: &[Option<f64>],
-) -> (Status, Option<f64>, Option<f64>, String, Option<SeedStatistics>) {
+    samples: &[Option<Sample>],
+    min_samples: u64,
+) -> Evaluation {
     let name = metric.name();
-    let Some(values) = values
+    let seeds = samples.len();
+    let Some(samples) = samples.iter().copied().collect::<Option<Vec<Sample>>>() else {
+        return Evaluation::error(format!("{name} is not measured at one of the {seeds} seeds"));
+    };
+    let short_of = samples.iter().filter(|s| s.n < min_samples).count();
+    let fewest = samples.iter().map(|s| s.n).min().unwrap_or(0);
+    if short_of > 0 {
+        let message = format!(
+            "nothing to judge at {short_of} of {seeds} seeds: {name} over as few as n = {fewest} {}, fewer than the {min_samples} the check needs",
+            metric.population()
+        );
+        return Evaluation::not_exercised(fewest, format!("{name} at each of {seeds} seeds"), message);
+    }
+    let Some(values) = samples
         .iter()
-        .map(|v| v.filter(|v| !v.is_nan()))
+        .map(|s| s.value.filter(|v| !v.is_nan()))
         .collect::<Option<Vec<f64>>>()
     else {
-        let message = format!("{name} is not defined at one of the {} seeds", values.len());
-        return (Status::Error, None, None, message, None);
+        let message = format!("{name} is undefined at one of the {seeds} seeds");
+        return Evaluation::error(message);
     };
     let n = values.len() as u32;
-    let (statistics, threshold, margin, description) = match over.statistic {
+    let confidence = short(over.confidence * 100.0);
+    let (statistics, threshold, margin, description, measured) = match over.statistic {
         Statistic::Mean => {
             let upper = matches!(bound, Bound::AtMost(_));
             let (mean, limit) = mean_bound(&values, over.confidence, upper);
@@ -57,12 +76,18 @@ pub(crate) fn evaluate(
             };
             let side = if upper { "upper" } else { "lower" };
             let description = format!(
-                "mean {name} over {n} seeds = {}, its {side} {}% bound {}",
+                "mean {name} over {n} seeds = {}, its {side} {confidence}% bound {}",
                 short(mean),
-                short(over.confidence * 100.0),
                 short(limit)
             );
-            (statistics, bound.threshold(), bound.margin(limit), description)
+            let measured = format!("{side} {confidence} % Student-t bound of the mean over n = {n} seeds");
+            (
+                statistics,
+                bound.threshold(),
+                bound.margin(limit),
+                description,
+                measured,
+            )
         }
         Statistic::Share { share, method } => {
             let holding = values.iter().filter(|&&v| bound.margin(v) >= 0.0).count() as u32;
@@ -85,22 +110,30 @@ pub(crate) fn evaluate(
                 Bound::AtMost(t) => format!("{name} ≤ {}", short(t)),
             };
             let description = format!(
-                "{relation} at {holding} of {n} seeds, the share's lower {}% bound {} ({})",
-                short(over.confidence * 100.0),
+                "{relation} at {holding} of {n} seeds, the share's lower {confidence}% bound {} ({})",
                 short(limit),
                 statistics.method
             );
-            (statistics, share, limit - share, description)
+            let measured = format!(
+                "lower {confidence} % {} bound of the share of n = {n} seeds that hold",
+                match method {
+                    RateBound::ClopperPearson => "Clopper–Pearson",
+                    RateBound::Wilson => "Wilson",
+                }
+            );
+            (statistics, share, limit - share, description, measured)
         }
     };
-    let status = if margin >= 0.0 { Status::Pass } else { Status::Fail };
     let message = format!(
         "{description} {} {} (margin {})",
         if margin >= 0.0 { "clears" } else { "misses" },
         short(threshold),
         short(margin)
     );
-    (status, Some(statistics.bound), Some(margin), message, Some(statistics))
+    Evaluation {
+        seeds: Some(statistics),
+        ..Evaluation::judged(statistics.bound, margin, u64::from(n), measured, message)
+    }
 }
 
 /// The mean of `values` and its one-sided Student-t bound at `confidence`:
@@ -144,6 +177,7 @@ mod tests {
     use approx::assert_relative_eq;
 
     use super::*;
+    use crate::Status;
 
     #[test]
     fn clopper_pearson_with_every_seed_holding_is_alpha_to_the_one_over_n() {
@@ -191,65 +225,117 @@ mod tests {
         }
     }
 
+    /// Ten seeds measuring 1, 2, …, 10, each over 50 samples.
+    fn one_to_ten() -> Vec<Option<Sample>> {
+        (1..=10)
+            .map(|v| {
+                Some(Sample {
+                    value: Some(f64::from(v)),
+                    n: 50,
+                })
+            })
+            .collect()
+    }
+
     #[test]
     fn a_mean_above_the_threshold_can_still_fail_its_bound() {
-        let values: Vec<Option<f64>> = (1..=10).map(|v| Some(f64::from(v))).collect();
+        let values = one_to_ten();
         // Mean 5.5 ≥ 5, but the lower bound 3.745 is not.
-        let (status, value, margin, message, stats) = evaluate(
+        let e = evaluate(
             Metric::OccupiedRecall,
             Bound::AtLeast(5.0),
             over(Statistic::Mean),
             &values,
+            1,
         );
-        assert_eq!(status, Status::Fail);
-        assert_relative_eq!(value.unwrap(), 3.745, epsilon = 1e-3);
-        assert_relative_eq!(margin.unwrap(), 3.745 - 5.0, epsilon = 1e-3);
-        assert_eq!(stats.unwrap().estimate, 5.5);
+        assert_eq!((e.status, e.n), (Status::Fail, Some(10)));
+        assert_relative_eq!(e.value.unwrap(), 3.745, epsilon = 1e-3);
+        assert_relative_eq!(e.margin.unwrap(), 3.745 - 5.0, epsilon = 1e-3);
+        assert_eq!(e.seeds.unwrap().estimate, 5.5);
+        assert_eq!(e.measured, "lower 95 % Student-t bound of the mean over n = 10 seeds");
         assert!(
-            message.starts_with("mean occupied_recall over 10 seeds = 5.5"),
-            "{message}"
+            e.message.starts_with("mean occupied_recall over 10 seeds = 5.5"),
+            "{}",
+            e.message
         );
-        let (status, ..) = evaluate(
+        let e = evaluate(
             Metric::OccupiedRecall,
             Bound::AtLeast(3.7),
             over(Statistic::Mean),
             &values,
+            1,
         );
-        assert_eq!(status, Status::Pass);
+        assert_eq!(e.status, Status::Pass);
     }
 
     #[test]
     fn a_share_counts_the_seeds_that_hold() {
-        let values: Vec<Option<f64>> = (1..=10).map(|v| Some(f64::from(v))).collect();
+        let values = one_to_ten();
         let share = |share, method| Statistic::Share { share, method };
         // at_most 8 holds at 8 of 10 seeds; Wilson's lower 95 % bound is 0.5408.
-        let (status, value, margin, ..) = evaluate(
+        let e = evaluate(
             Metric::MissedCriticals,
             Bound::AtMost(8.0),
             over(share(0.5, RateBound::Wilson)),
             &values,
+            1,
         );
-        assert_eq!(status, Status::Pass);
-        assert_relative_eq!(value.unwrap(), 0.540792805687488, epsilon = 1e-6);
-        assert_relative_eq!(margin.unwrap(), 0.040792805687488, epsilon = 1e-6);
-        let (status, ..) = evaluate(
+        assert_eq!(e.status, Status::Pass);
+        assert_relative_eq!(e.value.unwrap(), 0.540792805687488, epsilon = 1e-6);
+        assert_relative_eq!(e.margin.unwrap(), 0.040792805687488, epsilon = 1e-6);
+        assert_eq!(
+            e.measured,
+            "lower 95 % Wilson bound of the share of n = 10 seeds that hold"
+        );
+        let e = evaluate(
             Metric::MissedCriticals,
             Bound::AtMost(8.0),
             over(share(0.6, RateBound::Wilson)),
             &values,
+            1,
         );
-        assert_eq!(status, Status::Fail);
+        assert_eq!(e.status, Status::Fail);
     }
 
     #[test]
-    fn an_undefined_seed_is_an_error() {
-        let values = [Some(1.0), None, Some(2.0)];
-        let (status, value, ..) = evaluate(
+    fn a_seed_with_too_few_samples_leaves_the_check_not_exercised() {
+        let mut values = one_to_ten();
+        values[3] = Some(Sample { value: None, n: 0 });
+        let e = evaluate(
+            Metric::OccupiedRecall,
+            Bound::AtLeast(0.0),
+            over(Statistic::Mean),
+            &values,
+            1,
+        );
+        assert_eq!((e.status, e.value, e.n), (Status::NotExercised, None, Some(0)));
+        assert!(
+            e.message.starts_with("nothing to judge at 1 of 10 seeds"),
+            "{}",
+            e.message
+        );
+    }
+
+    #[test]
+    fn an_unmeasured_or_undefined_seed_is_an_error() {
+        let mut values = one_to_ten();
+        values[1] = None;
+        let e = evaluate(
             Metric::AnticipationMedian,
             Bound::AtMost(3.0),
             over(Statistic::Mean),
             &values,
+            1,
         );
-        assert_eq!((status, value), (Status::Error, None));
+        assert_eq!((e.status, e.value), (Status::Error, None));
+        values[1] = Some(Sample { value: None, n: 50 });
+        let e = evaluate(
+            Metric::AnticipationMedian,
+            Bound::AtMost(3.0),
+            over(Statistic::Mean),
+            &values,
+            1,
+        );
+        assert_eq!(e.status, Status::Error);
     }
 }

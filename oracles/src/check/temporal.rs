@@ -12,67 +12,89 @@ use sightline_dsl::{Bound, Signal, Temporal};
 use sightline_engine::semantic::Series;
 
 use super::short;
-use crate::Status;
+use crate::Evaluation;
 
-/// What a temporal check found: status, the signal's value and the margin at the
-/// decisive step, that step's time, and a message.
-pub(crate) struct Found {
-    pub status: Status,
-    pub value: Option<f64>,
-    pub margin: Option<f64>,
-    pub time: Option<f64>,
-    pub message: String,
+/// The steps a temporal check counts.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Window {
+    /// Only the first this many seconds (`None`: the whole run).
+    pub within: Option<f64>,
+    /// The time of the run's last step, seconds: a window reaching past it is
+    /// not covered (`None`: unknown, taken as covered).
+    pub covered: Option<f64>,
+    /// The fewest defined steps each run needs in the window.
+    pub min_steps: u64,
 }
 
 /// Checks `operator` (signal `bound`) over every run of a point, counting the
-/// steps up to `within` seconds; each run must satisfy it, so the point's
-/// robustness is the smallest over runs. A run without a defined step in the
-/// window makes the check an error (an `always` over nothing would pass
-/// vacuously).
+/// steps in `window`; each run must satisfy it, so the point's robustness is
+/// the smallest over runs. A window the run does not cover, or a run with
+/// fewer defined steps in it than the window's minimum, leaves the check not
+/// exercised (an `always` over nothing would pass vacuously); no run at all is
+/// an error.
 pub(crate) fn evaluate(
     signal: Signal,
     operator: Temporal,
     bound: Bound,
-    within: Option<f64>,
+    window: Window,
     runs: &[Series],
-) -> Found {
+) -> Evaluation {
     let name = signal.name();
+    let in_window = |t: f64| window.within.is_none_or(|w| t <= w + 1e-9);
+    let steps: u64 = runs
+        .iter()
+        .map(|series| series.iter().filter(|(t, _)| in_window(*t)).count() as u64)
+        .sum();
+    let plural = if runs.len() == 1 { "" } else { "s" };
+    let measured = format!(
+        "{name} at the decisive step of n = {steps} defined steps ({} run{plural})",
+        runs.len()
+    );
+    let span = window
+        .within
+        .map_or(String::new(), |w| format!(" within {} s", short(w)));
+    if let (Some(within), Some(last)) = (window.within, window.covered)
+        && last + 1e-9 < within
+    {
+        let message = format!(
+            "nothing to judge: the window of {} s reaches past the run's last step at {} s",
+            short(within),
+            short(last)
+        );
+        return Evaluation::not_exercised(steps, measured, message);
+    }
     let mut worst: Option<(f64, f64, f64)> = None;
     for series in runs {
-        let window = series.iter().filter(|(t, _)| within.is_none_or(|w| *t <= w + 1e-9));
-        let margins = window.map(|&(t, v)| (bound.margin(v), t, v));
+        let defined = series.iter().filter(|(t, _)| in_window(*t));
+        let count = defined.clone().count() as u64;
+        if count < window.min_steps {
+            let message = if count == 0 {
+                format!(
+                    "nothing to judge: {name} is never defined{span} in one of the {} runs",
+                    runs.len()
+                )
+            } else {
+                format!(
+                    "nothing to judge: {name} is defined at {count} steps{span} in one of the {} runs, fewer than the {} the check needs",
+                    runs.len(),
+                    window.min_steps
+                )
+            };
+            return Evaluation::not_exercised(steps, measured, message);
+        }
+        let margins = defined.map(|&(t, v)| (bound.margin(v), t, v));
         let decisive = match operator {
             Temporal::Always => margins.min_by(|a, b| a.0.total_cmp(&b.0)),
             Temporal::Eventually => margins.max_by(|a, b| a.0.total_cmp(&b.0).then(b.1.total_cmp(&a.1))),
-        };
-        let Some(decisive) = decisive else {
-            let message = format!(
-                "{name} is never defined{} in one of the {} runs: nothing to check",
-                within.map_or(String::new(), |w| format!(" within {} s", short(w))),
-                runs.len()
-            );
-            return Found {
-                status: Status::Error,
-                value: None,
-                margin: None,
-                time: None,
-                message,
-            };
-        };
+        }
+        .expect("the run has a defined step in the window");
         if worst.is_none_or(|w| decisive.0 < w.0) {
             worst = Some(decisive);
         }
     }
     let Some((margin, time, value)) = worst else {
-        return Found {
-            status: Status::Error,
-            value: None,
-            margin: None,
-            time: None,
-            message: format!("{name} has no run to check"),
-        };
+        return Evaluation::error(format!("{name} is not measured at this point (no run to check)"));
     };
-    let holds = margin >= 0.0;
     let relation = match bound {
         Bound::AtLeast(t) => format!("≥ {}", short(t)),
         Bound::AtMost(t) => format!("≤ {}", short(t)),
@@ -81,29 +103,31 @@ pub(crate) fn evaluate(
         Temporal::Always => "always",
         Temporal::Eventually => "eventually",
     };
-    let window = within.map_or(String::new(), |w| format!(" within {} s", short(w)));
     let message = format!(
-        "{what} {name} {relation}{window}: {} (robustness {}; {name} = {} at {} s)",
-        if holds { "holds" } else { "fails" },
+        "{what} {name} {relation}{span}: {} (robustness {}; {name} = {} at {} s; n = {steps} steps)",
+        if margin >= 0.0 { "holds" } else { "fails" },
         short(margin),
         short(value),
         short(time)
     );
-    Found {
-        status: if holds { Status::Pass } else { Status::Fail },
-        value: Some(value),
-        margin: Some(margin),
+    Evaluation {
         time: Some(time),
-        message,
+        ..Evaluation::judged(value, margin, steps, measured, message)
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::Status;
 
-    fn check(operator: Temporal, bound: Bound, within: Option<f64>, runs: &[Series]) -> Found {
-        evaluate(Signal::BlindRecall, operator, bound, within, runs)
+    fn check(operator: Temporal, bound: Bound, within: Option<f64>, runs: &[Series]) -> Evaluation {
+        let window = Window {
+            within,
+            covered: Some(10.0),
+            min_steps: 1,
+        };
+        evaluate(Signal::BlindRecall, operator, bound, window, runs)
     }
 
     const SIGNAL: [(f64, f64); 5] = [(0.0, 0.9), (0.1, 0.7), (0.2, 0.95), (0.3, 0.6), (0.4, 0.85)];
@@ -111,7 +135,7 @@ mod tests {
     #[test]
     fn always_takes_the_smallest_margin_and_its_time() {
         let found = check(Temporal::Always, Bound::AtLeast(0.5), None, &[SIGNAL.to_vec()]);
-        assert_eq!(found.status, Status::Pass);
+        assert_eq!((found.status, found.n), (Status::Pass, Some(5)));
         assert!((found.margin.unwrap() - 0.1).abs() < 1e-12);
         assert_eq!((found.value, found.time), (Some(0.6), Some(0.3)));
         let found = check(Temporal::Always, Bound::AtLeast(0.65), None, &[SIGNAL.to_vec()]);
@@ -123,7 +147,7 @@ mod tests {
     fn within_cuts_the_window_on_its_boundary() {
         // Up to 0.2 s: 0.9, 0.7, 0.95; the 0.6 at 0.3 s is outside.
         let found = check(Temporal::Always, Bound::AtLeast(0.65), Some(0.2), &[SIGNAL.to_vec()]);
-        assert_eq!((found.status, found.time), (Status::Pass, Some(0.1)));
+        assert_eq!((found.status, found.time, found.n), (Status::Pass, Some(0.1), Some(3)));
     }
 
     #[test]
@@ -143,19 +167,57 @@ mod tests {
         let good = vec![(0.0, 0.9), (0.1, 0.8)];
         let bad = vec![(0.0, 0.9), (0.1, 0.4)];
         let found = check(Temporal::Always, Bound::AtLeast(0.5), None, &[good, bad]);
-        assert_eq!((found.status, found.value), (Status::Fail, Some(0.4)));
+        assert_eq!((found.status, found.value, found.n), (Status::Fail, Some(0.4), Some(4)));
     }
 
     #[test]
-    fn an_empty_signal_is_an_error_not_a_vacuous_pass() {
+    fn an_empty_signal_is_not_exercised_not_a_vacuous_pass() {
         let found = check(Temporal::Always, Bound::AtLeast(0.5), None, &[Vec::new()]);
-        assert_eq!(found.status, Status::Error);
+        assert_eq!((found.status, found.n), (Status::NotExercised, Some(0)));
         let found = check(Temporal::Always, Bound::AtLeast(0.5), Some(0.05), &[vec![(0.1, 0.9)]]);
-        assert_eq!(found.status, Status::Error);
+        assert_eq!(found.status, Status::NotExercised);
         assert!(
             found.message.contains("never defined within 0.05 s"),
             "{}",
             found.message
         );
+        assert_eq!(
+            check(Temporal::Always, Bound::AtLeast(0.5), None, &[]).status,
+            Status::Error
+        );
+    }
+
+    #[test]
+    fn a_window_past_the_run_is_not_exercised() {
+        // The run's last step is at 10 s; a 12 s window is not covered, even
+        // though every defined step holds.
+        let found = check(Temporal::Always, Bound::AtLeast(0.5), Some(12.0), &[SIGNAL.to_vec()]);
+        assert_eq!(found.status, Status::NotExercised);
+        assert_eq!(
+            found.message,
+            "nothing to judge: the window of 12 s reaches past the run's last step at 10 s"
+        );
+        assert_eq!(
+            check(Temporal::Always, Bound::AtLeast(0.5), Some(10.0), &[SIGNAL.to_vec()]).status,
+            Status::Pass
+        );
+    }
+
+    #[test]
+    fn too_few_defined_steps_are_not_exercised() {
+        let window = Window {
+            within: None,
+            covered: None,
+            min_steps: 6,
+        };
+        let found = evaluate(
+            Signal::BlindRecall,
+            Temporal::Always,
+            Bound::AtLeast(0.5),
+            window,
+            &[SIGNAL.to_vec()],
+        );
+        assert_eq!((found.status, found.n), (Status::NotExercised, Some(5)));
+        assert!(found.message.contains("defined at 5 steps"), "{}", found.message);
     }
 }

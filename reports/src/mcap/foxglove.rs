@@ -412,6 +412,7 @@ impl Grid {
 #[derive(Debug, Clone, Copy)]
 pub(crate) enum Level {
     Info,
+    Warning,
     Error,
 }
 
@@ -419,6 +420,7 @@ impl Serialize for Level {
     fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         serializer.serialize_u8(match self {
             Self::Info => 2,
+            Self::Warning => 3,
             Self::Error => 4,
         })
     }

@@ -11,9 +11,9 @@ use mcap::records::Record;
 use mcap::sans_io::{LinearReadEvent, LinearReader, LinearReaderOptions};
 use serde::de::DeserializeOwned;
 use sightline_dsl::{Metric, ObjectProperty, Signal};
-use sightline_engine::MassAudit;
 use sightline_engine::semantic::Series;
 use sightline_engine::world::{CellTally, WorldMetrics};
+use sightline_engine::{MassAudit, Sample};
 use sightline_oracles::Measurements;
 
 use super::topic;
@@ -209,16 +209,16 @@ pub struct RecordedRun {
 #[derive(Debug, Clone, PartialEq)]
 struct RecordedPoint {
     /// Per run: the point's own, then each replicate's metrics.
-    metrics: Vec<Vec<(Metric, f64)>>,
+    metrics: Vec<Vec<(Metric, Sample)>>,
     audit: Option<MassAudit>,
     series: Vec<(Signal, Vec<Series>)>,
     per_object: Vec<(ObjectProperty, Vec<Option<f64>>)>,
 }
 
 impl Measurements for RecordedRun {
-    fn value(&self, point: usize, replicate: usize, metric: Metric) -> Option<f64> {
+    fn sample(&self, point: usize, replicate: usize, metric: Metric) -> Option<Sample> {
         let metrics = self.points.get(point)?.metrics.get(replicate)?;
-        metrics.iter().find(|(m, _)| *m == metric).map(|&(_, v)| v)
+        metrics.iter().find(|(m, _)| *m == metric).map(|&(_, s)| s)
     }
 
     fn audit(&self, point: usize) -> Option<MassAudit> {
@@ -261,7 +261,18 @@ impl Recording {
                 .outcomes
                 .iter()
                 .map(|o| {
-                    let metrics = |values: &[MetricValue]| values.iter().map(|m| (m.metric, m.value.0)).collect();
+                    let metrics = |values: &[MetricValue]| {
+                        values
+                            .iter()
+                            .map(|m| {
+                                let sample = Sample {
+                                    value: m.value.map(|r| r.0),
+                                    n: m.n,
+                                };
+                                (m.metric, sample)
+                            })
+                            .collect()
+                    };
                     RecordedPoint {
                         metrics: std::iter::once(&o.metrics)
                             .chain(&o.replicates)
@@ -292,7 +303,7 @@ impl Recording {
         if let Some(steps) = &self.step_counts {
             let point = self.scenario.point;
             for metric in WORLD_STEP_METRICS {
-                let (summed, recorded) = (steps.value(metric), run.value(point, 0, metric));
+                let (summed, recorded) = (steps.value(metric), run.sample(point, 0, metric).and_then(|s| s.value));
                 if summed.map(f64::to_bits) != recorded.map(f64::to_bits) {
                     return Err(ReadError::Inconsistent(format!(
                         "the steps of point {point} give {} = {}, and its outcome holds {}",

@@ -15,7 +15,7 @@ use crate::Tool;
 
 /// The format of sightline's recordings, written in `/sightline/scenario`;
 /// replay reads this version only.
-pub const RECORDING_FORMAT: &str = "sightline-recording/1";
+pub const RECORDING_FORMAT: &str = "sightline-recording/2";
 
 /// A number that survives JSON exactly: finite values as JSON numbers (read back
 /// bit for bit), NaN and infinities as the strings `NaN`, `inf`, `-inf` (JSON has
@@ -125,7 +125,7 @@ pub struct OutcomeRecord {
     pub point: usize,
     /// Its sweep label.
     pub label: String,
-    /// Every metric defined at the point, in documentation order.
+    /// Every metric the point measures, in documentation order.
     pub metrics: Vec<MetricValue>,
     /// The mass-function audit of its fused cells (`null` where nothing is fused).
     pub audit: Option<AuditRecord>,
@@ -156,13 +156,16 @@ pub struct ObjectRecord {
     pub values: Vec<Option<Real>>,
 }
 
-/// One metric's value.
+/// One metric's value and sample size.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct MetricValue {
     /// The metric's name, as in scenario files.
     pub metric: Metric,
-    /// Its value.
-    pub value: Real,
+    /// Its value (`null` where it is undefined: an empty population).
+    pub value: Option<Real>,
+    /// The number of samples it is computed over (see the metric's population
+    /// in the language reference).
+    pub n: u64,
 }
 
 /// [`MassAudit`] on the wire.
@@ -213,8 +216,10 @@ pub struct VerdictRecord {
     pub id: String,
     /// Its text.
     pub text: String,
-    /// `pass`, `fail` or `error`.
+    /// `pass`, `not_exercised`, `fail` or `error`.
     pub verdict: String,
+    /// Why a not-exercised verdict is acceptable, when the scenario says so.
+    pub accepted: Option<String>,
     /// The deciding measured value.
     pub value: Option<Real>,
     /// The threshold (for invariants: the tolerance).
@@ -232,10 +237,14 @@ pub struct VerdictRecord {
 pub struct PointVerdictRecord {
     /// The point's index.
     pub point: usize,
-    /// `pass`, `fail` or `error`.
+    /// `pass`, `not_exercised`, `fail` or `error`.
     pub verdict: String,
     /// The measured value.
     pub value: Option<Real>,
+    /// Its sample size.
+    pub n: Option<u64>,
+    /// What the value holds.
+    pub measured: String,
     /// The signed margin.
     pub margin: Option<Real>,
     /// The check in words.

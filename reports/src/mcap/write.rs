@@ -278,11 +278,12 @@ impl<'s, W: Write + Seek> Recorder<'s, W> {
         let scenario = self.scenario;
         let metric_values = |outcome: &Outcome| -> Vec<MetricValue> {
             outcome
-                .values()
+                .samples()
                 .into_iter()
-                .map(|(metric, value)| MetricValue {
+                .map(|(metric, sample)| MetricValue {
                     metric,
-                    value: Real(value),
+                    value: sample.value.map(Real),
+                    n: sample.n,
                 })
                 .collect()
         };
@@ -333,14 +334,15 @@ impl<'s, W: Write + Seek> Recorder<'s, W> {
             self.publish(topic::VERDICTS, VERDICT, end, &verdict_record(requirement, verdict));
             let level = match verdict.status {
                 sightline_oracles::Status::Pass => Level::Info,
-                sightline_oracles::Status::Fail | sightline_oracles::Status::Error => Level::Error,
+                sightline_oracles::Status::NotExercised if !verdict.fails_run() => Level::Warning,
+                _ => Level::Error,
             };
             let log = Log::new(
                 Time::from_nanos(end),
                 level,
                 format!(
                     "{} {}: {}",
-                    verdict.status.name().to_uppercase(),
+                    verdict.status.words().to_uppercase(),
                     requirement.id,
                     verdict.decisive.message
                 ),
@@ -792,6 +794,7 @@ fn verdict_record(requirement: &sightline_dsl::Requirement, verdict: &Verdict) -
         id: requirement.id.clone(),
         text: requirement.text.clone(),
         verdict: verdict.status.name().into(),
+        accepted: verdict.accepted.clone(),
         value: verdict.decisive.value.map(Real),
         threshold: Real(verdict.threshold),
         margin: verdict.decisive.margin.map(Real),
@@ -803,6 +806,8 @@ fn verdict_record(requirement: &sightline_dsl::Requirement, verdict: &Verdict) -
                 point: e.point,
                 verdict: e.status.name().into(),
                 value: e.value.map(Real),
+                n: e.n,
+                measured: e.measured.clone(),
                 margin: e.margin.map(Real),
                 message: e.message.clone(),
             })

@@ -1,0 +1,174 @@
+//! Verdicts that cannot pass for the wrong reason (issue #13): a requirement
+//! with nothing to judge is not exercised, fails the run unless the scenario
+//! accepts it with a reason, and the summary, junit.xml and report.html name
+//! every requirement that did not pass with its point, value, threshold,
+//! margin and n.
+//! See: https://github.com/sightline/sightline/issues/13
+
+use quick_junit::{NonSuccessKind, TestCaseStatus};
+
+use crate::support::{FAILING, arg, read, read_json, read_junit, sightline, temp_dir, unescape_html};
+
+/// The bundled urban junction for one run, with d_min of 1 cm: no road user
+/// comes that close, and six anticipation times are measured.
+const IDLE: &str = "tests/fixtures/not-exercised/junction-idle.yaml";
+
+/// The requirement `id` of a results.json.
+fn requirement<'a>(results: &'a serde_json::Value, id: &str) -> &'a serde_json::Value {
+    results["requirements"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|r| r["id"] == id)
+        .unwrap_or_else(|| panic!("{id} in results.json"))
+}
+
+#[test]
+fn requirements_with_nothing_to_judge_are_not_exercised_and_fail_the_run() {
+    let tmp = temp_dir();
+    let out = tmp.path().join("evidence");
+    let outcome = sightline(["run", IDLE, "--out", arg(&out)]);
+    outcome.assert_exit(1);
+    assert!(
+        outcome.stdout.starts_with(&format!(
+            "NOT EXERCISED {IDLE}: 1 of 6 requirements hold over 1 sweep point \
+             (not exercised: IDLE-WARN, IDLE-MISS, IDLE-ANT-P95, IDLE-RSU-T, IDLE-MISS-ACCEPTED (1 accepted)) -> "
+        )),
+        "{outcome}"
+    );
+    for line in [
+        "  not exercised IDLE-WARN: measured none (smallest warning_time of n = 0 objects that came within d_min \
+         of the ego), threshold 1.5, margin none, n = 0: nothing to judge: no object came within d_min of the ego",
+        "  not exercised IDLE-ANT-P95: measured none (95th percentile of n = 6 anticipation times), threshold 10.0, \
+         margin none, n = 6: nothing to judge: anticipation_p95 over n = 6 anticipation times, fewer than the 59 \
+         the check needs",
+        "  not exercised IDLE-RSU-T: measured none (rsu_only_objects at the decisive step of n = 1200 defined steps \
+         (1 run)), threshold 1.0, margin none, n = 1200: nothing to judge: the window of 200 s reaches past the \
+         run's last step at 119.9 s",
+    ] {
+        assert!(outcome.stdout.contains(&format!("{line}\n")), "{line}\n{outcome}");
+    }
+
+    let results = read_json(&out.join("results.json"));
+    assert_eq!(
+        (&results["verdict"], &results["gate"]),
+        (&"not_exercised".into(), &"fail".into())
+    );
+    let summary = &results["summary"];
+    let counts = ["passed", "not_exercised", "accepted", "failed"].map(|key| summary[key].as_u64());
+    assert_eq!(counts, [Some(1), Some(5), Some(1), Some(0)]);
+    // A count over no close approach is 0 and would pass `at_most: 0`.
+    let miss = requirement(&results, "IDLE-MISS");
+    assert_eq!(
+        (&miss["verdict"], &miss["n"], &miss["value"], &miss["fails_run"]),
+        (
+            &"not_exercised".into(),
+            &0.into(),
+            &serde_json::Value::Null,
+            &true.into()
+        )
+    );
+    assert_eq!(results["sweep"][0]["metrics"]["missed_criticals"], 0.0);
+    assert_eq!(results["sweep"][0]["samples"]["missed_criticals"], 0);
+    // The median has the six samples it needs by default, and is judged.
+    let median = requirement(&results, "IDLE-ANT-MEDIAN");
+    assert_eq!(
+        (&median["verdict"], &median["n"], &median["min_samples"]),
+        (&"pass".into(), &6.into(), &6.into())
+    );
+    assert_eq!(median["measured"], "median of n = 6 anticipation times");
+    assert_eq!(requirement(&results, "IDLE-ANT-P95")["min_samples"], 59);
+    let accepted = requirement(&results, "IDLE-MISS-ACCEPTED");
+    assert_eq!(
+        (&accepted["verdict"], &accepted["fails_run"]),
+        (&"not_exercised".into(), &false.into())
+    );
+
+    // junit.xml: not exercised is a failure of its own type; accepted, a skip.
+    let junit = read_junit(&out.join("junit.xml"));
+    let suite = &junit.test_suites[0];
+    assert_eq!((suite.tests, suite.failures, suite.errors), (6, 4, 0));
+    for case in &suite.test_cases {
+        let verdict = case.properties.iter().find(|p| p.name.as_str() == "verdict").unwrap();
+        match (case.name.as_str(), &case.status) {
+            ("IDLE-ANT-MEDIAN", TestCaseStatus::Success { .. }) => {}
+            ("IDLE-MISS-ACCEPTED", TestCaseStatus::Skipped { message, .. }) => {
+                let message = message.as_ref().expect("the skip says why");
+                assert!(
+                    message.ends_with("(accepted: d_min is 1 cm in this fixture, so no close approach is expected.)")
+                );
+            }
+            (
+                name,
+                TestCaseStatus::NonSuccess {
+                    kind: NonSuccessKind::Failure,
+                    ty,
+                    message,
+                    ..
+                },
+            ) => {
+                assert_eq!(ty.as_ref().map(|t| t.as_str()), Some("not_exercised"), "{name}");
+                let message = message.as_ref().unwrap().as_str();
+                assert!(
+                    message.starts_with(&format!("not exercised {name}: measured none (")),
+                    "{message}"
+                );
+                assert!(message.contains("; n = "), "{message}");
+                assert_eq!(verdict.value.as_str(), "not_exercised");
+            }
+            (name, status) => panic!("{name}: {status:?}"),
+        }
+    }
+
+    // report.html: the banner names each, with what was measured and its n;
+    // the accepted one carries its reason.
+    let html = unescape_html(&read(&out.join("report.html")));
+    assert!(html.contains(r#"data-verdict="not_exercised" data-gate="fail""#));
+    assert!(html.contains("NOT EXERCISED:\n  1 of 6 requirements pass, 5 not exercised (1 accepted)."));
+    assert!(html.contains(
+        r##"<li data-requirement="IDLE-WARN" data-verdict="not_exercised"><a href="#req-IDLE-WARN">IDLE-WARN</a> not exercised: measured — (smallest warning_time of n = 0 objects that came within d_min of the ego), threshold ≥ 1.5000, margin —, n = 0.</li>"##
+    ));
+    assert!(html.contains("accepted: d_min is 1 cm in this fixture, so no close approach is expected."));
+}
+
+#[test]
+fn an_accepted_not_exercised_verdict_lets_the_run_pass() {
+    let tmp = temp_dir();
+    let scenario = tmp.path().join("accepted.yaml");
+    // Only the requirements that pass or are accepted.
+    let text = read(std::path::Path::new(IDLE));
+    let kept = text
+        .split("  - id: ")
+        .enumerate()
+        .filter(|(i, part)| *i == 0 || part.starts_with("IDLE-ANT-MEDIAN") || part.starts_with("IDLE-MISS-ACCEPTED"));
+    let text = kept.map(|(_, part)| part).collect::<Vec<_>>().join("  - id: ");
+    std::fs::write(&scenario, text.replace("../../../docs", "docs")).unwrap();
+    let out = tmp.path().join("evidence");
+    let outcome = sightline(["run", arg(&scenario), "--out", arg(&out)]);
+    outcome.assert_exit(0);
+    assert!(outcome.stdout.starts_with("PASS "), "{outcome}");
+    assert!(
+        outcome
+            .stdout
+            .contains("(not exercised: IDLE-MISS-ACCEPTED (1 accepted))"),
+        "{outcome}"
+    );
+    let results = read_json(&out.join("results.json"));
+    assert_eq!(
+        (&results["verdict"], &results["gate"]),
+        (&"not_exercised".into(), &"pass".into())
+    );
+}
+
+#[test]
+fn the_measured_column_says_what_it_holds() {
+    let tmp = temp_dir();
+    let out = tmp.path().join("evidence");
+    sightline(["run", FAILING, "--out", arg(&out)]).assert_exit(1);
+    let html = unescape_html(&read(&out.join("report.html")));
+    // The failing requirement in the banner, at its point, with its numbers.
+    assert!(html.contains(
+        r##"<a href="#req-NOISE-ACC-01">NOISE-ACC-01</a> fail at field.masses.gamma=30: measured 0.9881 (value over n = 1600 cells), threshold ≥ 0.9950, margin -0.0069, n = 1,600.</li>"##
+    ), "{html}");
+    assert!(html.contains(r#"<td class="num">0.9881<div class="what">value over n = 1600 cells</div></td>"#));
+}
