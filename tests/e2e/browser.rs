@@ -171,6 +171,18 @@ fn a_failing_report_shows_the_failure_in_a_browser() {
     assert_eq!(results["verdict"], "fail");
 }
 
+/// A run with nothing to judge says so: its banner reads NOT EXERCISED and
+/// names each such requirement (#13).
+#[test]
+fn a_not_exercised_report_names_each_requirement_in_a_browser() {
+    let Some(python) = python() else { return };
+    let results = run_and_open(&python, "tests/fixtures/not-exercised/junction-idle.yaml");
+    assert_eq!(
+        (&results["verdict"], &results["gate"]),
+        (&"not_exercised".into(), &"fail".into())
+    );
+}
+
 /// Markup in the scenario's text is shown as text: the title, heading and
 /// table hold it to the letter, and none of it ran (no script element, no
 /// event handler, no global set, the title unchanged).
