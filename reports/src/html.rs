@@ -4,7 +4,7 @@
 
 use serde::Serialize;
 
-use sightline_dsl::{RateBound, Statistic, display_value};
+use sightline_dsl::{Metric, RateBound, Statistic, display_value};
 use sightline_oracles::Status;
 
 use sightline_engine::semantic::{DELIVERY_BIN, DENSITY_BIN, DensityRow, SemanticMetrics, quantile};
@@ -183,7 +183,8 @@ impl<'a> View<'a> {
                 .zip(pictures)
                 .zip(charts)
                 .map(|((point, pictures), charts)| {
-                    let (summary, tables) = point_body(point);
+                    let (summary, mut tables) = point_body(point);
+                    tables.insert(0, samples_table(point));
                     PointView {
                         label: if point.label.is_empty() {
                             "the scenario".into()
@@ -443,6 +444,33 @@ const BAND_COLUMNS: [&str; 7] = [
 ];
 
 /// The summary line and the tables of a point's details.
+/// Every metric the point measures, with its sample size and what it counts.
+fn samples_table(p: &PointResult) -> TableView {
+    let rows = p
+        .samples
+        .0
+        .iter()
+        .map(|(name, n)| {
+            let population = Metric::ALL
+                .iter()
+                .find(|m| m.name() == name)
+                .map_or("", |m| m.population());
+            vec![
+                name.clone(),
+                population.to_string(),
+                or_dash(p.metrics.get(name)),
+                number(*n as f64),
+            ]
+        })
+        .collect();
+    TableView {
+        caption: "Every metric with its sample size n (— where the population is empty)".into(),
+        head: ["metric", "n counts", "value", "n"].map(String::from).to_vec(),
+        rows,
+        text_columns: 2,
+    }
+}
+
 fn point_body(p: &PointResult) -> (String, Vec<TableView>) {
     match &p.detail {
         Detail::Field { bands, coverage: c } => (
