@@ -27,7 +27,8 @@ pub enum Command {
     /// Combine the shard files of `run --shard K/N` into the evidence one
     /// unsharded run writes (results.json, junit.xml, report.html, run.mcap).
     /// Exit codes as `run`; 2 also when a shard is missing, repeated, damaged,
-    /// from another build, or its scenario file changed since.
+    /// given twice, of another campaign or build, or its scenario file changed
+    /// since; 3 when a measured value is outside its domain.
     Merge(MergeArgs),
     /// Re-check the requirements of a recording (run.mcap) from what it holds
     /// and print the verdicts as `run` does. Exit 0: all pass, 1: a requirement

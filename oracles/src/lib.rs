@@ -9,7 +9,9 @@
 //! the worst of those evaluations (an error outranks a failure, a failure a pass),
 //! and its reported value is the one with the smallest margin. The oracles read
 //! a run only through [`Measurements`], so `sightline replay` judges a
-//! recording's values with the same code.
+//! recording's values with the same code. [`out_of_domain`] finds the values
+//! that no run can give (a share above 1, a NaN), which `merge` and `replay`
+//! refuse before judging.
 //!
 //! [`falsify`] searches a scenario's `vary` space for a case that breaks a
 //! requirement and shrinks it; the caller compiles, simulates and checks each
@@ -17,11 +19,13 @@
 #![warn(missing_docs)]
 
 pub use check::seeds::{SeedStatistics, clopper_pearson_lower, mean_bound, wilson_lower};
+pub use domain::{OutOfDomain, Quantity, out_of_domain};
 pub use falsify::{Case, Outcome, Phase, Score, Search, falsify};
 pub use measurements::Measurements;
 pub use verdict::{Evaluation, Status, Verdict, check};
 
 mod check;
+mod domain;
 mod falsify;
 mod measurements;
 mod verdict;

@@ -25,7 +25,7 @@ pub use results::{
     CheckInfo, Detail, FORMAT, InputInfo, Measured, MetricEntry, Ordered, PointResult, PointVerdict, Provenance,
     RecordingInfo, ReferencePoint, ReferenceResult, RequirementResult, Results, ScenarioInfo, Summary, Table, Tool,
 };
-pub use shard::{SHARD_FORMAT, Shard, ShardError, ShardInput, read_shard, shard_bytes};
+pub use shard::{SHARD_FORMAT, Shard, ShardError, ShardInput, campaign_id, read_shard, shard_bytes};
 pub use template::{Loader, Location, Page, TemplateError, TemplateErrorKind, Templates};
 
 mod chart;

@@ -1,19 +1,23 @@
 //! `sightline merge PATH… [--out DIR]`: the evidence of a sharded campaign.
 //!
-//! Everything is checked before anything is written: every shard file reads,
-//! each scenario has shards 1 to N exactly once, from this build of sightline,
-//! with the same `--seed` and `--record`, and its input files are unchanged;
-//! the units then make up the run ([`sightline_engine::assemble`]). The
-//! recording, when the scenario asks for one, is made here: its point is
+//! Everything is checked before anything is written: every shard file is given
+//! once and its seal holds (read_shard checks the payload's SHA-256 before
+//! decoding it), each scenario has shards 1 to N exactly once, all of one
+//! campaign (the same campaign id, the one this build and the files make), from
+//! this build of sightline, and its input files are unchanged; the units then
+//! make up the run ([`sightline_engine::assemble`]), and every measured value
+//! lies in its domain ([`sightline_oracles::out_of_domain`]; outside, exit 3).
+//! The recording, when the scenario asks for one, is made here: its point is
 //! simulated again, and must give the outcome its shard gave.
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, HashMap};
 use std::path::{Path, PathBuf};
 use std::time::{Instant, SystemTime};
 
 use anyhow::bail;
-use sightline_engine::Run;
-use sightline_reports::{Execution, Page, Shard, read_shard};
+use sightline_engine::{Run, Unit};
+use sightline_oracles::Quantity;
+use sightline_reports::{Execution, Page, Shard, ShardInput, campaign_id, read_shard};
 
 use super::run::{Reporting, Request, evidence_dirs, recorded, tool, write_evidence};
 use super::shard::inputs_of;
@@ -27,8 +31,8 @@ struct Merged {
     input: Input,
     request: Request,
     run: Run,
-    /// How each of its shards ran.
-    shards: Vec<Execution>,
+    /// Its shards: each file, how it ran, and the units it held.
+    shards: Vec<(PathBuf, Execution, Vec<Unit>)>,
 }
 
 /// Reads and checks every shard and the template set, then writes each
@@ -36,9 +40,19 @@ struct Merged {
 pub fn merge(args: &MergeArgs) -> anyhow::Result<Exit> {
     let merged = collect(&args.paths)
         .and_then(assemble_all)
-        .inspect_err(|message| eprintln!("{message}"));
+        .map_err(|message| (Exit::Invalid, message))
+        .and_then(|merged| {
+            in_domains(&merged)
+                .map(|()| merged)
+                .map_err(|message| (Exit::Internal, message))
+        })
+        .inspect_err(|(_, message)| eprintln!("{message}"));
     let templates = templates(args.template.as_deref(), Page::Run);
-    let (Ok(merged), Some(templates)) = (merged, templates) else {
+    let merged = match merged {
+        Ok(merged) => merged,
+        Err((exit, _)) => return Ok(exit),
+    };
+    let Some(templates) = templates else {
         return Ok(Exit::Invalid);
     };
     let Some(dirs) = evidence_dirs(args.out.as_deref(), merged.iter().map(|m| &m.input)) else {
@@ -77,6 +91,7 @@ pub fn merge(args: &MergeArgs) -> anyhow::Result<Exit> {
             })?,
         };
         let here = Execution::on_this_machine(rayon::current_num_threads(), started, clock.elapsed());
+        let shards: Vec<Execution> = shards.into_iter().map(|(_, execution, _)| execution).collect();
         let execution = Execution::campaign(&shards, &here);
         exit = exit.max(write_evidence(&input, &reporting, dir, simulated, execution)?);
     }
@@ -101,8 +116,8 @@ fn collect(paths: &[PathBuf]) -> Result<Vec<(PathBuf, Shard)>, String> {
             files.push(path.clone());
         }
     }
+    refuse_repeats(&files)?;
     files.sort();
-    files.dedup();
     files
         .into_iter()
         .map(|file| {
@@ -112,6 +127,29 @@ fn collect(paths: &[PathBuf]) -> Result<Vec<(PathBuf, Shard)>, String> {
             Ok((file, shard))
         })
         .collect()
+}
+
+/// Refuses a shard file given twice, by the same path or by two paths that
+/// lead to it (`./x` and `x`, a link): its units would count twice.
+fn refuse_repeats(files: &[PathBuf]) -> Result<(), String> {
+    let mut seen: HashMap<PathBuf, &PathBuf> = HashMap::new();
+    for file in files {
+        let real =
+            std::fs::canonicalize(file).map_err(|e| format!("{}: error: failed to read it: {e}", file.display()))?;
+        if let Some(first) = seen.insert(real, file) {
+            // Spellings, not paths: `Path` equality ignores `.` components.
+            return Err(if first.as_os_str() == file.as_os_str() {
+                format!("{}: error: given twice (each shard file counts once)", file.display())
+            } else {
+                format!(
+                    "{}: error: the same file as {}, given twice (each shard file counts once)",
+                    file.display(),
+                    first.display()
+                )
+            });
+        }
+    }
+    Ok(())
 }
 
 /// Adds the shard files under `dir` to `files`.
@@ -148,12 +186,15 @@ fn assemble_all(shards: Vec<(PathBuf, Shard)>) -> Result<Vec<Merged>, String> {
                 shard.tool.version, shard.tool.git, this.version, this.git
             ));
         }
-        if (&shard.files, shard.count, shard.seed, shard.record)
-            != (&first.files, first.count, first.seed, first.record)
+        if (&shard.campaign, &shard.files, shard.count, shard.seed, shard.record)
+            != (&first.campaign, &first.files, first.count, first.seed, first.record)
         {
             return Err(format!(
-                "{at}: error: from another campaign than {} (the scenario files, N, --seed or --record differ)",
-                first_path.display()
+                "{at}: error: from another campaign than {} (campaign {} and {}: the scenario files, their \
+                 contents, N, --seed or --record differ)",
+                first_path.display(),
+                short(&shard.campaign),
+                short(&first.campaign)
             ));
         }
         if let Some((other, _)) = by_file.entry(&shard.file).or_default().insert(shard.index, entry) {
@@ -170,30 +211,51 @@ fn assemble_all(shards: Vec<(PathBuf, Shard)>) -> Result<Vec<Merged>, String> {
         seed: first.seed,
         record: first.record,
     };
-    first
-        .files
-        .iter()
-        .map(|file| {
-            let parts = by_file.remove(file.as_str()).unwrap_or_default();
-            if let Some(missing) = (1..=first.count).find(|k| !parts.contains_key(k)) {
-                return Err(format!("{file}: error: shard {missing}/{} is missing", first.count));
+    let mut loaded = Vec::new();
+    for file in &first.files {
+        let parts = by_file.remove(file.as_str()).unwrap_or_default();
+        if let Some(missing) = (1..=first.count).find(|k| !parts.contains_key(k)) {
+            return Err(format!("{file}: error: shard {missing}/{} is missing", first.count));
+        }
+        let mut inputs = load_all(&[PathBuf::from(file)], request.seed, request.record)
+            .ok_or_else(|| format!("{file}: error: the scenario no longer compiles (see above)"))?;
+        let input = inputs.pop().expect("one input per file");
+        let now = inputs_of(&input);
+        for (path, shard) in parts.values() {
+            if shard.inputs != now {
+                return Err(format!(
+                    "{}: error: {file} or a file it imports changed since this shard was simulated",
+                    path.display()
+                ));
             }
-            let mut inputs = load_all(&[PathBuf::from(file)], request.seed, request.record)
-                .ok_or_else(|| format!("{file}: error: the scenario no longer compiles (see above)"))?;
-            let input = inputs.pop().expect("one input per file");
-            let now = inputs_of(&input);
-            for (path, shard) in parts.values() {
-                if shard.inputs != now {
-                    return Err(format!(
-                        "{}: error: {file} or a file it imports changed since this shard was simulated",
-                        path.display()
-                    ));
-                }
-            }
-            let shards = parts.values().map(|(_, shard)| shard.execution.clone()).collect();
-            let units = parts.into_values().flat_map(|(_, shard)| shard.units.iter().cloned());
+        }
+        loaded.push((input, now, parts));
+    }
+    let all_inputs: Vec<Vec<ShardInput>> = loaded.iter().map(|(_, now, _)| now.clone()).collect();
+    let expected = campaign_id(&this, &all_inputs, first.seed, first.record, first.count);
+    if first.campaign != expected {
+        return Err(format!(
+            "{}: error: its campaign id is {}, and this build, the files, N, --seed and --record make {}: \
+             the shard was altered",
+            first_path.display(),
+            short(&first.campaign),
+            short(&expected)
+        ));
+    }
+    loaded
+        .into_iter()
+        .map(|(input, _, parts)| {
+            let file = input.path.display().to_string();
+            let units = parts.values().flat_map(|(_, shard)| shard.units.iter().cloned());
             let run = sightline_engine::assemble(&input.scenario, units)
                 .map_err(|e| format!("{file}: error: the shards do not make up its run: {e}"))?;
+            let shards = parts
+                .into_values()
+                .map(|(path, shard)| {
+                    let units = shard.units.iter().map(|(unit, _)| unit.clone()).collect();
+                    (path.clone(), shard.execution.clone(), units)
+                })
+                .collect();
             Ok(Merged {
                 input,
                 request,
@@ -203,3 +265,45 @@ fn assemble_all(shards: Vec<(PathBuf, Shard)>) -> Result<Vec<Merged>, String> {
         })
         .collect()
 }
+
+/// The first 12 hex digits of a campaign id, as messages show it.
+fn short(id: &str) -> &str {
+    id.get(..12).unwrap_or(id)
+}
+
+/// Checks every measured value of every scenario against its domain: one line
+/// per value outside, naming the shard that holds it.
+fn in_domains(merged: &[Merged]) -> Result<(), String> {
+    let mut lines = Vec::new();
+    for merged in merged {
+        for problem in sightline_oracles::out_of_domain(&merged.input.scenario, &merged.run) {
+            let replicate = match problem.quantity {
+                Quantity::Metric { replicate, .. } => replicate as u32,
+                Quantity::Signal { .. } | Quantity::Object { .. } => 0,
+            };
+            let (path, _, _) = merged
+                .shards
+                .iter()
+                .find(|(_, _, units)| {
+                    units
+                        .iter()
+                        .any(|u| u.replicate == replicate && u.group.contains(&problem.point))
+                })
+                .expect("every unit of the run comes from a shard");
+            lines.push(format!(
+                "{}: error: {}, {problem}: {OUT_OF_DOMAIN}",
+                path.display(),
+                merged.input.path.display()
+            ));
+        }
+    }
+    if lines.is_empty() {
+        Ok(())
+    } else {
+        Err(lines.join("\n"))
+    }
+}
+
+/// What a value outside its domain means, for the messages of merge and replay.
+pub const OUT_OF_DOMAIN: &str = "no simulation gives such a value (a defect in the sightline that measured it, \
+                                 or a file altered and sealed again); nothing is judged";

@@ -7,13 +7,16 @@ use sightline_dsl::Options;
 use sightline_reports::mcap::{Recording, read};
 use sightline_reports::sha256_hex;
 
+use super::merge::OUT_OF_DOMAIN;
 use crate::exit::Exit;
 use crate::summary::print_verdicts;
 
 /// Re-checks the requirements of a recording from what it holds: the file is
 /// checked whole (and against the results.json beside it, if any), the recorded
-/// scenario is compiled again, and the oracles judge the recorded measurements.
-/// Prints the verdicts as `run` does; every refusal is exit 2.
+/// scenario is compiled again, every recorded value is checked against its
+/// domain, and the oracles judge the recorded measurements. Prints the verdicts
+/// as `run` does; every refusal is exit 2 but a value outside its domain, which
+/// no run gives: exit 3.
 pub fn replay(file: &Path) -> Exit {
     let name = file.display();
     let bytes = match std::fs::read(file) {
@@ -61,6 +64,13 @@ pub fn replay(file: &Path) -> Exit {
             return Exit::Invalid;
         }
     };
+    let outside = sightline_oracles::out_of_domain(&scenario, &measurements);
+    if !outside.is_empty() {
+        for problem in outside {
+            eprintln!("{name}: error: {problem}: {OUT_OF_DOMAIN}");
+        }
+        return Exit::Internal;
+    }
     let verdicts = sightline_oracles::check(&scenario, &measurements);
     warn_divergence(&name.to_string(), &recording, &verdicts);
     print_verdicts(

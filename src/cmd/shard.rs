@@ -5,7 +5,9 @@
 //! their sampled data, at each seed its checks need. Numbered across the files
 //! from 0, unit u belongs to shard u mod N + 1, so every shard gets a similar
 //! share of every sweep. The slice depends only on the files and N, never on the
-//! machine or its thread count.
+//! machine or its thread count. Every shard file carries the campaign's id
+//! ([`campaign_id`]), which every shard computes alike from the build, the
+//! files and their hashes, `--seed`, `--record` and N.
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -13,7 +15,7 @@ use std::time::{Instant, SystemTime};
 
 use anyhow::Context;
 use rayon::prelude::*;
-use sightline_reports::{Execution, SHARD_FORMAT, Shard, ShardInput, sha256_hex, shard_bytes};
+use sightline_reports::{Execution, Shard, ShardInput, campaign_id, sha256_hex, shard_bytes};
 
 use super::run::{Request, tool};
 use crate::cli::ShardSpec;
@@ -37,8 +39,10 @@ pub fn run_shard(
     request: Request,
 ) -> anyhow::Result<Exit> {
     let files: Vec<String> = inputs.iter().map(|i| i.path.display().to_string()).collect();
+    let all_inputs: Vec<Vec<ShardInput>> = inputs.iter().map(inputs_of).collect();
+    let campaign = campaign_id(&tool(), &all_inputs, request.seed, request.record, spec.count);
     let mut first = 0;
-    for (input, dir) in inputs.iter().zip(dirs) {
+    for (i, (input, dir)) in inputs.iter().zip(dirs).enumerate() {
         let all = sightline_engine::units(&input.scenario);
         let mine: Vec<_> = all
             .iter()
@@ -62,11 +66,11 @@ pub fn run_shard(
         bar.finish_and_clear();
         let simulated = units.len();
         let shard = Shard {
-            format: SHARD_FORMAT.into(),
+            campaign: campaign.clone(),
             tool: tool(),
             files: files.clone(),
             file: path.clone(),
-            inputs: inputs_of(input),
+            inputs: all_inputs[i].clone(),
             seed: request.seed,
             record: request.record,
             index: spec.index,

@@ -9,7 +9,7 @@ use std::path::Path;
 use std::process::Command;
 
 use crate::bundled::{Bundled, every_run, roundabout_run, sumo_grid_run};
-use crate::support::{RECORDING, arg, normalise_execution, read, read_json, root, sightline, temp_dir};
+use crate::support::{FAILING, RECORDING, arg, normalise_execution, read, read_json, root, sightline, temp_dir};
 
 /// Names a Python that has the official `mcap` package; `.ci/run` sets it.
 const PYTHON_VAR: &str = "SIGHTLINE_MCAP_PYTHON";
@@ -307,6 +307,55 @@ fn replay_refuses_a_recording_that_does_not_match_its_results() {
     let replay = sightline(["replay", arg(&alone)]);
     replay.assert_exit(2);
     assert!(replay.stderr.contains("truncated or damaged"), "{replay}");
+}
+
+/// `recording` written anew with each message on `topic` edited by `edit`:
+/// the CRCs are made for the new bytes, so only what replay checks beyond the
+/// container can catch the change.
+fn rewritten(recording: &[u8], topic: &str, edit: impl Fn(&mut serde_json::Value)) -> Vec<u8> {
+    let mut writer = mcap::Writer::new(std::io::Cursor::new(Vec::new())).unwrap();
+    for message in mcap::MessageStream::new(recording).unwrap() {
+        let mut message = message.unwrap();
+        if message.channel.topic == topic {
+            let mut json: serde_json::Value = serde_json::from_slice(&message.data).unwrap();
+            edit(&mut json);
+            message.data = serde_json::to_vec(&json).unwrap().into();
+        }
+        writer.write(&message).unwrap();
+    }
+    writer.finish().unwrap();
+    writer.into_inner().into_inner()
+}
+
+/// A recording whose outcome says accuracy = 1.11 (the failing γ = 30 point),
+/// in an intact container: replay refuses to judge it (it would have turned
+/// the FAIL into a PASS), exit 3 (issue 13).
+#[test]
+fn replay_of_a_value_outside_its_domain_is_an_internal_error() {
+    let tmp = temp_dir();
+    let out = tmp.path().join("run");
+    sightline(["run", FAILING, "--record", "--out", arg(&out)]).assert_exit(1);
+    let recording = std::fs::read(out.join(RECORDING)).unwrap();
+    let forged = rewritten(&recording, "/sightline/outcome", |outcome| {
+        if outcome["point"] == 1 {
+            let metrics = outcome["metrics"].as_array_mut().unwrap();
+            let accuracy = metrics.iter_mut().find(|m| m["metric"] == "accuracy").unwrap();
+            accuracy["value"] = 1.11.into();
+        }
+    });
+    let alone = tmp.path().join("alone.mcap");
+    std::fs::write(&alone, &forged).unwrap();
+    let replay = sightline(["replay", arg(&alone)]);
+    replay.assert_exit(3);
+    assert_eq!(replay.stdout, "", "no verdict");
+    assert_eq!(
+        replay.stderr,
+        format!(
+            "{}: error: point 1: accuracy = 1.11, outside its domain ([0, 1]): no simulation gives such a value \
+             (a defect in the sightline that measured it, or a file altered and sealed again); nothing is judged\n",
+            alone.display()
+        )
+    );
 }
 
 /// Usage errors: a missing file, and a file that is not MCAP.

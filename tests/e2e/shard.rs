@@ -1,10 +1,15 @@
 //! `run --shard K/N` and `merge` (issue 5 §3): the merged evidence is the
 //! unsharded run's, byte for byte but for where, when and how long it ran; a
-//! campaign that does not add up is refused with exit 2 and nothing written.
+//! campaign that does not add up, a damaged shard or a file given twice is
+//! refused with exit 2 (issue 13), a measured value outside its domain with
+//! exit 3, and nothing is written.
 
 use std::path::{Path, PathBuf};
 
-use crate::support::{SEED_SWEEP, arg, files_under, normalise_execution, read, sightline, temp_dir};
+use sightline_engine::Outcome;
+use sightline_reports::{Shard, read_shard, shard_bytes};
+
+use crate::support::{FAILING, SEED_SWEEP, arg, files_under, normalise_execution, read, sightline, temp_dir};
 
 /// A world with a shared-data group, replicates and a recording.
 const JUNCTION: &str = "tests/fixtures/valid/small-junction.yaml";
@@ -97,21 +102,44 @@ fn a_failing_requirement_fails_the_merge_too() {
     );
 }
 
-/// Runs `merge` on `paths` into a fresh directory; panics unless it exits 2
-/// with `message` in stderr and writes nothing.
+/// Runs `merge` on `paths`; panics unless it exits `code` with stderr
+/// starting with `message`, and writes nothing: into a fresh `--out` (not
+/// created), nor into one that holds earlier evidence (left as it was).
+#[track_caller]
+fn assert_refused_with(code: i32, paths: &[&Path], message: &str) {
+    let tmp = temp_dir();
+    let fresh = tmp.path().join("fresh");
+    let earlier = tmp.path().join("earlier");
+    std::fs::create_dir(&earlier).unwrap();
+    std::fs::write(earlier.join("results.json"), "earlier evidence").unwrap();
+    for out in [&fresh, &earlier] {
+        let mut args = vec!["merge", "--out", arg(out)];
+        args.extend(paths.iter().map(|p| arg(p)));
+        let merge = sightline(args);
+        merge.assert_exit(code);
+        assert!(
+            merge.stderr.starts_with(message),
+            "expected stderr to start with `{message}`\n{merge}"
+        );
+        assert_eq!(merge.stdout, "", "{merge}");
+    }
+    assert!(!fresh.exists(), "a fresh --out is not created");
+    assert_eq!(
+        files_under(&earlier),
+        [PathBuf::from("results.json")],
+        "nothing is added"
+    );
+    assert_eq!(
+        read(&earlier.join("results.json")),
+        "earlier evidence",
+        "nothing is changed"
+    );
+}
+
+/// [`assert_refused_with`] exit 2: invalid input.
 #[track_caller]
 fn assert_refused(paths: &[&Path], message: &str) {
-    let tmp = temp_dir();
-    let out = tmp.path().join("merged");
-    let mut args = vec!["merge", "--out", arg(&out)];
-    args.extend(paths.iter().map(|p| arg(p)));
-    let merge = sightline(args);
-    merge.assert_exit(2);
-    assert!(
-        merge.stderr.contains(message),
-        "expected `{message}` in stderr\n{merge}"
-    );
-    assert!(!out.exists(), "nothing is written");
+    assert_refused_with(2, paths, message);
 }
 
 #[test]
@@ -125,29 +153,191 @@ fn a_campaign_that_does_not_add_up_is_refused() {
         "tests/fixtures/valid/seed-sweep.yaml: error: shard 2/3 is missing",
     );
 
-    let copy = tmp.path().join("copy");
-    std::fs::create_dir(&copy).unwrap();
-    std::fs::copy(file(2), copy.join("shard-2-of-3.cbor")).unwrap();
+    // Shard 2 again, copied under another name: its units would count twice.
+    let copy = tmp.path().join("copy.cbor");
+    std::fs::copy(file(2), &copy).unwrap();
     assert_refused(
         &[&parts[0], &parts[1], &parts[2], &copy],
-        "shard 2/3 of tests/fixtures/valid/seed-sweep.yaml is also in",
+        &format!(
+            "{}: error: shard 2/3 of tests/fixtures/valid/seed-sweep.yaml is also in {}",
+            file(2).display(),
+            copy.display()
+        ),
     );
 
+    // N differs.
     let other = tmp.path().join("other");
     shard(&[SEED_SWEEP], 1, 2, &other);
-    assert_refused(&[&parts[0], &parts[1], &parts[2], &other], "from another campaign than");
-
-    let damaged = tmp.path().join("damaged.cbor");
-    let bytes = std::fs::read(file(3)).unwrap();
-    std::fs::write(&damaged, &bytes[..bytes.len() / 2]).unwrap();
+    let other = other.join("shard-1-of-2.cbor");
     assert_refused(
-        &[&file(1), &file(2), &damaged],
-        "damaged.cbor: error: not a sightline shard file, or damaged",
+        &[&other, &file(1), &file(2), &file(3)],
+        &format!(
+            "{}: error: from another campaign than {}",
+            file(1).display(),
+            other.display()
+        ),
     );
 
     let empty = tmp.path().join("empty");
     std::fs::create_dir(&empty).unwrap();
-    assert_refused(&[&empty], "empty: error: no shard files");
+    assert_refused(&[&empty], &format!("{}: error: no shard files", empty.display()));
+}
+
+/// A shard of the same files and N simulated with another `--seed` belongs to
+/// another campaign: its campaign id differs.
+#[test]
+fn a_shard_of_another_seed_is_of_another_campaign() {
+    let tmp = temp_dir();
+    let parts = shards(&[FAILING], 2, tmp.path());
+    let reseeded = tmp.path().join("reseeded");
+    sightline(["run", FAILING, "--seed", "4", "--shard", "2/2", "--out", arg(&reseeded)]).assert_exit(0);
+    // Merge reads the files in path order: `reseeded` before `s1`.
+    let theirs = reseeded.join("shard-2-of-2.cbor");
+    let ours = parts[0].join("shard-1-of-2.cbor");
+    assert_refused(
+        &[&ours, &theirs],
+        &format!(
+            "{}: error: from another campaign than {} (campaign ",
+            ours.display(),
+            theirs.display()
+        ),
+    );
+}
+
+/// The same file given twice is refused, whether spelled alike or not (before
+/// issue 13 the repeat was silently dropped).
+#[test]
+fn a_shard_file_given_twice_is_refused() {
+    let tmp = temp_dir();
+    let parts = shards(&[SEED_SWEEP], 3, tmp.path());
+    let file = |k: usize| parts[k - 1].join(format!("shard-{k}-of-3.cbor"));
+    assert_refused(
+        &[&file(1), &file(2), &file(3), &file(1)],
+        &format!(
+            "{}: error: given twice (each shard file counts once)",
+            file(1).display()
+        ),
+    );
+    // A directory and a file found in it.
+    assert_refused(
+        &[&parts[0], &file(2), &file(3), &file(1)],
+        &format!(
+            "{}: error: given twice (each shard file counts once)",
+            file(1).display()
+        ),
+    );
+    let respelled = parts[0].join(".").join("shard-1-of-3.cbor");
+    assert_refused(
+        &[&file(1), &file(2), &file(3), &respelled],
+        &format!(
+            "{}: error: the same file as {}, given twice (each shard file counts once)",
+            respelled.display(),
+            file(1).display()
+        ),
+    );
+}
+
+/// A flipped bit anywhere in a shard file (the header, the payload) and a
+/// truncated file are refused by the seal before anything is decoded.
+#[test]
+fn a_damaged_shard_is_refused() {
+    let tmp = temp_dir();
+    let parts = shards(&[SEED_SWEEP], 3, tmp.path());
+    let file = |k: usize| parts[k - 1].join(format!("shard-{k}-of-3.cbor"));
+    let bytes = std::fs::read(file(3)).unwrap();
+    let damaged = tmp.path().join("damaged.cbor");
+    for at in [0, 20, 100, bytes.len() / 2, bytes.len() - 1] {
+        let mut flipped = bytes.clone();
+        flipped[at] ^= 0x04;
+        std::fs::write(&damaged, &flipped).unwrap();
+        let expected = if at < "sightline-shard/2\n".len() {
+            format!("{}: error: not a sightline shard file", damaged.display())
+        } else {
+            format!(
+                "{}: error: damaged or truncated: the SHA-256 of its payload is ",
+                damaged.display()
+            )
+        };
+        assert_refused(&[&file(1), &file(2), &damaged], &expected);
+    }
+    std::fs::write(&damaged, &bytes[..bytes.len() / 2]).unwrap();
+    assert_refused(
+        &[&file(1), &file(2), &damaged],
+        &format!("{}: error: damaged or truncated", damaged.display()),
+    );
+}
+
+/// Edits the shard file at `path` and seals it again, as only a forger (or a
+/// defective sightline) would.
+fn reseal(path: &Path, edit: impl FnOnce(&mut Shard)) {
+    let mut shard = read_shard(&std::fs::read(path).unwrap()).unwrap();
+    edit(&mut shard);
+    std::fs::write(path, shard_bytes(&shard)).unwrap();
+}
+
+/// Shards that agree on a campaign id that their build, files, N, `--seed`
+/// and `--record` do not make are refused.
+#[test]
+fn a_campaign_id_that_the_campaign_does_not_make_is_refused() {
+    let tmp = temp_dir();
+    let parts = shards(&[FAILING], 2, tmp.path());
+    let files: Vec<PathBuf> = (1..=2)
+        .map(|k| parts[k - 1].join(format!("shard-{k}-of-2.cbor")))
+        .collect();
+    for file in &files {
+        reseal(file, |shard| shard.campaign = "0".repeat(64));
+    }
+    assert_refused(
+        &[&parts[0], &parts[1]],
+        &format!(
+            "{}: error: its campaign id is 000000000000, and this build, the files, N, --seed and --record make ",
+            files[0].display()
+        ),
+    );
+}
+
+/// A shard simulated by another build of sightline (here: one that says so)
+/// may have simulated differently.
+#[test]
+fn a_shard_of_another_build_is_refused() {
+    let tmp = temp_dir();
+    let parts = shards(&[FAILING], 2, tmp.path());
+    let other = parts[1].join("shard-2-of-2.cbor");
+    reseal(&other, |shard| shard.tool.git = "v0.0.0-other".into());
+    assert_refused(
+        &[&parts[0], &parts[1]],
+        &format!(
+            "{}: error: simulated by sightline {v} (v0.0.0-other); this is {v} (",
+            other.display(),
+            v = env!("CARGO_PKG_VERSION")
+        ),
+    );
+}
+
+/// A shard that says accuracy = 1.11, sealed again so that it reads: without
+/// the domain check the merge judged it (a FAIL turned PASS: the fixture's
+/// γ = 30 point has 0.988 < 0.995); now it is an internal error, exit 3.
+#[test]
+fn a_value_outside_its_domain_is_an_internal_error_not_a_verdict() {
+    let tmp = temp_dir();
+    let parts = shards(&[FAILING], 2, tmp.path());
+    let forged = parts[1].join("shard-2-of-2.cbor");
+    reseal(&forged, |shard| {
+        let (unit, outcomes) = &mut shard.units[0];
+        assert_eq!(unit.group, [1], "shard 2 holds point 1 (γ = 30)");
+        let Outcome::Field(field) = &mut outcomes[0] else {
+            panic!("a field outcome")
+        };
+        field.metrics.correct = field.metrics.cells * 111 / 100;
+    });
+    assert_refused_with(
+        3,
+        &[&parts[0], &parts[1]],
+        &format!(
+            "{}: error: {FAILING}, point 1: accuracy = 1.11, outside its domain ([0, 1]): no simulation gives such a value",
+            forged.display()
+        ),
+    );
 }
 
 #[test]
@@ -164,7 +354,11 @@ fn a_scenario_changed_since_its_shards_is_refused() {
     .unwrap();
     assert_refused(
         &[&parts[0], &parts[1]],
-        "or a file it imports changed since this shard was simulated",
+        &format!(
+            "{}: error: {} or a file it imports changed since this shard was simulated",
+            parts[0].join("shard-1-of-2.cbor").display(),
+            scenario.display()
+        ),
     );
 }
 

@@ -16,7 +16,7 @@ pub use fusion::{
 };
 pub use requirement::{
     Bound, Check, Invariant, Metric, ObjectProperty, OverSeeds, RateBound, Reference, Requirement, Signal, Statistic,
-    Temporal,
+    Temporal, ValueDomain,
 };
 pub use scenario::{
     Assignment, Axis, Experiment, Grid, Import, ImportKind, Point, Record, Scenario, Setup, Sweep, display_value,

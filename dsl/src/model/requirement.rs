@@ -165,6 +165,15 @@ impl Signal {
     pub fn in_semantic(self) -> bool {
         !self.in_world()
     }
+
+    /// The values it can take at a step.
+    pub fn domain(self) -> ValueDomain {
+        match self {
+            Self::OccupiedRecall | Self::BlindRecall | Self::OccupiedPrecision => ValueDomain::Fraction,
+            Self::RsuOnlyObjects => ValueDomain::Count,
+            Self::TimeToConflict => ValueDomain::NonNegative,
+        }
+    }
 }
 
 /// Properties of the objects that came within d_min of the ego.
@@ -181,6 +190,13 @@ impl ObjectProperty {
     pub fn name(self) -> &'static str {
         match self {
             Self::WarningTime => "warning_time",
+        }
+    }
+
+    /// The values an object's property can take (an object may also have none).
+    pub fn domain(self) -> ValueDomain {
+        match self {
+            Self::WarningTime => ValueDomain::NonNegative,
         }
     }
 }
@@ -455,6 +471,78 @@ impl Metric {
             Self::MeanConflict | Self::MaxConflict | Self::TotalConflictCells | Self::WeightedCells
         )
     }
+
+    /// The values it can take, as its documentation states them. A measured
+    /// value outside is a defect (or damage), never something to judge.
+    pub fn domain(self) -> ValueDomain {
+        match self {
+            Self::Accuracy
+            | Self::BelowThresholdFraction
+            | Self::ConfidentErrorRate
+            | Self::MeanUncertainty
+            | Self::MeanConflict
+            | Self::MaxConflict
+            | Self::OccupiedRecall
+            | Self::OccupiedPrecision
+            | Self::BlindRecall
+            | Self::TransmittedShare
+            | Self::LabelledShare
+            | Self::PacketDeliveryRatio => ValueDomain::Fraction,
+            Self::BelowThreshold
+            | Self::FalseAlarms
+            | Self::MissedDetections
+            | Self::ConfidentErrors
+            | Self::DecidedUnknown
+            | Self::Unobserved
+            | Self::TotalConflictCells
+            | Self::WeightedCells => ValueDomain::Count,
+            // fov_gain: the joint field of view contains the ego's, so the gain
+            // is never negative. Means over steps or runs (contribution, missed
+            // criticals) are not whole numbers.
+            Self::FovGain
+            | Self::AnticipationMedian
+            | Self::AnticipationP95
+            | Self::InfrastructureContribution
+            | Self::ChannelLoad
+            | Self::BaselineChannelLoad
+            | Self::MissedCriticals => ValueDomain::NonNegative,
+        }
+    }
+}
+
+/// The values a measured quantity can take; every one of them is finite. (A
+/// quantity that is not defined for a run is absent, not a value.)
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum ValueDomain {
+    /// A share, a rate or a probability: [0, 1].
+    Fraction,
+    /// A number of things: a whole number ≥ 0.
+    Count,
+    /// Seconds, bytes per second, a mean count or a gain: ≥ 0.
+    NonNegative,
+}
+
+impl ValueDomain {
+    /// Whether `value` lies in the domain (a NaN or an infinity never does).
+    pub fn contains(self, value: f64) -> bool {
+        value.is_finite()
+            && value >= 0.0
+            && match self {
+                Self::Fraction => value <= 1.0,
+                Self::Count => value.fract() == 0.0,
+                Self::NonNegative => true,
+            }
+    }
+}
+
+impl std::fmt::Display for ValueDomain {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Self::Fraction => "[0, 1]",
+            Self::Count => "whole numbers ≥ 0",
+            Self::NonNegative => "finite numbers ≥ 0",
+        })
+    }
 }
 
 /// A published figure to show beside the measured one.
@@ -468,4 +556,42 @@ pub struct Reference {
     pub value: f64,
     /// Indices of the points it corresponds to (never empty).
     pub points: Vec<usize>,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn domains_hold_their_ends_and_refuse_what_lies_beyond() {
+        use ValueDomain::*;
+        for (domain, inside, outside) in [
+            (Fraction, [0.0, 0.5, 1.0], [-1e-12, 1.0 + 1e-12, 1.11]),
+            (Count, [0.0, 3.0, 1e15], [-1.0, 2.5, 1e-300]),
+            (NonNegative, [0.0, 0.25, 1e300], [-0.25, -1e-300, -1.0]),
+        ] {
+            for value in inside {
+                assert!(domain.contains(value), "{value} in {domain}");
+            }
+            for value in outside.into_iter().chain([f64::NAN, f64::INFINITY, f64::NEG_INFINITY]) {
+                assert!(!domain.contains(value), "{value} not in {domain}");
+            }
+        }
+    }
+
+    /// The documented ranges: a metric "(0–1)" is a fraction, a count of cells
+    /// a whole number.
+    #[test]
+    fn metrics_documented_as_shares_are_fractions_and_cell_counts_whole() {
+        assert_eq!(Metric::Accuracy.domain(), ValueDomain::Fraction);
+        assert_eq!(Metric::PacketDeliveryRatio.domain(), ValueDomain::Fraction);
+        assert_eq!(Metric::FalseAlarms.domain(), ValueDomain::Count);
+        assert_eq!(
+            Metric::MissedCriticals.domain(),
+            ValueDomain::NonNegative,
+            "a mean over runs"
+        );
+        assert_eq!(Signal::RsuOnlyObjects.domain(), ValueDomain::Count);
+        assert_eq!(ObjectProperty::WarningTime.domain(), ValueDomain::NonNegative);
+    }
 }
