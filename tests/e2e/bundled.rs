@@ -338,8 +338,10 @@ fn every_bundled_scenario_is_run() {
 fn urban_semantic_scenario_runs_end_to_end() {
     let results = urban();
     assert_eq!(results["verdict"], "pass");
+    // 10 rows in three sweeps; density 23 at the paper's `risk_for` and
+    // density 10 at our `shares_over` are rows of two sweeps each.
     let points = results["sweep"].as_array().unwrap();
-    assert_eq!(points.len(), 8);
+    assert_eq!(points.len(), 6);
     for point in points {
         assert_eq!(point["experiment"], "semantic");
         assert!(point.get("audit").is_none(), "a semantic world fuses no cells");
@@ -357,13 +359,19 @@ fn urban_semantic_scenario_runs_end_to_end() {
     let load = |i: usize, metric: &str| points[i]["metrics"][metric].as_f64().unwrap();
     assert!(load(3, "baseline_channel_load") > load(0, "baseline_channel_load"));
     // Counting every cycle, not only those serving the ego, can only lower the shares.
-    assert_eq!(points[6]["label"], "semantic.shares_over=ego_in_range");
-    assert_eq!(points[7]["label"], "semantic.shares_over=all");
-    assert!(load(7, "transmitted_share") < load(6, "transmitted_share"));
-    assert_eq!(points[6]["counts"]["transmitted"], points[1]["counts"]["transmitted"]);
+    assert_eq!(
+        points[1]["label"],
+        "traffic.vehicles.density_per_km=10 | semantic.shares_over=ego_in_range"
+    );
+    assert_eq!(points[5]["label"], "semantic.shares_over=all");
+    assert!(load(5, "transmitted_share") < load(1, "transmitted_share"));
     // Per object: the least-warned of the flagged road users decides.
     let warn = requirement(results, "URB-WARN-01");
-    let warnings = points[5]["counts"]["warnings"].as_array().unwrap();
+    assert_eq!(
+        points[4]["label"],
+        "traffic.vehicles.density_per_km=23, semantic.risk_for=all"
+    );
+    let warnings = points[4]["counts"]["warnings"].as_array().unwrap();
     let least = warnings
         .iter()
         .map(|w| w.as_f64().unwrap())
@@ -371,11 +379,11 @@ fn urban_semantic_scenario_runs_end_to_end() {
     assert_eq!(warn["value"].as_f64(), Some(least));
     assert_eq!(
         warnings.len() as u64,
-        points[5]["counts"]["close_approaches"].as_u64().unwrap()
+        points[4]["counts"]["close_approaches"].as_u64().unwrap()
     );
     // Eventually: every point reports when the signal came best.
     let rsu = requirement(results, "URB-RSU-T-01");
-    assert_eq!(rsu["points"].as_array().unwrap().len(), 8);
+    assert_eq!(rsu["points"].as_array().unwrap().len(), 6);
     assert!(rsu["points"].as_array().unwrap().iter().all(|p| p["time"].is_number()));
 }
 

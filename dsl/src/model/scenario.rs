@@ -147,11 +147,12 @@ pub struct Axis {
 /// One simulation: a configuration, and every sweep combination that gives it.
 ///
 /// Two combinations are the same configuration when their compiled [`Setup`]s
-/// are equal and serialize to the same bytes (so 0 and −0 stay apart): the
-/// setup is exactly what the engine simulates, nothing more. The effective
-/// settings (see [`Label::settings`]) are not the test: they also hold how a
-/// value was written and keys the setup resolves away, which do not change the
-/// run.
+/// are equal and serialize to the same bytes (so 0 and −0 stay apart). The
+/// setup is what the engine is given, and all it is given: equal setups are the
+/// same run, bit for bit. Its one name, the fusion label, is compared too, as
+/// reports show it as the point's method. The effective settings (see
+/// [`Label::settings`]) are not the test: they also hold how a value was written
+/// and keys the compiler resolves away, which do not change the run.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Point {
     /// Position in [`Scenario::points`].
