@@ -501,7 +501,7 @@ pub(crate) struct RawReference {
 #[schemars(rename = "Record")]
 pub(crate) struct RawRecord {
     /// The recorded sweep point by index (0: the first point, in the order of
-    /// results.json's `sweep`).
+    /// results.json's `sweep`, which lists each distinct configuration once).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub point: Option<u64>,
     /// The recorded sweep point by its settings: dotted path → value

@@ -224,7 +224,7 @@ fn independent_sweeps_run_one_after_the_other() {
     let labels: Vec<String> = scenario.points.iter().map(|p| p.label()).collect();
     assert_eq!(labels[1], "field.masses.gamma=14");
     assert_eq!(labels[4], "decision.threshold=0.9");
-    assert_eq!(scenario.points[3].sweep, Some(1));
+    assert_eq!(scenario.points[3].labels[0].sweep, Some(1));
     // The second sweep leaves γ as the file has it.
     let Experiment::Field(field) = &scenario.points[3].setup.experiment else {
         panic!("a field scenario")
@@ -291,4 +291,71 @@ fn vary_keeps_integer_settings_whole_and_instantiates_a_concrete_scenario() {
         panic!("a regular layout becomes positions")
     };
     assert_eq!(positions.len(), 4);
+}
+
+/// See: issue 13 §6. A combination of one sweep that is the same configuration as
+/// one of another (γ = 10 at the default threshold 0.8, the threshold 0.8 at the
+/// file's γ = 10) is one point carrying both labels, which `where` reaches by
+/// either.
+#[test]
+fn sweeps_that_meet_share_one_point() {
+    let scenario = ok(&format!(
+        "{BASE}sweeps:\n  - {{ field.masses.gamma: [6, 10] }}\n  - {{ decision.threshold: [0.7, 0.8, 0.9] }}\nrequirements:\n  - {{ id: R1, text: t, where: {{ decision.threshold: 0.8 }}, check: {{ metric: accuracy, at_least: 0.5 }} }}\n  - {{ id: R2, text: t, where: {{ field.masses.gamma: 10 }}, check: {{ metric: accuracy, at_least: 0.5 }} }}\n"
+    ));
+    let labels: Vec<String> = scenario.points.iter().map(|p| p.label()).collect();
+    assert_eq!(
+        labels,
+        [
+            "field.masses.gamma=6",
+            "field.masses.gamma=10 | decision.threshold=0.8",
+            "decision.threshold=0.7",
+            "decision.threshold=0.9"
+        ]
+    );
+    assert_eq!(scenario.sweeps[0].points, [0, 1]);
+    assert_eq!(scenario.sweeps[1].points, [2, 1, 3]);
+    let shared = &scenario.points[1];
+    let sweeps: Vec<Option<usize>> = shared.labels.iter().map(|l| l.sweep).collect();
+    assert_eq!(sweeps, [Some(0), Some(1)]);
+    // Every sweep keeps all its rows, each with its own values.
+    let rows: Vec<(usize, Vec<serde_json::Value>)> = scenario.sweeps[1]
+        .rows()
+        .map(|(point, values)| (point, values.into_iter().cloned().collect()))
+        .collect();
+    assert_eq!(
+        rows,
+        [
+            (2, vec![serde_json::json!(0.7)]),
+            (1, vec![serde_json::json!(0.8)]),
+            (3, vec![serde_json::json!(0.9)])
+        ]
+    );
+    assert_eq!(scenario.requirements[0].points, [0, 1], "γ = 6 and the shared point");
+    assert_eq!(
+        scenario.requirements[1].points,
+        [1, 2, 3],
+        "every point of the second sweep"
+    );
+}
+
+/// Two combinations of one sweep that compile to the same setup (a label equal to
+/// the default one) are one point too, listed twice by its sweep.
+#[test]
+fn one_sweep_lists_a_point_once_per_row() {
+    let scenario = ok(&format!(
+        "{BASE}sweep:\n  fusion: [{{ method: bayes }}, {{ method: bayes, label: bayes }}, {{ method: dempster }}]\n"
+    ));
+    assert_eq!(scenario.points.len(), 2);
+    assert_eq!(scenario.sweeps[0].points, [0, 0, 1]);
+    assert_eq!(scenario.points[0].label(), "fusion={method=bayes} | fusion=bayes");
+}
+
+/// Equal setups are the test, to the bit: 0 and −0 stay two points.
+#[test]
+fn zero_and_negative_zero_stay_apart() {
+    let scenario = ok(&format!(
+        "{BASE}sweeps:\n  - {{ field.masses.gamma: [0] }}\n  - {{ field.masses.gamma: [-0.0] }}\n  - {{ field.masses.gamma: [0.0] }}\n"
+    ));
+    assert_eq!(scenario.points.len(), 2);
+    assert_eq!(scenario.sweeps[2].points, [0]);
 }

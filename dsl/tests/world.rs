@@ -273,3 +273,38 @@ fn an_agent_setting_must_name_an_agent_and_a_setting() {
         assert!(error.contains(message), "{key}: {error}");
     }
 }
+
+/// See: issue 13 §6. The roundabout's two studies meet where six vehicles
+/// cooperate at the nominal noise (σ = 0.2 m, the file's value): 11 distinct
+/// configurations, not 12, the shared one labelled by both sweeps, and the
+/// requirements at that configuration checked once.
+#[test]
+fn the_roundabout_sweeps_meet_at_one_point() {
+    let text = include_str!("../../scenarios/roundabout-six-agents.yaml");
+    let scenario = compile("roundabout.yaml", text, &Options::default()).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(scenario.points.len(), 11);
+    assert_eq!(scenario.sweeps[0].points, [0, 1, 2, 3, 4, 5]);
+    assert_eq!(scenario.sweeps[1].points, [6, 7, 5, 8, 9, 10]);
+    assert_eq!(
+        scenario.points[5].label(),
+        "perception.cooperating=6 | localization.position_sigma=0.2"
+    );
+    let nominal = scenario
+        .requirements
+        .iter()
+        .find(|r| r.id == "RB-REC-06")
+        .expect("RB-REC-06");
+    assert_eq!(nominal.points, [5]);
+    let noise = scenario
+        .requirements
+        .iter()
+        .find(|r| r.id == "RB-NOISE-01")
+        .expect("RB-NOISE-01");
+    assert_eq!(noise.points, [5, 6, 7, 8, 9, 10]);
+    let every = scenario
+        .requirements
+        .iter()
+        .find(|r| r.id == "RB-PREC-01")
+        .expect("RB-PREC-01");
+    assert_eq!(every.points, (0..11).collect::<Vec<_>>());
+}

@@ -23,12 +23,16 @@ fn six_agents() -> Scenario {
     let point = scenario
         .points
         .iter()
-        .find(|p| p.label() == "perception.cooperating=6")
+        .find(|p| p.label().starts_with("perception.cooperating=6"))
         .expect("the scenario sweeps cooperating vehicles")
         .clone();
     scenario.points = vec![sightline_dsl::Point {
         index: 0,
-        sweep: None,
+        labels: vec![sightline_dsl::Label {
+            sweep: None,
+            assignments: Vec::new(),
+            ..point.labels[0].clone()
+        }],
         ..point
     }];
     scenario.sweeps.clear();

@@ -401,15 +401,21 @@ pub(crate) fn sweep_charts(results: &Results) -> Result<Vec<Vec<Chart>>, ChartEr
             else {
                 return Ok(Vec::new());
             };
-            let points: Vec<&PointResult> = sweep.points.iter().map(|&p| &results.sweep[p]).collect();
+            let column = sweep
+                .axes
+                .iter()
+                .position(|a| a.path == axis.path)
+                .expect("an axis of the sweep");
+            let rows: Vec<(&PointResult, Vec<&serde_json::Value>)> =
+                sweep.rows().map(|(p, values)| (&results.sweep[p], values)).collect();
             let mut charts = Vec::new();
             for &metric in &metrics {
                 let mut lines: Vec<Line> = Vec::new();
-                for point in &points {
-                    let (Some(x), Some(y)) = (setting(point, &axis.path), point.metrics.get(metric)) else {
+                for (point, values) in &rows {
+                    let (Some(x), Some(y)) = (values[column].as_f64(), point.metrics.get(metric)) else {
                         continue;
                     };
-                    let name = others(point, &axis.path);
+                    let name = others(point, &sweep.axes, values, column);
                     match lines.iter_mut().find(|l| l.name == name) {
                         Some(line) => line.points.push((x, y)),
                         None => lines.push(Line {
@@ -426,8 +432,11 @@ pub(crate) fn sweep_charts(results: &Results) -> Result<Vec<Vec<Chart>>, ChartEr
                     .iter()
                     .filter(|r| r.metric == metric)
                     .flat_map(|r| r.points.iter().map(move |p| (p.point, r.published)))
-                    .filter(|(p, _)| sweep.points.contains(p))
-                    .filter_map(|(p, value)| Some((setting(&results.sweep[p], &axis.path)?, value)))
+                    .flat_map(|(p, value)| {
+                        rows.iter()
+                            .filter(move |(point, _)| point.index == p)
+                            .filter_map(move |(_, values)| Some((values[column].as_f64()?, value)))
+                    })
                     .collect();
                 let caption = format!("{metric} over {}", axis.path);
                 charts.extend(lines_chart(caption, (&axis.path, metric), &lines, &published)?);
@@ -437,27 +446,18 @@ pub(crate) fn sweep_charts(results: &Results) -> Result<Vec<Vec<Chart>>, ChartEr
         .collect()
 }
 
-/// The numeric value of setting `path` at `point`.
-fn setting(point: &PointResult, path: &str) -> Option<f64> {
-    point
-        .settings
-        .0
+/// A row's other swept settings (all but the charted `column`) and its method,
+/// as a legend entry.
+fn others(point: &PointResult, axes: &[sightline_dsl::Axis], values: &[&serde_json::Value], column: usize) -> String {
+    let mut parts: Vec<String> = axes
         .iter()
-        .find(|(k, _)| k == path)
-        .and_then(|(_, v)| v.as_f64())
-}
-
-/// The point's other swept settings and its method, as a legend entry.
-fn others(point: &PointResult, path: &str) -> String {
-    let mut parts: Vec<String> = point
-        .settings
-        .0
-        .iter()
-        .filter(|(k, _)| k != path)
-        .map(|(k, v)| format!("{k}={}", sightline_dsl::display_value(v)))
+        .zip(values)
+        .enumerate()
+        .filter(|&(i, _)| i != column)
+        .map(|(_, (axis, v))| format!("{}={}", axis.path, sightline_dsl::display_value(v)))
         .collect();
     let fused = !matches!(point.detail, Detail::Semantic { .. });
-    if fused && !point.fusion.is_empty() && !point.settings.0.iter().any(|(k, _)| k.starts_with("fusion")) {
+    if fused && !point.fusion.is_empty() && !axes.iter().any(|a| a.path.starts_with("fusion")) {
         parts.push(point.fusion.clone());
     }
     if parts.is_empty() {

@@ -338,10 +338,14 @@ fn requirement_view(r: &RequirementResult) -> RequirementView {
     }
 }
 
-/// One table per sweep (one table of the single point without a sweep).
+/// A row of a sweep table: the point and the sweep's values there.
+type Row<'a> = (&'a PointResult, Vec<&'a serde_json::Value>);
+
+/// One table per sweep, a point that sweeps share in each of their tables (one
+/// table of the single point without a sweep).
 fn sweep_tables(results: &Results) -> Vec<SweepView> {
     if results.sweeps.is_empty() {
-        let all: Vec<&PointResult> = results.sweep.iter().collect();
+        let all: Vec<Row<'_>> = results.sweep.iter().map(|point| (point, Vec::new())).collect();
         return vec![SweepView {
             title: "Results".into(),
             table: sweep_table(results, &[], &all),
@@ -353,26 +357,27 @@ fn sweep_tables(results: &Results) -> Vec<SweepView> {
         .iter()
         .map(|sweep| {
             let paths: Vec<&str> = sweep.axes.iter().map(|a| a.path.as_str()).collect();
-            let points: Vec<&PointResult> = sweep.points.iter().map(|&p| &results.sweep[p]).collect();
+            let rows: Vec<Row<'_>> = sweep.rows().map(|(p, values)| (&results.sweep[p], values)).collect();
             SweepView {
                 title: format!("Results over {}", paths.join(" × ")),
-                table: sweep_table(results, &paths, &points),
+                table: sweep_table(results, &paths, &rows),
                 charts: Vec::new(),
             }
         })
         .collect()
 }
 
-/// One row per point: the axis values, then [`TABLE_METRICS`] and every metric a
-/// requirement or reference uses, each followed by its published value if any.
-fn sweep_table(results: &Results, axes: &[&str], points: &[&PointResult]) -> TableView {
+/// One row per combination: the axis values, then [`TABLE_METRICS`] and every
+/// metric a requirement or reference uses, each followed by its published value
+/// if any.
+fn sweep_table(results: &Results, axes: &[&str], rows: &[Row<'_>]) -> TableView {
     let mut metrics: Vec<&str> = TABLE_METRICS.to_vec();
     for name in results.cited_metrics() {
         if !metrics.contains(&name) {
             metrics.push(name);
         }
     }
-    metrics.retain(|m| points.iter().any(|p| p.metrics.0.iter().any(|(k, _)| k == m)));
+    metrics.retain(|m| rows.iter().any(|(p, _)| p.metrics.0.iter().any(|(k, _)| k == m)));
     let has_published = |metric: &str| results.references.iter().any(|r| r.metric == metric);
 
     let mut head: Vec<String> = axes.iter().map(|a| (*a).to_string()).collect();
@@ -382,10 +387,10 @@ fn sweep_table(results: &Results, axes: &[&str], points: &[&PointResult]) -> Tab
             head.push(format!("{metric} (published)"));
         }
     }
-    let rows = points
+    let rows = rows
         .iter()
-        .map(|point| {
-            let mut row: Vec<String> = point.settings.0.iter().map(|(_, v)| display_value(v)).collect();
+        .map(|(point, values)| {
+            let mut row: Vec<String> = values.iter().map(|v| display_value(v)).collect();
             for metric in &metrics {
                 row.push(or_dash(point.metrics.get(metric)));
                 if has_published(metric) {

@@ -22,8 +22,9 @@ pub use html::html;
 pub use junit::junit;
 pub use picture::{Legend, Picture, Pictures, Scale, Swatch, pictures};
 pub use results::{
-    CheckInfo, Detail, FORMAT, InputInfo, Measured, MetricEntry, Ordered, PointResult, PointVerdict, Provenance,
-    RecordingInfo, ReferencePoint, ReferenceResult, RequirementResult, Results, ScenarioInfo, Summary, Table, Tool,
+    CheckInfo, Detail, FORMAT, InputInfo, LabelResult, Measured, MetricEntry, Ordered, PointResult, PointVerdict,
+    Provenance, RecordingInfo, ReferencePoint, ReferenceResult, RequirementResult, Results, ScenarioInfo, Summary,
+    Table, Tool,
 };
 pub use shard::{SHARD_FORMAT, Shard, ShardError, ShardInput, campaign_id, read_shard, shard_bytes};
 pub use template::{Loader, Location, Page, TemplateError, TemplateErrorKind, Templates};

@@ -87,9 +87,11 @@ pub struct Results {
     pub requirements: Vec<RequirementResult>,
     /// Metrics: numbers for a scenario without sweep, tables over the sweep otherwise.
     pub metrics: Ordered<MetricEntry>,
-    /// The sweeps: their settings, values and points (empty without a sweep).
+    /// The sweeps: their settings, values and the point of each row (empty
+    /// without a sweep).
     pub sweeps: Vec<sightline_dsl::Sweep>,
-    /// Every sweep point and its measurements (one point without a sweep).
+    /// Every distinct configuration the sweeps simulate, once, with its labels
+    /// and measurements (one point without a sweep).
     pub sweep: Vec<PointResult>,
     /// Published figures beside the measured values.
     pub references: Vec<ReferenceResult>,
@@ -241,15 +243,15 @@ pub struct Measured {
     pub n: u64,
 }
 
-/// A metric over one sweep: one row per point, the axis values, then the
-/// metric (`null` where it is undefined) and its n.
+/// A metric over one sweep: one row per combination of its values, the axis
+/// values, then the metric (`null` where it is undefined) and its n.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Table {
     /// Index of the sweep in `sweeps`.
     pub sweep: usize,
     /// The axis paths, then `value` and `n`.
     pub columns: Vec<String>,
-    /// One row per point.
+    /// One row per combination (a point several sweeps share is a row of each).
     pub rows: Vec<Vec<serde_json::Value>>,
 }
 
@@ -258,12 +260,11 @@ pub struct Table {
 pub struct PointResult {
     /// The index.
     pub index: usize,
-    /// The sweep it belongs to.
-    pub sweep: Option<usize>,
-    /// The sweep label.
+    /// Its labels joined with ` | ` (empty without a sweep).
     pub label: String,
-    /// Each axis's value.
-    pub settings: Ordered<serde_json::Value>,
+    /// Each sweep combination the point stands for: one, or several where sweeps
+    /// meet at the same configuration.
+    pub labels: Vec<LabelResult>,
     /// The seed.
     pub seed: u64,
     /// The fusion method.
@@ -280,6 +281,17 @@ pub struct PointResult {
     /// What only this kind of scenario measures.
     #[serde(flatten)]
     pub detail: Detail,
+}
+
+/// One sweep combination a point stands for.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct LabelResult {
+    /// The sweep (`null` without a sweep).
+    pub sweep: Option<usize>,
+    /// The combination as `path=value, …`.
+    pub label: String,
+    /// Each axis's value.
+    pub settings: Ordered<serde_json::Value>,
 }
 
 /// Measurements particular to the kind of scenario.
@@ -483,15 +495,22 @@ fn requirement_result(requirement: &Requirement, verdict: &Verdict, labels: &[St
 fn point_result((point, outcome): (&Point, &Outcome)) -> PointResult {
     PointResult {
         index: point.index,
-        sweep: point.sweep,
         label: point.label(),
-        settings: Ordered(
-            point
-                .assignments
-                .iter()
-                .map(|a| (a.path.clone(), a.value.clone()))
-                .collect(),
-        ),
+        labels: point
+            .labels
+            .iter()
+            .map(|label| LabelResult {
+                sweep: label.sweep,
+                label: label.text(),
+                settings: Ordered(
+                    label
+                        .assignments
+                        .iter()
+                        .map(|a| (a.path.clone(), a.value.clone()))
+                        .collect(),
+                ),
+            })
+            .collect(),
         seed: point.setup.seed,
         method: point.setup.fusion.rule.method().name(),
         fusion: point.setup.fusion.label.clone(),
@@ -615,11 +634,9 @@ fn metrics(scenario: &Scenario, run: &Run) -> Ordered<MetricEntry> {
                         columns.push("value".into());
                         columns.push("n".into());
                         let rows = sweep
-                            .points
-                            .iter()
-                            .map(|&p| {
-                                let mut row: Vec<serde_json::Value> =
-                                    scenario.points[p].assignments.iter().map(|a| a.value.clone()).collect();
+                            .rows()
+                            .map(|(p, values)| {
+                                let mut row: Vec<serde_json::Value> = values.into_iter().cloned().collect();
                                 let sample = run.points[p].sample(m);
                                 row.push(
                                     sample

@@ -8,8 +8,10 @@
 use std::sync::OnceLock;
 
 use crate::findings::tables;
+use serde_json::json;
+
 use crate::support::{
-    RECORDING, arg, assert_recorded_evidence_files, read, read_json, root, sha256_hex, sightline, temp_dir,
+    RECORDING, arg, assert_recorded_evidence_files, read, read_json, root, setting, sha256_hex, sightline, temp_dir,
     unescape_html,
 };
 
@@ -92,8 +94,8 @@ fn measured(metric: &str, error_model: &str, gamma: f64, label: &str) -> f64 {
     let point = points
         .iter()
         .find(|p| {
-            p["settings"]["field.masses.error_model"] == error_model
-                && p["settings"]["field.masses.gamma"].as_f64() == Some(gamma)
+            setting(p, "field.masses.error_model").is_some_and(|m| *m == error_model)
+                && setting(p, "field.masses.gamma").and_then(|g| g.as_f64()) == Some(gamma)
                 && p["fusion"] == label
         })
         .unwrap_or_else(|| panic!("no point for {error_model}, γ = {gamma}, {label}"));
@@ -110,7 +112,8 @@ fn published(metric: &str, gamma: f64, label: &str) -> f64 {
             r["metric"] == metric
                 && r["points"].as_array().unwrap().iter().any(|p| {
                     let point = &points[p["point"].as_u64().unwrap() as usize];
-                    point["settings"]["field.masses.gamma"].as_f64() == Some(gamma) && point["fusion"] == label
+                    setting(point, "field.masses.gamma").and_then(|g| g.as_f64()) == Some(gamma)
+                        && point["fusion"] == label
                 })
         })
         .unwrap_or_else(|| panic!("no reference for {metric} at γ = {gamma}, {label}"))["published"]
@@ -202,13 +205,19 @@ fn roundabout_scenario_runs_end_to_end() {
     let results = roundabout();
     assert_eq!(results["verdict"], "pass");
     assert_eq!(results["sweeps"].as_array().map(Vec::len), Some(2));
-    assert_eq!(results["sweep"].as_array().map(Vec::len), Some(12));
-    // The point both sweeps share (six vehicles, σ = 0.2 m) gives the same figures.
-    let points = results["sweep"].as_array().unwrap();
-    assert_eq!(points[5]["label"], "perception.cooperating=6");
-    assert_eq!(points[8]["label"], "localization.position_sigma=0.2");
-    assert_eq!(points[5]["metrics"], points[8]["metrics"]);
-    assert_eq!(points[5]["counts"], points[8]["counts"]);
+    // See: issue 13 §6. The configuration both sweeps reach (six vehicles,
+    // σ = 0.2 m) is simulated once, one point with both labels, a row of both
+    // sweeps' tables.
+    assert_eq!(results["sweep"].as_array().map(Vec::len), Some(11));
+    let shared = &results["sweep"][5];
+    assert_eq!(
+        shared["label"],
+        "perception.cooperating=6 | localization.position_sigma=0.2"
+    );
+    assert_eq!(shared["labels"][1]["sweep"], 1);
+    let recall = &results["metrics"]["occupied_recall"];
+    assert_eq!(recall[0]["rows"][5], json!([6, shared["metrics"]["occupied_recall"]]));
+    assert_eq!(recall[1]["rows"][2], json!([0.2, shared["metrics"]["occupied_recall"]]));
     // The temporal check reports the step where recall comes closest to failing.
     let temporal = requirement(results, "RB-REC-T-06");
     assert_eq!(temporal["check"]["kind"], "always");
@@ -350,8 +359,10 @@ fn urban_semantic_scenario_runs_end_to_end() {
         let idle = point["n"] == 0;
         assert_eq!(point["verdict"] == "not_exercised", idle, "{point}");
     }
+    // 10 rows in three sweeps; density 23 at the paper's `risk_for` and
+    // density 10 at our `shares_over` are rows of two sweeps each.
     let points = results["sweep"].as_array().unwrap();
-    assert_eq!(points.len(), 8);
+    assert_eq!(points.len(), 6);
     for point in points {
         assert_eq!(point["experiment"], "semantic");
         assert!(point.get("audit").is_none(), "a semantic world fuses no cells");
@@ -369,13 +380,19 @@ fn urban_semantic_scenario_runs_end_to_end() {
     let load = |i: usize, metric: &str| points[i]["metrics"][metric].as_f64().unwrap();
     assert!(load(3, "baseline_channel_load") > load(0, "baseline_channel_load"));
     // Counting every cycle, not only those serving the ego, can only lower the shares.
-    assert_eq!(points[6]["label"], "semantic.shares_over=ego_in_range");
-    assert_eq!(points[7]["label"], "semantic.shares_over=all");
-    assert!(load(7, "transmitted_share") < load(6, "transmitted_share"));
-    assert_eq!(points[6]["counts"]["transmitted"], points[1]["counts"]["transmitted"]);
+    assert_eq!(
+        points[1]["label"],
+        "traffic.vehicles.density_per_km=10 | semantic.shares_over=ego_in_range"
+    );
+    assert_eq!(points[5]["label"], "semantic.shares_over=all");
+    assert!(load(5, "transmitted_share") < load(1, "transmitted_share"));
     // Per object: the least-warned of the flagged road users decides.
     let warn = requirement(results, "URB-WARN-01");
-    let warnings = points[5]["counts"]["warnings"].as_array().unwrap();
+    assert_eq!(
+        points[4]["label"],
+        "traffic.vehicles.density_per_km=23, semantic.risk_for=all"
+    );
+    let warnings = points[4]["counts"]["warnings"].as_array().unwrap();
     let least = warnings
         .iter()
         .map(|w| w.as_f64().unwrap())
@@ -383,11 +400,11 @@ fn urban_semantic_scenario_runs_end_to_end() {
     assert_eq!(warn["value"].as_f64(), Some(least));
     assert_eq!(
         warnings.len() as u64,
-        points[5]["counts"]["close_approaches"].as_u64().unwrap()
+        points[4]["counts"]["close_approaches"].as_u64().unwrap()
     );
     // Eventually: every point reports when the signal came best.
     let rsu = requirement(results, "URB-RSU-T-01");
-    assert_eq!(rsu["points"].as_array().unwrap().len(), 8);
+    assert_eq!(rsu["points"].as_array().unwrap().len(), 6);
     assert!(rsu["points"].as_array().unwrap().iter().all(|p| p["time"].is_number()));
 }
 

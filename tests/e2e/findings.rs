@@ -3,7 +3,7 @@
 //! sightline computes.
 
 use crate::bundled::{roundabout, urban};
-use crate::support::{read, root};
+use crate::support::{in_sweep, read, root, setting as setting_of};
 
 /// A markdown table of a findings document: its header cells, its body rows, and
 /// the last bold line (`**…**`) before it.
@@ -79,8 +79,10 @@ fn check_swept_tables(results: &serde_json::Value, path: &str, section: &str) ->
             let point = points
                 .iter()
                 .find(|p| {
-                    let value = &p["settings"][axis];
-                    value.as_str() == Some(setting.as_str()) || value.as_f64().is_some_and(|v| setting.parse() == Ok(v))
+                    setting_of(p, axis).is_some_and(|value| {
+                        value.as_str() == Some(setting.as_str())
+                            || value.as_f64().is_some_and(|v| setting.parse() == Ok(v))
+                    })
                 })
                 .unwrap_or_else(|| panic!("{path}: no point with {axis} = {setting}"));
             let index = point["index"].as_u64().unwrap();
@@ -127,7 +129,7 @@ fn seed_002_findings_quote_the_bundled_run() {
     let points = results["sweep"].as_array().unwrap();
     let mut pooled: Vec<f64> = points
         .iter()
-        .filter(|p| p["sweep"] == 0)
+        .filter(|p| in_sweep(p, 0))
         .flat_map(|p| p["counts"]["anticipation"].as_array().unwrap().iter())
         .map(|v| v.as_f64().unwrap())
         .collect();

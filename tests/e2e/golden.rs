@@ -4,7 +4,8 @@
 //! cargo test --test e2e golden::`, never by hand.
 
 use crate::support::{
-    FAILING, SMALL_FIELD, arg, assert_matches_file, read, redact_junit, redact_results_json, sightline, temp_dir,
+    FAILING, SHARED_POINT, SMALL_FIELD, arg, assert_matches_file, read, redact_junit, redact_results_json, sightline,
+    temp_dir,
 };
 
 /// Runs `scenario` and compares its redacted evidence with `tests/golden/<golden>/`.
@@ -30,4 +31,9 @@ fn small_field_evidence_matches_golden() {
 #[test]
 fn failing_evidence_matches_golden() {
     assert_golden(FAILING, "accuracy-under-noise", 1);
+}
+
+#[test]
+fn shared_point_evidence_matches_golden() {
+    assert_golden(SHARED_POINT, "shared-point", 0);
 }

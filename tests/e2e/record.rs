@@ -99,7 +99,8 @@ fn bundled_roundabout_recording_has_foxglove_channels_and_the_steps() {
         recording.len()
     );
     let requirements = run.results["requirements"].as_array().unwrap().len() as u64;
-    let points = 12;
+    // One outcome per distinct configuration: the two sweeps' 12 rows share one.
+    let points = 11;
     assert_channels(
         recording,
         &[

@@ -7,8 +7,8 @@ use std::process::{Command, Stdio};
 use quick_junit::{NonSuccessKind, TestCaseStatus};
 
 use crate::support::{
-    FAILING, SEED_SWEEP, SMALL_FIELD, arg, assert_evidence_files, files_under, read, read_json, read_junit, root,
-    sha256_hex, sightline, sightline_in, temp_dir, unescape_html,
+    FAILING, SEED_SWEEP, SHARED_POINT, SMALL_FIELD, arg, assert_evidence_files, files_under, read, read_json,
+    read_junit, root, sha256_hex, sightline, sightline_in, temp_dir, unescape_html,
 };
 
 /// The requirement ids of a fixture, in file order, read from its `- id:` lines.
@@ -100,6 +100,75 @@ fn valid_scenario_passes_and_writes_three_evidence_files() {
     assert_eq!(references.len(), 1);
     assert_eq!(references[0]["points"][0]["label"], "fusion=Baseline");
     assert_eq!(references[0]["points"].as_array().map(Vec::len), Some(1));
+}
+
+/// See: issue 13 §6. Sweeps that meet at one configuration simulate it once and
+/// count each requirement there once in JUnit, while both sweeps' tables keep it
+/// as a row.
+#[test]
+fn a_configuration_two_sweeps_reach_is_simulated_and_counted_once() {
+    let tmp = temp_dir();
+    let out = tmp.path().join("evidence");
+    let outcome = sightline(["run", SHARED_POINT, "--out", arg(&out)]);
+    outcome.assert_exit(0);
+    assert!(
+        outcome.stdout.starts_with(&format!(
+            "PASS {SHARED_POINT}: 2 of 2 requirements hold over 3 sweep points"
+        )),
+        "{outcome}"
+    );
+
+    let results = read_json(&out.join("results.json"));
+    let labels: Vec<&str> = results["sweep"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| p["label"].as_str().unwrap())
+        .collect();
+    assert_eq!(
+        labels,
+        [
+            "field.masses.gamma=4",
+            "field.masses.gamma=8 | decision.threshold=0.8",
+            "decision.threshold=0.9"
+        ]
+    );
+    assert_eq!(results["sweeps"][1]["points"], serde_json::json!([1, 2]));
+    let accuracy = &results["metrics"]["accuracy"];
+    assert_eq!(
+        accuracy[0]["rows"][1][1], accuracy[1]["rows"][0][1],
+        "one run, in both tables"
+    );
+
+    // SHARED-MASS-01 at 3 points, SHARED-ACC-01 at the 2 with threshold 0.8:
+    // 5 cases, where counting each sweep's rows would give 4 + 3.
+    let junit = read_junit(&out.join("junit.xml"));
+    assert_eq!(junit.tests, 5);
+    assert_eq!(junit.test_suites[0].tests, 5);
+    let names: Vec<&str> = junit.test_suites[0]
+        .test_cases
+        .iter()
+        .map(|c| c.name.as_str())
+        .collect();
+    assert_eq!(
+        names,
+        [
+            "SHARED-MASS-01 [field.masses.gamma=4]",
+            "SHARED-MASS-01 [field.masses.gamma=8 | decision.threshold=0.8]",
+            "SHARED-MASS-01 [decision.threshold=0.9]",
+            "SHARED-ACC-01 [field.masses.gamma=4]",
+            "SHARED-ACC-01 [field.masses.gamma=8 | decision.threshold=0.8]",
+        ]
+    );
+
+    let html = unescape_html(&read(&out.join("report.html")));
+    assert!(html.contains("<th scope=\"row\">Sweep points</th><td class=\"mono\">3</td>"));
+    for row in ["4", "8", "0.8", "0.9"] {
+        assert!(
+            html.contains(&format!("<tr><td class=\"text\">{row}</td>")),
+            "a table row at {row}"
+        );
+    }
 }
 
 #[test]

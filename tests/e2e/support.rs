@@ -25,6 +25,9 @@ pub const SMALL_FIELD: &str = "tests/fixtures/valid/small-field.yaml";
 /// A valid fixture that sweeps `seed`.
 pub const SEED_SWEEP: &str = "tests/fixtures/valid/seed-sweep.yaml";
 
+/// A valid fixture whose two sweeps meet at one configuration.
+pub const SHARED_POINT: &str = "tests/fixtures/valid/shared-point.yaml";
+
 /// A valid fixture with a requirement that fails at one of its two sweep points.
 pub const FAILING: &str = "tests/fixtures/failing/accuracy-under-noise.yaml";
 
@@ -180,6 +183,22 @@ pub fn read_json(path: &Path) -> serde_json::Value {
 pub fn read_junit(path: &Path) -> quick_junit::Report {
     quick_junit::Report::deserialize_from_str(&read(path))
         .unwrap_or_else(|e| panic!("{} is not JUnit XML: {e}", path.display()))
+}
+
+/// The value of the swept setting `path` at a point of results.json's `sweep`,
+/// from the first of its labels that sets it.
+pub fn setting<'a>(point: &'a serde_json::Value, path: &str) -> Option<&'a serde_json::Value> {
+    point["labels"]
+        .as_array()?
+        .iter()
+        .find_map(|label| label["settings"].get(path))
+}
+
+/// Whether a point of results.json's `sweep` belongs to sweep `sweep`.
+pub fn in_sweep(point: &serde_json::Value, sweep: u64) -> bool {
+    point["labels"]
+        .as_array()
+        .is_some_and(|labels| labels.iter().any(|label| label["sweep"] == sweep))
 }
 
 /// The text of HTML: the entities minijinja's auto-escaping writes, decoded.

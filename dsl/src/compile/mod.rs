@@ -1,7 +1,8 @@
 //! YAML text → [`Scenario`](crate::Scenario), in named passes:
 //! `yaml::parse` (spanned tree) → `de` (raw serde types, located errors) →
 //! `traces` (imported SUMO files, read once through the caller's [`Loader`]) →
-//! `setup` (ranges, units, defaults) → `sweep` (one tree per point) → `vary`
+//! `setup` (ranges, units, defaults) → `sweep` (one tree per combination, one
+//! point per distinct configuration) → `vary`
 //! (the space falsify searches) →
 //! `requirements` (ids, checks, `where` filters) → `record` (the recorded
 //! point and grid rate) → `Scenario`.

@@ -407,13 +407,11 @@ fn defined_everywhere(
         }
         if metric.is_evidential_only() && !point.setup.fusion.rule.is_evidential() {
             let method = point.setup.fusion.rule.method().name();
-            let advice = if point.assignments.is_empty() {
+            let label = point.label();
+            let advice = if label.is_empty() {
                 format!("the scenario fuses with `{method}`")
             } else {
-                format!(
-                    "sweep point {} fuses with `{method}`; restrict the check with `where`",
-                    point.label()
-                )
+                format!("sweep point {label} fuses with `{method}`; restrict the check with `where`")
             };
             ctx.error(
                 path,
@@ -428,7 +426,8 @@ fn defined_everywhere(
     true
 }
 
-/// The points whose settings match every entry of a `where` filter; `None`
+/// The points with a label whose settings match every entry of a `where`
+/// filter (a point that several sweeps reach matches as each of them); `None`
 /// (after recording why) when a key names no setting or nothing matches.
 pub(super) fn select(
     ctx: &mut Context<'_>,
@@ -439,9 +438,9 @@ pub(super) fn select(
     let mut ok = true;
     for key in filter.keys() {
         let key_path = path.key(key);
-        let found = points.iter().any(|p| lookup(&p.settings, key).is_some());
+        let found = settings(points).any(|s| lookup(s, key).is_some());
         if !found {
-            let hint = suggest(&points[0].settings, key)
+            let hint = suggest(&points[0].labels[0].settings, key)
                 .map(|s| format!(" (did you mean `{s}`?)"))
                 .unwrap_or_default();
             ctx.error_at_key(
@@ -457,9 +456,11 @@ pub(super) fn select(
     let selected: Vec<usize> = points
         .iter()
         .filter(|p| {
-            filter
-                .iter()
-                .all(|(key, want)| lookup(&p.settings, key).is_some_and(|have| json_eq(have, want)))
+            p.labels.iter().any(|label| {
+                filter
+                    .iter()
+                    .all(|(key, want)| lookup(&label.settings, key).is_some_and(|have| json_eq(have, want)))
+            })
         })
         .map(|p| p.index)
         .collect();
@@ -468,8 +469,8 @@ pub(super) fn select(
             .keys()
             .map(|key| {
                 let mut values: Vec<String> = Vec::new();
-                for p in points {
-                    if let Some(v) = lookup(&p.settings, key).map(display_value)
+                for settings in settings(points) {
+                    if let Some(v) = lookup(settings, key).map(display_value)
                         && !values.contains(&v)
                     {
                         values.push(v);
@@ -485,6 +486,11 @@ pub(super) fn select(
         return None;
     }
     Some(selected)
+}
+
+/// The effective settings of every label of every point.
+fn settings(points: &[Point]) -> impl Iterator<Item = &serde_json::Value> {
+    points.iter().flat_map(|p| &p.labels).map(|label| &label.settings)
 }
 
 /// The setting at a dotted path.

@@ -1,5 +1,5 @@
-//! The driver: text → tree → raw → imported files → setup per sweep point →
-//! `vary` → requirements.
+//! The driver: text → tree → raw → imported files → setup per sweep combination
+//! → distinct points → `vary` → requirements.
 
 use std::{fmt, io};
 
@@ -7,12 +7,12 @@ use super::context::Context;
 use super::record::record;
 use super::requirements::{references, requirements};
 use super::setup::setup;
-use super::sweep::{self, AxisNodes};
+use super::sweep::{self, AxisNodes, Configurations};
 use super::traces::{self, Imported};
 use super::vary;
 use crate::de::from_node;
 use crate::error::{Error, ErrorKind, Errors, Location};
-use crate::model::{Assignment, Axis, Experiment, Point, Scenario, Sweep, display_value};
+use crate::model::{Assignment, Axis, Experiment, Label, Scenario, Sweep, display_value};
 use crate::path::Path;
 use crate::raw::RawScenario;
 use crate::schema::AGENTS;
@@ -111,9 +111,9 @@ fn compile_inner(file: &str, source: &str, options: &Options<'_>) -> Result<Scen
     let vary = vary::vary(&mut ctx, &sweeps, imported.as_ref(), valid);
     // Requirements are checked even when the setup is invalid (ids, texts and
     // check forms do not depend on the points), so one pass reports everything.
-    let points = match base {
+    let compiled = match base {
         Some(_) if ctx.errors.is_empty() => match points(file, &tree, &sweeps, options, imported.as_ref()) {
-            Ok(points) => Some(points),
+            Ok(compiled) => Some(compiled),
             Err(errors) => {
                 ctx.errors.extend(errors);
                 None
@@ -121,39 +121,36 @@ fn compile_inner(file: &str, source: &str, options: &Options<'_>) -> Result<Scen
         },
         _ => None,
     };
-    let requirements = requirements(&mut ctx, &raw.requirements, points.as_deref());
-    let references = references(&mut ctx, &raw.references, points.as_deref());
-    let record = record(&mut ctx, raw.record.as_ref(), options.record, points.as_deref());
-    let mut first_point = 0;
-    let sweeps = sweeps
-        .iter()
-        .map(|axes| {
-            let count: usize = axes.iter().map(|a| a.values.len()).product();
-            let points = (first_point..first_point + count).collect();
-            first_point += count;
-            Sweep {
-                axes: axes
-                    .iter()
-                    .map(|a| Axis {
-                        path: a.dotted.clone(),
-                        values: a.values.iter().map(Node::to_json).collect(),
-                    })
-                    .collect(),
-                points,
-            }
-        })
-        .collect();
-    ctx.finish(points.map(|points| Scenario {
-        file: file.to_string(),
-        name: raw.name,
-        description: raw.description,
-        sweeps,
-        points,
-        requirements,
-        references,
-        imports: imported.map(|i| i.files).unwrap_or_default(),
-        vary,
-        record,
+    let points = compiled.as_ref().map(Configurations::points);
+    let requirements = requirements(&mut ctx, &raw.requirements, points);
+    let references = references(&mut ctx, &raw.references, points);
+    let record = record(&mut ctx, raw.record.as_ref(), options.record, points);
+    ctx.finish(compiled.map(Configurations::into_parts).map(|(points, rows)| {
+        Scenario {
+            file: file.to_string(),
+            name: raw.name,
+            description: raw.description,
+            sweeps: sweeps
+                .iter()
+                .zip(rows)
+                .map(|(axes, points)| Sweep {
+                    axes: axes
+                        .iter()
+                        .map(|a| Axis {
+                            path: a.dotted.clone(),
+                            values: a.values.iter().map(Node::to_json).collect(),
+                        })
+                        .collect(),
+                    points,
+                })
+                .collect(),
+            points,
+            requirements,
+            references,
+            imports: imported.map(|i| i.files).unwrap_or_default(),
+            vary,
+            record,
+        }
     }))
 }
 
@@ -187,15 +184,16 @@ fn check_version(ctx: &mut Context<'_>) {
     }
 }
 
-/// Compiles every point of every sweep (one point when there is no sweep).
+/// Compiles every combination of every sweep (the file as written without a
+/// sweep) into the distinct configurations they give.
 fn points(
     file: &str,
     tree: &Node,
     sweeps: &[Vec<AxisNodes<'_>>],
     options: &Options<'_>,
     imported: Option<&Imported>,
-) -> Result<Vec<Point>, Vec<Error>> {
-    let mut points = Vec::new();
+) -> Result<Configurations, Vec<Error>> {
+    let mut configurations = Configurations::new(sweeps.len());
     let mut errors = Vec::new();
     let no_sweep: [Vec<AxisNodes<'_>>; 1] = [Vec::new()];
     let groups = if sweeps.is_empty() { &no_sweep[..] } else { sweeps };
@@ -215,35 +213,36 @@ fn points(
                     if let Some(seed) = options.seed {
                         setup.seed = seed;
                     }
-                    let settings = settings(&raw, &setup);
-                    let assignments = axes
-                        .iter()
-                        .zip(&choice)
-                        .map(|(axis, &i)| {
-                            let value = axis.values[i].to_json();
-                            Assignment {
-                                path: axis.dotted.clone(),
-                                display: display_value(&value),
-                                value,
-                            }
-                        })
-                        .collect();
-                    points.push(Point {
-                        index: points.len(),
+                    let label = Label {
                         sweep: (!sweeps.is_empty()).then_some(group),
-                        assignments,
-                        setup,
-                        settings,
-                    });
+                        assignments: axes
+                            .iter()
+                            .zip(&choice)
+                            .map(|(axis, &i)| {
+                                let value = axis.values[i].to_json();
+                                Assignment {
+                                    path: axis.dotted.clone(),
+                                    display: display_value(&value),
+                                    value,
+                                }
+                            })
+                            .collect(),
+                        settings: settings(&raw, &setup),
+                    };
+                    configurations.add(label, setup);
                 }
                 Err(e) => errors.extend(e),
             }
         }
     }
-    if errors.is_empty() { Ok(points) } else { Err(errors) }
+    if errors.is_empty() {
+        Ok(configurations)
+    } else {
+        Err(errors)
+    }
 }
 
-/// The effective settings of a point as JSON, for `where` filters: the raw
+/// The effective settings of a combination as JSON, for `where` filters: the raw
 /// sections with serde defaults filled in (agents keyed by id), plus what the
 /// compiler resolves (the seed, the fusion label, the number of cooperating agents).
 fn settings(raw: &RawScenario, setup: &crate::model::Setup) -> serde_json::Value {

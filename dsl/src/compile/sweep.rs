@@ -1,14 +1,20 @@
-//! Sweeps: axes read from the spanned tree in file order, and one tree per point
-//! with the swept values substituted, so a bad value is reported where it is written.
+//! Sweeps: axes read from the spanned tree in file order, one tree per
+//! combination with the swept values substituted, so a bad value is reported
+//! where it is written, and the distinct configurations the combinations give.
+
+use std::collections::HashMap;
+use std::hash::{DefaultHasher, Hasher};
+use std::io;
 
 use super::context::Context;
 use crate::de::{closest, one_of};
 use crate::error::{ErrorKind, Location};
+use crate::model::{Label, Point, Setup};
 use crate::path::{Path, Segment};
 use crate::schema::{AGENTS, check_setting};
 use crate::yaml::{Key, Node, Value};
 
-/// The most sweep points one scenario may have.
+/// The most sweep combinations one scenario may have, all sweeps together.
 pub const MAX_POINTS: usize = 10_000;
 
 /// Top-level sections a sweep may set.
@@ -314,4 +320,87 @@ pub(super) fn json_eq(a: &serde_json::Value, b: &serde_json::Value) -> bool {
         }
         _ => a == b,
     }
+}
+
+/// The distinct configurations of the sweeps' combinations, in order of first
+/// appearance: a combination whose setup equals an earlier one's joins its point
+/// (see [`Point`] for what "equal" means).
+pub(super) struct Configurations {
+    points: Vec<Point>,
+    /// Per sweep, the point of each row added so far.
+    rows: Vec<Vec<usize>>,
+    /// Point indices by the hash of their setup's serialization.
+    by_hash: HashMap<u64, Vec<usize>>,
+}
+
+impl Configurations {
+    /// None yet, for `sweeps` sweeps.
+    pub(super) fn new(sweeps: usize) -> Self {
+        Self {
+            points: Vec::new(),
+            rows: vec![Vec::new(); sweeps],
+            by_hash: HashMap::new(),
+        }
+    }
+
+    /// Adds a combination, the next row of its sweep.
+    pub(super) fn add(&mut self, label: Label, setup: Setup) {
+        let sweep = label.sweep;
+        let candidates = self.by_hash.entry(fingerprint(&setup)).or_default();
+        let same = candidates.iter().copied().find(|&i| {
+            let other = &self.points[i].setup;
+            *other == setup && serialized(other) == serialized(&setup)
+        });
+        let index = match same {
+            Some(index) => {
+                self.points[index].labels.push(label);
+                index
+            }
+            None => {
+                let index = self.points.len();
+                candidates.push(index);
+                self.points.push(Point {
+                    index,
+                    labels: vec![label],
+                    setup,
+                });
+                index
+            }
+        };
+        if let Some(rows) = sweep.and_then(|s| self.rows.get_mut(s)) {
+            rows.push(index);
+        }
+    }
+
+    /// The points, each configuration once.
+    pub(super) fn points(&self) -> &[Point] {
+        &self.points
+    }
+
+    /// The points, and per sweep the point of each row.
+    pub(super) fn into_parts(self) -> (Vec<Point>, Vec<Vec<usize>>) {
+        (self.points, self.rows)
+    }
+}
+
+/// A hash of the setup's JSON serialization, streamed.
+fn fingerprint(setup: &Setup) -> u64 {
+    struct Hashing(DefaultHasher);
+    impl io::Write for Hashing {
+        fn write(&mut self, bytes: &[u8]) -> io::Result<usize> {
+            self.0.write(bytes);
+            Ok(bytes.len())
+        }
+        fn flush(&mut self) -> io::Result<()> {
+            Ok(())
+        }
+    }
+    let mut hashing = Hashing(DefaultHasher::new());
+    serde_json::to_writer(&mut hashing, setup).expect("a setup serializes to JSON");
+    hashing.0.finish()
+}
+
+/// The setup's JSON serialization: every float written exactly.
+fn serialized(setup: &Setup) -> Vec<u8> {
+    serde_json::to_vec(setup).expect("a setup serializes to JSON")
 }

@@ -17,8 +17,10 @@ pub struct Scenario {
     /// The sweeps in file order: one for `sweep`, one per entry of `sweeps`, none
     /// without either.
     pub sweeps: Vec<Sweep>,
-    /// Every point of every sweep, sweep by sweep, each sweep's combinations with
-    /// its first axis outermost (one point without a sweep).
+    /// Every configuration the sweeps simulate, each once, in order of first
+    /// appearance: sweep by sweep, each sweep's combinations with its first axis
+    /// outermost (one point without a sweep). Combinations that compile to the
+    /// same [`Setup`] share one point, which carries each one's [`Label`].
     pub points: Vec<Point>,
     /// Requirements in file order.
     pub requirements: Vec<Requirement>,
@@ -99,13 +101,38 @@ impl ImportKind {
     }
 }
 
-/// One sweep: settings varied together, one point per combination of values.
+/// One sweep: settings varied together, one row per combination of values.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Sweep {
     /// The swept settings, in file order.
     pub axes: Vec<Axis>,
-    /// Indices of its points in [`Scenario::points`].
+    /// Its rows, one per combination of values with the first axis outermost:
+    /// the index in [`Scenario::points`] of the point that simulates each. A point
+    /// another sweep reaches too (the same configuration) is listed by both.
     pub points: Vec<usize>,
+}
+
+impl Sweep {
+    /// Its rows in order: the point that simulates each and the value of each
+    /// axis there, in axis order.
+    pub fn rows(&self) -> impl Iterator<Item = (usize, Vec<&serde_json::Value>)> {
+        self.points.iter().enumerate().map(|(row, &point)| {
+            // The row number written in mixed radix, the last axis the fastest digit.
+            let mut rest = row;
+            let mut values: Vec<&serde_json::Value> = self
+                .axes
+                .iter()
+                .rev()
+                .map(|axis| {
+                    let value = &axis.values[rest % axis.values.len()];
+                    rest /= axis.values.len();
+                    value
+                })
+                .collect();
+            values.reverse();
+            (point, values)
+        })
+    }
 }
 
 /// One swept setting and its values.
@@ -117,25 +144,55 @@ pub struct Axis {
     pub values: Vec<serde_json::Value>,
 }
 
-/// One simulation: a setting of every swept path and the setup it produces.
+/// One simulation: a configuration, and every sweep combination that gives it.
+///
+/// Two combinations are the same configuration when their compiled [`Setup`]s
+/// are equal and serialize to the same bytes (so 0 and −0 stay apart). The
+/// setup is what the engine is given, and all it is given: equal setups are the
+/// same run, bit for bit. Its one name, the fusion label, is compared too, as
+/// reports show it as the point's method. The effective settings (see
+/// [`Label::settings`]) are not the test: they also hold how a value was written
+/// and keys the compiler resolves away, which do not change the run.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Point {
     /// Position in [`Scenario::points`].
     pub index: usize,
-    /// The sweep it belongs to (`None` without a sweep).
-    pub sweep: Option<usize>,
-    /// The value of each sweep axis at this point, in axis order.
-    pub assignments: Vec<Assignment>,
+    /// The combinations that give this configuration, in sweep and row order: one,
+    /// or several where sweeps meet; one without assignments without a sweep.
+    pub labels: Vec<Label>,
     /// What to simulate.
     pub setup: Setup,
-    /// The effective settings (defaults filled in) as JSON, matched by `where` filters.
+}
+
+impl Point {
+    /// A short label such as `field.masses.gamma=6, fusion=Proposed`, each
+    /// combination's joined with ` | ` where sweeps meet; empty without a sweep.
+    pub fn label(&self) -> String {
+        self.labels
+            .iter()
+            .map(Label::text)
+            .filter(|text| !text.is_empty())
+            .collect::<Vec<_>>()
+            .join(" | ")
+    }
+}
+
+/// One sweep combination a point stands for.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Label {
+    /// The sweep it belongs to (`None` without a sweep).
+    pub sweep: Option<usize>,
+    /// The value of each sweep axis, in axis order.
+    pub assignments: Vec<Assignment>,
+    /// The effective settings (defaults filled in) as JSON, matched by `where`
+    /// filters: a point matches when one of its labels does.
     #[serde(skip)]
     pub settings: serde_json::Value,
 }
 
-impl Point {
-    /// A short label such as `field.masses.gamma=6, fusion=Proposed`; empty without a sweep.
-    pub fn label(&self) -> String {
+impl Label {
+    /// Its assignments as `field.masses.gamma=6, fusion=Proposed`; empty without a sweep.
+    pub fn text(&self) -> String {
         self.assignments
             .iter()
             .map(|a| format!("{}={}", a.path, a.display))
