@@ -83,6 +83,18 @@ pub fn run(args: &RunArgs) -> anyhow::Result<Exit> {
             })?,
         };
         bar.finish_and_clear();
+        // A value outside its domain is a defect of the engine: never judged.
+        let outside = sightline_oracles::out_of_domain(scenario, &simulated.0);
+        if !outside.is_empty() {
+            for problem in outside {
+                eprintln!(
+                    "{}: error: {problem}: no correct simulation gives such a value, a defect in sightline; \
+                     nothing is judged",
+                    input.path.display()
+                );
+            }
+            return Ok(Exit::Internal);
+        }
         let execution = Execution::on_this_machine(pool.current_num_threads(), started, clock.elapsed());
         exit = exit.max(write_evidence(input, &reporting, dir, simulated, execution)?);
     }

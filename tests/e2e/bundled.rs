@@ -216,8 +216,12 @@ fn roundabout_scenario_runs_end_to_end() {
     );
     assert_eq!(shared["labels"][1]["sweep"], 1);
     let recall = &results["metrics"]["occupied_recall"];
-    assert_eq!(recall[0]["rows"][5], json!([6, shared["metrics"]["occupied_recall"]]));
-    assert_eq!(recall[1]["rows"][2], json!([0.2, shared["metrics"]["occupied_recall"]]));
+    let (value, n) = (
+        &shared["metrics"]["occupied_recall"],
+        &shared["samples"]["occupied_recall"],
+    );
+    assert_eq!(recall[0]["rows"][5], json!([6, value, n]));
+    assert_eq!(recall[1]["rows"][2], json!([0.2, value, n]));
     // The temporal check reports the step where recall comes closest to failing.
     let temporal = requirement(results, "RB-REC-T-06");
     assert_eq!(temporal["check"]["kind"], "always");
