@@ -17,6 +17,10 @@ mod run;
 #[path = "e2e/invalid.rs"]
 mod invalid;
 
+// Every key of the language changes the result or is refused, per kind of scenario.
+#[path = "e2e/keys.rs"]
+mod keys;
+
 // Same file and seed give byte-identical evidence whatever the thread count; `--seed`.
 #[path = "e2e/determinism.rs"]
 mod determinism;

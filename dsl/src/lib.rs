@@ -15,7 +15,7 @@
 //!             field:\n  truth: { occupied_fraction: 0.2 }\n  sensors: { range: 8, layout: { regular: { rows: 1, cols: 2 } } }\n  masses: { gamma: 10 }\n";
 //! let scenario = sightline_dsl::compile("tiny.yaml", text, &Default::default()).unwrap();
 //! assert_eq!(scenario.points.len(), 1);
-//! assert_eq!(scenario.points[0].setup.grid.cells(), 100);
+//! assert_eq!(scenario.points[0].setup.occupancy.as_ref().unwrap().grid.cells(), 100);
 //!
 //! let bad = text.replace("gamma: 10", "gamma: -3");
 //! let errors = sightline_dsl::compile("bad.yaml", &bad, &Default::default()).unwrap_err();

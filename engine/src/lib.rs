@@ -25,6 +25,7 @@
 //! ```
 #![warn(missing_docs)]
 
+pub use idealisation::{Idealisation, ModelOption, idealisations};
 pub use metrics::{BandMetrics, ConflictMetrics, Coverage, FieldMetrics, FieldOutcome, MassAudit};
 pub use run::{
     AssembleError, Job, Outcome, Run, Unit, assemble, simulate, simulate_point, simulate_reporting, simulate_traced,
@@ -34,6 +35,7 @@ pub use sink::{NoTrace, TraceSink};
 
 pub mod field;
 pub mod fusion;
+mod idealisation;
 pub mod math;
 mod metrics;
 mod rng;

@@ -78,10 +78,11 @@ impl Page {
     }
 
     /// The blocks a template of this page must show: what makes the page
-    /// evidence (the verdict, the provenance, what was checked and found).
+    /// evidence (the verdict, the provenance, what was checked and found, and
+    /// what the models assumed).
     pub fn required_blocks(self) -> &'static [&'static str] {
         match self {
-            Self::Run => &["banner", "provenance", "traceability", "evidence"],
+            Self::Run => &["banner", "provenance", "traceability", "evidence", "assumptions"],
             Self::Falsify => &["banner", "provenance", "settings", "cases", "counterexample"],
         }
     }
@@ -631,6 +632,7 @@ mod tests {
         let layout = ["content", "footer", "head", "header", "style", "title"];
         let run = [
             "argument",
+            "assumptions",
             "banner",
             "comparison",
             "description",

@@ -1,12 +1,14 @@
 //! YAML text → [`Scenario`](crate::Scenario), in named passes:
 //! `yaml::parse` (spanned tree) → `de` (raw serde types, located errors) →
 //! `traces` (imported SUMO files, read once through the caller's [`Loader`]) →
-//! `setup` (ranges, units, defaults) → `sweep` (one tree per point) → `vary`
-//! (the space falsify searches) →
+//! `setup` (ranges, units, defaults; the keys the scenario's kind ignores, see
+//! `kind`) → `sweep` (one tree per point; the keys a point leaves without
+//! effect) → `vary` (the space falsify searches) →
 //! `requirements` (ids, checks, `where` filters) → `record` (the recorded
 //! point and grid rate) → `Scenario`.
 
 mod context;
+mod kind;
 mod record;
 mod requirements;
 mod scenario;
