@@ -757,7 +757,8 @@ mod tests {
         assert_eq!(
             message,
             "org/report.html: error: the page does not show required block `provenance`: a page of `sightline run` \
-             must show the blocks banner, provenance, traceability, evidence (extend `sightline/report.html` to inherit them)"
+             must show the blocks banner, provenance, traceability, evidence, assumptions (extend `sightline/report.html` \
+             to inherit them)"
         );
         // Overriding the block that holds it hides it too.
         let message = refused(
@@ -797,7 +798,10 @@ mod tests {
             ),
             "{message}"
         );
-        assert!(message.contains("argument, banner, comparison"), "{message}");
+        assert!(
+            message.contains("argument, assumptions, banner, comparison"),
+            "{message}"
+        );
         // An override of `details` that leaves `pictures` out hides an override of `pictures`.
         let message = refused(
             Page::Run,

@@ -326,391 +326,127 @@ const SUMO_SEMANTIC: &[Set] = &[
 ];
 
 /// Every key of the language: how to change it, or how `check` refuses it, in
-/// each kind of scenario.
+/// each kind of scenario. One entry per line where it fits: a table, not code.
+#[rustfmt::skip]
 const KEYS: &[Key] = &[
     // The scenario as a whole.
-    Key {
-        path: "sightline",
-        field: refused(&[("sightline", "2")]),
-        perception: refused(&[("sightline", "2")]),
-        semantic: refused(&[("sightline", "2")]),
-    },
-    Key {
-        path: "name",
-        field: Descriptive,
-        perception: Descriptive,
-        semantic: Descriptive,
-    },
-    Key {
-        path: "description",
-        field: Descriptive,
-        perception: Descriptive,
-        semantic: Descriptive,
-    },
-    Key {
-        path: "seed",
-        field: change(&[("seed", "2")]),
-        perception: change(&[("seed", "4")]),
-        semantic: change(&[("seed", "6")]),
-    },
+    Key { path: "sightline", field: refused(&[("sightline", "2")]), perception: refused(&[("sightline", "2")]), semantic: refused(&[("sightline", "2")]) },
+    Key { path: "name", field: Descriptive, perception: Descriptive, semantic: Descriptive },
+    Key { path: "description", field: Descriptive, perception: Descriptive, semantic: Descriptive },
+    Key { path: "seed", field: change(&[("seed", "2")]), perception: change(&[("seed", "4")]), semantic: change(&[("seed", "6")]) },
     // grid, fusion, decision: what fuses.
     Key {
         path: "grid.origin",
-        field: with(
-            &[("field.sensors.layout", r#"{ "positions": [[5, 5], [15, 15]] }"#)],
-            &[("grid.origin", "[3, 0]")],
-        ),
+        field: with(&[("field.sensors.layout", r#"{ "positions": [[5, 5], [15, 15]] }"#)], &[("grid.origin", "[3, 0]")]),
         perception: change(&[("grid.origin", "[-31, -30]")]),
         semantic: Section,
     },
-    Key {
-        path: "grid.size",
-        field: change(&[("grid.size", "[20, 10]")]),
-        perception: change(&[("grid.size", "[50, 60]")]),
-        semantic: Section,
-    },
-    Key {
-        path: "grid.cell",
-        field: change(&[("grid.cell", "0.5")]),
-        perception: change(&[("grid.cell", "0.5")]),
-        semantic: Section,
-    },
-    Key {
-        path: "fusion.label",
-        field: change(&[("fusion.label", r#""Baseline""#)]),
-        perception: change(&[("fusion.label", r#""Baseline""#)]),
-        semantic: Section,
-    },
-    Key {
-        path: "fusion.method",
-        field: change(&[("fusion.method", r#""bayes""#)]),
-        perception: change(&[("fusion.method", r#""dempster""#)]),
-        semantic: Section,
-    },
+    Key { path: "grid.size", field: change(&[("grid.size", "[20, 10]")]), perception: change(&[("grid.size", "[50, 60]")]), semantic: Section },
+    Key { path: "grid.cell", field: change(&[("grid.cell", "0.5")]), perception: change(&[("grid.cell", "0.5")]), semantic: Section },
+    Key { path: "fusion.label", field: change(&[("fusion.label", r#""Baseline""#)]), perception: change(&[("fusion.label", r#""Baseline""#)]), semantic: Section },
+    Key { path: "fusion.method", field: change(&[("fusion.method", r#""bayes""#)]), perception: change(&[("fusion.method", r#""dempster""#)]), semantic: Section },
     Key {
         path: "fusion.weights",
-        field: with(
-            &[
-                ("fusion.method", r#""distance_weighted""#),
-                ("field.sensors.layout.regular.cols", "3"),
-            ],
-            &[("fusion.weights", r#""mean_one""#)],
-        ),
-        perception: with(
-            &[("fusion.method", r#""distance_weighted""#)],
-            &[("fusion.weights", r#""mean_one""#)],
-        ),
+        field: with(&[("fusion.method", r#""distance_weighted""#), ("field.sensors.layout.regular.cols", "3")], &[("fusion.weights", r#""mean_one""#)]),
+        perception: with(&[("fusion.method", r#""distance_weighted""#)], &[("fusion.weights", r#""mean_one""#)]),
         semantic: Section,
     },
     Key {
         path: "fusion.sources",
-        field: with(
-            &[
-                ("fusion.method", r#""distance_weighted""#),
-                ("fusion.weights", r#""mean_one""#),
-                ("field.sensors.layout.regular.cols", "3"),
-            ],
-            &[("fusion.sources", r#""pairwise""#)],
-        ),
-        perception: with(
-            &[
-                ("fusion.method", r#""distance_weighted""#),
-                ("fusion.weights", r#""mean_one""#),
-            ],
-            &[("fusion.sources", r#""pairwise""#)],
-        ),
+        field: with(&[("fusion.method", r#""distance_weighted""#), ("fusion.weights", r#""mean_one""#), ("field.sensors.layout.regular.cols", "3")], &[("fusion.sources", r#""pairwise""#)]),
+        perception: with(&[("fusion.method", r#""distance_weighted""#), ("fusion.weights", r#""mean_one""#)], &[("fusion.sources", r#""pairwise""#)]),
         semantic: Section,
     },
     Key {
         path: "fusion.switch.measure",
-        field: with(
-            &[
-                ("fusion.method", r#""hybrid""#),
-                ("fusion.switch", r#"{ "measure": "difference", "threshold": 2 }"#),
-            ],
-            &[("fusion.switch.measure", r#""ratio""#)],
-        ),
-        perception: with(
-            &[
-                ("fusion.method", r#""hybrid""#),
-                ("fusion.switch", r#"{ "measure": "difference", "threshold": 2 }"#),
-            ],
-            &[("fusion.switch.measure", r#""ratio""#)],
-        ),
+        field: with(&[("fusion.method", r#""hybrid""#), ("fusion.switch", r#"{ "measure": "difference", "threshold": 2 }"#)], &[("fusion.switch.measure", r#""ratio""#)]),
+        perception: with(&[("fusion.method", r#""hybrid""#), ("fusion.switch", r#"{ "measure": "difference", "threshold": 2 }"#)], &[("fusion.switch.measure", r#""ratio""#)]),
         semantic: Section,
     },
     Key {
         path: "fusion.switch.threshold",
-        field: with(
-            &[
-                ("fusion.method", r#""hybrid""#),
-                ("fusion.switch", r#"{ "threshold": 2 }"#),
-            ],
-            &[("fusion.switch.threshold", "8")],
-        ),
-        perception: with(
-            &[
-                ("fusion.method", r#""hybrid""#),
-                ("fusion.switch", r#"{ "threshold": 2 }"#),
-            ],
-            &[("fusion.switch.threshold", "20")],
-        ),
+        field: with(&[("fusion.method", r#""hybrid""#), ("fusion.switch", r#"{ "threshold": 2 }"#)], &[("fusion.switch.threshold", "8")]),
+        perception: with(&[("fusion.method", r#""hybrid""#), ("fusion.switch", r#"{ "threshold": 2 }"#)], &[("fusion.switch.threshold", "20")]),
         semantic: Section,
     },
-    Key {
-        path: "decision.threshold",
-        field: change(&[("decision.threshold", "0.5")]),
-        perception: change(&[("decision.threshold", "0.5")]),
-        semantic: Section,
-    },
+    Key { path: "decision.threshold", field: change(&[("decision.threshold", "0.5")]), perception: change(&[("decision.threshold", "0.5")]), semantic: Section },
     // The field experiment.
-    Key {
-        path: "field.truth.occupied_fraction",
-        field: change(&[("field.truth.occupied_fraction", "0.5")]),
-        perception: Section,
-        semantic: Section,
-    },
-    Key {
-        path: "field.truth.blob",
-        field: change(&[("field.truth.blob", "2")]),
-        perception: Section,
-        semantic: Section,
-    },
-    Key {
-        path: "field.sensors.range",
-        field: change(&[("field.sensors.range", "10")]),
-        perception: Section,
-        semantic: Section,
-    },
-    Key {
-        path: "field.sensors.layout.regular.rows",
-        field: change(&[("field.sensors.layout.regular.rows", "2")]),
-        perception: Section,
-        semantic: Section,
-    },
-    Key {
-        path: "field.sensors.layout.regular.cols",
-        field: change(&[("field.sensors.layout.regular.cols", "3")]),
-        perception: Section,
-        semantic: Section,
-    },
-    Key {
-        path: "field.sensors.layout.positions",
-        field: change(&[("field.sensors.layout", r#"{ "positions": [[2, 2], [18, 18]] }"#)]),
-        perception: Section,
-        semantic: Section,
-    },
+    Key { path: "field.truth.occupied_fraction", field: change(&[("field.truth.occupied_fraction", "0.5")]), perception: Section, semantic: Section },
+    Key { path: "field.truth.blob", field: change(&[("field.truth.blob", "2")]), perception: Section, semantic: Section },
+    Key { path: "field.sensors.range", field: change(&[("field.sensors.range", "10")]), perception: Section, semantic: Section },
+    Key { path: "field.sensors.layout.regular.rows", field: change(&[("field.sensors.layout.regular.rows", "2")]), perception: Section, semantic: Section },
+    Key { path: "field.sensors.layout.regular.cols", field: change(&[("field.sensors.layout.regular.cols", "3")]), perception: Section, semantic: Section },
+    Key { path: "field.sensors.layout.positions", field: change(&[("field.sensors.layout", r#"{ "positions": [[2, 2], [18, 18]] }"#)]), perception: Section, semantic: Section },
     Key {
         path: "field.sensors.layout.random.count",
-        field: with(
-            &[("field.sensors.layout", r#"{ "random": { "count": 2 } }"#)],
-            &[("field.sensors.layout.random.count", "3")],
-        ),
+        field: with(&[("field.sensors.layout", r#"{ "random": { "count": 2 } }"#)], &[("field.sensors.layout.random.count", "3")]),
         perception: Section,
         semantic: Section,
     },
-    Key {
-        path: "field.masses.concentration",
-        field: change(&[("field.masses.concentration", "10")]),
-        perception: Section,
-        semantic: Section,
-    },
-    Key {
-        path: "field.masses.epsilon0",
-        field: change(&[("field.masses.epsilon0", "0.1")]),
-        perception: Section,
-        semantic: Section,
-    },
-    Key {
-        path: "field.masses.gamma",
-        field: change(&[("field.masses.gamma", "20")]),
-        perception: Section,
-        semantic: Section,
-    },
-    Key {
-        path: "field.masses.error_model",
-        field: change(&[("field.masses.error_model", r#""wrong_label""#)]),
-        perception: Section,
-        semantic: Section,
-    },
-    Key {
-        path: "field.distance_bands",
-        field: change(&[("field.distance_bands", "[5, 10]")]),
-        perception: Section,
-        semantic: Section,
-    },
+    Key { path: "field.masses.concentration", field: change(&[("field.masses.concentration", "10")]), perception: Section, semantic: Section },
+    Key { path: "field.masses.epsilon0", field: change(&[("field.masses.epsilon0", "0.1")]), perception: Section, semantic: Section },
+    Key { path: "field.masses.gamma", field: change(&[("field.masses.gamma", "20")]), perception: Section, semantic: Section },
+    Key { path: "field.masses.error_model", field: change(&[("field.masses.error_model", r#""wrong_label""#)]), perception: Section, semantic: Section },
+    Key { path: "field.distance_bands", field: change(&[("field.distance_bands", "[5, 10]")]), perception: Section, semantic: Section },
     // Worlds: time, imported traces, roads, buildings.
-    Key {
-        path: "time.duration",
-        field: Section,
-        perception: change(&[("time.duration", "0.5")]),
-        semantic: change(&[("time.duration", "5")]),
-    },
-    Key {
-        path: "time.step",
-        field: Section,
-        perception: change(&[("time.step", "0.05")]),
-        semantic: change(&[("time.step", "0.05")]),
-    },
-    Key {
-        path: "traces.fcd",
-        field: Section,
-        perception: change(&[("traces", r#"{ "fcd": "sumo/grid3x3.fcd.xml" }"#)]),
-        semantic: change(&[("traces", r#"{ "fcd": "sumo/grid3x3.fcd.xml" }"#)]),
-    },
+    Key { path: "time.duration", field: Section, perception: change(&[("time.duration", "0.5")]), semantic: change(&[("time.duration", "5")]) },
+    Key { path: "time.step", field: Section, perception: change(&[("time.step", "0.05")]), semantic: change(&[("time.step", "0.05")]) },
+    Key { path: "traces.fcd", field: Section, perception: change(&[("traces", r#"{ "fcd": "sumo/grid3x3.fcd.xml" }"#)]), semantic: change(&[("traces", r#"{ "fcd": "sumo/grid3x3.fcd.xml" }"#)]) },
     Key {
         path: "traces.net",
         field: Section,
-        perception: with(
-            &[("traces", r#"{ "fcd": "sumo/grid3x3.fcd.xml" }"#)],
-            &[
-                ("traces.net", r#""sumo/grid3x3.net.xml""#),
-                ("agents.2.route", r#"["A0A1"]"#),
-            ],
-        ),
-        semantic: with(
-            &[("traces", r#"{ "fcd": "sumo/grid3x3.fcd.xml" }"#)],
-            &[("traces.net", r#""sumo/grid3x3.net.xml""#)],
-        ),
+        perception: with(&[("traces", r#"{ "fcd": "sumo/grid3x3.fcd.xml" }"#)], &[("traces.net", r#""sumo/grid3x3.net.xml""#), ("agents.2.route", r#"["A0A1"]"#)]),
+        semantic: with(&[("traces", r#"{ "fcd": "sumo/grid3x3.fcd.xml" }"#)], &[("traces.net", r#""sumo/grid3x3.net.xml""#)]),
     },
     Key {
         path: "traces.poly",
         field: Section,
-        perception: with(
-            &[
-                ("traces", r#"{ "fcd": "sumo/grid3x3.fcd.xml" }"#),
-                ("grid", r#"{ "origin": [-30, -30], "size": [60, 60], "cell": 1 }"#),
-                ("agents.0.start.offset", "40"),
-            ],
-            &[("traces.poly", r#""sumo/grid3x3.poly.xml""#)],
-        ),
+        perception: with(&[("traces", r#"{ "fcd": "sumo/grid3x3.fcd.xml" }"#), ("grid", r#"{ "origin": [-30, -30], "size": [60, 60], "cell": 1 }"#), ("agents.0.start.offset", "40")], &[("traces.poly", r#""sumo/grid3x3.poly.xml""#)]),
         semantic: with(SUMO_SEMANTIC, &[("traces.poly", "null")]),
     },
     Key {
         path: "traces.occluder_types",
         field: Section,
-        perception: with(
-            &[
-                (
-                    "traces",
-                    r#"{ "fcd": "sumo/grid3x3.fcd.xml", "poly": "sumo/grid3x3.poly.xml" }"#,
-                ),
-                ("agents.0.start.offset", "40"),
-            ],
-            &[("traces.occluder_types", r#"["park"]"#)],
-        ),
+        perception: with(&[("traces", r#"{ "fcd": "sumo/grid3x3.fcd.xml", "poly": "sumo/grid3x3.poly.xml" }"#), ("agents.0.start.offset", "40")], &[("traces.occluder_types", r#"["park"]"#)]),
         semantic: with(SUMO_SEMANTIC, &[("traces.occluder_types", r#"["park"]"#)]),
     },
     Key {
         path: "traces.junction_areas",
         field: Section,
-        perception: refused(&[(
-            "traces",
-            r#"{ "fcd": "sumo/grid3x3.fcd.xml", "net": "sumo/grid3x3.net.xml", "junction_areas": false }"#,
-        )]),
+        perception: refused(&[("traces", r#"{ "fcd": "sumo/grid3x3.fcd.xml", "net": "sumo/grid3x3.net.xml", "junction_areas": false }"#)]),
         semantic: with(SUMO_SEMANTIC, &[("traces.junction_areas", "false")]),
     },
     Key {
         path: "traces.begin",
         field: Section,
-        perception: with(
-            &[("traces", r#"{ "fcd": "sumo/grid3x3.fcd.xml" }"#)],
-            &[("traces.begin", "5")],
-        ),
+        perception: with(&[("traces", r#"{ "fcd": "sumo/grid3x3.fcd.xml" }"#)], &[("traces.begin", "5")]),
         semantic: with(SUMO_SEMANTIC, &[("traces.begin", "2")]),
     },
-    Key {
-        path: "roads[].id",
-        field: Section,
-        perception: Descriptive,
-        semantic: Descriptive,
-    },
-    Key {
-        path: "roads[].polyline",
-        field: Section,
-        perception: change(&[("roads.1.polyline", "[[-30, 3], [30, 3]]")]),
-        semantic: change(&[("roads.3.polyline", "[[80, 3], [-80, 3]]")]),
-    },
+    Key { path: "roads[].id", field: Section, perception: Descriptive, semantic: Descriptive },
+    Key { path: "roads[].polyline", field: Section, perception: change(&[("roads.1.polyline", "[[-30, 3], [30, 3]]")]), semantic: change(&[("roads.3.polyline", "[[80, 3], [-80, 3]]")]) },
     Key {
         path: "roads[].arc.center",
         field: Section,
-        perception: with(
-            &[
-                ARC_ROAD,
-                ("agents.2.route", r#"["bend"]"#),
-                ("agents.2.start.offset", "0"),
-            ],
-            &[("roads.2.arc.center", "[1, 0]")],
-        ),
-        semantic: with(
-            &[
-                ARC_ROAD,
-                ("agents.2.route", r#"["bend"]"#),
-                ("agents.2.start.offset", "0"),
-            ],
-            &[("roads.4.arc.center", "[1, 0]")],
-        ),
+        perception: with(&[ARC_ROAD, ("agents.2.route", r#"["bend"]"#), ("agents.2.start.offset", "0")], &[("roads.2.arc.center", "[1, 0]")]),
+        semantic: with(&[ARC_ROAD, ("agents.2.route", r#"["bend"]"#), ("agents.2.start.offset", "0")], &[("roads.4.arc.center", "[1, 0]")]),
     },
     Key {
         path: "roads[].arc.radius",
         field: Section,
-        perception: with(
-            &[
-                ARC_ROAD,
-                ("agents.2.route", r#"["bend"]"#),
-                ("agents.2.start.offset", "0"),
-            ],
-            &[("roads.2.arc.radius", "15")],
-        ),
-        semantic: with(
-            &[
-                ARC_ROAD,
-                ("agents.2.route", r#"["bend"]"#),
-                ("agents.2.start.offset", "0"),
-            ],
-            &[("roads.4.arc.radius", "15")],
-        ),
+        perception: with(&[ARC_ROAD, ("agents.2.route", r#"["bend"]"#), ("agents.2.start.offset", "0")], &[("roads.2.arc.radius", "15")]),
+        semantic: with(&[ARC_ROAD, ("agents.2.route", r#"["bend"]"#), ("agents.2.start.offset", "0")], &[("roads.4.arc.radius", "15")]),
     },
     Key {
         path: "roads[].arc.start_deg",
         field: Section,
-        perception: with(
-            &[
-                ARC_ROAD,
-                ("agents.2.route", r#"["bend"]"#),
-                ("agents.2.start.offset", "0"),
-            ],
-            &[("roads.2.arc.start_deg", "-30")],
-        ),
-        semantic: with(
-            &[
-                ARC_ROAD,
-                ("agents.2.route", r#"["bend"]"#),
-                ("agents.2.start.offset", "0"),
-            ],
-            &[("roads.4.arc.start_deg", "-30")],
-        ),
+        perception: with(&[ARC_ROAD, ("agents.2.route", r#"["bend"]"#), ("agents.2.start.offset", "0")], &[("roads.2.arc.start_deg", "-30")]),
+        semantic: with(&[ARC_ROAD, ("agents.2.route", r#"["bend"]"#), ("agents.2.start.offset", "0")], &[("roads.4.arc.start_deg", "-30")]),
     },
     Key {
         path: "roads[].arc.end_deg",
         field: Section,
-        perception: with(
-            &[
-                ARC_ROAD,
-                ("agents.2.route", r#"["bend"]"#),
-                ("agents.2.start.offset", "0"),
-                ("time.duration", "3"),
-            ],
-            &[("roads.2.arc.end_deg", "30")],
-        ),
-        semantic: with(
-            &[
-                ARC_ROAD,
-                ("agents.2.route", r#"["bend"]"#),
-                ("agents.2.start.offset", "0"),
-            ],
-            &[("roads.4.arc.end_deg", "30")],
-        ),
+        perception: with(&[ARC_ROAD, ("agents.2.route", r#"["bend"]"#), ("agents.2.start.offset", "0"), ("time.duration", "3")], &[("roads.2.arc.end_deg", "30")]),
+        semantic: with(&[ARC_ROAD, ("agents.2.route", r#"["bend"]"#), ("agents.2.start.offset", "0")], &[("roads.4.arc.end_deg", "30")]),
     },
     Key {
         path: "roads[].roundabout.center",
@@ -718,12 +454,7 @@ const KEYS: &[Key] = &[
         perception: with(RING, &[("roads.2.roundabout.center", "[1, 0]")]),
         semantic: with(SEMANTIC_RING, &[("roads.4.roundabout.center", "[1, 0]")]),
     },
-    Key {
-        path: "roads[].roundabout.radius",
-        field: Section,
-        perception: with(RING, &[("roads.2.roundabout.radius", "14")]),
-        semantic: with(SEMANTIC_RING, &[("roads.4.roundabout.radius", "14")]),
-    },
+    Key { path: "roads[].roundabout.radius", field: Section, perception: with(RING, &[("roads.2.roundabout.radius", "14")]), semantic: with(SEMANTIC_RING, &[("roads.4.roundabout.radius", "14")]) },
     Key {
         path: "roads[].roundabout.direction",
         field: Section,
@@ -733,64 +464,27 @@ const KEYS: &[Key] = &[
     Key {
         path: "roads[].lanes",
         field: Section,
-        perception: with(
-            &[("roads.1.lanes", "2"), ("agents.2.lane", "1")],
-            &[("roads.1.lanes", "3"), ("agents.2.lane", "2")],
-        ),
-        semantic: with(
-            &[("roads.3.lanes", "2"), ("agents.2.lane", "1")],
-            &[("roads.3.lanes", "3"), ("agents.2.lane", "2")],
-        ),
+        perception: with(&[("roads.1.lanes", "2"), ("agents.2.lane", "1")], &[("roads.1.lanes", "3"), ("agents.2.lane", "2")]),
+        semantic: with(&[("roads.3.lanes", "2"), ("agents.2.lane", "1")], &[("roads.3.lanes", "3"), ("agents.2.lane", "2")]),
     },
     Key {
         path: "roads[].lane_width",
         field: Section,
-        perception: with(
-            &[("roads.1.lanes", "2"), ("agents.2.lane", "1")],
-            &[("roads.1.lane_width", "5")],
-        ),
-        semantic: with(
-            &[("roads.3.lanes", "2"), ("agents.2.lane", "1")],
-            &[("roads.3.lane_width", "5")],
-        ),
+        perception: with(&[("roads.1.lanes", "2"), ("agents.2.lane", "1")], &[("roads.1.lane_width", "5")]),
+        semantic: with(&[("roads.3.lanes", "2"), ("agents.2.lane", "1")], &[("roads.3.lane_width", "5")]),
     },
-    Key {
-        path: "roads[].speed_limit",
-        field: Section,
-        perception: change(&[("roads.1.speed_limit", "5")]),
-        semantic: change(&[("roads.3.speed_limit", "5")]),
-    },
-    Key {
-        path: "occluders[].id",
-        field: Section,
-        perception: Descriptive,
-        semantic: Descriptive,
-    },
+    Key { path: "roads[].speed_limit", field: Section, perception: change(&[("roads.1.speed_limit", "5")]), semantic: change(&[("roads.3.speed_limit", "5")]) },
+    Key { path: "occluders[].id", field: Section, perception: Descriptive, semantic: Descriptive },
     Key {
         path: "occluders[].polygon",
         field: Section,
         perception: change(&[("occluders.0.polygon", "[[-5, 5], [-15, 5], [-15, 15]]")]),
         semantic: change(&[("occluders.0.polygon", "[[-6, -6], [-40, -6], [-40, -40], [-6, -40]]")]),
     },
-    Key {
-        path: "occluders[].height",
-        field: Section,
-        perception: refused(&[("occluders.0.height", "10")]),
-        semantic: refused(&[("occluders.0.height", "10")]),
-    },
+    Key { path: "occluders[].height", field: Section, perception: refused(&[("occluders.0.height", "10")]), semantic: refused(&[("occluders.0.height", "10")]) },
     // Sensors.
-    Key {
-        path: "sensor_models.<id>.range",
-        field: Section,
-        perception: change(&[("sensor_models.lidar.range", "15")]),
-        semantic: change(&[("sensor_models.ring.range", "20")]),
-    },
-    Key {
-        path: "sensor_models.<id>.fov_deg",
-        field: Section,
-        perception: change(&[("sensor_models.lidar.fov_deg", "90")]),
-        semantic: change(&[("sensor_models.front.fov_deg", "30")]),
-    },
+    Key { path: "sensor_models.<id>.range", field: Section, perception: change(&[("sensor_models.lidar.range", "15")]), semantic: change(&[("sensor_models.ring.range", "20")]) },
+    Key { path: "sensor_models.<id>.fov_deg", field: Section, perception: change(&[("sensor_models.lidar.fov_deg", "90")]), semantic: change(&[("sensor_models.front.fov_deg", "30")]) },
     Key {
         path: "sensor_models.<id>.mount.x",
         field: Section,
@@ -858,116 +552,39 @@ const KEYS: &[Key] = &[
         semantic: refused(&[("sensor_models.front.ray_spacing_deg", "3")]),
     },
     // Agents.
-    Key {
-        path: "agents[].id",
-        field: Section,
-        perception: Descriptive,
-        semantic: Descriptive,
-    },
-    Key {
-        path: "agents[].kind",
-        field: Section,
-        perception: change(&[("agents.2.kind", r#""truck""#)]),
-        semantic: change(&[("agents.2.kind", r#""truck""#)]),
-    },
-    Key {
-        path: "agents[].route",
-        field: Section,
-        perception: change(&[("agents.2.route", r#"["ns"]"#)]),
-        semantic: change(&[("agents.2.route", r#"["we"]"#)]),
-    },
-    Key {
-        path: "agents[].lane",
-        field: Section,
-        perception: with(&[("roads.1.lanes", "2")], &[("agents.2.lane", "1")]),
-        semantic: with(&[("roads.3.lanes", "2")], &[("agents.2.lane", "1")]),
-    },
-    Key {
-        path: "agents[].path",
-        field: Section,
-        perception: change(&[("agents.3.path", "[[-10, -10], [-10, 10]]")]),
-        semantic: change(&[("agents.3.path", "[[-6, 9], [6, 9]]")]),
-    },
+    Key { path: "agents[].id", field: Section, perception: Descriptive, semantic: Descriptive },
+    Key { path: "agents[].kind", field: Section, perception: change(&[("agents.2.kind", r#""truck""#)]), semantic: change(&[("agents.2.kind", r#""truck""#)]) },
+    Key { path: "agents[].route", field: Section, perception: change(&[("agents.2.route", r#"["ns"]"#)]), semantic: change(&[("agents.2.route", r#"["we"]"#)]) },
+    Key { path: "agents[].lane", field: Section, perception: with(&[("roads.1.lanes", "2")], &[("agents.2.lane", "1")]), semantic: with(&[("roads.3.lanes", "2")], &[("agents.2.lane", "1")]) },
+    Key { path: "agents[].path", field: Section, perception: change(&[("agents.3.path", "[[-10, -10], [-10, 10]]")]), semantic: change(&[("agents.3.path", "[[-6, 9], [6, 9]]")]) },
     Key {
         path: "agents[].trace",
         field: Section,
-        perception: with(
-            &[
-                ("traces", r#"{ "fcd": "sumo/grid3x3.fcd.xml" }"#),
-                (
-                    "agents.5",
-                    r#"{ "id": "t", "kind": "pedestrian", "trace": "ped0", "connected": true, "sensors": ["lidar"] }"#,
-                ),
-            ],
-            &[("agents.5.trace", r#""veh0""#)],
-        ),
+        perception: with(&[("traces", r#"{ "fcd": "sumo/grid3x3.fcd.xml" }"#), ("agents.5", r#"{ "id": "t", "kind": "pedestrian", "trace": "ped0", "connected": true, "sensors": ["lidar"] }"#)], &[("agents.5.trace", r#""veh0""#)]),
         semantic: with(SUMO_SEMANTIC, &[("agents.0.trace", r#""veh6""#)]),
     },
-    Key {
-        path: "agents[].position",
-        field: Section,
-        perception: change(&[("agents.4.position", "[-8, 8]")]),
-        semantic: change(&[("agents.1.position", "[20, -20]")]),
-    },
+    Key { path: "agents[].position", field: Section, perception: change(&[("agents.4.position", "[-8, 8]")]), semantic: change(&[("agents.1.position", "[20, -20]")]) },
     Key {
         path: "agents[].heading_deg",
         field: Section,
         perception: change(&[("agents.4.heading_deg", "180")]),
-        semantic: with(
-            &[
-                ("semantic.rsu_sight", r#""line_of_sight""#),
-                ("sensor_models.ring.fov_deg", "90"),
-            ],
-            &[("agents.1.heading_deg", "180")],
-        ),
+        semantic: with(&[("semantic.rsu_sight", r#""line_of_sight""#), ("sensor_models.ring.fov_deg", "90")], &[("agents.1.heading_deg", "180")]),
     },
-    Key {
-        path: "agents[].start.time",
-        field: Section,
-        perception: change(&[("agents.2.start.time", "0.5")]),
-        semantic: change(&[("agents.2.start.time", "2")]),
-    },
-    Key {
-        path: "agents[].start.offset",
-        field: Section,
-        perception: change(&[("agents.2.start.offset", "10")]),
-        semantic: change(&[("agents.2.start.offset", "30")]),
-    },
-    Key {
-        path: "agents[].speed.target",
-        field: Section,
-        perception: change(&[("agents.2.speed.target", "9")]),
-        semantic: change(&[("agents.2.speed.target", "4")]),
-    },
-    Key {
-        path: "agents[].speed.initial",
-        field: Section,
-        perception: change(&[("agents.2.speed.initial", "0")]),
-        semantic: change(&[("agents.2.speed.initial", "0")]),
-    },
+    Key { path: "agents[].start.time", field: Section, perception: change(&[("agents.2.start.time", "0.5")]), semantic: change(&[("agents.2.start.time", "2")]) },
+    Key { path: "agents[].start.offset", field: Section, perception: change(&[("agents.2.start.offset", "10")]), semantic: change(&[("agents.2.start.offset", "30")]) },
+    Key { path: "agents[].speed.target", field: Section, perception: change(&[("agents.2.speed.target", "9")]), semantic: change(&[("agents.2.speed.target", "4")]) },
+    Key { path: "agents[].speed.initial", field: Section, perception: change(&[("agents.2.speed.initial", "0")]), semantic: change(&[("agents.2.speed.initial", "0")]) },
     Key {
         path: "agents[].speed.acceleration",
         field: Section,
-        perception: with(
-            &[("agents.2.speed.initial", "0")],
-            &[("agents.2.speed.acceleration", "4")],
-        ),
-        semantic: with(
-            &[("agents.2.speed.initial", "0")],
-            &[("agents.2.speed.acceleration", "4")],
-        ),
+        perception: with(&[("agents.2.speed.initial", "0")], &[("agents.2.speed.acceleration", "4")]),
+        semantic: with(&[("agents.2.speed.initial", "0")], &[("agents.2.speed.acceleration", "4")]),
     },
     Key {
         path: "agents[].speed.limit_factor",
         field: Section,
-        perception: with(
-            &[("agents.2.speed.target", "15")],
-            &[("agents.2.speed.limit_factor", "1.4")],
-        ),
-        semantic: with(
-            &[("agents.2.speed.target", "15")],
-            &[("agents.2.speed.limit_factor", "1.4")],
-        ),
+        perception: with(&[("agents.2.speed.target", "15")], &[("agents.2.speed.limit_factor", "1.4")]),
+        semantic: with(&[("agents.2.speed.target", "15")], &[("agents.2.speed.limit_factor", "1.4")]),
     },
     Key {
         path: "agents[].size.length",
@@ -981,233 +598,62 @@ const KEYS: &[Key] = &[
         perception: change(&[("agents.2.size", r#"{ "length": 4.5, "width": 3 }"#)]),
         semantic: change(&[("agents.2.size", r#"{ "length": 4.5, "width": 3 }"#)]),
     },
-    Key {
-        path: "agents[].connected",
-        field: Section,
-        perception: change(&[("agents.1.connected", "false"), ("agents.1.sensors", "[]")]),
-        semantic: change(&[("agents.2.connected", "true")]),
-    },
-    Key {
-        path: "agents[].sensors",
-        field: Section,
-        perception: change(&[("agents.1.sensors", r#"["cone"]"#)]),
-        semantic: change(&[("agents.0.sensors", r#"["front", "ring"]"#)]),
-    },
+    Key { path: "agents[].connected", field: Section, perception: change(&[("agents.1.connected", "false"), ("agents.1.sensors", "[]")]), semantic: change(&[("agents.2.connected", "true")]) },
+    Key { path: "agents[].sensors", field: Section, perception: change(&[("agents.1.sensors", r#"["cone"]"#)]), semantic: change(&[("agents.0.sensors", r#"["front", "ring"]"#)]) },
     // Collective perception.
-    Key {
-        path: "localization.position_sigma",
-        field: Section,
-        perception: change(&[("localization.position_sigma", "0.5")]),
-        semantic: Section,
-    },
-    Key {
-        path: "localization.heading_sigma_deg",
-        field: Section,
-        perception: change(&[("localization.heading_sigma_deg", "3")]),
-        semantic: Section,
-    },
-    Key {
-        path: "localization.filter",
-        field: Section,
-        perception: change(&[("localization.filter", r#""none""#)]),
-        semantic: Section,
-    },
-    Key {
-        path: "localization.process_position_sigma",
-        field: Section,
-        perception: change(&[("localization.process_position_sigma", "1")]),
-        semantic: Section,
-    },
-    Key {
-        path: "localization.process_heading_sigma_deg",
-        field: Section,
-        perception: change(&[("localization.process_heading_sigma_deg", "5")]),
-        semantic: Section,
-    },
-    Key {
-        path: "perception.ego",
-        field: Section,
-        perception: change(&[("perception.ego", r#""cav""#)]),
-        semantic: Section,
-    },
-    Key {
-        path: "perception.cooperating",
-        field: Section,
-        perception: change(&[("perception.cooperating", "2")]),
-        semantic: Section,
-    },
-    Key {
-        path: "perception.inverse_model.occupied",
-        field: Section,
-        perception: change(&[("perception.inverse_model", r#"{ "occupied": 0.9 }"#)]),
-        semantic: Section,
-    },
-    Key {
-        path: "perception.inverse_model.free",
-        field: Section,
-        perception: change(&[("perception.inverse_model", r#"{ "free": 0.1 }"#)]),
-        semantic: Section,
-    },
-    Key {
-        path: "perception.snapshot",
-        field: Section,
-        perception: change(&[("perception.snapshot", "0.2")]),
-        semantic: Section,
-    },
+    Key { path: "localization.position_sigma", field: Section, perception: change(&[("localization.position_sigma", "0.5")]), semantic: Section },
+    Key { path: "localization.heading_sigma_deg", field: Section, perception: change(&[("localization.heading_sigma_deg", "3")]), semantic: Section },
+    Key { path: "localization.filter", field: Section, perception: change(&[("localization.filter", r#""none""#)]), semantic: Section },
+    Key { path: "localization.process_position_sigma", field: Section, perception: change(&[("localization.process_position_sigma", "1")]), semantic: Section },
+    Key { path: "localization.process_heading_sigma_deg", field: Section, perception: change(&[("localization.process_heading_sigma_deg", "5")]), semantic: Section },
+    Key { path: "perception.ego", field: Section, perception: change(&[("perception.ego", r#""cav""#)]), semantic: Section },
+    Key { path: "perception.cooperating", field: Section, perception: change(&[("perception.cooperating", "2")]), semantic: Section },
+    Key { path: "perception.inverse_model.occupied", field: Section, perception: change(&[("perception.inverse_model", r#"{ "occupied": 0.9 }"#)]), semantic: Section },
+    Key { path: "perception.inverse_model.free", field: Section, perception: change(&[("perception.inverse_model", r#"{ "free": 0.1 }"#)]), semantic: Section },
+    Key { path: "perception.snapshot", field: Section, perception: change(&[("perception.snapshot", "0.2")]), semantic: Section },
     Key {
         path: "perception.region.center",
         field: Section,
-        perception: with(
-            &[("perception.region", r#"{ "center": [0, 0], "radius": 15 }"#)],
-            &[("perception.region.center", "[5, 0]")],
-        ),
+        perception: with(&[("perception.region", r#"{ "center": [0, 0], "radius": 15 }"#)], &[("perception.region.center", "[5, 0]")]),
         semantic: Section,
     },
     Key {
         path: "perception.region.radius",
         field: Section,
-        perception: with(
-            &[("perception.region", r#"{ "center": [0, 0], "radius": 15 }"#)],
-            &[("perception.region.radius", "10")],
-        ),
+        perception: with(&[("perception.region", r#"{ "center": [0, 0], "radius": 15 }"#)], &[("perception.region.radius", "10")]),
         semantic: Section,
     },
     // The semantic pipeline's world.
-    Key {
-        path: "traffic.vehicles.density_per_km",
-        field: Section,
-        perception: Section,
-        semantic: change(&[("traffic.vehicles.density_per_km", "10")]),
-    },
-    Key {
-        path: "traffic.vehicles.routes",
-        field: Section,
-        perception: Section,
-        semantic: change(&[("traffic.vehicles.routes", r#"[["we"]]"#)]),
-    },
-    Key {
-        path: "traffic.vehicles.non_compliant",
-        field: Section,
-        perception: Section,
-        semantic: change(&[("traffic.vehicles.non_compliant", "0")]),
-    },
-    Key {
-        path: "traffic.vehicles.overspeed_factor",
-        field: Section,
-        perception: Section,
-        semantic: change(&[("traffic.vehicles.overspeed_factor", "[1.5, 2]")]),
-    },
-    Key {
-        path: "traffic.vehicles.mix.car",
-        field: Section,
-        perception: Section,
-        semantic: change(&[("traffic.vehicles.mix", r#"{ "car": 1, "truck": 1 }"#)]),
-    },
-    Key {
-        path: "traffic.vehicles.mix.truck",
-        field: Section,
-        perception: Section,
-        semantic: change(&[("traffic.vehicles.mix", r#"{ "truck": 1 }"#)]),
-    },
-    Key {
-        path: "traffic.vehicles.mix.bus",
-        field: Section,
-        perception: Section,
-        semantic: change(&[("traffic.vehicles.mix", r#"{ "bus": 1 }"#)]),
-    },
-    Key {
-        path: "traffic.vehicles.mix.motorbike",
-        field: Section,
-        perception: Section,
-        semantic: change(&[("traffic.vehicles.mix", r#"{ "motorbike": 1 }"#)]),
-    },
-    Key {
-        path: "traffic.pedestrians.per_minute",
-        field: Section,
-        perception: Section,
-        semantic: change(&[("traffic.pedestrians.per_minute", "5")]),
-    },
-    Key {
-        path: "traffic.pedestrians.speed",
-        field: Section,
-        perception: Section,
-        semantic: change(&[("traffic.pedestrians.speed", "2")]),
-    },
-    Key {
-        path: "traffic.pedestrians.approach",
-        field: Section,
-        perception: Section,
-        semantic: change(&[("traffic.pedestrians.approach", "0")]),
-    },
-    Key {
-        path: "crosswalks[].id",
-        field: Section,
-        perception: Section,
-        semantic: Descriptive,
-    },
-    Key {
-        path: "crosswalks[].from",
-        field: Section,
-        perception: Section,
-        semantic: change(&[("crosswalks.0.from", "[-6, -20]")]),
-    },
-    Key {
-        path: "crosswalks[].to",
-        field: Section,
-        perception: Section,
-        semantic: change(&[("crosswalks.0.to", "[6, -20]")]),
-    },
-    Key {
-        path: "crosswalks[].width",
-        field: Section,
-        perception: Section,
-        semantic: change(&[("crosswalks.0.width", "20")]),
-    },
-    Key {
-        path: "interaction_areas[].id",
-        field: Section,
-        perception: Section,
-        semantic: Descriptive,
-    },
-    Key {
-        path: "interaction_areas[].polygon",
-        field: Section,
-        perception: Section,
-        semantic: change(&[(
-            "interaction_areas.0.polygon",
-            "[[-40, -40], [40, -40], [40, 40], [-40, 40]]",
-        )]),
-    },
+    Key { path: "traffic.vehicles.density_per_km", field: Section, perception: Section, semantic: change(&[("traffic.vehicles.density_per_km", "10")]) },
+    Key { path: "traffic.vehicles.routes", field: Section, perception: Section, semantic: change(&[("traffic.vehicles.routes", r#"[["we"]]"#)]) },
+    Key { path: "traffic.vehicles.non_compliant", field: Section, perception: Section, semantic: change(&[("traffic.vehicles.non_compliant", "0")]) },
+    Key { path: "traffic.vehicles.overspeed_factor", field: Section, perception: Section, semantic: change(&[("traffic.vehicles.overspeed_factor", "[1.5, 2]")]) },
+    Key { path: "traffic.vehicles.mix.car", field: Section, perception: Section, semantic: change(&[("traffic.vehicles.mix", r#"{ "car": 1, "truck": 1 }"#)]) },
+    Key { path: "traffic.vehicles.mix.truck", field: Section, perception: Section, semantic: change(&[("traffic.vehicles.mix", r#"{ "truck": 1 }"#)]) },
+    Key { path: "traffic.vehicles.mix.bus", field: Section, perception: Section, semantic: change(&[("traffic.vehicles.mix", r#"{ "bus": 1 }"#)]) },
+    Key { path: "traffic.vehicles.mix.motorbike", field: Section, perception: Section, semantic: change(&[("traffic.vehicles.mix", r#"{ "motorbike": 1 }"#)]) },
+    Key { path: "traffic.pedestrians.per_minute", field: Section, perception: Section, semantic: change(&[("traffic.pedestrians.per_minute", "5")]) },
+    Key { path: "traffic.pedestrians.speed", field: Section, perception: Section, semantic: change(&[("traffic.pedestrians.speed", "2")]) },
+    Key { path: "traffic.pedestrians.approach", field: Section, perception: Section, semantic: change(&[("traffic.pedestrians.approach", "0")]) },
+    Key { path: "crosswalks[].id", field: Section, perception: Section, semantic: Descriptive },
+    Key { path: "crosswalks[].from", field: Section, perception: Section, semantic: change(&[("crosswalks.0.from", "[-6, -20]")]) },
+    Key { path: "crosswalks[].to", field: Section, perception: Section, semantic: change(&[("crosswalks.0.to", "[6, -20]")]) },
+    Key { path: "crosswalks[].width", field: Section, perception: Section, semantic: change(&[("crosswalks.0.width", "20")]) },
+    Key { path: "interaction_areas[].id", field: Section, perception: Section, semantic: Descriptive },
+    Key { path: "interaction_areas[].polygon", field: Section, perception: Section, semantic: change(&[("interaction_areas.0.polygon", "[[-40, -40], [40, -40], [40, 40], [-40, 40]]")]) },
     Key {
         path: "interaction_areas[].circle.center",
         field: Section,
         perception: Section,
-        semantic: with(
-            &[(
-                "interaction_areas.0",
-                r#"{ "id": "junction", "circle": { "center": [0, 0], "radius": 12 } }"#,
-            )],
-            &[("interaction_areas.0.circle.center", "[0, 30]")],
-        ),
+        semantic: with(&[("interaction_areas.0", r#"{ "id": "junction", "circle": { "center": [0, 0], "radius": 12 } }"#)], &[("interaction_areas.0.circle.center", "[0, 30]")]),
     },
     Key {
         path: "interaction_areas[].circle.radius",
         field: Section,
         perception: Section,
-        semantic: with(
-            &[(
-                "interaction_areas.0",
-                r#"{ "id": "junction", "circle": { "center": [0, 0], "radius": 12 } }"#,
-            )],
-            &[("interaction_areas.0.circle.radius", "40")],
-        ),
+        semantic: with(&[("interaction_areas.0", r#"{ "id": "junction", "circle": { "center": [0, 0], "radius": 12 } }"#)], &[("interaction_areas.0.circle.radius", "40")]),
     },
-    Key {
-        path: "driving.following",
-        field: Section,
-        perception: change(&[("driving.following", r#""idm""#)]),
-        semantic: change(&[("driving.following", r#""idm""#)]),
-    },
+    Key { path: "driving.following", field: Section, perception: change(&[("driving.following", r#""idm""#)]), semantic: change(&[("driving.following", r#""idm""#)]) },
     Key {
         path: "driving.headway",
         field: Section,
@@ -1226,271 +672,70 @@ const KEYS: &[Key] = &[
         perception: with(&[("driving.following", r#""idm""#)], &[("driving.deceleration", "1")]),
         semantic: with(&[("driving.following", r#""idm""#)], &[("driving.deceleration", "1")]),
     },
-    Key {
-        path: "v2x.penetration",
-        field: Section,
-        perception: Section,
-        semantic: change(&[("v2x.penetration", "0")]),
-    },
-    Key {
-        path: "v2x.latency",
-        field: Section,
-        perception: Section,
-        semantic: change(&[("v2x.latency", "0.3")]),
-    },
-    Key {
-        path: "v2x.channel.model",
-        field: Section,
-        perception: Section,
-        semantic: change(&[("v2x.channel.model", r#""ideal""#)]),
-    },
-    Key {
-        path: "v2x.channel.tx_power_dbm",
-        field: Section,
-        perception: Section,
-        semantic: change(&[("v2x.channel.tx_power_dbm", "-20")]),
-    },
-    Key {
-        path: "v2x.channel.shadowing_sigma_db",
-        field: Section,
-        perception: Section,
-        semantic: with(MARGINAL_RADIO, &[("v2x.channel.shadowing_sigma_db", "12")]),
-    },
-    Key {
-        path: "v2x.channel.nlos_shadowing_sigma_db",
-        field: Section,
-        perception: Section,
-        semantic: with(MARGINAL_RADIO, &[("v2x.channel.nlos_shadowing_sigma_db", "12")]),
-    },
-    Key {
-        path: "v2x.channel.device_loss_db",
-        field: Section,
-        perception: Section,
-        semantic: change(&[("v2x.channel.device_loss_db", "40")]),
-    },
-    Key {
-        path: "v2x.channel.sensitivity_dbm",
-        field: Section,
-        perception: Section,
-        semantic: change(&[("v2x.channel.sensitivity_dbm", "-60")]),
-    },
-    Key {
-        path: "v2x.channel.carrier_ghz",
-        field: Section,
-        perception: Section,
-        semantic: with(MARGINAL_RADIO, &[("v2x.channel.carrier_ghz", "60")]),
-    },
-    Key {
-        path: "v2x.channel.vehicle_antenna_m",
-        field: Section,
-        perception: Section,
-        semantic: change(&[("v2x.channel.vehicle_antenna_m", "1.1")]),
-    },
-    Key {
-        path: "v2x.channel.rsu_antenna_m",
-        field: Section,
-        perception: Section,
-        semantic: with(MARGINAL_RADIO, &[("v2x.channel.rsu_antenna_m", "1.1")]),
-    },
+    Key { path: "v2x.penetration", field: Section, perception: Section, semantic: change(&[("v2x.penetration", "0")]) },
+    Key { path: "v2x.latency", field: Section, perception: Section, semantic: change(&[("v2x.latency", "0.3")]) },
+    Key { path: "v2x.channel.model", field: Section, perception: Section, semantic: change(&[("v2x.channel.model", r#""ideal""#)]) },
+    Key { path: "v2x.channel.tx_power_dbm", field: Section, perception: Section, semantic: change(&[("v2x.channel.tx_power_dbm", "-20")]) },
+    Key { path: "v2x.channel.shadowing_sigma_db", field: Section, perception: Section, semantic: with(MARGINAL_RADIO, &[("v2x.channel.shadowing_sigma_db", "12")]) },
+    Key { path: "v2x.channel.nlos_shadowing_sigma_db", field: Section, perception: Section, semantic: with(MARGINAL_RADIO, &[("v2x.channel.nlos_shadowing_sigma_db", "12")]) },
+    Key { path: "v2x.channel.device_loss_db", field: Section, perception: Section, semantic: change(&[("v2x.channel.device_loss_db", "40")]) },
+    Key { path: "v2x.channel.sensitivity_dbm", field: Section, perception: Section, semantic: change(&[("v2x.channel.sensitivity_dbm", "-60")]) },
+    Key { path: "v2x.channel.carrier_ghz", field: Section, perception: Section, semantic: with(MARGINAL_RADIO, &[("v2x.channel.carrier_ghz", "60")]) },
+    Key { path: "v2x.channel.vehicle_antenna_m", field: Section, perception: Section, semantic: change(&[("v2x.channel.vehicle_antenna_m", "1.1")]) },
+    Key { path: "v2x.channel.rsu_antenna_m", field: Section, perception: Section, semantic: with(MARGINAL_RADIO, &[("v2x.channel.rsu_antenna_m", "1.1")]) },
     Key {
         path: "semantic.ego",
         field: Section,
         perception: Section,
-        semantic: with(
-            &[("agents.2.connected", "true")],
-            &[
-                ("agents.2.sensors", r#"["front"]"#),
-                ("agents.0.sensors", "[]"),
-                ("semantic.ego", r#""car""#),
-            ],
-        ),
+        semantic: with(&[("agents.2.connected", "true")], &[("agents.2.sensors", r#"["front"]"#), ("agents.0.sensors", "[]"), ("semantic.ego", r#""car""#)]),
     },
     Key {
         path: "semantic.rsus",
         field: Section,
         perception: Section,
-        semantic: with(
-            &[
-                (
-                    "agents.4",
-                    r#"{ "id": "rsu2", "kind": "rsu", "position": [20, -20], "sensors": ["ring"] }"#,
-                ),
-                ("sweep", r#"{ "semantic.rsus": [["rsu", "rsu2"], ["rsu2"]] }"#),
-            ],
-            &[("sweep", r#"{ "semantic.rsus": [["rsu", "rsu2"], ["rsu"]] }"#)],
-        ),
+        semantic: with(&[("agents.4", r#"{ "id": "rsu2", "kind": "rsu", "position": [20, -20], "sensors": ["ring"] }"#), ("sweep", r#"{ "semantic.rsus": [["rsu", "rsu2"], ["rsu2"]] }"#)], &[("sweep", r#"{ "semantic.rsus": [["rsu", "rsu2"], ["rsu"]] }"#)]),
     },
-    Key {
-        path: "semantic.proximity",
-        field: Section,
-        perception: Section,
-        semantic: change(&[("semantic.proximity", "15")]),
-    },
-    Key {
-        path: "semantic.horizon",
-        field: Section,
-        perception: Section,
-        semantic: change(&[("semantic.horizon", "1")]),
-    },
-    Key {
-        path: "semantic.d_min",
-        field: Section,
-        perception: Section,
-        semantic: change(&[("semantic.d_min", "6")]),
-    },
-    Key {
-        path: "semantic.overspeed.window",
-        field: Section,
-        perception: Section,
-        semantic: with(NOISY_SPEEDS, &[("semantic.overspeed.window", "1")]),
-    },
-    Key {
-        path: "semantic.overspeed.threshold",
-        field: Section,
-        perception: Section,
-        semantic: with(NOISY_SPEEDS, &[("semantic.overspeed.threshold", "0.5")]),
-    },
-    Key {
-        path: "semantic.hypotheses",
-        field: Section,
-        perception: Section,
-        semantic: change(&[("semantic.hypotheses", "[1.5]")]),
-    },
-    Key {
-        path: "semantic.rate",
-        field: Section,
-        perception: Section,
-        semantic: change(&[("semantic.rate", "5")]),
-    },
-    Key {
-        path: "semantic.risk_for",
-        field: Section,
-        perception: Section,
-        semantic: change(&[("semantic.risk_for", r#""all""#)]),
-    },
-    Key {
-        path: "semantic.rsu_sight",
-        field: Section,
-        perception: Section,
-        semantic: change(&[("semantic.rsu_sight", r#""line_of_sight""#)]),
-    },
+    Key { path: "semantic.proximity", field: Section, perception: Section, semantic: change(&[("semantic.proximity", "15")]) },
+    Key { path: "semantic.horizon", field: Section, perception: Section, semantic: change(&[("semantic.horizon", "1")]) },
+    Key { path: "semantic.d_min", field: Section, perception: Section, semantic: change(&[("semantic.d_min", "6")]) },
+    Key { path: "semantic.overspeed.window", field: Section, perception: Section, semantic: with(NOISY_SPEEDS, &[("semantic.overspeed.window", "1")]) },
+    Key { path: "semantic.overspeed.threshold", field: Section, perception: Section, semantic: with(NOISY_SPEEDS, &[("semantic.overspeed.threshold", "0.5")]) },
+    Key { path: "semantic.hypotheses", field: Section, perception: Section, semantic: change(&[("semantic.hypotheses", "[1.5]")]) },
+    Key { path: "semantic.rate", field: Section, perception: Section, semantic: change(&[("semantic.rate", "5")]) },
+    Key { path: "semantic.risk_for", field: Section, perception: Section, semantic: change(&[("semantic.risk_for", r#""all""#)]) },
+    Key { path: "semantic.rsu_sight", field: Section, perception: Section, semantic: change(&[("semantic.rsu_sight", r#""line_of_sight""#)]) },
     Key {
         path: "semantic.history",
         field: Section,
         perception: Section,
-        semantic: with(
-            &[
-                ("semantic.overspeed", r#"{ "window": 0.3 }"#),
-                ("semantic.history", "0.3"),
-                ("sensor_models.ring.position_noise.base", "1"),
-            ],
-            &[("semantic.history", "1")],
-        ),
+        semantic: with(&[("semantic.overspeed", r#"{ "window": 0.3 }"#), ("semantic.history", "0.3"), ("sensor_models.ring.position_noise.base", "1")], &[("semantic.history", "1")]),
     },
     Key {
         path: "semantic.caution.headway",
         field: Section,
         perception: Section,
-        semantic: with(
-            &[
-                ("driving.following", r#""idm""#),
-                ("semantic.risk_for", r#""all""#),
-                ("traffic.vehicles.routes.+", r#"["sn"]"#),
-            ],
-            &[("semantic.caution", r#"{ "headway": 6 }"#)],
-        ),
+        semantic: with(&[("driving.following", r#""idm""#), ("semantic.risk_for", r#""all""#), ("traffic.vehicles.routes.+", r#"["sn"]"#)], &[("semantic.caution", r#"{ "headway": 6 }"#)]),
     },
-    Key {
-        path: "semantic.caution.speed_factor",
-        field: Section,
-        perception: Section,
-        semantic: with(
-            &[("semantic.risk_for", r#""all""#)],
-            &[("semantic.caution", r#"{ "speed_factor": 0.2 }"#)],
-        ),
-    },
-    Key {
-        path: "semantic.caution.hold",
-        field: Section,
-        perception: Section,
-        semantic: with(
-            &[("semantic.risk_for", r#""all""#)],
-            &[("semantic.caution", r#"{ "hold": 0 }"#)],
-        ),
-    },
-    Key {
-        path: "semantic.baseline.distance",
-        field: Section,
-        perception: Section,
-        semantic: change(&[("semantic.baseline", r#"{ "distance": 0.5 }"#)]),
-    },
-    Key {
-        path: "semantic.baseline.speed",
-        field: Section,
-        perception: Section,
-        semantic: with(NOISY_SPEEDS, &[("semantic.baseline", r#"{ "speed": 3 }"#)]),
-    },
+    Key { path: "semantic.caution.speed_factor", field: Section, perception: Section, semantic: with(&[("semantic.risk_for", r#""all""#)], &[("semantic.caution", r#"{ "speed_factor": 0.2 }"#)]) },
+    Key { path: "semantic.caution.hold", field: Section, perception: Section, semantic: with(&[("semantic.risk_for", r#""all""#)], &[("semantic.caution", r#"{ "hold": 0 }"#)]) },
+    Key { path: "semantic.baseline.distance", field: Section, perception: Section, semantic: change(&[("semantic.baseline", r#"{ "distance": 0.5 }"#)]) },
+    Key { path: "semantic.baseline.speed", field: Section, perception: Section, semantic: with(NOISY_SPEEDS, &[("semantic.baseline", r#"{ "speed": 3 }"#)]) },
     Key {
         path: "semantic.baseline.heading_deg",
         field: Section,
         perception: Section,
-        semantic: with(
-            &[
-                ARC_ROAD,
-                ("agents.2.route", r#"["bend"]"#),
-                ("agents.2.start.offset", "0"),
-                (
-                    "semantic.baseline",
-                    r#"{ "distance": 100, "speed": 100, "interval": 100 }"#,
-                ),
-            ],
-            &[("semantic.baseline.heading_deg", "0.5")],
-        ),
+        semantic: with(&[ARC_ROAD, ("agents.2.route", r#"["bend"]"#), ("agents.2.start.offset", "0"), ("semantic.baseline", r#"{ "distance": 100, "speed": 100, "interval": 100 }"#)], &[("semantic.baseline.heading_deg", "0.5")]),
     },
-    Key {
-        path: "semantic.baseline.interval",
-        field: Section,
-        perception: Section,
-        semantic: change(&[("semantic.baseline", r#"{ "interval": 0.1 }"#)]),
-    },
-    Key {
-        path: "semantic.shares_over",
-        field: Section,
-        perception: Section,
-        semantic: with(
-            &[("agents.0.start.offset", "0")],
-            &[("semantic.shares_over", r#""all""#)],
-        ),
-    },
-    Key {
-        path: "semantic.runs",
-        field: Section,
-        perception: Section,
-        semantic: change(&[("semantic.runs", "2")]),
-    },
+    Key { path: "semantic.baseline.interval", field: Section, perception: Section, semantic: change(&[("semantic.baseline", r#"{ "interval": 0.1 }"#)]) },
+    Key { path: "semantic.shares_over", field: Section, perception: Section, semantic: with(&[("agents.0.start.offset", "0")], &[("semantic.shares_over", r#""all""#)]) },
+    Key { path: "semantic.runs", field: Section, perception: Section, semantic: change(&[("semantic.runs", "2")]) },
     // Requirements and published figures: what is judged and shown.
-    Key {
-        path: "requirements[].id",
-        field: Descriptive,
-        perception: Descriptive,
-        semantic: Descriptive,
-    },
-    Key {
-        path: "requirements[].text",
-        field: Descriptive,
-        perception: Descriptive,
-        semantic: Descriptive,
-    },
+    Key { path: "requirements[].id", field: Descriptive, perception: Descriptive, semantic: Descriptive },
+    Key { path: "requirements[].text", field: Descriptive, perception: Descriptive, semantic: Descriptive },
     Key {
         path: "requirements[].where",
-        field: with(
-            &[FUSION_SWEEP],
-            &[("requirements.0.where", r#"{ "fusion.method": "bayes" }"#)],
-        ),
-        perception: with(
-            &[COOPERATING_SWEEP],
-            &[("requirements.0.where", r#"{ "perception.cooperating": 3 }"#)],
-        ),
+        field: with(&[FUSION_SWEEP], &[("requirements.0.where", r#"{ "fusion.method": "bayes" }"#)]),
+        perception: with(&[COOPERATING_SWEEP], &[("requirements.0.where", r#"{ "perception.cooperating": 3 }"#)]),
         semantic: with(&[RATE_SWEEP], &[("requirements.0.where", r#"{ "semantic.rate": 5 }"#)]),
     },
     Key {
@@ -1508,14 +753,8 @@ const KEYS: &[Key] = &[
     Key {
         path: "requirements[].check.at_most",
         field: change(&[("requirements.0.check", r#"{ "metric": "accuracy", "at_most": 0.5 }"#)]),
-        perception: change(&[(
-            "requirements.0.check",
-            r#"{ "metric": "occupied_recall", "at_most": 0.5 }"#,
-        )]),
-        semantic: change(&[(
-            "requirements.0.check",
-            r#"{ "metric": "packet_delivery_ratio", "at_most": 0.5 }"#,
-        )]),
+        perception: change(&[("requirements.0.check", r#"{ "metric": "occupied_recall", "at_most": 0.5 }"#)]),
+        semantic: change(&[("requirements.0.check", r#"{ "metric": "packet_delivery_ratio", "at_most": 0.5 }"#)]),
     },
     Key {
         path: "requirements[].check.seeds",
@@ -1525,57 +764,21 @@ const KEYS: &[Key] = &[
     },
     Key {
         path: "requirements[].check.confidence",
-        field: with(
-            &[("requirements.0.check.seeds", "3")],
-            &[("requirements.0.check.confidence", "0.6")],
-        ),
-        perception: with(
-            &[("requirements.0.check.seeds", "3")],
-            &[("requirements.0.check.confidence", "0.6")],
-        ),
-        semantic: with(
-            &[("requirements.0.check.seeds", "3")],
-            &[("requirements.0.check.confidence", "0.6")],
-        ),
+        field: with(&[("requirements.0.check.seeds", "3")], &[("requirements.0.check.confidence", "0.6")]),
+        perception: with(&[("requirements.0.check.seeds", "3")], &[("requirements.0.check.confidence", "0.6")]),
+        semantic: with(&[("requirements.0.check.seeds", "3")], &[("requirements.0.check.confidence", "0.6")]),
     },
     Key {
         path: "requirements[].check.holds_in",
-        field: with(
-            &[("requirements.0.check.seeds", "3")],
-            &[("requirements.0.check.holds_in", "0.5")],
-        ),
-        perception: with(
-            &[("requirements.0.check.seeds", "3")],
-            &[("requirements.0.check.holds_in", "0.5")],
-        ),
-        semantic: with(
-            &[("requirements.0.check.seeds", "3")],
-            &[("requirements.0.check.holds_in", "0.5")],
-        ),
+        field: with(&[("requirements.0.check.seeds", "3")], &[("requirements.0.check.holds_in", "0.5")]),
+        perception: with(&[("requirements.0.check.seeds", "3")], &[("requirements.0.check.holds_in", "0.5")]),
+        semantic: with(&[("requirements.0.check.seeds", "3")], &[("requirements.0.check.holds_in", "0.5")]),
     },
     Key {
         path: "requirements[].check.method",
-        field: with(
-            &[
-                ("requirements.0.check.seeds", "3"),
-                ("requirements.0.check.holds_in", "0.5"),
-            ],
-            &[("requirements.0.check.method", r#""wilson""#)],
-        ),
-        perception: with(
-            &[
-                ("requirements.0.check.seeds", "3"),
-                ("requirements.0.check.holds_in", "0.5"),
-            ],
-            &[("requirements.0.check.method", r#""wilson""#)],
-        ),
-        semantic: with(
-            &[
-                ("requirements.0.check.seeds", "3"),
-                ("requirements.0.check.holds_in", "0.5"),
-            ],
-            &[("requirements.0.check.method", r#""wilson""#)],
-        ),
+        field: with(&[("requirements.0.check.seeds", "3"), ("requirements.0.check.holds_in", "0.5")], &[("requirements.0.check.method", r#""wilson""#)]),
+        perception: with(&[("requirements.0.check.seeds", "3"), ("requirements.0.check.holds_in", "0.5")], &[("requirements.0.check.method", r#""wilson""#)]),
+        semantic: with(&[("requirements.0.check.seeds", "3"), ("requirements.0.check.holds_in", "0.5")], &[("requirements.0.check.method", r#""wilson""#)]),
     },
     Key {
         path: "requirements[].check.invariant",
@@ -1585,28 +788,11 @@ const KEYS: &[Key] = &[
     },
     Key {
         path: "requirements[].check.tolerance",
-        field: with(
-            &[("requirements.0.check", r#"{ "invariant": "mass_function" }"#)],
-            &[("requirements.0.check.tolerance", "0.5")],
-        ),
-        perception: with(
-            &[("requirements.0.check", r#"{ "invariant": "mass_function" }"#)],
-            &[("requirements.0.check.tolerance", "0.5")],
-        ),
-        semantic: Class::Refused {
-            set: &[(
-                "requirements.0.check",
-                r#"{ "invariant": "mass_function", "tolerance": 0.5 }"#,
-            )],
-            at: Some("requirements[0].check.invariant"),
-        },
+        field: with(&[("requirements.0.check", r#"{ "invariant": "mass_function" }"#)], &[("requirements.0.check.tolerance", "0.5")]),
+        perception: with(&[("requirements.0.check", r#"{ "invariant": "mass_function" }"#)], &[("requirements.0.check.tolerance", "0.5")]),
+        semantic: Class::Refused { set: &[("requirements.0.check", r#"{ "invariant": "mass_function", "tolerance": 0.5 }"#)], at: Some("requirements[0].check.invariant") },
     },
-    Key {
-        path: "requirements[].check.signal",
-        field: refused(&[SIGNAL]),
-        perception: change(&[SIGNAL]),
-        semantic: change(&[SEMANTIC_SIGNAL]),
-    },
+    Key { path: "requirements[].check.signal", field: refused(&[SIGNAL]), perception: change(&[SIGNAL]), semantic: change(&[SEMANTIC_SIGNAL]) },
     Key {
         path: "requirements[].check.always.at_least",
         field: refused_at(&[SIGNAL], SIGNAL_AT),
@@ -1615,179 +801,55 @@ const KEYS: &[Key] = &[
     },
     Key {
         path: "requirements[].check.always.at_most",
-        field: refused_at(
-            &[(
-                "requirements.0.check",
-                r#"{ "signal": "occupied_recall", "always": { "at_most": 0.1 } }"#,
-            )],
-            SIGNAL_AT,
-        ),
-        perception: change(&[(
-            "requirements.0.check",
-            r#"{ "signal": "occupied_recall", "always": { "at_most": 0.9 } }"#,
-        )]),
-        semantic: change(&[(
-            "requirements.0.check",
-            r#"{ "signal": "rsu_only_objects", "always": { "at_most": 0 } }"#,
-        )]),
+        field: refused_at(&[("requirements.0.check", r#"{ "signal": "occupied_recall", "always": { "at_most": 0.1 } }"#)], SIGNAL_AT),
+        perception: change(&[("requirements.0.check", r#"{ "signal": "occupied_recall", "always": { "at_most": 0.9 } }"#)]),
+        semantic: change(&[("requirements.0.check", r#"{ "signal": "rsu_only_objects", "always": { "at_most": 0 } }"#)]),
     },
     Key {
         path: "requirements[].check.eventually.at_least",
-        field: refused_at(
-            &[(
-                "requirements.0.check",
-                r#"{ "signal": "occupied_recall", "eventually": { "at_least": 0.1 } }"#,
-            )],
-            SIGNAL_AT,
-        ),
-        perception: change(&[(
-            "requirements.0.check",
-            r#"{ "signal": "occupied_recall", "eventually": { "at_least": 0.9 } }"#,
-        )]),
-        semantic: change(&[(
-            "requirements.0.check",
-            r#"{ "signal": "rsu_only_objects", "eventually": { "at_least": 3 } }"#,
-        )]),
+        field: refused_at(&[("requirements.0.check", r#"{ "signal": "occupied_recall", "eventually": { "at_least": 0.1 } }"#)], SIGNAL_AT),
+        perception: change(&[("requirements.0.check", r#"{ "signal": "occupied_recall", "eventually": { "at_least": 0.9 } }"#)]),
+        semantic: change(&[("requirements.0.check", r#"{ "signal": "rsu_only_objects", "eventually": { "at_least": 3 } }"#)]),
     },
     Key {
         path: "requirements[].check.eventually.at_most",
-        field: refused_at(
-            &[(
-                "requirements.0.check",
-                r#"{ "signal": "occupied_recall", "eventually": { "at_most": 0.1 } }"#,
-            )],
-            SIGNAL_AT,
-        ),
-        perception: change(&[(
-            "requirements.0.check",
-            r#"{ "signal": "occupied_recall", "eventually": { "at_most": 0.9 } }"#,
-        )]),
-        semantic: change(&[(
-            "requirements.0.check",
-            r#"{ "signal": "rsu_only_objects", "eventually": { "at_most": 0 } }"#,
-        )]),
+        field: refused_at(&[("requirements.0.check", r#"{ "signal": "occupied_recall", "eventually": { "at_most": 0.1 } }"#)], SIGNAL_AT),
+        perception: change(&[("requirements.0.check", r#"{ "signal": "occupied_recall", "eventually": { "at_most": 0.9 } }"#)]),
+        semantic: change(&[("requirements.0.check", r#"{ "signal": "rsu_only_objects", "eventually": { "at_most": 0 } }"#)]),
     },
     Key {
         path: "requirements[].check.within",
-        field: refused_at(
-            &[(
-                "requirements.0.check",
-                r#"{ "signal": "occupied_recall", "always": { "at_least": 0.1 }, "within": 0.5 }"#,
-            )],
-            SIGNAL_AT,
-        ),
+        field: refused_at(&[("requirements.0.check", r#"{ "signal": "occupied_recall", "always": { "at_least": 0.1 }, "within": 0.5 }"#)], SIGNAL_AT),
         perception: with(&[SIGNAL], &[("requirements.0.check.within", "0.3")]),
         semantic: with(&[SEMANTIC_SIGNAL], &[("requirements.0.check.within", "1")]),
     },
     Key {
         path: "requirements[].check.per_object",
-        field: refused(&[(
-            "requirements.0.check",
-            r#"{ "per_object": "warning_time", "at_least": 1 }"#,
-        )]),
-        perception: refused(&[(
-            "requirements.0.check",
-            r#"{ "per_object": "warning_time", "at_least": 1 }"#,
-        )]),
-        semantic: change(&[(
-            "requirements.0.check",
-            r#"{ "per_object": "warning_time", "at_least": 1 }"#,
-        )]),
+        field: refused(&[("requirements.0.check", r#"{ "per_object": "warning_time", "at_least": 1 }"#)]),
+        perception: refused(&[("requirements.0.check", r#"{ "per_object": "warning_time", "at_least": 1 }"#)]),
+        semantic: change(&[("requirements.0.check", r#"{ "per_object": "warning_time", "at_least": 1 }"#)]),
     },
-    Key {
-        path: "references[].source",
-        field: Descriptive,
-        perception: Descriptive,
-        semantic: Descriptive,
-    },
+    Key { path: "references[].source", field: Descriptive, perception: Descriptive, semantic: Descriptive },
     Key {
         path: "references[].metric",
-        field: with(
-            &[(
-                "references",
-                r#"[ { "source": "S", "metric": "accuracy", "value": 0.9 } ]"#,
-            )],
-            &[("references.0.metric", r#""below_threshold_fraction""#)],
-        ),
-        perception: with(
-            &[(
-                "references",
-                r#"[ { "source": "S", "metric": "occupied_recall", "value": 0.9 } ]"#,
-            )],
-            &[("references.0.metric", r#""blind_recall""#)],
-        ),
-        semantic: with(
-            &[(
-                "references",
-                r#"[ { "source": "S", "metric": "packet_delivery_ratio", "value": 0.9 } ]"#,
-            )],
-            &[("references.0.metric", r#""transmitted_share""#)],
-        ),
+        field: with(&[("references", r#"[ { "source": "S", "metric": "accuracy", "value": 0.9 } ]"#)], &[("references.0.metric", r#""below_threshold_fraction""#)]),
+        perception: with(&[("references", r#"[ { "source": "S", "metric": "occupied_recall", "value": 0.9 } ]"#)], &[("references.0.metric", r#""blind_recall""#)]),
+        semantic: with(&[("references", r#"[ { "source": "S", "metric": "packet_delivery_ratio", "value": 0.9 } ]"#)], &[("references.0.metric", r#""transmitted_share""#)]),
     },
     Key {
         path: "references[].value",
-        field: with(
-            &[(
-                "references",
-                r#"[ { "source": "S", "metric": "accuracy", "value": 0.9 } ]"#,
-            )],
-            &[("references.0.value", "0.8")],
-        ),
-        perception: with(
-            &[(
-                "references",
-                r#"[ { "source": "S", "metric": "occupied_recall", "value": 0.9 } ]"#,
-            )],
-            &[("references.0.value", "0.8")],
-        ),
-        semantic: with(
-            &[(
-                "references",
-                r#"[ { "source": "S", "metric": "packet_delivery_ratio", "value": 0.9 } ]"#,
-            )],
-            &[("references.0.value", "0.8")],
-        ),
+        field: with(&[("references", r#"[ { "source": "S", "metric": "accuracy", "value": 0.9 } ]"#)], &[("references.0.value", "0.8")]),
+        perception: with(&[("references", r#"[ { "source": "S", "metric": "occupied_recall", "value": 0.9 } ]"#)], &[("references.0.value", "0.8")]),
+        semantic: with(&[("references", r#"[ { "source": "S", "metric": "packet_delivery_ratio", "value": 0.9 } ]"#)], &[("references.0.value", "0.8")]),
     },
     Key {
         path: "references[].where",
-        field: with(
-            &[
-                FUSION_SWEEP,
-                (
-                    "references",
-                    r#"[ { "source": "S", "metric": "accuracy", "value": 0.9 } ]"#,
-                ),
-            ],
-            &[("references.0.where", r#"{ "fusion.method": "bayes" }"#)],
-        ),
-        perception: with(
-            &[
-                COOPERATING_SWEEP,
-                (
-                    "references",
-                    r#"[ { "source": "S", "metric": "occupied_recall", "value": 0.9 } ]"#,
-                ),
-            ],
-            &[("references.0.where", r#"{ "perception.cooperating": 3 }"#)],
-        ),
-        semantic: with(
-            &[
-                RATE_SWEEP,
-                (
-                    "references",
-                    r#"[ { "source": "S", "metric": "packet_delivery_ratio", "value": 0.9 } ]"#,
-                ),
-            ],
-            &[("references.0.where", r#"{ "semantic.rate": 5 }"#)],
-        ),
+        field: with(&[FUSION_SWEEP, ("references", r#"[ { "source": "S", "metric": "accuracy", "value": 0.9 } ]"#)], &[("references.0.where", r#"{ "fusion.method": "bayes" }"#)]),
+        perception: with(&[COOPERATING_SWEEP, ("references", r#"[ { "source": "S", "metric": "occupied_recall", "value": 0.9 } ]"#)], &[("references.0.where", r#"{ "perception.cooperating": 3 }"#)]),
+        semantic: with(&[RATE_SWEEP, ("references", r#"[ { "source": "S", "metric": "packet_delivery_ratio", "value": 0.9 } ]"#)], &[("references.0.where", r#"{ "semantic.rate": 5 }"#)]),
     },
     // Sweeps, the space falsify searches, the recording.
-    Key {
-        path: "sweep",
-        field: change(&[FUSION_SWEEP]),
-        perception: change(&[COOPERATING_SWEEP]),
-        semantic: change(&[RATE_SWEEP]),
-    },
+    Key { path: "sweep", field: change(&[FUSION_SWEEP]), perception: change(&[COOPERATING_SWEEP]), semantic: change(&[RATE_SWEEP]) },
     Key {
         path: "sweeps",
         field: change(&[("sweeps", r#"[ { "seed": [1, 2] } ]"#)]),
@@ -1808,18 +870,9 @@ const KEYS: &[Key] = &[
     },
     Key {
         path: "record.where",
-        field: with(
-            &[FUSION_SWEEP, ("record", "{}")],
-            &[("record.where", r#"{ "fusion.method": "bayes" }"#)],
-        ),
-        perception: with(
-            &[COOPERATING_SWEEP, ("record", "{}")],
-            &[("record.where", r#"{ "perception.cooperating": 3 }"#)],
-        ),
-        semantic: with(
-            &[RATE_SWEEP, ("record", "{}")],
-            &[("record.where", r#"{ "semantic.rate": 5 }"#)],
-        ),
+        field: with(&[FUSION_SWEEP, ("record", "{}")], &[("record.where", r#"{ "fusion.method": "bayes" }"#)]),
+        perception: with(&[COOPERATING_SWEEP, ("record", "{}")], &[("record.where", r#"{ "perception.cooperating": 3 }"#)]),
+        semantic: with(&[RATE_SWEEP, ("record", "{}")], &[("record.where", r#"{ "semantic.rate": 5 }"#)]),
     },
     Key {
         path: "record.grid_rate",
@@ -2135,6 +1188,9 @@ fn points_at_key(text: &str, error: &Error) -> bool {
     }
 }
 
+/// A refused scenario: its text and its errors.
+type Refusal = (String, Vec<Error>);
+
 /// Checks one key in one kind of scenario; `Err` says what is wrong.
 fn check(
     schema: &Schema,
@@ -2199,7 +1255,7 @@ fn refusal(
     after: &Value,
     at: Option<&str>,
     touches: &dyn Fn(&Value, &Value) -> Result<(), String>,
-    evaluate: &mut dyn FnMut(&Value) -> Result<String, (String, Vec<Error>)>,
+    evaluate: &mut dyn FnMut(&Value) -> Result<String, Refusal>,
 ) -> Result<(), String> {
     touches(before, after)?;
     let Err((text, errors)) = evaluate(after) else {

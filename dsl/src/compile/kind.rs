@@ -5,9 +5,10 @@
 //! experiment (`field`), a world measuring collective perception
 //! (`perception`), or a world running the semantic pipeline (`semantic`). Two
 //! passes refuse what a scenario writes without effect:
-//! - [`refuse_ignored`]: sections and keys its kind never reads (`v2x` in a
-//!   collective-perception world), wherever they are written; a sweep or `vary`
-//!   axis that sets one is refused by [`ignored`];
+//! - [`ignored_keys`]: sections and keys its kind never reads (`v2x` in a
+//!   collective-perception world), wherever they are written (the setup pass
+//!   refuses them); a sweep or `vary` axis that sets one is refused by
+//!   [`ignored`];
 //! - [`unused`]: keys the settings around them leave without effect in one
 //!   configuration (a weight scaling for a rule that weighs nothing, a sensor
 //!   model no agent carries). The driver refuses those where every sweep point
@@ -17,6 +18,7 @@ use super::context::has;
 use crate::model::{AgentKind, Experiment, Following, Motion, PathLossModel, PoseFilter, RsuSight, Rule, Setup, World};
 use crate::path::{Path, Segment};
 use crate::yaml::{Node, Value};
+use Kind::{Field, Perception, Semantic};
 
 /// What a scenario simulates and measures, which decides the keys it reads.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -59,8 +61,6 @@ struct Ignored {
     pattern: &'static str,
     why: &'static str,
 }
-
-use Kind::{Field, Perception, Semantic};
 
 const WORLDS: &[Kind] = &[Perception, Semantic];
 
@@ -326,6 +326,34 @@ pub(super) fn unused(tree: &Node, setup: &Setup) -> Vec<(Path, String)> {
     found.found
 }
 
+/// Why agent `i` of `world`, a roadside unit, changes nothing: it is not part
+/// of the ground truth, so it counts only if it shares its grid (collective
+/// perception) or assists the ego (the semantic pipeline). `None` for any other
+/// agent, and for a roadside unit that does either.
+fn idle_roadside_unit(world: &World, i: usize) -> Option<String> {
+    let agent = &world.agents[i];
+    if agent.kind != AgentKind::Rsu {
+        return None;
+    }
+    let id = &agent.id;
+    if let Some(perception) = &world.perception {
+        let shares = agent.connected && !agent.sensors.is_empty();
+        return (perception.ego != i && !shares).then(|| {
+            format!(
+                "roadside unit `{id}` is not part of the ground truth, and shares nothing unless it is \
+                 `connected: true` with sensors"
+            )
+        });
+    }
+    let semantic = world.semantic.as_ref()?;
+    (!semantic.rsus.contains(&i)).then(|| {
+        format!(
+            "roadside unit `{id}` is not in `semantic.rsus`, so it does not assist the ego, and it is not part of \
+             the ground truth"
+        )
+    })
+}
+
 /// What [`unused`] collects.
 struct Unused<'a> {
     tree: &'a Node,
@@ -345,16 +373,12 @@ impl Unused<'_> {
         if world.localization.filter == PoseFilter::None {
             for key in ["process_position_sigma", "process_heading_sigma_deg"] {
                 self.check(root.key("localization").key(key), || {
-                    "`filter: none` takes each measurement as it is: the Kalman filter's process noise has no effect"
-                        .into()
+                    "`filter: none` takes each measurement as it is, without the Kalman filter's motion model".into()
                 });
             }
         }
         if world.driving.following == Following::None {
-            let why = || {
-                "vehicles ignore each other (`following: none`): the car-following model's settings have no effect"
-                    .to_string()
-            };
+            let why = || "vehicles ignore each other (`following: none`), so no car-following model runs".to_string();
             for key in ["headway", "min_gap", "deceleration"] {
                 self.check(root.key("driving").key(key), why);
             }
@@ -394,6 +418,10 @@ impl Unused<'_> {
         for (i, agent) in declared.iter().enumerate() {
             let at = list.index(i);
             let id = &agent.id;
+            if let Some(why) = idle_roadside_unit(world, i) {
+                self.found.push((at, why));
+                continue;
+            }
             if agent.kind != AgentKind::Rsu {
                 self.check(at.key("heading_deg"), || {
                     "only a roadside unit stands at a heading; a moving agent heads along its way".into()
@@ -411,21 +439,7 @@ impl Unused<'_> {
                     "a pedestrian's path has no speed limit".into()
                 });
             }
-            if let Some(perception) = &world.perception {
-                if i == perception.ego {
-                    continue;
-                }
-                let shares = agent.connected && !agent.sensors.is_empty();
-                if agent.kind == AgentKind::Rsu && !shares {
-                    self.found.push((
-                        at.clone(),
-                        format!(
-                            "roadside unit `{id}` is not part of the ground truth, and shares nothing unless it is \
-                             `connected: true` with sensors"
-                        ),
-                    ));
-                    continue;
-                }
+            if world.perception.as_ref().is_some_and(|p| p.ego != i) {
                 if !agent.connected && !agent.sensors.is_empty() {
                     self.check(at.key("sensors"), || {
                         format!("`{id}` is not `connected: true`: only the ego and agents that share see for the ego")
@@ -439,16 +453,6 @@ impl Unused<'_> {
             }
             if let Some(semantic) = &world.semantic {
                 if agent.kind == AgentKind::Rsu {
-                    if !semantic.rsus.contains(&i) {
-                        self.found.push((
-                            at.clone(),
-                            format!(
-                                "roadside unit `{id}` is not in `semantic.rsus`, so it does not assist the ego, and \
-                                 it is not part of the ground truth"
-                            ),
-                        ));
-                        continue;
-                    }
                     self.check(at.key("connected"), || {
                         "a roadside unit reaches the ego through the semantic pipeline; `connected` applies to road \
                          users, which send the ego their own state"
