@@ -141,6 +141,7 @@ invalid_inputs! {
     grid_fusion_and_localization_in_a_semantic_world_are_refused => "semantic-fusion-keys",
     world_sections_in_the_field_experiment_are_refused => "field-with-world-sections",
     keys_their_settings_leave_without_effect_are_refused => "keys-without-effect",
+    semantic_keys_their_settings_leave_without_effect_are_refused => "semantic-keys-without-effect",
     vary_value_leaving_a_key_without_effect_is_refused => "vary-leaves-a-key-without-effect",
 }
 

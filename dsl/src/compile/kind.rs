@@ -13,6 +13,12 @@
 //!   configuration (a weight scaling for a rule that weighs nothing, a sensor
 //!   model no agent carries). The driver refuses those where every sweep point
 //!   agrees, and `vary` refuses a value that would make one.
+//!
+//! A key is refused when what it configures does not run: its kind never
+//! models it, another variant is chosen (a method, a filter, a path-loss model),
+//! or nothing uses it (no agent carries a sensor model). A rate of zero is a
+//! value, not another model: `speed` of pedestrians generated at 0 per minute
+//! is accepted, so that a sweep or a search may reach 0.
 
 use super::context::has;
 use crate::model::{AgentKind, Experiment, Following, Motion, PathLossModel, PoseFilter, RsuSight, Rule, Setup, World};
@@ -370,7 +376,16 @@ impl Unused<'_> {
 
     fn world(&mut self, world: &World) {
         let root = Path::root();
-        if world.localization.filter == PoseFilter::None {
+        let moving_cooperator = world.perception.as_ref().is_some_and(|p| {
+            p.cooperating
+                .iter()
+                .any(|&i| !matches!(world.agents[i].motion, Motion::Fixed { .. }))
+        });
+        if world.perception.is_some() && !moving_cooperator {
+            self.check(root.key("localization"), || {
+                "every cooperating agent is a roadside unit, whose pose is surveyed: nobody localizes".into()
+            });
+        } else if world.localization.filter == PoseFilter::None {
             for key in ["process_position_sigma", "process_heading_sigma_deg"] {
                 self.check(root.key("localization").key(key), || {
                     "`filter: none` takes each measurement as it is, without the Kalman filter's motion model".into()
@@ -456,6 +471,11 @@ impl Unused<'_> {
                     self.check(at.key("connected"), || {
                         "a roadside unit reaches the ego through the semantic pipeline; `connected` applies to road \
                          users, which send the ego their own state"
+                            .into()
+                    });
+                    self.check(at.key("size"), || {
+                        "a roadside unit is not part of the ground truth, and in a semantic world it reports no \
+                         footprint of its own"
                             .into()
                     });
                 } else if i != semantic.ego && !agent.sensors.is_empty() {
