@@ -5,7 +5,10 @@
 //! core-schema scalars), its JSON Schema, its checks and its error messages. It
 //! does not touch the file system, simulate or print: the CLI hands it text and
 //! prints the [`Errors`] it returns, each located as `file:line:col` with a YAML
-//! path. The [`sumo`] module reads traffic from the simulator SUMO the same way:
+//! path. A key that would change nothing in its kind of scenario (a radio in
+//! collective perception, a grid in a semantic world, a fusion parameter the
+//! chosen method ignores) is an error too, [`ErrorKind::NoEffect`], so a
+//! verdict never rests on a setting that was silently ignored. The [`sumo`] module reads traffic from the simulator SUMO the same way:
 //! text in, located errors out. A scenario that imports SUMO files (`traces`)
 //! has them read through the [`Loader`] the caller puts in [`Options`]; the
 //! compiled [`Scenario`] keeps their bytes (`imports`) for the evidence.

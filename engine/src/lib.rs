@@ -12,6 +12,11 @@
 //! point and records one of them that way. The engine keeps none of it, so
 //! memory stays bounded; the MCAP writer and the temporal oracles are sinks.
 //!
+//! Every model states what it idealises, beside its code, as an
+//! [`Idealisation`]; [`idealisations`] lists those a scenario's run assumed (its
+//! kinds of model and the options it chooses), which the report prints under
+//! "Assumptions and limitations".
+//!
 //! Results are deterministic: the same scenario and seed give bit-identical
 //! outcomes and records whatever the number of rayon threads, and recording does
 //! not change an outcome.

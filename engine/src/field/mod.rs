@@ -6,9 +6,10 @@ mod layout;
 mod sensor;
 mod truth;
 
-pub(crate) use experiment::IDEALISATIONS;
 pub use experiment::run;
 pub use layout::positions;
 pub use sensor::SensorModel;
-pub(crate) use sensor::error_model_idealisations;
 pub use truth::GroundTruth;
+
+pub(crate) use experiment::IDEALISATIONS;
+pub(crate) use sensor::error_model_idealisations;

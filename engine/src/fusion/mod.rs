@@ -11,6 +11,7 @@ pub use bayes::{Occupancy, PROBABILITY_CLAMP, pignistic};
 pub use decision::decide;
 pub use dempster::{Combination, Combiner, combine};
 pub use mass::{Mass, State};
-pub(crate) use rule::method_idealisations;
 pub use rule::{Estimate, Source, fuse};
 pub use weighted::{Distances, combine_all, combine_two, discount};
+
+pub(crate) use rule::method_idealisations;

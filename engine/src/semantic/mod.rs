@@ -20,5 +20,6 @@ pub use risk::{
     Conflict, MAX_BRANCHES, MapRoute, RouteMap, Trajectory, along, conflict, hypotheses, lane_routes, straight,
 };
 pub use simulate::{KNOWN_FOR, route_map, run};
-pub(crate) use simulate::{idealisations, rsu_sight_idealisations};
 pub use traffic::scene;
+
+pub(crate) use simulate::{idealisations, rsu_sight_idealisations};

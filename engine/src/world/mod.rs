@@ -13,14 +13,14 @@ mod simulate;
 
 pub use fuse::CellFusion;
 pub use localization::PoseEstimator;
-pub(crate) use localization::filter_idealisations as localization_idealisations;
 pub use metrics::{CellTally, FusedCell, Snapshot, WorldMetrics, WorldOutcome};
-pub(crate) use motion::ON_THEIR_WAY;
-pub(crate) use motion::following_idealisations;
 pub use motion::{AgentState, Kinematics, Restraint};
 pub use observe::{Observation, Observed, Sighting, Sightings, StepScene, in_view, mount_pose};
 pub use raster::{Raster, box_cells, cell_center, traverse};
 pub use sight::{Bodies, Body, Occluders, Visibility, visibility};
+pub use simulate::run;
+
+pub(crate) use localization::filter_idealisations as localization_idealisations;
+pub(crate) use motion::{ON_THEIR_WAY, following_idealisations};
 pub(crate) use sight::{ONE_RAY, PLANAR, RSU_TRANSPARENT};
 pub(crate) use simulate::idealisations;
-pub use simulate::run;
