@@ -21,6 +21,10 @@ mod invalid;
 #[path = "e2e/verdicts.rs"]
 mod verdicts;
 
+// Every key of the language changes the result or is refused, per kind of scenario.
+#[path = "e2e/keys.rs"]
+mod keys;
+
 // Same file and seed give byte-identical evidence whatever the thread count; `--seed`.
 #[path = "e2e/determinism.rs"]
 mod determinism;

@@ -147,6 +147,11 @@ pub enum ErrorKind {
     /// Keys that cannot be combined, or a combination the language rejects.
     #[error("{0}")]
     Invalid(String),
+    /// A key that would change nothing that is simulated or measured in this
+    /// scenario (its kind of world ignores it, or the settings around it do);
+    /// the message says why.
+    #[error("has no effect: {0}")]
+    NoEffect(String),
 }
 
 fn suggestion(did_you_mean: &Option<String>) -> String {

@@ -5,7 +5,10 @@
 //! core-schema scalars), its JSON Schema, its checks and its error messages. It
 //! does not touch the file system, simulate or print: the CLI hands it text and
 //! prints the [`Errors`] it returns, each located as `file:line:col` with a YAML
-//! path. The [`sumo`] module reads traffic from the simulator SUMO the same way:
+//! path. A key that would change nothing in its kind of scenario (a radio in
+//! collective perception, a grid in a semantic world, a fusion parameter the
+//! chosen method ignores) is an error too, [`ErrorKind::NoEffect`], so a
+//! verdict never rests on a setting that was silently ignored. The [`sumo`] module reads traffic from the simulator SUMO the same way:
 //! text in, located errors out. A scenario that imports SUMO files (`traces`)
 //! has them read through the [`Loader`] the caller puts in [`Options`]; the
 //! compiled [`Scenario`] keeps their bytes (`imports`) for the evidence.
@@ -15,7 +18,7 @@
 //!             field:\n  truth: { occupied_fraction: 0.2 }\n  sensors: { range: 8, layout: { regular: { rows: 1, cols: 2 } } }\n  masses: { gamma: 10 }\n";
 //! let scenario = sightline_dsl::compile("tiny.yaml", text, &Default::default()).unwrap();
 //! assert_eq!(scenario.points.len(), 1);
-//! assert_eq!(scenario.points[0].setup.grid.cells(), 100);
+//! assert_eq!(scenario.points[0].setup.occupancy.as_ref().unwrap().grid.cells(), 100);
 //!
 //! let bad = text.replace("gamma: 10", "gamma: -3");
 //! let errors = sightline_dsl::compile("bad.yaml", &bad, &Default::default()).unwrap_err();

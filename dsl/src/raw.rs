@@ -37,8 +37,10 @@ pub(crate) struct RawScenario {
     /// byte-identical results.
     #[serde(default)]
     pub seed: u64,
-    /// The occupancy grid every method fuses into.
-    pub grid: RawGrid,
+    /// The occupancy grid every method fuses into: required by the field
+    /// experiment and by collective perception; a semantic world has none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub grid: Option<RawGrid>,
     /// The static field experiment (seed 001): ground truth, fixed sensors, mass
     /// model. A scenario has either a `field` or a world (`time` … `perception`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -645,7 +647,8 @@ pub(crate) struct RawOccluder {
     pub id: String,
     /// Outline [[x, y], …], metres, at least three corners (not repeated at the end).
     pub polygon: Vec<[f64; 2]>,
-    /// Height, metres (recorded; sight is computed in the plane).
+    /// Height, metres. Not modelled: sight and radio are computed in the plane,
+    /// so `check` refuses it.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub height: Option<f64>,
 }

@@ -27,10 +27,11 @@ fn defaults_follow_the_paper() {
     let scenario = ok(BASE);
     let setup = &scenario.points[0].setup;
     assert_eq!(setup.seed, 0);
-    assert_eq!(setup.decision.threshold, 0.8);
-    assert_eq!(setup.fusion.rule, Rule::Dempster);
-    assert_eq!(setup.fusion.label, "dempster");
-    assert_eq!((setup.grid.cols, setup.grid.rows), (40, 20));
+    let occupancy = setup.occupancy.as_ref().unwrap();
+    assert_eq!(occupancy.decision.threshold, 0.8);
+    assert_eq!(occupancy.fusion.rule, Rule::Dempster);
+    assert_eq!(occupancy.fusion.label, "dempster");
+    assert_eq!((occupancy.grid.cols, occupancy.grid.rows), (40, 20));
     let Experiment::Field(field) = &setup.experiment else {
         panic!("a field scenario")
     };
@@ -58,7 +59,7 @@ fn sweep_expands_first_axis_outermost() {
         ]
     );
     assert_eq!(
-        scenario.points[3].setup.fusion.rule,
+        scenario.points[3].setup.occupancy.as_ref().unwrap().fusion.rule,
         Rule::Hybrid {
             weighting: Weighting {
                 scaling: WeightScaling::MeanOne,
@@ -281,7 +282,7 @@ fn vary_keeps_integer_settings_whole_and_instantiates_a_concrete_scenario() {
     let concrete = ok(&case);
     assert!(concrete.vary.is_empty());
     let setup = &concrete.points[0].setup;
-    assert_eq!(setup.fusion.rule, Rule::Bayes);
+    assert_eq!(setup.occupancy.as_ref().unwrap().fusion.rule, Rule::Bayes);
     let Experiment::Field(field) = &setup.experiment else {
         panic!("a field scenario")
     };

@@ -16,7 +16,7 @@ const FILE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenarios/traces-tes
 const BASE: &str = "sightline: 1
 name: t
 time: { duration: 60, step: 0.1 }
-grid: { size: [10, 10], cell: 1 }
+# no `grid`: a semantic world fuses none
 traces:
   fcd: sumo/grid3x3.fcd.xml
   net: sumo/grid3x3.net.xml
@@ -26,7 +26,7 @@ sensor_models:
   around: { range: 100 }
 agents:
   - { id: ego, kind: car, trace: veh7, connected: true, sensors: [front] }
-  - { id: rsu, kind: rsu, position: [93.5, 93.5], connected: true, sensors: [around] }
+  - { id: rsu, kind: rsu, position: [93.5, 93.5], sensors: [around] }
 semantic: { ego: ego }
 ";
 

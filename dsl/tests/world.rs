@@ -134,7 +134,11 @@ fn a_field_and_a_world_do_not_mix() {
     let text = format!(
         "{WORLD}field:\n  truth: {{ occupied_fraction: 0.1 }}\n  sensors: {{ range: 10, layout: {{ regular: {{ rows: 1, cols: 1 }} }} }}\n  masses: {{ gamma: 5 }}\n"
     );
-    assert!(first_error(&text).contains("either a `field` or a world"));
+    let error = first_error(&text);
+    assert!(
+        error.contains("has no effect: it belongs to a world, and the scenario simulates the field experiment"),
+        "{error}"
+    );
 }
 
 #[test]

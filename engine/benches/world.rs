@@ -60,7 +60,8 @@ fn step(c: &mut Criterion) {
         .perception
         .as_ref()
         .expect("the roundabout measures collective perception");
-    let grid = setup.grid;
+    let occupancy = setup.occupancy.as_ref().expect("collective perception fuses a grid");
+    let grid = occupancy.grid;
     let mut kinematics = Kinematics::new(agents, world.step, world.driving);
     let mut states = Vec::new();
     for k in 0..=120 {
@@ -115,7 +116,7 @@ fn step(c: &mut Criterion) {
     let present: Vec<&Observation> = observations.iter().collect();
     let fusion = CellFusion {
         grid: &grid,
-        rule: &setup.fusion.rule,
+        rule: &occupancy.fusion.rule,
         observations: &present,
         occupied: perception.occupied,
         free: perception.free,

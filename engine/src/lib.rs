@@ -12,6 +12,11 @@
 //! point and records one of them that way. The engine keeps none of it, so
 //! memory stays bounded; the MCAP writer and the temporal oracles are sinks.
 //!
+//! Every model states what it idealises, beside its code, as an
+//! [`Idealisation`]; [`idealisations`] lists those a scenario's run assumed (its
+//! kinds of model and the options it chooses), which the report prints under
+//! "Assumptions and limitations".
+//!
 //! Results are deterministic: the same scenario and seed give bit-identical
 //! outcomes and records whatever the number of rayon threads, and recording does
 //! not change an outcome.
@@ -25,6 +30,7 @@
 //! ```
 #![warn(missing_docs)]
 
+pub use idealisation::{Idealisation, ModelOption, idealisations};
 pub use metrics::{BandMetrics, ConflictMetrics, Coverage, FieldMetrics, FieldOutcome, MassAudit};
 pub use run::{
     AssembleError, Job, Outcome, Run, Sample, Unit, assemble, simulate, simulate_point, simulate_reporting,
@@ -34,6 +40,7 @@ pub use sink::{NoTrace, TraceSink};
 
 pub mod field;
 pub mod fusion;
+mod idealisation;
 pub mod math;
 mod metrics;
 mod rng;

@@ -397,35 +397,39 @@ pub fn simulate_point(scenario: &Scenario, point: usize, sink: &mut impl TraceSi
 /// `seed`; one outcome per point, in group order.
 fn simulate_group(scenario: &Scenario, group: &[usize], seed: u64, sink: &mut impl TraceSink) -> Vec<Outcome> {
     let first = &scenario.points[group[0]].setup;
+    // Every point of a group shares its grid; each has its own fusion.
     let jobs: Vec<Job<'_>> = group
         .iter()
-        .map(|&i| Job {
-            fusion: &scenario.points[i].setup.fusion,
-            decision: scenario.points[i].setup.decision,
+        .filter_map(|&i| scenario.points[i].setup.occupancy.as_ref())
+        .map(|occupancy| Job {
+            fusion: &occupancy.fusion,
+            decision: occupancy.decision,
         })
         .collect();
-    match &first.experiment {
+    match (&first.experiment, &first.occupancy) {
         // The field experiment has no steps: it reports nothing to the sink.
-        Experiment::Field(f) => field::run(seed, &first.grid, f, &jobs)
+        (Experiment::Field(f), Some(occupancy)) => field::run(seed, &occupancy.grid, f, &jobs)
             .into_iter()
             .map(Outcome::Field)
             .collect(),
-        Experiment::World(w) => match (&w.perception, &w.semantic) {
-            (Some(perception), _) => world::run(seed, &first.grid, w, perception, &jobs, sink)
+        (Experiment::World(w), occupancy) => match (&w.perception, &w.semantic, occupancy) {
+            (Some(perception), _, Some(occupancy)) => world::run(seed, &occupancy.grid, w, perception, &jobs, sink)
                 .into_iter()
                 .map(Outcome::World)
                 .collect(),
-            // Fusion settings do not touch the semantic pipeline: one run serves all.
-            (None, Some(s)) => vec![Outcome::Semantic(semantic::run(seed, w, s, sink)); jobs.len()],
-            (None, None) => unreachable!("the compiler requires `perception` or `semantic`"),
+            // The points of a semantic group are the same configuration: one run serves all.
+            (None, Some(s), None) => vec![Outcome::Semantic(semantic::run(seed, w, s, sink)); group.len()],
+            _ => unreachable!("the compiler gives collective perception a grid, and the semantic pipeline none"),
         },
+        (Experiment::Field(_), None) => unreachable!("the compiler gives the field experiment a grid"),
     }
 }
 
 /// Point indices grouped by identical sampled data (seed, grid, experiment), in
-/// order of first appearance.
+/// order of first appearance: points that differ only in fusion or decision.
 fn shared_data_groups(scenario: &Scenario) -> Vec<Vec<usize>> {
-    let same_data = |a: &Setup, b: &Setup| a.seed == b.seed && a.grid == b.grid && a.experiment == b.experiment;
+    let grid = |setup: &Setup| setup.occupancy.as_ref().map(|o| o.grid);
+    let same_data = |a: &Setup, b: &Setup| a.seed == b.seed && grid(a) == grid(b) && a.experiment == b.experiment;
     let mut groups: Vec<Vec<usize>> = Vec::new();
     for (i, point) in scenario.points.iter().enumerate() {
         match groups

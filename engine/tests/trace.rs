@@ -298,7 +298,7 @@ fn fused_grids_come_only_at_the_steps_asked_for() {
     let scenario = roundabout();
     let world = world_of(&scenario);
     let perception = world.perception.as_ref().unwrap();
-    let cells = scenario.points[0].setup.grid.cells();
+    let cells = scenario.points[0].setup.occupancy.as_ref().unwrap().grid.cells();
     let asked = [0, 37, perception.snapshot_step];
     let mut recorder = Recorder::asking_grids_at(&asked);
     let outcome = simulate_point(&scenario, 0, &mut recorder);

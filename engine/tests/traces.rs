@@ -54,13 +54,12 @@ fn traced_vehicles_share_perception_of_traced_traffic() {
 const SEMANTIC: &str = "sightline: 1
 name: traced semantic
 time: { duration: 60, step: 0.1 }
-grid: { size: [10, 10], cell: 1 }
 traces: { fcd: sumo/grid3x3.fcd.xml, net: sumo/grid3x3.net.xml }
 sensor_models:
   front: { range: 80, fov_deg: 70 }
 agents:
   - { id: ego, kind: car, trace: veh7, connected: true, sensors: [front] }
-  - { id: rsu, kind: rsu, position: [93.5, 93.5], connected: true, sensors: [front] }
+  - { id: rsu, kind: rsu, position: [93.5, 93.5], sensors: [front] }
 v2x: { penetration: {p} }
 semantic: { ego: ego }
 ";
@@ -85,7 +84,10 @@ fn imported_vehicles_are_connected_at_the_penetration_rate() {
             world.agents.len(),
             "no traffic section, nothing generated"
         );
-        assert!(agents[0].connected && agents[1].connected);
+        assert!(
+            agents[0].connected && !agents[1].connected,
+            "declared agents keep what they declare"
+        );
         agents[2..]
             .iter()
             .map(|a| (a.kind == AgentKind::Pedestrian, a.connected))

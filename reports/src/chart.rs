@@ -14,7 +14,7 @@ use serde::Serialize;
 use sightline_engine::semantic::{DELIVERY_BIN, DENSITY_BIN, SemanticMetrics};
 use sightline_oracles::{Case, Phase};
 
-use crate::results::{Detail, PointResult, Results};
+use crate::results::{PointResult, Results};
 
 /// Size of a chart, pixels.
 const SIZE: (u32, u32) = (640, 300);
@@ -456,9 +456,12 @@ fn others(point: &PointResult, axes: &[sightline_dsl::Axis], values: &[&serde_js
         .filter(|&(i, _)| i != column)
         .map(|(_, (axis, v))| format!("{}={}", axis.path, sightline_dsl::display_value(v)))
         .collect();
-    let fused = !matches!(point.detail, Detail::Semantic { .. });
-    if fused && !point.fusion.is_empty() && !axes.iter().any(|a| a.path.starts_with("fusion")) {
-        parts.push(point.fusion.clone());
+    if let Some(fusion) = point
+        .fusion
+        .as_ref()
+        .filter(|f| !f.is_empty() && !axes.iter().any(|a| a.path.starts_with("fusion")))
+    {
+        parts.push(fusion.clone());
     }
     if parts.is_empty() {
         "measured".into()

@@ -99,22 +99,24 @@ pub fn render(
         .points
         .iter()
         .zip(&run.points)
-        .map(|(point, outcome)| match (outcome, &point.setup.experiment) {
-            (Outcome::World(o), Experiment::World(world)) => o
-                .snapshot
-                .as_ref()
-                .map(|s| {
-                    picture::pictures(
-                        &point.setup.grid,
-                        world.step,
-                        s,
-                        world.perception.as_ref().and_then(|p| p.region),
-                        point.setup.fusion.rule.is_evidential(),
-                    )
-                })
-                .transpose(),
-            _ => Ok(None),
-        })
+        .map(
+            |(point, outcome)| match (outcome, &point.setup.experiment, &point.setup.occupancy) {
+                (Outcome::World(o), Experiment::World(world), Some(occupancy)) => o
+                    .snapshot
+                    .as_ref()
+                    .map(|s| {
+                        picture::pictures(
+                            &occupancy.grid,
+                            world.step,
+                            s,
+                            world.perception.as_ref().and_then(|p| p.region),
+                            occupancy.fusion.rule.is_evidential(),
+                        )
+                    })
+                    .transpose(),
+                _ => Ok(None),
+            },
+        )
         .collect::<Result<Vec<_>, _>>()?;
     let charts = run
         .points

@@ -9,7 +9,7 @@ use serde::{Serialize, Serializer};
 use sightline_dsl::{Bound, Check, OverSeeds, Point, Requirement, Scenario, Temporal};
 use sightline_engine::semantic::{DensityRow, SemanticMetrics};
 use sightline_engine::world::WorldMetrics;
-use sightline_engine::{BandMetrics, Coverage, MassAudit, Outcome, Run};
+use sightline_engine::{BandMetrics, Coverage, Idealisation, MassAudit, Outcome, Run};
 use sightline_oracles::{SeedStatistics, Status, Verdict};
 
 use crate::execution::Execution;
@@ -95,6 +95,10 @@ pub struct Results {
     pub sweep: Vec<PointResult>,
     /// Published figures beside the measured values.
     pub references: Vec<ReferenceResult>,
+    /// The modelling idealisations that applied to the run (`{id, text}`), each
+    /// once: what the verdicts take as given ("Assumptions and limitations" in
+    /// the report).
+    pub assumptions: Vec<Idealisation>,
 }
 
 /// The scenario file.
@@ -267,10 +271,12 @@ pub struct PointResult {
     pub labels: Vec<LabelResult>,
     /// The seed.
     pub seed: u64,
-    /// The fusion method.
-    pub method: &'static str,
-    /// The fusion label.
-    pub fusion: String,
+    /// The fusion method (absent where nothing is fused: a semantic world).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub method: Option<&'static str>,
+    /// The fusion label (absent where nothing is fused).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fusion: Option<String>,
     /// Every defined metric.
     pub metrics: Ordered<f64>,
     /// The sample size of every metric the point measures, defined or not.
@@ -452,6 +458,7 @@ impl Results {
                         .collect(),
                 })
                 .collect(),
+            assumptions: sightline_engine::idealisations(scenario),
         }
     }
 }
@@ -512,8 +519,8 @@ fn point_result((point, outcome): (&Point, &Outcome)) -> PointResult {
             })
             .collect(),
         seed: point.setup.seed,
-        method: point.setup.fusion.rule.method().name(),
-        fusion: point.setup.fusion.label.clone(),
+        method: point.setup.occupancy.as_ref().map(|o| o.fusion.rule.method().name()),
+        fusion: point.setup.occupancy.as_ref().map(|o| o.fusion.label.clone()),
         metrics: Ordered(
             outcome
                 .values()

@@ -78,10 +78,11 @@ impl Page {
     }
 
     /// The blocks a template of this page must show: what makes the page
-    /// evidence (the verdict, the provenance, what was checked and found).
+    /// evidence (the verdict, the provenance, what was checked and found, and
+    /// what the models assumed).
     pub fn required_blocks(self) -> &'static [&'static str] {
         match self {
-            Self::Run => &["banner", "provenance", "traceability", "evidence"],
+            Self::Run => &["banner", "provenance", "traceability", "evidence", "assumptions"],
             Self::Falsify => &["banner", "provenance", "settings", "cases", "counterexample"],
         }
     }
@@ -631,6 +632,7 @@ mod tests {
         let layout = ["content", "footer", "head", "header", "style", "title"];
         let run = [
             "argument",
+            "assumptions",
             "banner",
             "comparison",
             "description",
@@ -755,7 +757,8 @@ mod tests {
         assert_eq!(
             message,
             "org/report.html: error: the page does not show required block `provenance`: a page of `sightline run` \
-             must show the blocks banner, provenance, traceability, evidence (extend `sightline/report.html` to inherit them)"
+             must show the blocks banner, provenance, traceability, evidence, assumptions (extend `sightline/report.html` \
+             to inherit them)"
         );
         // Overriding the block that holds it hides it too.
         let message = refused(
@@ -795,7 +798,10 @@ mod tests {
             ),
             "{message}"
         );
-        assert!(message.contains("argument, banner, comparison"), "{message}");
+        assert!(
+            message.contains("argument, assumptions, banner, comparison"),
+            "{message}"
+        );
         // An override of `details` that leaves `pictures` out hides an override of `pictures`.
         let message = refused(
             Page::Run,

@@ -136,6 +136,13 @@ invalid_inputs! {
     record_grid_rate_above_the_step_rate_is_refused => "record-grid-rate-above-step-rate",
     record_unknown_key_lists_the_keys => "record-unknown-key",
     record_where_matching_no_point_and_a_negative_rate_are_reported => "record-where-matches-no-point",
+    // See: issue 13, case 1 ("no silent assumptions").
+    radio_in_collective_perception_is_refused_written_swept_or_varied => "perception-v2x",
+    grid_fusion_and_localization_in_a_semantic_world_are_refused => "semantic-fusion-keys",
+    world_sections_in_the_field_experiment_are_refused => "field-with-world-sections",
+    keys_their_settings_leave_without_effect_are_refused => "keys-without-effect",
+    semantic_keys_their_settings_leave_without_effect_are_refused => "semantic-keys-without-effect",
+    vary_value_leaving_a_key_without_effect_is_refused => "vary-leaves-a-key-without-effect",
 }
 
 #[test]

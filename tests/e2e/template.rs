@@ -103,8 +103,8 @@ fn a_missing_block_is_refused_and_nothing_is_written() {
         refused.stderr,
         format!(
             "{}/report.html: error: the page does not show required block `provenance`: a page of `sightline run` \
-             must show the blocks banner, provenance, traceability, evidence (extend `sightline/report.html` to \
-             inherit them)\n",
+             must show the blocks banner, provenance, traceability, evidence, assumptions (extend \
+             `sightline/report.html` to inherit them)\n",
             set.display()
         )
     );

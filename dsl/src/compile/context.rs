@@ -23,7 +23,7 @@ impl<'a> Context<'a> {
 
     /// Whether the file gives the node at `path`.
     pub(super) fn has(&self, path: &Path) -> bool {
-        deepest(self.tree, path.segments()).1
+        has(self.tree, path)
     }
 
     /// Records an error at the deepest node of `path` that exists in the tree.
@@ -110,6 +110,11 @@ impl<'a> Context<'a> {
     }
 }
 
+/// Whether `tree` has a node at `path`.
+pub(super) fn has(tree: &Node, path: &Path) -> bool {
+    deepest(tree, path.segments()).1
+}
+
 /// The location of the deepest node on `path` present in `tree`.
 pub(super) fn locate(tree: &Node, path: &Path) -> Location {
     deepest(tree, path.segments()).0.location
@@ -117,7 +122,7 @@ pub(super) fn locate(tree: &Node, path: &Path) -> Location {
 
 /// The location of the key that ends `path`, or of the deepest node on it when
 /// the key is not there.
-fn locate_key(tree: &Node, path: &Path) -> Location {
+pub(super) fn locate_key(tree: &Node, path: &Path) -> Location {
     if let Some((Segment::Key(last), parent)) = path.segments().split_last()
         && let (parent, true) = deepest(tree, parent)
         && let Value::Map(entries) = &parent.value

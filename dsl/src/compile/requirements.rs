@@ -405,8 +405,9 @@ fn defined_everywhere(
             );
             return false;
         }
-        if metric.is_evidential_only() && !point.setup.fusion.rule.is_evidential() {
-            let method = point.setup.fusion.rule.method().name();
+        let fusion = point.setup.occupancy.as_ref().map(|o| &o.fusion.rule);
+        if let Some(rule) = fusion.filter(|rule| metric.is_evidential_only() && !rule.is_evidential()) {
+            let method = rule.method().name();
             let label = point.label();
             let advice = if label.is_empty() {
                 format!("the scenario fuses with `{method}`")

@@ -1,9 +1,11 @@
 //! The driver: text → tree → raw → imported files → setup per sweep combination
 //! → distinct points → `vary` → requirements.
 
+use std::collections::HashSet;
 use std::{fmt, io};
 
-use super::context::Context;
+use super::context::{Context, has, locate_key};
+use super::kind::{self, Kind, ignored};
 use super::record::record;
 use super::requirements::{references, requirements};
 use super::setup::setup;
@@ -12,7 +14,7 @@ use super::traces::{self, Imported};
 use super::vary;
 use crate::de::from_node;
 use crate::error::{Error, ErrorKind, Errors, Location};
-use crate::model::{Assignment, Axis, Experiment, Label, Scenario, Sweep, display_value};
+use crate::model::{Assignment, Axis, Experiment, Label, Scenario, Setup, Sweep, display_value};
 use crate::path::Path;
 use crate::raw::RawScenario;
 use crate::schema::AGENTS;
@@ -107,13 +109,16 @@ fn compile_inner(file: &str, source: &str, options: &Options<'_>) -> Result<Scen
             ErrorKind::Invalid("`--seed` cannot override a swept `seed`".into()),
         );
     }
-    let valid = base.is_some() && ctx.errors.is_empty();
-    let vary = vary::vary(&mut ctx, &sweeps, imported.as_ref(), valid);
+    let base = base.filter(|_| ctx.errors.is_empty());
+    let vary = vary::vary(&mut ctx, &sweeps, imported.as_ref(), base.as_ref());
     // Requirements are checked even when the setup is invalid (ids, texts and
     // check forms do not depend on the points), so one pass reports everything.
     let compiled = match base {
         Some(_) if ctx.errors.is_empty() => match points(file, &tree, &sweeps, options, imported.as_ref()) {
-            Ok(compiled) => Some(compiled),
+            Ok((compiled, combinations)) => {
+                refuse_unused(&mut ctx, &combinations);
+                Some(compiled)
+            }
             Err(errors) => {
                 ctx.errors.extend(errors);
                 None
@@ -185,15 +190,17 @@ fn check_version(ctx: &mut Context<'_>) {
 }
 
 /// Compiles every combination of every sweep (the file as written without a
-/// sweep) into the distinct configurations they give.
+/// sweep) into the distinct configurations they give; also returns each
+/// combination's setup with its tree (the file with its values in place).
 fn points(
     file: &str,
     tree: &Node,
     sweeps: &[Vec<AxisNodes<'_>>],
     options: &Options<'_>,
     imported: Option<&Imported>,
-) -> Result<Configurations, Vec<Error>> {
+) -> Result<(Configurations, Vec<(Setup, Node)>), Vec<Error>> {
     let mut configurations = Configurations::new(sweeps.len());
+    let mut combinations = Vec::new();
     let mut errors = Vec::new();
     let no_sweep: [Vec<AxisNodes<'_>>; 1] = [Vec::new()];
     let groups = if sweeps.is_empty() { &no_sweep[..] } else { sweeps };
@@ -229,6 +236,7 @@ fn points(
                             .collect(),
                         settings: settings(&raw, &setup),
                     };
+                    combinations.push((setup.clone(), point_tree));
                     configurations.add(label, setup);
                 }
                 Err(e) => errors.extend(e),
@@ -236,9 +244,39 @@ fn points(
         }
     }
     if errors.is_empty() {
-        Ok(configurations)
+        Ok((configurations, combinations))
     } else {
         Err(errors)
+    }
+}
+
+/// Refuses each key that the settings around it leave without effect at every
+/// sweep point that has it. A key is the node written at one place of the file:
+/// one written outside the sweeps is in every point, one inside a swept value
+/// only in the points that take that value. So `fusion.weights`, given once
+/// and ignored by the `dempster` rule, is refused unless a sweep fuses with a
+/// weighted rule at some point.
+fn refuse_unused(ctx: &mut Context<'_>, combinations: &[(Setup, Node)]) {
+    let found: Vec<Vec<(Location, Path, String)>> = combinations
+        .iter()
+        .map(|(setup, tree)| {
+            kind::unused(tree, setup)
+                .into_iter()
+                .map(|(path, why)| (locate_key(tree, &path), path, why))
+                .collect()
+        })
+        .collect();
+    let mut seen = HashSet::new();
+    for (location, path, why) in found.iter().flatten() {
+        if !seen.insert(*location) {
+            continue;
+        }
+        let everywhere = combinations.iter().zip(&found).all(|((_, tree), unused)| {
+            unused.iter().any(|(l, _, _)| l == location) || !(has(tree, path) && locate_key(tree, path) == *location)
+        });
+        if everywhere {
+            ctx.error_at(*location, path, ErrorKind::NoEffect(why.clone()));
+        }
     }
 }
 
@@ -260,6 +298,9 @@ fn settings(raw: &RawScenario, setup: &crate::model::Setup) -> serde_json::Value
     ] {
         object.remove(key);
     }
+    // Sections the scenario's kind ignores are no settings of its points.
+    let kind = Kind::of_setup(setup);
+    object.retain(|key, _| ignored(kind, &Path::root().key(key)).is_none());
     object.insert("seed".into(), setup.seed.into());
     // Agents by id, as a sweep names them: `agents.<id>.speed.target`.
     if let Some(agents) = object.get_mut(AGENTS)
@@ -271,8 +312,11 @@ fn settings(raw: &RawScenario, setup: &crate::model::Setup) -> serde_json::Value
             .collect();
         *agents = serde_json::Value::Object(by_id);
     }
-    if let Some(fusion) = object.get_mut("fusion").and_then(|f| f.as_object_mut()) {
-        fusion.insert("label".into(), setup.fusion.label.clone().into());
+    if let (Some(fusion), Some(occupancy)) = (
+        object.get_mut("fusion").and_then(|f| f.as_object_mut()),
+        &setup.occupancy,
+    ) {
+        fusion.insert("label".into(), occupancy.fusion.label.clone().into());
     }
     if let (Experiment::World(world), Some(perception)) = (
         &setup.experiment,

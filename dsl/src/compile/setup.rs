@@ -1,12 +1,13 @@
 //! Ranges, units and defaults of the simulation settings: raw → [`Setup`].
 
 use super::context::Context;
+use super::kind::{Kind, ignored_keys};
 use super::traces::Imported;
 use super::world::world;
 use crate::error::ErrorKind;
 use crate::model::{
-    Decision, Experiment, Field, Fusion, FusionMethod, Grid, Layout, Masses, Rule, Setup, Switch, SwitchMeasure, Truth,
-    Weighting,
+    Decision, Experiment, Field, Fusion, FusionMethod, Grid, Layout, Masses, Occupancy, Rule, Setup, Switch,
+    SwitchMeasure, Truth, Weighting,
 };
 use crate::path::Path;
 use crate::raw::{RawDecision, RawField, RawFusion, RawGrid, RawLayout, RawMasses, RawScenario, RawTruth};
@@ -19,35 +20,48 @@ pub const MAX_CELLS: usize = 25_000_000;
 /// The most sensors a field may have.
 pub const MAX_SENSORS: usize = 1_000;
 
-/// Compiles the simulation settings of one scenario (or one sweep point).
+/// Compiles the simulation settings of one scenario (or one sweep point), and
+/// refuses the keys its kind of scenario never reads.
 pub(super) fn setup(ctx: &mut Context<'_>, raw: &RawScenario, imported: Option<&Imported>) -> Option<Setup> {
     let root = Path::root();
-    let grid = grid(ctx, &raw.grid, &root.key("grid"));
-    let world_given = raw.time.is_some() || !raw.agents.is_empty() || raw.perception.is_some() || raw.traces.is_some();
-    let experiment = match &raw.field {
-        Some(_) if world_given => {
-            ctx.error(
-                &root.key("field"),
-                ErrorKind::Invalid(
-                    "a scenario simulates either a `field` or a world (`time`, `agents`, `traces`, `perception`), not both"
-                        .into(),
-                ),
-            );
+    let kind = Kind::of(ctx.tree);
+    if let Some(kind) = kind {
+        for (path, why) in ignored_keys(ctx.tree, kind) {
+            ctx.error_at_key(&path, ErrorKind::NoEffect(why.into()));
+        }
+    }
+    // A semantic world fuses no grid; every other kind needs one.
+    let fuses = kind.is_some_and(|kind| kind != Kind::Semantic);
+    let grid = match &raw.grid {
+        Some(raw_grid) if fuses => grid(ctx, raw_grid, &root.key("grid")),
+        None if fuses => {
+            ctx.error(&root, ErrorKind::MissingKey("grid".into()));
             None
         }
+        _ => None,
+    };
+    let experiment = match &raw.field {
         Some(field_raw) => grid
-            .and_then(|g| field(ctx, field_raw, &g, &root.key("field")))
+            .as_ref()
+            .and_then(|g| field(ctx, field_raw, g, &root.key("field")))
             .map(Experiment::Field),
         None => world(ctx, raw, imported).map(|w| Experiment::World(Box::new(w))),
     };
-    let fusion = fusion(ctx, &raw.fusion, &root.key("fusion"));
-    let decision = decision(ctx, &raw.decision, &root.key("decision"));
+    let occupancy = if fuses {
+        let fusion = fusion(ctx, &raw.fusion, &root.key("fusion"));
+        let decision = decision(ctx, &raw.decision, &root.key("decision"));
+        Some(Occupancy {
+            grid: grid?,
+            fusion: fusion?,
+            decision: decision?,
+        })
+    } else {
+        None
+    };
     Some(Setup {
         seed: raw.seed,
-        grid: grid?,
         experiment: experiment?,
-        fusion: fusion?,
-        decision: decision?,
+        occupancy,
     })
 }
 

@@ -7,6 +7,7 @@ use std::hash::{DefaultHasher, Hasher};
 use std::io;
 
 use super::context::Context;
+use super::kind::{Kind, ignored};
 use crate::de::{closest, one_of};
 use crate::error::{ErrorKind, Location};
 use crate::model::{Label, Point, Setup};
@@ -174,7 +175,13 @@ pub(super) fn setting(
     }
     let names: Vec<&str> = key.name.split('.').collect();
     match check_setting(&names) {
-        Ok(schema) => Some((path, schema)),
+        Ok(schema) => match Kind::of(ctx.tree).and_then(|kind| ignored(kind, &path)) {
+            Some(why) => {
+                ctx.error_at(key.location, here, ErrorKind::NoEffect(why.into()));
+                None
+            }
+            None => Some((path, schema)),
+        },
         Err(no) => {
             let message = if no.allowed.is_empty() {
                 format!("`{}` names no setting: `{}` is not a mapping", key.name, no.parent)

@@ -5,26 +5,29 @@
 //! into a copy of the tree and compiled, so a value out of the setting's range
 //! is reported where it is written in `vary`.
 
-use super::context::Context;
+use super::context::{Context, locate_key};
+use super::kind;
 use super::setup::setup;
 use super::sweep::{self, AxisNodes, is_prefix, json_eq};
 use super::traces::Imported;
 use crate::de::from_node;
 use crate::emit::emit;
 use crate::error::{Error, ErrorKind, Errors, Location};
-use crate::model::{Domain, Vary};
+use crate::model::{Domain, Setup, Vary};
 use crate::path::Path;
 use crate::raw::RawScenario;
 use crate::yaml::{self, Node, Value};
 
-/// Reads and checks `vary`. `check_values` compiles every end and choice; the
-/// caller clears it when the scenario is already invalid (the values would only
-/// repeat its errors).
+/// Reads and checks `vary`. With `base`, the scenario's own configuration,
+/// every end and choice is compiled, and refused when it would leave a key of
+/// the file without effect that `base` does not (every case falsify writes out
+/// must be a scenario `check` accepts); the caller passes `None` when the
+/// scenario is already invalid (the values would only repeat its errors).
 pub(super) fn vary(
     ctx: &mut Context<'_>,
     sweeps: &[Vec<AxisNodes<'_>>],
     imported: Option<&Imported>,
-    check_values: bool,
+    base: Option<&Setup>,
 ) -> Vec<Vary> {
     let tree = ctx.tree;
     let Some(Node {
@@ -34,6 +37,8 @@ pub(super) fn vary(
     else {
         return Vec::new(); // absent, or serde has already rejected a non-mapping
     };
+    let base_unused: Option<Vec<Path>> =
+        base.map(|base| kind::unused(tree, base).into_iter().map(|(path, _)| path).collect());
     let mut varied: Vec<(Path, Vary)> = Vec::new();
     for (key, node) in entries {
         let here = Path::root().key("vary").key(&key.name);
@@ -60,10 +65,15 @@ pub(super) fn vary(
         let Some((domain, values)) = domain(ctx, node, &here, is_integer(&schema)) else {
             continue;
         };
-        if check_values
-            && !values
-                .iter()
-                .all(|value| value_compiles(ctx, &path, value, key.location, imported))
+        if let Some(base_unused) = &base_unused
+            && !values.iter().all(|value| {
+                let setting = Setting {
+                    here: &here,
+                    path: &path,
+                    key_location: key.location,
+                };
+                value_compiles(ctx, &setting, value, imported, base_unused)
+            })
         {
             continue;
         }
@@ -167,24 +177,47 @@ fn domain<'a>(ctx: &mut Context<'_>, node: &'a Node, here: &Path, integer: bool)
     }
 }
 
-/// Compiles the scenario with `value` set at `path`; records its errors (located
-/// at the value) and returns whether there were none.
+/// A varied setting: where it is written in `vary`, its path in the tree, and
+/// where its key is.
+struct Setting<'a> {
+    here: &'a Path,
+    path: &'a Path,
+    key_location: Location,
+}
+
+/// Compiles the scenario with `value` set at the setting; records its errors
+/// (located at the value), and refuses the value when it leaves a key without
+/// effect that is not in `base_unused`. Returns whether there were none.
 fn value_compiles(
     ctx: &mut Context<'_>,
-    path: &Path,
+    setting: &Setting<'_>,
     value: &Node,
-    key_location: Location,
     imported: Option<&Imported>,
+    base_unused: &[Path],
 ) -> bool {
     let mut probe = ctx.tree.clone();
-    if let Err(message) = sweep::set(&mut probe, path.segments(), value.clone(), key_location) {
-        ctx.error_at(value.location, path, ErrorKind::Invalid(message));
+    if let Err(message) = sweep::set(&mut probe, setting.path.segments(), value.clone(), setting.key_location) {
+        ctx.error_at(value.location, setting.path, ErrorKind::Invalid(message));
         return false;
     }
     let mut probe_ctx = Context::new(ctx.file, &probe);
     match from_node::<RawScenario>(&probe, &Path::root()) {
         Ok(raw) => {
-            setup(&mut probe_ctx, &raw, imported);
+            let compiled = setup(&mut probe_ctx, &raw, imported);
+            if let Some(compiled) = compiled.filter(|_| probe_ctx.errors.is_empty()) {
+                for (unused, why) in kind::unused(&probe, &compiled) {
+                    if !base_unused.contains(&unused) {
+                        probe_ctx.error_at(
+                            value.location,
+                            setting.here,
+                            ErrorKind::Invalid(format!(
+                                "with this value, `{unused}` (line {}) would have no effect: {why}",
+                                locate_key(&probe, &unused).line
+                            )),
+                        );
+                    }
+                }
+            }
         }
         Err(e) => {
             let error = probe_ctx.de_error(e);

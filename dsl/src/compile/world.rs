@@ -65,7 +65,9 @@ pub(super) fn world(ctx: &mut Context<'_>, raw: &RawScenario, imported: Option<&
         .traffic
         .as_ref()
         .map(|t| traffic(ctx, t, roads_known, crosswalks.as_deref().unwrap_or_default()));
+    // A world measuring collective perception refuses `semantic` (see `kind`).
     let semantic = match (&raw.semantic, &agents) {
+        (Some(_), _) if raw.perception.is_some() => Some(None),
         (Some(semantic), Some((agents, _))) => semantic_of(ctx, semantic, agents, time.step).map(Some),
         (None, _) => Some(None),
         _ => None,
@@ -77,15 +79,6 @@ pub(super) fn world(ctx: &mut Context<'_>, raw: &RawScenario, imported: Option<&
                 "a world measures collective perception (`perception: { ego: … }`) or the semantic pipeline \
                  (`semantic: { ego: … }`)"
                     .into(),
-            ),
-        );
-        return None;
-    }
-    if raw.perception.is_some() && raw.semantic.is_some() {
-        ctx.error(
-            &root.key("semantic"),
-            ErrorKind::Invalid(
-                "a world measures `perception` or `semantic`, not both: split it into two scenarios".into(),
             ),
         );
         return None;
@@ -326,9 +319,6 @@ fn occluders(ctx: &mut Context<'_>, raw: &[RawOccluder], imported: Option<&Impor
         if !finite_points(ctx, &polygon_path, &occluder.polygon) {
             ok = false;
             continue;
-        }
-        if let Some(height) = occluder.height {
-            ok &= ctx.positive(&path.key("height"), height);
         }
         let Some(polygon) = counter_clockwise(&occluder.polygon) else {
             ctx.error(
@@ -872,6 +862,17 @@ fn perception_of(
                 ),
                 found: count.to_string(),
             },
+        );
+        return None;
+    }
+    if count > 1 && !agents[ego].connected {
+        ctx.error(
+            &path.key("ego"),
+            ErrorKind::Invalid(format!(
+                "the ego `{}` receives the grids of {} cooperating agents, so it must be `connected: true`",
+                raw.ego,
+                count - 1
+            )),
         );
         return None;
     }

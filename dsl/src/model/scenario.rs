@@ -239,10 +239,20 @@ pub struct Assignment {
 pub struct Setup {
     /// Seed of every random stream.
     pub seed: u64,
-    /// The occupancy grid.
-    pub grid: Grid,
     /// What is simulated.
     pub experiment: Experiment,
+    /// The occupancy grid and how evidence is fused into it: present in the
+    /// field experiment and in a world measuring collective perception, `None`
+    /// in a semantic world, which fuses no grid.
+    pub occupancy: Option<Occupancy>,
+}
+
+/// An occupancy grid, the rule that fuses evidence into it and the rule that
+/// decides each fused cell (language sections `grid`, `fusion`, `decision`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Occupancy {
+    /// The grid.
+    pub grid: Grid,
     /// How evidence is fused.
     pub fusion: Fusion,
     /// How a fused cell is turned into a decision.

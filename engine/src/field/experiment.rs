@@ -9,14 +9,25 @@
 use rayon::prelude::*;
 use sightline_dsl::{Field, Grid};
 
-use super::layout::positions;
-use super::sensor::SensorModel;
-use super::truth::GroundTruth;
+use super::layout::{self, positions};
+use super::sensor::{self, SensorModel};
+use super::truth::{self, GroundTruth};
 use crate::fusion::{Source, fuse};
+use crate::idealisation::Idealisation;
 use crate::math::Point;
 use crate::metrics::{Coverage, FieldOutcome, Tally};
 use crate::rng::{Purpose, stream};
 use crate::run::Job;
+
+/// The idealisations of the field experiment, besides those of its options
+/// (error model, fusion method).
+pub(crate) const IDEALISATIONS: &[Idealisation] = &[
+    truth::STATIC_TRUTH,
+    layout::EXACT_POSITIONS,
+    sensor::ALL_IN_RANGE,
+    sensor::LINEAR_MISDETECTION,
+    sensor::INDEPENDENT_SAMPLES,
+];
 
 /// A sensor that may reach cells of the current row.
 #[derive(Debug, Clone, Copy)]

@@ -3,8 +3,15 @@
 use rand::RngExt;
 use sightline_dsl::{Grid, Layout};
 
+use crate::idealisation::Idealisation;
 use crate::math::Point;
 use crate::rng::{Purpose, stream};
+
+/// Sensors are where the layout says.
+pub(crate) const EXACT_POSITIONS: Idealisation = Idealisation {
+    id: "field.exact-positions",
+    text: "Sensor positions are known exactly.",
+};
 
 /// The sensor positions of `layout` on `grid`; random layouts draw from `seed`.
 pub fn positions(layout: &Layout, grid: &Grid, seed: u64) -> Vec<Point> {

@@ -10,3 +10,6 @@ pub use experiment::run;
 pub use layout::positions;
 pub use sensor::SensorModel;
 pub use truth::GroundTruth;
+
+pub(crate) use experiment::IDEALISATIONS;
+pub(crate) use sensor::error_model_idealisations;

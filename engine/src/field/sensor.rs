@@ -7,6 +7,49 @@ use rand_distr::StandardNormal;
 use sightline_dsl::{ErrorModel, Masses};
 
 use crate::fusion::{Mass, State};
+use crate::idealisation::Idealisation;
+
+/// Sensors see every cell in range.
+pub(crate) const ALL_IN_RANGE: Idealisation = Idealisation {
+    id: "field.all-in-range",
+    text: "Each sensor reports on every cell whose centre lies within its range: nothing is occluded and every \
+           sensor sees all around.",
+};
+
+/// Samples are independent given the truth.
+pub(crate) const INDEPENDENT_SAMPLES: Idealisation = Idealisation {
+    id: "field.independent-samples",
+    text: "Given the truth, each sensor's mass vector for each cell is drawn independently: errors are \
+           correlated neither between neighbouring cells nor between sensors.",
+};
+
+/// Misdetection is the paper's linear law.
+pub(crate) const LINEAR_MISDETECTION: Idealisation = Idealisation {
+    id: "field.linear-misdetection",
+    text: "Misdetection grows linearly with distance, ε(d) = ε0 + γ/100 · d/R, alike for every sensor and \
+           every cell.",
+};
+
+/// The `dirichlet_mean` reading.
+pub(crate) const MEAN_SHIFT: Idealisation = Idealisation {
+    id: "field.dirichlet-mean",
+    text: "A sensor's error moves the mean of its mass vector toward the wrong states (`dirichlet_mean`): it is \
+           rarely confident about a wrong state.",
+};
+
+/// The `wrong_label` reading.
+pub(crate) const WRONG_LABEL: Idealisation = Idealisation {
+    id: "field.wrong-label",
+    text: "A sensor reports a wrong state with probability ε, as confidently as a right one (`wrong_label`).",
+};
+
+/// The idealisation of a reading of the paper's error model.
+pub(crate) fn error_model_idealisations(model: ErrorModel) -> &'static [Idealisation] {
+    match model {
+        ErrorModel::DirichletMean => &[MEAN_SHIFT],
+        ErrorModel::WrongLabel => &[WRONG_LABEL],
+    }
+}
 
 /// Draws one sensor's mass vector for a cell.
 #[derive(Debug, Clone)]

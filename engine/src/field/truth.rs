@@ -3,7 +3,14 @@
 use rand::RngExt;
 use sightline_dsl::{Grid, Truth};
 
+use crate::idealisation::Idealisation;
 use crate::rng::{Purpose, stream};
+
+/// The truth is drawn once.
+pub(crate) const STATIC_TRUTH: Idealisation = Idealisation {
+    id: "field.static-truth",
+    text: "The ground truth is drawn once and does not change: a static scene, observed once.",
+};
 
 /// Which cells are occupied. Stored per blob, so a grid of any size costs one
 /// byte per blob.

@@ -8,6 +8,14 @@
 //! the fused probability in bits (0 certain, 1 at p = ½).
 
 use super::mass::Mass;
+use crate::idealisation::Idealisation;
+
+/// Bayes multiplies independent likelihoods.
+pub(crate) const INDEPENDENT_MEASUREMENTS: Idealisation = Idealisation {
+    id: "fusion.bayes-independent",
+    text: "Bayesian fusion treats the sources as independent measurements with a uniform prior (fused log-odds \
+           are their sum): sources that share an error corroborate each other.",
+};
 
 /// Per-source probabilities are clamped to [ε, 1 − ε] with this ε.
 pub const PROBABILITY_CLAMP: f64 = 1e-6;

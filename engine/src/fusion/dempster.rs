@@ -19,6 +19,14 @@
 //! further source changes that, so the result does not depend on source order.
 
 use super::mass::Mass;
+use crate::idealisation::Idealisation;
+
+/// Dempster's rule combines distinct evidence.
+pub(crate) const INDEPENDENT_EVIDENCE: Idealisation = Idealisation {
+    id: "fusion.dempster-independent",
+    text: "Dempster's rule treats the sources as independent bodies of evidence: sources that share an error \
+           corroborate each other.",
+};
 
 /// The result of a combination: the fused mass and the conflict it discarded.
 #[derive(Debug, Clone, Copy, PartialEq)]

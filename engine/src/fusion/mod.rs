@@ -13,3 +13,5 @@ pub use dempster::{Combination, Combiner, combine};
 pub use mass::{Mass, State};
 pub use rule::{Estimate, Source, fuse};
 pub use weighted::{Distances, combine_all, combine_two, discount};
+
+pub(crate) use rule::method_idealisations;

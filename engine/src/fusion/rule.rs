@@ -1,11 +1,22 @@
 //! One entry point for every fusion rule: a cell's sources in, an estimate out.
 
-use sightline_dsl::{Rule, SwitchMeasure};
+use sightline_dsl::{FusionMethod, Rule, SwitchMeasure};
 
 use super::bayes::{self, Occupancy};
 use super::dempster::{Combination, Combiner};
 use super::mass::Mass;
 use super::weighted::{self, Distances};
+use crate::idealisation::Idealisation;
+
+/// The idealisations of a fusion method.
+pub(crate) fn method_idealisations(method: FusionMethod) -> &'static [Idealisation] {
+    match method {
+        FusionMethod::Bayes => &[bayes::INDEPENDENT_MEASUREMENTS],
+        FusionMethod::Dempster | FusionMethod::DistanceWeighted | FusionMethod::Hybrid => {
+            &[super::dempster::INDEPENDENT_EVIDENCE]
+        }
+    }
+}
 
 /// One sensor's evidence about a cell.
 #[derive(Debug, Clone, Copy, PartialEq)]

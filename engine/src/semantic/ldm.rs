@@ -5,7 +5,15 @@ use std::collections::{BTreeMap, VecDeque};
 
 use sightline_dsl::AgentKind;
 
+use crate::idealisation::Idealisation;
 use crate::math::Point;
+
+/// Tracks are keyed by identity.
+pub(crate) const ASSOCIATION: Idealisation = Idealisation {
+    id: "ldm.association",
+    text: "The local dynamic map associates every measurement with the right object: tracks are keyed by the \
+           object's true identity.",
+};
 
 /// One noisy measurement of an object (seed 002, eq. 1).
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -15,7 +15,15 @@ use sightline_dsl::Baseline;
 
 use super::ldm::Measurement;
 use super::risk::Conflict;
+use crate::idealisation::Idealisation;
 use crate::world::Visibility;
+
+/// Messages are sized, not encoded.
+pub(crate) const SIZED: Idealisation = Idealisation {
+    id: "message.sized",
+    text: "Messages are sized, not encoded: their size counts toward the bytes sent but does not change their \
+           delivery.",
+};
 
 /// Bytes of a message's header.
 pub const HEADER_BYTES: usize = 40;

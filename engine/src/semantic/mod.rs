@@ -21,3 +21,5 @@ pub use risk::{
 };
 pub use simulate::{KNOWN_FOR, route_map, run};
 pub use traffic::scene;
+
+pub(crate) use simulate::{idealisations, rsu_sight_idealisations};

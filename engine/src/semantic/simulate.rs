@@ -43,21 +43,107 @@ use rayon::prelude::*;
 use sightline_dsl::geometry::Polyline;
 use sightline_dsl::{Agent, AgentKind, Motion, RsuSight, Semantic, ShareCycles, World};
 
-use super::ldm::{Ldm, Measurement};
-use super::message::{EtsiSender, Item, baseline_bytes, semantic_bytes};
+use super::ldm::{self, Ldm, Measurement};
+use super::message::{self, EtsiSender, Item, baseline_bytes, semantic_bytes};
 use super::metrics::{DELIVERY_BIN, SemanticMetrics, Series};
 use super::pipeline::{EgoPlan, Pipeline};
 use super::relevance::Areas;
 use super::risk::{MapRoute, RouteMap, lane_routes};
 use super::traffic;
+use crate::idealisation::Idealisation;
 use crate::math::{Pose, Vector};
 use crate::rng::{Derived, Purpose, derived_seed, stream};
 use crate::sink::{NoTrace, TraceSink};
 use crate::trace::{Approach, Arrival, Packet, PacketKind, SemanticLog};
-use crate::v2x::{Link, transmit};
+use crate::v2x::{self, Link, transmit};
 use crate::world::{
-    AgentState, Bodies, Body, Kinematics, Occluders, Restraint, Visibility, in_view, mount_pose, visibility,
+    self, AgentState, Bodies, Body, Kinematics, Occluders, Restraint, Visibility, in_view, mount_pose, visibility,
 };
+
+/// The ego's own sight is perfect.
+pub(crate) const EGO_SIGHT: Idealisation = Idealisation {
+    id: "semantic.ego-sight",
+    text: "The ego sees an object at once and exactly when its centre is in range, in field of view and in line \
+           of sight of one of its sensors: its own sensors miss nothing and add no error.",
+};
+
+/// Roadside units measure with white noise.
+pub(crate) const RSU_MEASUREMENTS: Idealisation = Idealisation {
+    id: "semantic.rsu-measurements",
+    text: "A roadside unit measures each object it perceives with its sensor's detection probability and \
+           independent Gaussian errors of position, speed, length and width; headings are exact and no object \
+           is reported that is not there.",
+};
+
+/// Roadside units perceive through buildings.
+pub(crate) const RSU_RANGE: Idealisation = Idealisation {
+    id: "semantic.rsu-range",
+    text: "A roadside unit perceives every object within its sensors' range, through buildings and road users \
+           (`rsu_sight: range`, seed 002's circular region).",
+};
+
+/// Nobody localizes.
+pub(crate) const EXACT_POSES: Idealisation = Idealisation {
+    id: "semantic.exact-poses",
+    text: "The ego and the roadside units know their own poses exactly: a semantic world does not model \
+           self-localization.",
+};
+
+/// The RSU knows the ego's plan.
+pub(crate) const EGO_PLAN: Idealisation = Idealisation {
+    id: "semantic.ego-plan",
+    text: "A roadside unit predicts the ego along its route at the speed the ego last sent, without error.",
+};
+
+/// Direct messages carry exact states.
+pub(crate) const DIRECT_STATES: Idealisation = Idealisation {
+    id: "semantic.direct-states",
+    text: "A connected road user's message carries its exact state.",
+};
+
+/// What a message makes known.
+pub(crate) const KNOWN_FOR_A_WHILE: Idealisation = Idealisation {
+    id: "semantic.known-for",
+    text: "An object named in a message counts as known to the ego for 0.5 s after the message arrives.",
+};
+
+/// The idealisation of what a roadside unit perceives.
+pub(crate) fn rsu_sight_idealisations(sight: RsuSight) -> &'static [Idealisation] {
+    match sight {
+        RsuSight::Range => &[RSU_RANGE],
+        RsuSight::LineOfSight => &[world::ONE_RAY],
+    }
+}
+
+/// The idealisations of a world running the semantic pipeline, besides those
+/// of its options (RSU sight, path-loss model, car following).
+pub(crate) fn idealisations(world: &World, semantic: &Semantic) -> Vec<Idealisation> {
+    let mut listed = vec![world::PLANAR, world::ON_THEIR_WAY];
+    if world.traffic.is_some() {
+        listed.push(traffic::GENERATED);
+    }
+    listed.extend([
+        EXACT_POSES,
+        world::ONE_RAY,
+        EGO_SIGHT,
+        RSU_MEASUREMENTS,
+        world::RSU_TRANSPARENT,
+        ldm::ASSOCIATION,
+        EGO_PLAN,
+        message::SIZED,
+        v2x::NO_CONTENTION,
+        KNOWN_FOR_A_WHILE,
+    ]);
+    let road_users = world
+        .agents
+        .iter()
+        .enumerate()
+        .filter(|&(i, a)| i != semantic.ego && a.kind != AgentKind::Rsu);
+    if world.v2x.penetration > 0.0 || road_users.clone().any(|(_, a)| a.connected) {
+        listed.push(DIRECT_STATES);
+    }
+    listed
+}
 
 /// How long a message keeps an object known to the ego, seconds.
 pub const KNOWN_FOR: f64 = 0.5;

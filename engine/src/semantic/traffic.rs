@@ -21,7 +21,15 @@ use rand::rngs::ChaCha8Rng;
 use sightline_dsl::geometry::{Polyline, Xy};
 use sightline_dsl::{Agent, AgentKind, Crosswalk, Motion, PedestrianTraffic, TrafficRoute, VehicleTraffic, World};
 
+use crate::idealisation::Idealisation;
 use crate::rng::{Purpose, stream};
+
+/// Generated traffic.
+pub(crate) const GENERATED: Idealisation = Idealisation {
+    id: "traffic.generated",
+    text: "Generated vehicles enter as a Poisson process and keep to lane 0 of their route; generated \
+           pedestrians arrive as a Poisson process and cross straight at constant speed.",
+};
 
 /// Shortest gap between generated vehicles, metres, and between arrivals, seconds.
 const MIN_GAP: f64 = 2.0;

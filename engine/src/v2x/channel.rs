@@ -51,6 +51,50 @@ use rand::{Rng, RngExt};
 use rand_distr::StandardNormal;
 use sightline_dsl::{Channel, PathLossModel};
 
+use crate::idealisation::Idealisation;
+
+/// Packets do not contend for the channel.
+pub(crate) const NO_CONTENTION: Idealisation = Idealisation {
+    id: "v2x.no-contention",
+    text: "Packets do not contend for the channel (no interference, collisions or congestion): each is received \
+           or lost on its own link's power alone, after the fixed `v2x.latency` plus propagation.",
+};
+
+/// Shadowing is drawn per packet.
+pub(crate) const INDEPENDENT_SHADOWING: Idealisation = Idealisation {
+    id: "v2x.independent-shadowing",
+    text: "Shadowing is drawn anew for every packet: losses are correlated neither in time nor between nearby \
+           receivers.",
+};
+
+/// Our reading of B1's corner for a blocked link.
+pub(crate) const NLOS_CORNER: Idealisation = Idealisation {
+    id: "v2x.nlos-corner",
+    text: "A link a building blocks is taken to turn one street corner half-way (WINNER+ B1 Manhattan grid with \
+           both legs d/√2).",
+};
+
+/// The freeway line everywhere.
+pub(crate) const HIGHWAY_LOS: Idealisation = Idealisation {
+    id: "v2x.highway-los",
+    text: "The freeway model treats every link as line of sight, buildings or not.",
+};
+
+/// No channel at all.
+pub(crate) const IDEAL: Idealisation = Idealisation {
+    id: "v2x.ideal",
+    text: "Every packet arrives (`model: ideal`): no path loss, no shadowing.",
+};
+
+/// The idealisations of a path-loss model.
+pub(crate) fn path_loss_idealisations(model: PathLossModel) -> &'static [Idealisation] {
+    match model {
+        PathLossModel::Tr36885Urban => &[INDEPENDENT_SHADOWING, NLOS_CORNER],
+        PathLossModel::Tr36885Highway => &[INDEPENDENT_SHADOWING, HIGHWAY_LOS],
+        PathLossModel::Ideal => &[IDEAL],
+    }
+}
+
 /// Shortest distance the path-loss lines are evaluated at; shorter links lose as
 /// much as a link of this length (TR 36.885, Table A.1.4-1).
 const MIN_DISTANCE_M: f64 = 3.0;

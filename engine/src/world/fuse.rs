@@ -5,6 +5,14 @@ use sightline_dsl::{Grid, Rule};
 use super::observe::{Observation, Observed};
 use super::raster::cell_center;
 use crate::fusion::{Estimate, Mass, Source, fuse};
+use crate::idealisation::Idealisation;
+
+/// The inverse sensor model is two constants.
+pub(crate) const INVERSE_MODEL: Idealisation = Idealisation {
+    id: "fuse.inverse-model",
+    text: "An observation conveys fixed probabilities of occupancy (`perception.inverse_model`), whatever the \
+           distance, the sensor or the visibility of the cell.",
+};
 
 /// Fuses, cell by cell, what a set of agents observed at one step with one rule.
 ///

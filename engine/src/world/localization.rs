@@ -15,7 +15,38 @@ use rand::rngs::ChaCha8Rng;
 use rand_distr::{Distribution, StandardNormal};
 use sightline_dsl::{Localization, PoseFilter};
 
+use crate::idealisation::Idealisation;
 use crate::math::{Pose, Vector};
+
+/// Pose measurements are white and Gaussian.
+pub(crate) const WHITE_NOISE: Idealisation = Idealisation {
+    id: "localization.white-noise",
+    text: "Self-reported pose measurements are unbiased Gaussian, independent from step to step: no bias, no \
+           drift, no multipath.",
+};
+
+/// No localization error at all.
+pub(crate) const EXACT: Idealisation = Idealisation {
+    id: "localization.exact",
+    text: "Localization is exact (`position_sigma` and `heading_sigma_deg` are 0): every agent places its grid \
+           with its true pose.",
+};
+
+/// The Kalman filter's prediction uses perfect odometry.
+pub(crate) const EXACT_ODOMETRY: Idealisation = Idealisation {
+    id: "localization.exact-odometry",
+    text: "The Kalman filter predicts with the agent's exact motion since the last step (perfect odometry): \
+           only the pose measurements are noisy.",
+};
+
+/// The idealisations of a pose filter, besides those of the measurements.
+pub(crate) fn filter_idealisations(filter: PoseFilter) -> &'static [Idealisation] {
+    match filter {
+        PoseFilter::Kalman => &[EXACT_ODOMETRY],
+        // The estimate is the measurement: nothing is assumed beyond it.
+        PoseFilter::None => &[],
+    }
+}
 
 /// One agent's pose estimate.
 #[derive(Debug, Clone)]

@@ -19,3 +19,8 @@ pub use observe::{Observation, Observed, Sighting, Sightings, StepScene, in_view
 pub use raster::{Raster, box_cells, cell_center, traverse};
 pub use sight::{Bodies, Body, Occluders, Visibility, visibility};
 pub use simulate::run;
+
+pub(crate) use localization::filter_idealisations as localization_idealisations;
+pub(crate) use motion::{ON_THEIR_WAY, following_idealisations};
+pub(crate) use sight::{ONE_RAY, PLANAR, RSU_TRANSPARENT};
+pub(crate) use simulate::idealisations;

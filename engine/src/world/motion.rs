@@ -35,7 +35,38 @@ use std::f64::consts::{PI, TAU};
 use sightline_dsl::geometry::Polyline;
 use sightline_dsl::{Agent, AgentKind, Driving, Following, Motion, TraceSample};
 
+use crate::idealisation::Idealisation;
 use crate::math::{Point, Pose, Vector};
+
+/// Road users keep to their ways.
+pub(crate) const ON_THEIR_WAY: Idealisation = Idealisation {
+    id: "motion.on-their-way",
+    text: "Road users follow their lane's centreline or their path exactly (no lateral motion, no lane \
+           changes) and change speed by at most their acceleration; traced road users move straight at \
+           constant speed between samples.",
+};
+
+/// Without car following, vehicles pass through each other.
+pub(crate) const NO_FOLLOWING: Idealisation = Idealisation {
+    id: "motion.no-following",
+    text: "Vehicles ignore each other (`following: none`): they drive through one another rather than slow \
+           down.",
+};
+
+/// Car following has no right of way.
+pub(crate) const NO_RIGHT_OF_WAY: Idealisation = Idealisation {
+    id: "motion.no-right-of-way",
+    text: "Vehicles follow the one ahead in their lane (IDM) but obey no right-of-way rule: crossing vehicles \
+           do not see each other and may meet in a junction.",
+};
+
+/// The idealisations of a car-following model.
+pub(crate) fn following_idealisations(following: Following) -> &'static [Idealisation] {
+    match following {
+        Following::None => &[NO_FOLLOWING],
+        Following::Idm => &[NO_RIGHT_OF_WAY],
+    }
+}
 
 /// How far ahead a vehicle looks for a leader, metres.
 const LOOKAHEAD: f64 = 100.0;

@@ -21,7 +21,38 @@ use sightline_dsl::{Agent, Grid, Sensor};
 
 use super::raster::{Raster, box_cells, traverse};
 use super::sight::{Bodies, Body, Occluders, Visibility, visibility};
+use crate::idealisation::Idealisation;
 use crate::math::{Point, Pose, Vector};
+
+/// Detections are independent draws.
+pub(crate) const DETECTIONS: Idealisation = Idealisation {
+    id: "observe.detections",
+    text: "A visible object in range and field of view is detected with the sensor's fixed probability, \
+           independently at every step and by every sensor, whatever its distance or how much of it shows; \
+           no sensor reports an object that is not there.",
+};
+
+/// Measurement errors are white and Gaussian.
+pub(crate) const NOISE: Idealisation = Idealisation {
+    id: "observe.noise",
+    text: "A detection's errors of position and size are Gaussian, unbiased and independent from step to \
+           step; its heading is exact.",
+};
+
+/// Free space is carved on the grid.
+pub(crate) const FREE_SPACE: Idealisation = Idealisation {
+    id: "observe.free-space",
+    text: "Free space is carved along rays `ray_spacing_deg` apart, cell by cell, up to the first building or \
+           road user of the true world; a cell belongs to a footprint or a building when its centre lies inside \
+           it.",
+};
+
+/// Cooperators report their own bodies.
+pub(crate) const SELF_REPORT: Idealisation = Idealisation {
+    id: "observe.self-report",
+    text: "Each cooperating agent marks its own footprint occupied at its estimated pose, as a V2X sender \
+           reports its own state.",
+};
 
 /// What an agent knows of a cell.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

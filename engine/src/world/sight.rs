@@ -14,7 +14,29 @@ use serde::Serialize;
 use sightline_dsl::{Agent, AgentKind, Occluder};
 
 use super::motion::AgentState;
+use crate::idealisation::Idealisation;
 use crate::math::{Point, Pose, Vector};
+
+/// The world is flat.
+pub(crate) const PLANAR: Idealisation = Idealisation {
+    id: "sight.planar",
+    text: "The world is flat (2-D): a building or a road user blocks sight whatever its height and the \
+           sensor's, and the ground is level.",
+};
+
+/// Visibility is decided by one ray per object.
+pub(crate) const ONE_RAY: Idealisation = Idealisation {
+    id: "sight.one-ray",
+    text: "An object is visible when the segment from the sensor to the object's centre crosses no building \
+           and no other road user: visibility is all or nothing, so a partly hidden object is either seen \
+           whole or missed.",
+};
+
+/// Roadside units are not bodies.
+pub(crate) const RSU_TRANSPARENT: Idealisation = Idealisation {
+    id: "sight.rsu-transparent",
+    text: "Roadside units are not part of the ground truth and hide nothing.",
+};
 
 /// Whether a target can be seen, and what hides it if not.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]

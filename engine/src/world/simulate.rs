@@ -7,21 +7,82 @@
 
 use rand::rngs::ChaCha8Rng;
 use rayon::prelude::*;
-use sightline_dsl::{Grid, Motion, Perception, World};
+use sightline_dsl::{AgentKind, Grid, Motion, Perception, World};
 
-use super::fuse::CellFusion;
-use super::localization::PoseEstimator;
+use super::fuse::{self, CellFusion};
+use super::localization::{self, PoseEstimator};
 use super::metrics::{CellTally, FusedCell, Snapshot, WorldMetrics, WorldOutcome, WorldTally};
-use super::motion::Kinematics;
-use super::observe::{Observation, Observed, Sightings, StepScene};
+use super::motion::{self, Kinematics};
+use super::observe::{self, Observation, Observed, Sightings, StepScene};
 use super::raster::{Raster, box_cells, cell_center};
-use super::sight::{Bodies, Body, Occluders};
+use super::sight::{self, Bodies, Body, Occluders};
 use crate::fusion::{Estimate, State, decide, pignistic};
+use crate::idealisation::Idealisation;
 use crate::math::{Pose, Vector};
 use crate::rng::{Purpose, stream};
 use crate::run::Job;
 use crate::sink::TraceSink;
 use crate::trace::{CooperatorStep, FusedGrid, FusedStep, Measured, WorldStep};
+
+/// Each step's grids stand alone.
+pub(crate) const MEMORYLESS: Idealisation = Idealisation {
+    id: "world.memoryless",
+    text: "Each step's grids hold that step's observations only: no agent accumulates evidence over time or \
+           tracks objects.",
+};
+
+/// Grids are exchanged without a radio.
+pub(crate) const LOSSLESS_EXCHANGE: Idealisation = Idealisation {
+    id: "world.lossless-exchange",
+    text: "Every cooperating agent's grid reaches the ego at the step it is observed, complete: collective \
+           perception does not model the radio (loss, delay, bandwidth), and `check` refuses `v2x` in it \
+           (issue 16).",
+};
+
+/// Agents sense together.
+pub(crate) const SYNCHRONOUS: Idealisation = Idealisation {
+    id: "world.synchronous",
+    text: "Every agent senses at the same instants, the simulation steps, and processes what it senses without \
+           delay.",
+};
+
+/// A cooperating roadside unit knows where it stands.
+pub(crate) const SURVEYED: Idealisation = Idealisation {
+    id: "world.surveyed-rsu",
+    text: "A cooperating roadside unit places its grid with its true, surveyed pose.",
+};
+
+/// The idealisations of a world measuring collective perception, besides those
+/// of its options (pose filter, car following, fusion method).
+pub(crate) fn idealisations(world: &World, perception: &Perception) -> Vec<Idealisation> {
+    let mut listed = vec![
+        sight::PLANAR,
+        motion::ON_THEIR_WAY,
+        SYNCHRONOUS,
+        sight::ONE_RAY,
+        observe::DETECTIONS,
+        observe::NOISE,
+        observe::FREE_SPACE,
+        observe::SELF_REPORT,
+    ];
+    let cooperators = || perception.cooperating.iter().map(|&i| &world.agents[i]);
+    if cooperators().any(|a| matches!(a.motion, Motion::Fixed { .. })) {
+        listed.push(SURVEYED);
+    }
+    if cooperators().any(|a| !matches!(a.motion, Motion::Fixed { .. })) {
+        let noise = &world.localization;
+        listed.push(if noise.position_sigma == 0.0 && noise.heading_sigma == 0.0 {
+            localization::EXACT
+        } else {
+            localization::WHITE_NOISE
+        });
+    }
+    if world.agents.iter().any(|a| a.kind == AgentKind::Rsu) {
+        listed.push(sight::RSU_TRANSPARENT);
+    }
+    listed.extend([MEMORYLESS, LOSSLESS_EXCHANGE, fuse::INVERSE_MODEL]);
+    listed
+}
 
 /// Cells fused per parallel task.
 const CHUNK: usize = 4096;

@@ -141,7 +141,8 @@ pub struct Recorder<'s, W: Write + Seek> {
     out: Writer<W>,
     scenario: &'s Scenario,
     record: Record,
-    grid: CellGrid,
+    /// The occupancy grid; `None` in a semantic world, which fuses none.
+    grid: Option<CellGrid>,
     /// Topic → channel id, created on first use.
     channels: BTreeMap<String, u16>,
     /// Schema name → schema id.
@@ -207,7 +208,7 @@ impl<'s, W: Write + Seek> Recorder<'s, W> {
             out: options.create(out)?,
             scenario,
             record,
-            grid: point.setup.grid,
+            grid: point.setup.occupancy.as_ref().map(|o| o.grid),
             channels: BTreeMap::new(),
             schemas: BTreeMap::new(),
             sequence: 0,
@@ -264,7 +265,7 @@ impl<'s, W: Write + Seek> Recorder<'s, W> {
             })?;
         }
         if let Some(world) = world {
-            let map = map_entities(world, &point.setup.grid);
+            let map = map_entities(world, recorder.grid.as_ref());
             recorder.publish(topic::MAP, SCENE, 0, &SceneUpdate::add(map));
         }
         recorder.take_failure()?;
@@ -508,43 +509,39 @@ impl<'s, W: Write + Seek> Recorder<'s, W> {
 
     /// `/fusion/grid`: the fused grid cropped to the cells it holds.
     fn publish_fused_grid(&mut self, time: u64, fused: &FusedGrid<'_>) {
-        let Some(crop) = Crop::around(&self.grid, fused.cells.iter().copied()) else {
+        let Some(grid) = self.grid else { return };
+        let Some(crop) = Crop::around(&grid, fused.cells.iter().copied()) else {
             return;
         };
         let mut values = vec![f32::NAN; crop.cells() * 2];
         for ((&cell, &p), &u) in fused.cells.iter().zip(fused.probability).zip(fused.uncertainty) {
-            let at = crop.index(&self.grid, cell) * 2;
+            let at = crop.index(&grid, cell) * 2;
             values[at] = p;
             values[at + 1] = u;
         }
         let data: Vec<u8> = values.iter().flat_map(|v| v.to_le_bytes()).collect();
-        let grid = crop.grid(
-            &self.grid,
-            time,
-            &["probability", "uncertainty"],
-            Numeric::Float32,
-            &data,
-        );
+        let grid = crop.grid(&grid, time, &["probability", "uncertainty"], Numeric::Float32, &data);
         self.publish(topic::FUSED_GRID, GRID, time, &grid);
     }
 
     /// `/perception/<id>/grid`: each cooperating agent's own grid, cropped to
     /// the cells it observed.
     fn publish_agent_grids(&mut self, time: u64, cooperators: &[CooperatorStep<'_>]) {
+        let Some(grid) = self.grid else { return };
         for c in cooperators {
             let observation = c.observation;
-            let Some(crop) = Crop::around(&self.grid, observation.touched().iter().copied()) else {
+            let Some(crop) = Crop::around(&grid, observation.touched().iter().copied()) else {
                 continue;
             };
             let mut data = vec![0u8; crop.cells()];
             for &cell in observation.touched() {
-                data[crop.index(&self.grid, cell)] = match observation.get(cell) {
+                data[crop.index(&grid, cell)] = match observation.get(cell) {
                     Observed::Unknown => 0,
                     Observed::Free => 1,
                     Observed::Occupied => 2,
                 };
             }
-            let grid = crop.grid(&self.grid, time, &["state"], Numeric::Uint8, &data);
+            let grid = crop.grid(&grid, time, &["state"], Numeric::Uint8, &data);
             let topic = topic::agent_grid(&self.agent_id(c.agent));
             self.publish(&topic, GRID, time, &grid);
         }
@@ -890,9 +887,9 @@ fn field_of_view(range: f64, fov: f64) -> (LineType, Vec<Vector>) {
     (LineType::Loop, points)
 }
 
-/// `/scene/map`: the grid's outline, roads, occluders, interaction areas,
-/// crosswalks and the perception region.
-fn map_entities(world: &World, grid: &CellGrid) -> Vec<Entity> {
+/// `/scene/map`: the grid's outline (where there is a grid), roads, occluders,
+/// interaction areas, crosswalks and the perception region.
+fn map_entities(world: &World, grid: Option<&CellGrid>) -> Vec<Entity> {
     let stamp = Time::from_nanos(0);
     let flat = |points: &[[f64; 2]]| points.iter().map(|&[x, y]| Vector::new(x, y)).collect::<Vec<_>>();
     let loop_line =
@@ -905,10 +902,14 @@ fn map_entities(world: &World, grid: &CellGrid) -> Vec<Entity> {
             })
             .collect::<Vec<_>>()
     };
-    let [x0, y0] = grid.origin;
-    let (x1, y1) = (x0 + grid.cols as f64 * grid.cell, y0 + grid.rows as f64 * grid.cell);
-    let mut entities =
-        vec![Entity::new(stamp, "grid").line(loop_line(flat(&[[x0, y0], [x1, y0], [x1, y1], [x0, y1]]), 0.2, OUTLINE))];
+    let mut entities: Vec<Entity> = grid
+        .map(|grid| {
+            let [x0, y0] = grid.origin;
+            let (x1, y1) = (x0 + grid.cols as f64 * grid.cell, y0 + grid.rows as f64 * grid.cell);
+            Entity::new(stamp, "grid").line(loop_line(flat(&[[x0, y0], [x1, y0], [x1, y1], [x0, y1]]), 0.2, OUTLINE))
+        })
+        .into_iter()
+        .collect();
     for road in &world.roads {
         let mut entity = Entity::new(stamp, format!("road/{}", road.id)).meta("speed_limit_mps", road.speed_limit);
         for lane in &road.lanes {

@@ -1,0 +1,143 @@
+//! What the models idealise, as data: each model declares its simplifications
+//! beside its code, and [`idealisations`] lists those that applied to a run, for
+//! the report's "Assumptions and limitations".
+//!
+//! A model's own simplifications apply whenever it runs; a model option (a
+//! pose filter, a fusion method, a path-loss model …) adds those of its choice
+//! ([`ModelOption::idealisations`]), so a run lists what its settings assumed,
+//! not everything the tool could assume.
+
+use serde::Serialize;
+use sightline_dsl::{
+    ErrorModel, Experiment, Following, FusionMethod, PathLossModel, PoseFilter, RiskScope, RsuSight, Rule, Scenario,
+    Setup, ShareCycles, SourceCombination, SwitchMeasure, WeightScaling,
+};
+
+use crate::{field, fusion, semantic, v2x, world};
+
+/// A simplification a model makes, stated for an assessor: what the model
+/// takes as given that the real system does not guarantee.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+pub struct Idealisation {
+    /// A stable id, `model.what` (`sight.one-ray`).
+    pub id: &'static str,
+    /// The simplification and what it means for a verdict, in a sentence or two.
+    pub text: &'static str,
+}
+
+/// A choice among a model's variants that a scenario makes: a value of one of
+/// the language's enumerations that select how something is modelled.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ModelOption {
+    /// `localization.filter`.
+    PoseFilter(PoseFilter),
+    /// `fusion.method`.
+    FusionMethod(FusionMethod),
+    /// `fusion.weights`.
+    WeightScaling(WeightScaling),
+    /// `fusion.sources`.
+    SourceCombination(SourceCombination),
+    /// `fusion.switch.measure`.
+    SwitchMeasure(SwitchMeasure),
+    /// `field.masses.error_model`.
+    ErrorModel(ErrorModel),
+    /// `v2x.channel.model`.
+    PathLossModel(PathLossModel),
+    /// `driving.following`.
+    Following(Following),
+    /// `semantic.risk_for`.
+    RiskScope(RiskScope),
+    /// `semantic.rsu_sight`.
+    RsuSight(RsuSight),
+    /// `semantic.shares_over`.
+    ShareCycles(ShareCycles),
+}
+
+impl ModelOption {
+    /// The idealisations choosing this option adds to its model's own; empty
+    /// when the option idealises nothing more (each model says so explicitly).
+    pub fn idealisations(self) -> &'static [Idealisation] {
+        match self {
+            Self::PoseFilter(filter) => world::localization_idealisations(filter),
+            Self::FusionMethod(method) => fusion::method_idealisations(method),
+            // The weighted rules' parameters change how evidence is weighed, not
+            // what is assumed of it: the method's entry covers them.
+            Self::WeightScaling(WeightScaling::SumToOne | WeightScaling::MeanOne | WeightScaling::NearestOne)
+            | Self::SourceCombination(SourceCombination::AllAtOnce | SourceCombination::Pairwise)
+            | Self::SwitchMeasure(SwitchMeasure::Difference | SwitchMeasure::Ratio) => &[],
+            Self::ErrorModel(model) => field::error_model_idealisations(model),
+            Self::PathLossModel(model) => v2x::path_loss_idealisations(model),
+            Self::Following(following) => world::following_idealisations(following),
+            Self::RsuSight(sight) => semantic::rsu_sight_idealisations(sight),
+            // Which objects are predicted and which cycles are counted are
+            // choices of what is measured, not simplifications of the world.
+            Self::RiskScope(RiskScope::Relevant | RiskScope::All)
+            | Self::ShareCycles(ShareCycles::EgoInRange | ShareCycles::All) => &[],
+        }
+    }
+}
+
+/// The idealisations that applied to a run of `scenario`: at every sweep
+/// point, those of the models it runs and of the options it chooses. Each is
+/// listed once, in the order of the first point that needs it.
+pub fn idealisations(scenario: &Scenario) -> Vec<Idealisation> {
+    let mut listed: Vec<Idealisation> = Vec::new();
+    for point in &scenario.points {
+        for idealisation in of_setup(&point.setup) {
+            if !listed.contains(&idealisation) {
+                listed.push(idealisation);
+            }
+        }
+    }
+    listed
+}
+
+/// The idealisations of one configuration: its models', then its options'.
+fn of_setup(setup: &Setup) -> Vec<Idealisation> {
+    let mut listed = match &setup.experiment {
+        Experiment::Field(_) => field::IDEALISATIONS.to_vec(),
+        Experiment::World(w) => match (&w.perception, &w.semantic) {
+            (Some(perception), _) => world::idealisations(w, perception),
+            (None, Some(s)) => semantic::idealisations(w, s),
+            (None, None) => Vec::new(),
+        },
+    };
+    for option in options(setup) {
+        listed.extend_from_slice(option.idealisations());
+    }
+    listed
+}
+
+/// The model options a configuration chooses, in pipeline order.
+fn options(setup: &Setup) -> Vec<ModelOption> {
+    let mut options = Vec::new();
+    match &setup.experiment {
+        Experiment::Field(field) => options.push(ModelOption::ErrorModel(field.masses.error_model)),
+        Experiment::World(world) => {
+            options.push(ModelOption::Following(world.driving.following));
+            if world.perception.is_some() {
+                options.push(ModelOption::PoseFilter(world.localization.filter));
+            }
+            if let Some(semantic) = &world.semantic {
+                options.extend([
+                    ModelOption::RsuSight(semantic.rsu_sight),
+                    ModelOption::RiskScope(semantic.risk_for),
+                    ModelOption::ShareCycles(semantic.shares_over),
+                    ModelOption::PathLossModel(world.v2x.channel.model),
+                ]);
+            }
+        }
+    }
+    if let Some(occupancy) = &setup.occupancy {
+        let rule = occupancy.fusion.rule;
+        options.push(ModelOption::FusionMethod(rule.method()));
+        if let Rule::DistanceWeighted(weighting) | Rule::Hybrid { weighting, .. } = rule {
+            options.push(ModelOption::WeightScaling(weighting.scaling));
+            options.push(ModelOption::SourceCombination(weighting.sources));
+        }
+        if let Rule::Hybrid { switch, .. } = rule {
+            options.push(ModelOption::SwitchMeasure(switch.measure));
+        }
+    }
+    options
+}
