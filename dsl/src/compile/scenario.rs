@@ -189,6 +189,10 @@ fn check_version(ctx: &mut Context<'_>) {
     }
 }
 
+/// One sweep combination: its setup and its tree (the file with its values in
+/// place).
+type Combination = (Setup, Node);
+
 /// Compiles every combination of every sweep (the file as written without a
 /// sweep) into the distinct configurations they give; also returns each
 /// combination's setup with its tree (the file with its values in place).
@@ -198,7 +202,7 @@ fn points(
     sweeps: &[Vec<AxisNodes<'_>>],
     options: &Options<'_>,
     imported: Option<&Imported>,
-) -> Result<(Configurations, Vec<(Setup, Node)>), Vec<Error>> {
+) -> Result<(Configurations, Vec<Combination>), Vec<Error>> {
     let mut configurations = Configurations::new(sweeps.len());
     let mut combinations = Vec::new();
     let mut errors = Vec::new();
@@ -256,7 +260,7 @@ fn points(
 /// only in the points that take that value. So `fusion.weights`, given once
 /// and ignored by the `dempster` rule, is refused unless a sweep fuses with a
 /// weighted rule at some point.
-fn refuse_unused(ctx: &mut Context<'_>, combinations: &[(Setup, Node)]) {
+fn refuse_unused(ctx: &mut Context<'_>, combinations: &[Combination]) {
     let found: Vec<Vec<(Location, Path, String)>> = combinations
         .iter()
         .map(|(setup, tree)| {
