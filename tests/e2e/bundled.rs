@@ -11,8 +11,8 @@ use crate::findings::tables;
 use serde_json::json;
 
 use crate::support::{
-    RECORDING, arg, assert_recorded_evidence_files, read, read_json, root, setting, sha256_hex, sightline, temp_dir,
-    unescape_html,
+    RECORDING, arg, assert_recorded_evidence_files, read, read_json, requirement, root, setting, sha256_hex, sightline,
+    temp_dir, unescape_html,
 };
 
 const SCENARIO: &str = "scenarios/evidential-field.yaml";
@@ -257,16 +257,6 @@ fn roundabout_report_shows_five_grid_pictures_with_legends() {
     ] {
         assert_eq!(count(class), points, "{class}");
     }
-}
-
-/// The requirement `id` of `results`.
-fn requirement<'a>(results: &'a serde_json::Value, id: &str) -> &'a serde_json::Value {
-    results["requirements"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .find(|r| r["id"] == id)
-        .unwrap_or_else(|| panic!("no requirement {id}"))
 }
 
 /// The bundled seed 002 junction; its report shows the semantic charts.

@@ -178,6 +178,17 @@ pub fn read_json(path: &Path) -> serde_json::Value {
     serde_json::from_str(&read(path)).unwrap_or_else(|e| panic!("{} is not JSON: {e}", path.display()))
 }
 
+/// The requirement `id` of a results.json.
+#[track_caller]
+pub fn requirement<'a>(results: &'a serde_json::Value, id: &str) -> &'a serde_json::Value {
+    results["requirements"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|r| r["id"] == id)
+        .unwrap_or_else(|| panic!("no requirement {id}"))
+}
+
 /// Reads and parses a JUnit XML file.
 #[track_caller]
 pub fn read_junit(path: &Path) -> quick_junit::Report {

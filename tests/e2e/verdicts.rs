@@ -7,21 +7,11 @@
 
 use quick_junit::{NonSuccessKind, TestCaseStatus};
 
-use crate::support::{FAILING, arg, read, read_json, read_junit, sightline, temp_dir, unescape_html};
+use crate::support::{FAILING, arg, read, read_json, read_junit, requirement, sightline, temp_dir, unescape_html};
 
 /// The bundled urban junction for one run, with d_min of 1 cm: no road user
 /// comes that close, and six anticipation times are measured.
 const IDLE: &str = "tests/fixtures/not-exercised/junction-idle.yaml";
-
-/// The requirement `id` of a results.json.
-fn requirement<'a>(results: &'a serde_json::Value, id: &str) -> &'a serde_json::Value {
-    results["requirements"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .find(|r| r["id"] == id)
-        .unwrap_or_else(|| panic!("{id} in results.json"))
-}
 
 #[test]
 fn requirements_with_nothing_to_judge_are_not_exercised_and_fail_the_run() {
