@@ -39,12 +39,11 @@ pub(crate) fn evaluate(metric: Metric, bound: Bound, sample: Option<Sample>, min
 /// What a metric's value is, with its n: `median of n = 12 anticipation times`.
 pub(crate) fn describe(metric: Metric, n: u64) -> String {
     let what = match metric {
-        Metric::AnticipationMedian => "median",
-        Metric::AnticipationP95 => "95th percentile",
-        _ => "value",
+        Metric::AnticipationMedian => "median of",
+        Metric::AnticipationP95 => "95th percentile of",
+        _ => "value over",
     };
-    let of = if what == "value" { "over" } else { "of" };
-    format!("{what} {of} n = {n} {}", metric.population())
+    format!("{what} n = {n} {}", metric.population())
 }
 
 /// The message of a check with too few samples.
