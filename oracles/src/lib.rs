@@ -6,8 +6,12 @@
 //! nor the evidence files (that is `sightline-reports`). It never prints.
 //!
 //! A requirement is checked at every sweep point it applies to; its verdict is
-//! the worst of those evaluations (an error outranks a failure, a failure a pass),
-//! and its reported value is the one with the smallest margin. The oracles read
+//! the worst of those evaluations (an error outranks a failure, a failure a
+//! not-exercised evaluation, that a pass), and its reported value is the
+//! deciding one: the worst status, then the smallest margin. A check with
+//! nothing to judge (an empty population, fewer samples than its minimum, a
+//! window the run does not cover) is [`Status::NotExercised`], never a pass;
+//! every evaluation carries its sample size n and says what its value is. The oracles read
 //! a run only through [`Measurements`], so `sightline replay` judges a
 //! recording's values with the same code. [`out_of_domain`] finds the values
 //! that no run can give (a share above 1, a NaN), which `merge` and `replay`
