@@ -394,18 +394,14 @@ pub(crate) fn sweep_charts(results: &Results) -> Result<Vec<Vec<Chart>>, ChartEr
         .sweeps
         .iter()
         .map(|sweep| {
-            let Some(axis) = sweep
+            let Some(column) = sweep
                 .axes
                 .iter()
-                .find(|a| a.values.iter().all(serde_json::Value::is_number))
+                .position(|a| a.values.iter().all(serde_json::Value::is_number))
             else {
                 return Ok(Vec::new());
             };
-            let column = sweep
-                .axes
-                .iter()
-                .position(|a| a.path == axis.path)
-                .expect("an axis of the sweep");
+            let axis = &sweep.axes[column];
             let rows: Vec<(&PointResult, Vec<&serde_json::Value>)> =
                 sweep.rows().map(|(p, values)| (&results.sweep[p], values)).collect();
             let mut charts = Vec::new();
