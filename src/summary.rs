@@ -5,7 +5,7 @@
 use std::fmt::Display;
 
 use sightline_dsl::Scenario;
-use sightline_oracles::{Status, Verdict};
+use sightline_oracles::{Measurements, Status, Verdict};
 
 use crate::exit::Exit;
 use crate::output::say;
@@ -17,8 +17,13 @@ use crate::output::say;
 /// the run (every requirement passes, or is not exercised for an accepted
 /// reason), [`Exit::Fail`] otherwise.
 pub fn print_verdicts(path: &str, scenario: &Scenario, verdicts: &[Verdict], tail: impl Display) -> Exit {
-    let failing = verdicts.iter().filter(|v| v.fails_run());
-    let headline = failing.clone().map(|v| v.status).max().unwrap_or(Status::Pass);
+    // Pass exactly when no verdict fails the run.
+    let headline = verdicts
+        .iter()
+        .filter(|v| v.fails_run())
+        .map(|v| v.status)
+        .max()
+        .unwrap_or(Status::Pass);
     let passed = verdicts.iter().filter(|v| v.status == Status::Pass).count();
     let points = scenario.points.len();
     let named: Vec<String> = [Status::Error, Status::Fail, Status::NotExercised]
@@ -76,9 +81,25 @@ pub fn print_verdicts(path: &str, scenario: &Scenario, verdicts: &[Verdict], tai
             ));
         }
     }
-    if verdicts.iter().any(Verdict::fails_run) {
-        Exit::Fail
-    } else {
+    if headline == Status::Pass {
         Exit::Pass
+    } else {
+        Exit::Fail
     }
+}
+
+/// Prints one line per measured value of `measurements` outside its domain,
+/// each naming `file` and `why` no correct run gives it; returns
+/// [`Exit::Internal`] when there is one, so that nothing is judged.
+pub fn refuse_out_of_domain(
+    file: &impl Display,
+    scenario: &Scenario,
+    measurements: &(impl Measurements + ?Sized),
+    why: &str,
+) -> Option<Exit> {
+    let outside = sightline_oracles::out_of_domain(scenario, measurements);
+    for problem in &outside {
+        eprintln!("{file}: error: {problem}: {why}");
+    }
+    (!outside.is_empty()).then_some(Exit::Internal)
 }

@@ -647,8 +647,7 @@ fn semantic_tables(c: &SemanticMetrics, density: &[DensityRow]) -> Vec<TableView
 fn describe_check(check: &CheckInfo) -> String {
     let (name, threshold) = (check.name, number(check.threshold));
     let relation = match check.relation {
-        "at_least" => format!("{name} ≥ {threshold}"),
-        "at_most" => format!("{name} ≤ {threshold}"),
+        "at_least" | "at_most" => format!("{name} {} {threshold}", relation_sign(check.relation)),
         _ => return format!("invariant {name} (tolerance {threshold})"),
     };
     match check.kind {

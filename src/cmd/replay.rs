@@ -9,7 +9,7 @@ use sightline_reports::sha256_hex;
 
 use super::merge::OUT_OF_DOMAIN;
 use crate::exit::Exit;
-use crate::summary::print_verdicts;
+use crate::summary::{print_verdicts, refuse_out_of_domain};
 
 /// Re-checks the requirements of a recording from what it holds: the file is
 /// checked whole (and against the results.json beside it, if any), the recorded
@@ -64,12 +64,8 @@ pub fn replay(file: &Path) -> Exit {
             return Exit::Invalid;
         }
     };
-    let outside = sightline_oracles::out_of_domain(&scenario, &measurements);
-    if !outside.is_empty() {
-        for problem in outside {
-            eprintln!("{name}: error: {problem}: {OUT_OF_DOMAIN}");
-        }
-        return Exit::Internal;
+    if let Some(exit) = refuse_out_of_domain(&name, &scenario, &measurements, OUT_OF_DOMAIN) {
+        return exit;
     }
     let verdicts = sightline_oracles::check(&scenario, &measurements);
     warn_divergence(&name.to_string(), &recording, &verdicts);

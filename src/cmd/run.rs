@@ -16,7 +16,7 @@ use crate::cli::RunArgs;
 use crate::exit::Exit;
 use crate::input::{Input, load_all};
 use crate::output::{default_dir, progress, staging_file, stem, write_atomically};
-use crate::summary::print_verdicts;
+use crate::summary::{print_verdicts, refuse_out_of_domain};
 use crate::template::templates;
 
 /// The recording's name in the evidence directory.
@@ -84,16 +84,9 @@ pub fn run(args: &RunArgs) -> anyhow::Result<Exit> {
         };
         bar.finish_and_clear();
         // A value outside its domain is a defect of the engine: never judged.
-        let outside = sightline_oracles::out_of_domain(scenario, &simulated.0);
-        if !outside.is_empty() {
-            for problem in outside {
-                eprintln!(
-                    "{}: error: {problem}: no correct simulation gives such a value, a defect in sightline; \
-                     nothing is judged",
-                    input.path.display()
-                );
-            }
-            return Ok(Exit::Internal);
+        let why = "no correct simulation gives such a value, a defect in sightline; nothing is judged";
+        if let Some(exit) = refuse_out_of_domain(&input.path.display(), scenario, &simulated.0, why) {
+            return Ok(exit);
         }
         let execution = Execution::on_this_machine(pool.current_num_threads(), started, clock.elapsed());
         exit = exit.max(write_evidence(input, &reporting, dir, simulated, execution)?);
