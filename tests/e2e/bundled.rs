@@ -11,8 +11,8 @@ use crate::findings::tables;
 use serde_json::json;
 
 use crate::support::{
-    RECORDING, arg, assert_recorded_evidence_files, read, read_json, requirement, root, setting, sha256_hex, sightline,
-    temp_dir, unescape_html,
+    RECORDING, arg, assert_matches_file, assert_recorded_evidence_files, read, read_json, redact_junit, redact_report,
+    redact_results_json, requirement, root, setting, sha256_hex, sightline, temp_dir, unescape_html,
 };
 
 const SCENARIO: &str = "scenarios/evidential-field.yaml";
@@ -27,6 +27,8 @@ pub struct Bundled {
     pub results: serde_json::Value,
     /// results.json as written.
     pub results_json: String,
+    /// junit.xml.
+    pub junit: String,
     /// report.html.
     pub report: String,
     /// run.mcap.
@@ -46,6 +48,7 @@ fn run_bundled(scenario: &'static str) -> Bundled {
         stdout: run.stdout.clone(),
         results: read_json(&out.join("results.json")),
         results_json,
+        junit: read(&out.join("junit.xml")),
         report: read(&out.join("report.html")),
         recording: std::fs::read(out.join(RECORDING)).expect("run.mcap is readable"),
     }
@@ -304,6 +307,27 @@ pub fn every_run() -> [&'static Bundled; 5] {
         falsify_input_run(),
         urban_run(),
     ]
+}
+
+/// Every bundled scenario's results.json, junit.xml and report.html, byte for
+/// byte (the tool version, git revision and execution redacted), against their
+/// SHA-256 in `tests/golden/bundled.sha256`: a refactoring leaves the evidence
+/// unchanged, and an intended change is reviewed and blessed
+/// (`SIGHTLINE_BLESS=1 cargo test --test e2e bundled::`).
+#[test]
+fn bundled_evidence_is_unchanged() {
+    let mut digests = String::new();
+    for run in every_run() {
+        let name = run.scenario.trim_start_matches("scenarios/").trim_end_matches(".yaml");
+        for (file, text) in [
+            ("results.json", redact_results_json(&run.results_json)),
+            ("junit.xml", redact_junit(&run.junit)),
+            ("report.html", redact_report(&run.report)),
+        ] {
+            digests.push_str(&format!("{}  {name}/{file}\n", sha256_hex(text.as_bytes())));
+        }
+    }
+    assert_matches_file("tests/golden/bundled.sha256", &digests);
 }
 
 /// [`every_run`] runs every file in `scenarios/`.

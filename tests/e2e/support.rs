@@ -382,6 +382,23 @@ pub fn redact_results_json(text: &str) -> String {
     replace_once(&text, &format!("\"git\": \"{git}\""), "\"git\": \"[GIT]\"")
 }
 
+/// report.html with the tool row (name, version and git revision) redacted and
+/// its execution normalised ([`normalise_execution`]).
+#[track_caller]
+pub fn redact_report(text: &str) -> String {
+    let text = normalise_execution(text);
+    let start = format!(
+        "<th scope=\"row\">Tool</th><td class=\"mono\">sightline {} (git ",
+        env!("CARGO_PKG_VERSION")
+    );
+    let count = text.matches(&start).count();
+    assert_eq!(count, 1, "expected exactly one `{start}…` row to redact, found {count}");
+    let begin = text.find(&start).expect("counted above") + start.len();
+    let end = begin + text[begin..].find(")</td>").expect("the cell is closed");
+    assert!(end > begin, "the tool row names no git revision");
+    format!("{}[GIT]{}", &text[..begin], &text[end..])
+}
+
 /// junit.xml with the `tool` property (name, version and git revision) redacted.
 #[track_caller]
 pub fn redact_junit(text: &str) -> String {
