@@ -12,9 +12,8 @@ use rand::rngs::ChaCha8Rng;
 use rand::{RngExt, SeedableRng};
 use sightline_dsl::{AgentKind, Experiment, RiskScope, Scenario, Semantic, World};
 use sightline_engine::NoTrace;
-use sightline_engine::math::Point;
-use sightline_engine::semantic::{self, Areas, EgoPlan, Ldm, Measurement, Pipeline};
-use sightline_engine::world::Occluders;
+use sightline_engine::internals::{Areas, EgoPlan, Ldm, Measurement, Occluders, Pipeline, route_map, run_semantic};
+use sightline_engine::trace::Point;
 
 /// Route density of the whole-run bench, vehicles per km of each route; the bench
 /// prints the scene density it gives.
@@ -40,7 +39,7 @@ fn whole_run(c: &mut Criterion) {
     if let Some(vehicles) = world.traffic.as_mut().and_then(|t| t.vehicles.as_mut()) {
         vehicles.density_per_km = DENSITY;
     }
-    let metrics = semantic::run(11, &world, &semantic, &mut NoTrace);
+    let metrics = run_semantic(11, &world, &semantic, &mut NoTrace);
     let density = metrics.contribution.iter().filter_map(|&(d, _)| d).sum::<f64>() / metrics.contribution.len() as f64;
     println!(
         "route density {DENSITY}/km: mean scene density {density:.1} objects/km, {} road users generated",
@@ -49,7 +48,7 @@ fn whole_run(c: &mut Criterion) {
     let mut group = c.benchmark_group("junction");
     group.sample_size(10);
     group.bench_function("120s_at_10hz_one_run", |b| {
-        b.iter(|| semantic::run(11, &world, &semantic, &mut NoTrace))
+        b.iter(|| run_semantic(11, &world, &semantic, &mut NoTrace))
     });
     group.finish();
 }
@@ -106,7 +105,7 @@ fn one_cycle(c: &mut Criterion) {
         }
     }
     let occluders = Occluders::new(&world.occluders);
-    let map = semantic::route_map(&world, &semantic);
+    let map = route_map(&world, &semantic);
     let pipeline = Pipeline {
         semantic: &semantic,
         areas: Areas::of(&world),

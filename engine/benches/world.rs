@@ -9,10 +9,10 @@ use criterion::{Criterion, criterion_group, criterion_main};
 use rand::SeedableRng;
 use rand::rngs::ChaCha8Rng;
 use sightline_dsl::{Experiment, Scenario, World};
-use sightline_engine::simulate;
-use sightline_engine::world::{
+use sightline_engine::internals::{
     Bodies, CellFusion, Kinematics, Observation, Occluders, Raster, StepScene, Visibility, visibility,
 };
+use sightline_engine::simulate;
 
 /// The bundled scenario reduced to its point with six cooperating vehicles and
 /// nominal localization, without requirements.

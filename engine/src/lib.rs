@@ -3,14 +3,25 @@
 //! The engine owns everything between a compiled [`Scenario`](sightline_dsl::Scenario)
 //! and its measurements: seeded random streams, the fusion rules (Dempster,
 //! distance-weighted, hybrid, Bayesian), the decision rule, the V2X radio channel, and
-//! the metrics of each sweep point. It returns data ([`Run`], [`FieldOutcome`]); it
-//! does not print, write files or judge requirements (that is `sightline-oracles`).
+//! the metrics of each sweep point. It does not print, write files or judge
+//! requirements (that is `sightline-oracles`).
 //!
-//! [`simulate_point`] runs one sweep point and hands a [`TraceSink`] a record of
-//! every step as it goes ([`trace`]): agent states, detections, packets, signals,
-//! and fused grids at the steps the sink asks for; [`simulate_traced`] runs every
-//! point and records one of them that way. The engine keeps none of it, so
-//! memory stays bounded; the MCAP writer and the temporal oracles are sinks.
+//! Its interface is closed: a compiled scenario goes in, and out come
+//!
+//! - outcomes: a [`Run`] of one [`Outcome`] per sweep point ([`simulate`]), made
+//!   of the types in [`outcome`], each metric with its sample size ([`Sample`]);
+//! - trace events: [`simulate_point`] hands a [`TraceSink`] a record of every step
+//!   as it goes ([`trace`]): agent states, detections, packets, signals, and fused
+//!   grids at the steps the sink asks for; [`simulate_traced`] runs every point
+//!   and records one of them that way. The engine keeps none of it, so memory
+//!   stays bounded; the MCAP writer and the temporal oracles are sinks;
+//! - the campaign split: [`units`] of work, [`simulate_unit`] and [`assemble`];
+//! - what a run takes as given ([`idealisations`]) and the engine's
+//!   [`known_answers`] for `sightline selftest`.
+//!
+//! The worlds (the field experiment, the perception world, the semantic world)
+//! and the shared models (fusion, the radio channel, geometry) are private
+//! modules; docs/architecture.md maps them.
 //!
 //! Every model states what it idealises, beside its code, as an
 //! [`Idealisation`]; [`idealisations`] lists those a scenario's run assumed (its
@@ -20,33 +31,40 @@
 //! Results are deterministic: the same scenario and seed give bit-identical
 //! outcomes and records whatever the number of rayon threads, and recording does
 //! not change an outcome.
-//!
-//! ```
-//! use sightline_engine::fusion::{combine, Mass};
-//!
-//! let fused = combine(Mass::new(0.6, 0.3, 0.1), Mass::new(0.5, 0.2, 0.3));
-//! assert!((fused.conflict - 0.27).abs() < 1e-12);
-//! assert!(fused.mass.is_mass_function(1e-12));
-//! ```
 #![warn(missing_docs)]
 
 pub use idealisation::{Idealisation, ModelOption, idealisations};
-pub use metrics::{BandMetrics, ConflictMetrics, Coverage, FieldMetrics, FieldOutcome, MassAudit};
+pub use known::{KnownAnswer, known_answers};
 pub use run::{
     AssembleError, Job, Outcome, Run, Sample, Unit, assemble, simulate, simulate_point, simulate_reporting,
     simulate_traced, simulate_unit, units,
 };
 pub use sink::{NoTrace, TraceSink};
 
-pub mod field;
-pub mod fusion;
+pub mod outcome;
+pub mod trace;
+
+mod field;
+mod fusion;
 mod idealisation;
-pub mod math;
+mod known;
+mod math;
 mod metrics;
 mod rng;
 mod run;
-pub mod semantic;
+mod semantic;
 mod sink;
-pub mod trace;
-pub mod v2x;
-pub mod world;
+mod v2x;
+mod world;
+
+/// The engine's components, for its own tests and benches only: not part of
+/// its interface, and nothing outside `engine/` may enable the `internals`
+/// feature.
+#[cfg(feature = "internals")]
+#[doc(hidden)]
+pub mod internals {
+    pub use crate::semantic::{Areas, EgoPlan, Ldm, Measurement, Pipeline, route_map, run as run_semantic};
+    pub use crate::world::{
+        Bodies, CellFusion, Kinematics, Observation, Occluders, Raster, StepScene, Visibility, in_view, visibility,
+    };
+}

@@ -8,7 +8,7 @@
 //!
 //! - A perception world (seed 000) reports a [`WorldStep`] per step: every
 //!   agent's state, each cooperating agent's estimated pose and observation (its
-//!   own grid, sensor positions and [`Sighting`](crate::world::Sighting)s: targets
+//!   own grid, sensor positions and [`Sighting`]s: targets
 //!   in view, their visibility class and where it placed those it detected), and,
 //!   at steps with the ego, each fusion job's cell tallies of the step. Fused
 //!   grids (probability and uncertainty of every observed cell) are handed over
@@ -24,14 +24,16 @@
 //!
 //! Summed over a run, the step records give the run's metrics: a world's cell
 //! tallies, observed cells and sightings over the measured steps are its
-//! [`WorldMetrics`](crate::world::WorldMetrics) counts; a semantic world's
+//! [`WorldMetrics`](crate::outcome::WorldMetrics) counts; a semantic world's
 //! downlink packets, deliveries and close approaches are its
-//! [`SemanticMetrics`](crate::semantic::SemanticMetrics) counts.
+//! [`SemanticMetrics`](crate::outcome::SemanticMetrics) counts.
 
-use crate::math::Pose;
-use crate::semantic::Item;
-use crate::v2x::{Link, Reception};
-use crate::world::{AgentState, CellTally, Observation};
+pub use crate::math::{Point, Pose, Vector};
+pub use crate::semantic::{Conflict, Item, Labels};
+pub use crate::v2x::{Link, Reception};
+pub use crate::world::{AgentState, Body, Observation, Observed, Sighting, Visibility, mount_pose};
+
+use crate::world::CellTally;
 
 /// One step of a perception world.
 #[derive(Debug, Clone, Copy)]

@@ -5,7 +5,8 @@ mod common;
 
 use common::in_pool;
 use sightline_dsl::{Metric, Scenario, compile};
-use sightline_engine::{FieldOutcome, Outcome, simulate};
+use sightline_engine::outcome::FieldOutcome;
+use sightline_engine::{Outcome, simulate};
 
 fn scenario(text: &str) -> Scenario {
     compile("test.yaml", text, &Default::default()).unwrap_or_else(|e| panic!("{e}"))

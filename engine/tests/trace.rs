@@ -9,13 +9,11 @@ use std::collections::BTreeSet;
 use approx::assert_relative_eq;
 use common::in_pool;
 use sightline_dsl::{Agent, AgentKind, Experiment, Motion, Scenario, World, compile};
-use sightline_engine::fusion::State;
-use sightline_engine::math::Pose;
-use sightline_engine::semantic::{Item, SemanticMetrics};
-use sightline_engine::trace::{Approach, Arrival, Packet, PacketKind, SemanticStep, WorldStep};
-use sightline_engine::world::Visibility::{Los, NlosDynamic, NlosStatic};
-use sightline_engine::world::{
-    AgentState, CellTally, Kinematics, Sighting, Sightings, WorldOutcome, in_view, mount_pose,
+use sightline_engine::internals::{Kinematics, in_view};
+use sightline_engine::outcome::{CellTally, SemanticMetrics, Sightings, State, WorldOutcome};
+use sightline_engine::trace::Visibility::{Los, NlosDynamic, NlosStatic};
+use sightline_engine::trace::{
+    AgentState, Approach, Arrival, Item, Packet, PacketKind, Pose, SemanticStep, Sighting, WorldStep, mount_pose,
 };
 use sightline_engine::{Outcome, TraceSink, simulate, simulate_point, simulate_traced};
 

@@ -7,7 +7,7 @@ use common::in_pool;
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngAlgorithm, RngSeed, TestRunner};
 use sightline_dsl::{Metric, Scenario, Signal, compile};
-use sightline_engine::world::WorldOutcome;
+use sightline_engine::outcome::WorldOutcome;
 use sightline_engine::{Outcome, simulate};
 
 /// A crossroads of 80 m arms with four buildings in the corners; five connected cars

@@ -3,8 +3,9 @@
 //! per-object properties.
 
 use sightline_dsl::{Metric, ObjectProperty, Signal};
-use sightline_engine::semantic::Series;
-use sightline_engine::{MassAudit, Run, Sample};
+use sightline_engine::outcome::MassAudit;
+use sightline_engine::outcome::Series;
+use sightline_engine::{Run, Sample};
 
 /// The measurements of every sweep point of a run, as the oracles read them: a
 /// fresh [`Run`], or the values a recording carries (`sightline replay`). The

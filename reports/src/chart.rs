@@ -11,7 +11,7 @@ use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use serde::Serialize;
 
-use sightline_engine::semantic::{DELIVERY_BIN, DENSITY_BIN, SemanticMetrics};
+use sightline_engine::outcome::{DELIVERY_BIN, DENSITY_BIN, SemanticMetrics};
 use sightline_oracles::{Case, Phase};
 
 use crate::results::{PointResult, Results};
@@ -46,7 +46,7 @@ pub fn silverman_bandwidth(sorted: &[f64]) -> Option<f64> {
     }
     let mean = sorted.iter().sum::<f64>() / n as f64;
     let sd = (sorted.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1) as f64).sqrt();
-    let quantile = |q| sightline_engine::semantic::quantile(sorted, q).expect("n ≥ 2");
+    let quantile = |q| sightline_engine::outcome::quantile(sorted, q).expect("n ≥ 2");
     let iqr = quantile(0.75) - quantile(0.25);
     let spread = if iqr > 0.0 { sd.min(iqr / 1.34) } else { sd };
     (spread > 0.0).then(|| 0.9 * spread * (n as f64).powf(-0.2))

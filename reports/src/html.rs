@@ -7,7 +7,7 @@ use serde::Serialize;
 use sightline_dsl::{Metric, RateBound, Statistic, display_value};
 use sightline_oracles::Status;
 
-use sightline_engine::semantic::{DELIVERY_BIN, DENSITY_BIN, DensityRow, SemanticMetrics, quantile};
+use sightline_engine::outcome::{DELIVERY_BIN, DENSITY_BIN, DensityRow, SemanticMetrics, quantile};
 
 use crate::chart::Chart;
 use crate::picture::Pictures;

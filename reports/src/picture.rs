@@ -15,8 +15,7 @@ use base64::Engine;
 use base64::engine::general_purpose::STANDARD;
 use serde::Serialize;
 use sightline_dsl::Grid;
-use sightline_engine::fusion::State;
-use sightline_engine::world::{FusedCell, Snapshot};
+use sightline_engine::outcome::{FusedCell, Snapshot, State};
 
 /// The largest side of a picture, in pixels.
 const MAX_SIDE: usize = 1000;

@@ -7,9 +7,8 @@
 
 use serde::{Serialize, Serializer};
 use sightline_dsl::{Bound, Check, OverSeeds, Point, Requirement, Scenario, Temporal};
-use sightline_engine::semantic::{DensityRow, SemanticMetrics};
-use sightline_engine::world::WorldMetrics;
-use sightline_engine::{BandMetrics, Coverage, Idealisation, MassAudit, Outcome, Run};
+use sightline_engine::outcome::{BandMetrics, Coverage, DensityRow, MassAudit, SemanticMetrics, WorldMetrics};
+use sightline_engine::{Idealisation, Outcome, Run};
 use sightline_oracles::{SeedStatistics, Status, Verdict};
 
 use crate::execution::Execution;

@@ -134,7 +134,7 @@ fn seed_002_findings_quote_the_bundled_run() {
         .map(|v| v.as_f64().unwrap())
         .collect();
     pooled.sort_by(f64::total_cmp);
-    let quantile = |q| sightline_engine::semantic::quantile(&pooled, q).expect("objects were anticipated");
+    let quantile = |q| sightline_engine::outcome::quantile(&pooled, q).expect("objects were anticipated");
     let table = tables(path, "Pooled over the densities").remove(0);
     assert_eq!(table.header, ["objects", "anticipation_median", "anticipation_p95"]);
     let row = &table.rows[0];

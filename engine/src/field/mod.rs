@@ -7,9 +7,6 @@ mod sensor;
 mod truth;
 
 pub use experiment::run;
-pub use layout::positions;
-pub use sensor::SensorModel;
-pub use truth::GroundTruth;
 
 pub(crate) use experiment::IDEALISATIONS;
 pub(crate) use sensor::error_model_idealisations;

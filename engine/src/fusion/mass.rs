@@ -44,7 +44,8 @@ impl Mass {
         }
     }
 
-    /// All mass on one state.
+    /// All mass on one state (tests build certain sources with it).
+    #[cfg(test)]
     pub const fn certain(state: State) -> Self {
         match state {
             State::Empty => Self::new(1.0, 0.0, 0.0),
@@ -63,7 +64,9 @@ impl Mass {
         [self.empty, self.occupied, self.unknown]
     }
 
-    /// Whether every mass is finite and in [0, 1] and they sum to 1, within `tolerance`.
+    /// Whether every mass is finite and in [0, 1] and they sum to 1, within
+    /// `tolerance` (the invariant the tests check fusion against).
+    #[cfg(test)]
     pub fn is_mass_function(&self, tolerance: f64) -> bool {
         self.to_array()
             .iter()

@@ -7,11 +7,13 @@ mod mass;
 mod rule;
 mod weighted;
 
-pub use bayes::{Occupancy, PROBABILITY_CLAMP, pignistic};
+#[cfg(test)]
+mod properties;
+
+pub use bayes::pignistic;
 pub use decision::decide;
-pub use dempster::{Combination, Combiner, combine};
+pub use dempster::combine;
 pub use mass::{Mass, State};
 pub use rule::{Estimate, Source, fuse};
-pub use weighted::{Distances, combine_all, combine_two, discount};
 
 pub(crate) use rule::method_idealisations;

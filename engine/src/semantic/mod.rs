@@ -11,15 +11,18 @@ mod risk;
 mod simulate;
 mod traffic;
 
-pub use ldm::{Ldm, Measurement, Track};
-pub use message::{EtsiSender, Item, Labels, baseline_bytes, semantic_bytes};
+pub use message::{Item, Labels};
 pub use metrics::{DELIVERY_BIN, DENSITY_BIN, DeliveryBin, DensityRow, LabelCounts, SemanticMetrics, Series, quantile};
-pub use pipeline::{EgoPlan, Pipeline};
-pub use relevance::{Areas, approaches, contains, crosswalk_area};
-pub use risk::{
-    Conflict, MAX_BRANCHES, MapRoute, RouteMap, Trajectory, along, conflict, hypotheses, lane_routes, straight,
+pub use risk::Conflict;
+pub use simulate::run;
+
+/// The pipeline's pieces, for the engine's benches (feature `internals`).
+#[cfg(feature = "internals")]
+pub use {
+    ldm::{Ldm, Measurement},
+    pipeline::{EgoPlan, Pipeline},
+    relevance::Areas,
+    simulate::route_map,
 };
-pub use simulate::{KNOWN_FOR, route_map, run};
-pub use traffic::scene;
 
 pub(crate) use simulate::{idealisations, rsu_sight_idealisations};

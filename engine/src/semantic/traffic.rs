@@ -241,3 +241,78 @@ fn walk(from: Xy, to: Xy, approach: f64) -> Polyline {
     let end = [to[0] + unit[0] * approach, to[1] + unit[1] * approach];
     Polyline::new([start, end]).expect("a crosswalk's ends differ")
 }
+
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+
+    use sightline_dsl::{AgentKind, Experiment, Options, World, compile};
+
+    use super::scene;
+
+    /// A scenario file in `scenarios/`, so that `sumo/…` names the fixture.
+    const FILE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenarios/traces-engine-test.yaml");
+
+    const SEMANTIC: &str = "sightline: 1
+name: traced semantic
+time: { duration: 60, step: 0.1 }
+traces: { fcd: sumo/grid3x3.fcd.xml, net: sumo/grid3x3.net.xml }
+sensor_models:
+  front: { range: 80, fov_deg: 70 }
+agents:
+  - { id: ego, kind: car, trace: veh7, connected: true, sensors: [front] }
+  - { id: rsu, kind: rsu, position: [93.5, 93.5], sensors: [front] }
+v2x: { penetration: {p} }
+semantic: { ego: ego }
+";
+
+    fn world(penetration: f64) -> World {
+        let disk = |path: &Path| std::fs::read(path);
+        let options = Options {
+            loader: Some(&disk),
+            ..Default::default()
+        };
+        let text = SEMANTIC.replace("{p}", &penetration.to_string());
+        let scenario = compile(FILE, &text, &options).unwrap_or_else(|e| panic!("{e}"));
+        let Experiment::World(world) = &scenario.points[0].setup.experiment else {
+            panic!("a world")
+        };
+        (**world).clone()
+    }
+
+    /// Imported vehicles are connected with probability `v2x.penetration`, imported
+    /// pedestrians never; declared agents keep what they declare.
+    #[test]
+    fn imported_vehicles_are_connected_at_the_penetration_rate() {
+        let connected = |penetration: f64| {
+            let world = world(penetration);
+            let agents = scene(7, &world);
+            assert_eq!(
+                agents.len(),
+                world.agents.len(),
+                "no traffic section, nothing generated"
+            );
+            assert!(
+                agents[0].connected && !agents[1].connected,
+                "declared agents keep what they declare"
+            );
+            agents[2..]
+                .iter()
+                .map(|a| (a.kind == AgentKind::Pedestrian, a.connected))
+                .collect::<Vec<_>>()
+        };
+        let none = connected(0.0);
+        assert_eq!(none.len(), 23);
+        assert!(none.iter().all(|&(_, connected)| !connected));
+        assert!(
+            connected(1.0)
+                .iter()
+                .all(|&(pedestrian, connected)| connected != pedestrian)
+        );
+        let half = connected(0.5);
+        let vehicles = half.iter().filter(|&&(pedestrian, _)| !pedestrian).count();
+        let drawn = half.iter().filter(|&&(_, connected)| connected).count();
+        assert!(0 < drawn && drawn < vehicles, "{drawn} of {vehicles}");
+        assert_eq!(half, connected(0.5), "the draw is seeded");
+    }
+}

@@ -159,21 +159,6 @@ pub fn mean_rssi_dbm(channel: &Channel, link: &Link) -> f64 {
     channel.tx_power_dbm - path_loss_db(channel, link) - channel.device_loss_db
 }
 
-/// Probability that a packet on `link` is received:
-/// Φ((mean RSSI − sensitivity) / σ), with σ the LOS or NLOS shadowing σ; a step at
-/// the sensitivity when σ = 0, and 1 under [`PathLossModel::Ideal`].
-pub fn delivery_probability(channel: &Channel, link: &Link) -> f64 {
-    if channel.model == PathLossModel::Ideal {
-        return 1.0;
-    }
-    let margin = mean_rssi_dbm(channel, link) - channel.sensitivity_dbm;
-    let sigma = shadowing_sigma_db(channel, link);
-    if sigma == 0.0 {
-        return if margin >= 0.0 { 1.0 } else { 0.0 };
-    }
-    normal_cdf(margin / sigma)
-}
-
 /// Sends one packet over `link`: draws its shadowing from `rng` (one standard normal,
 /// whatever σ is; nothing under [`PathLossModel::Ideal`]) and applies the
 /// sensitivity. The outcome depends only on `rng`'s state.
@@ -239,27 +224,6 @@ fn b1_corner_db(first: f64, second: f64, carrier_ghz: f64, heights: (f64, f64)) 
     b1_los_db(first, carrier_ghz, heights) + 17.3 - 12.5 * n + 10.0 * n * second.log10() + 3.0 * carrier_ghz.log10()
 }
 
-/// Φ(x), the standard normal CDF: erfc(−x/√2) / 2.
-fn normal_cdf(x: f64) -> f64 {
-    0.5 * erfc(-x / SQRT_2)
-}
-
-/// Complementary error function with fractional error below 1.2·10⁻⁷ everywhere:
-/// the Chebyshev fit `erfcc` of Numerical Recipes in C (2nd ed., §6.2).
-fn erfc(x: f64) -> f64 {
-    let z = x.abs();
-    let t = 1.0 / (1.0 + 0.5 * z);
-    let poly = -1.265_512_23
-        + t * (1.000_023_68
-            + t * (0.374_091_96
-                + t * (0.096_784_18
-                    + t * (-0.186_288_06
-                        + t * (0.278_868_07
-                            + t * (-1.135_203_98 + t * (1.488_515_87 + t * (-0.822_152_23 + t * 0.170_872_77))))))));
-    let tail = t * (-z * z + poly).exp();
-    if x >= 0.0 { tail } else { 2.0 - tail }
-}
-
 #[cfg(test)]
 mod tests {
     use approx::assert_abs_diff_eq;
@@ -267,6 +231,43 @@ mod tests {
     use proptest::test_runner::{RngAlgorithm, RngSeed, TestRunner, noop_result_cache};
     use rand::SeedableRng;
     use rand::rngs::ChaCha8Rng;
+
+    /// Probability that a packet on `link` is received:
+    /// Φ((mean RSSI − sensitivity) / σ), with σ the LOS or NLOS shadowing σ; a step at
+    /// the sensitivity when σ = 0, and 1 under [`PathLossModel::Ideal`].
+    fn delivery_probability(channel: &Channel, link: &Link) -> f64 {
+        if channel.model == PathLossModel::Ideal {
+            return 1.0;
+        }
+        let margin = mean_rssi_dbm(channel, link) - channel.sensitivity_dbm;
+        let sigma = shadowing_sigma_db(channel, link);
+        if sigma == 0.0 {
+            return if margin >= 0.0 { 1.0 } else { 0.0 };
+        }
+        normal_cdf(margin / sigma)
+    }
+
+    /// Φ(x), the standard normal CDF: erfc(−x/√2) / 2.
+    fn normal_cdf(x: f64) -> f64 {
+        0.5 * erfc(-x / SQRT_2)
+    }
+
+    /// Complementary error function with fractional error below 1.2·10⁻⁷ everywhere:
+    /// the Chebyshev fit `erfcc` of Numerical Recipes in C (2nd ed., §6.2).
+    fn erfc(x: f64) -> f64 {
+        let z = x.abs();
+        let t = 1.0 / (1.0 + 0.5 * z);
+        let poly = -1.265_512_23
+            + t * (1.000_023_68
+                + t * (0.374_091_96
+                    + t * (0.096_784_18
+                        + t * (-0.186_288_06
+                            + t * (0.278_868_07
+                                + t * (-1.135_203_98
+                                    + t * (1.488_515_87 + t * (-0.822_152_23 + t * 0.170_872_77))))))));
+        let tail = t * (-z * z + poly).exp();
+        if x >= 0.0 { tail } else { 2.0 - tail }
+    }
 
     use super::*;
 
@@ -508,7 +509,7 @@ mod tests {
         );
     }
 
-    /// Fixed proptest configuration, as in `tests/fusion_properties.rs`: no
+    /// Fixed proptest configuration, as in `fusion/properties.rs`: no
     /// `PROPTEST_*` variable changes which cases run.
     fn pinned_config() -> ProptestConfig {
         ProptestConfig {

@@ -3,5 +3,5 @@
 
 mod channel;
 
-pub use channel::{Link, Reception, delivery_probability, mean_rssi_dbm, path_loss_db, transmit};
+pub use channel::{Link, Reception, path_loss_db, transmit};
 pub(crate) use channel::{NO_CONTENTION, path_loss_idealisations};

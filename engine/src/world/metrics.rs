@@ -133,7 +133,7 @@ pub struct Snapshot {
 pub struct FusedCell {
     /// Occupancy probability (pignistic for evidential methods).
     pub probability: f32,
-    /// Uncertainty ([`Estimate::uncertainty`](crate::fusion::Estimate::uncertainty)):
+    /// Uncertainty (the fused estimate's):
     /// the mass on Unknown, m(Θ), for evidential methods; the binary entropy of
     /// the probability in bits for Bayes. Both run from 0 (certain) to 1.
     pub uncertainty: f32,

@@ -11,14 +11,15 @@ mod raster;
 mod sight;
 mod simulate;
 
-pub use fuse::CellFusion;
-pub use localization::PoseEstimator;
 pub use metrics::{CellTally, FusedCell, Snapshot, WorldMetrics, WorldOutcome};
 pub use motion::{AgentState, Kinematics, Restraint};
-pub use observe::{Observation, Observed, Sighting, Sightings, StepScene, in_view, mount_pose};
-pub use raster::{Raster, box_cells, cell_center, traverse};
+pub use observe::{Observation, Observed, Sighting, Sightings, in_view, mount_pose};
 pub use sight::{Bodies, Body, Occluders, Visibility, visibility};
 pub use simulate::run;
+
+/// The step's pieces, for the engine's benches (feature `internals`).
+#[cfg(feature = "internals")]
+pub use {fuse::CellFusion, observe::StepScene, raster::Raster};
 
 pub(crate) use localization::filter_idealisations as localization_idealisations;
 pub(crate) use motion::{ON_THEIR_WAY, following_idealisations};

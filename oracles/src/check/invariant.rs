@@ -1,7 +1,7 @@
 //! Invariants over every fused cell.
 
 use sightline_dsl::Invariant;
-use sightline_engine::MassAudit;
+use sightline_engine::outcome::MassAudit;
 
 use super::short;
 use crate::Evaluation;

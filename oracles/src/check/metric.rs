@@ -57,7 +57,7 @@ pub(crate) fn too_few(name: &str, n: u64, min_samples: u64, population: &str) ->
 
 #[cfg(test)]
 mod tests {
-    use sightline_engine::FieldMetrics;
+    use sightline_engine::outcome::FieldMetrics;
 
     use super::*;
     use crate::Status;

@@ -9,7 +9,7 @@
 //! signals.
 
 use sightline_dsl::{Bound, Signal, Temporal};
-use sightline_engine::semantic::Series;
+use sightline_engine::outcome::Series;
 
 use super::short;
 use crate::Evaluation;

@@ -6,7 +6,7 @@
 use base64::Engine;
 use serde::Serialize;
 
-use sightline_engine::math::{Pose, Vector};
+use sightline_engine::trace::{Pose, Vector};
 
 /// `foxglove.SceneUpdate`'s JSON Schema.
 pub(crate) const SCENE_UPDATE_SCHEMA: &str = include_str!("schemas/foxglove.SceneUpdate.json");

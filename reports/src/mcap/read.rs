@@ -11,9 +11,8 @@ use mcap::records::Record;
 use mcap::sans_io::{LinearReadEvent, LinearReader, LinearReaderOptions};
 use serde::de::DeserializeOwned;
 use sightline_dsl::{Metric, ObjectProperty, Signal};
-use sightline_engine::semantic::Series;
-use sightline_engine::world::{CellTally, WorldMetrics};
-use sightline_engine::{MassAudit, Sample};
+use sightline_engine::Sample;
+use sightline_engine::outcome::{CellTally, MassAudit, Series, WorldMetrics};
 use sightline_oracles::Measurements;
 
 use super::topic;

@@ -9,7 +9,7 @@ use schemars::{JsonSchema, Schema, SchemaGenerator, json_schema};
 use serde::de::{self, Visitor};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use sightline_dsl::{Metric, ObjectProperty, Signal};
-use sightline_engine::MassAudit;
+use sightline_engine::outcome::MassAudit;
 
 use crate::Tool;
 

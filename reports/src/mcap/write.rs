@@ -17,10 +17,11 @@ use sightline_dsl::{
     Agent, AgentKind, Area, Check, Experiment, Grid as CellGrid, Metric, ObjectProperty, Record, Scenario, Signal,
     World,
 };
-use sightline_engine::math::{Pose, Vector};
-use sightline_engine::semantic::{Item, SemanticMetrics};
-use sightline_engine::trace::{CooperatorStep, FusedGrid, Measured, PacketKind, SemanticStep, WorldStep};
-use sightline_engine::world::{AgentState, Body, CellTally, Observed, Sightings, Visibility, WorldMetrics, mount_pose};
+use sightline_engine::outcome::{CellTally, SemanticMetrics, Sightings, WorldMetrics};
+use sightline_engine::trace::{
+    AgentState, Body, CooperatorStep, FusedGrid, Item, Measured, Observed, PacketKind, Pose, SemanticStep, Vector,
+    Visibility, WorldStep, mount_pose,
+};
 use sightline_engine::{Outcome, Run, TraceSink};
 use sightline_oracles::Verdict;
 

@@ -22,12 +22,14 @@
 //! Masses are compared with `approx` at [`RELATIVE`] relative and [`ABSOLUTE`] absolute
 //! error; conflicts at [`CONFLICT_ABSOLUTE`]. See the constants for why.
 
+use super::dempster::{Combination, Combiner, combine};
+use super::mass::{Mass, State};
+use super::weighted::{combine_all, combine_two, discount};
 use approx::relative_eq;
 use proptest::collection::vec;
 use proptest::prelude::*;
 use proptest::test_runner::{RngAlgorithm, RngSeed, TestCaseResult, TestRunner, noop_result_cache};
 use sightline_dsl::{SourceCombination, WeightScaling, Weighting};
-use sightline_engine::fusion::{Combination, Combiner, Mass, State, combine, combine_all, combine_two, discount};
 
 // ---------------------------------------------------------------------------------------
 // Configuration and tolerances

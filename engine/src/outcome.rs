@@ -1,0 +1,22 @@
+//! What a run measured: the outcome of each kind of world and the metric types
+//! it is made of. These are the engine's results as data; results.json, the
+//! report and the oracles read them, and the reports crate owns how they are
+//! written down.
+//!
+//! - The field experiment (seed 001): [`FieldOutcome`], whole-grid
+//!   [`FieldMetrics`], the same by distance band ([`BandMetrics`]), sensor
+//!   [`Coverage`] and the [`MassAudit`] of every fused cell.
+//! - A perception world (seed 000): [`WorldOutcome`], its [`WorldMetrics`]
+//!   (summed from each step's [`CellTally`]), [`Sightings`] by visibility, and
+//!   the grids of one step ([`Snapshot`] of [`FusedCell`]s with their decided
+//!   [`State`]).
+//! - A semantic world (seed 002): [`SemanticMetrics`] with its density rows
+//!   ([`DensityRow`]), delivery bins ([`DeliveryBin`]), label counts
+//!   ([`LabelCounts`]) and per-step [`Series`].
+
+pub use crate::fusion::State;
+pub use crate::metrics::{BandMetrics, ConflictMetrics, Coverage, FieldMetrics, FieldOutcome, MassAudit};
+pub use crate::semantic::{
+    DELIVERY_BIN, DENSITY_BIN, DeliveryBin, DensityRow, LabelCounts, SemanticMetrics, Series, quantile,
+};
+pub use crate::world::{CellTally, FusedCell, Sightings, Snapshot, WorldMetrics, WorldOutcome};
