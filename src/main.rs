@@ -7,6 +7,7 @@ use clap::Parser;
 
 mod cli;
 mod cmd;
+mod evidence;
 mod exit;
 mod input;
 mod output;

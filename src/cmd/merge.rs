@@ -19,9 +19,9 @@ use sightline_engine::{Run, Unit};
 use sightline_oracles::Quantity;
 use sightline_reports::{Execution, Page, Shard, ShardInput, campaign_id, read_shard};
 
-use super::run::{Reporting, Request, evidence_dirs, recorded, tool, write_evidence};
 use super::shard::inputs_of;
 use crate::cli::MergeArgs;
+use crate::evidence::{Reporting, Request, evidence_dirs, recorded, tool, write_evidence};
 use crate::exit::Exit;
 use crate::input::{Input, load_all};
 use crate::template::templates;

@@ -17,8 +17,8 @@ use anyhow::Context;
 use rayon::prelude::*;
 use sightline_reports::{Execution, Shard, ShardInput, campaign_id, sha256_hex, shard_bytes};
 
-use super::run::{Request, tool};
 use crate::cli::ShardSpec;
+use crate::evidence::{Request, tool};
 use crate::exit::Exit;
 use crate::input::Input;
 use crate::output::{progress, say, staging_file, write_atomically};

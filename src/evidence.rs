@@ -1,0 +1,171 @@
+//! A scenario's evidence, shared by `run`, `run --shard` and `merge`: how the run
+//! was asked for, this build, the recording staged beside the evidence, and
+//! the evidence set written atomically into its directory.
+
+use std::collections::HashSet;
+use std::io::{BufWriter, Write};
+use std::path::{Path, PathBuf};
+
+use anyhow::Context;
+use sightline_engine::Run;
+use sightline_oracles::Verdict;
+use sightline_reports::mcap::{Recorder, Source};
+use sightline_reports::{Execution, Provenance, RecordingInfo, Templates, Tool, render, sha256_hex};
+use tempfile::NamedTempFile;
+
+use crate::exit::Exit;
+use crate::input::Input;
+use crate::output::{default_dir, staging_file, stem, write_atomically};
+use crate::summary::print_verdicts;
+
+/// The recording's name in the evidence directory.
+pub const RECORDING: &str = "run.mcap";
+
+/// How a run was asked for, as its evidence and its recording say.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Request {
+    /// `--seed`.
+    pub seed: Option<u64>,
+    /// `--record`.
+    pub record: bool,
+}
+
+/// What the evidence of every scenario of a command shares.
+pub struct Reporting<'t> {
+    /// This build of sightline.
+    pub tool: Tool,
+    /// How the run was asked for.
+    pub request: Request,
+    /// The page templates.
+    pub templates: &'t Templates,
+}
+
+/// This build of sightline.
+pub fn tool() -> Tool {
+    Tool {
+        name: "sightline".into(),
+        version: env!("CARGO_PKG_VERSION").into(),
+        git: env!("SIGHTLINE_GIT").into(),
+    }
+}
+
+/// A run, its verdicts, and its recording (staged in the evidence directory,
+/// with what results.json says of it) when the scenario asks for one.
+pub type Simulated = (Run, Vec<Verdict>, Option<(NamedTempFile, RecordingInfo)>);
+
+/// Renders the evidence of a simulated `input` into `dir`, atomically, and
+/// prints its verdicts; [`Exit::Pass`] when every requirement holds, and
+/// [`Exit::Invalid`] (nothing written) when a custom template fails on the data.
+pub fn write_evidence(
+    input: &Input,
+    reporting: &Reporting<'_>,
+    dir: &Path,
+    (run, verdicts, recording): Simulated,
+    execution: Execution,
+) -> anyhow::Result<Exit> {
+    let scenario = &input.scenario;
+    let path = input.path.display().to_string();
+    let provenance = Provenance {
+        tool: reporting.tool.clone(),
+        scenario_path: path.clone(),
+        scenario_sha256: sha256_hex(&input.bytes),
+        recording: recording.as_ref().map(|(_, info)| info.clone()),
+        execution,
+    };
+    let mut reproduce = match scenario.points.iter().map(|p| p.setup.seed).collect::<HashSet<_>>() {
+        seeds if seeds.len() == 1 => format!("sightline run {path} --seed {}", scenario.points[0].setup.seed),
+        _ => format!("sightline run {path}"),
+    };
+    if reporting.request.record {
+        reproduce.push_str(" --record");
+    }
+    let templates = reporting.templates;
+    let evidence = match render(scenario, &run, &verdicts, &provenance, &reproduce, templates) {
+        Ok(evidence) => evidence,
+        // A custom template that fails on the data is the input's fault.
+        Err(sightline_reports::Error::Template(error)) if templates.is_custom() => {
+            eprintln!("{error}");
+            return Ok(Exit::Invalid);
+        }
+        Err(error) => return Err(error.into()),
+    };
+    write_atomically(
+        dir,
+        &[
+            ("results.json", &evidence.results_json),
+            ("junit.xml", &evidence.junit_xml),
+            ("report.html", &evidence.report_html),
+        ],
+        recording.map(|(file, _)| (file, RECORDING)).into_iter().collect(),
+    )?;
+    Ok(print_verdicts(
+        &path,
+        scenario,
+        &verdicts,
+        format_args!("-> {}", dir.display()),
+    ))
+}
+
+/// Records `input`'s `record` point into a staging file in `dir` while
+/// `simulate` runs the scenario with the recorder as its sink, then checks the
+/// run and finishes the recording with its outcomes and verdicts.
+pub fn recorded(
+    input: &Input,
+    reporting: &Reporting<'_>,
+    dir: &Path,
+    simulate: impl FnOnce(&mut Recorder<'_, BufWriter<&std::fs::File>>) -> anyhow::Result<Run>,
+) -> anyhow::Result<Simulated> {
+    let scenario = &input.scenario;
+    let record = scenario.record.context("the scenario records nothing")?;
+    let file = staging_file(dir)?;
+    let failed = || format!("failed to write {}", dir.join(RECORDING).display());
+    let text = std::str::from_utf8(&input.bytes).context("the scenario file is not UTF-8 text")?;
+    let source = Source {
+        tool: &reporting.tool,
+        file: &input.path.display().to_string(),
+        text,
+        seed: reporting.request.seed,
+        record_flag: reporting.request.record,
+    };
+    let mut recorder = Recorder::new(BufWriter::new(file.as_file()), scenario, record, &source).with_context(failed)?;
+    let run = simulate(&mut recorder)?;
+    let verdicts = sightline_oracles::check(scenario, &run);
+    recorder
+        .finish(&run, &verdicts)
+        .with_context(failed)?
+        .flush()
+        .with_context(failed)?;
+    // The hash is of the bytes on disk: the MCAP writer seeks back as it writes.
+    let bytes = std::fs::read(file.path()).with_context(failed)?;
+    let info = RecordingInfo {
+        file: RECORDING.into(),
+        sha256: sha256_hex(&bytes),
+        point: record.point,
+        label: scenario.points[record.point].label(),
+    };
+    Ok((run, verdicts, Some((file, info))))
+}
+
+/// Where each scenario's evidence goes (`out` with one scenario, `out/STEM/`
+/// with several, `out/STEM/` under the working directory without `out`); `None`
+/// (after printing why) when two scenarios would share a directory.
+pub fn evidence_dirs<'a>(out: Option<&Path>, inputs: impl IntoIterator<Item = &'a Input>) -> Option<Vec<PathBuf>> {
+    let files: Vec<&Path> = inputs.into_iter().map(|i| i.path.as_path()).collect();
+    let dirs: Vec<PathBuf> = match (out, files.len()) {
+        (Some(out), 1) => vec![out.to_path_buf()],
+        (Some(out), _) => files.iter().map(|f| out.join(stem(f))).collect(),
+        (None, _) => files.iter().map(|f| default_dir(f)).collect(),
+    };
+    let mut seen = HashSet::new();
+    for (dir, file) in dirs.iter().zip(&files) {
+        if !seen.insert(dir) {
+            eprintln!(
+                "{}: error: its evidence would overwrite another scenario's in {}; run the files separately with --out",
+                file.display(),
+                dir.display()
+            );
+            return None;
+        }
+    }
+    Some(dirs)
+}
