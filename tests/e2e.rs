@@ -66,3 +66,7 @@ mod template;
 // traceability as results.json says, markup in the scenario's text shown as text.
 #[path = "e2e/browser.rs"]
 mod browser;
+
+// The house rules on the source tree: file sizes, no mutual imports, the engine's closed interface.
+#[path = "e2e/architecture.rs"]
+mod architecture;
