@@ -269,7 +269,7 @@ pub(crate) struct RawMasses {
     /// to its range (≥ 0; ε at the range must stay below 1).
     pub gamma: f64,
     /// How misdetection shapes the mass vector.
-    #[serde(default = "default_error_model")]
+    #[serde(default)]
     pub error_model: ErrorModel,
 }
 
@@ -281,56 +281,25 @@ fn default_epsilon0() -> f64 {
     0.0625
 }
 
-fn default_error_model() -> ErrorModel {
-    ErrorModel::DirichletMean
-}
-
 /// How sensor evidence is fused in each cell.
-#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields, expecting = "a fusion mapping")]
+#[derive(Debug, Clone, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(default, deny_unknown_fields, expecting = "a fusion mapping")]
 #[schemars(rename = "Fusion")]
 pub(crate) struct RawFusion {
     /// Name shown in tables (`Baseline`, `Proposed`). Default: the method name.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub label: Option<String>,
     /// The fusion rule.
-    #[serde(default = "default_method")]
     pub method: FusionMethod,
     /// Scaling of the distance weights (`distance_weighted`, `hybrid`); the default
     /// is the paper's.
-    #[serde(default = "default_weights")]
     pub weights: WeightScaling,
     /// How more than two sources combine (`distance_weighted`, `hybrid`).
-    #[serde(default = "default_sources")]
     pub sources: SourceCombination,
     /// When `hybrid` switches to the weighted rule. Required for `hybrid`: the
     /// paper gives no threshold.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub switch: Option<RawSwitch>,
-}
-
-impl Default for RawFusion {
-    fn default() -> Self {
-        Self {
-            label: None,
-            method: default_method(),
-            weights: default_weights(),
-            sources: default_sources(),
-            switch: None,
-        }
-    }
-}
-
-fn default_method() -> FusionMethod {
-    FusionMethod::Dempster
-}
-
-fn default_weights() -> WeightScaling {
-    WeightScaling::SumToOne
-}
-
-fn default_sources() -> SourceCombination {
-    SourceCombination::AllAtOnce
 }
 
 /// The hybrid switch: the weighted rule is used where the sources' distances
@@ -340,37 +309,26 @@ fn default_sources() -> SourceCombination {
 #[schemars(rename = "Switch")]
 pub(crate) struct RawSwitch {
     /// How distances are compared.
-    #[serde(default = "default_measure")]
+    #[serde(default)]
     pub measure: SwitchMeasure,
     /// Metres for `difference` (≥ 0); a ratio ≥ 1 for `ratio`.
     pub threshold: f64,
 }
 
-fn default_measure() -> SwitchMeasure {
-    SwitchMeasure::Difference
-}
-
 /// The decision rule: a cell takes the state of its largest mass when
 /// p_max − p_others ≥ θ.
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields, expecting = "a decision mapping")]
+#[serde(default, deny_unknown_fields, expecting = "a decision mapping")]
 #[schemars(rename = "Decision")]
 pub(crate) struct RawDecision {
     /// θ (0–1; the paper's 0.8).
-    #[serde(default = "default_threshold")]
     pub threshold: f64,
 }
 
 impl Default for RawDecision {
     fn default() -> Self {
-        Self {
-            threshold: default_threshold(),
-        }
+        Self { threshold: 0.8 }
     }
-}
-
-fn default_threshold() -> f64 {
-    0.8
 }
 
 /// A requirement: an id, its text, and how it is checked.
@@ -499,24 +457,23 @@ pub(crate) struct RawReference {
 /// and every point's metrics and verdicts. Give `point` or `where`, not both;
 /// neither records the first point.
 #[derive(Debug, Clone, Default, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields, expecting = "a record mapping")]
+#[serde(default, deny_unknown_fields, expecting = "a record mapping")]
 #[schemars(rename = "Record")]
 pub(crate) struct RawRecord {
     /// The recorded sweep point by index (0: the first point, in the order of
     /// results.json's `sweep`, which lists each distinct configuration once).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub point: Option<u64>,
     /// The recorded sweep point by its settings: dotted path → value
     /// (`perception.cooperating: 6`); the first point that matches.
-    #[serde(default, rename = "where", skip_serializing_if = "BTreeMap::is_empty")]
+    #[serde(rename = "where", skip_serializing_if = "BTreeMap::is_empty")]
     pub filter: BTreeMap<String, serde_json::Value>,
     /// Fused grids (probability and uncertainty) recorded per simulated second,
     /// Hz: every `round(1 / (grid_rate · time.step))` steps, at most every step;
     /// 0 records none. Default 1.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub grid_rate: Option<f64>,
     /// Also record each cooperating agent's own grid, at `grid_rate`.
-    #[serde(default)]
     pub agent_grids: bool,
 }
 
@@ -630,12 +587,8 @@ pub(crate) struct RawRoundabout {
     /// Radius of lane 0's centreline, metres.
     pub radius: f64,
     /// Direction of travel: `ccw` (right-hand traffic) or `cw`.
-    #[serde(default = "default_direction")]
+    #[serde(default)]
     pub direction: Direction,
-}
-
-fn default_direction() -> Direction {
-    Direction::Ccw
 }
 
 /// A static obstacle to sight: a building or a wall.
@@ -699,30 +652,25 @@ fn default_ray_spacing() -> f64 {
 
 /// A mounting pose in the agent frame.
 #[derive(Debug, Clone, Default, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields, expecting = "a mount mapping")]
+#[serde(default, deny_unknown_fields, expecting = "a mount mapping")]
 #[schemars(rename = "Mount")]
 pub(crate) struct RawMount {
     /// Forward of the agent's centre, metres.
-    #[serde(default)]
     pub x: f64,
     /// Left of the agent's centre, metres.
-    #[serde(default)]
     pub y: f64,
     /// Yaw relative to the agent's heading, degrees.
-    #[serde(default)]
     pub yaw_deg: f64,
 }
 
 /// A distance-dependent standard deviation σ(d) = base + per_m · d.
 #[derive(Debug, Clone, Default, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields, expecting = "a noise mapping with `base` and `per_m`")]
+#[serde(default, deny_unknown_fields, expecting = "a noise mapping with `base` and `per_m`")]
 #[schemars(rename = "Noise")]
 pub(crate) struct RawNoise {
     /// σ at distance 0, metres.
-    #[serde(default)]
     pub base: f64,
     /// Growth of σ per metre of distance.
-    #[serde(default)]
     pub per_m: f64,
 }
 
@@ -773,14 +721,12 @@ pub(crate) struct RawAgent {
 
 /// When and where a moving agent appears.
 #[derive(Debug, Clone, Default, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields, expecting = "a start mapping")]
+#[serde(default, deny_unknown_fields, expecting = "a start mapping")]
 #[schemars(rename = "Start")]
 pub(crate) struct RawStart {
     /// Time it appears, seconds.
-    #[serde(default)]
     pub time: f64,
     /// Distance along its route or path where it appears, metres.
-    #[serde(default)]
     pub offset: f64,
 }
 
@@ -824,23 +770,18 @@ pub(crate) struct RawSize {
 
 /// Self-localization of connected agents.
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields, expecting = "a localization mapping")]
+#[serde(default, deny_unknown_fields, expecting = "a localization mapping")]
 #[schemars(rename = "Localization")]
 pub(crate) struct RawLocalization {
     /// σ of each self-reported x and y measurement, metres.
-    #[serde(default)]
     pub position_sigma: f64,
     /// σ of each self-reported heading measurement, degrees.
-    #[serde(default)]
     pub heading_sigma_deg: f64,
     /// How an agent estimates its pose from its measurements.
-    #[serde(default = "default_filter")]
     pub filter: PoseFilter,
     /// Kalman filter: uncertainty the motion model adds to x and y, metres per √s.
-    #[serde(default = "default_process_position")]
     pub process_position_sigma: f64,
     /// Kalman filter: uncertainty the motion model adds to the heading, degrees per √s.
-    #[serde(default = "default_process_heading")]
     pub process_heading_sigma_deg: f64,
 }
 
@@ -849,23 +790,11 @@ impl Default for RawLocalization {
         Self {
             position_sigma: 0.0,
             heading_sigma_deg: 0.0,
-            filter: default_filter(),
-            process_position_sigma: default_process_position(),
-            process_heading_sigma_deg: default_process_heading(),
+            filter: PoseFilter::default(),
+            process_position_sigma: 0.1,
+            process_heading_sigma_deg: 0.5,
         }
     }
-}
-
-fn default_process_position() -> f64 {
-    0.1
-}
-
-fn default_process_heading() -> f64 {
-    0.5
-}
-
-fn default_filter() -> PoseFilter {
-    PoseFilter::Kalman
 }
 
 /// Collective perception: who shares, and how an observation becomes evidence.
@@ -905,30 +834,20 @@ pub(crate) struct RawRegion {
 
 /// The inverse sensor model.
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields, expecting = "an inverse model mapping")]
+#[serde(default, deny_unknown_fields, expecting = "an inverse model mapping")]
 #[schemars(rename = "InverseModel")]
 pub(crate) struct RawInverseModel {
     /// P(occupied) of a cell a detected object covers (0.5–1).
-    #[serde(default = "default_occupied")]
     pub occupied: f64,
     /// P(occupied) of a cell seen free along a ray (0–0.5).
-    #[serde(default = "default_free")]
     pub free: f64,
 }
 
 impl Default for RawInverseModel {
     fn default() -> Self {
         Self {
-            occupied: default_occupied(),
-            free: default_free(),
+            occupied: 0.7,
+            free: 0.3,
         }
     }
-}
-
-fn default_occupied() -> f64 {
-    0.7
-}
-
-fn default_free() -> f64 {
-    0.3
 }
