@@ -1,129 +1,12 @@
-//! The sections of seed 002's infrastructure-assisted ego: generated traffic,
-//! crosswalks and interaction areas, driving behaviour, the V2X link and the
-//! roadside unit's semantic pipeline.
+//! The roadside units' semantic pipeline for an assisted ego (seed 002): the
+//! interaction areas it watches, its layers' settings, the ego's caution and the
+//! ETSI baseline it is compared with.
 
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
-use super::RawRegion;
-use crate::model::{Following, PathLossModel, RiskScope, RsuSight, ShareCycles};
-
-/// Background traffic generated on declared routes and crosswalks, deterministic
-/// for the scenario's seed.
-#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields, expecting = "a traffic mapping")]
-#[schemars(rename = "Traffic")]
-pub(crate) struct RawTraffic {
-    /// Vehicles on routes.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub vehicles: Option<RawVehicleTraffic>,
-    /// Pedestrians crossing at every crosswalk.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub pedestrians: Option<RawPedestrianTraffic>,
-}
-
-/// Vehicles generated on routes.
-#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
-#[serde(
-    deny_unknown_fields,
-    expecting = "a vehicle traffic mapping with `density_per_km` and `routes`"
-)]
-#[schemars(rename = "VehicleTraffic")]
-pub(crate) struct RawVehicleTraffic {
-    /// Mean number of vehicles per km of each route, kept by inflow at its start.
-    pub density_per_km: f64,
-    /// The routes traffic drives, each a list of road ids like an agent's `route`.
-    pub routes: Vec<Vec<String>>,
-    /// Share of drivers who ignore speed limits (0–1); seed 002 uses 0.4.
-    #[serde(default)]
-    pub non_compliant: f64,
-    /// How much faster than the limit a non-compliant driver wants to go: its
-    /// limit factor is drawn uniformly from this range [low, high].
-    #[serde(default = "default_overspeed")]
-    pub overspeed_factor: [f64; 2],
-    /// Share of each kind among generated vehicles; need not sum to 1.
-    #[serde(default)]
-    pub mix: RawMix,
-}
-
-fn default_overspeed() -> [f64; 2] {
-    [1.2, 1.5]
-}
-
-/// Relative frequencies of vehicle kinds.
-#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields, expecting = "a mix mapping")]
-#[schemars(rename = "Mix")]
-pub(crate) struct RawMix {
-    /// Passenger cars.
-    #[serde(default)]
-    pub car: f64,
-    /// Trucks.
-    #[serde(default)]
-    pub truck: f64,
-    /// Buses.
-    #[serde(default)]
-    pub bus: f64,
-    /// Motorbikes.
-    #[serde(default)]
-    pub motorbike: f64,
-}
-
-// Only for an absent `mix`: a key left out of a written `mix` is 0, not its
-// share here, so this struct takes no container `#[serde(default)]`.
-impl Default for RawMix {
-    fn default() -> Self {
-        Self {
-            car: 1.0,
-            truck: 0.0,
-            bus: 0.0,
-            motorbike: 0.0,
-        }
-    }
-}
-
-/// Pedestrians crossing at crosswalks.
-#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields, expecting = "a pedestrian traffic mapping with `per_minute`")]
-#[schemars(rename = "PedestrianTraffic")]
-pub(crate) struct RawPedestrianTraffic {
-    /// Mean arrivals per minute at each crosswalk (a Poisson process).
-    pub per_minute: f64,
-    /// Walking speed, m/s.
-    #[serde(default = "default_walking_speed")]
-    pub speed: f64,
-    /// How far before the crosswalk a pedestrian appears on the pavement, metres.
-    #[serde(default = "default_approach")]
-    pub approach: f64,
-}
-
-fn default_walking_speed() -> f64 {
-    1.3
-}
-
-fn default_approach() -> f64 {
-    5.0
-}
-
-/// A pedestrian crossing: a straight walk from one kerb to the other.
-#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields, expecting = "a crosswalk mapping with `id`, `from` and `to`")]
-#[schemars(rename = "Crosswalk")]
-pub(crate) struct RawCrosswalk {
-    /// Unique id.
-    pub id: String,
-    /// One kerb [x, y], metres.
-    pub from: [f64; 2],
-    /// The other kerb [x, y], metres.
-    pub to: [f64; 2],
-    /// Width across the walking direction, metres.
-    #[serde(default = "default_crosswalk_width")]
-    pub width: f64,
-}
-
-fn default_crosswalk_width() -> f64 {
-    4.0
-}
+use super::perception::RawRegion;
+use crate::model::{RiskScope, RsuSight, ShareCycles};
 
 /// A region around a conflict zone (junction, roundabout entry, crossing).
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
@@ -141,89 +24,6 @@ pub(crate) struct RawInteractionArea {
     /// A disc.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub circle: Option<RawRegion>,
-}
-
-/// How vehicles keep their distance.
-#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
-#[serde(default, deny_unknown_fields, expecting = "a driving mapping")]
-#[schemars(rename = "Driving")]
-pub(crate) struct RawDriving {
-    /// `none`: vehicles ignore each other; `idm`: the Intelligent Driver Model
-    /// behind the closest vehicle ahead in the lane.
-    pub following: Following,
-    /// IDM desired time headway, seconds.
-    pub headway: f64,
-    /// IDM gap kept when standing, metres.
-    pub min_gap: f64,
-    /// IDM comfortable deceleration, m/s².
-    pub deceleration: f64,
-}
-
-impl Default for RawDriving {
-    fn default() -> Self {
-        Self {
-            following: Following::default(),
-            headway: 1.5,
-            min_gap: 2.0,
-            deceleration: 3.0,
-        }
-    }
-}
-
-/// V2X assumptions.
-#[derive(Debug, Clone, Default, Serialize, Deserialize, JsonSchema)]
-#[serde(default, deny_unknown_fields, expecting = "a v2x mapping")]
-#[schemars(rename = "V2x")]
-pub(crate) struct RawV2x {
-    /// Share of generated vehicles that are connected (0–1); seed 002 uses 0.
-    pub penetration: f64,
-    /// Delay from sending to delivery, seconds, besides propagation.
-    pub latency: f64,
-    /// The radio channel.
-    pub channel: RawChannel,
-}
-
-/// The radio channel (defaults: seed 002 and 3GPP TR 36.885).
-#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
-#[serde(default, deny_unknown_fields, expecting = "a channel mapping")]
-#[schemars(rename = "Channel")]
-pub(crate) struct RawChannel {
-    /// Path-loss model.
-    pub model: PathLossModel,
-    /// Transmit power, dBm.
-    pub tx_power_dbm: f64,
-    /// σ of the log-normal shadowing on a line-of-sight link, dB.
-    pub shadowing_sigma_db: f64,
-    /// σ of the shadowing on a link an occluder blocks, dB.
-    pub nlos_shadowing_sigma_db: f64,
-    /// Fixed implementation losses, dB.
-    pub device_loss_db: f64,
-    /// Receiver sensitivity, dBm.
-    pub sensitivity_dbm: f64,
-    /// Carrier frequency, GHz.
-    pub carrier_ghz: f64,
-    /// Antenna height of vehicles and pedestrians, metres.
-    pub vehicle_antenna_m: f64,
-    /// Antenna height of roadside units, metres.
-    pub rsu_antenna_m: f64,
-}
-
-impl Default for RawChannel {
-    /// The model's defaults, kept in one place (`model::Channel`).
-    fn default() -> Self {
-        let channel = crate::model::Channel::default();
-        Self {
-            model: channel.model,
-            tx_power_dbm: channel.tx_power_dbm,
-            shadowing_sigma_db: channel.shadowing_sigma_db,
-            nlos_shadowing_sigma_db: channel.nlos_shadowing_sigma_db,
-            device_loss_db: channel.device_loss_db,
-            sensitivity_dbm: channel.sensitivity_dbm,
-            carrier_ghz: channel.carrier_ghz,
-            vehicle_antenna_m: channel.vehicle_antenna_m,
-            rsu_antenna_m: channel.rsu_antenna_m,
-        }
-    }
 }
 
 /// The roadside units' semantic pipeline (seed 002, section III).
@@ -288,21 +88,27 @@ pub(crate) struct RawSemantic {
 fn default_proximity() -> f64 {
     50.0
 }
+
 fn default_horizon() -> f64 {
     3.0
 }
+
 fn default_d_min() -> f64 {
     2.0
 }
+
 fn default_hypotheses() -> Vec<f64> {
     vec![0.7, 1.0, 1.1]
 }
+
 fn default_rate() -> f64 {
     10.0
 }
+
 fn default_history() -> f64 {
     5.0
 }
+
 fn default_runs() -> u32 {
     1
 }
