@@ -1,5 +1,5 @@
 //! Plane geometry the language needs to resolve roads and routes: polylines with
-//! arc length, projections, lane offsets, sampled arcs. Coordinates are metres in
+//! arc length, projections, lane offsets, sampled arcs, polygon orientation. Coordinates are metres in
 //! the world frame; angles are radians, counter-clockwise from +x.
 
 use serde::Serialize;
@@ -192,6 +192,32 @@ pub fn arc(center: Xy, radius: f64, start: f64, end: f64) -> Vec<Xy> {
             [center[0] + radius * angle.cos(), center[1] + radius * angle.sin()]
         })
         .collect()
+}
+
+/// `polygon` counter-clockwise, or `None` when it has fewer than three corners or
+/// encloses no area.
+pub(crate) fn counter_clockwise(polygon: &[Xy]) -> Option<Vec<Xy>> {
+    let area = signed_area(polygon);
+    if polygon.len() < 3 || area.abs() < 1e-9 {
+        return None;
+    }
+    let mut polygon = polygon.to_vec();
+    if area < 0.0 {
+        polygon.reverse();
+    }
+    Some(polygon)
+}
+
+/// The signed area of a polygon, positive when counter-clockwise (shoelace formula).
+fn signed_area(polygon: &[Xy]) -> f64 {
+    let n = polygon.len();
+    (0..n)
+        .map(|i| {
+            let [a, b] = [polygon[i], polygon[(i + 1) % n]];
+            a[0] * b[1] - b[0] * a[1]
+        })
+        .sum::<f64>()
+        / 2.0
 }
 
 #[cfg(test)]

@@ -8,10 +8,13 @@
 //! path. A key that would change nothing in its kind of scenario (a radio in
 //! collective perception, a grid in a semantic world, a fusion parameter the
 //! chosen method ignores) is an error too, [`ErrorKind::NoEffect`], so a
-//! verdict never rests on a setting that was silently ignored. The [`sumo`] module reads traffic from the simulator SUMO the same way:
-//! text in, located errors out. A scenario that imports SUMO files (`traces`)
-//! has them read through the [`Loader`] the caller puts in [`Options`]; the
-//! compiled [`Scenario`] keeps their bytes (`imports`) for the evidence.
+//! verdict never rests on a setting that was silently ignored.
+//!
+//! The [`import`] tree reads other tools' files the same way, text in and
+//! located errors out, one module per format: [`import::sumo`] reads traffic
+//! from the simulator SUMO. A scenario that imports SUMO files (`traces`) has
+//! them read through the [`Loader`] the caller puts in [`Options`]; the compiled
+//! [`Scenario`] keeps their bytes (`imports`) for the evidence.
 //!
 //! ```
 //! let text = "sightline: 1\nname: tiny\ngrid: { size: [10, 10], cell: 1 }\n\
@@ -36,9 +39,9 @@ mod de;
 mod emit;
 mod error;
 pub mod geometry;
+pub mod import;
 mod model;
 mod path;
 mod raw;
 mod schema;
-pub mod sumo;
 mod yaml;

@@ -5,7 +5,7 @@ use std::collections::{HashMap, HashSet};
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 use sightline_dsl::AgentKind;
-use sightline_dsl::sumo::{DEFAULT_LANE_WIDTH, Fcd, Network, parse_fcd, parse_net, parse_poly};
+use sightline_dsl::import::sumo::{DEFAULT_LANE_WIDTH, Fcd, Network, parse_fcd, parse_net, parse_poly};
 
 const NET: &str = include_str!("../../scenarios/sumo/grid3x3.net.xml");
 const POLY: &str = include_str!("../../scenarios/sumo/grid3x3.poly.xml");

@@ -1,5 +1,6 @@
 //! Ranges, units and defaults of the simulation settings: raw → [`Setup`].
 
+use super::checks::whole_multiple;
 use super::context::Context;
 use super::kind::{Kind, ignored_keys};
 use super::traces::Imported;
@@ -63,13 +64,6 @@ pub(super) fn setup(ctx: &mut Context<'_>, raw: &RawScenario, imported: Option<&
         experiment: experiment?,
         occupancy,
     })
-}
-
-/// The number of whole `step`s in `length`, or `None` when it is not whole.
-pub(super) fn whole_multiple(length: f64, step: f64) -> Option<f64> {
-    let n = length / step;
-    let rounded = n.round();
-    ((n - rounded).abs() <= 1e-9 * rounded.max(1.0) && rounded >= 1.0).then_some(rounded)
 }
 
 fn grid(ctx: &mut Context<'_>, raw: &RawGrid, path: &Path) -> Option<Grid> {

@@ -19,15 +19,14 @@
 use std::collections::{HashMap, HashSet};
 
 use super::context::Context;
-use super::world::counter_clockwise;
 use crate::error::{Error, ErrorKind, utf8_text};
-use crate::geometry::{Polyline, distance};
+use crate::geometry::{Polyline, counter_clockwise, distance};
+use crate::import::sumo::{Fcd, FcdObject, Network, SumoError, parse_fcd, parse_net, parse_poly};
 use crate::model::{
     Agent, AgentKind, Area, Import, ImportKind, InteractionArea, LaneLink, Motion, Occluder, Road, TraceSample,
 };
 use crate::path::Path;
 use crate::raw::RawTraces;
-use crate::sumo::{Fcd, FcdObject, Network, SumoError, parse_fcd, parse_net, parse_poly};
 
 /// Gaps up to this many sample periods are interpolated across.
 const GAP_PERIODS: f64 = 1.5;

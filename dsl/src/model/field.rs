@@ -59,12 +59,13 @@ pub struct Masses {
 /// "the probability that a truly empty cell is output as Occupy or Unknown" and
 /// that ε0 = 0.0625 "corresponds to" Dirichlet(30, 1, 1); it does not say which
 /// of the two readings below it means.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum ErrorModel {
     /// The mass vector is drawn from a Dirichlet whose mean puts 1 − ε on the true
     /// state and ε/2 on each other state, with the total concentration fixed
     /// (at d = 0 and concentration 32 this is Dirichlet(30, 1, 1)).
+    #[default]
     DirichletMean,
     /// With probability ε the sensor reports a wrong label (truly empty: Occupy or
     /// Unknown, ε/2 each; truly occupied: Empty), otherwise the true one; the mass

@@ -13,12 +13,13 @@ pub struct Fusion {
 }
 
 /// Fusion methods as named in scenario files.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum FusionMethod {
     /// Bayesian log-odds occupancy fusion of each source's pignistic probability.
     Bayes,
     /// The standard Dempster rule of combination (seed 001, eq. 1).
+    #[default]
     Dempster,
     /// The distance-weighted Dempster rule (seed 001, §III-B) on every cell.
     DistanceWeighted,
@@ -85,11 +86,12 @@ pub struct Weighting {
 }
 
 /// How reliability weights wᵢ ∝ 1/dᵢ are scaled before the power transform mᵢ^wᵢ.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum WeightScaling {
     /// As the paper writes it: wᵢ = (1/dᵢ) / Σⱼ(1/dⱼ), so the weights sum to 1.
     /// Equal distances give wᵢ = 1/n, which flattens every source.
+    #[default]
     SumToOne,
     /// wᵢ = n·(1/dᵢ) / Σⱼ(1/dⱼ): weights average 1; nearer sources are sharpened
     /// (w > 1), farther ones flattened. Equal distances give the standard rule with
@@ -102,12 +104,13 @@ pub enum WeightScaling {
 }
 
 /// How the two-source weighted rule extends to n sources (the paper writes only two).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum SourceCombination {
     /// Weights are computed over all n sources of the cell, each source is
     /// transformed once, and the transformed sources are combined with the
     /// (associative) standard rule. For n = 2 this is the paper's rule.
+    #[default]
     AllAtOnce,
     /// Sources are folded pairwise in sensor order with the paper's two-source
     /// rule; a fused result carries the reliability 1/d₁ + 1/d₂ of its inputs.
@@ -125,10 +128,11 @@ pub struct Switch {
 }
 
 /// How the hybrid switch compares the distances of a cell's sources.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum SwitchMeasure {
     /// max dᵢ − min dᵢ, metres.
+    #[default]
     Difference,
     /// max dᵢ / min dᵢ, dimensionless (≥ 1).
     Ratio,

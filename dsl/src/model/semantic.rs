@@ -102,41 +102,45 @@ pub struct Driving {
 }
 
 /// Car-following models.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Following {
     /// Vehicles ignore each other.
+    #[default]
     None,
     /// The Intelligent Driver Model (Treiber, Hennecke, Helbing 2000).
     Idm,
 }
 
 /// Which objects the risk layer predicts.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum RiskScope {
     /// Objects the interaction-relevance layer labelled (seed 002: "for each relevant vehicle").
+    #[default]
     Relevant,
     /// Every proximate vehicle and crossing pedestrian.
     All,
 }
 
 /// What a roadside unit perceives.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum RsuSight {
     /// Every object within its sensors' range (seed 002's circular region).
+    #[default]
     Range,
     /// Its sensors' range, field of view and line of sight.
     LineOfSight,
 }
 
 /// Which RSU cycles the transmitted and labelled shares count.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum ShareCycles {
     /// Cycles with the ego within range of one of the RSU's sensors (ours: seed
     /// 002 places RSUs along the ego's way, so the ego is always served).
+    #[default]
     EgoInRange,
     /// Every cycle of the run, wherever the ego is.
     All,

@@ -120,21 +120,23 @@ impl AgentKind {
 }
 
 /// Direction of travel on a roundabout.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Direction {
     /// Counter-clockwise (right-hand traffic).
+    #[default]
     Ccw,
     /// Clockwise (left-hand traffic).
     Cw,
 }
 
 /// How an agent estimates its own pose.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum PoseFilter {
     /// A Kalman filter on (x, y, θ): prediction from its own motion, update with
     /// each self-reported measurement (seed 000).
+    #[default]
     Kalman,
     /// The raw measurement, unfiltered.
     None,

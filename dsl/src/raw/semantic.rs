@@ -1,127 +1,12 @@
-//! The sections of seed 002's infrastructure-assisted ego: generated traffic,
-//! crosswalks and interaction areas, driving behaviour, the V2X link and the
-//! roadside unit's semantic pipeline.
+//! The roadside units' semantic pipeline for an assisted ego (seed 002): the
+//! interaction areas it watches, its layers' settings, the ego's caution and the
+//! ETSI baseline it is compared with.
 
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
-use super::RawRegion;
-use crate::model::{Following, PathLossModel, RiskScope, RsuSight, ShareCycles};
-
-/// Background traffic generated on declared routes and crosswalks, deterministic
-/// for the scenario's seed.
-#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields, expecting = "a traffic mapping")]
-#[schemars(rename = "Traffic")]
-pub(crate) struct RawTraffic {
-    /// Vehicles on routes.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub vehicles: Option<RawVehicleTraffic>,
-    /// Pedestrians crossing at every crosswalk.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub pedestrians: Option<RawPedestrianTraffic>,
-}
-
-/// Vehicles generated on routes.
-#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
-#[serde(
-    deny_unknown_fields,
-    expecting = "a vehicle traffic mapping with `density_per_km` and `routes`"
-)]
-#[schemars(rename = "VehicleTraffic")]
-pub(crate) struct RawVehicleTraffic {
-    /// Mean number of vehicles per km of each route, kept by inflow at its start.
-    pub density_per_km: f64,
-    /// The routes traffic drives, each a list of road ids like an agent's `route`.
-    pub routes: Vec<Vec<String>>,
-    /// Share of drivers who ignore speed limits (0–1); seed 002 uses 0.4.
-    #[serde(default)]
-    pub non_compliant: f64,
-    /// How much faster than the limit a non-compliant driver wants to go: its
-    /// limit factor is drawn uniformly from this range [low, high].
-    #[serde(default = "default_overspeed")]
-    pub overspeed_factor: [f64; 2],
-    /// Share of each kind among generated vehicles; need not sum to 1.
-    #[serde(default)]
-    pub mix: RawMix,
-}
-
-fn default_overspeed() -> [f64; 2] {
-    [1.2, 1.5]
-}
-
-/// Relative frequencies of vehicle kinds.
-#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields, expecting = "a mix mapping")]
-#[schemars(rename = "Mix")]
-pub(crate) struct RawMix {
-    /// Passenger cars.
-    #[serde(default)]
-    pub car: f64,
-    /// Trucks.
-    #[serde(default)]
-    pub truck: f64,
-    /// Buses.
-    #[serde(default)]
-    pub bus: f64,
-    /// Motorbikes.
-    #[serde(default)]
-    pub motorbike: f64,
-}
-
-impl Default for RawMix {
-    fn default() -> Self {
-        Self {
-            car: 1.0,
-            truck: 0.0,
-            bus: 0.0,
-            motorbike: 0.0,
-        }
-    }
-}
-
-/// Pedestrians crossing at crosswalks.
-#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields, expecting = "a pedestrian traffic mapping with `per_minute`")]
-#[schemars(rename = "PedestrianTraffic")]
-pub(crate) struct RawPedestrianTraffic {
-    /// Mean arrivals per minute at each crosswalk (a Poisson process).
-    pub per_minute: f64,
-    /// Walking speed, m/s.
-    #[serde(default = "default_walking_speed")]
-    pub speed: f64,
-    /// How far before the crosswalk a pedestrian appears on the pavement, metres.
-    #[serde(default = "default_approach")]
-    pub approach: f64,
-}
-
-fn default_walking_speed() -> f64 {
-    1.3
-}
-
-fn default_approach() -> f64 {
-    5.0
-}
-
-/// A pedestrian crossing: a straight walk from one kerb to the other.
-#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields, expecting = "a crosswalk mapping with `id`, `from` and `to`")]
-#[schemars(rename = "Crosswalk")]
-pub(crate) struct RawCrosswalk {
-    /// Unique id.
-    pub id: String,
-    /// One kerb [x, y], metres.
-    pub from: [f64; 2],
-    /// The other kerb [x, y], metres.
-    pub to: [f64; 2],
-    /// Width across the walking direction, metres.
-    #[serde(default = "default_crosswalk_width")]
-    pub width: f64,
-}
-
-fn default_crosswalk_width() -> f64 {
-    4.0
-}
+use super::perception::RawRegion;
+use crate::model::{RiskScope, RsuSight, ShareCycles};
 
 /// A region around a conflict zone (junction, roundabout entry, crossing).
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
@@ -139,148 +24,6 @@ pub(crate) struct RawInteractionArea {
     /// A disc.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub circle: Option<RawRegion>,
-}
-
-/// How vehicles keep their distance.
-#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields, expecting = "a driving mapping")]
-#[schemars(rename = "Driving")]
-pub(crate) struct RawDriving {
-    /// `none`: vehicles ignore each other; `idm`: the Intelligent Driver Model
-    /// behind the closest vehicle ahead in the lane.
-    #[serde(default = "default_following")]
-    pub following: Following,
-    /// IDM desired time headway, seconds.
-    #[serde(default = "default_headway")]
-    pub headway: f64,
-    /// IDM gap kept when standing, metres.
-    #[serde(default = "default_min_gap")]
-    pub min_gap: f64,
-    /// IDM comfortable deceleration, m/s².
-    #[serde(default = "default_deceleration")]
-    pub deceleration: f64,
-}
-
-impl Default for RawDriving {
-    fn default() -> Self {
-        Self {
-            following: default_following(),
-            headway: default_headway(),
-            min_gap: default_min_gap(),
-            deceleration: default_deceleration(),
-        }
-    }
-}
-
-fn default_following() -> Following {
-    Following::None
-}
-
-fn default_headway() -> f64 {
-    1.5
-}
-
-fn default_min_gap() -> f64 {
-    2.0
-}
-
-fn default_deceleration() -> f64 {
-    3.0
-}
-
-/// V2X assumptions.
-#[derive(Debug, Clone, Default, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields, expecting = "a v2x mapping")]
-#[schemars(rename = "V2x")]
-pub(crate) struct RawV2x {
-    /// Share of generated vehicles that are connected (0–1); seed 002 uses 0.
-    #[serde(default)]
-    pub penetration: f64,
-    /// Delay from sending to delivery, seconds, besides propagation.
-    #[serde(default)]
-    pub latency: f64,
-    /// The radio channel.
-    #[serde(default)]
-    pub channel: RawChannel,
-}
-
-/// The radio channel (defaults: seed 002 and 3GPP TR 36.885).
-#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields, expecting = "a channel mapping")]
-#[schemars(rename = "Channel")]
-pub(crate) struct RawChannel {
-    /// Path-loss model.
-    #[serde(default = "default_path_loss")]
-    pub model: PathLossModel,
-    /// Transmit power, dBm.
-    #[serde(default = "default_tx_power")]
-    pub tx_power_dbm: f64,
-    /// σ of the log-normal shadowing on a line-of-sight link, dB.
-    #[serde(default = "default_shadowing")]
-    pub shadowing_sigma_db: f64,
-    /// σ of the shadowing on a link an occluder blocks, dB.
-    #[serde(default = "default_nlos_shadowing")]
-    pub nlos_shadowing_sigma_db: f64,
-    /// Fixed implementation losses, dB.
-    #[serde(default = "default_device_loss")]
-    pub device_loss_db: f64,
-    /// Receiver sensitivity, dBm.
-    #[serde(default = "default_sensitivity")]
-    pub sensitivity_dbm: f64,
-    /// Carrier frequency, GHz.
-    #[serde(default = "default_carrier")]
-    pub carrier_ghz: f64,
-    /// Antenna height of vehicles and pedestrians, metres.
-    #[serde(default = "default_vehicle_antenna")]
-    pub vehicle_antenna_m: f64,
-    /// Antenna height of roadside units, metres.
-    #[serde(default = "default_rsu_antenna")]
-    pub rsu_antenna_m: f64,
-}
-
-impl Default for RawChannel {
-    fn default() -> Self {
-        Self {
-            model: default_path_loss(),
-            tx_power_dbm: default_tx_power(),
-            shadowing_sigma_db: default_shadowing(),
-            nlos_shadowing_sigma_db: default_nlos_shadowing(),
-            device_loss_db: default_device_loss(),
-            sensitivity_dbm: default_sensitivity(),
-            carrier_ghz: default_carrier(),
-            vehicle_antenna_m: default_vehicle_antenna(),
-            rsu_antenna_m: default_rsu_antenna(),
-        }
-    }
-}
-
-// Serde defaults must be functions; each reads the model's one default.
-fn default_path_loss() -> PathLossModel {
-    crate::model::Channel::default().model
-}
-fn default_tx_power() -> f64 {
-    crate::model::Channel::default().tx_power_dbm
-}
-fn default_shadowing() -> f64 {
-    crate::model::Channel::default().shadowing_sigma_db
-}
-fn default_nlos_shadowing() -> f64 {
-    crate::model::Channel::default().nlos_shadowing_sigma_db
-}
-fn default_device_loss() -> f64 {
-    crate::model::Channel::default().device_loss_db
-}
-fn default_sensitivity() -> f64 {
-    crate::model::Channel::default().sensitivity_dbm
-}
-fn default_carrier() -> f64 {
-    crate::model::Channel::default().carrier_ghz
-}
-fn default_vehicle_antenna() -> f64 {
-    crate::model::Channel::default().vehicle_antenna_m
-}
-fn default_rsu_antenna() -> f64 {
-    crate::model::Channel::default().rsu_antenna_m
 }
 
 /// The roadside units' semantic pipeline (seed 002, section III).
@@ -315,12 +58,12 @@ pub(crate) struct RawSemantic {
     /// Which objects the risk layer predicts: `relevant` (those the interaction
     /// layer labelled, as seed 002 writes) or `all` proximate vehicles and crossing
     /// pedestrians.
-    #[serde(default = "default_risk_scope")]
+    #[serde(default)]
     pub risk_for: RiskScope,
     /// What an RSU perceives: `range` (everything within its sensors' range, as
     /// seed 002's circular region) or `line_of_sight` (its sensors' field of view
     /// and occlusion, like a vehicle's).
-    #[serde(default = "default_rsu_sight")]
+    #[serde(default)]
     pub rsu_sight: RsuSight,
     /// How long the LDM keeps an object's history, seconds (at least the overspeed
     /// window).
@@ -334,7 +77,7 @@ pub(crate) struct RawSemantic {
     pub baseline: RawBaseline,
     /// Which RSU cycles the transmitted and labelled shares count: `ego_in_range`
     /// (the ego within range of one of the RSU's sensors) or `all`.
-    #[serde(default = "default_shares_over")]
+    #[serde(default)]
     pub shares_over: ShareCycles,
     /// Independent runs pooled into each point's measurements (traffic, detections
     /// and packet losses drawn anew; run 0 uses the scenario's seed).
@@ -345,138 +88,96 @@ pub(crate) struct RawSemantic {
 fn default_proximity() -> f64 {
     50.0
 }
+
 fn default_horizon() -> f64 {
     3.0
 }
+
 fn default_d_min() -> f64 {
     2.0
 }
+
 fn default_hypotheses() -> Vec<f64> {
     vec![0.7, 1.0, 1.1]
 }
+
 fn default_rate() -> f64 {
     10.0
 }
-fn default_risk_scope() -> RiskScope {
-    RiskScope::Relevant
-}
-fn default_rsu_sight() -> RsuSight {
-    RsuSight::Range
-}
+
 fn default_history() -> f64 {
     5.0
 }
-fn default_shares_over() -> ShareCycles {
-    ShareCycles::EgoInRange
-}
+
 fn default_runs() -> u32 {
     1
 }
 
 /// The dangerous-driver window (seed 002, eq. 2).
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields, expecting = "an overspeed mapping")]
+#[serde(default, deny_unknown_fields, expecting = "an overspeed mapping")]
 #[schemars(rename = "Overspeed")]
 pub(crate) struct RawOverspeed {
     /// Window T_w, seconds.
-    #[serde(default = "default_window")]
     pub window: f64,
     /// Threshold δ_min on the mean violation, m/s.
-    #[serde(default = "default_threshold")]
     pub threshold: f64,
 }
 
 impl Default for RawOverspeed {
     fn default() -> Self {
         Self {
-            window: default_window(),
-            threshold: default_threshold(),
+            window: 5.0,
+            threshold: 2.0,
         }
     }
 }
 
-fn default_window() -> f64 {
-    5.0
-}
-fn default_threshold() -> f64 {
-    2.0
-}
-
 /// The ego's reaction to an emergency.
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields, expecting = "a caution mapping")]
+#[serde(default, deny_unknown_fields, expecting = "a caution mapping")]
 #[schemars(rename = "Caution")]
 pub(crate) struct RawCaution {
     /// Time headway the ego keeps while cautious, seconds (with `driving.following: idm`).
-    #[serde(default = "default_cautious_headway")]
     pub headway: f64,
     /// Share of its desired speed the ego keeps while cautious (0–1).
-    #[serde(default = "default_cautious_speed")]
     pub speed_factor: f64,
     /// How long the ego stays cautious after the last flagged conflict, seconds.
-    #[serde(default = "default_hold")]
     pub hold: f64,
 }
 
 impl Default for RawCaution {
     fn default() -> Self {
         Self {
-            headway: default_cautious_headway(),
-            speed_factor: default_cautious_speed(),
-            hold: default_hold(),
+            headway: 2.5,
+            speed_factor: 0.8,
+            hold: 3.0,
         }
     }
 }
 
-fn default_cautious_headway() -> f64 {
-    2.5
-}
-fn default_cautious_speed() -> f64 {
-    0.8
-}
-fn default_hold() -> f64 {
-    3.0
-}
-
 /// ETSI TS 103 324 object inclusion rules for the baseline sender.
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields, expecting = "a baseline mapping")]
+#[serde(default, deny_unknown_fields, expecting = "a baseline mapping")]
 #[schemars(rename = "Baseline")]
 pub(crate) struct RawBaseline {
     /// Include an object that moved more than this since it was last sent, metres.
-    #[serde(default = "default_baseline_distance")]
     pub distance: f64,
     /// … or whose speed changed by more than this, m/s.
-    #[serde(default = "default_baseline_speed")]
     pub speed: f64,
     /// … or whose heading changed by more than this, degrees.
-    #[serde(default = "default_baseline_heading")]
     pub heading_deg: f64,
     /// … or that was last sent at least this long ago, seconds.
-    #[serde(default = "default_baseline_interval")]
     pub interval: f64,
 }
 
 impl Default for RawBaseline {
     fn default() -> Self {
         Self {
-            distance: default_baseline_distance(),
-            speed: default_baseline_speed(),
-            heading_deg: default_baseline_heading(),
-            interval: default_baseline_interval(),
+            distance: 4.0,
+            speed: 0.5,
+            heading_deg: 4.0,
+            interval: 1.0,
         }
     }
-}
-
-fn default_baseline_distance() -> f64 {
-    4.0
-}
-fn default_baseline_speed() -> f64 {
-    0.5
-}
-fn default_baseline_heading() -> f64 {
-    4.0
-}
-fn default_baseline_interval() -> f64 {
-    1.0
 }

@@ -3,11 +3,12 @@
 
 use std::collections::HashSet;
 
-use super::context::Context;
-use super::setup::whole_multiple;
-use super::traces::Imported;
-use super::world::{counter_clockwise, distinct_from_imported, finite_points, known_names, route_path, unique_ids};
+use super::routes::route_path;
+use crate::compile::checks::{distinct_from_imported, finite_points, known_names, unique_ids, whole_multiple};
+use crate::compile::context::Context;
+use crate::compile::traces::Imported;
 use crate::error::ErrorKind;
+use crate::geometry::counter_clockwise;
 use crate::model::{
     Agent, AgentKind, Area, Baseline, Caution, Channel, Crosswalk, Driving, InteractionArea, PathLossModel,
     PedestrianTraffic, Road, Semantic, Traffic, TrafficRoute, V2x, VehicleTraffic,

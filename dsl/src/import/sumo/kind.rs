@@ -19,7 +19,7 @@ use crate::AgentKind;
 /// nearest footprint.
 ///
 /// ```
-/// use sightline_dsl::{AgentKind, sumo::kind_of};
+/// use sightline_dsl::{AgentKind, import::sumo::kind_of};
 /// assert_eq!(kind_of("city_Bus"), AgentKind::Bus);
 /// assert_eq!(kind_of("DEFAULT_BIKETYPE"), AgentKind::Motorbike);
 /// assert_eq!(kind_of("DEFAULT_VEHTYPE"), AgentKind::Car);

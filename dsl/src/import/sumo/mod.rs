@@ -6,7 +6,7 @@
 //! Geographic coordinates are not supported.
 //!
 //! ```
-//! use sightline_dsl::{AgentKind, sumo};
+//! use sightline_dsl::{AgentKind, import::sumo};
 //! let fcd = sumo::parse_fcd(r#"<fcd-export><timestep time="0.00">
 //!     <vehicle id="v0" x="5.0" y="1.6" angle="90.00" type="bus" speed="8.0" lane="AB_0"/>
 //! </timestep></fcd-export>"#).unwrap();

@@ -1,0 +1,84 @@
+//! Checks the sections share: ids unique in a list and distinct from imported
+//! ones, finite points, a length in whole steps, and the known names an error
+//! about a dangling reference lists.
+
+use std::collections::{HashMap, HashSet};
+
+use super::context::{Context, locate};
+use crate::de::closest;
+use crate::error::{ErrorKind, Location};
+use crate::path::Path;
+
+/// Records a duplicate-id error for every repeated id of a list; returns whether all are unique.
+pub(super) fn unique_ids<'a>(ctx: &mut Context<'_>, list: &Path, ids: impl Iterator<Item = &'a str>) -> bool {
+    let mut first: HashMap<&str, Location> = HashMap::new();
+    let mut ok = true;
+    for (i, id) in ids.enumerate() {
+        let path = list.index(i).key("id");
+        if let Some(&location) = first.get(id) {
+            ctx.error(
+                &path,
+                ErrorKind::DuplicateId {
+                    id: id.to_string(),
+                    first: location,
+                },
+            );
+            ok = false;
+        } else {
+            first.insert(id, locate(ctx.tree, &path));
+        }
+    }
+    ok
+}
+
+/// Records an error at `list[i].id` for each declared id that something imported
+/// (`what`: an edge of `traces.net`, …) also has; returns whether none does.
+pub(super) fn distinct_from_imported<'a>(
+    ctx: &mut Context<'_>,
+    list: &Path,
+    declared: impl Iterator<Item = &'a str>,
+    imported: &HashSet<&str>,
+    what: &str,
+) -> bool {
+    let mut ok = true;
+    for (i, id) in declared.enumerate() {
+        if imported.contains(id) {
+            ctx.error(
+                &list.index(i).key("id"),
+                ErrorKind::Invalid(format!("`{id}` is also the id of {what}; choose another id")),
+            );
+            ok = false;
+        }
+    }
+    ok
+}
+
+pub(super) fn finite_points(ctx: &mut Context<'_>, path: &Path, points: &[[f64; 2]]) -> bool {
+    let mut ok = true;
+    for (i, point) in points.iter().enumerate() {
+        for (axis, &v) in point.iter().enumerate() {
+            ok &= ctx.finite(&path.index(i).index(axis), v);
+        }
+    }
+    ok
+}
+
+/// The number of whole `step`s in `length`, or `None` when it is not whole.
+pub(super) fn whole_multiple(length: f64, step: f64) -> Option<f64> {
+    let n = length / step;
+    let rounded = n.round();
+    ((n - rounded).abs() <= 1e-9 * rounded.max(1.0) && rounded >= 1.0).then_some(rounded)
+}
+
+/// "it has a, b" (or "it has none"), and the closest name when `name` looks like a typo of one.
+pub(super) fn known_names(name: &str, known: &[&str]) -> String {
+    let list = if known.is_empty() {
+        "it has none".into()
+    } else {
+        format!("it has {}", known.join(", "))
+    };
+    match closest(name, known.iter().copied()) {
+        Some(close) => format!("{list}; did you mean `{close}`?"),
+        None => list,
+    }
+}

@@ -1,0 +1,128 @@
+//! A world assembled from its sections, each compiled once and in the order
+//! they depend on each other, and the run's number of steps.
+
+use super::agents::{Scene, agents};
+use super::occluders::occluders;
+use super::perception::perception_of;
+use super::roads::roads;
+use super::semantic::{crosswalks, driving, interaction_areas, semantic_of, traffic, v2x};
+use super::sensors::{localization, sensor_models};
+use crate::compile::checks::whole_multiple;
+use crate::compile::context::Context;
+use crate::compile::traces::Imported;
+use crate::error::ErrorKind;
+use crate::model::World;
+use crate::path::Path;
+use crate::raw::{RawScenario, RawTime};
+
+/// The most steps a run may have.
+pub const MAX_STEPS: usize = 100_000;
+
+/// Compiles the world sections of a scenario that has no `field`, with what its
+/// `traces` import (`None` when it has none).
+pub(crate) fn world(ctx: &mut Context<'_>, raw: &RawScenario, imported: Option<&Imported>) -> Option<World> {
+    let root = Path::root();
+    let Some(time) = &raw.time else {
+        ctx.error(
+            &root,
+            ErrorKind::Invalid(
+                "a scenario simulates a `field` or a world; a world needs `time: { duration, step }`".into(),
+            ),
+        );
+        return None;
+    };
+    let steps = time_steps(ctx, time, &root.key("time"));
+    let sensors = sensor_models(ctx, raw);
+    let localization = localization(ctx, raw);
+    let driving = driving(ctx, &raw.driving);
+    let v2x = v2x(ctx, &raw.v2x);
+    if raw.traces.is_some() && imported.is_none() {
+        // A file of `traces` failed to load, and its errors are recorded: what
+        // the sections that depend on it would say without it would mislead.
+        return None;
+    }
+    let roads = roads(ctx, &raw.roads, imported);
+    let occluders = occluders(ctx, &raw.occluders, imported);
+    let scene = Scene {
+        roads: roads.as_deref().unwrap_or_default(),
+        sensors: &sensors?,
+        imported,
+        duration: time.duration,
+    };
+    let agents = agents(ctx, &raw.agents, &scene);
+    let perception = match (&raw.perception, &agents, steps) {
+        (Some(perception), Some((agents, _)), Some(steps)) => {
+            perception_of(ctx, perception, agents, time.step, steps).map(Some)
+        }
+        (None, _, _) => Some(None),
+        _ => None,
+    };
+    let roads_known = roads.as_deref().unwrap_or_default();
+    let crosswalks = crosswalks(ctx, &raw.crosswalks);
+    let interaction_areas = interaction_areas(ctx, &raw.interaction_areas, imported);
+    let traffic = raw
+        .traffic
+        .as_ref()
+        .map(|t| traffic(ctx, t, roads_known, crosswalks.as_deref().unwrap_or_default()));
+    // A world measuring collective perception refuses `semantic` (see `kind`).
+    let semantic = match (&raw.semantic, &agents) {
+        (Some(_), _) if raw.perception.is_some() => Some(None),
+        (Some(semantic), Some((agents, _))) => semantic_of(ctx, semantic, agents, time.step).map(Some),
+        (None, _) => Some(None),
+        _ => None,
+    };
+    if raw.perception.is_none() && raw.semantic.is_none() {
+        ctx.error(
+            &root,
+            ErrorKind::Invalid(
+                "a world measures collective perception (`perception: { ego: … }`) or the semantic pipeline \
+                 (`semantic: { ego: … }`)"
+                    .into(),
+            ),
+        );
+        return None;
+    }
+    Some(World {
+        step: time.step,
+        steps: steps?,
+        roads: roads?,
+        occluders: occluders?,
+        imported: agents.as_ref().map_or(0, |(_, imported)| *imported),
+        agents: agents?.0,
+        localization: localization?,
+        perception: perception?,
+        traffic: traffic.map_or(Some(None), |t| t.map(Some))?,
+        crosswalks: crosswalks?,
+        interaction_areas: interaction_areas?,
+        driving: driving?,
+        v2x: v2x?,
+        semantic: semantic?,
+    })
+}
+
+fn time_steps(ctx: &mut Context<'_>, time: &RawTime, path: &Path) -> Option<usize> {
+    let ok = ctx.positive(&path.key("duration"), time.duration) & ctx.positive(&path.key("step"), time.step);
+    if !ok {
+        return None;
+    }
+    match whole_multiple(time.duration, time.step) {
+        Some(n) if n <= MAX_STEPS as f64 => Some(n as usize),
+        Some(n) => {
+            ctx.error(
+                path,
+                ErrorKind::TooLarge(format!("{n:.0} steps exceed the limit of {MAX_STEPS}")),
+            );
+            None
+        }
+        None => {
+            ctx.error(
+                &path.key("duration"),
+                ErrorKind::OutOfRange {
+                    expected: format!("a whole number of {} s steps", time.step),
+                    found: time.duration.to_string(),
+                },
+            );
+            None
+        }
+    }
+}

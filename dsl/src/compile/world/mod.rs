@@ -1,0 +1,15 @@
+//! The world sections: ids, ranges, geometry resolved into lane polylines, routes
+//! checked for connectivity and resolved into one path per vehicle, and seed
+//! 002's sections (`semantic`). `assemble` compiles them in order into a
+//! [`World`](crate::World).
+
+mod agents;
+mod assemble;
+mod occluders;
+mod perception;
+mod roads;
+mod routes;
+mod semantic;
+mod sensors;
+
+pub(super) use assemble::world;

@@ -1,0 +1,130 @@
+//! Roads: the declared ones resolved into lane centrelines (a polyline, an arc
+//! or a roundabout's ring), then those of `traces.net`.
+
+use std::collections::HashSet;
+
+use crate::compile::checks::{distinct_from_imported, finite_points, unique_ids};
+use crate::compile::context::Context;
+use crate::compile::traces::Imported;
+use crate::error::ErrorKind;
+use crate::geometry::{MAX_CHORD_ERROR, Polyline, arc};
+use crate::model::{Direction, LaneLink, Road};
+use crate::path::Path;
+use crate::raw::RawRoad;
+
+/// The declared roads, then those of `traces.net`.
+pub(super) fn roads(ctx: &mut Context<'_>, raw: &[RawRoad], imported: Option<&Imported>) -> Option<Vec<Road>> {
+    let list = Path::root().key("roads");
+    let net_roads = imported.map_or(&[][..], |i| &i.roads);
+    let net_ids: HashSet<&str> = net_roads.iter().map(|r| r.id.as_str()).collect();
+    let mut ok = unique_ids(ctx, &list, raw.iter().map(|r| r.id.as_str()))
+        & distinct_from_imported(
+            ctx,
+            &list,
+            raw.iter().map(|r| r.id.as_str()),
+            &net_ids,
+            "an edge of `traces.net`",
+        );
+    let mut roads = Vec::new();
+    for (i, road) in raw.iter().enumerate() {
+        let path = list.index(i);
+        let shape_ok = ctx.expect(road.lanes >= 1, &path.key("lanes"), "at least 1", road.lanes.into())
+            & ctx.positive(&path.key("lane_width"), road.lane_width)
+            & ctx.positive(&path.key("speed_limit"), road.speed_limit);
+        match (shape_ok, reference_line(ctx, road, &path)) {
+            (true, Some(reference)) => {
+                let lanes = (0..road.lanes)
+                    .map(|k| reference.offset_left(f64::from(k) * road.lane_width))
+                    .collect();
+                roads.push(Road {
+                    id: road.id.clone(),
+                    lanes,
+                    lane_width: road.lane_width,
+                    speed_limit: road.speed_limit,
+                    links: Vec::new(),
+                });
+            }
+            _ => ok = false,
+        }
+    }
+    // The network's links index its own roads, which follow the declared ones.
+    let first = roads.len();
+    roads.extend(net_roads.iter().map(|road| {
+        Road {
+            links: road
+                .links
+                .iter()
+                .map(|link| LaneLink {
+                    to_road: first + link.to_road,
+                    ..link.clone()
+                })
+                .collect(),
+            ..road.clone()
+        }
+    }));
+    ok.then_some(roads)
+}
+
+/// Lane 0's centreline of a road.
+fn reference_line(ctx: &mut Context<'_>, road: &RawRoad, path: &Path) -> Option<Polyline> {
+    let given = [road.polyline.is_some(), road.arc.is_some(), road.roundabout.is_some()];
+    if given.iter().filter(|&&g| g).count() != 1 {
+        ctx.error(
+            path,
+            ErrorKind::Invalid("give exactly one of `polyline`, `arc`, `roundabout`".into()),
+        );
+        return None;
+    }
+    if let Some(points) = &road.polyline {
+        let line_path = path.key("polyline");
+        if !finite_points(ctx, &line_path, points) {
+            return None;
+        }
+        let line = Polyline::new(points.iter().copied());
+        if line.is_none() {
+            ctx.error(
+                &line_path,
+                ErrorKind::Invalid("a polyline needs two distinct points".into()),
+            );
+        }
+        return line;
+    }
+    if let Some(a) = &road.arc {
+        let arc_path = path.key("arc");
+        let ok = finite_points(ctx, &arc_path.key("center"), &[a.center])
+            & ctx.positive(&arc_path.key("radius"), a.radius)
+            & ctx.finite(&arc_path.key("start_deg"), a.start_deg)
+            & ctx.expect(
+                a.end_deg.is_finite() && a.end_deg != a.start_deg && (a.end_deg - a.start_deg).abs() <= 360.0,
+                &arc_path.key("end_deg"),
+                "an angle other than start_deg, within 360° of it",
+                a.end_deg,
+            );
+        return ok
+            .then(|| {
+                Polyline::new(arc(
+                    a.center,
+                    a.radius,
+                    a.start_deg.to_radians(),
+                    a.end_deg.to_radians(),
+                ))
+            })
+            .flatten();
+    }
+    let ring = road.roundabout.as_ref()?;
+    let ring_path = path.key("roundabout");
+    let inner = ring.radius - f64::from(road.lanes - 1) * road.lane_width;
+    let ok = finite_points(ctx, &ring_path.key("center"), &[ring.center])
+        & ctx.expect(
+            ring.radius.is_finite() && inner > MAX_CHORD_ERROR,
+            &ring_path.key("radius"),
+            "a radius larger than the inner lanes take",
+            ring.radius,
+        );
+    let sweep = match ring.direction {
+        Direction::Ccw => std::f64::consts::TAU,
+        Direction::Cw => -std::f64::consts::TAU,
+    };
+    ok.then(|| Polyline::new(arc(ring.center, ring.radius, 0.0, sweep)))
+        .flatten()
+}

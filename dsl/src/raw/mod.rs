@@ -1,0 +1,36 @@
+//! The YAML as written: a serde mirror of the scenario file, nothing resolved,
+//! one module per group of sections.
+//!
+//! Doc comments here become the JSON Schema's descriptions (what editors show on
+//! hover) and the generated reference in `docs/reference.md`, so each states its
+//! unit and default. Every struct denies unknown keys. A struct whose keys are
+//! all optional takes its defaults from one `Default` impl (a container
+//! `#[serde(default)]`); a struct with a required key keeps a default function
+//! per defaulted key, since serde has no container default that leaves a key
+//! required. Ranges, ids and references are checked in `compile`.
+
+mod agents;
+mod field;
+mod fusion;
+mod perception;
+mod record;
+mod requirements;
+mod scenario;
+mod semantic;
+mod sensors;
+mod traffic;
+mod v2x;
+mod world;
+
+pub(crate) use agents::RawAgent;
+pub(crate) use field::{RawField, RawLayout, RawMasses, RawTruth};
+pub(crate) use fusion::{RawDecision, RawFusion, RawGrid};
+pub(crate) use perception::RawPerception;
+pub(crate) use record::RawRecord;
+pub(crate) use requirements::{RawCheck, RawReference, RawRequirement};
+pub(crate) use scenario::RawScenario;
+pub(crate) use semantic::{RawInteractionArea, RawSemantic};
+pub(crate) use sensors::RawSensorModel;
+pub(crate) use traffic::{RawCrosswalk, RawDriving, RawTraffic};
+pub(crate) use v2x::RawV2x;
+pub(crate) use world::{RawOccluder, RawRoad, RawTime, RawTraces};

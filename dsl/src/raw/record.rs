@@ -1,0 +1,31 @@
+//! What `sightline run` records into `run.mcap`.
+
+use std::collections::BTreeMap;
+
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// What `sightline run` records into `run.mcap`: one sweep point, step by
+/// step (the scene, detections, fused grids, V2X packets, semantic messages),
+/// and every point's metrics and verdicts. Give `point` or `where`, not both;
+/// neither records the first point.
+#[derive(Debug, Clone, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(default, deny_unknown_fields, expecting = "a record mapping")]
+#[schemars(rename = "Record")]
+pub(crate) struct RawRecord {
+    /// The recorded sweep point by index (0: the first point, in the order of
+    /// results.json's `sweep`, which lists each distinct configuration once).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub point: Option<u64>,
+    /// The recorded sweep point by its settings: dotted path → value
+    /// (`perception.cooperating: 6`); the first point that matches.
+    #[serde(rename = "where", skip_serializing_if = "BTreeMap::is_empty")]
+    pub filter: BTreeMap<String, serde_json::Value>,
+    /// Fused grids (probability and uncertainty) recorded per simulated second,
+    /// Hz: every `round(1 / (grid_rate · time.step))` steps, at most every step;
+    /// 0 records none. Default 1.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub grid_rate: Option<f64>,
+    /// Also record each cooperating agent's own grid, at `grid_rate`.
+    pub agent_grids: bool,
+}

@@ -1,0 +1,130 @@
+//! The requirements that must hold, how each is checked, and the published
+//! figures shown beside the measured ones.
+
+use std::collections::BTreeMap;
+
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+use crate::model::{Invariant, Metric, ObjectProperty, RateBound, Signal};
+
+/// A requirement: an id, its text, and how it is checked.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(
+    deny_unknown_fields,
+    expecting = "a requirement mapping with `id`, `text` and `check`"
+)]
+#[schemars(rename = "Requirement")]
+pub(crate) struct RawRequirement {
+    /// Unique id: letters, digits, `-`, `_`, `.`.
+    pub id: String,
+    /// The requirement in words.
+    pub text: String,
+    /// How it is checked.
+    pub check: RawCheck,
+    /// Check only at sweep points whose settings match: dotted path → value
+    /// (`fusion.label: Proposed`). Default: every point.
+    #[serde(default, rename = "where")]
+    pub filter: BTreeMap<String, serde_json::Value>,
+    /// Accept a not-exercised verdict (nothing to judge at a point: no object,
+    /// no sample, an uncovered window, fewer samples than `min_samples`) for
+    /// the reason given: the verdict stays `not_exercised` and the report
+    /// prints the reason, but it does not fail the run. Without it a
+    /// not-exercised requirement fails the run.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub accept_not_exercised: Option<String>,
+}
+
+/// A check: a `metric` with `at_least` or `at_most` (optionally over `seeds`), a
+/// `signal` with `always` or `eventually`, a `per_object` property, or an
+/// `invariant`.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, expecting = "a check mapping")]
+#[schemars(rename = "Check")]
+pub(crate) struct RawCheck {
+    /// The metric compared with the threshold.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub metric: Option<Metric>,
+    /// Passes when the metric is at least this value.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub at_least: Option<f64>,
+    /// Passes when the metric is at most this value.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub at_most: Option<f64>,
+    /// An invariant over every fused cell.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub invariant: Option<Invariant>,
+    /// Numerical tolerance of the invariant (≥ 0). Default 1e-9.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tolerance: Option<f64>,
+    /// Check the metric over this many independent seeds (at least 2): the
+    /// point's own seed, then seeds derived from it. It passes only when a
+    /// one-sided confidence bound clears the threshold: of the mean (Student t),
+    /// or with `holds_in`, of the share of seeds at which the threshold holds.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub seeds: Option<u32>,
+    /// Confidence level of the bound, above 0.5 and below 1. Default 0.95.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub confidence: Option<f64>,
+    /// The share of seeds (0–1] at which the threshold must hold, bounded below
+    /// at `confidence`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub holds_in: Option<f64>,
+    /// The bound of that share: `clopper_pearson` (exact, the default) or `wilson`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub method: Option<RateBound>,
+    /// A signal over time, checked with `always` or `eventually`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub signal: Option<Signal>,
+    /// The signal meets the threshold at every step where it is defined.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub always: Option<RawThreshold>,
+    /// The signal meets the threshold at some step where it is defined.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub eventually: Option<RawThreshold>,
+    /// Only the run's first this many seconds count (> 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub within: Option<f64>,
+    /// A property every object that came within d_min of the ego must meet
+    /// (`at_least` or `at_most`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub per_object: Option<ObjectProperty>,
+    /// The fewest samples a point needs for the check to judge it (≥ 1): the
+    /// metric's population (cells, steps, messages, anticipation times…), the
+    /// signal's defined steps in each run, the objects of a per-object check,
+    /// or the fused cells of an invariant. Below it the requirement is not
+    /// exercised at that point. Default 1; 6 for `anticipation_median` and 59
+    /// for `anticipation_p95` (the smallest samples whose extremes bound the
+    /// quantile with 95 % confidence).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub min_samples: Option<u64>,
+}
+
+/// A threshold at each step of a signal: `at_least` or `at_most`.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, expecting = "a threshold mapping with `at_least` or `at_most`")]
+#[schemars(rename = "Threshold")]
+pub(crate) struct RawThreshold {
+    /// The signal is at least this value.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub at_least: Option<f64>,
+    /// The signal is at most this value.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub at_most: Option<f64>,
+}
+
+/// A published figure, shown beside the measured value at the matching sweep points.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, expecting = "a reference mapping")]
+#[schemars(rename = "Reference")]
+pub(crate) struct RawReference {
+    /// Where the figure is published (`Miyata et al., Table III`).
+    pub source: String,
+    /// The metric it reports.
+    pub metric: Metric,
+    /// The sweep points it corresponds to: dotted path → value. Default: every point.
+    #[serde(default, rename = "where")]
+    pub filter: BTreeMap<String, serde_json::Value>,
+    /// The published value.
+    pub value: f64,
+}

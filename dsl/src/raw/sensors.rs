@@ -1,0 +1,104 @@
+//! What agents measure: sensor models (range, field of view, noise, mount) and
+//! how connected agents localize themselves.
+
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+use crate::model::PoseFilter;
+
+/// A sensor model, referred to by agents.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, expecting = "a sensor model mapping")]
+#[schemars(rename = "SensorModel")]
+pub(crate) struct RawSensorModel {
+    /// Range, metres.
+    pub range: f64,
+    /// Horizontal field of view, degrees (360: all around).
+    #[serde(default = "default_fov")]
+    pub fov_deg: f64,
+    /// Mounting pose in the agent frame (x forward, y left).
+    #[serde(default)]
+    pub mount: RawMount,
+    /// Probability that a visible object in range is detected (0–1).
+    #[serde(default = "default_detection_probability")]
+    pub detection_probability: f64,
+    /// Standard deviation of a detection's position error, σ(d) = base + per_m · d
+    /// (seed 002, eq. 1, with a linear σ(d)).
+    #[serde(default)]
+    pub position_noise: RawNoise,
+    /// Standard deviation of the error of a detection's length and width,
+    /// σ(d) = base + per_m · d, metres.
+    #[serde(default)]
+    pub size_noise: RawNoise,
+    /// Standard deviation of a detection's speed error, σ(d) = base + per_m · d, m/s.
+    #[serde(default)]
+    pub velocity_noise: RawNoise,
+    /// Angle between the rays that carve free space, degrees.
+    #[serde(default = "default_ray_spacing")]
+    pub ray_spacing_deg: f64,
+}
+
+fn default_fov() -> f64 {
+    360.0
+}
+
+fn default_detection_probability() -> f64 {
+    1.0
+}
+
+fn default_ray_spacing() -> f64 {
+    0.5
+}
+
+/// A mounting pose in the agent frame.
+#[derive(Debug, Clone, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(default, deny_unknown_fields, expecting = "a mount mapping")]
+#[schemars(rename = "Mount")]
+pub(crate) struct RawMount {
+    /// Forward of the agent's centre, metres.
+    pub x: f64,
+    /// Left of the agent's centre, metres.
+    pub y: f64,
+    /// Yaw relative to the agent's heading, degrees.
+    pub yaw_deg: f64,
+}
+
+/// A distance-dependent standard deviation σ(d) = base + per_m · d.
+#[derive(Debug, Clone, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(default, deny_unknown_fields, expecting = "a noise mapping with `base` and `per_m`")]
+#[schemars(rename = "Noise")]
+pub(crate) struct RawNoise {
+    /// σ at distance 0, metres.
+    pub base: f64,
+    /// Growth of σ per metre of distance.
+    pub per_m: f64,
+}
+
+/// Self-localization of connected agents.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(default, deny_unknown_fields, expecting = "a localization mapping")]
+#[schemars(rename = "Localization")]
+pub(crate) struct RawLocalization {
+    /// σ of each self-reported x and y measurement, metres.
+    pub position_sigma: f64,
+    /// σ of each self-reported heading measurement, degrees.
+    pub heading_sigma_deg: f64,
+    /// How an agent estimates its pose from its measurements.
+    pub filter: PoseFilter,
+    /// Kalman filter: uncertainty the motion model adds to x and y, metres per √s.
+    pub process_position_sigma: f64,
+    /// Kalman filter: uncertainty the motion model adds to the heading, degrees per √s.
+    pub process_heading_sigma_deg: f64,
+}
+
+impl Default for RawLocalization {
+    fn default() -> Self {
+        Self {
+            position_sigma: 0.0,
+            heading_sigma_deg: 0.0,
+            filter: PoseFilter::default(),
+            process_position_sigma: 0.1,
+            process_heading_sigma_deg: 0.5,
+        }
+    }
+}

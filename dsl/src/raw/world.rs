@@ -1,0 +1,136 @@
+//! A world's frame and map: simulated time, the SUMO files it imports, roads
+//! and the occluders that block sight.
+
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+use crate::model::Direction;
+
+/// Simulated time.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, expecting = "a time mapping with `duration` and `step`")]
+#[schemars(rename = "Time")]
+pub(crate) struct RawTime {
+    /// Length of the run, seconds.
+    pub duration: f64,
+    /// Time between steps, seconds; the duration is a whole number of steps.
+    pub step: f64,
+}
+
+/// Files written by the traffic simulator SUMO, in its network coordinates
+/// (metres, x east, y north), which become the scenario's world frame. Paths are
+/// relative to the scenario file's directory.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, expecting = "a traces mapping with `fcd`")]
+#[schemars(rename = "Traces")]
+pub(crate) struct RawTraces {
+    /// SUMO floating car data (`sumo --fcd-output`). Every vehicle and person in
+    /// it becomes an agent replaying its samples, unless a declared agent replays
+    /// it (`trace:`); a vehicle type maps to a kind by its name (see the guide).
+    pub fcd: String,
+    /// A SUMO network (`.net.xml`): its roads become `roads` (lane centrelines
+    /// and speed limits), its connections the roadside units' map, and its
+    /// lanes give traced vehicles their speed limits.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub net: Option<String>,
+    /// SUMO polygons (`.poly.xml`): those of a type in `occluder_types` become
+    /// occluders.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub poly: Option<String>,
+    /// The polygon types that block sight.
+    #[serde(default = "default_occluder_types")]
+    pub occluder_types: Vec<String>,
+    /// With `net`: every junction at least three roads enter becomes an
+    /// interaction area with the junction's outline, named by its id.
+    #[serde(default = "default_junction_areas")]
+    pub junction_areas: bool,
+    /// The trace's time that becomes the scenario's time 0, seconds.
+    #[serde(default)]
+    pub begin: f64,
+}
+
+fn default_occluder_types() -> Vec<String> {
+    vec!["building".into()]
+}
+
+fn default_junction_areas() -> bool {
+    true
+}
+
+/// A directed road: one geometry, its lanes and its speed limit.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, expecting = "a road mapping with `id` and one geometry")]
+#[schemars(rename = "Road")]
+pub(crate) struct RawRoad {
+    /// Unique id, used in routes.
+    pub id: String,
+    /// Centreline of lane 0 as points [[x, y], …], metres, in the direction of travel.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub polyline: Option<Vec<[f64; 2]>>,
+    /// Centreline of lane 0 as a circular arc.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub arc: Option<RawArc>,
+    /// A closed one-way ring: the circulating lane of a roundabout.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub roundabout: Option<RawRoundabout>,
+    /// Number of lanes; lane k lies k lane widths left of lane 0.
+    #[serde(default = "default_lanes")]
+    pub lanes: u32,
+    /// Lane width, metres.
+    #[serde(default = "default_lane_width")]
+    pub lane_width: f64,
+    /// Speed limit, m/s.
+    pub speed_limit: f64,
+}
+
+fn default_lanes() -> u32 {
+    1
+}
+
+fn default_lane_width() -> f64 {
+    3.5
+}
+
+/// A circular arc, counter-clockwise when `end_deg` > `start_deg`.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, expecting = "an arc mapping")]
+#[schemars(rename = "Arc")]
+pub(crate) struct RawArc {
+    /// Centre [x, y], metres.
+    pub center: [f64; 2],
+    /// Radius, metres.
+    pub radius: f64,
+    /// Angle of the first point, degrees counter-clockwise from +x.
+    pub start_deg: f64,
+    /// Angle of the last point, degrees.
+    pub end_deg: f64,
+}
+
+/// A roundabout's circulating lane.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, expecting = "a roundabout mapping with `center` and `radius`")]
+#[schemars(rename = "Roundabout")]
+pub(crate) struct RawRoundabout {
+    /// Centre [x, y], metres.
+    pub center: [f64; 2],
+    /// Radius of lane 0's centreline, metres.
+    pub radius: f64,
+    /// Direction of travel: `ccw` (right-hand traffic) or `cw`.
+    #[serde(default)]
+    pub direction: Direction,
+}
+
+/// A static obstacle to sight: a building or a wall.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, expecting = "an occluder mapping with `id` and `polygon`")]
+#[schemars(rename = "Occluder")]
+pub(crate) struct RawOccluder {
+    /// Unique id.
+    pub id: String,
+    /// Outline [[x, y], …], metres, at least three corners (not repeated at the end).
+    pub polygon: Vec<[f64; 2]>,
+    /// Height, metres. Not modelled: sight and radio are computed in the plane,
+    /// so `check` refuses it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub height: Option<f64>,
+}
