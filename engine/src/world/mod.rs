@@ -5,6 +5,7 @@
 mod following;
 mod fuse;
 mod localization;
+mod measure;
 mod metrics;
 mod motion;
 mod observe;
@@ -13,6 +14,7 @@ mod sight;
 mod simulate;
 mod state;
 mod traced;
+mod truth;
 
 pub use fuse::CellFusion;
 pub use localization::PoseEstimator;
