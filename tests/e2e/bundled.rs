@@ -310,19 +310,33 @@ pub fn every_run() -> [&'static Bundled; 5] {
 }
 
 /// Every bundled scenario's results.json, junit.xml and report.html, byte for
-/// byte (the tool version, git revision and execution redacted), against their
-/// SHA-256 in `tests/golden/bundled.sha256`: a refactoring leaves the evidence
-/// unchanged, and an intended change is reviewed and blessed
+/// byte (the tool version, git revision and execution redacted, and the
+/// recording's SHA-256, which changes with the git revision it records),
+/// against their SHA-256 in `tests/golden/bundled.sha256`: a refactoring leaves
+/// the evidence unchanged, and an intended change is reviewed and blessed
 /// (`SIGHTLINE_BLESS=1 cargo test --test e2e bundled::`).
 #[test]
 fn bundled_evidence_is_unchanged() {
     let mut digests = String::new();
     for run in every_run() {
         let name = run.scenario.trim_start_matches("scenarios/").trim_end_matches(".yaml");
+        let recording = sha256_hex(&run.recording);
+        assert_eq!(run.results["recording"]["sha256"], recording.as_str(), "{name}");
+        let without_recording = |text: String| {
+            assert_eq!(
+                text.matches(&recording).count(),
+                1,
+                "{name}: the recording's SHA-256, once"
+            );
+            text.replace(&recording, "[RECORDING]")
+        };
         for (file, text) in [
-            ("results.json", redact_results_json(&run.results_json)),
+            (
+                "results.json",
+                without_recording(redact_results_json(&run.results_json)),
+            ),
             ("junit.xml", redact_junit(&run.junit)),
-            ("report.html", redact_report(&run.report)),
+            ("report.html", without_recording(redact_report(&run.report))),
         ] {
             digests.push_str(&format!("{}  {name}/{file}\n", sha256_hex(text.as_bytes())));
         }
