@@ -4,9 +4,9 @@
 
 use sightline_dsl::{Agent, Semantic};
 
-use super::message::Item;
 use crate::idealisation::Idealisation;
 use crate::math::Pose;
+use crate::trace::Arrival;
 use crate::world::{Bodies, Body, Occluders, Restraint, Visibility, in_view, mount_pose, visibility};
 
 /// The ego's own sight is perfect.
@@ -77,18 +77,21 @@ impl Ego {
         }
     }
 
-    /// Takes in a semantic message that arrived at `at`: its objects become
-    /// known, and a flagged conflict makes the ego cautious for `hold` seconds.
-    pub(super) fn receive(&mut self, at: f64, items: &[Item], hold: f64) {
-        for item in items {
-            let known = &mut self.knowledge[item.agent];
-            known.last_received = Some(at);
-            if known.first_received.is_none() {
-                known.first_received = Some((at, known.first_seen.is_some()));
-            }
-            if item.labels.conflict.is_some() {
-                known.flagged.get_or_insert(at);
-                self.cautious_until = self.cautious_until.max(at + hold);
+    /// Takes in the semantic messages that arrived, in order of arrival: the
+    /// objects they name become known, and a flagged conflict makes the ego
+    /// cautious for `hold` seconds.
+    pub(super) fn receive(&mut self, arrivals: &[Arrival], hold: f64) {
+        for Arrival { at, items } in arrivals {
+            for item in items {
+                let known = &mut self.knowledge[item.agent];
+                known.last_received = Some(*at);
+                if known.first_received.is_none() {
+                    known.first_received = Some((*at, known.first_seen.is_some()));
+                }
+                if item.labels.conflict.is_some() {
+                    known.flagged.get_or_insert(*at);
+                    self.cautious_until = self.cautious_until.max(at + hold);
+                }
             }
         }
     }

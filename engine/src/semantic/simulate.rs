@@ -148,14 +148,16 @@ fn run_once(seed: u64, world: &World, semantic: &Semantic, sink: &mut impl Trace
         let time = k as f64 * dt;
         // RSUs run their cycle, and connected road users send, at the V2X rate.
         let cycle = k % semantic.period_steps == 0;
+        // Move.
         kinematics.advance(k, &mut states);
         let bodies = Bodies::of_scene(&agents, &states);
         let ego_state = states[semantic.ego];
+        // Communicate: the semantic messages that reached the ego by now.
         let arrivals = radio.arrivals(time);
-        for arrival in &arrivals {
-            ego.receive(arrival.at, &arrival.items, semantic.caution.hold);
-        }
+        ego.receive(&arrivals, semantic.caution.hold);
         measures.arrivals(arrivals);
+        // Sense: the ego's view of the scene, measured, and the caution it
+        // drives with from the next step on; the RSUs' perception.
         if let Some(pose) = ego_state.map(|s| s.pose) {
             let view = ego.sense(time, &agents[semantic.ego], pose, &occluders, &bodies, semantic.d_min);
             kinematics.restrain(semantic.ego, ego.restraint(time, semantic));
@@ -164,8 +166,9 @@ fn run_once(seed: u64, world: &World, semantic: &Semantic, sink: &mut impl Trace
         for rsu in rsus.iter_mut().filter(|_| cycle) {
             rsu.perceive(&agents, &states, &occluders, &bodies, semantic, time);
         }
+        // Communicate and fuse, RSU by RSU; connected road users' own messages.
         if let Some(ego_state) = ego_state.filter(|_| cycle) {
-            let scene = Exchange {
+            let cycle = Cycle {
                 semantic,
                 pipeline: &pipeline,
                 occluders: &occluders,
@@ -174,19 +177,20 @@ fn run_once(seed: u64, world: &World, semantic: &Semantic, sink: &mut impl Trace
                 time,
             };
             for rsu in &mut rsus {
-                scene.exchange(rsu, &mut radio, &mut measures);
+                cycle.exchange(rsu, &mut radio, &mut measures);
             }
             for packet in radio.direct(&agents, &states, ego_state, &occluders, time, &mut ego) {
                 measures.packet(packet);
             }
         }
+        // Measure: the step's record.
         measures.record(k, time, &states, sink);
     }
     measures.finish(&ego)
 }
 
-/// One V2X cycle's exchange between the RSUs and the ego in the scene.
-struct Exchange<'a> {
+/// A V2X cycle with the ego in the scene: what the RSUs and the ego exchange.
+struct Cycle<'a> {
     semantic: &'a Semantic,
     pipeline: &'a Pipeline<'a>,
     occluders: &'a Occluders,
@@ -197,7 +201,7 @@ struct Exchange<'a> {
     time: f64,
 }
 
-impl Exchange<'_> {
+impl Cycle<'_> {
     /// One RSU's part, if it is in the scene: communicate (the ego's plan up),
     /// fuse (its pipeline over its LDM with the last plan it received),
     /// communicate (its message down, if it selected anything), each measured.

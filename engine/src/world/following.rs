@@ -13,6 +13,8 @@
 //! lane is clear (every road user in it at least `min_gap` plus one headway of the
 //! follower's speed away, ahead and behind); until then it waits, as SUMO delays
 //! an insertion. Agents listed first enter first.
+//!
+//! Tested through [`Kinematics`](super::Kinematics), in `world::motion`.
 
 use std::collections::HashMap;
 
@@ -228,70 +230,5 @@ impl Nearby {
             (position.x / LOOKAHEAD).floor() as i64,
             (position.y / LOOKAHEAD).floor() as i64,
         )
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::super::motion::Kinematics;
-    use super::super::motion::tests::{driving, walker, with};
-    use super::*;
-
-    /// A car at 10 m/s closes on a car standing 60 m ahead: IDM brakes it to a stop
-    /// behind the other, at least the minimum gap away, and never through it.
-    #[test]
-    fn idm_stops_behind_a_standing_vehicle() {
-        let follower = with(walker(0.0, 10.0, 30.0), |offset, _, _, _| *offset = 0.0);
-        let standing = with(walker(0.0, 0.0, 30.0), |offset, initial, target, _| {
-            *offset = 60.0;
-            *initial = 0.0;
-            *target = 0.0;
-        });
-        let agents = [follower, standing];
-        let mut kinematics = Kinematics::new(&agents, 0.1, driving(Following::Idm));
-        let mut states = Vec::new();
-        let mut gaps = Vec::new();
-        for k in 0..400 {
-            kinematics.advance(k, &mut states);
-            let [a, b] = [states[0].unwrap(), states[1].unwrap()];
-            gaps.push(b.offset - a.offset - 4.5);
-        }
-        assert!(
-            gaps.iter().all(|&g| g > 0.5),
-            "closest gap {:?}",
-            gaps.iter().copied().reduce(f64::min)
-        );
-        let last = *gaps.last().unwrap();
-        assert!((1.5..=3.0).contains(&last), "final gap {last}");
-        assert!(states[0].unwrap().speed < 0.05);
-    }
-
-    /// A car due at offset 0 while another drives away from offset 5 waits until
-    /// the gap is at least min_gap + speed · headway = 2 + 10 · 1.5 = 17 m.
-    #[test]
-    fn idm_delays_an_entry_until_the_lane_is_clear() {
-        let leader = with(walker(0.0, 10.0, 30.0), |offset, _, _, _| *offset = 5.0);
-        let follower = with(walker(0.0, 10.0, 30.0), |offset, _, _, _| *offset = 0.0);
-        let agents = [leader, follower];
-        let mut kinematics = Kinematics::new(&agents, 0.1, driving(Following::Idm));
-        let mut states = Vec::new();
-        let mut entered = None;
-        for k in 0..40 {
-            kinematics.advance(k, &mut states);
-            if entered.is_none()
-                && let Some(follower) = states[1]
-            {
-                entered = Some((k, states[0].unwrap().offset - follower.offset - 4.5));
-            }
-        }
-        let (k, gap) = entered.expect("the follower enters once the leader is far enough");
-        // The leader's gap grows by 1 m a step from 0.5 m: 17.5 m at k = 17, which
-        // the follower sees at k = 18 (entries look at the previous step).
-        assert_eq!(k, 18, "gap {gap}");
-        assert!(gap >= 17.0 - 1e-9);
-        // Without car following, both enter at once.
-        let mut kinematics = Kinematics::new(&agents, 0.1, driving(Following::None));
-        kinematics.advance(0, &mut states);
-        assert!(states.iter().all(Option::is_some));
     }
 }

@@ -185,7 +185,7 @@ impl CellTally {
     }
 }
 
-/// Running counts of one method.
+/// One method's tallies over a chunk of fused cells of one step.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub(crate) struct WorldTally {
     pub(crate) cells: CellTally,

@@ -174,14 +174,14 @@ fn limit_at(limits: &[(f64, f64)], offset: f64) -> f64 {
 }
 
 #[cfg(test)]
-pub(super) mod tests {
+mod tests {
     use approx::assert_relative_eq;
     use sightline_dsl::geometry::Polyline;
-    use sightline_dsl::{AgentKind, Following};
+    use sightline_dsl::{AgentKind, Following, TraceSample};
 
     use super::*;
 
-    pub(in crate::world) fn walker(start_time: f64, initial_speed: f64, limit: f64) -> Agent {
+    fn walker(start_time: f64, initial_speed: f64, limit: f64) -> Agent {
         Agent {
             id: "a".into(),
             kind: AgentKind::Car,
@@ -202,7 +202,7 @@ pub(super) mod tests {
         }
     }
 
-    pub(in crate::world) fn driving(following: Following) -> Driving {
+    fn driving(following: Following) -> Driving {
         Driving {
             following,
             headway: 1.5,
@@ -215,7 +215,7 @@ pub(super) mod tests {
         trajectory_with(agent, 0.5, steps)
     }
 
-    pub(in crate::world) fn trajectory_with(agent: Agent, step: f64, steps: usize) -> Vec<Option<AgentState>> {
+    fn trajectory_with(agent: Agent, step: f64, steps: usize) -> Vec<Option<AgentState>> {
         let agents = [agent];
         let mut kinematics = Kinematics::new(&agents, step, driving(Following::None));
         let mut states = Vec::new();
@@ -261,7 +261,7 @@ pub(super) mod tests {
         assert!(states[last_seen].unwrap().position().x <= 100.0);
     }
 
-    pub(in crate::world) fn with(mut agent: Agent, edit: impl FnOnce(&mut f64, &mut f64, &mut f64, &mut f64)) -> Agent {
+    fn with(mut agent: Agent, edit: impl FnOnce(&mut f64, &mut f64, &mut f64, &mut f64)) -> Agent {
         if let Motion::Along {
             start_offset,
             initial_speed,
@@ -289,7 +289,7 @@ pub(super) mod tests {
 
     /// Agent 0 of `agents` after `steps` steps of 0.5 s with IDM, restrained from
     /// the start to a 2.5 s headway and half its wanted speed.
-    pub(in crate::world) fn restrained(agents: &[Agent], steps: usize) -> AgentState {
+    fn restrained(agents: &[Agent], steps: usize) -> AgentState {
         let mut kinematics = Kinematics::new(agents, 0.5, driving(Following::Idm));
         kinematics.restrain(
             0,
@@ -309,5 +309,183 @@ pub(super) mod tests {
     fn restraint_lowers_the_wanted_speed() {
         let speed = restrained(&[walker(0.0, 10.0, 30.0)], 20).speed;
         assert!((4.95..=5.05).contains(&speed), "speed {speed}");
+    }
+
+    // Car following (`world::following`).
+
+    /// A car at 10 m/s closes on a car standing 60 m ahead: IDM brakes it to a stop
+    /// behind the other, at least the minimum gap away, and never through it.
+    #[test]
+    fn idm_stops_behind_a_standing_vehicle() {
+        let follower = with(walker(0.0, 10.0, 30.0), |offset, _, _, _| *offset = 0.0);
+        let standing = with(walker(0.0, 0.0, 30.0), |offset, initial, target, _| {
+            *offset = 60.0;
+            *initial = 0.0;
+            *target = 0.0;
+        });
+        let agents = [follower, standing];
+        let mut kinematics = Kinematics::new(&agents, 0.1, driving(Following::Idm));
+        let mut states = Vec::new();
+        let mut gaps = Vec::new();
+        for k in 0..400 {
+            kinematics.advance(k, &mut states);
+            let [a, b] = [states[0].unwrap(), states[1].unwrap()];
+            gaps.push(b.offset - a.offset - 4.5);
+        }
+        assert!(
+            gaps.iter().all(|&g| g > 0.5),
+            "closest gap {:?}",
+            gaps.iter().copied().reduce(f64::min)
+        );
+        let last = *gaps.last().unwrap();
+        assert!((1.5..=3.0).contains(&last), "final gap {last}");
+        assert!(states[0].unwrap().speed < 0.05);
+    }
+
+    /// A car due at offset 0 while another drives away from offset 5 waits until
+    /// the gap is at least min_gap + speed · headway = 2 + 10 · 1.5 = 17 m.
+    #[test]
+    fn idm_delays_an_entry_until_the_lane_is_clear() {
+        let leader = with(walker(0.0, 10.0, 30.0), |offset, _, _, _| *offset = 5.0);
+        let follower = with(walker(0.0, 10.0, 30.0), |offset, _, _, _| *offset = 0.0);
+        let agents = [leader, follower];
+        let mut kinematics = Kinematics::new(&agents, 0.1, driving(Following::Idm));
+        let mut states = Vec::new();
+        let mut entered = None;
+        for k in 0..40 {
+            kinematics.advance(k, &mut states);
+            if entered.is_none()
+                && let Some(follower) = states[1]
+            {
+                entered = Some((k, states[0].unwrap().offset - follower.offset - 4.5));
+            }
+        }
+        let (k, gap) = entered.expect("the follower enters once the leader is far enough");
+        // The leader's gap grows by 1 m a step from 0.5 m: 17.5 m at k = 17, which
+        // the follower sees at k = 18 (entries look at the previous step).
+        assert_eq!(k, 18, "gap {gap}");
+        assert!(gap >= 17.0 - 1e-9);
+        // Without car following, both enter at once.
+        let mut kinematics = Kinematics::new(&agents, 0.1, driving(Following::None));
+        kinematics.advance(0, &mut states);
+        assert!(states.iter().all(Option::is_some));
+    }
+
+    // Trace replay (`world::traced`).
+
+    fn sample(time: f64, x: f64, heading: f64, speed: f64) -> TraceSample {
+        TraceSample {
+            time,
+            position: [x, 0.0],
+            heading,
+            speed,
+            offset: x,
+            limit: 13.9,
+        }
+    }
+
+    fn replayed(samples: Vec<TraceSample>, max_gap: f64, step: f64, steps: usize) -> Vec<Option<AgentState>> {
+        trajectory_with(
+            Agent {
+                motion: Motion::Trace {
+                    path: Polyline::new(samples.iter().map(|s| s.position)),
+                    samples,
+                    max_gap,
+                },
+                ..walker(0.0, 0.0, 30.0)
+            },
+            step,
+            steps,
+        )
+    }
+
+    /// Samples at 1 s (x = 10 m, 8 m/s) and 2 s (x = 20 m, 12 m/s); at 1.25 s,
+    /// a quarter of the way: x = 12.5 m, 9 m/s, offset 12.5 m.
+    #[test]
+    fn a_trace_is_linear_between_two_samples() {
+        let states = replayed(
+            vec![sample(1.0, 10.0, 0.0, 8.0), sample(2.0, 20.0, 0.0, 12.0)],
+            1.0,
+            0.25,
+            10,
+        );
+        let at = states[5].unwrap();
+        assert_relative_eq!(at.position().x, 12.5);
+        assert_relative_eq!(at.position().y, 0.0);
+        assert_relative_eq!(at.speed, 9.0);
+        assert_relative_eq!(at.offset, 12.5);
+        assert_eq!(at.limit, 13.9);
+    }
+
+    /// In the scene from the first sample (step 4 at 0.25 s) to the last (step 8),
+    /// both included; not before, not after.
+    #[test]
+    fn a_trace_is_present_from_its_first_to_its_last_sample() {
+        let states = replayed(
+            vec![sample(1.0, 10.0, 0.0, 8.0), sample(2.0, 20.0, 0.0, 12.0)],
+            1.0,
+            0.25,
+            12,
+        );
+        let present: Vec<usize> = (0..12).filter(|&k| states[k].is_some()).collect();
+        assert_eq!(present, [4, 5, 6, 7, 8]);
+        // Sample times that are not exact multiples of the step still count:
+        // 0.3 is step 3 of 0.1 s, though 3 × 0.1 = 0.30000000000000004.
+        let states = replayed(
+            vec![sample(0.2, 0.0, 0.0, 1.0), sample(0.3, 0.1, 0.0, 1.0)],
+            1.0,
+            0.1,
+            5,
+        );
+        assert!(states[2].is_some() && states[3].is_some() && states[4].is_none());
+    }
+
+    /// From 170° to −170° the heading turns 20° through ±180°, not 340° back
+    /// through 0: halfway it points at 180°.
+    #[test]
+    fn a_trace_turns_the_short_way_across_the_wrap() {
+        let [from, to] = [170f64.to_radians(), (-170f64).to_radians()];
+        let states = replayed(
+            vec![sample(0.0, 0.0, from, 5.0), sample(1.0, 5.0, to, 5.0)],
+            1.0,
+            0.25,
+            5,
+        );
+        let halfway = states[2].unwrap().heading();
+        assert_relative_eq!(halfway.abs(), std::f64::consts::PI, epsilon = 1e-9);
+        let quarter = states[1].unwrap().heading();
+        assert_relative_eq!(quarter, 175f64.to_radians(), epsilon = 1e-9);
+        let three_quarters = states[3].unwrap().heading();
+        assert_relative_eq!(three_quarters, (-175f64).to_radians(), epsilon = 1e-9);
+    }
+
+    /// Samples 3 s apart with a 1.5 s gap allowed: present at both samples, out of
+    /// the scene between them.
+    #[test]
+    fn a_trace_is_absent_inside_a_long_gap() {
+        let states = replayed(
+            vec![sample(0.0, 0.0, 0.0, 5.0), sample(3.0, 15.0, 0.0, 5.0)],
+            1.5,
+            1.0,
+            5,
+        );
+        let present: Vec<bool> = states.iter().map(Option::is_some).collect();
+        assert_eq!(present, [true, false, false, true, false]);
+    }
+
+    /// A traced agent drives as recorded: restraint does not slow it down.
+    #[test]
+    fn a_trace_ignores_restraint() {
+        let agents = [Agent {
+            motion: Motion::Trace {
+                samples: vec![sample(0.0, 0.0, 0.0, 10.0), sample(10.0, 100.0, 0.0, 10.0)],
+                path: Polyline::new([[0.0, 0.0], [100.0, 0.0]]),
+                max_gap: 10.0,
+            },
+            ..walker(0.0, 0.0, 30.0)
+        }];
+        let state = restrained(&agents, 5);
+        assert_relative_eq!(state.speed, 10.0);
+        assert_relative_eq!(state.position().x, 20.0);
     }
 }

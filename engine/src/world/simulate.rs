@@ -211,6 +211,7 @@ pub fn run(
             continue;
         }
         let received = communicate(&sensed);
+        // The ground truth the fused grids are tallied against.
         truth.mark(grid, &scene.raster, &setting.in_region, &scene.bodies, perception.ego);
         let snapshot = k == perception.snapshot_step;
         let grids = sink.wants_grids(k);
