@@ -2,12 +2,17 @@
 //! a local dynamic map and a four-layer semantic pipeline, the V2X link to the
 //! ego, and what the ego gains from it.
 
+mod ego;
 mod ldm;
+mod map;
+mod measure;
 mod message;
 mod metrics;
 mod pipeline;
+mod radio;
 mod relevance;
 mod risk;
+mod rsu;
 mod simulate;
 mod traffic;
 
@@ -20,9 +25,10 @@ pub use simulate::run;
 #[cfg(feature = "internals")]
 pub use {
     ldm::{Ldm, Measurement},
+    map::route_map,
     pipeline::{EgoPlan, Pipeline},
     relevance::Areas,
-    simulate::route_map,
 };
 
-pub(crate) use simulate::{idealisations, rsu_sight_idealisations};
+pub(crate) use rsu::rsu_sight_idealisations;
+pub(crate) use simulate::idealisations;

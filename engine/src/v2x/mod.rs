@@ -2,6 +2,8 @@
 //! received.
 
 mod channel;
+mod delivery;
 
 pub use channel::{Link, Reception, path_loss_db, transmit};
 pub(crate) use channel::{NO_CONTENTION, path_loss_idealisations};
+pub(crate) use delivery::{InFlight, arrival};

@@ -1,11 +1,22 @@
-//! Fusion of the cooperating agents' observations of one cell.
+//! The fuse phase of a world: the observations that reached the ego fused cell
+//! by cell with each job's rule, over the counted cells they cover.
+//!
+//! Fusion runs in parallel over fixed-size chunks of the covered cells. Each
+//! chunk's fused estimates are tallied against the ground truth as they are
+//! computed (the roundabout's grid has 360 000 cells: estimates are not kept),
+//! and handed on chunk by chunk, so that the measure phase sums them in chunk
+//! order whatever the thread count.
 
-use sightline_dsl::{Grid, Rule};
+use rayon::prelude::*;
+use sightline_dsl::{Grid, Perception, Rule};
 
+use super::metrics::WorldTally;
 use super::observe::{Observation, Observed};
 use super::raster::cell_center;
-use crate::fusion::{Estimate, Mass, Source, fuse};
+use super::truth::{OCCUPIED, Truth};
+use crate::fusion::{Estimate, Mass, Source, State, decide, fuse, pignistic};
 use crate::idealisation::Idealisation;
+use crate::run::Job;
 
 /// The inverse sensor model is two constants.
 pub(crate) const INVERSE_MODEL: Idealisation = Idealisation {
@@ -63,5 +74,202 @@ impl CellFusion<'_> {
             });
         }
         fuse(self.rule, sources)
+    }
+}
+
+/// Cells fused per parallel task.
+const CHUNK: usize = 4096;
+
+/// The counted cells the observations that reached the ego cover at one step:
+/// the cells fused.
+#[derive(Debug, Clone)]
+pub(super) struct Coverage {
+    /// Per cell, whether it is covered.
+    covered: Vec<bool>,
+    /// The covered cells, in the order first touched.
+    cells: Vec<usize>,
+    /// How many counted cells the ego's own observation covers.
+    ego: u64,
+}
+
+impl Coverage {
+    /// Nothing covered in a grid of `cells` cells.
+    pub(super) fn new(cells: usize) -> Self {
+        Self {
+            covered: vec![false; cells],
+            cells: Vec::new(),
+            ego: 0,
+        }
+    }
+
+    /// Covers every cell of `received` (the ego's observation first) that
+    /// `counted` admits.
+    fn cover(&mut self, received: &[&Observation], counted: impl Fn(usize) -> bool) {
+        for &cell in &self.cells {
+            self.covered[cell] = false;
+        }
+        self.cells.clear();
+        for observation in received {
+            for &cell in observation.touched() {
+                if counted(cell) && !self.covered[cell] {
+                    self.covered[cell] = true;
+                    self.cells.push(cell);
+                }
+            }
+        }
+        self.ego = received[0].touched().iter().filter(|&&c| counted(c)).count() as u64;
+    }
+
+    /// The covered cells, in the order first touched.
+    pub(super) fn cells(&self) -> &[usize] {
+        &self.cells
+    }
+
+    /// Whether `cell` is covered.
+    pub(super) fn covers(&self, cell: usize) -> bool {
+        self.covered[cell]
+    }
+
+    /// How many counted cells the ego's own observation covers.
+    pub(super) fn ego(&self) -> u64 {
+        self.ego
+    }
+}
+
+/// Fused values of the covered cells of one step, in cell order.
+#[derive(Debug, Clone, Default)]
+pub(super) struct CellValues {
+    pub(super) probability: Vec<f32>,
+    pub(super) uncertainty: Vec<f32>,
+    pub(super) decision: Vec<Option<State>>,
+}
+
+/// The fuse phase's state: the fixed inputs of every step, and the coverage
+/// and fused values, reused from step to step.
+pub(super) struct Fusion<'a, 'j> {
+    grid: &'a Grid,
+    perception: &'a Perception,
+    jobs: &'a [Job<'j>],
+    coverage: Coverage,
+    /// Per job: the fused values of the last pictured step.
+    values: Vec<CellValues>,
+}
+
+/// What the fuse phase hands the measure phase: each job's fused grid of the
+/// step, tallied against the truth.
+pub(super) struct Fused<'a> {
+    /// The counted cells covered.
+    pub(super) coverage: &'a Coverage,
+    /// Per job, in job order: the tallies of each chunk of covered cells, in
+    /// chunk order.
+    pub(super) chunks: Vec<Vec<WorldTally>>,
+    /// Per job: the fused values of the covered cells, when the step is pictured.
+    pub(super) values: Option<&'a [CellValues]>,
+}
+
+impl<'a, 'j> Fusion<'a, 'j> {
+    /// Ready to fuse `jobs` on `grid` with `perception`'s inverse sensor model.
+    pub(super) fn new(grid: &'a Grid, perception: &'a Perception, jobs: &'a [Job<'j>]) -> Self {
+        Self {
+            grid,
+            perception,
+            jobs,
+            coverage: Coverage::new(grid.cells()),
+            values: vec![CellValues::default(); jobs.len()],
+        }
+    }
+
+    /// Fuse: every job's grid over the counted cells (those `counted` admits)
+    /// that `received` covers, the ego's observation first, tallied against
+    /// `truth`; with `picture`, also the fused values of those cells.
+    pub(super) fn fuse(
+        &mut self,
+        received: &[&Observation],
+        truth: &Truth,
+        counted: impl Fn(usize) -> bool,
+        picture: bool,
+    ) -> Fused<'_> {
+        self.coverage.cover(received, counted);
+        let mut chunks = Vec::with_capacity(self.jobs.len());
+        for (job, values) in self.jobs.iter().zip(&mut self.values) {
+            let tallier = Tallier {
+                fusion: CellFusion {
+                    grid: self.grid,
+                    rule: &job.fusion.rule,
+                    observations: received,
+                    occupied: self.perception.occupied,
+                    free: self.perception.free,
+                },
+                threshold: job.decision.threshold,
+                truth: truth.cells(),
+            };
+            let fused: Vec<(WorldTally, CellValues)> = self
+                .coverage
+                .cells
+                .par_chunks(CHUNK)
+                .map(|chunk| tallier.tally(chunk, picture))
+                .collect();
+            if picture {
+                values.probability.clear();
+                values.uncertainty.clear();
+                values.decision.clear();
+                for (_, chunk) in &fused {
+                    values.probability.extend(&chunk.probability);
+                    values.uncertainty.extend(&chunk.uncertainty);
+                    values.decision.extend(&chunk.decision);
+                }
+            }
+            chunks.push(fused.into_iter().map(|(tally, _)| tally).collect());
+        }
+        Fused {
+            coverage: &self.coverage,
+            chunks,
+            values: picture.then_some(self.values.as_slice()),
+        }
+    }
+}
+
+/// Tallies one method's fused grid of one step against the truth.
+struct Tallier<'a> {
+    fusion: CellFusion<'a>,
+    threshold: f64,
+    truth: &'a [u8],
+}
+
+impl Tallier<'_> {
+    /// Tallies a chunk of covered cells; with `picture`, also returns their fused
+    /// values.
+    fn tally(&self, cells: &[usize], picture: bool) -> (WorldTally, CellValues) {
+        let mut tally = WorldTally::default();
+        let mut values = CellValues::default();
+        let mut sources = Vec::with_capacity(self.fusion.observations.len());
+        let ego = self.fusion.observations[0];
+        for &cell in cells {
+            let estimate = self.fusion.estimate(cell, &mut sources);
+            tally.estimates.record(&estimate);
+            let decision = decide(estimate.decision_mass(), self.threshold);
+            let decided = decision == Some(State::Occupied);
+            let blind = ego.get(cell) == Observed::Unknown;
+            let counts = &mut tally.cells;
+            if self.truth[cell] == OCCUPIED {
+                counts.occupied += 1;
+                counts.detected += u64::from(decided);
+                if blind {
+                    counts.blind_occupied += 1;
+                    counts.blind_detected += u64::from(decided);
+                }
+            } else if decided {
+                counts.false_positives += 1;
+            }
+            if picture {
+                values.probability.push(match estimate {
+                    Estimate::Occupancy(o) => o.probability as f32,
+                    Estimate::Evidential { combination, .. } => pignistic(combination.mass) as f32,
+                });
+                values.uncertainty.push(estimate.uncertainty() as f32);
+                values.decision.push(decision);
+            }
+        }
+        (tally, values)
     }
 }

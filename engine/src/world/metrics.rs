@@ -47,8 +47,9 @@ impl WorldOutcome {
     }
 }
 
-/// World metrics of one run.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+/// World metrics of one run. The default has every count zero and every
+/// statistic `None`: the metrics of a run before its first step.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct WorldMetrics {
     /// Steps counted (the ego in the scene).
     pub steps: u64,
@@ -77,6 +78,22 @@ pub struct WorldMetrics {
 }
 
 impl WorldMetrics {
+    /// Adds one measured step's counts: the counted cells the ego observed and
+    /// that any cooperating agent observed, and one fusion job's cell tallies.
+    /// Saturating: replay sums counts read from a file with it, and a forged
+    /// count must give a mismatch, not an overflow.
+    pub fn add_step(&mut self, ego_observed: u64, joint_observed: u64, cells: &CellTally) {
+        let add = |total: &mut u64, count: u64| *total = total.saturating_add(count);
+        add(&mut self.steps, 1);
+        add(&mut self.ego_observed, ego_observed);
+        add(&mut self.joint_observed, joint_observed);
+        add(&mut self.occupied, cells.occupied);
+        add(&mut self.detected, cells.detected);
+        add(&mut self.false_positives, cells.false_positives);
+        add(&mut self.blind_occupied, cells.blind_occupied);
+        add(&mut self.blind_detected, cells.blind_detected);
+    }
+
     /// The value of `metric`, or `None` where it is not defined for this run.
     pub fn value(&self, metric: Metric) -> Option<f64> {
         let ratio = |num: u64, den: u64| (den > 0).then(|| num as f64 / den as f64);
@@ -168,9 +185,55 @@ impl CellTally {
     }
 }
 
-/// Running counts of one method.
+/// One method's tallies over a chunk of fused cells of one step.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub(crate) struct WorldTally {
     pub(crate) cells: CellTally,
     pub(crate) estimates: EstimateTally,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Two steps add up field by field, one step each; the default counts nothing.
+    #[test]
+    fn add_step_sums_a_step_s_counts() {
+        let mut metrics = WorldMetrics::default();
+        assert_eq!(metrics.steps, 0);
+        assert_eq!(metrics.value(Metric::OccupiedRecall), None);
+        let cells = CellTally {
+            occupied: 10,
+            detected: 8,
+            false_positives: 1,
+            blind_occupied: 4,
+            blind_detected: 2,
+        };
+        metrics.add_step(100, 150, &cells);
+        metrics.add_step(50, 50, &cells);
+        assert_eq!(metrics.steps, 2);
+        assert_eq!((metrics.ego_observed, metrics.joint_observed), (150, 200));
+        assert_eq!(
+            (metrics.occupied, metrics.detected, metrics.false_positives),
+            (20, 16, 2)
+        );
+        assert_eq!((metrics.blind_occupied, metrics.blind_detected), (8, 4));
+        assert_eq!(metrics.value(Metric::OccupiedRecall), Some(0.8));
+    }
+
+    /// A forged count from a recording saturates rather than overflowing.
+    #[test]
+    fn add_step_saturates() {
+        let mut metrics = WorldMetrics::default();
+        let cells = CellTally {
+            occupied: u64::MAX,
+            ..CellTally::default()
+        };
+        metrics.add_step(u64::MAX, 1, &cells);
+        metrics.add_step(1, 1, &cells);
+        assert_eq!(
+            (metrics.occupied, metrics.ego_observed, metrics.joint_observed),
+            (u64::MAX, u64::MAX, 2)
+        );
+    }
 }

@@ -2,26 +2,33 @@
 //! field of view and line of sight, self-localization, and the collective
 //! perception grid fused across cooperating agents.
 
+mod following;
 mod fuse;
 mod localization;
+mod measure;
 mod metrics;
 mod motion;
 mod observe;
 mod raster;
 mod sight;
 mod simulate;
+mod state;
+mod traced;
+mod truth;
 
 pub use metrics::{CellTally, FusedCell, Snapshot, WorldMetrics, WorldOutcome};
-pub use motion::{AgentState, Kinematics, Restraint};
+pub use motion::Kinematics;
 pub use observe::{Observation, Observed, Sighting, Sightings, in_view, mount_pose};
 pub use sight::{Bodies, Body, Occluders, Visibility, visibility};
 pub use simulate::run;
+pub use state::{AgentState, Restraint};
 
 /// The step's pieces, for the engine's benches (feature `internals`).
 #[cfg(feature = "internals")]
 pub use {fuse::CellFusion, observe::StepScene, raster::Raster};
 
+pub(crate) use following::following_idealisations;
 pub(crate) use localization::filter_idealisations as localization_idealisations;
-pub(crate) use motion::{ON_THEIR_WAY, following_idealisations};
+pub(crate) use motion::ON_THEIR_WAY;
 pub(crate) use sight::{ONE_RAY, PLANAR, RSU_TRANSPARENT};
 pub(crate) use simulate::idealisations;

@@ -6,37 +6,19 @@
 //! speed · dt (semi-implicit Euler); it leaves the scene once it passes the end of
 //! its way. Kinematics involves no randomness.
 //!
-//! A traced agent replays its samples: it is in the scene from its first sample to
-//! its last (to within a millionth of a step), except inside a gap between samples
-//! longer than its `max_gap`. Between two samples its position, speed and offset
-//! are linear in time and its heading turns the short way round; its speed limit
-//! is that of the earlier sample's lane. Car following and restraint do not apply:
-//! it drives as recorded, so a traced ego does not slow down when cautious.
-//!
 //! Its wanted speed is its target, capped by the speed limit where it is times its
 //! limit factor (and by a caution factor while the ego is cautious). Without car
-//! following, speed moves toward the wanted speed by at most acceleration · dt.
-//! With `following: idm`, a vehicle applies the Intelligent Driver Model
-//! (Treiber, Hennecke and Helbing, 2000) behind its leader: the closest vehicle
-//! heading within `SAME_WAY` of its own, or pedestrian, whose centre lies ahead of
-//! it within `LOOKAHEAD` and whose footprint overlaps its own across the heading,
-//! as positioned at the previous step. The leader's speed counts along the
-//! follower's heading (a pedestrian's as 0). There are no right-of-way rules:
-//! crossing vehicles do not see each other, so a junction never locks up, and
-//! they may meet in it — the conflicts the semantic pipeline is there to flag.
-//! With car following, a vehicle whose start time has come enters only when its
-//! lane is clear (every road user in it at least `min_gap` plus one headway of the
-//! follower's speed away, ahead and behind); until then it waits, as SUMO delays
-//! an insertion. Agents listed first enter first.
+//! following, speed moves toward the wanted speed by at most acceleration · dt;
+//! with it, a vehicle follows the road user ahead and enters only a clear lane
+//! (`world::following`). A traced agent replays its samples (`world::traced`).
 
-use std::collections::HashMap;
-use std::f64::consts::{PI, TAU};
+use sightline_dsl::{Agent, Driving, Motion};
 
-use sightline_dsl::geometry::Polyline;
-use sightline_dsl::{Agent, AgentKind, Driving, Following, Motion, TraceSample};
-
+use super::following::CarFollowing;
+use super::state::{AgentState, Restraint};
+use super::traced::replay;
 use crate::idealisation::Idealisation;
-use crate::math::{Point, Pose, Vector};
+use crate::math::{Pose, Vector};
 
 /// Road users keep to their ways.
 pub(crate) const ON_THEIR_WAY: Idealisation = Idealisation {
@@ -45,71 +27,6 @@ pub(crate) const ON_THEIR_WAY: Idealisation = Idealisation {
            changes) and change speed by at most their acceleration; traced road users move straight at \
            constant speed between samples.",
 };
-
-/// Without car following, vehicles pass through each other.
-pub(crate) const NO_FOLLOWING: Idealisation = Idealisation {
-    id: "motion.no-following",
-    text: "Vehicles ignore each other (`following: none`): they drive through one another rather than slow \
-           down.",
-};
-
-/// Car following has no right of way.
-pub(crate) const NO_RIGHT_OF_WAY: Idealisation = Idealisation {
-    id: "motion.no-right-of-way",
-    text: "Vehicles follow the one ahead in their lane (IDM) but obey no right-of-way rule: crossing vehicles \
-           do not see each other and may meet in a junction.",
-};
-
-/// The idealisations of a car-following model.
-pub(crate) fn following_idealisations(following: Following) -> &'static [Idealisation] {
-    match following {
-        Following::None => &[NO_FOLLOWING],
-        Following::Idm => &[NO_RIGHT_OF_WAY],
-    }
-}
-
-/// How far ahead a vehicle looks for a leader, metres.
-const LOOKAHEAD: f64 = 100.0;
-
-/// Largest heading difference of a vehicle followed, radians (60°).
-const SAME_WAY: f64 = std::f64::consts::FRAC_PI_3;
-
-/// The hardest braking IDM may ask for, m/s².
-const MAX_BRAKING: f64 = 9.0;
-
-/// Where an agent is at a step.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct AgentState {
-    /// Position of the footprint's centre and heading, world frame.
-    pub pose: Pose,
-    /// Speed, m/s.
-    pub speed: f64,
-    /// Distance along its way, metres (0 for a fixed agent).
-    pub offset: f64,
-    /// The speed limit where it is, m/s (infinite off roads).
-    pub limit: f64,
-}
-
-impl AgentState {
-    /// The centre of the footprint.
-    pub fn position(&self) -> Point {
-        self.pose.translation
-    }
-
-    /// The heading, radians.
-    pub fn heading(&self) -> f64 {
-        self.pose.rotation.angle()
-    }
-}
-
-/// A temporary change of an agent's driving: a longer headway and a lower speed.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Restraint {
-    /// Time headway, seconds.
-    pub headway: f64,
-    /// Share of the wanted speed kept.
-    pub speed_factor: f64,
-}
 
 /// The moving part of an agent's state between steps.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -124,12 +41,10 @@ enum Progress {
 pub struct Kinematics<'a> {
     agents: &'a [Agent],
     step: f64,
-    driving: Driving,
     progress: Vec<Progress>,
     restraints: Vec<Option<Restraint>>,
-    previous: Vec<Option<AgentState>>,
-    /// The road users of the previous step by area.
-    nearby: Nearby,
+    /// Car following, which remembers where road users were at the previous step.
+    following: CarFollowing<'a>,
     /// Agents that entered the scene at the step being computed.
     entered: Vec<usize>,
 }
@@ -140,11 +55,9 @@ impl<'a> Kinematics<'a> {
         Self {
             agents,
             step,
-            driving,
             progress: vec![Progress::Waiting; agents.len()],
             restraints: vec![None; agents.len()],
-            previous: vec![None; agents.len()],
-            nearby: Nearby::default(),
+            following: CarFollowing::new(agents, step, driving),
             entered: Vec::new(),
         }
     }
@@ -183,7 +96,14 @@ impl<'a> Kinematics<'a> {
                         // `step: 0.1` from waiting a step for 0.30000000000000004.
                         Progress::Waiting
                             if time + 1e-6 * self.step >= *start_time
-                                && self.entry_clear(i, path, *start_offset, *initial_speed, states) =>
+                                && self.following.entry_clear(
+                                    i,
+                                    path,
+                                    *start_offset,
+                                    *initial_speed,
+                                    &self.entered,
+                                    states,
+                                ) =>
                         {
                             self.entered.push(i);
                             Progress::Moving {
@@ -218,8 +138,7 @@ impl<'a> Kinematics<'a> {
                 Motion::Trace { samples, max_gap, .. } => replay(samples, *max_gap, time, 1e-6 * self.step),
             });
         }
-        self.previous.clone_from(states);
-        self.nearby.index(&self.previous);
+        self.following.remember(states);
     }
 
     /// The speed of moving agent `i` one step after being at `offset` at `speed`.
@@ -238,170 +157,11 @@ impl<'a> Kinematics<'a> {
         let restraint = self.restraints[i];
         let wanted =
             target_speed.min(limit_at(limits, offset) * limit_factor) * restraint.map_or(1.0, |r| r.speed_factor);
-        if self.driving.following == Following::None || !agent.kind.is_vehicle() {
+        if !self.following.applies(i) {
             return speed + (wanted - speed).clamp(-acceleration * self.step, acceleration * self.step);
         }
-        let (gap, leader_speed) = self.leader(i).unwrap_or((f64::INFINITY, speed));
-        let headway = restraint.map_or(self.driving.headway, |r| r.headway);
-        let free = if wanted > 0.0 {
-            1.0 - (speed / wanted).powi(4)
-        } else {
-            -1.0
-        };
-        let approach = speed * (speed - leader_speed) / (2.0 * (acceleration * self.driving.deceleration).sqrt());
-        let desired_gap = self.driving.min_gap + (speed * headway + approach).max(0.0);
-        let interaction = (desired_gap / gap.max(0.01)).powi(2);
-        let accel = (acceleration * (free - interaction)).clamp(-MAX_BRAKING, *acceleration);
-        (speed + accel * self.step).max(0.0)
+        self.following.next_speed(i, speed, wanted, *acceleration, restraint)
     }
-
-    /// The gap to agent `i`'s leader and the leader's speed along `i`'s heading.
-    fn leader(&self, i: usize) -> Option<(f64, f64)> {
-        let me = self.previous[i]?;
-        self.nearby
-            .around(me.position())
-            .filter_map(|j| {
-                let (ahead, along) = self.in_lane(i, &me, j, &self.previous[j]?)?;
-                (ahead > 0.0).then(|| (ahead - (self.agents[i].length + self.agents[j].length) / 2.0, along))
-            })
-            .min_by(|a, b| a.0.total_cmp(&b.0))
-    }
-
-    /// Whether vehicle `i` may enter at `offset` along `path` at `speed`: with car
-    /// following, every road user in its lane keeps at least the desired standing
-    /// gap plus one headway of the follower's speed, ahead of it and behind it.
-    /// Road users are placed as at the previous step, except those that entered
-    /// at this one (`current`). Without car following, or for a pedestrian, always.
-    fn entry_clear(&self, i: usize, path: &Polyline, offset: f64, speed: f64, current: &[Option<AgentState>]) -> bool {
-        if self.driving.following == Following::None || !self.agents[i].kind.is_vehicle() {
-            return true;
-        }
-        let [x, y] = path.point_at(offset);
-        let me = AgentState {
-            pose: Pose::new(Vector::new(x, y), path.heading_at(offset)),
-            speed,
-            offset,
-            limit: f64::INFINITY,
-        };
-        let previous = self
-            .nearby
-            .around(me.position())
-            .filter_map(|j| Some((j, self.previous[j]?)));
-        let entered = self.entered.iter().filter_map(|&j| Some((j, current[j]?)));
-        previous.chain(entered).all(|(j, other)| {
-            let Some((ahead, _)) = self.in_lane(i, &me, j, &other) else {
-                return true;
-            };
-            let gap = ahead.abs() - (self.agents[i].length + self.agents[j].length) / 2.0;
-            let follower_speed = if ahead > 0.0 { speed } else { other.speed };
-            gap >= self.driving.min_gap + follower_speed * self.driving.headway
-        })
-    }
-
-    /// Where agent `j` in state `other` is for vehicle `i` in state `me`, if it is
-    /// in `i`'s lane (footprints overlapping across `i`'s heading, within
-    /// `LOOKAHEAD` either way, a vehicle heading within `SAME_WAY` or any
-    /// pedestrian): how far its centre is ahead of `i`'s (negative behind) and its
-    /// speed along `i`'s heading.
-    fn in_lane(&self, i: usize, me: &AgentState, j: usize, other: &AgentState) -> Option<(f64, f64)> {
-        let (agent, them) = (&self.agents[i], &self.agents[j]);
-        if j == i || them.kind == AgentKind::Rsu {
-            return None;
-        }
-        // Trigonometry-free: this runs for every pair of road users every step.
-        let (cos, sin) = (me.pose.rotation.cos(), me.pose.rotation.sin());
-        let d = other.position() - me.position();
-        let ahead = d.x * cos + d.y * sin;
-        let across = -d.x * sin + d.y * cos;
-        let turn = cos * other.pose.rotation.cos() + sin * other.pose.rotation.sin();
-        let followed = them.kind == AgentKind::Pedestrian || turn >= SAME_WAY.cos();
-        let overlap = (agent.width + them.width) / 2.0;
-        (followed && ahead.abs() <= LOOKAHEAD && across.abs() < overlap).then(|| {
-            let along = if them.kind.is_vehicle() {
-                other.speed * turn
-            } else {
-                0.0
-            };
-            (ahead, along.max(0.0))
-        })
-    }
-}
-
-/// Road users by square cells of `LOOKAHEAD` metres, so that finding who is in a
-/// lane looks at the 3 × 3 cells around a position, not at every agent.
-#[derive(Debug, Clone, Default)]
-struct Nearby {
-    cells: HashMap<(i64, i64), Vec<usize>>,
-}
-
-impl Nearby {
-    /// Indexes every present agent of `states`.
-    fn index(&mut self, states: &[Option<AgentState>]) {
-        self.cells.values_mut().for_each(Vec::clear);
-        for (i, state) in states.iter().enumerate() {
-            if let Some(state) = state {
-                self.cells.entry(Self::cell(state.position())).or_default().push(i);
-            }
-        }
-    }
-
-    /// Every agent within `LOOKAHEAD` of `position` (and some farther), in a
-    /// fixed order.
-    fn around(&self, position: Point) -> impl Iterator<Item = usize> + '_ {
-        let (cx, cy) = Self::cell(position);
-        (-1..=1)
-            .flat_map(move |dx| (-1..=1).map(move |dy| (cx + dx, cy + dy)))
-            .filter_map(|cell| self.cells.get(&cell))
-            .flatten()
-            .copied()
-    }
-
-    fn cell(position: Point) -> (i64, i64) {
-        (
-            (position.x / LOOKAHEAD).floor() as i64,
-            (position.y / LOOKAHEAD).floor() as i64,
-        )
-    }
-}
-
-/// Where a traced agent is at `time`, `None` when it is out of the scene; times
-/// within `tolerance` of a sample count as the sample's.
-fn replay(samples: &[TraceSample], max_gap: f64, time: f64, tolerance: f64) -> Option<AgentState> {
-    let (first, last) = (samples.first()?, samples.last()?);
-    if time < first.time - tolerance || time > last.time + tolerance {
-        return None;
-    }
-    let next = samples.partition_point(|s| s.time <= time);
-    let (a, b) = match next {
-        0 => (first, first),
-        n if n == samples.len() => (last, last),
-        n => (&samples[n - 1], &samples[n]),
-    };
-    let (a, b) = if b.time - a.time <= max_gap {
-        (a, b)
-    } else if time - a.time <= tolerance {
-        (a, a)
-    } else if b.time - time <= tolerance {
-        (b, b)
-    } else {
-        return None;
-    };
-    let u = if b.time > a.time {
-        ((time - a.time) / (b.time - a.time)).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    let lerp = |from: f64, to: f64| from + (to - from) * u;
-    let turn = (b.heading - a.heading + PI).rem_euclid(TAU) - PI;
-    Some(AgentState {
-        pose: Pose::new(
-            Vector::new(lerp(a.position[0], b.position[0]), lerp(a.position[1], b.position[1])),
-            a.heading + turn * u,
-        ),
-        speed: lerp(a.speed, b.speed),
-        offset: lerp(a.offset, b.offset),
-        limit: a.limit,
-    })
 }
 
 /// The limit in force at `offset`: the first entry that ends after it, else the last.
@@ -417,6 +177,7 @@ fn limit_at(limits: &[(f64, f64)], offset: f64) -> f64 {
 mod tests {
     use approx::assert_relative_eq;
     use sightline_dsl::geometry::Polyline;
+    use sightline_dsl::{AgentKind, Following, TraceSample};
 
     use super::*;
 
@@ -526,6 +287,32 @@ mod tests {
         assert_eq!(states[2].unwrap().limit, 4.0);
     }
 
+    /// Agent 0 of `agents` after `steps` steps of 0.5 s with IDM, restrained from
+    /// the start to a 2.5 s headway and half its wanted speed.
+    fn restrained(agents: &[Agent], steps: usize) -> AgentState {
+        let mut kinematics = Kinematics::new(agents, 0.5, driving(Following::Idm));
+        kinematics.restrain(
+            0,
+            Some(Restraint {
+                headway: 2.5,
+                speed_factor: 0.5,
+            }),
+        );
+        let mut states = Vec::new();
+        for k in 0..steps {
+            kinematics.advance(k, &mut states);
+        }
+        states[0].expect("the agent is in the scene")
+    }
+
+    #[test]
+    fn restraint_lowers_the_wanted_speed() {
+        let speed = restrained(&[walker(0.0, 10.0, 30.0)], 20).speed;
+        assert!((4.95..=5.05).contains(&speed), "speed {speed}");
+    }
+
+    // Car following (`world::following`).
+
     /// A car at 10 m/s closes on a car standing 60 m ahead: IDM brakes it to a stop
     /// behind the other, at least the minimum gap away, and never through it.
     #[test]
@@ -583,6 +370,8 @@ mod tests {
         kinematics.advance(0, &mut states);
         assert!(states.iter().all(Option::is_some));
     }
+
+    // Trace replay (`world::traced`).
 
     fn sample(time: f64, x: f64, heading: f64, speed: f64) -> TraceSample {
         TraceSample {
@@ -698,29 +487,5 @@ mod tests {
         let state = restrained(&agents, 5);
         assert_relative_eq!(state.speed, 10.0);
         assert_relative_eq!(state.position().x, 20.0);
-    }
-
-    /// Agent 0 of `agents` after `steps` steps of 0.5 s with IDM, restrained from
-    /// the start to a 2.5 s headway and half its wanted speed.
-    fn restrained(agents: &[Agent], steps: usize) -> AgentState {
-        let mut kinematics = Kinematics::new(agents, 0.5, driving(Following::Idm));
-        kinematics.restrain(
-            0,
-            Some(Restraint {
-                headway: 2.5,
-                speed_factor: 0.5,
-            }),
-        );
-        let mut states = Vec::new();
-        for k in 0..steps {
-            kinematics.advance(k, &mut states);
-        }
-        states[0].expect("the agent is in the scene")
-    }
-
-    #[test]
-    fn restraint_lowers_the_wanted_speed() {
-        let speed = restrained(&[walker(0.0, 10.0, 30.0)], 20).speed;
-        assert!((4.95..=5.05).contains(&speed), "speed {speed}");
     }
 }

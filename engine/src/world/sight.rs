@@ -13,7 +13,7 @@ use parry2d_f64::shape::{Cuboid, Polyline};
 use serde::Serialize;
 use sightline_dsl::{Agent, AgentKind, Occluder};
 
-use super::motion::AgentState;
+use super::state::AgentState;
 use crate::idealisation::Idealisation;
 use crate::math::{Point, Pose, Vector};
 

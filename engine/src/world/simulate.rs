@@ -1,5 +1,10 @@
-//! The step loop of a world: kinematics, footprints, each cooperating agent's
-//! observation, and the fused grid of every method, tallied against ground truth.
+//! The step loop of a world, as a sequence of phases: **move** (agents advance
+//! and their footprints are drawn), **sense** (each cooperating agent estimates
+//! its pose and observes), **communicate** (what reaches the ego), **fuse** (every
+//! job's grid over the cells covered, tallied against the ground truth) and
+//! **measure** (the step added to each job's metrics and reported to the sink).
+//! State carried from step to step lives in [`Scene`], the [`Cooperator`]s, the
+//! [`Truth`], the [`Fusion`] buffers and the [`Measures`].
 //!
 //! Observations run in parallel across agents (each draws from its own random
 //! streams); fusion runs in parallel over fixed-size chunks of the observed cells,
@@ -7,22 +12,24 @@
 
 use rand::rngs::ChaCha8Rng;
 use rayon::prelude::*;
-use sightline_dsl::{AgentKind, Grid, Motion, Perception, World};
+use sightline_dsl::{Agent, AgentKind, Grid, Motion, Perception, World};
 
-use super::fuse::{self, CellFusion};
+use super::fuse::{self, Fusion};
 use super::localization::{self, PoseEstimator};
-use super::metrics::{CellTally, FusedCell, Snapshot, WorldMetrics, WorldOutcome, WorldTally};
+use super::measure::{MeasuredStep, Measures, unmeasured};
+use super::metrics::WorldOutcome;
 use super::motion::{self, Kinematics};
-use super::observe::{self, Observation, Observed, Sightings, StepScene};
-use super::raster::{Raster, box_cells, cell_center};
-use super::sight::{self, Bodies, Body, Occluders};
-use crate::fusion::{Estimate, State, decide, pignistic};
+use super::observe::{self, Observation, StepScene};
+use super::raster::{Raster, cell_center};
+use super::sight::{self, Bodies, Occluders};
+use super::state::AgentState;
+use super::truth::{EXCLUDED, Truth};
 use crate::idealisation::Idealisation;
 use crate::math::{Pose, Vector};
 use crate::rng::{Purpose, stream};
 use crate::run::Job;
 use crate::sink::TraceSink;
-use crate::trace::{CooperatorStep, FusedGrid, FusedStep, Measured, WorldStep};
+use crate::trace::CooperatorStep;
 
 /// Each step's grids stand alone.
 pub(crate) const MEMORYLESS: Idealisation = Idealisation {
@@ -84,13 +91,67 @@ pub(crate) fn idealisations(world: &World, perception: &Perception) -> Vec<Ideal
     listed
 }
 
-/// Cells fused per parallel task.
-const CHUNK: usize = 4096;
+/// What stays fixed over a run of a world.
+struct Setting<'a> {
+    grid: &'a Grid,
+    world: &'a World,
+    occluders: Occluders,
+    /// Per cell: whether it lies in the region of interest.
+    in_region: Vec<bool>,
+}
 
-/// Ground truth of a cell.
-const FREE: u8 = 0;
-const OCCUPIED: u8 = 1;
-const EXCLUDED: u8 = 2;
+impl<'a> Setting<'a> {
+    fn new(grid: &'a Grid, world: &'a World, perception: &'a Perception) -> Self {
+        let cells = grid.cells();
+        let in_region = match perception.region {
+            None => vec![true; cells],
+            Some(([x, y], radius)) => (0..cells)
+                .map(|cell| (cell_center(grid, cell) - Vector::new(x, y)).length() <= radius)
+                .collect(),
+        };
+        Self {
+            grid,
+            world,
+            occluders: Occluders::new(&world.occluders),
+            in_region,
+        }
+    }
+
+    /// Whether the metrics count `cell`: in the region of interest, neither an
+    /// occluder nor the ego's footprint.
+    fn counted(&self, raster: &Raster, truth: &Truth, cell: usize) -> bool {
+        self.in_region[cell] && !raster.is_occluder(cell) && truth.cells()[cell] != EXCLUDED
+    }
+}
+
+/// The moving scene: every agent's state, their bodies, and the raster they are
+/// drawn on, carried from step to step.
+struct Scene<'a> {
+    kinematics: Kinematics<'a>,
+    states: Vec<Option<AgentState>>,
+    bodies: Bodies,
+    raster: Raster,
+}
+
+impl<'a> Scene<'a> {
+    /// The scene before the first step.
+    fn new(grid: &Grid, world: &'a World) -> Self {
+        Self {
+            kinematics: Kinematics::new(&world.agents, world.step, world.driving),
+            states: Vec::new(),
+            bodies: Bodies::new(Vec::new()),
+            raster: Raster::new(*grid, &world.occluders),
+        }
+    }
+
+    /// Move: every agent advances to step `k`, and the bodies of those in the
+    /// scene are drawn on the raster.
+    fn advance(&mut self, k: usize, agents: &[Agent]) {
+        self.kinematics.advance(k, &mut self.states);
+        self.bodies = Bodies::of_scene(agents, &self.states);
+        self.raster.set_bodies(self.bodies.all());
+    }
+}
 
 /// A cooperating agent's state across steps.
 struct Cooperator {
@@ -104,12 +165,19 @@ struct Cooperator {
     estimate: Pose,
 }
 
-/// Fused values of the observed cells of one step, in cell order.
-#[derive(Debug, Clone, Default)]
-struct CellValues {
-    probability: Vec<f32>,
-    uncertainty: Vec<f32>,
-    decision: Vec<Option<State>>,
+impl Cooperator {
+    /// Cooperating agent `agent` before the first step, with its random streams.
+    fn new(seed: u64, agent: usize, cells: usize, world: &World) -> Self {
+        Self {
+            agent,
+            observation: Observation::new(cells),
+            estimator: PoseEstimator::new(world.localization),
+            localization: stream(seed, Purpose::Localization, agent as u64),
+            detections: stream(seed, Purpose::Detections, agent as u64),
+            present: false,
+            estimate: Pose::IDENTITY,
+        }
+    }
 }
 
 /// Runs a world's collective perception once and evaluates every job on the same
@@ -122,245 +190,81 @@ pub fn run(
     jobs: &[Job<'_>],
     sink: &mut impl TraceSink,
 ) -> Vec<WorldOutcome> {
-    let cells = grid.cells();
-    let occluders = Occluders::new(&world.occluders);
-    let mut raster = Raster::new(*grid, &world.occluders);
-    let mut kinematics = Kinematics::new(&world.agents, world.step, world.driving);
+    let setting = Setting::new(grid, world, perception);
+    let mut scene = Scene::new(grid, world);
     let mut cooperators: Vec<Cooperator> = perception
         .cooperating
         .iter()
-        .map(|&agent| Cooperator {
-            agent,
-            observation: Observation::new(cells),
-            estimator: PoseEstimator::new(world.localization),
-            localization: stream(seed, Purpose::Localization, agent as u64),
-            detections: stream(seed, Purpose::Detections, agent as u64),
-            present: false,
-            estimate: Pose::IDENTITY,
-        })
+        .map(|&agent| Cooperator::new(seed, agent, grid.cells(), world))
         .collect();
-    let mut states = Vec::new();
-    // Per cell: 0 free, 1 truly occupied, 2 excluded from the metrics (occluders
-    // and the ego's own footprint).
-    let mut truth = vec![FREE; cells];
-    let mut truth_cells: Vec<usize> = Vec::new();
-    let mut observed = vec![false; cells];
-    let mut observed_cells: Vec<usize> = Vec::new();
-    let in_region: Vec<bool> = match perception.region {
-        None => vec![true; cells],
-        Some(([x, y], radius)) => (0..cells)
-            .map(|cell| (cell_center(grid, cell) - Vector::new(x, y)).length() <= radius)
-            .collect(),
-    };
-    let mut tallies = vec![WorldTally::default(); jobs.len()];
-    let mut snapshots: Vec<Option<Snapshot>> = vec![None; jobs.len()];
-    let mut by_step: Vec<Vec<(f64, CellTally)>> = vec![Vec::new(); jobs.len()];
-    // The fused values of a pictured step, per job; kept for one step only.
-    let mut values = vec![CellValues::default(); jobs.len()];
+    let mut truth = Truth::new(grid.cells());
+    let mut fusion = Fusion::new(grid, perception, jobs);
+    let mut measures = Measures::new(jobs.len());
     sink.start(&world.agents);
-    let (mut steps, mut ego_observed, mut joint_observed) = (0u64, 0u64, 0u64);
-    let mut sightings = Sightings::default();
-    let (mut error_sum, mut error_count) = (0.0, 0u64);
 
     for k in 0..world.steps {
-        kinematics.advance(k, &mut states);
-        let bodies = Bodies::of_scene(&world.agents, &states);
-        raster.set_bodies(bodies.all());
-        // Agents update their pose estimates whether or not the ego is there.
-        let scene = StepScene {
-            grid,
-            occluders: &occluders,
-            bodies: &bodies,
-            raster: &raster,
-        };
-        cooperators.par_iter_mut().for_each(|c| {
-            c.present = false;
-            let Some(state) = states[c.agent] else { return };
-            let agent = &world.agents[c.agent];
-            let estimate = match agent.motion {
-                // A roadside unit's position is surveyed.
-                Motion::Fixed { .. } => state.pose,
-                Motion::Along { .. } | Motion::Trace { .. } => {
-                    c.estimator.estimate(state.pose, world.step, &mut c.localization)
-                }
-            };
-            c.estimate = estimate;
-            c.observation
-                .observe(&scene, (c.agent, agent), state.pose, estimate, &mut c.detections);
-            c.present = true;
-        });
         let time = k as f64 * world.step;
-        if states[perception.ego].is_none() {
-            sink.world_step(&WorldStep {
-                step: k,
-                time,
-                agents: &states,
-                cooperators: &cooperation(&cooperators),
-                measured: None,
-            });
+        scene.advance(k, &world.agents);
+        let sensed = sense(&setting, &scene, &mut cooperators);
+        if scene.states[perception.ego].is_none() {
+            unmeasured(k, time, &scene.states, &sensed, sink);
             continue;
         }
-        steps += 1;
-        for c in cooperators.iter().filter(|c| c.present) {
-            sightings.add(c.observation.sightings);
-            let truth = states[c.agent].expect("a present cooperator is in the scene").pose;
-            error_sum += (c.estimate.translation - truth.translation).length();
-            error_count += 1;
-        }
-
-        for &cell in &truth_cells {
-            truth[cell] = FREE;
-        }
-        truth_cells.clear();
-        // The ego's footprint first, so that no other body claims its cells.
-        let mut footprints: Vec<&Body> = bodies.all().iter().collect();
-        footprints.sort_by_key(|b| b.agent != perception.ego);
-        for body in footprints {
-            for cell in box_cells(grid, body) {
-                if in_region[cell] && !raster.is_occluder(cell) && truth[cell] == FREE {
-                    truth[cell] = if body.agent == perception.ego {
-                        EXCLUDED
-                    } else {
-                        OCCUPIED
-                    };
-                    truth_cells.push(cell);
-                }
-            }
-        }
-        for &cell in &observed_cells {
-            observed[cell] = false;
-        }
-        observed_cells.clear();
-        let present: Vec<&Observation> = cooperators
-            .iter()
-            .filter(|c| c.present)
-            .map(|c| &c.observation)
-            .collect();
-        let counted = |cell: usize| in_region[cell] && !raster.is_occluder(cell) && truth[cell] != EXCLUDED;
-        for observation in &present {
-            for &cell in observation.touched() {
-                if counted(cell) && !observed[cell] {
-                    observed[cell] = true;
-                    observed_cells.push(cell);
-                }
-            }
-        }
-        let ego = &cooperators[0].observation;
-        let ego_step = ego.touched().iter().filter(|&&c| counted(c)).count() as u64;
-        ego_observed += ego_step;
-        joint_observed += observed_cells.len() as u64;
-        // Occupied cells nobody observed count as missed (and as blind: the ego did
-        // not observe them either).
-        let unseen = truth_cells
-            .iter()
-            .filter(|&&c| truth[c] == OCCUPIED && !observed[c])
-            .count() as u64;
-
+        let received = communicate(&sensed);
+        // The ground truth the fused grids are tallied against.
+        truth.mark(grid, &scene.raster, &setting.in_region, &scene.bodies, perception.ego);
         let snapshot = k == perception.snapshot_step;
-        let wants_grids = sink.wants_grids(k);
-        let mut step_cells = Vec::with_capacity(jobs.len());
-        for (j, job) in jobs.iter().enumerate() {
-            let tallier = Tallier {
-                fusion: CellFusion {
-                    grid,
-                    rule: &job.fusion.rule,
-                    observations: &present,
-                    occupied: perception.occupied,
-                    free: perception.free,
-                },
-                threshold: job.decision.threshold,
-                truth: &truth,
-            };
-            let chunks: Vec<(WorldTally, CellValues)> = observed_cells
-                .par_chunks(CHUNK)
-                .map(|chunk| tallier.tally(chunk, snapshot || wants_grids))
-                .collect();
-            let mut cells = CellTally {
-                occupied: unseen,
-                blind_occupied: unseen,
-                ..CellTally::default()
-            };
-            // Chunk by chunk, so that the floating-point sums do not depend on
-            // the thread count.
-            for (chunk, _) in &chunks {
-                cells.add(&chunk.cells);
-                tallies[j].estimates.merge(&chunk.estimates);
-            }
-            tallies[j].cells.add(&cells);
-            if snapshot || wants_grids {
-                let values = &mut values[j];
-                values.probability.clear();
-                values.uncertainty.clear();
-                values.decision.clear();
-                for (_, chunk) in &chunks {
-                    values.probability.extend(&chunk.probability);
-                    values.uncertainty.extend(&chunk.uncertainty);
-                    values.decision.extend(&chunk.decision);
-                }
-            }
-            if snapshot {
-                snapshots[j] = Some(picture(k, &truth, &raster, ego, &observed_cells, &values[j]));
-            }
-            by_step[j].push((time, cells));
-            step_cells.push(cells);
-        }
-        let fused: Vec<FusedStep<'_>> = step_cells
-            .into_iter()
-            .zip(&values)
-            .map(|(cells, values)| FusedStep {
-                cells,
-                grid: wants_grids.then(|| FusedGrid {
-                    cells: &observed_cells,
-                    probability: &values.probability,
-                    uncertainty: &values.uncertainty,
-                }),
-            })
-            .collect();
-        sink.world_step(&WorldStep {
+        let grids = sink.wants_grids(k);
+        let fused = fusion.fuse(
+            &received,
+            &truth,
+            |cell| setting.counted(&scene.raster, &truth, cell),
+            snapshot || grids,
+        );
+        let step = MeasuredStep {
             step: k,
             time,
-            agents: &states,
-            cooperators: &cooperation(&cooperators),
-            measured: Some(Measured {
-                ego_observed: ego_step,
-                joint_observed: observed_cells.len() as u64,
-                fused: &fused,
-            }),
-        });
+            states: &scene.states,
+            raster: &scene.raster,
+            sensed: &sensed,
+            truth: &truth,
+            fused,
+            snapshot,
+            grids,
+        };
+        measures.measure(step, sink);
     }
-
-    tallies
-        .iter()
-        .zip(jobs)
-        .zip(snapshots)
-        .zip(by_step)
-        .map(|(((tally, job), snapshot), by_step)| {
-            let (mean_uncertainty, conflict, audit) = tally.estimates.finish(job.fusion.rule.is_evidential());
-            WorldOutcome {
-                metrics: WorldMetrics {
-                    steps,
-                    occupied: tally.cells.occupied,
-                    detected: tally.cells.detected,
-                    false_positives: tally.cells.false_positives,
-                    blind_occupied: tally.cells.blind_occupied,
-                    blind_detected: tally.cells.blind_detected,
-                    ego_observed,
-                    joint_observed,
-                    sightings,
-                    localization_error: (error_count > 0).then(|| error_sum / error_count as f64),
-                    mean_uncertainty,
-                    conflict,
-                },
-                audit,
-                snapshot,
-                by_step,
-            }
-        })
-        .collect()
+    measures.finish(jobs)
 }
 
-/// The cooperating agents in the scene, for the step record.
-fn cooperation(cooperators: &[Cooperator]) -> Vec<CooperatorStep<'_>> {
+/// Sense: every cooperating agent in the scene estimates its pose (a roadside
+/// unit knows its surveyed one) and observes with it. Agents update their pose
+/// estimates whether or not the ego is there. Returns what those in the scene
+/// sensed, in cooperation order.
+fn sense<'c>(setting: &Setting<'_>, scene: &Scene<'_>, cooperators: &'c mut [Cooperator]) -> Vec<CooperatorStep<'c>> {
+    let world = setting.world;
+    let step_scene = StepScene {
+        grid: setting.grid,
+        occluders: &setting.occluders,
+        bodies: &scene.bodies,
+        raster: &scene.raster,
+    };
+    cooperators.par_iter_mut().for_each(|c| {
+        c.present = false;
+        let Some(state) = scene.states[c.agent] else { return };
+        let agent = &world.agents[c.agent];
+        let estimate = match agent.motion {
+            // A roadside unit's position is surveyed.
+            Motion::Fixed { .. } => state.pose,
+            Motion::Along { .. } | Motion::Trace { .. } => {
+                c.estimator.estimate(state.pose, world.step, &mut c.localization)
+            }
+        };
+        c.estimate = estimate;
+        c.observation
+            .observe(&step_scene, (c.agent, agent), state.pose, estimate, &mut c.detections);
+        c.present = true;
+    });
     cooperators
         .iter()
         .filter(|c| c.present)
@@ -372,88 +276,10 @@ fn cooperation(cooperators: &[Cooperator]) -> Vec<CooperatorStep<'_>> {
         .collect()
 }
 
-/// Tallies one method's fused grid of one step against the truth.
-struct Tallier<'a> {
-    fusion: CellFusion<'a>,
-    threshold: f64,
-    truth: &'a [u8],
-}
-
-impl Tallier<'_> {
-    /// Tallies a chunk of observed cells; with `picture`, also returns their fused
-    /// values.
-    fn tally(&self, cells: &[usize], picture: bool) -> (WorldTally, CellValues) {
-        let mut tally = WorldTally::default();
-        let mut values = CellValues::default();
-        let mut sources = Vec::with_capacity(self.fusion.observations.len());
-        let ego = self.fusion.observations[0];
-        for &cell in cells {
-            let estimate = self.fusion.estimate(cell, &mut sources);
-            tally.estimates.record(&estimate);
-            let decision = decide(estimate.decision_mass(), self.threshold);
-            let decided = decision == Some(State::Occupied);
-            let blind = ego.get(cell) == Observed::Unknown;
-            let counts = &mut tally.cells;
-            if self.truth[cell] == OCCUPIED {
-                counts.occupied += 1;
-                counts.detected += u64::from(decided);
-                if blind {
-                    counts.blind_occupied += 1;
-                    counts.blind_detected += u64::from(decided);
-                }
-            } else if decided {
-                counts.false_positives += 1;
-            }
-            if picture {
-                values.probability.push(match estimate {
-                    Estimate::Occupancy(o) => o.probability as f32,
-                    Estimate::Evidential { combination, .. } => pignistic(combination.mass) as f32,
-                });
-                values.uncertainty.push(estimate.uncertainty() as f32);
-                values.decision.push(decision);
-            }
-        }
-        (tally, values)
-    }
-}
-
-/// The grids of the snapshot step.
-fn picture(
-    step: usize,
-    truth: &[u8],
-    raster: &Raster,
-    ego: &Observation,
-    observed_cells: &[usize],
-    values: &CellValues,
-) -> Snapshot {
-    let truth_picture = (0..truth.len())
-        .map(|cell| match (raster.is_occluder(cell), truth[cell]) {
-            (true, _) => 2,
-            (false, OCCUPIED) => 1,
-            // Occluders are handled above: what else is excluded is the ego.
-            (false, EXCLUDED) => 3,
-            _ => 0,
-        })
-        .collect();
-    let ego_picture = (0..truth.len())
-        .map(|cell| match ego.get(cell) {
-            Observed::Unknown => 0,
-            Observed::Free => 1,
-            Observed::Occupied => 2,
-        })
-        .collect();
-    let mut fused = vec![None; truth.len()];
-    for (i, &cell) in observed_cells.iter().enumerate() {
-        fused[cell] = Some(FusedCell {
-            probability: values.probability[i],
-            uncertainty: values.uncertainty[i],
-            decision: values.decision[i],
-        });
-    }
-    Snapshot {
-        step,
-        truth: truth_picture,
-        ego: ego_picture,
-        fused,
-    }
+/// Communicate: the observations that reach the ego, its own first. Every
+/// cooperating agent's observation arrives whole at the step it is made
+/// ([`LOSSLESS_EXCHANGE`]); the radio channel replaces this pass-through in
+/// issue 16.
+fn communicate<'c>(sensed: &[CooperatorStep<'c>]) -> Vec<&'c Observation> {
+    sensed.iter().map(|c| c.observation).collect()
 }

@@ -1,0 +1,151 @@
+//! The measure phase of a semantic world: each step's view of the ego, each
+//! RSU's selection and each packet added to the run's metrics, and every step's
+//! record handed to the trace sink.
+
+use sightline_dsl::World;
+
+use super::ego::{Ego, EgoView};
+use super::message::{Item, baseline_bytes};
+use super::metrics::{DELIVERY_BIN, SemanticMetrics, Series};
+use super::rsu::Selection;
+use crate::sink::TraceSink;
+use crate::trace::{Approach, Arrival, Packet, PacketKind, SemanticLog};
+use crate::world::{AgentState, Visibility};
+
+/// What a run has measured so far.
+pub(super) struct Measures {
+    metrics: SemanticMetrics,
+    /// Road network length, km (lane 0 of every road), for traffic density.
+    network_km: f64,
+    /// Per step with the ego: objects it knew only through an RSU.
+    rsu_only: Series,
+    /// Per RSU cycle whose message flags a conflict: the shortest time to it.
+    time_to_conflict: Series,
+    /// The current step's record.
+    log: SemanticLog,
+}
+
+impl Measures {
+    /// Nothing measured yet in `world`, whose scene has `agents` agents.
+    pub(super) fn new(world: &World, agents: usize) -> Self {
+        Self {
+            metrics: SemanticMetrics {
+                runs: 1,
+                generated: (agents - world.agents.len()) as u64,
+                ..Default::default()
+            },
+            network_km: world.roads.iter().map(|r| r.lanes[0].length()).sum::<f64>() / 1000.0,
+            rsu_only: Vec::new(),
+            time_to_conflict: Vec::new(),
+            log: SemanticLog::default(),
+        }
+    }
+
+    /// The messages that reached the ego this step.
+    pub(super) fn arrivals(&mut self, arrivals: Vec<Arrival>) {
+        self.log.arrivals.extend(arrivals);
+    }
+
+    /// A step `dt` long at `time` with the ego in the scene, cautious or not,
+    /// perceiving `view`.
+    pub(super) fn ego_step(&mut self, time: f64, dt: f64, cautious: bool, view: EgoView) {
+        let metrics = &mut self.metrics;
+        metrics.steps += 1;
+        metrics.duration += dt;
+        if cautious {
+            metrics.cautious_time += dt;
+        }
+        for (agent, flagged) in view.approaches {
+            metrics.close_approaches += 1;
+            metrics.missed_criticals += u64::from(flagged.is_none());
+            metrics.warnings.push(flagged.map(|at| time - at));
+            self.log.approaches.push(Approach {
+                agent,
+                flagged: flagged.is_some(),
+            });
+        }
+        let density = (self.network_km > 0.0).then(|| f64::from(view.present) / self.network_km);
+        metrics.contribution.push((density, view.through_rsu));
+        self.rsu_only.push((time, f64::from(view.through_rsu)));
+    }
+
+    /// What an RSU selected at `time`; `shared`: the cycle counts toward the
+    /// transmitted and labelled shares.
+    pub(super) fn selection(&mut self, time: f64, selection: &Selection, shared: bool) {
+        let metrics = &mut self.metrics;
+        if shared {
+            metrics.perceived += selection.perceived as u64;
+        }
+        if selection.baseline > 0 {
+            metrics.baseline_objects += selection.baseline as u64;
+            metrics.baseline_bytes += baseline_bytes(selection.baseline) as u64;
+        }
+        if shared {
+            count_labels(metrics, &selection.items);
+        }
+        let soonest = selection
+            .items
+            .iter()
+            .filter_map(|item| item.labels.conflict)
+            .map(|conflict| conflict.time)
+            .reduce(f64::min);
+        if let Some(soonest) = soonest {
+            self.time_to_conflict.push((time, soonest));
+        }
+    }
+
+    /// A packet sent; a semantic message counts by size and by distance.
+    pub(super) fn packet(&mut self, packet: Packet) {
+        if let PacketKind::Downlink { bytes, .. } = packet.kind {
+            let metrics = &mut self.metrics;
+            metrics.bytes += bytes as u64;
+            metrics.messages += 1;
+            let bin = (packet.link.distance_m / DELIVERY_BIN) as usize;
+            if metrics.delivery_by_distance.len() <= bin {
+                metrics.delivery_by_distance.resize(bin + 1, Default::default());
+            }
+            metrics.delivery_by_distance[bin].sent += 1;
+            if packet.reception.received {
+                metrics.delivered += 1;
+                metrics.delivery_by_distance[bin].received += 1;
+            }
+        }
+        self.log.packets.push(packet);
+    }
+
+    /// Reports step `step` at `time` to `sink`, and starts the next one.
+    pub(super) fn record(&mut self, step: usize, time: f64, states: &[Option<AgentState>], sink: &mut impl TraceSink) {
+        sink.semantic_step(&self.log.step(step, time, states));
+        self.log.clear();
+    }
+
+    /// The run's metrics, with what the `ego` came to know over it.
+    pub(super) fn finish(self, ego: &Ego) -> SemanticMetrics {
+        let mut metrics = self.metrics;
+        for known in ego.knowledge() {
+            if let Some((received, false)) = known.first_received {
+                match known.first_seen {
+                    Some(seen) => metrics.anticipation.push(seen - received),
+                    None => metrics.never_seen += 1,
+                }
+            }
+        }
+        metrics.anticipation.sort_by(f64::total_cmp);
+        metrics.rsu_only = vec![self.rsu_only];
+        metrics.time_to_conflict = vec![self.time_to_conflict];
+        metrics
+    }
+}
+
+fn count_labels(metrics: &mut SemanticMetrics, items: &[Item]) {
+    metrics.transmitted += items.len() as u64;
+    for item in items {
+        let labels = &item.labels;
+        metrics.labelled += u64::from(labels.any());
+        metrics.labels.nlos_static += u64::from(labels.nlos == Some(Visibility::NlosStatic));
+        metrics.labels.nlos_dynamic += u64::from(labels.nlos == Some(Visibility::NlosDynamic));
+        metrics.labels.relevant += u64::from(labels.relevant);
+        metrics.labels.speeding += u64::from(labels.speeding);
+        metrics.labels.conflict += u64::from(labels.conflict.is_some());
+    }
+}
