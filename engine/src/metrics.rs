@@ -1,4 +1,5 @@
-//! What a field run measures, and the tallies it is computed from.
+//! What a field run measures, and the tallies it is computed from; the metric
+//! types every world shares (conflict, the mass audit, a signal over time).
 //!
 //! Every cell falls in exactly one outcome: decided correctly, false alarm
 //! (decided Occupy, truly empty), missed detection (decided Empty, truly
@@ -10,6 +11,11 @@ use serde::{Deserialize, Serialize};
 use sightline_dsl::Metric;
 
 use crate::fusion::{Estimate, State, decide};
+
+/// A signal over a run: (time in seconds, value) at the steps it is defined,
+/// in time order (a world's per-step recall, a semantic world's time to
+/// conflict).
+pub type Series = Vec<(f64, f64)>;
 
 /// Everything measured at one sweep point.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

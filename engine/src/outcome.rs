@@ -15,8 +15,6 @@
 //!   ([`LabelCounts`]) and per-step [`Series`].
 
 pub use crate::fusion::State;
-pub use crate::metrics::{BandMetrics, ConflictMetrics, Coverage, FieldMetrics, FieldOutcome, MassAudit};
-pub use crate::semantic::{
-    DELIVERY_BIN, DENSITY_BIN, DeliveryBin, DensityRow, LabelCounts, SemanticMetrics, Series, quantile,
-};
+pub use crate::metrics::{BandMetrics, ConflictMetrics, Coverage, FieldMetrics, FieldOutcome, MassAudit, Series};
+pub use crate::semantic::{DELIVERY_BIN, DENSITY_BIN, DeliveryBin, DensityRow, LabelCounts, SemanticMetrics, quantile};
 pub use crate::world::{CellTally, FusedCell, Sightings, Snapshot, WorldMetrics, WorldOutcome};

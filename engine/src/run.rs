@@ -7,9 +7,10 @@ use serde::{Deserialize, Serialize};
 use sightline_dsl::{Agent, Check, Decision, Experiment, Fusion, Metric, ObjectProperty, Scenario, Setup, Signal};
 
 use crate::field;
+use crate::metrics::Series;
 use crate::metrics::{FieldOutcome, MassAudit};
 use crate::rng::{Derived, derived_seed};
-use crate::semantic::{self, SemanticMetrics, Series};
+use crate::semantic::{self, SemanticMetrics};
 use crate::sink::{NoTrace, TraceSink};
 use crate::trace::{Measured, SemanticStep, WorldStep};
 use crate::world::{self, WorldOutcome};

@@ -6,8 +6,9 @@ use sightline_dsl::World;
 
 use super::ego::{Ego, EgoView};
 use super::message::{Item, baseline_bytes};
-use super::metrics::{DELIVERY_BIN, SemanticMetrics, Series};
+use super::metrics::{DELIVERY_BIN, SemanticMetrics};
 use super::rsu::Selection;
+use crate::metrics::Series;
 use crate::sink::TraceSink;
 use crate::trace::{Approach, Arrival, Packet, PacketKind, SemanticLog};
 use crate::world::{AgentState, Visibility};

@@ -2,6 +2,8 @@
 //! metric).
 
 use serde::{Deserialize, Serialize};
+
+use crate::metrics::Series;
 use sightline_dsl::Metric;
 
 /// Width of the packet-delivery distance bins, metres.
@@ -72,10 +74,6 @@ pub struct SemanticMetrics {
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub time_to_conflict: Vec<Series>,
 }
-
-/// A signal over a run: (time in seconds, value) at the steps it is defined,
-/// in time order.
-pub type Series = Vec<(f64, f64)>;
 
 /// Sent object-cycles by label.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]

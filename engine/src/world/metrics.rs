@@ -11,8 +11,8 @@ use sightline_dsl::{Metric, Signal};
 
 use super::observe::Sightings;
 use crate::fusion::State;
+use crate::metrics::Series;
 use crate::metrics::{ConflictMetrics, EstimateTally, MassAudit};
-use crate::semantic::Series;
 
 /// Everything measured at one sweep point of a world.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
