@@ -9,6 +9,7 @@ pub use wire::{
 };
 pub use write::{Recorder, Source, WriteError};
 
+mod counts;
 mod foxglove;
 mod read;
 pub mod topic;

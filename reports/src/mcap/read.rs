@@ -15,9 +15,9 @@ use sightline_engine::Sample;
 use sightline_engine::outcome::{CellTally, MassAudit, Series, WorldMetrics};
 use sightline_oracles::Measurements;
 
+use super::counts::{WORLD_STEP_METRICS, add_counts, zero_world_metrics};
 use super::topic;
 use super::wire::{MetricValue, OutcomeRecord, RECORDING_FORMAT, ScenarioRecord, SignalsRecord, VerdictRecord};
-use super::write::{WORLD_STEP_METRICS, add_counts, zero_world_metrics};
 use crate::sha256_hex;
 
 /// The largest record (or message inside a chunk) a recording may hold, bytes.

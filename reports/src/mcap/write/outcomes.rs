@@ -1,0 +1,130 @@
+//! The end of a recording: every point's outcome with what its checks read
+//! (`/sightline/outcome`), and every verdict, structured (`/sightline/verdicts`)
+//! and as a log line (`/log`), written once the run is over.
+
+use std::io::{Seek, Write};
+
+use sightline_dsl::{Check, ObjectProperty, Signal};
+use sightline_engine::{Outcome, Run};
+use sightline_oracles::Verdict;
+
+use super::channel::{LOG, OUTCOME, VERDICT};
+use super::{Recorder, WriteError};
+use crate::mcap::foxglove::{Level, Log, Time};
+use crate::mcap::topic;
+use crate::mcap::wire::{
+    AuditRecord, MetricValue, ObjectRecord, OutcomeRecord, PointVerdictRecord, Real, SeriesRecord, VerdictRecord,
+};
+
+impl<W: Write + Seek> Recorder<'_, W> {
+    /// Writes every point's outcome, every verdict (structured and as log lines)
+    /// at the time of the last step, and closes the file; returns the output.
+    pub fn finish(mut self, run: &Run, verdicts: &[Verdict]) -> Result<W, WriteError> {
+        let end = self.last;
+        let scenario = self.scenario;
+        let metric_values = |outcome: &Outcome| -> Vec<MetricValue> {
+            outcome
+                .samples()
+                .into_iter()
+                .map(|(metric, sample)| MetricValue {
+                    metric,
+                    value: sample.value.map(Real),
+                    n: sample.n,
+                })
+                .collect()
+        };
+        for (point, outcome) in scenario.points.iter().zip(&run.points) {
+            // What this point's temporal and per-object checks read, each once.
+            let mut signals: Vec<Signal> = Vec::new();
+            let mut properties: Vec<ObjectProperty> = Vec::new();
+            for requirement in scenario.requirements.iter().filter(|r| r.points.contains(&point.index)) {
+                match requirement.check {
+                    Check::Temporal { signal, .. } if !signals.contains(&signal) => signals.push(signal),
+                    Check::PerObject { property, .. } if !properties.contains(&property) => properties.push(property),
+                    _ => {}
+                }
+            }
+            let record = OutcomeRecord {
+                point: point.index,
+                label: point.label(),
+                metrics: metric_values(outcome),
+                audit: outcome.audit().copied().map(AuditRecord::from),
+                replicates: run.replicates[point.index].iter().map(metric_values).collect(),
+                series: signals
+                    .into_iter()
+                    .filter_map(|signal| {
+                        let runs = outcome.series(signal)?;
+                        Some(SeriesRecord {
+                            signal,
+                            runs: runs
+                                .iter()
+                                .map(|series| series.iter().map(|&(t, v)| (Real(t), Real(v))).collect())
+                                .collect(),
+                        })
+                    })
+                    .collect(),
+                per_object: properties
+                    .into_iter()
+                    .filter_map(|property| {
+                        let values = outcome.per_object(property)?;
+                        Some(ObjectRecord {
+                            property,
+                            values: values.iter().map(|v| v.map(Real)).collect(),
+                        })
+                    })
+                    .collect(),
+            };
+            self.publish(topic::OUTCOME, OUTCOME, end, &record);
+        }
+        for (requirement, verdict) in scenario.requirements.iter().zip(verdicts) {
+            self.publish(topic::VERDICTS, VERDICT, end, &verdict_record(requirement, verdict));
+            let level = match verdict.status {
+                sightline_oracles::Status::Pass => Level::Info,
+                sightline_oracles::Status::NotExercised if !verdict.fails_run() => Level::Warning,
+                _ => Level::Error,
+            };
+            let log = Log::new(
+                Time::from_nanos(end),
+                level,
+                format!(
+                    "{} {}: {}",
+                    verdict.status.words().to_uppercase(),
+                    requirement.id,
+                    verdict.decisive.message
+                ),
+                scenario.file.clone(),
+                requirement.location.line,
+            );
+            self.publish(topic::LOG, LOG, end, &log);
+        }
+        self.take_failure()?;
+        self.out.finish()?;
+        Ok(self.out.into_inner())
+    }
+}
+
+fn verdict_record(requirement: &sightline_dsl::Requirement, verdict: &Verdict) -> VerdictRecord {
+    VerdictRecord {
+        id: requirement.id.clone(),
+        text: requirement.text.clone(),
+        verdict: verdict.status.name().into(),
+        accepted: verdict.accepted.clone(),
+        value: verdict.decisive.value.map(Real),
+        threshold: Real(verdict.threshold),
+        margin: verdict.decisive.margin.map(Real),
+        message: verdict.decisive.message.clone(),
+        points: verdict
+            .evaluations
+            .iter()
+            .map(|e| PointVerdictRecord {
+                point: e.point,
+                verdict: e.status.name().into(),
+                value: e.value.map(Real),
+                n: e.n,
+                measured: e.measured.clone(),
+                margin: e.margin.map(Real),
+                message: e.message.clone(),
+            })
+            .collect(),
+    }
+}

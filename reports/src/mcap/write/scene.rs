@@ -1,0 +1,238 @@
+//! The scene a recording shows in Foxglove's 3D panel: the map (`/scene/map`),
+//! the agents with their fields of view (`/scene/agents`) and what each
+//! cooperating agent detected (`/perception/<id>/detections`), with the shapes
+//! and colours they are drawn in.
+
+use std::collections::BTreeSet;
+use std::f64::consts::{PI, TAU};
+use std::io::{Seek, Write};
+
+use sightline_dsl::{Agent, AgentKind, Area, Grid as CellGrid, World};
+use sightline_engine::trace::{AgentState, Body, CooperatorStep, Vector};
+
+use super::Recorder;
+use super::channel::SCENE;
+use crate::mcap::foxglove::{Color, Cube, Entity, Line, LineType, Pose3, SceneUpdate, Text, Time, Vector3};
+use crate::mcap::topic;
+
+/// Segments of a full circle (a 360° sensor's range, a region).
+const CIRCLE_SEGMENTS: usize = 72;
+
+/// The largest angle between two points of a field-of-view arc, radians.
+const ARC_STEP: f64 = 5.0 * PI / 180.0;
+
+const EGO: Color = Color::rgba(0.1, 0.75, 0.3, 0.9);
+const CONNECTED: Color = Color::rgba(0.2, 0.45, 0.95, 0.9);
+const VEHICLE: Color = Color::rgba(0.55, 0.55, 0.6, 0.9);
+const PEDESTRIAN: Color = Color::rgba(0.95, 0.55, 0.1, 0.9);
+const RSU: Color = Color::rgba(0.6, 0.3, 0.85, 0.9);
+const LABEL: Color = Color::rgba(1.0, 1.0, 1.0, 1.0);
+const FOV: Color = Color::rgba(0.3, 0.8, 1.0, 0.35);
+const ROAD: Color = Color::rgba(0.7, 0.7, 0.7, 0.8);
+const OCCLUDER: Color = Color::rgba(0.85, 0.3, 0.25, 1.0);
+const AREA: Color = Color::rgba(1.0, 0.85, 0.2, 0.7);
+const OUTLINE: Color = Color::rgba(0.4, 0.4, 0.4, 0.6);
+const DETECTION: Color = Color::rgba(1.0, 0.2, 0.6, 0.7);
+const ESTIMATE: Color = Color::rgba(0.1, 0.9, 0.9, 0.9);
+
+impl<W: Write + Seek> Recorder<'_, W> {
+    /// `/scene/agents`: every agent in the scene as a box with its id, and its
+    /// sensors' fields of view.
+    pub(super) fn publish_agents(&mut self, time: u64, states: &[Option<AgentState>]) {
+        let stamp = Time::from_nanos(time);
+        let entities = states
+            .iter()
+            .enumerate()
+            .filter_map(|(i, state)| Some((i, (*state)?, self.agents.get(i)?)))
+            .map(|(i, state, agent)| {
+                let height = height(agent.kind);
+                let mut entity = Entity::new(stamp, agent.id.clone())
+                    .meta("kind", kind_name(agent.kind))
+                    .meta("speed_mps", format!("{:.2}", state.speed))
+                    .cube(Cube {
+                        pose: Pose3::planar(state.pose, height / 2.0),
+                        size: Vector3 {
+                            x: agent.length,
+                            y: agent.width,
+                            z: height,
+                        },
+                        color: self.color(i, agent),
+                    })
+                    .text(Text::label(
+                        Pose3::planar(state.pose, height + 1.0),
+                        agent.id.clone(),
+                        LABEL,
+                    ));
+                for (mount, kind, outline) in self.fields_of_view.get(i).into_iter().flatten() {
+                    entity = entity.line(Line::new(
+                        *kind,
+                        Pose3::planar(state.pose * *mount, 0.05),
+                        outline.iter().copied(),
+                        0.1,
+                        FOV,
+                    ));
+                }
+                entity
+            })
+            .collect();
+        self.publish(topic::AGENTS, SCENE, time, &SceneUpdate::replace(stamp, entities));
+    }
+
+    fn color(&self, index: usize, agent: &Agent) -> Color {
+        match agent.kind {
+            _ if Some(index) == self.ego => EGO,
+            AgentKind::Rsu => RSU,
+            AgentKind::Pedestrian => PEDESTRIAN,
+            _ if agent.connected || self.cooperating.contains(&index) => CONNECTED,
+            _ => VEHICLE,
+        }
+    }
+
+    /// `/perception/<id>/detections`: where each cooperating agent placed what it
+    /// detected, and where it believes it is; emptied when it leaves the scene.
+    pub(super) fn publish_detections(&mut self, time: u64, cooperators: &[CooperatorStep<'_>]) {
+        let stamp = Time::from_nanos(time);
+        let now: BTreeSet<usize> = cooperators.iter().map(|c| c.agent).collect();
+        for c in cooperators {
+            let Some(agent) = self.agents.get(c.agent) else {
+                continue;
+            };
+            let mut entities = vec![Entity::new(stamp, "estimate").line(Line::new(
+                LineType::Loop,
+                Pose3::identity(),
+                Body::of(c.agent, agent, c.estimate).corners(),
+                0.15,
+                ESTIMATE,
+            ))];
+            for sighting in c.observation.sighted() {
+                let Some(body) = sighting.detected else { continue };
+                let name = self.agent_id(sighting.target);
+                let height = self.agents.get(sighting.target).map_or(1.5, |a| height(a.kind));
+                entities.push(
+                    Entity::new(stamp, format!("{name}#{}", sighting.sensor))
+                        .meta("target", &name)
+                        .meta("sensor", sighting.sensor)
+                        .cube(Cube {
+                            pose: Pose3::planar(body.pose, height / 2.0),
+                            size: Vector3 {
+                                x: body.half_extents.x * 2.0,
+                                y: body.half_extents.y * 2.0,
+                                z: height,
+                            },
+                            color: DETECTION,
+                        }),
+                );
+            }
+            let topic = topic::detections(&agent.id);
+            self.publish(&topic, SCENE, time, &SceneUpdate::replace(stamp, entities));
+        }
+        for gone in self.shown.difference(&now).copied().collect::<Vec<_>>() {
+            let topic = topic::detections(&self.agent_id(gone));
+            self.publish(&topic, SCENE, time, &SceneUpdate::replace(stamp, Vec::new()));
+        }
+        self.shown = now;
+    }
+}
+
+/// A sensor's field of view in its own frame: a circle of its range when it
+/// sees all around, else the sector from the sensor out to its range.
+pub(super) fn field_of_view(range: f64, fov: f64) -> (LineType, Vec<Vector>) {
+    let at = |angle: f64| Vector::new(angle.cos(), angle.sin()) * range;
+    if fov >= TAU - 1e-9 {
+        let points = (0..CIRCLE_SEGMENTS)
+            .map(|i| at(i as f64 * TAU / CIRCLE_SEGMENTS as f64))
+            .collect();
+        return (LineType::Loop, points);
+    }
+    let segments = (fov / ARC_STEP).ceil().max(1.0) as usize;
+    let points = std::iter::once(Vector::ZERO)
+        .chain((0..=segments).map(|i| at(-fov / 2.0 + fov * i as f64 / segments as f64)))
+        .collect();
+    (LineType::Loop, points)
+}
+
+/// `/scene/map`: the grid's outline (where there is a grid), roads, occluders,
+/// interaction areas, crosswalks and the perception region.
+pub(super) fn map_entities(world: &World, grid: Option<&CellGrid>) -> Vec<Entity> {
+    let stamp = Time::from_nanos(0);
+    let flat = |points: &[[f64; 2]]| points.iter().map(|&[x, y]| Vector::new(x, y)).collect::<Vec<_>>();
+    let loop_line =
+        |points: Vec<Vector>, thickness, color| Line::new(LineType::Loop, Pose3::identity(), points, thickness, color);
+    let circle = |[x, y]: [f64; 2], radius: f64| {
+        (0..CIRCLE_SEGMENTS)
+            .map(|i| {
+                let angle = i as f64 * TAU / CIRCLE_SEGMENTS as f64;
+                Vector::new(x + radius * angle.cos(), y + radius * angle.sin())
+            })
+            .collect::<Vec<_>>()
+    };
+    let mut entities: Vec<Entity> = grid
+        .map(|grid| {
+            let [x0, y0] = grid.origin;
+            let (x1, y1) = (x0 + grid.cols as f64 * grid.cell, y0 + grid.rows as f64 * grid.cell);
+            Entity::new(stamp, "grid").line(loop_line(flat(&[[x0, y0], [x1, y0], [x1, y1], [x0, y1]]), 0.2, OUTLINE))
+        })
+        .into_iter()
+        .collect();
+    for road in &world.roads {
+        let mut entity = Entity::new(stamp, format!("road/{}", road.id)).meta("speed_limit_mps", road.speed_limit);
+        for lane in &road.lanes {
+            entity = entity.line(Line::new(
+                LineType::Strip,
+                Pose3::identity(),
+                flat(lane.points()),
+                0.15,
+                ROAD,
+            ));
+        }
+        entities.push(entity);
+    }
+    for occluder in &world.occluders {
+        entities.push(Entity::new(stamp, format!("occluder/{}", occluder.id)).line(loop_line(
+            flat(&occluder.polygon),
+            0.3,
+            OCCLUDER,
+        )));
+    }
+    for area in &world.interaction_areas {
+        let outline = match &area.shape {
+            Area::Polygon(points) => flat(points),
+            Area::Circle { center, radius } => circle(*center, *radius),
+        };
+        entities.push(Entity::new(stamp, format!("area/{}", area.id)).line(loop_line(outline, 0.2, AREA)));
+    }
+    for crosswalk in &world.crosswalks {
+        let (from, to) = (Vector::from(crosswalk.from), Vector::from(crosswalk.to));
+        let across = (to - from).normalize_or_zero();
+        let half = Vector::new(-across.y, across.x) * (crosswalk.width / 2.0);
+        let corners = vec![from + half, to + half, to - half, from - half];
+        entities.push(Entity::new(stamp, format!("crosswalk/{}", crosswalk.id)).line(loop_line(corners, 0.15, AREA)));
+    }
+    if let Some((center, radius)) = world.perception.as_ref().and_then(|p| p.region) {
+        entities.push(Entity::new(stamp, "region").line(loop_line(circle(center, radius), 0.2, AREA)));
+    }
+    entities
+}
+
+/// A box's height for an agent of `kind`, metres (pictures only).
+fn height(kind: AgentKind) -> f64 {
+    match kind {
+        AgentKind::Car => 1.5,
+        AgentKind::Truck => 3.5,
+        AgentKind::Bus => 3.2,
+        AgentKind::Motorbike => 1.4,
+        AgentKind::Pedestrian => 1.8,
+        AgentKind::Rsu => 5.0,
+    }
+}
+
+fn kind_name(kind: AgentKind) -> &'static str {
+    match kind {
+        AgentKind::Car => "car",
+        AgentKind::Truck => "truck",
+        AgentKind::Bus => "bus",
+        AgentKind::Motorbike => "motorbike",
+        AgentKind::Pedestrian => "pedestrian",
+        AgentKind::Rsu => "rsu",
+    }
+}

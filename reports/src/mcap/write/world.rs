@@ -1,0 +1,160 @@
+//! A perception world's steps in a recording: the fused grid and each
+//! cooperating agent's own grid, cropped to the cells they hold, and the step's
+//! cell signals (`/sightline/signals`), its counts added to the running sums.
+
+use std::io::{Seek, Write};
+
+use sightline_dsl::{Grid as CellGrid, Metric};
+use sightline_engine::outcome::CellTally;
+use sightline_engine::trace::{CooperatorStep, FusedGrid, Measured, Observed, WorldStep};
+
+use super::channel::{GRID, SIGNALS};
+use super::{Recorder, Running, nanos};
+use crate::mcap::counts::{add_counts, zero_world_metrics};
+use crate::mcap::foxglove::{Grid, Numeric, Time};
+use crate::mcap::topic;
+use crate::mcap::wire::{CellSignals, SignalsRecord};
+
+impl<W: Write + Seek> Recorder<'_, W> {
+    /// Everything a perception world's step shows: the agents, each
+    /// cooperating agent's detections, the fused grid and the agents' own grids
+    /// (at the grid rate), and the step's signals.
+    pub(super) fn publish_world_step(&mut self, step: &WorldStep<'_>) {
+        let time = nanos(step.time);
+        self.last = time;
+        self.publish_agents(time, step.agents);
+        self.publish_detections(time, step.cooperators);
+        let cells = step.measured.and_then(|measured| {
+            let fused = measured.fused.first()?;
+            if let Some(grid) = &fused.grid {
+                self.publish_fused_grid(time, grid);
+            }
+            Some(self.cell_signals(&measured, &fused.cells))
+        });
+        if self.record.agent_grids && self.record.grids_at(step.step) {
+            self.publish_agent_grids(time, step.cooperators);
+        }
+        let signals = SignalsRecord {
+            step: step.step,
+            cells,
+            semantic: None,
+        };
+        self.publish(topic::SIGNALS, SIGNALS, time, &signals);
+        self.publish_requirement_signals(step.step, time);
+    }
+
+    /// `/fusion/grid`: the fused grid cropped to the cells it holds.
+    fn publish_fused_grid(&mut self, time: u64, fused: &FusedGrid<'_>) {
+        let Some(grid) = self.grid else { return };
+        let Some(crop) = Crop::around(&grid, fused.cells.iter().copied()) else {
+            return;
+        };
+        let mut values = vec![f32::NAN; crop.cells() * 2];
+        for ((&cell, &p), &u) in fused.cells.iter().zip(fused.probability).zip(fused.uncertainty) {
+            let at = crop.index(&grid, cell) * 2;
+            values[at] = p;
+            values[at + 1] = u;
+        }
+        let data: Vec<u8> = values.iter().flat_map(|v| v.to_le_bytes()).collect();
+        let grid = crop.grid(&grid, time, &["probability", "uncertainty"], Numeric::Float32, &data);
+        self.publish(topic::FUSED_GRID, GRID, time, &grid);
+    }
+
+    /// `/perception/<id>/grid`: each cooperating agent's own grid, cropped to
+    /// the cells it observed.
+    fn publish_agent_grids(&mut self, time: u64, cooperators: &[CooperatorStep<'_>]) {
+        let Some(grid) = self.grid else { return };
+        for c in cooperators {
+            let observation = c.observation;
+            let Some(crop) = Crop::around(&grid, observation.touched().iter().copied()) else {
+                continue;
+            };
+            let mut data = vec![0u8; crop.cells()];
+            for &cell in observation.touched() {
+                data[crop.index(&grid, cell)] = match observation.get(cell) {
+                    Observed::Unknown => 0,
+                    Observed::Free => 1,
+                    Observed::Occupied => 2,
+                };
+            }
+            let grid = crop.grid(&grid, time, &["state"], Numeric::Uint8, &data);
+            let topic = topic::agent_grid(&self.agent_id(c.agent));
+            self.publish(&topic, GRID, time, &grid);
+        }
+    }
+
+    /// The step's cell signals; adds the step to the running counts.
+    fn cell_signals(&mut self, measured: &Measured<'_>, cells: &CellTally) -> CellSignals {
+        let mut step = zero_world_metrics();
+        add_counts(&mut step, measured.ego_observed, measured.joint_observed, cells);
+        if let Running::World(running) = &mut self.running {
+            add_counts(running, measured.ego_observed, measured.joint_observed, cells);
+        }
+        CellSignals {
+            ego_observed: measured.ego_observed,
+            joint_observed: measured.joint_observed,
+            occupied: cells.occupied,
+            detected: cells.detected,
+            false_positives: cells.false_positives,
+            blind_occupied: cells.blind_occupied,
+            blind_detected: cells.blind_detected,
+            recall: step.value(Metric::OccupiedRecall),
+            precision: step.value(Metric::OccupiedPrecision),
+            blind_recall: step.value(Metric::BlindRecall),
+            fov_gain: step.value(Metric::FovGain),
+        }
+    }
+}
+
+/// The rectangle of grid cells holding every given cell.
+struct Crop {
+    col: usize,
+    row: usize,
+    cols: usize,
+    rows: usize,
+}
+
+impl Crop {
+    /// The bounding box of `cells`; `None` when there are none.
+    fn around(grid: &CellGrid, cells: impl Iterator<Item = usize>) -> Option<Self> {
+        let mut bounds: Option<[usize; 4]> = None;
+        for cell in cells {
+            let (col, row) = (cell % grid.cols, cell / grid.cols);
+            bounds = Some(match bounds {
+                None => [col, row, col, row],
+                Some([c0, r0, c1, r1]) => [c0.min(col), r0.min(row), c1.max(col), r1.max(row)],
+            });
+        }
+        bounds.map(|[c0, r0, c1, r1]| Self {
+            col: c0,
+            row: r0,
+            cols: c1 - c0 + 1,
+            rows: r1 - r0 + 1,
+        })
+    }
+
+    fn cells(&self) -> usize {
+        self.cols * self.rows
+    }
+
+    /// The position of grid cell `cell` (inside the crop) in the crop's data.
+    fn index(&self, grid: &CellGrid, cell: usize) -> usize {
+        (cell / grid.cols - self.row) * self.cols + (cell % grid.cols - self.col)
+    }
+
+    fn grid(&self, grid: &CellGrid, time: u64, names: &[&'static str], kind: Numeric, data: &[u8]) -> Grid {
+        let corner = [
+            grid.origin[0] + self.col as f64 * grid.cell,
+            grid.origin[1] + self.row as f64 * grid.cell,
+        ];
+        Grid::new(
+            Time::from_nanos(time),
+            corner,
+            grid.cell,
+            u32::try_from(self.cols).unwrap_or(u32::MAX),
+            names,
+            kind,
+            data,
+        )
+    }
+}
