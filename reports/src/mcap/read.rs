@@ -15,7 +15,7 @@ use sightline_engine::Sample;
 use sightline_engine::outcome::{CellTally, MassAudit, Series, WorldMetrics};
 use sightline_oracles::Measurements;
 
-use super::counts::{WORLD_STEP_METRICS, add_counts, zero_world_metrics};
+use super::counts::WORLD_STEP_METRICS;
 use super::topic;
 use super::wire::{MetricValue, OutcomeRecord, RECORDING_FORMAT, ScenarioRecord, SignalsRecord, VerdictRecord};
 use crate::sha256_hex;
@@ -124,8 +124,7 @@ pub fn read(bytes: &[u8]) -> Result<Recording, ReadError> {
                                     blind_occupied: cells.blind_occupied,
                                     blind_detected: cells.blind_detected,
                                 };
-                                add_counts(
-                                    step_counts.get_or_insert_with(zero_world_metrics),
+                                step_counts.get_or_insert_with(WorldMetrics::default).add_step(
                                     cells.ego_observed,
                                     cells.joint_observed,
                                     &tally,

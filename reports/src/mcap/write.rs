@@ -21,7 +21,7 @@ use sightline_engine::TraceSink;
 use sightline_engine::outcome::{SemanticMetrics, WorldMetrics};
 use sightline_engine::trace::{Pose, SemanticStep, Vector, WorldStep, mount_pose};
 
-use super::counts::{WORLD_STEP_METRICS, zero_world_metrics};
+use super::counts::WORLD_STEP_METRICS;
 use super::foxglove::{LineType, SceneUpdate};
 use super::topic;
 use super::wire::{ImportRecord, RECORDING_FORMAT, RequirementSignal, RequirementSignals, ScenarioRecord};
@@ -143,7 +143,7 @@ impl<'s, W: Write + Seek> Recorder<'s, W> {
                 runs: 1,
                 ..SemanticMetrics::default()
             }),
-            Some(_) => Running::World(zero_world_metrics()),
+            Some(_) => Running::World(WorldMetrics::default()),
             None => Running::Nothing,
         };
         let mut recorder = Self {

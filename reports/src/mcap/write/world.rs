@@ -5,12 +5,11 @@
 use std::io::{Seek, Write};
 
 use sightline_dsl::{Grid as CellGrid, Metric};
-use sightline_engine::outcome::CellTally;
+use sightline_engine::outcome::{CellTally, WorldMetrics};
 use sightline_engine::trace::{CooperatorStep, FusedGrid, Measured, Observed, WorldStep};
 
 use super::channel::{GRID, SIGNALS};
 use super::{Recorder, Running, nanos};
-use crate::mcap::counts::{add_counts, zero_world_metrics};
 use crate::mcap::foxglove::{Grid, Numeric, Time};
 use crate::mcap::topic;
 use crate::mcap::wire::{CellSignals, SignalsRecord};
@@ -85,10 +84,10 @@ impl<W: Write + Seek> Recorder<'_, W> {
 
     /// The step's cell signals; adds the step to the running counts.
     fn cell_signals(&mut self, measured: &Measured<'_>, cells: &CellTally) -> CellSignals {
-        let mut step = zero_world_metrics();
-        add_counts(&mut step, measured.ego_observed, measured.joint_observed, cells);
+        let mut step = WorldMetrics::default();
+        step.add_step(measured.ego_observed, measured.joint_observed, cells);
         if let Running::World(running) = &mut self.running {
-            add_counts(running, measured.ego_observed, measured.joint_observed, cells);
+            running.add_step(measured.ego_observed, measured.joint_observed, cells);
         }
         CellSignals {
             ego_observed: measured.ego_observed,
