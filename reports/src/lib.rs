@@ -22,9 +22,11 @@ pub use html::html;
 pub use junit::junit;
 pub use picture::{Legend, Picture, Pictures, Scale, Swatch, pictures};
 pub use results::{
-    CheckInfo, Detail, FORMAT, InputInfo, LabelResult, Measured, MetricEntry, Ordered, PointResult, PointVerdict,
-    Provenance, RecordingInfo, ReferencePoint, ReferenceResult, RequirementResult, Results, ScenarioInfo, Summary,
-    Table, Tool,
+    Assumption, Axis, Band, CheckInfo, Conflict, Coverage, DeliveryBin, DensityRow, Detail, FORMAT, InputInfo,
+    LabelCounts, LabelResult, MassAudit, Measured, MetricEntry, Ordered, OverSeeds, PointResult, PointVerdict,
+    Provenance, RateBound, RecordingInfo, ReferencePoint, ReferenceResult, RequirementResult, Results, ScenarioInfo,
+    SeedStatistics, SemanticCounts, Sightings, Statistic, Status, Summary, Sweep, SweepRow, Table, Tool, WorldCounts,
+    results_schema,
 };
 pub use shard::{SHARD_FORMAT, Shard, ShardError, ShardInput, campaign_id, read_shard, shard_bytes};
 pub use template::{Loader, Location, Page, TemplateError, TemplateErrorKind, Templates};
@@ -118,11 +120,14 @@ pub fn render(
             },
         )
         .collect::<Result<Vec<_>, _>>()?;
-    let charts = run
-        .points
+    let charts = results
+        .sweep
         .iter()
-        .map(|outcome| match outcome {
-            Outcome::Semantic(m) => chart::semantic_charts(m),
+        .map(|point| match &point.detail {
+            Detail::Semantic {
+                counts,
+                contribution_by_density,
+            } => chart::semantic_charts(counts, contribution_by_density),
             _ => Ok(Vec::new()),
         })
         .collect::<Result<Vec<Vec<Chart>>, ChartError>>()?;
