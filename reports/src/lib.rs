@@ -9,6 +9,15 @@
 //! [`Loader`] for a template set, and renames what it wrote into place
 //! atomically) and it does not judge (that is `sightline-oracles`).
 //!
+//! results.json is written from types defined here, not from the engine's, the
+//! language's or the oracles' structs: [`Results`] and the types it is made of
+//! (requirements and their [`Status`], points and their [`Detail`], the counts
+//! behind the metrics, provenance) are filled from a run in one module
+//! (`results::from_run`), so renaming a field elsewhere cannot change the
+//! evidence. Its format is versioned ([`FORMAT`]) and its JSON Schema,
+//! generated from these types by [`results_schema`], is published as
+//! `docs/results.schema.json`.
+//!
 //! The recording is written as the engine runs: [`mcap::Recorder`] is a
 //! [`TraceSink`](sightline_engine::TraceSink), and [`mcap::read`] reads it back
 //! for `sightline replay`.
