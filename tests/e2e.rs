@@ -37,6 +37,11 @@ mod golden;
 #[path = "e2e/docs.rs"]
 mod docs;
 
+// results.json's published schema: generated from the wire types, every bundled
+// and golden results.json valid against it, renamed keys refused.
+#[path = "e2e/results_schema.rs"]
+mod results_schema;
+
 // The bundled scenarios run end to end (the slow tests), each once.
 #[path = "e2e/bundled.rs"]
 mod bundled;

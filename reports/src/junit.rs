@@ -2,10 +2,8 @@
 //! point. The counts on `<testsuites>` and `<testsuite>` come from quick-junit,
 //! which derives them from the test cases it holds.
 
+use crate::results::{Results, Status};
 use quick_junit::{NonSuccessKind, Report, TestCase, TestCaseStatus, TestSuite};
-use sightline_oracles::Status;
-
-use crate::results::Results;
 
 /// The JUnit report of one scenario's results.
 pub fn junit(results: &Results) -> Report {

@@ -9,6 +9,15 @@
 //! [`Loader`] for a template set, and renames what it wrote into place
 //! atomically) and it does not judge (that is `sightline-oracles`).
 //!
+//! results.json is written from types defined here, not from the engine's, the
+//! language's or the oracles' structs: [`Results`] and the types it is made of
+//! (requirements and their [`Status`], points and their [`Detail`], the counts
+//! behind the metrics, provenance) are filled from a run in one module
+//! (`results::from_run`), so renaming a field elsewhere cannot change the
+//! evidence. Its format is versioned ([`FORMAT`]) and its JSON Schema,
+//! generated from these types by [`results_schema`], is published as
+//! `docs/results.schema.json`.
+//!
 //! The recording is written as the engine runs: [`mcap::Recorder`] is a
 //! [`TraceSink`](sightline_engine::TraceSink), and [`mcap::read`] reads it back
 //! for `sightline replay`.
@@ -22,9 +31,11 @@ pub use html::html;
 pub use junit::junit;
 pub use picture::{Legend, Picture, Pictures, Scale, Swatch, pictures};
 pub use results::{
-    CheckInfo, Detail, FORMAT, InputInfo, LabelResult, Measured, MetricEntry, Ordered, PointResult, PointVerdict,
-    Provenance, RecordingInfo, ReferencePoint, ReferenceResult, RequirementResult, Results, ScenarioInfo, Summary,
-    Table, Tool,
+    Assumption, Axis, Band, CheckInfo, Conflict, Coverage, DeliveryBin, DensityRow, Detail, FORMAT, InputInfo,
+    LabelCounts, LabelResult, MassAudit, Measured, MetricEntry, Ordered, OverSeeds, PointResult, PointVerdict,
+    Provenance, RateBound, RecordingInfo, ReferencePoint, ReferenceResult, RequirementResult, Results, ScenarioInfo,
+    SeedStatistics, SemanticCounts, Sightings, Statistic, Status, Summary, Sweep, SweepRow, Table, Tool, WorldCounts,
+    results_schema,
 };
 pub use shard::{SHARD_FORMAT, Shard, ShardError, ShardInput, campaign_id, read_shard, shard_bytes};
 pub use template::{Loader, Location, Page, TemplateError, TemplateErrorKind, Templates};
@@ -118,11 +129,14 @@ pub fn render(
             },
         )
         .collect::<Result<Vec<_>, _>>()?;
-    let charts = run
-        .points
+    let charts = results
+        .sweep
         .iter()
-        .map(|outcome| match outcome {
-            Outcome::Semantic(m) => chart::semantic_charts(m),
+        .map(|point| match &point.detail {
+            Detail::Semantic {
+                counts,
+                contribution_by_density,
+            } => chart::semantic_charts(counts, contribution_by_density),
             _ => Ok(Vec::new()),
         })
         .collect::<Result<Vec<Vec<Chart>>, ChartError>>()?;

@@ -1,0 +1,19 @@
+//! report.html of a run: one self-contained page (inline CSS, no script, no
+//! network) for an assessor, rendered from its template
+//! ([`Templates`](crate::Templates)). Numbers are formatted here so the template
+//! only lays them out.
+//!
+//! - `page`: the page's view (banner, provenance, context) and [`html`];
+//! - `requirement`: each requirement, its check in words and its points;
+//! - `sweep`: the results table of each sweep and the published comparisons;
+//! - `point`: each point's sample sizes and counts;
+//! - `format`: numbers for people, and the tables every section lays out.
+
+pub(crate) use format::{number, or_dash};
+pub use page::html;
+
+mod format;
+mod page;
+mod point;
+mod requirement;
+mod sweep;

@@ -1,0 +1,176 @@
+//! The page's view: the banner, the findings, the provenance rows and the
+//! context of the argument, assembled from the sections' views and rendered with
+//! the template set.
+
+use serde::Serialize;
+
+use sightline_dsl::display_value;
+
+use super::format::TableView;
+use super::point::{point_body, samples_table};
+use super::requirement::{Finding, RequirementView, finding, requirement_view};
+use super::sweep::{ComparisonView, SweepView, comparisons, sweep_tables};
+use crate::chart::Chart;
+use crate::picture::Pictures;
+use crate::results::{Results, Status, Summary};
+use crate::template::{TemplateError, Templates};
+
+/// Renders the report with `templates` (a [`Page::Run`](crate::Page::Run)
+/// set). `reproduce` is the command that re-creates the run; `pictures` holds
+/// the grid pictures of each point (world points only), `charts` the charts of
+/// each point, `sweep_charts` those of each sweep.
+pub fn html(
+    results: &Results,
+    reproduce: &str,
+    pictures: &[Option<Pictures>],
+    charts: &[Vec<Chart>],
+    sweep_charts: &[Vec<Chart>],
+    templates: &Templates,
+) -> Result<String, TemplateError> {
+    let mut view = View::new(results, reproduce, pictures, charts);
+    for (sweep, charts) in view.sweeps.iter_mut().zip(sweep_charts) {
+        sweep.charts.clone_from(charts);
+    }
+    templates.render(&view, results)
+}
+
+#[derive(Serialize)]
+struct View<'a> {
+    name: &'a str,
+    description: &'a str,
+    verdict: &'static str,
+    /// `pass` or `fail`: what `sightline run` exits with.
+    gate: &'static str,
+    summary: Summary,
+    /// Every requirement that fails the run, and every accepted not-exercised
+    /// one, at its deciding point.
+    findings: Vec<Finding>,
+    provenance: Vec<(&'static str, String)>,
+    /// The operational scenario as declared, for the argument's context.
+    context: Vec<String>,
+    requirements: Vec<RequirementView>,
+    sweeps: Vec<SweepView>,
+    comparisons: Vec<ComparisonView>,
+    points: Vec<PointView>,
+}
+
+#[derive(Serialize)]
+struct PointView {
+    label: String,
+    summary: String,
+    tables: Vec<TableView>,
+    pictures: Option<Pictures>,
+    charts: Vec<Chart>,
+}
+
+impl<'a> View<'a> {
+    fn new(results: &'a Results, reproduce: &str, pictures: &[Option<Pictures>], charts: &[Vec<Chart>]) -> Self {
+        View {
+            name: &results.scenario.name,
+            description: &results.scenario.description,
+            verdict: results.verdict.name(),
+            gate: results.gate.name(),
+            summary: results.summary,
+            findings: results
+                .requirements
+                .iter()
+                .filter(|r| r.verdict != Status::Pass)
+                .map(finding)
+                .collect(),
+            provenance: provenance(results, reproduce),
+            context: context(results),
+            requirements: results.requirements.iter().map(requirement_view).collect(),
+            sweeps: sweep_tables(results),
+            comparisons: comparisons(results),
+            points: results
+                .sweep
+                .iter()
+                .zip(pictures)
+                .zip(charts)
+                .map(|((point, pictures), charts)| {
+                    let (summary, mut tables) = point_body(point);
+                    tables.insert(0, samples_table(point));
+                    PointView {
+                        label: if point.label.is_empty() {
+                            "the scenario".into()
+                        } else {
+                            point.label.clone()
+                        },
+                        summary,
+                        tables,
+                        pictures: pictures.clone(),
+                        charts: charts.clone(),
+                    }
+                })
+                .collect(),
+        }
+    }
+}
+
+/// The context of the argument: the scenario file and what it imports, its
+/// seeds and the settings it sweeps.
+fn context(results: &Results) -> Vec<String> {
+    let mut context: Vec<String> = results
+        .inputs
+        .iter()
+        .map(|input| format!("{} ({})", input.path, input.kind))
+        .collect();
+    context.push(match results.seed {
+        Some(seed) => format!("seed {seed}"),
+        None => "seeds as swept".into(),
+    });
+    for sweep in &results.sweeps {
+        let axes: Vec<String> = sweep
+            .axes
+            .iter()
+            .map(|a| {
+                let values: Vec<String> = a.values.iter().map(display_value).collect();
+                format!("{} ∈ {{{}}}", a.path, values.join(", "))
+            })
+            .collect();
+        context.push(format!("swept: {}", axes.join(" × ")));
+    }
+    context
+}
+
+fn provenance(results: &Results, reproduce: &str) -> Vec<(&'static str, String)> {
+    let tool = &results.tool;
+    let execution = &results.execution;
+    let mut rows = vec![
+        ("Tool", format!("{} {} (git {})", tool.name, tool.version, tool.git)),
+        ("Platform", execution.platform()),
+        ("Started", execution.started.clone()),
+        ("Duration", format!("{} s", execution.duration_seconds)),
+        ("Scenario file", results.scenario.path.clone()),
+        ("Scenario SHA-256", results.scenario.sha256.clone()),
+    ];
+    // The scenario is the first input; the rest are the files it imports.
+    rows.extend(results.inputs.iter().skip(1).map(|input| {
+        (
+            "Imported file",
+            format!("{} ({}), SHA-256 {}", input.path, input.kind, input.sha256),
+        )
+    }));
+    rows.extend(results.recording.iter().map(|recording| {
+        let point = if recording.label.is_empty() {
+            format!("point {}", recording.point)
+        } else {
+            format!("point {}: {}", recording.point, recording.label)
+        };
+        (
+            "Recording",
+            format!("{} ({point}), SHA-256 {}", recording.file, recording.sha256),
+        )
+    }));
+    rows.extend([
+        (
+            "Seed",
+            results
+                .seed
+                .map_or_else(|| "swept (see the table)".into(), |s| s.to_string()),
+        ),
+        ("Sweep points", results.sweep.len().to_string()),
+        ("Reproduce with", reproduce.to_string()),
+    ]);
+    rows
+}

@@ -1,0 +1,215 @@
+//! Each point's tables: every metric with its sample size, and the counts of
+//! its kind of scenario (distance bands and coverage, a world's cell-steps, a
+//! semantic run's counts, contribution by density and delivery by distance).
+
+use sightline_dsl::Metric;
+use sightline_engine::outcome::{DELIVERY_BIN, DENSITY_BIN, quantile};
+
+use super::format::{TableView, number, or_dash};
+use crate::results::{DensityRow, Detail, PointResult, SemanticCounts};
+
+const BAND_COLUMNS: [&str; 7] = [
+    "distance to nearest sensor",
+    "cells",
+    "accuracy",
+    "below threshold",
+    "false alarms",
+    "missed detections",
+    "mean conflict",
+];
+
+/// Every metric the point measures, with its sample size and what it counts.
+pub(super) fn samples_table(p: &PointResult) -> TableView {
+    let rows = p
+        .samples
+        .0
+        .iter()
+        .map(|(name, n)| {
+            let population = Metric::ALL
+                .iter()
+                .find(|m| m.name() == name)
+                .map_or("", |m| m.population());
+            vec![
+                name.clone(),
+                population.to_string(),
+                or_dash(p.metrics.get(name)),
+                number(*n as f64),
+            ]
+        })
+        .collect();
+    TableView {
+        caption: "Every metric with its sample size n (— where the population is empty)".into(),
+        head: ["metric", "n counts", "value", "n"].map(String::from).to_vec(),
+        rows,
+        text_columns: 2,
+    }
+}
+
+/// The summary line and the tables of a point's details.
+pub(super) fn point_body(p: &PointResult) -> (String, Vec<TableView>) {
+    match &p.detail {
+        Detail::Field { bands, coverage: c } => (
+            format!(
+                "{} sensors; {}–{} observe each cell (mean {:.2})",
+                c.sensors, c.min_sources, c.max_sources, c.mean_sources
+            ),
+            vec![TableView {
+                caption: String::new(),
+                text_columns: 1,
+                head: BAND_COLUMNS.map(String::from).to_vec(),
+                rows: bands
+                    .iter()
+                    .map(|b| {
+                        vec![
+                            match b.to {
+                                Some(to) => format!("{} – {} m", number(b.from), number(to)),
+                                None => format!("≥ {} m", number(b.from)),
+                            },
+                            number(b.cells as f64),
+                            or_dash(b.accuracy),
+                            number(b.below_threshold as f64),
+                            number(b.false_alarms as f64),
+                            number(b.missed_detections as f64),
+                            or_dash(b.mean_conflict),
+                        ]
+                    })
+                    .collect(),
+            }],
+        ),
+        Detail::World { counts: c } => {
+            let s = &c.sightings;
+            let rows = [
+                ("steps with the ego in the scene", c.steps as f64),
+                ("occupied cell-steps", c.occupied as f64),
+                ("… decided Occupy", c.detected as f64),
+                ("free cell-steps decided Occupy", c.false_positives as f64),
+                ("occupied cell-steps the ego did not observe", c.blind_occupied as f64),
+                ("… decided Occupy", c.blind_detected as f64),
+                ("cell-steps observed by the ego", c.ego_observed as f64),
+                ("cell-steps observed by any cooperating agent", c.joint_observed as f64),
+                ("targets in line of sight (sensor–target pairs)", s.los as f64),
+                ("… hidden by an occluder", s.nlos_static as f64),
+                ("… hidden by other agents", s.nlos_dynamic as f64),
+                ("… detected", s.detected as f64),
+            ];
+            let mut rows: Vec<Vec<String>> = rows.iter().map(|(k, v)| vec![(*k).to_string(), number(*v)]).collect();
+            rows.push(vec![
+                "mean pose-estimate error, m".into(),
+                or_dash(c.localization_error),
+            ]);
+            (format!("{} steps", c.steps), vec![counts_table(rows)])
+        }
+        Detail::Semantic {
+            counts: c,
+            contribution_by_density,
+        } => (
+            format!(
+                "{} pooled run(s): {} steps with the ego, {} generated road users, {} anticipated objects",
+                c.runs,
+                c.steps,
+                c.generated,
+                c.anticipation.len()
+            ),
+            semantic_tables(c, contribution_by_density),
+        ),
+    }
+}
+
+fn counts_table(rows: Vec<Vec<String>>) -> TableView {
+    TableView {
+        caption: String::new(),
+        text_columns: 1,
+        head: vec!["count".into(), "value".into()],
+        rows,
+    }
+}
+
+/// The counts of a semantic run, its contribution by density and its packet
+/// delivery by distance.
+fn semantic_tables(c: &SemanticCounts, density: &[DensityRow]) -> Vec<TableView> {
+    let l = &c.labels;
+    let counts = [
+        ("steps with the ego in the scene", c.steps as f64),
+        (
+            "objects anticipated (learned of while hidden, later seen)",
+            c.anticipation.len() as f64,
+        ),
+        ("objects learned of while hidden and never seen", c.never_seen as f64),
+        (
+            "object-cycles perceived by the RSUs (in the cycles the shares count)",
+            c.perceived as f64,
+        ),
+        ("… sent to the ego", c.transmitted as f64),
+        ("… with at least one label", c.labelled as f64),
+        ("… labelled NLoS behind an occluder", l.nlos_static as f64),
+        ("… labelled NLoS behind road users", l.nlos_dynamic as f64),
+        ("… labelled relevant", l.relevant as f64),
+        ("… labelled speeding", l.speeding as f64),
+        ("… labelled with a predicted conflict", l.conflict as f64),
+        ("object-cycles the ETSI baseline sends", c.baseline_objects as f64),
+        ("bytes of semantic messages", c.bytes as f64),
+        ("bytes of ETSI baseline messages", c.baseline_bytes as f64),
+        ("messages sent to the ego", c.messages as f64),
+        ("… received", c.delivered as f64),
+        ("close approaches (within d_min of the ego)", c.close_approaches as f64),
+        ("… with no conflict flagged beforehand", c.missed_criticals as f64),
+        ("seconds the ego drove cautiously", c.cautious_time),
+    ];
+    let by_density = TableView {
+        caption: "Objects the ego knows only through an RSU, by traffic density".into(),
+        text_columns: 1,
+        head: ["objects per km", "steps", "median", "mean"].map(String::from).to_vec(),
+        rows: density
+            .iter()
+            .map(|r| {
+                vec![
+                    format!("{} – {}", number(r.from), number(r.from + DENSITY_BIN)),
+                    number(r.steps as f64),
+                    number(r.median),
+                    number(r.mean),
+                ]
+            })
+            .collect(),
+    };
+    let by_distance = TableView {
+        caption: "Messages to the ego by RSU–ego distance".into(),
+        text_columns: 1,
+        head: ["distance", "sent", "received", "delivery ratio"]
+            .map(String::from)
+            .to_vec(),
+        rows: c
+            .delivery_by_distance
+            .iter()
+            .enumerate()
+            .filter(|(_, b)| b.sent > 0)
+            .map(|(i, b)| {
+                let from = i as f64 * DELIVERY_BIN;
+                vec![
+                    format!("{} – {} m", number(from), number(from + DELIVERY_BIN)),
+                    number(b.sent as f64),
+                    number(b.received as f64),
+                    number(b.received as f64 / b.sent as f64),
+                ]
+            })
+            .collect(),
+    };
+    let quantiles = [0.0, 0.25, 0.5, 0.75, 0.95, 1.0];
+    let anticipation = TableView {
+        caption: "Anticipation time, seconds (type 7 quantiles over the pooled objects)".into(),
+        text_columns: 0,
+        head: ["objects", "min", "25 %", "median", "75 %", "95 %", "max"]
+            .map(String::from)
+            .to_vec(),
+        rows: vec![
+            std::iter::once(number(c.anticipation.len() as f64))
+                .chain(quantiles.iter().map(|&q| or_dash(quantile(&c.anticipation, q))))
+                .collect(),
+        ],
+    };
+    vec![
+        counts_table(counts.iter().map(|(k, v)| vec![(*k).to_string(), number(*v)]).collect()),
+        anticipation,
+        by_density,
+        by_distance,
+    ]
+}

@@ -1,0 +1,161 @@
+//! Each requirement as the page shows it: its check in words, its deciding
+//! value, threshold and margin, and its verdict at every point; the findings
+//! of the banner.
+
+use serde::Serialize;
+
+use super::format::{number, or_dash};
+use crate::results::{CheckInfo, RateBound, RequirementResult, Statistic};
+
+/// A requirement that did not pass, as the banner names it.
+#[derive(Serialize)]
+pub(super) struct Finding {
+    id: String,
+    anchor: String,
+    verdict: &'static str,
+    /// The verdict in words (`not exercised`).
+    words: &'static str,
+    /// Whether it fails the run (not an accepted not-exercised verdict).
+    fails_run: bool,
+    /// The reason a not-exercised verdict is accepted.
+    accepted: Option<String>,
+    /// The deciding point's label (empty without a sweep).
+    label: String,
+    measured: String,
+    /// What the measured value holds, with its n.
+    what: String,
+    threshold: String,
+    margin: String,
+    n: String,
+    message: String,
+}
+
+#[derive(Serialize)]
+pub(super) struct RequirementView {
+    id: String,
+    anchor: String,
+    text: String,
+    line: usize,
+    check: String,
+    measured: String,
+    /// What `measured` holds, with its n.
+    what: String,
+    threshold: String,
+    margin: String,
+    verdict: &'static str,
+    words: &'static str,
+    accepted: Option<String>,
+    message: String,
+    points: Vec<EvaluationView>,
+}
+
+#[derive(Serialize)]
+struct EvaluationView {
+    label: String,
+    verdict: &'static str,
+    words: &'static str,
+    measured: String,
+    what: String,
+    margin: String,
+    message: String,
+}
+
+pub(super) fn finding(r: &RequirementResult) -> Finding {
+    let decisive = r.points.iter().find(|p| p.point == r.point);
+    Finding {
+        id: r.id.clone(),
+        anchor: format!("req-{}", r.id),
+        verdict: r.verdict.name(),
+        words: r.verdict.words(),
+        fails_run: r.fails_run,
+        accepted: r.accept_not_exercised.clone(),
+        label: decisive.map(|p| p.label.clone()).unwrap_or_default(),
+        measured: or_dash(r.value),
+        what: r.measured.clone(),
+        threshold: format!("{} {}", relation_sign(r.check.relation), number(r.threshold)),
+        margin: or_dash(r.margin),
+        n: r.n.map_or_else(|| "—".into(), |n| number(n as f64)),
+        message: r.message.clone(),
+    }
+}
+
+/// `≥`, `≤` or `tolerance`, for a check's relation.
+fn relation_sign(relation: &str) -> &str {
+    match relation {
+        "at_least" => "≥",
+        "at_most" => "≤",
+        other => other,
+    }
+}
+
+pub(super) fn requirement_view(r: &RequirementResult) -> RequirementView {
+    RequirementView {
+        id: r.id.clone(),
+        anchor: format!("req-{}", r.id),
+        text: r.text.clone(),
+        line: r.line,
+        check: describe_check(&r.check),
+        measured: or_dash(r.value),
+        what: r.measured.clone(),
+        threshold: number(r.threshold),
+        margin: or_dash(r.margin),
+        verdict: r.verdict.name(),
+        words: r.verdict.words(),
+        accepted: r.accept_not_exercised.clone(),
+        message: r.message.clone(),
+        points: r
+            .points
+            .iter()
+            .map(|p| EvaluationView {
+                label: if p.label.is_empty() {
+                    "—".into()
+                } else {
+                    p.label.clone()
+                },
+                verdict: p.verdict.name(),
+                words: p.verdict.words(),
+                measured: or_dash(p.value),
+                what: p.measured.clone(),
+                margin: or_dash(p.margin),
+                message: p.message.clone(),
+            })
+            .collect(),
+    }
+}
+
+fn describe_check(check: &CheckInfo) -> String {
+    let (name, threshold) = (check.name, number(check.threshold));
+    let relation = match check.relation {
+        "at_least" | "at_most" => format!("{name} {} {threshold}", relation_sign(check.relation)),
+        _ => return format!("invariant {name} (tolerance {threshold})"),
+    };
+    match check.kind {
+        "always" | "eventually" => {
+            let window = check
+                .within
+                .map_or(String::new(), |w| format!(" within {} s", number(w)));
+            return format!("{} {relation}{window}", check.kind);
+        }
+        "per_object" => return format!("every object within d_min: {relation}"),
+        _ => {}
+    }
+    let Some(over) = check.over_seeds else {
+        return relation;
+    };
+    let confidence = number(over.confidence * 100.0);
+    match over.statistic {
+        Statistic::Mean => format!(
+            "mean over {} seeds: {relation} at {confidence} % confidence (Student t)",
+            over.seeds
+        ),
+        Statistic::Share { share, method } => format!(
+            "{relation} at ≥ {} % of {} seeds, at {confidence} % confidence ({})",
+            number(share * 100.0),
+            over.seeds,
+            match method {
+                RateBound::ClopperPearson => "Clopper–Pearson",
+                RateBound::Wilson => "Wilson",
+            }
+        ),
+    }
+}

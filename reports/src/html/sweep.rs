@@ -1,0 +1,162 @@
+//! The results table of each sweep (its axis values, the metrics every table
+//! shows and those the requirements and references cite, with published values
+//! beside them) and the comparisons with published figures.
+
+use serde::Serialize;
+
+use sightline_dsl::display_value;
+
+use super::format::{TableView, number, or_dash};
+use crate::chart::Chart;
+use crate::results::{PointResult, Results};
+
+/// Metrics every sweep table shows; metrics that requirements or references use
+/// are added after them.
+const TABLE_METRICS: [&str; 11] = [
+    "occupied_recall",
+    "blind_recall",
+    "occupied_precision",
+    "fov_gain",
+    "accuracy",
+    "below_threshold",
+    "false_alarms",
+    "missed_detections",
+    "confident_errors",
+    "decided_unknown",
+    "mean_conflict",
+];
+
+#[derive(Serialize)]
+pub(super) struct SweepView {
+    title: String,
+    table: TableView,
+    pub(super) charts: Vec<Chart>,
+}
+
+#[derive(Serialize)]
+pub(super) struct ComparisonView {
+    source: String,
+    label: String,
+    metric: &'static str,
+    published: String,
+    measured: String,
+    ratio: String,
+}
+
+/// A row of a sweep table: the point and the sweep's values there.
+type Row<'a> = (&'a PointResult, &'a [serde_json::Value]);
+
+/// One table per sweep, a point that sweeps share in each of their tables (one
+/// table of the single point without a sweep).
+pub(super) fn sweep_tables(results: &Results) -> Vec<SweepView> {
+    if results.sweeps.is_empty() {
+        let all: Vec<Row<'_>> = results.sweep.iter().map(|point| (point, &[][..])).collect();
+        return vec![SweepView {
+            title: "Results".into(),
+            table: sweep_table(results, &[], &all),
+            charts: Vec::new(),
+        }];
+    }
+    results
+        .sweeps
+        .iter()
+        .map(|sweep| {
+            let paths: Vec<&str> = sweep.axes.iter().map(|a| a.path.as_str()).collect();
+            let rows: Vec<Row<'_>> = sweep
+                .rows
+                .iter()
+                .map(|row| (&results.sweep[row.point], &row.values[..]))
+                .collect();
+            SweepView {
+                title: format!("Results over {}", paths.join(" × ")),
+                table: sweep_table(results, &paths, &rows),
+                charts: Vec::new(),
+            }
+        })
+        .collect()
+}
+
+/// One row per combination: the axis values, then [`TABLE_METRICS`] and every
+/// metric a requirement or reference uses, each followed by its published value
+/// if any.
+fn sweep_table(results: &Results, axes: &[&str], rows: &[Row<'_>]) -> TableView {
+    let mut metrics: Vec<&str> = TABLE_METRICS.to_vec();
+    for name in results.cited_metrics() {
+        if !metrics.contains(&name) {
+            metrics.push(name);
+        }
+    }
+    metrics.retain(|m| rows.iter().any(|(p, _)| p.metrics.0.iter().any(|(k, _)| k == m)));
+    let has_published = |metric: &str| results.references.iter().any(|r| r.metric == metric);
+
+    let mut head: Vec<String> = axes.iter().map(|a| (*a).to_string()).collect();
+    for metric in &metrics {
+        head.push((*metric).to_string());
+        if has_published(metric) {
+            head.push(format!("{metric} (published)"));
+        }
+    }
+    let rows = rows
+        .iter()
+        .map(|(point, values)| {
+            let mut row: Vec<String> = values.iter().map(display_value).collect();
+            for metric in &metrics {
+                row.push(or_dash(point.metrics.get(metric)));
+                if has_published(metric) {
+                    let values: Vec<String> = results
+                        .references
+                        .iter()
+                        .filter(|r| r.metric == *metric && r.points.iter().any(|p| p.point == point.index))
+                        .map(|r| number(r.published))
+                        .collect();
+                    row.push(if values.is_empty() {
+                        "—".into()
+                    } else {
+                        values.join(" / ")
+                    });
+                }
+            }
+            row
+        })
+        .collect();
+    TableView {
+        caption: String::new(),
+        head,
+        rows,
+        text_columns: axes.len(),
+    }
+}
+
+pub(super) fn comparisons(results: &Results) -> Vec<ComparisonView> {
+    results
+        .references
+        .iter()
+        .flat_map(|r| {
+            r.points.iter().map(move |p| ComparisonView {
+                source: r.source.clone(),
+                label: p.label.clone(),
+                metric: r.metric,
+                published: number(r.published),
+                measured: or_dash(p.measured),
+                ratio: p
+                    .measured
+                    .filter(|_| r.published != 0.0)
+                    .map_or_else(|| "—".into(), |m| format!("{:.2}×", m / r.published)),
+            })
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use sightline_dsl::Metric;
+
+    use super::*;
+
+    #[test]
+    fn metric_list_is_known() {
+        for name in TABLE_METRICS {
+            assert!(Metric::ALL.iter().any(|m| m.name() == name), "{name}");
+        }
+    }
+}

@@ -1,0 +1,206 @@
+//! The counts behind a point's metrics, as results.json writes them: the field
+//! experiment's distance bands and coverage, the mass audit of fused cells, a
+//! perception world's cell-step counts and a semantic run's counts and samples.
+
+use serde::Serialize;
+
+/// Extremes of the fused masses, for the mass-function invariant (for
+/// `bayes` the audited vector is (1 − p, p, 0)).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, schemars::JsonSchema)]
+#[schemars(deny_unknown_fields)]
+pub struct MassAudit {
+    /// Fused cells audited.
+    pub cells: u64,
+    /// Cells with a NaN or infinite mass.
+    pub non_finite: u64,
+    /// Smallest finite mass of any cell (`null` when no cell was fused).
+    pub min_mass: Option<f64>,
+    /// Largest finite mass of any cell.
+    pub max_mass: Option<f64>,
+    /// Largest |Σ masses − 1| of any finite cell.
+    pub max_sum_error: f64,
+}
+
+/// The field experiment's metrics in one band of distance to the nearest sensor.
+#[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
+#[schemars(deny_unknown_fields)]
+pub struct Band {
+    /// Lower edge, metres.
+    pub from: f64,
+    /// Upper edge, metres (`null` for the last, open band).
+    pub to: Option<f64>,
+    /// Cells in the band.
+    pub cells: u64,
+    /// Share decided correctly (`null` for an empty band).
+    pub accuracy: Option<f64>,
+    /// Cells with no decision.
+    pub below_threshold: u64,
+    /// False alarms.
+    pub false_alarms: u64,
+    /// Missed detections.
+    pub missed_detections: u64,
+    /// Mean conflict K over the band's observed cells (evidential methods only).
+    pub mean_conflict: Option<f64>,
+}
+
+/// How many sensors observe each cell of the field.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, schemars::JsonSchema)]
+#[schemars(deny_unknown_fields)]
+pub struct Coverage {
+    /// Sensors in the field.
+    pub sensors: usize,
+    /// Fewest sensors observing a cell.
+    pub min_sources: usize,
+    /// Most sensors observing a cell.
+    pub max_sources: usize,
+    /// Mean sensors per cell.
+    pub mean_sources: f64,
+}
+
+/// The cell-step counts of a perception world's run.
+#[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
+#[schemars(deny_unknown_fields)]
+pub struct WorldCounts {
+    /// Steps counted (the ego in the scene).
+    pub steps: u64,
+    /// Cell-steps truly occupied by an agent other than the ego and RSUs.
+    pub occupied: u64,
+    /// Of those, decided Occupy by the fused grid.
+    pub detected: u64,
+    /// Cell-steps decided Occupy that are truly free.
+    pub false_positives: u64,
+    /// Truly occupied cell-steps the ego did not observe itself.
+    pub blind_occupied: u64,
+    /// Of those, decided Occupy by the fused grid.
+    pub blind_detected: u64,
+    /// Cell-steps observed by the ego.
+    pub ego_observed: u64,
+    /// Cell-steps observed by any cooperating agent.
+    pub joint_observed: u64,
+    /// Sensor–target pairs in range and field of view, by visibility, over the run.
+    pub sightings: Sightings,
+    /// Mean position error of the cooperating agents' pose estimates, metres.
+    pub localization_error: Option<f64>,
+    /// Mean uncertainty of the fused cells.
+    pub mean_uncertainty: Option<f64>,
+    /// Conflict statistics (evidential methods only).
+    pub conflict: Option<Conflict>,
+}
+
+/// Targets in range and field of view, by what hides them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, schemars::JsonSchema)]
+#[schemars(deny_unknown_fields)]
+pub struct Sightings {
+    /// In line of sight.
+    pub los: u64,
+    /// Hidden by an occluder.
+    pub nlos_static: u64,
+    /// Hidden by other agents only.
+    pub nlos_dynamic: u64,
+    /// Visible targets that were detected.
+    pub detected: u64,
+}
+
+/// The conflict of an evidential run.
+#[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
+#[schemars(deny_unknown_fields)]
+pub struct Conflict {
+    /// Mean conflict K over observed cells (`null` when no cell is observed).
+    pub mean: Option<f64>,
+    /// Largest conflict K of any cell.
+    pub max: f64,
+    /// Cells in total conflict (K = 1).
+    pub total_conflict_cells: u64,
+    /// Cells fused with the distance-weighted rule.
+    pub weighted_cells: u64,
+}
+
+/// The counts and samples of a semantic run; the per-step series are left out
+/// (they are in run.mcap and in shard files).
+#[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
+#[schemars(deny_unknown_fields)]
+pub struct SemanticCounts {
+    /// Independent runs pooled into these measurements.
+    pub runs: u32,
+    /// Steps with the ego in the scene.
+    pub steps: u64,
+    /// Simulated seconds with the ego in the scene.
+    pub duration: f64,
+    /// Vehicles and pedestrians the traffic generator added.
+    pub generated: u64,
+    /// Anticipation times, seconds, ascending.
+    pub anticipation: Vec<f64>,
+    /// Objects learned of while hidden that the ego never saw before the run ended.
+    pub never_seen: u64,
+    /// Object-cycles perceived by the RSUs, in the cycles the shares count.
+    pub perceived: u64,
+    /// Object-cycles sent to the ego, in the cycles the shares count.
+    pub transmitted: u64,
+    /// Object-cycles sent with at least one label, in the cycles the shares count.
+    pub labelled: u64,
+    /// Sent object-cycles by label.
+    pub labels: LabelCounts,
+    /// Bytes of semantic messages sent.
+    pub bytes: u64,
+    /// Bytes the ETSI baseline would have sent.
+    pub baseline_bytes: u64,
+    /// Object-cycles the ETSI baseline would have sent.
+    pub baseline_objects: u64,
+    /// Semantic messages sent to the ego.
+    pub messages: u64,
+    /// Semantic messages the ego received.
+    pub delivered: u64,
+    /// Messages sent and received by RSU–ego distance: entry i covers
+    /// [i, i + 1) × 25 metres (the engine's `DELIVERY_BIN`).
+    pub delivery_by_distance: Vec<DeliveryBin>,
+    /// Objects coming within d_min of the ego (once per approach).
+    pub close_approaches: u64,
+    /// Close approaches with no conflict flagged to the ego beforehand.
+    pub missed_criticals: u64,
+    /// Seconds the ego drove cautiously after a flagged conflict.
+    pub cautious_time: f64,
+    /// Per close approach, in order: seconds from the first message flagging a
+    /// conflict with the object to the approach; `null` when none was flagged.
+    pub warnings: Vec<Option<f64>>,
+}
+
+/// Sent object-cycles by label.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, schemars::JsonSchema)]
+#[schemars(deny_unknown_fields)]
+pub struct LabelCounts {
+    /// NLoS behind a static occluder.
+    pub nlos_static: u64,
+    /// NLoS behind other road users only.
+    pub nlos_dynamic: u64,
+    /// Interaction relevance.
+    pub relevant: u64,
+    /// Dangerous drivers.
+    pub speeding: u64,
+    /// Predicted conflicts.
+    pub conflict: u64,
+}
+
+/// Packet delivery in one distance bin.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, schemars::JsonSchema)]
+#[schemars(deny_unknown_fields)]
+pub struct DeliveryBin {
+    /// Messages sent.
+    pub sent: u64,
+    /// Messages received.
+    pub received: u64,
+}
+
+/// Objects known to the ego only through an RSU, in one traffic-density bin.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, schemars::JsonSchema)]
+#[schemars(deny_unknown_fields)]
+pub struct DensityRow {
+    /// Lower edge of the bin, objects per km (bins are 10 objects per km wide:
+    /// the engine's `DENSITY_BIN`).
+    pub from: f64,
+    /// Steps in the bin.
+    pub steps: usize,
+    /// Median objects known only through an RSU.
+    pub median: f64,
+    /// Mean objects known only through an RSU.
+    pub mean: f64,
+}

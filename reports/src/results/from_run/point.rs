@@ -1,0 +1,258 @@
+//! A point's outcome: its labels, metrics and sample sizes, and the engine's
+//! counts behind them (distance bands, coverage, the mass audit, a world's and
+//! a semantic run's counts).
+
+use sightline_dsl::Point;
+use sightline_engine::{Outcome, outcome as engine};
+
+use crate::results::{
+    Band, Conflict, Coverage, DeliveryBin, DensityRow, Detail, LabelCounts, LabelResult, MassAudit, Ordered,
+    PointResult, SemanticCounts, Sightings, WorldCounts,
+};
+
+pub(super) fn point_result((point, outcome): (&Point, &Outcome)) -> PointResult {
+    PointResult {
+        index: point.index,
+        label: point.label(),
+        labels: point
+            .labels
+            .iter()
+            .map(|label| LabelResult {
+                sweep: label.sweep,
+                label: label.text(),
+                settings: Ordered(
+                    label
+                        .assignments
+                        .iter()
+                        .map(|a| (a.path.clone(), a.value.clone()))
+                        .collect(),
+                ),
+            })
+            .collect(),
+        seed: point.setup.seed,
+        method: point.setup.occupancy.as_ref().map(|o| o.fusion.rule.method().name()),
+        fusion: point.setup.occupancy.as_ref().map(|o| o.fusion.label.clone()),
+        metrics: Ordered(
+            outcome
+                .values()
+                .into_iter()
+                .map(|(m, v)| (m.name().to_string(), v))
+                .collect(),
+        ),
+        samples: Ordered(
+            outcome
+                .samples()
+                .into_iter()
+                .map(|(m, s)| (m.name().to_string(), s.n))
+                .collect(),
+        ),
+        audit: outcome.audit().copied().map(mass_audit),
+        detail: match outcome {
+            Outcome::Field(o) => Detail::Field {
+                bands: o.bands.iter().map(band).collect(),
+                coverage: coverage(o.coverage),
+            },
+            Outcome::World(o) => Detail::World {
+                counts: world_counts(&o.metrics),
+            },
+            Outcome::Semantic(m) => Detail::Semantic {
+                counts: semantic_counts(m),
+                contribution_by_density: m.contribution_by_density().into_iter().map(density_row).collect(),
+            },
+        },
+    }
+}
+
+fn mass_audit(audit: engine::MassAudit) -> MassAudit {
+    let engine::MassAudit {
+        cells,
+        non_finite,
+        min_mass,
+        max_mass,
+        max_sum_error,
+    } = audit;
+    MassAudit {
+        cells,
+        non_finite,
+        min_mass,
+        max_mass,
+        max_sum_error,
+    }
+}
+
+fn band(band: &engine::BandMetrics) -> Band {
+    let engine::BandMetrics {
+        from,
+        to,
+        cells,
+        accuracy,
+        below_threshold,
+        false_alarms,
+        missed_detections,
+        mean_conflict,
+    } = *band;
+    Band {
+        from,
+        to,
+        cells,
+        accuracy,
+        below_threshold,
+        false_alarms,
+        missed_detections,
+        mean_conflict,
+    }
+}
+
+fn coverage(coverage: engine::Coverage) -> Coverage {
+    let engine::Coverage {
+        sensors,
+        min_sources,
+        max_sources,
+        mean_sources,
+    } = coverage;
+    Coverage {
+        sensors,
+        min_sources,
+        max_sources,
+        mean_sources,
+    }
+}
+
+fn world_counts(metrics: &engine::WorldMetrics) -> WorldCounts {
+    let engine::WorldMetrics {
+        steps,
+        occupied,
+        detected,
+        false_positives,
+        blind_occupied,
+        blind_detected,
+        ego_observed,
+        joint_observed,
+        sightings,
+        localization_error,
+        mean_uncertainty,
+        ref conflict,
+    } = *metrics;
+    let engine::Sightings {
+        los,
+        nlos_static,
+        nlos_dynamic,
+        detected: seen,
+    } = sightings;
+    WorldCounts {
+        steps,
+        occupied,
+        detected,
+        false_positives,
+        blind_occupied,
+        blind_detected,
+        ego_observed,
+        joint_observed,
+        sightings: Sightings {
+            los,
+            nlos_static,
+            nlos_dynamic,
+            detected: seen,
+        },
+        localization_error,
+        mean_uncertainty,
+        conflict: conflict.as_ref().map(|c| {
+            let engine::ConflictMetrics {
+                mean,
+                max,
+                total_conflict_cells,
+                weighted_cells,
+            } = *c;
+            Conflict {
+                mean,
+                max,
+                total_conflict_cells,
+                weighted_cells,
+            }
+        }),
+    }
+}
+
+/// A semantic run's counts; its per-step series (`contribution`, `rsu_only`,
+/// `time_to_conflict`) stay out of results.json (the contribution is written
+/// by density instead).
+fn semantic_counts(metrics: &engine::SemanticMetrics) -> SemanticCounts {
+    let engine::SemanticMetrics {
+        runs,
+        steps,
+        duration,
+        generated,
+        ref anticipation,
+        never_seen,
+        contribution: _,
+        perceived,
+        transmitted,
+        labelled,
+        labels,
+        bytes,
+        baseline_bytes,
+        baseline_objects,
+        messages,
+        delivered,
+        ref delivery_by_distance,
+        close_approaches,
+        missed_criticals,
+        cautious_time,
+        ref warnings,
+        rsu_only: _,
+        time_to_conflict: _,
+    } = *metrics;
+    let engine::LabelCounts {
+        nlos_static,
+        nlos_dynamic,
+        relevant,
+        speeding,
+        conflict,
+    } = labels;
+    SemanticCounts {
+        runs,
+        steps,
+        duration,
+        generated,
+        anticipation: anticipation.clone(),
+        never_seen,
+        perceived,
+        transmitted,
+        labelled,
+        labels: LabelCounts {
+            nlos_static,
+            nlos_dynamic,
+            relevant,
+            speeding,
+            conflict,
+        },
+        bytes,
+        baseline_bytes,
+        baseline_objects,
+        messages,
+        delivered,
+        delivery_by_distance: delivery_by_distance
+            .iter()
+            .map(|&engine::DeliveryBin { sent, received }| DeliveryBin { sent, received })
+            .collect(),
+        close_approaches,
+        missed_criticals,
+        cautious_time,
+        warnings: warnings.clone(),
+    }
+}
+
+fn density_row(row: engine::DensityRow) -> DensityRow {
+    let engine::DensityRow {
+        from,
+        steps,
+        median,
+        mean,
+    } = row;
+    DensityRow {
+        from,
+        steps,
+        median,
+        mean,
+    }
+}

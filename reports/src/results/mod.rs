@@ -1,0 +1,54 @@
+//! results.json: the versioned wire format of a run's evidence, owned here.
+//!
+//! Every type written into results.json is defined in this module tree, apart
+//! from the engine's, the language's and the oracles' types, so that renaming a
+//! field there cannot change the evidence silently: `from_run` is the one
+//! place that maps them to these types, and `docs/results.schema.json` (the
+//! JSON Schema of [`Results`], see [`results_schema`]) publishes the format
+//! named by [`FORMAT`].
+//!
+//! - `document`: the whole file ([`Results`]), the scenario, its inputs and
+//!   the requirement counts.
+//! - `provenance`: where a run came from ([`Provenance`], [`Tool`], the
+//!   [`RecordingInfo`]); how it ran is [`Execution`](crate::Execution).
+//! - `requirement`: each requirement's verdict ([`Status`]) at its deciding
+//!   point and at every point, and the check as written.
+//! - `point` and `sweep`: every configuration simulated, with its labels,
+//!   metrics and what only its kind of scenario measures ([`Detail`]), and the
+//!   sweeps that reach them.
+//! - `counts`: the counts behind the metrics (distance bands, coverage, the
+//!   mass audit, a world's and a semantic run's counts).
+//! - `metrics`: the top-level metrics (a value, or one table per sweep) and
+//!   the insertion-ordered map ([`Ordered`]) they are written as.
+//! - `reference`: published figures beside measured values, and the
+//!   modelling assumptions.
+//!
+//! Everything but `execution` (platform, worker threads, start time and
+//! duration) is deterministic: no output paths, nothing that depends on the
+//! thread count, so the same scenario and seed give the same file but for those
+//! fields.
+
+pub use counts::{
+    Band, Conflict, Coverage, DeliveryBin, DensityRow, LabelCounts, MassAudit, SemanticCounts, Sightings, WorldCounts,
+};
+pub use document::{FORMAT, InputInfo, Results, ScenarioInfo, Summary};
+pub use metrics::{Measured, MetricEntry, Ordered, Table};
+pub use point::{Detail, LabelResult, PointResult};
+pub use provenance::{Provenance, RecordingInfo, Tool};
+pub use reference::{Assumption, ReferencePoint, ReferenceResult};
+pub use requirement::{
+    CheckInfo, OverSeeds, PointVerdict, RateBound, RequirementResult, SeedStatistics, Statistic, Status,
+};
+pub use schema::results_schema;
+pub use sweep::{Axis, Sweep, SweepRow};
+
+mod counts;
+mod document;
+mod from_run;
+mod metrics;
+mod point;
+mod provenance;
+mod reference;
+mod requirement;
+mod schema;
+mod sweep;
