@@ -4,6 +4,8 @@ use std::path::{Path, PathBuf};
 
 use sightline_dsl::{Options, Scenario};
 
+use crate::files::{DATA_LIMIT, TEXT_LIMIT, read_regular};
+
 /// A compiled scenario file and the bytes it was compiled from.
 pub struct Input {
     /// The path as given.
@@ -19,7 +21,7 @@ pub struct Input {
 /// too. Prints every error (as `file:line:col: error: …`) and returns `None` if
 /// any file is invalid.
 pub fn load_all(paths: &[PathBuf], seed: Option<u64>, record: bool) -> Option<Vec<Input>> {
-    let disk = |path: &Path| std::fs::read(path);
+    let disk = |path: &Path| read_regular(path, DATA_LIMIT);
     let options = Options {
         seed,
         loader: Some(&disk),
@@ -41,7 +43,7 @@ pub fn load_all(paths: &[PathBuf], seed: Option<u64>, record: bool) -> Option<Ve
 
 fn load(path: &Path, options: &Options<'_>) -> Result<Input, String> {
     let name = path.display().to_string();
-    let bytes = std::fs::read(path).map_err(|e| format!("{name}: error: failed to read the file: {e}"))?;
+    let bytes = read_regular(path, TEXT_LIMIT).map_err(|e| format!("{name}: error: failed to read the file: {e}"))?;
     let text =
         sightline_dsl::utf8_text(&bytes).map_err(|at| format!("{name}:{at}: error: the file is not UTF-8 text"))?;
     let scenario = sightline_dsl::compile(&name, text, options).map_err(|errors| errors.to_string())?;

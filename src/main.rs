@@ -9,6 +9,7 @@ mod cli;
 mod cmd;
 mod evidence;
 mod exit;
+mod files;
 mod input;
 mod output;
 mod summary;

@@ -7,6 +7,8 @@ use std::sync::Arc;
 
 use sightline_reports::{Page, Templates};
 
+use crate::files::{TEXT_LIMIT, read_regular};
+
 /// The templates of `page`: the bundled ones, or the set in `dir`. `None`
 /// (after printing why) when the set cannot be used.
 pub fn templates(dir: Option<&Path>, page: Page) -> Option<Templates> {
@@ -23,8 +25,10 @@ pub fn templates(dir: Option<&Path>, page: Page) -> Option<Templates> {
         return None;
     }
     let root = dir.to_path_buf();
-    let load = move |name: &str| match std::fs::read_to_string(root.join(name)) {
-        Ok(text) => Ok(Some(text)),
+    let load = move |name: &str| match read_regular(&root.join(name), TEXT_LIMIT) {
+        Ok(bytes) => String::from_utf8(bytes)
+            .map(Some)
+            .map_err(|_| std::io::Error::new(ErrorKind::InvalidData, "the file is not UTF-8 text")),
         Err(error) if error.kind() == ErrorKind::NotFound => Ok(None),
         Err(error) => Err(error),
     };

@@ -16,6 +16,7 @@ use sightline_reports::{Execution, Falsification, Page, Tool, falsify_html, fals
 
 use crate::cli::{FalsifyArgs, SearchMode};
 use crate::exit::Exit;
+use crate::files::{DATA_LIMIT, read_regular};
 use crate::input::load_all;
 use crate::output::{default_dir, relative, say, write_atomically};
 use crate::template::templates;
@@ -204,7 +205,7 @@ pub fn falsify(args: &FalsifyArgs) -> anyhow::Result<Exit> {
 fn simulate_case(path: &str, text: &str, vary: &[Vary], indices: &[u64]) -> Result<Score, Stop> {
     let case_text = sightline_dsl::instantiate(path, text, &Vary::settings(vary, indices))
         .map_err(|errors| Stop::Internal(anyhow::anyhow!("failed to write a case of {path}: {errors}")))?;
-    let disk = |file: &Path| std::fs::read(file);
+    let disk = |file: &Path| read_regular(file, DATA_LIMIT);
     let options = Options {
         seed: None,
         loader: Some(&disk),

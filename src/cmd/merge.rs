@@ -23,6 +23,7 @@ use super::shard::inputs_of;
 use crate::cli::MergeArgs;
 use crate::evidence::{Reporting, Request, evidence_dirs, recorded, tool, write_evidence};
 use crate::exit::Exit;
+use crate::files::{DATA_LIMIT, read_regular};
 use crate::input::{Input, load_all};
 use crate::template::templates;
 
@@ -121,8 +122,8 @@ fn collect(paths: &[PathBuf]) -> Result<Vec<(PathBuf, Shard)>, String> {
     files
         .into_iter()
         .map(|file| {
-            let bytes =
-                std::fs::read(&file).map_err(|e| format!("{}: error: failed to read it: {e}", file.display()))?;
+            let bytes = read_regular(&file, DATA_LIMIT)
+                .map_err(|e| format!("{}: error: failed to read it: {e}", file.display()))?;
             let shard = read_shard(&bytes).map_err(|e| format!("{}: error: {e}", file.display()))?;
             Ok((file, shard))
         })

@@ -9,6 +9,7 @@ use sightline_reports::sha256_hex;
 
 use super::merge::OUT_OF_DOMAIN;
 use crate::exit::Exit;
+use crate::files::{DATA_LIMIT, read_regular};
 use crate::summary::{print_verdicts, refuse_out_of_domain};
 
 /// Re-checks the requirements of a recording from what it holds: the file is
@@ -19,7 +20,7 @@ use crate::summary::{print_verdicts, refuse_out_of_domain};
 /// no run gives: exit 3.
 pub fn replay(file: &Path) -> Exit {
     let name = file.display();
-    let bytes = match std::fs::read(file) {
+    let bytes = match read_regular(file, DATA_LIMIT) {
         Ok(bytes) => bytes,
         Err(error) => {
             eprintln!("{name}: error: failed to read the recording: {error}");
@@ -81,8 +82,9 @@ pub fn replay(file: &Path) -> Exit {
 /// `file`, when there is one.
 fn matches_results(file: &Path, bytes: &[u8]) -> Result<(), String> {
     let results = file.with_file_name("results.json");
-    let text = match std::fs::read_to_string(&results) {
-        Ok(text) => text,
+    let text = match read_regular(&results, DATA_LIMIT).map(String::from_utf8) {
+        Ok(Ok(text)) => text,
+        Ok(Err(_)) => return Err(format!("{} beside it is not UTF-8 text", results.display())),
         Err(error) if error.kind() == io::ErrorKind::NotFound => return Ok(()),
         Err(error) => return Err(format!("failed to read {} beside it: {error}", results.display())),
     };

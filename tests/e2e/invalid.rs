@@ -210,10 +210,49 @@ fn missing_file_exits_2_and_writes_nothing() {
 fn directory_given_as_scenario_exits_2() {
     let outcome = sightline(["check", "tests/fixtures"]);
     outcome.assert_exit(2);
-    assert!(
-        outcome
-            .stderr
-            .starts_with("tests/fixtures: error: failed to read the file: "),
+    assert_eq!(
+        outcome.stderr, "tests/fixtures: error: failed to read the file: a directory, not a regular file\n",
+        "{outcome}"
+    );
+}
+
+/// A FIFO would block `check` forever and `/dev/zero` would be read until
+/// memory runs out: both are refused before a byte is read.
+#[cfg(unix)]
+#[test]
+fn fifos_and_devices_are_refused_at_once() {
+    let tmp = temp_dir();
+    let fifo = tmp.path().join("scenario.yaml");
+    let made = std::process::Command::new("mkfifo")
+        .arg(&fifo)
+        .status()
+        .expect("mkfifo runs");
+    assert!(made.success(), "mkfifo {}", fifo.display());
+    for (file, what) in [(arg(&fifo), "a FIFO"), ("/dev/zero", "a device")] {
+        let outcome = sightline(["check", file]);
+        outcome.assert_exit(2);
+        assert_eq!(
+            outcome.stderr,
+            format!("{file}: error: failed to read the file: {what}, not a regular file\n"),
+            "{outcome}"
+        );
+    }
+}
+
+/// A scenario file over 16 MiB is refused without being compiled.
+#[test]
+fn an_oversized_scenario_is_refused() {
+    let tmp = temp_dir();
+    let big = tmp.path().join("big.yaml");
+    std::fs::write(&big, vec![b'#'; (16 << 20) + 1]).expect("the file is written");
+    let outcome = sightline(["check", arg(&big)]);
+    outcome.assert_exit(2);
+    assert_eq!(
+        outcome.stderr,
+        format!(
+            "{}: error: failed to read the file: larger than the limit of 16 MiB\n",
+            arg(&big)
+        ),
         "{outcome}"
     );
 }
