@@ -143,6 +143,8 @@ invalid_inputs! {
     keys_their_settings_leave_without_effect_are_refused => "keys-without-effect",
     semantic_keys_their_settings_leave_without_effect_are_refused => "semantic-keys-without-effect",
     vary_value_leaving_a_key_without_effect_is_refused => "vary-leaves-a-key-without-effect",
+    // See: issue 15 (hostile input).
+    aliases_that_multiply_are_refused_at_a_million_nodes => "alias-bomb",
 }
 
 #[test]
