@@ -210,10 +210,21 @@ impl<'de> de::Deserializer<'de> for NodeDeserializer<'de> {
             },
             Value::Float(f) => visitor.visit_f64(*f),
             Value::Str(s) => visitor.visit_borrowed_str(s),
-            Value::Seq(items) => visitor.visit_seq(SeqAccess {
-                items: items.iter().enumerate(),
-                path: &self.path,
-            }),
+            Value::Seq(items) => {
+                let mut seq = SeqAccess {
+                    items: items.iter().enumerate(),
+                    path: &self.path,
+                };
+                // A fixed-size target (a point) reads only its own items: any
+                // left over is an error, never dropped.
+                visitor.visit_seq(&mut seq).and_then(|value| match seq.items.len() {
+                    0 => Ok(value),
+                    rest => Err(de::Error::invalid_length(
+                        items.len(),
+                        &format!("a list of {}", items.len() - rest).as_str(),
+                    )),
+                })
+            }
             Value::Map(entries) => visitor.visit_map(MapAccess {
                 entries: entries.iter(),
                 value: None,

@@ -145,6 +145,7 @@ invalid_inputs! {
     vary_value_leaving_a_key_without_effect_is_refused => "vary-leaves-a-key-without-effect",
     // See: issue 15 (hostile input).
     aliases_that_multiply_are_refused_at_a_million_nodes => "alias-bomb",
+    a_third_coordinate_is_refused_not_dropped => "point-with-a-third-coordinate",
 }
 
 #[test]
