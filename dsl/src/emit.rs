@@ -100,8 +100,8 @@ fn flow(node: &Node) -> String {
 fn string(s: &str) -> String {
     let simple = s.chars().next().is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
         && s.chars().all(|c| c.is_ascii_alphanumeric() || "_-./".contains(c));
-    match resolve_scalar(s, ScalarStyle::Plain, None) {
-        Ok(Value::Str(read)) if simple && read == s => s.to_string(),
+    match resolve_scalar(s, ScalarStyle::Plain) {
+        Value::Str(read) if simple && read == s => s.to_string(),
         _ => serde_json::Value::String(s.to_string()).to_string(),
     }
 }

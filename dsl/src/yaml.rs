@@ -9,9 +9,16 @@
 //! Scalars resolve by the YAML 1.2 core schema: `true`/`false`, `null`/`~`/empty,
 //! integers (decimal, `0x`, `0o`), floats (including `.inf`, `.nan`). A quoted
 //! scalar is always a string, so `"1"` never becomes a number and `no` never
-//! becomes `false`.
+//! becomes `false`. Tags (`!!float`, `!!str`, `!custom`) are refused: a value means
+//! what it says, written plainly.
+//!
+//! Building is linear in the size of the text: duplicate keys are found through a
+//! set per mapping. A document holds at most [`MAX_NODES`] nodes, aliases
+//! expanded, nested at most [`MAX_DEPTH`] levels, at most [`MAX_KEYS`] keys per
+//! mapping.
 
 use std::collections::HashMap;
+use std::collections::hash_map::Entry;
 
 use saphyr_parser::{Event, Parser, ScalarStyle, Span, Tag};
 
@@ -56,6 +63,15 @@ impl Node {
         match &self.value {
             Value::Map(entries) => entries.iter().find(|(k, _)| k.name == key).map(|(_, v)| v),
             _ => None,
+        }
+    }
+
+    /// The nodes in this tree, keys included, as [`MAX_NODES`] counts them.
+    pub(crate) fn size(&self) -> usize {
+        1 + match &self.value {
+            Value::Seq(items) => items.iter().map(Node::size).sum(),
+            Value::Map(entries) => entries.iter().map(|(_, v)| 1 + v.size()).sum(),
+            _ => 0,
         }
     }
 
@@ -151,6 +167,14 @@ pub(crate) fn parse(source: &str) -> Result<Node, ParseError> {
 /// bounded time and memory.
 pub(crate) const MAX_NODES: usize = 1_000_000;
 
+/// The most keys one mapping may hold: a scenario's widest mapping
+/// (`sensor_models`) names a few dozen; the compiler looks keys up by name.
+pub(crate) const MAX_KEYS: usize = 1000;
+
+/// The deepest nesting of mappings and lists a document may have: a scenario
+/// needs fewer than ten levels.
+pub(crate) const MAX_DEPTH: usize = 64;
+
 /// A container being filled while events arrive.
 enum Open {
     Seq {
@@ -162,6 +186,8 @@ enum Open {
     },
     Map {
         entries: Vec<(Key, Node)>,
+        /// Where each key of `entries` is written, to find a duplicate at once.
+        seen: HashMap<String, Location>,
         pending_key: Option<Key>,
         location: Location,
         anchor: usize,
@@ -207,18 +233,16 @@ impl Builder {
                 self.push(node)
             }
             Event::Scalar(text, style, anchor, tag) => {
-                let value = resolve_scalar(&text, style, tag.as_deref()).map_err(|message| ParseError {
-                    location,
-                    path: self.path(),
-                    kind: ErrorKind::Syntax(message),
-                })?;
+                self.reject_tag(tag.as_deref(), location)?;
                 self.count(1, location)?;
+                let value = resolve_scalar(&text, style);
                 let node = Node::new(value, location);
                 self.remember(anchor, &node, 1);
                 self.push(node)
             }
             Event::SequenceStart(anchor, tag) => {
-                reject_tag(tag.as_deref(), location, self.path())?;
+                self.reject_tag(tag.as_deref(), location)?;
+                self.open(location)?;
                 self.stack.push(Open::Seq {
                     items: Vec::new(),
                     location,
@@ -228,9 +252,11 @@ impl Builder {
                 Ok(())
             }
             Event::MappingStart(anchor, tag) => {
-                reject_tag(tag.as_deref(), location, self.path())?;
+                self.reject_tag(tag.as_deref(), location)?;
+                self.open(location)?;
                 self.stack.push(Open::Map {
                     entries: Vec::new(),
+                    seen: HashMap::new(),
                     pending_key: None,
                     location,
                     anchor,
@@ -277,6 +303,38 @@ impl Builder {
         Ok(())
     }
 
+    /// Refuses a mapping or list opened at `location` past [`MAX_DEPTH`] levels.
+    fn open(&self, location: Location) -> Result<(), ParseError> {
+        if self.stack.len() >= MAX_DEPTH {
+            return Err(ParseError {
+                location,
+                path: self.path(),
+                kind: ErrorKind::TooLarge(format!(
+                    "mappings and lists nest more than {MAX_DEPTH} levels deep; a scenario needs fewer than ten"
+                )),
+            });
+        }
+        Ok(())
+    }
+
+    /// Refuses any tag: `!!float 1` would otherwise be read as the integer 1.
+    fn reject_tag(&self, tag: Option<&Tag>, location: Location) -> Result<(), ParseError> {
+        let Some(tag) = tag else { return Ok(()) };
+        // As written: `!!float`, not the resolved `tag:yaml.org,2002:float`.
+        let written = match tag.handle.as_str() {
+            "tag:yaml.org,2002:" => format!("!!{}", tag.suffix),
+            "!" => format!("!{}", tag.suffix),
+            handle => format!("{handle}{}", tag.suffix),
+        };
+        Err(ParseError {
+            location,
+            path: self.path(),
+            kind: ErrorKind::Syntax(format!(
+                "YAML tags such as `{written}` are not supported; write the value plainly (quoted for a string)"
+            )),
+        })
+    }
+
     /// Keeps an anchored node of `size` nodes for the aliases that follow.
     fn remember(&mut self, anchor: usize, node: &Node, size: usize) {
         if anchor != 0 {
@@ -286,13 +344,8 @@ impl Builder {
 
     /// Places a finished node into its parent (or makes it the root).
     fn push(&mut self, node: Node) -> Result<(), ParseError> {
-        if let Some(Open::Map {
-            entries,
-            pending_key: None,
-            ..
-        }) = self.stack.last()
-        {
-            let key = self.key(node, entries)?;
+        if let Some(Open::Map { pending_key: None, .. }) = self.stack.last() {
+            let key = self.key(node)?;
             if let Some(Open::Map { pending_key, .. }) = self.stack.last_mut() {
                 *pending_key = Some(key);
             }
@@ -311,8 +364,9 @@ impl Builder {
         Ok(())
     }
 
-    /// Turns a scalar node in key position into a key, rejecting complex and duplicate keys.
-    fn key(&self, node: Node, entries: &[(Key, Node)]) -> Result<Key, ParseError> {
+    /// Turns a scalar node in key position into a key of the innermost mapping,
+    /// rejecting complex and duplicate keys.
+    fn key(&mut self, node: Node) -> Result<Key, ParseError> {
         let name = match node.value {
             Value::Str(s) => s,
             Value::Int(i) => i.to_string(),
@@ -326,15 +380,31 @@ impl Builder {
                 });
             }
         };
-        if let Some((first, _)) = entries.iter().find(|(k, _)| k.name == name) {
-            return Err(ParseError {
-                location: node.location,
-                path: self.path(),
-                kind: ErrorKind::DuplicateKey {
-                    key: name,
-                    first: first.location,
-                },
-            });
+        let Some(Open::Map { seen, .. }) = self.stack.last_mut() else {
+            unreachable!("a key is read inside a mapping")
+        };
+        let full = seen.len() >= MAX_KEYS;
+        match seen.entry(name.clone()) {
+            Entry::Vacant(_) if full => {
+                return Err(ParseError {
+                    location: node.location,
+                    path: self.path(),
+                    kind: ErrorKind::TooLarge(format!(
+                        "a mapping holds more than {MAX_KEYS} keys; a scenario's widest names a few dozen"
+                    )),
+                });
+            }
+            Entry::Vacant(slot) => {
+                slot.insert(node.location);
+            }
+            Entry::Occupied(first) => {
+                let first = *first.get();
+                return Err(ParseError {
+                    location: node.location,
+                    path: self.path(),
+                    kind: ErrorKind::DuplicateKey { key: name, first },
+                });
+            }
         }
         Ok(Key {
             name,
@@ -367,31 +437,12 @@ impl Builder {
     }
 }
 
-fn reject_tag(tag: Option<&Tag>, location: Location, path: Path) -> Result<(), ParseError> {
-    match tag {
-        Some(tag) if !tag.is_yaml_core_schema() => Err(ParseError {
-            location,
-            path,
-            kind: ErrorKind::Syntax(format!("YAML tags such as `{tag}` are not supported")),
-        }),
-        _ => Ok(()),
-    }
-}
-
-/// Resolves a scalar by the YAML 1.2 core schema.
-pub(crate) fn resolve_scalar(text: &str, style: ScalarStyle, tag: Option<&Tag>) -> Result<Value, String> {
-    if let Some(tag) = tag {
-        if !tag.is_yaml_core_schema() {
-            return Err(format!("YAML tags such as `{tag}` are not supported"));
-        }
-        if tag.suffix == "str" {
-            return Ok(Value::Str(text.to_string()));
-        }
-    }
+/// Resolves an untagged scalar by the YAML 1.2 core schema.
+pub(crate) fn resolve_scalar(text: &str, style: ScalarStyle) -> Value {
     if style != ScalarStyle::Plain {
-        return Ok(Value::Str(text.to_string()));
+        return Value::Str(text.to_string());
     }
-    Ok(match text {
+    match text {
         "" | "~" | "null" | "Null" | "NULL" => Value::Null,
         "true" | "True" | "TRUE" => Value::Bool(true),
         "false" | "False" | "FALSE" => Value::Bool(false),
@@ -399,7 +450,7 @@ pub(crate) fn resolve_scalar(text: &str, style: ScalarStyle, tag: Option<&Tag>) 
         "-.inf" | "-.Inf" | "-.INF" => Value::Float(f64::NEG_INFINITY),
         ".nan" | ".NaN" | ".NAN" => Value::Float(f64::NAN),
         _ => parse_number(text).unwrap_or_else(|| Value::Str(text.to_string())),
-    })
+    }
 }
 
 fn parse_number(text: &str) -> Option<Value> {
@@ -495,7 +546,49 @@ mod tests {
     }
 
     #[test]
-    fn custom_tags_are_rejected() {
-        assert!(parse("a: !custom 1\n").is_err());
+    fn tags_are_rejected_core_schema_ones_too() {
+        for source in [
+            "a: !custom 1\n",
+            "a: !!float 1\n",
+            "a: !!str 1\n",
+            "a: !!map {b: 1}\n",
+            "a: !!seq [1]\n",
+        ] {
+            let err = parse(source).unwrap_err();
+            assert_eq!(err.location, Location::new(1, 4), "{source}");
+            let tag = source[3..].split(' ').next().unwrap();
+            assert!(
+                matches!(err.kind, ErrorKind::Syntax(ref m) if m.contains(&format!("`{tag}`"))),
+                "{source}"
+            );
+        }
+    }
+
+    #[test]
+    fn nesting_is_bounded() {
+        let at_limit = format!("{}1{}", "[".repeat(MAX_DEPTH), "]".repeat(MAX_DEPTH));
+        assert!(parse(&at_limit).is_ok());
+        let beyond = format!("a: {}1{}", "{b: ".repeat(MAX_DEPTH), "}".repeat(MAX_DEPTH));
+        let err = parse(&beyond).unwrap_err();
+        assert!(matches!(err.kind, ErrorKind::TooLarge(_)));
+        assert_eq!(err.path.to_string(), format!("a{}", ".b".repeat(MAX_DEPTH - 2)));
+    }
+
+    #[test]
+    fn keys_per_mapping_are_bounded() {
+        let keys = |n: usize| -> String { (0..n).map(|i| format!("  k{i}: 1\n")).collect() };
+        let node = root(&format!("top:\n{}", keys(MAX_KEYS)));
+        let Value::Map(entries) = &node.get("top").unwrap().value else {
+            panic!("a mapping")
+        };
+        assert_eq!(entries.len(), MAX_KEYS);
+        let duplicate = parse(&format!("top:\n{}  k7: 2\n", keys(MAX_KEYS))).unwrap_err();
+        assert!(matches!(duplicate.kind, ErrorKind::DuplicateKey { .. }));
+        let err = parse(&format!("top:\n{}", keys(200_000))).unwrap_err();
+        assert!(matches!(err.kind, ErrorKind::TooLarge(_)));
+        assert_eq!(
+            (err.location, err.path.to_string()),
+            (Location::new(MAX_KEYS + 2, 3), "top".into())
+        );
     }
 }

@@ -360,3 +360,43 @@ fn zero_and_negative_zero_stay_apart() {
     assert_eq!(scenario.points.len(), 2);
     assert_eq!(scenario.sweeps[2].points, [0]);
 }
+
+#[test]
+fn sweep_sizes_are_checked_before_the_points_are_made() {
+    let values = |n: usize| (0..n).map(|i| i.to_string()).collect::<Vec<_>>().join(", ");
+    // Three axes of 30 values make 27 000 combinations: refused at the sweep.
+    let text = format!(
+        "{BASE}sweep:\n  seed: [{}]\n  field.masses.gamma: [{}]\n  field.sensors.range: [{}]\n",
+        values(30),
+        (1..=30).map(|g| format!("{g}.5")).collect::<Vec<_>>().join(", "),
+        (1..=30).map(|r| format!("{r}.25")).collect::<Vec<_>>().join(", "),
+    );
+    let refused = errors(&text);
+    assert_eq!(refused.0.len(), 1, "{refused}");
+    assert_eq!(
+        (refused.0[0].path.as_str(), refused.0[0].location),
+        ("sweep", Location::new(8, 1))
+    );
+    assert!(matches!(refused.0[0].kind, ErrorKind::TooLarge(ref m) if m.contains("more than 10000 points")));
+
+    // Each combination compiles its own copy of the file: 9 000 copies of a file
+    // of a few hundred nodes are refused, 1 000 are compiled.
+    let occluders: String = (0..60)
+        .map(|i| format!("  - {{ id: o{i}, polygon: [[{i}, 0], [{i}.5, 0], [{i}.5, 1]] }}\n"))
+        .collect();
+    let world = |seeds: usize| {
+        format!(
+            "sightline: 1\nname: t\ngrid: {{ size: [100, 10], cell: 1 }}\ntime: {{ duration: 1, step: 0.1 }}\nroads:\n  - {{ id: r, polyline: [[0, 0], [100, 0]], speed_limit: 10 }}\n\
+             occluders:\n{occluders}sensor_models:\n  s: {{ range: 10 }}\n\
+             agents:\n  - {{ id: a, kind: car, route: [r], speed: {{ target: 5 }}, sensors: [s] }}\n\
+             perception: {{ ego: a }}\nsweep:\n  seed: [{}]\n",
+            values(seeds)
+        )
+    };
+    let refused = errors(&world(9000));
+    assert!(
+        matches!(refused.0[0].kind, ErrorKind::TooLarge(ref m) if m.contains("each compile a copy")),
+        "{refused}"
+    );
+    assert_eq!(ok(&world(1000)).points.len(), 1000);
+}

@@ -146,6 +146,8 @@ invalid_inputs! {
     // See: issue 15 (hostile input).
     aliases_that_multiply_are_refused_at_a_million_nodes => "alias-bomb",
     a_third_coordinate_is_refused_not_dropped => "point-with-a-third-coordinate",
+    yaml_tags_are_refused => "tagged-value",
+    nesting_is_refused_past_its_limit => "nesting-too-deep",
 }
 
 #[test]

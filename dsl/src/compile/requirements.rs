@@ -8,7 +8,8 @@ use crate::de::closest;
 use crate::error::{ErrorKind, Location};
 use crate::model::display_value;
 use crate::model::{
-    Bound, Check, Experiment, Metric, OverSeeds, Point, RateBound, Reference, Requirement, Statistic, Temporal,
+    Bound, Check, Experiment, Metric, OverSeeds, Point, RateBound, Reference, Requirement, Settings, Statistic,
+    Temporal,
 };
 use crate::path::Path;
 use crate::raw::{RawCheck, RawReference, RawRequirement};
@@ -439,7 +440,7 @@ pub(super) fn select(
     let mut ok = true;
     for key in filter.keys() {
         let key_path = path.key(key);
-        let found = settings(points).any(|s| lookup(s, key).is_some());
+        let found = settings(points).any(|s| s.get(key).is_some());
         if !found {
             let hint = suggest(&points[0].labels[0].settings, key)
                 .map(|s| format!(" (did you mean `{s}`?)"))
@@ -460,7 +461,7 @@ pub(super) fn select(
             p.labels.iter().any(|label| {
                 filter
                     .iter()
-                    .all(|(key, want)| lookup(&label.settings, key).is_some_and(|have| json_eq(have, want)))
+                    .all(|(key, want)| label.settings.get(key).is_some_and(|have| json_eq(have, want)))
             })
         })
         .map(|p| p.index)
@@ -471,7 +472,7 @@ pub(super) fn select(
             .map(|key| {
                 let mut values: Vec<String> = Vec::new();
                 for settings in settings(points) {
-                    if let Some(v) = lookup(settings, key).map(display_value)
+                    if let Some(v) = settings.get(key).map(display_value)
                         && !values.contains(&v)
                     {
                         values.push(v);
@@ -490,27 +491,21 @@ pub(super) fn select(
 }
 
 /// The effective settings of every label of every point.
-fn settings(points: &[Point]) -> impl Iterator<Item = &serde_json::Value> {
+fn settings(points: &[Point]) -> impl Iterator<Item = &Settings> {
     points.iter().flat_map(|p| &p.labels).map(|label| &label.settings)
 }
 
-/// The setting at a dotted path.
-fn lookup<'a>(settings: &'a serde_json::Value, dotted: &str) -> Option<&'a serde_json::Value> {
-    dotted.split('.').try_fold(settings, |node, key| node.get(key))
-}
-
-/// The closest existing dotted path to a mistyped one.
-fn suggest(settings: &serde_json::Value, dotted: &str) -> Option<String> {
-    let (parent, last) = match dotted.rsplit_once('.') {
-        Some((parent, last)) => (lookup(settings, parent)?, last),
-        None => (settings, dotted),
+/// The setting closest to a dotted path that names none.
+fn suggest(settings: &Settings, dotted: &str) -> Option<String> {
+    let (prefix, last) = match dotted.rsplit_once('.') {
+        Some((prefix, last)) => (Some(prefix), last),
+        None => (None, dotted),
     };
-    let keys: Vec<&str> = parent.as_object()?.keys().map(String::as_str).collect();
-    let best = closest(last, keys.iter().copied())?;
-    Some(match dotted.rsplit_once('.') {
-        Some((prefix, _)) => format!("{prefix}.{best}"),
-        None => best,
-    })
+    let best = match prefix {
+        Some(prefix) => closest(last, settings.get(prefix)?.as_object()?.keys().map(String::as_str))?,
+        None => closest(last, settings.sections())?,
+    };
+    Some(prefix.map_or_else(|| best.clone(), |prefix| format!("{prefix}.{best}")))
 }
 
 #[cfg(test)]

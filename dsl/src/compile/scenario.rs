@@ -1,7 +1,8 @@
 //! The driver: text → tree → raw → imported files → setup per sweep combination
 //! → distinct points → `vary` → requirements.
 
-use std::collections::HashSet;
+use std::collections::{BTreeMap, HashMap, HashSet};
+use std::sync::Arc;
 use std::{fmt, io};
 
 use super::context::{Context, has, locate_key};
@@ -9,12 +10,12 @@ use super::kind::{self, Kind, ignored};
 use super::record::record;
 use super::requirements::{references, requirements};
 use super::setup::setup;
-use super::sweep::{self, AxisNodes, Configurations};
+use super::sweep::{self, AxisNodes, Configurations, MAX_SETTINGS_BYTES};
 use super::traces::{self, Imported};
 use super::vary;
 use crate::de::from_node;
 use crate::error::{Error, ErrorKind, Errors, Location};
-use crate::model::{Assignment, Axis, Experiment, Label, Scenario, Setup, Sweep, display_value};
+use crate::model::{Assignment, Axis, Experiment, Label, Scenario, Settings, Sweep, display_value};
 use crate::path::Path;
 use crate::raw::RawScenario;
 use crate::schema::AGENTS;
@@ -101,7 +102,8 @@ fn compile_inner(file: &str, source: &str, options: &Options<'_>) -> Result<Scen
     // Check the file as written before expanding the sweep, so that a problem
     // outside the swept keys is reported once, not once per point.
     let base = setup(&mut ctx, &raw, imported.as_ref());
-    let sweeps = sweep::sweeps(&mut ctx);
+    let setup_tree = without_read_once(&tree);
+    let sweeps = sweep::sweeps(&mut ctx, setup_tree.size());
     if let (Some(_), Some(axis)) = (options.seed, sweeps.iter().flatten().find(|a| a.dotted == "seed")) {
         ctx.error_at(
             axis.key_location,
@@ -114,9 +116,9 @@ fn compile_inner(file: &str, source: &str, options: &Options<'_>) -> Result<Scen
     // Requirements are checked even when the setup is invalid (ids, texts and
     // check forms do not depend on the points), so one pass reports everything.
     let compiled = match base {
-        Some(_) if ctx.errors.is_empty() => match points(file, &tree, &sweeps, options, imported.as_ref()) {
-            Ok((compiled, combinations)) => {
-                refuse_unused(&mut ctx, &combinations);
+        Some(_) if ctx.errors.is_empty() => match points(file, &setup_tree, &sweeps, options, imported.as_ref()) {
+            Ok((compiled, unused)) => {
+                refuse_unused(&mut ctx, &setup_tree, &sweeps, &unused);
                 Some(compiled)
             }
             Err(errors) => {
@@ -189,66 +191,130 @@ fn check_version(ctx: &mut Context<'_>) {
     }
 }
 
-/// One sweep combination: its setup and its tree (the file with its values in
-/// place).
-type Combination = (Setup, Node);
+/// Top-level sections read once for the whole scenario, not per sweep
+/// combination: a combination is compiled from the file without them, so that a
+/// long sweep axis is not copied and read again at every point.
+const READ_ONCE: [&str; 6] = ["sweep", "sweeps", "vary", "requirements", "references", "record"];
 
-/// Compiles every combination of every sweep (the file as written without a
-/// sweep) into the distinct configurations they give; also returns each
-/// combination's setup with its tree (the file with its values in place).
+/// The file without its [`READ_ONCE`] sections.
+fn without_read_once(tree: &Node) -> Node {
+    let value = match &tree.value {
+        Value::Map(entries) => Value::Map(
+            entries
+                .iter()
+                .filter(|(key, _)| !READ_ONCE.contains(&key.name.as_str()))
+                .cloned()
+                .collect(),
+        ),
+        other => other.clone(),
+    };
+    Node::new(value, tree.location)
+}
+
+/// The keys the combinations' settings leave without effect.
+#[derive(Default)]
+struct Unused {
+    /// Each key unused at some combination, by where it is written: its path and
+    /// why, as first found.
+    keys: BTreeMap<Location, (Path, String)>,
+    /// Per combination, in the order of [`combinations`], where its unused keys
+    /// are written.
+    at: Vec<HashSet<Location>>,
+}
+
+/// Every combination of every sweep (the file as written without a sweep), in
+/// order: its sweep, its axes, the value chosen on each, and its tree (`tree`
+/// with those values in place). Each tree is made when it is reached, so one is
+/// held at a time.
+fn combinations<'s, 'a>(
+    tree: &'s Node,
+    sweeps: &'s [Vec<AxisNodes<'a>>],
+) -> impl Iterator<Item = (usize, &'s [AxisNodes<'a>], Vec<usize>, Node)> + 's {
+    let groups: Vec<&'s [AxisNodes<'a>]> = if sweeps.is_empty() {
+        vec![&[]]
+    } else {
+        sweeps.iter().map(Vec::as_slice).collect()
+    };
+    groups.into_iter().enumerate().flat_map(move |(group, axes)| {
+        sweep::choices(axes).into_iter().map(move |choice| {
+            let point_tree = sweep::substitute(tree, axes, &choice);
+            (group, axes, choice, point_tree)
+        })
+    })
+}
+
+/// Compiles every combination of every sweep into the distinct configurations
+/// they give; also returns, per combination, the keys its settings leave without
+/// effect.
 fn points(
     file: &str,
     tree: &Node,
     sweeps: &[Vec<AxisNodes<'_>>],
     options: &Options<'_>,
     imported: Option<&Imported>,
-) -> Result<(Configurations, Vec<Combination>), Vec<Error>> {
+) -> Result<(Configurations, Unused), Vec<Error>> {
     let mut configurations = Configurations::new(sweeps.len());
-    let mut combinations = Vec::new();
+    let mut sections = Sections::default();
+    let mut unused = Unused::default();
     let mut errors = Vec::new();
-    let no_sweep: [Vec<AxisNodes<'_>>; 1] = [Vec::new()];
-    let groups = if sweeps.is_empty() { &no_sweep[..] } else { sweeps };
-    for (group, axes) in groups.iter().enumerate() {
-        for choice in sweep::choices(axes) {
-            let point_tree = sweep::substitute(tree, axes, &choice);
-            let mut ctx = Context::new(file, &point_tree);
-            let compiled = match from_node::<RawScenario>(&point_tree, &Path::root()) {
-                Ok(raw) => setup(&mut ctx, &raw, imported).map(|setup| (raw, setup)),
-                Err(e) => {
-                    ctx.errors.push(ctx.de_error(e));
-                    None
-                }
-            };
-            match ctx.finish(compiled) {
-                Ok((raw, mut setup)) => {
-                    if let Some(seed) = options.seed {
-                        setup.seed = seed;
-                    }
-                    let label = Label {
-                        sweep: (!sweeps.is_empty()).then_some(group),
-                        assignments: axes
-                            .iter()
-                            .zip(&choice)
-                            .map(|(axis, &i)| {
-                                let value = axis.values[i].to_json();
-                                Assignment {
-                                    path: axis.dotted.clone(),
-                                    display: display_value(&value),
-                                    value,
-                                }
-                            })
-                            .collect(),
-                        settings: settings(&raw, &setup),
-                    };
-                    combinations.push((setup.clone(), point_tree));
-                    configurations.add(label, setup);
-                }
-                Err(e) => errors.extend(e),
+    for (group, axes, choice, point_tree) in combinations(tree, sweeps) {
+        let mut ctx = Context::new(file, &point_tree);
+        let compiled = match from_node::<RawScenario>(&point_tree, &Path::root()) {
+            Ok(raw) => setup(&mut ctx, &raw, imported).map(|setup| (raw, setup)),
+            Err(e) => {
+                ctx.errors.push(ctx.de_error(e));
+                None
             }
+        };
+        match ctx.finish(compiled) {
+            Ok((raw, mut setup)) => {
+                if let Some(seed) = options.seed {
+                    setup.seed = seed;
+                }
+                let label = Label {
+                    sweep: (!sweeps.is_empty()).then_some(group),
+                    assignments: axes
+                        .iter()
+                        .zip(&choice)
+                        .map(|(axis, &i)| {
+                            let value = axis.values[i].to_json();
+                            Assignment {
+                                path: axis.dotted.clone(),
+                                display: display_value(&value),
+                                value,
+                            }
+                        })
+                        .collect(),
+                    settings: settings(&raw, &setup, &mut sections),
+                };
+                let mut here = HashSet::new();
+                for (path, why) in kind::unused(&point_tree, &setup) {
+                    let location = locate_key(&point_tree, &path);
+                    unused.keys.entry(location).or_insert((path, why));
+                    here.insert(location);
+                }
+                unused.at.push(here);
+                configurations.add(label, setup);
+                if configurations.bytes().saturating_add(sections.bytes) > MAX_SETTINGS_BYTES {
+                    errors.push(Error {
+                        file: file.to_string(),
+                        location: tree.location,
+                        path: String::new(),
+                        kind: ErrorKind::TooLarge(format!(
+                            "the settings of the first {} sweep points already take more than {} MiB; \
+                             sweep fewer values or split the scenario",
+                            configurations.points().len(),
+                            MAX_SETTINGS_BYTES >> 20
+                        )),
+                    });
+                    break;
+                }
+            }
+            Err(e) => errors.extend(e),
         }
     }
     if errors.is_empty() {
-        Ok((configurations, combinations))
+        Ok((configurations, unused))
     } else {
         Err(errors)
     }
@@ -259,26 +325,21 @@ fn points(
 /// one written outside the sweeps is in every point, one inside a swept value
 /// only in the points that take that value. So `fusion.weights`, given once
 /// and ignored by the `dempster` rule, is refused unless a sweep fuses with a
-/// weighted rule at some point.
-fn refuse_unused(ctx: &mut Context<'_>, combinations: &[Combination]) {
-    let found: Vec<Vec<(Location, Path, String)>> = combinations
-        .iter()
-        .map(|(setup, tree)| {
-            kind::unused(tree, setup)
-                .into_iter()
-                .map(|(path, why)| (locate_key(tree, &path), path, why))
-                .collect()
-        })
-        .collect();
-    let mut seen = HashSet::new();
-    for (location, path, why) in found.iter().flatten() {
-        if !seen.insert(*location) {
-            continue;
+/// weighted rule at some point. The combinations' trees are made again only
+/// when some key is unused somewhere.
+fn refuse_unused(ctx: &mut Context<'_>, tree: &Node, sweeps: &[Vec<AxisNodes<'_>>], unused: &Unused) {
+    if unused.keys.is_empty() {
+        return;
+    }
+    let mut everywhere = vec![true; unused.keys.len()];
+    for ((_, _, _, point_tree), here) in combinations(tree, sweeps).zip(&unused.at) {
+        for (refuse, (location, (path, _))) in everywhere.iter_mut().zip(&unused.keys) {
+            *refuse &=
+                here.contains(location) || !(has(&point_tree, path) && locate_key(&point_tree, path) == *location);
         }
-        let everywhere = combinations.iter().zip(&found).all(|((_, tree), unused)| {
-            unused.iter().any(|(l, _, _)| l == location) || !(has(tree, path) && locate_key(tree, path) == *location)
-        });
-        if everywhere {
+    }
+    for (refuse, (location, (path, why))) in everywhere.into_iter().zip(&unused.keys) {
+        if refuse {
             ctx.error_at(*location, path, ErrorKind::NoEffect(why.clone()));
         }
     }
@@ -287,7 +348,7 @@ fn refuse_unused(ctx: &mut Context<'_>, combinations: &[Combination]) {
 /// The effective settings of a combination as JSON, for `where` filters: the raw
 /// sections with serde defaults filled in (agents keyed by id), plus what the
 /// compiler resolves (the seed, the fusion label, the number of cooperating agents).
-fn settings(raw: &RawScenario, setup: &crate::model::Setup) -> serde_json::Value {
+fn settings(raw: &RawScenario, setup: &crate::model::Setup, shared: &mut Sections) -> Settings {
     let mut json = serde_json::to_value(raw).expect("raw scenario types serialize to JSON");
     let object = json.as_object_mut().expect("a scenario serializes to an object");
     for key in [
@@ -329,5 +390,40 @@ fn settings(raw: &RawScenario, setup: &crate::model::Setup) -> serde_json::Value
     {
         perception.insert("cooperating".into(), compiled.cooperating.len().into());
     }
-    json
+    let serde_json::Value::Object(sections) = json else {
+        unreachable!("a scenario serializes to an object")
+    };
+    Settings::new(
+        sections
+            .into_iter()
+            .map(|(name, section)| {
+                let shared = shared.intern(&name, section);
+                (name, shared)
+            })
+            .collect(),
+    )
+}
+
+/// The distinct settings sections of a scenario's combinations, each held once.
+#[derive(Default)]
+struct Sections {
+    /// Each distinct section by its name and serialization.
+    by_text: HashMap<(String, String), Arc<serde_json::Value>>,
+    /// The bytes of those serializations.
+    bytes: usize,
+}
+
+impl Sections {
+    /// The section `name` equal to `section`, shared when one was seen before.
+    fn intern(&mut self, name: &str, section: serde_json::Value) -> Arc<serde_json::Value> {
+        let text = section.to_string();
+        let bytes = &mut self.bytes;
+        self.by_text
+            .entry((name.to_string(), text))
+            .or_insert_with_key(|(_, text)| {
+                *bytes = bytes.saturating_add(text.len());
+                Arc::new(section)
+            })
+            .clone()
+    }
 }

@@ -2,7 +2,7 @@
 //! combination with the swept values substituted, so a bad value is reported
 //! where it is written, and the distinct configurations the combinations give.
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 use std::hash::{DefaultHasher, Hasher};
 use std::io;
 
@@ -17,6 +17,14 @@ use crate::yaml::{Key, Node, Value};
 
 /// The most sweep combinations one scenario may have, all sweeps together.
 pub const MAX_POINTS: usize = 10_000;
+
+/// The most nodes all combinations may copy together (combinations × nodes of
+/// the file): each combination is compiled from its own copy of the file.
+pub const MAX_COPIED_NODES: usize = 2_000_000;
+
+/// The most bytes the distinct points' compiled settings may take together,
+/// measured as JSON while they are compiled.
+pub const MAX_SETTINGS_BYTES: usize = 512 << 20;
 
 /// Top-level sections a sweep may set.
 const SWEEPABLE: [&str; 14] = [
@@ -46,8 +54,9 @@ pub(super) struct AxisNodes<'a> {
     pub(super) values: &'a [Node],
 }
 
-/// Reads and checks the sweeps: the `sweep` mapping, or each mapping of `sweeps`.
-pub(super) fn sweeps<'a>(ctx: &mut Context<'a>) -> Vec<Vec<AxisNodes<'a>>> {
+/// Reads and checks the sweeps: the `sweep` mapping, or each mapping of `sweeps`,
+/// whose combinations each copy a tree of `copied` nodes.
+pub(super) fn sweeps<'a>(ctx: &mut Context<'a>, copied: usize) -> Vec<Vec<AxisNodes<'a>>> {
     let tree = ctx.tree;
     let root = Path::root();
     let sweeps = match (tree.get("sweep"), tree.get("sweeps")) {
@@ -72,16 +81,28 @@ pub(super) fn sweeps<'a>(ctx: &mut Context<'a>) -> Vec<Vec<AxisNodes<'a>>> {
             .collect(),
         _ => Vec::new(),
     };
+    let section = root.key(if tree.get("sweep").is_some() { "sweep" } else { "sweeps" });
     let count = sweeps.iter().try_fold(0usize, |total, axes| {
         axes.iter()
             .try_fold(1usize, |n, a| n.checked_mul(a.values.len()))
             .and_then(|n| total.checked_add(n))
     });
-    if count.is_none_or(|n| n > MAX_POINTS) {
-        ctx.error(
-            &root,
+    match count {
+        Some(n) if n <= MAX_POINTS => {
+            if n.saturating_mul(copied) > MAX_COPIED_NODES {
+                ctx.error_at_key(
+                    &section,
+                    ErrorKind::TooLarge(format!(
+                        "the sweeps' {n} combinations each compile a copy of the scenario's {copied} nodes, \
+                         more than {MAX_COPIED_NODES} nodes in all; sweep fewer values or split the scenario"
+                    )),
+                );
+            }
+        }
+        _ => ctx.error_at_key(
+            &section,
             ErrorKind::TooLarge(format!("the sweeps have more than {MAX_POINTS} points")),
-        );
+        ),
     }
     sweeps
 }
@@ -108,11 +129,7 @@ fn axes<'a>(ctx: &mut Context<'a>, sweep: &'a Node, prefix: &Path) -> Vec<AxisNo
             );
             continue;
         }
-        if let Some((i, _)) = values.iter().enumerate().find(|(i, v)| {
-            values[..*i]
-                .iter()
-                .any(|earlier| json_eq(&earlier.to_json(), &v.to_json()))
-        }) {
+        if let Some(i) = first_repeat(values) {
             ctx.error(&here.index(i), ErrorKind::Invalid("this value is listed twice".into()));
             continue;
         }
@@ -318,14 +335,32 @@ pub(super) fn is_prefix(prefix: &Path, path: &Path) -> bool {
 
 /// JSON equality with numbers compared by value (`6` equals `6.0`).
 pub(super) fn json_eq(a: &serde_json::Value, b: &serde_json::Value) -> bool {
+    canonical(a) == canonical(b)
+}
+
+/// The index of the first value in `values` equal (by [`json_eq`]) to an earlier
+/// one, found in linear time.
+pub(super) fn first_repeat(values: &[Node]) -> Option<usize> {
+    let mut seen = HashSet::new();
+    values.iter().position(|v| !seen.insert(canonical(&v.to_json())))
+}
+
+/// A text equal for two values exactly when [`json_eq`] holds: numbers as
+/// `f64` (`-0` as `0`), mapping keys sorted.
+fn canonical(value: &serde_json::Value) -> String {
     use serde_json::Value as J;
-    match (a, b) {
-        (J::Number(x), J::Number(y)) => x.as_f64() == y.as_f64(),
-        (J::Array(x), J::Array(y)) => x.len() == y.len() && x.iter().zip(y).all(|(a, b)| json_eq(a, b)),
-        (J::Object(x), J::Object(y)) => {
-            x.len() == y.len() && x.iter().all(|(k, v)| y.get(k).is_some_and(|w| json_eq(v, w)))
+    match value {
+        J::Number(n) => format!("{:?}", n.as_f64().map(|x| x + 0.0)),
+        J::Array(items) => format!("[{}]", items.iter().map(canonical).collect::<Vec<_>>().join(",")),
+        J::Object(entries) => {
+            let mut entries: Vec<String> = entries
+                .iter()
+                .map(|(k, v)| format!("{}:{}", J::String(k.clone()), canonical(v)))
+                .collect();
+            entries.sort_unstable();
+            format!("{{{}}}", entries.join(","))
         }
-        _ => a == b,
+        other => other.to_string(),
     }
 }
 
@@ -338,6 +373,8 @@ pub(super) struct Configurations {
     rows: Vec<Vec<usize>>,
     /// Point indices by the hash of their setup's serialization.
     by_hash: HashMap<u64, Vec<usize>>,
+    /// The bytes of the distinct setups' serializations.
+    bytes: usize,
 }
 
 impl Configurations {
@@ -347,13 +384,15 @@ impl Configurations {
             points: Vec::new(),
             rows: vec![Vec::new(); sweeps],
             by_hash: HashMap::new(),
+            bytes: 0,
         }
     }
 
     /// Adds a combination, the next row of its sweep.
     pub(super) fn add(&mut self, label: Label, setup: Setup) {
         let sweep = label.sweep;
-        let candidates = self.by_hash.entry(fingerprint(&setup)).or_default();
+        let (hash, bytes) = fingerprint(&setup);
+        let candidates = self.by_hash.entry(hash).or_default();
         let same = candidates.iter().copied().find(|&i| {
             let other = &self.points[i].setup;
             *other == setup && serialized(other) == serialized(&setup)
@@ -366,6 +405,7 @@ impl Configurations {
             None => {
                 let index = self.points.len();
                 candidates.push(index);
+                self.bytes = self.bytes.saturating_add(bytes);
                 self.points.push(Point {
                     index,
                     labels: vec![label],
@@ -379,6 +419,12 @@ impl Configurations {
         }
     }
 
+    /// The bytes of the distinct points' setups serialized as JSON: a measure
+    /// of the memory they hold.
+    pub(super) fn bytes(&self) -> usize {
+        self.bytes
+    }
+
     /// The points, each configuration once.
     pub(super) fn points(&self) -> &[Point] {
         &self.points
@@ -390,24 +436,56 @@ impl Configurations {
     }
 }
 
-/// A hash of the setup's JSON serialization, streamed.
-fn fingerprint(setup: &Setup) -> u64 {
-    struct Hashing(DefaultHasher);
+/// A hash of the JSON serialization of `value`, streamed, and its length in bytes.
+fn fingerprint(value: &impl serde::Serialize) -> (u64, usize) {
+    /// Hashes what is written, counting its bytes.
+    struct Hashing(DefaultHasher, usize);
     impl io::Write for Hashing {
         fn write(&mut self, bytes: &[u8]) -> io::Result<usize> {
             self.0.write(bytes);
+            self.1 += bytes.len();
             Ok(bytes.len())
         }
         fn flush(&mut self) -> io::Result<()> {
             Ok(())
         }
     }
-    let mut hashing = Hashing(DefaultHasher::new());
-    serde_json::to_writer(&mut hashing, setup).expect("a setup serializes to JSON");
-    hashing.0.finish()
+    let mut hashing = Hashing(DefaultHasher::new(), 0);
+    serde_json::to_writer(&mut hashing, value).expect("settings serialize to JSON");
+    (hashing.0.finish(), hashing.1)
 }
 
 /// The setup's JSON serialization: every float written exactly.
 fn serialized(setup: &Setup) -> Vec<u8> {
     serde_json::to_vec(setup).expect("a setup serializes to JSON")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::yaml::parse;
+
+    fn list(source: &str) -> Vec<Node> {
+        match parse(source).expect("valid YAML").value {
+            Value::Seq(items) => items,
+            _ => panic!("a list"),
+        }
+    }
+
+    #[test]
+    fn repeats_are_found_by_value() {
+        assert_eq!(first_repeat(&list("[1, 2, 1.0]")), Some(2));
+        assert_eq!(first_repeat(&list("[-0.0, 0]")), Some(1));
+        assert_eq!(first_repeat(&list("[{a: 1, b: [2]}, {b: [2.0], a: 1}]")), Some(1));
+        assert_eq!(first_repeat(&list("[1, \"1\", [1], {a: 1}, null]")), None);
+        assert_eq!(first_repeat(&list("[{a: 1}, {a: 1, b: 2}]")), None);
+    }
+
+    #[test]
+    fn a_long_axis_is_checked_in_linear_time() {
+        let values: Vec<Node> = (0..300_000)
+            .map(|i| Node::new(Value::Int(i), Location::new(1, 1)))
+            .collect();
+        assert_eq!(first_repeat(&values), None);
+    }
 }

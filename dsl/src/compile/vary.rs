@@ -8,7 +8,7 @@
 use super::context::{Context, locate_key};
 use super::kind;
 use super::setup::setup;
-use super::sweep::{self, AxisNodes, is_prefix, json_eq};
+use super::sweep::{self, AxisNodes, is_prefix};
 use super::traces::Imported;
 use crate::de::from_node;
 use crate::emit::emit;
@@ -150,11 +150,7 @@ fn domain<'a>(ctx: &mut Context<'_>, node: &'a Node, here: &Path, integer: bool)
                 );
                 return None;
             }
-            if let Some(i) = (1..choices.len()).find(|&i| {
-                choices[..i]
-                    .iter()
-                    .any(|earlier| json_eq(&earlier.to_json(), &choices[i].to_json()))
-            }) {
+            if let Some(i) = sweep::first_repeat(choices) {
                 ctx.error(
                     &choices_path.index(i),
                     ErrorKind::Invalid("this value is listed twice".into()),

@@ -19,8 +19,8 @@ pub use requirement::{
     Temporal, ValueDomain,
 };
 pub use scenario::{
-    Assignment, Axis, Experiment, Grid, Import, ImportKind, Label, Occupancy, Point, Record, Scenario, Setup, Sweep,
-    display_value,
+    Assignment, Axis, Experiment, Grid, Import, ImportKind, Label, Occupancy, Point, Record, Scenario, Settings, Setup,
+    Sweep, display_value,
 };
 pub use semantic::{
     Area, Baseline, Caution, Crosswalk, Driving, Following, InteractionArea, PedestrianTraffic, RiskScope, RsuSight,

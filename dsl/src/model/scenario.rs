@@ -1,5 +1,8 @@
 //! The scenario as a whole: its sweep points and what each simulates.
 
+use std::collections::BTreeMap;
+use std::sync::Arc;
+
 use serde::Serialize;
 
 use super::{Decision, Field, Fusion, Reference, Requirement, World};
@@ -184,10 +187,35 @@ pub struct Label {
     pub sweep: Option<usize>,
     /// The value of each sweep axis, in axis order.
     pub assignments: Vec<Assignment>,
-    /// The effective settings (defaults filled in) as JSON, matched by `where`
+    /// The effective settings (defaults filled in), matched by `where`
     /// filters: a point matches when one of its labels does.
     #[serde(skip)]
-    pub settings: serde_json::Value,
+    pub settings: Settings,
+}
+
+/// The effective settings of a combination (defaults filled in) as JSON, top-level
+/// section by section (`fusion`, `agents`, …). A section equal in several
+/// combinations is shared, so a long sweep holds each distinct section once.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Settings(BTreeMap<String, Arc<serde_json::Value>>);
+
+impl Settings {
+    /// Settings of these sections.
+    pub fn new(sections: BTreeMap<String, Arc<serde_json::Value>>) -> Self {
+        Self(sections)
+    }
+
+    /// The setting at a dotted path (`fusion.method`, `agents.ego.speed.target`).
+    pub fn get(&self, dotted: &str) -> Option<&serde_json::Value> {
+        let mut keys = dotted.split('.');
+        let section = self.0.get(keys.next()?)?;
+        keys.try_fold(&**section, |node, key| node.get(key))
+    }
+
+    /// The names of the sections.
+    pub fn sections(&self) -> impl Iterator<Item = &str> {
+        self.0.keys().map(String::as_str)
+    }
 }
 
 impl Label {
