@@ -11,10 +11,11 @@
 //! its manifest, a folder last changed before this process first looked is
 //! taken as left.
 
+use std::collections::BTreeSet;
 use std::fs::{self, File, OpenOptions, TryLockError};
 use std::io::ErrorKind;
-use std::path::Path;
-use std::sync::OnceLock;
+use std::path::{Path, PathBuf};
+use std::sync::{Mutex, OnceLock};
 use std::time::SystemTime;
 
 use anyhow::Context;
@@ -97,29 +98,29 @@ fn by_age(folder: &Path) -> std::io::Result<Owner> {
     })
 }
 
-/// The manifest of a commit folder; `None`, after a warning, when it cannot be
-/// read: the folder is then left as it is (a later commit replaces the whole
-/// set all the same).
+/// The manifest of a commit folder; `None`, after a warning (once a process),
+/// when it cannot be read: the folder is then left as it is (a later commit
+/// replaces the whole set all the same).
 fn manifest_of(folder: &Path) -> Option<Manifest> {
+    static WARNED: Mutex<BTreeSet<PathBuf>> = Mutex::new(BTreeSet::new());
     let path = folder.join(MANIFEST);
-    let text = match fs::read_to_string(&path) {
-        Ok(text) => text,
-        Err(error) => {
-            eprintln!(
-                "{}: warning: failed to read the manifest of an interrupted commit ({error}); left as it is",
-                path.display()
-            );
-            return None;
-        }
-    };
-    Manifest::parse(&text)
-        .inspect_err(|(line, problem)| {
-            eprintln!(
+    let problem = match fs::read_to_string(&path) {
+        Ok(text) => match Manifest::parse(&text) {
+            Ok(manifest) => return Some(manifest),
+            Err((line, problem)) => format!(
                 "{}:{line}:1: warning: not a manifest sightline wrote ({problem}); the interrupted commit is left as it is",
                 path.display()
-            );
-        })
-        .ok()
+            ),
+        },
+        Err(error) => format!(
+            "{}: warning: failed to read the manifest of an interrupted commit ({error}); left as it is",
+            path.display()
+        ),
+    };
+    if WARNED.lock().unwrap_or_else(|p| p.into_inner()).insert(path) {
+        eprintln!("{problem}");
+    }
+    None
 }
 
 #[cfg(test)]
