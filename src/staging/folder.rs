@@ -13,7 +13,7 @@ use crate::signals::{Ticket, with_pending};
 
 /// A set of output files being written: in `DIR/.sightline-staging-<pid>-<random>/`
 /// until [`commit`](Self::commit) puts them into `DIR` together; dropped
-/// uncommitted (an error, a refusal), or at SIGINT/SIGTERM, the folder is
+/// uncommitted (an error, a refusal), or at SIGINT/SIGTERM/SIGHUP, the folder is
 /// removed with the directories opening it created.
 pub struct Staging {
     /// The output folder.

@@ -9,7 +9,7 @@
 //!
 //! 1. **Stage.** The files are written into `DIR/.sightline-staging-<pid>-<random>/`,
 //!    beside a `manifest` its owner holds locked while it lives. A failure, a
-//!    refusal (a custom template failing on the data) or SIGINT/SIGTERM
+//!    refusal (a custom template failing on the data) or SIGINT/SIGTERM/SIGHUP
 //!    removes the folder, and the directories it had to create.
 //! 2. **Seal.** Each file and the manifest (the names to put, the names of the
 //!    previous set to remove) are synced to disk; a name the set would replace
