@@ -32,6 +32,9 @@ pub const COMMIT: &str = ".sightline-commit-";
 /// left in `dir`, in the order of their names; `own` (this process's staging
 /// folder) is never touched.
 pub fn clean(dir: &Path, own: Option<&Path>) -> anyhow::Result<()> {
+    // The first look (before the first simulation) is when this run started.
+    static STARTED: OnceLock<SystemTime> = OnceLock::new();
+    let started = *STARTED.get_or_init(SystemTime::now);
     let mut entries = Vec::new();
     for entry in fs::read_dir(dir).with_context(|| format!("failed to read {}", dir.display()))? {
         let entry = entry.with_context(|| format!("failed to read {}", dir.display()))?;
@@ -46,7 +49,9 @@ pub fn clean(dir: &Path, own: Option<&Path>) -> anyhow::Result<()> {
     entries.sort();
     for (name, folder) in entries {
         // The lock is held until the folder is dealt with, so no other run deals with it too.
-        let Owner::Gone(_lock) = owner(&folder).with_context(|| format!("failed to read {}", folder.display()))? else {
+        let Owner::Gone(_lock) =
+            owner(&folder, started).with_context(|| format!("failed to read {}", folder.display()))?
+        else {
             continue;
         };
         if name.starts_with(STAGING) {
@@ -71,25 +76,22 @@ enum Owner {
     Gone(Option<File>),
 }
 
-/// Whose `folder` is.
-fn owner(folder: &Path) -> std::io::Result<Owner> {
+/// Whose `folder` is, seen by a run that started at `started`.
+fn owner(folder: &Path, started: SystemTime) -> std::io::Result<Owner> {
     match OpenOptions::new().read(true).write(true).open(folder.join(MANIFEST)) {
         Ok(manifest) => match manifest.try_lock() {
             Ok(()) => Ok(Owner::Gone(Some(manifest))),
             Err(TryLockError::WouldBlock) => Ok(Owner::Alive),
-            Err(TryLockError::Error(error)) if error.kind() == ErrorKind::Unsupported => by_age(folder),
+            Err(TryLockError::Error(error)) if error.kind() == ErrorKind::Unsupported => by_age(folder, started),
             Err(TryLockError::Error(error)) => Err(error),
         },
-        Err(error) if error.kind() == ErrorKind::NotFound => by_age(folder),
+        Err(error) if error.kind() == ErrorKind::NotFound => by_age(folder, started),
         Err(error) => Err(error),
     }
 }
 
-/// Gone when `folder` was last changed before this process first looked for
-/// leftovers.
-fn by_age(folder: &Path) -> std::io::Result<Owner> {
-    static STARTED: OnceLock<SystemTime> = OnceLock::new();
-    let started = *STARTED.get_or_init(SystemTime::now);
+/// Gone when `folder` was last changed before `started`.
+fn by_age(folder: &Path, started: SystemTime) -> std::io::Result<Owner> {
     let changed = fs::metadata(folder)?.modified()?;
     Ok(if changed < started {
         Owner::Gone(None)
@@ -134,16 +136,29 @@ mod tests {
         fs::create_dir(&folder).unwrap();
         let live = File::create(folder.join(MANIFEST)).unwrap();
         live.lock().unwrap();
-        assert!(matches!(owner(&folder).unwrap(), Owner::Alive), "a live owner's folder");
+        assert!(
+            matches!(owner(&folder, SystemTime::now()).unwrap(), Owner::Alive),
+            "a live owner's folder"
+        );
         clean(dir.path(), None).unwrap();
         assert!(folder.exists());
         drop(live);
         assert!(
-            matches!(owner(&folder).unwrap(), Owner::Gone(Some(_))),
+            matches!(owner(&folder, SystemTime::now()).unwrap(), Owner::Gone(Some(_))),
             "the owner is gone"
         );
         clean(dir.path(), None).unwrap();
         assert!(!folder.exists());
+    }
+
+    #[test]
+    fn a_folder_without_a_manifest_is_left_only_when_older_than_the_run() {
+        let dir = tempfile::tempdir().unwrap();
+        let folder = dir.path().join(format!("{STAGING}1-x"));
+        fs::create_dir(&folder).unwrap();
+        let later = SystemTime::now() + std::time::Duration::from_secs(60);
+        assert!(matches!(owner(&folder, later).unwrap(), Owner::Gone(None)));
+        assert!(matches!(owner(&folder, SystemTime::UNIX_EPOCH).unwrap(), Owner::Alive));
     }
 
     #[test]
