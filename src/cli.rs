@@ -40,7 +40,7 @@ pub enum Command {
     },
     /// Validate scenario files without running them. Exit 0: all valid, 2: not.
     Check {
-        /// Scenario files.
+        /// Scenario files (`-`: standard input).
         #[arg(required = true)]
         files: Vec<PathBuf>,
     },
@@ -57,7 +57,7 @@ pub enum Command {
 
 #[derive(Debug, Args)]
 pub struct RunArgs {
-    /// Scenario files.
+    /// Scenario files (`-`: standard input, with --out).
     #[arg(required = true)]
     pub files: Vec<PathBuf>,
     /// Evidence directory. With one file the evidence goes here; with several,
@@ -112,7 +112,7 @@ pub struct MergeArgs {
 
 #[derive(Debug, Args)]
 pub struct FalsifyArgs {
-    /// Scenario file with a `vary` section.
+    /// Scenario file with a `vary` section (`-`: standard input, with --out).
     pub file: PathBuf,
     /// The most cases to try before shrinking.
     #[arg(long, value_name = "N", default_value_t = 64, value_parser = clap::value_parser!(u64).range(1..))]

@@ -1,6 +1,6 @@
 //! A scenario's evidence, shared by `run`, `run --shard` and `merge`: how the run
-//! was asked for, this build, the recording staged beside the evidence, and
-//! the evidence set written atomically into its directory.
+//! was asked for, this build, the recording staged with the evidence, and the
+//! evidence set committed into its directory as a whole (see `staging`).
 
 use std::collections::HashSet;
 use std::io::{BufWriter, Write};
@@ -11,15 +11,28 @@ use sightline_engine::Run;
 use sightline_oracles::Verdict;
 use sightline_reports::mcap::{Recorder, Source};
 use sightline_reports::{Execution, Provenance, RecordingInfo, Templates, Tool, render, sha256_hex};
-use tempfile::NamedTempFile;
 
 use crate::exit::Exit;
 use crate::input::Input;
-use crate::output::{default_dir, staging_file, stem, write_atomically};
+use crate::output::{default_dir, stem};
+use crate::staging::Staging;
 use crate::summary::print_verdicts;
 
 /// The recording's name in the evidence directory.
 pub const RECORDING: &str = "run.mcap";
+
+/// Every file of a scenario's evidence set, `run`'s, `merge`'s and `falsify`'s
+/// alike: a new set replaces all of them, so that no file of an earlier set (a
+/// `run.mcap` when the new run records nothing, `falsify`'s files after a `run`,
+/// a `counterexample.yaml` after a search that found none) stays beside it.
+pub const EVIDENCE_SET: &[&str] = &[
+    "results.json",
+    "junit.xml",
+    "report.html",
+    RECORDING,
+    "falsify.json",
+    "counterexample.yaml",
+];
 
 /// How a run was asked for, as its evidence and its recording say.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -49,32 +62,34 @@ pub fn tool() -> Tool {
     }
 }
 
-/// A run, its verdicts, and its recording (staged in the evidence directory,
-/// with what results.json says of it) when the scenario asks for one.
-pub type Simulated = (Run, Vec<Verdict>, Option<(NamedTempFile, RecordingInfo)>);
+/// A run, its verdicts, and what results.json says of its recording (staged
+/// with the evidence) when the scenario asks for one.
+pub type Simulated = (Run, Vec<Verdict>, Option<RecordingInfo>);
 
-/// Renders the evidence of a simulated `input` into `dir`, atomically, and
-/// prints its verdicts; [`Exit::Pass`] when every requirement holds, and
+/// Renders the evidence of a simulated `input` into `staging` and commits it,
+/// then prints its verdicts; [`Exit::Pass`] when every requirement holds, and
 /// [`Exit::Invalid`] (nothing written) when a custom template fails on the data.
 pub fn write_evidence(
     input: &Input,
     reporting: &Reporting<'_>,
-    dir: &Path,
+    mut staging: Staging,
     (run, verdicts, recording): Simulated,
     execution: Execution,
 ) -> anyhow::Result<Exit> {
     let scenario = &input.scenario;
-    let path = input.path.display().to_string();
+    let path = &input.name;
     let provenance = Provenance {
         tool: reporting.tool.clone(),
         scenario_path: path.clone(),
         scenario_sha256: sha256_hex(&input.bytes),
-        recording: recording.as_ref().map(|(_, info)| info.clone()),
+        recording,
         execution,
     };
+    // The command as typed: `-` for standard input.
+    let given = input.path.display();
     let mut reproduce = match scenario.points.iter().map(|p| p.setup.seed).collect::<HashSet<_>>() {
-        seeds if seeds.len() == 1 => format!("sightline run {path} --seed {}", scenario.points[0].setup.seed),
-        _ => format!("sightline run {path}"),
+        seeds if seeds.len() == 1 => format!("sightline run {given} --seed {}", scenario.points[0].setup.seed),
+        _ => format!("sightline run {given}"),
     };
     if reporting.request.record {
         reproduce.push_str(" --record");
@@ -89,45 +104,41 @@ pub fn write_evidence(
         }
         Err(error) => return Err(error.into()),
     };
-    write_atomically(
-        dir,
-        &[
-            ("results.json", &evidence.results_json),
-            ("junit.xml", &evidence.junit_xml),
-            ("report.html", &evidence.report_html),
-        ],
-        recording.map(|(file, _)| (file, RECORDING)).into_iter().collect(),
-    )?;
+    staging.write("results.json", evidence.results_json.as_bytes())?;
+    staging.write("junit.xml", evidence.junit_xml.as_bytes())?;
+    staging.write("report.html", evidence.report_html.as_bytes())?;
+    let dir = staging.dir().to_path_buf();
+    staging.commit()?;
     Ok(print_verdicts(
-        &path,
+        path,
         scenario,
         &verdicts,
         format_args!("-> {}", dir.display()),
     ))
 }
 
-/// Records `input`'s `record` point into a staging file in `dir` while
-/// `simulate` runs the scenario with the recorder as its sink, then checks the
-/// run and finishes the recording with its outcomes and verdicts.
+/// Records `input`'s `record` point into `staging` while `simulate` runs the
+/// scenario with the recorder as its sink, then checks the run and finishes
+/// the recording with its outcomes and verdicts.
 pub fn recorded(
     input: &Input,
     reporting: &Reporting<'_>,
-    dir: &Path,
+    staging: &mut Staging,
     simulate: impl FnOnce(&mut Recorder<'_, BufWriter<&std::fs::File>>) -> anyhow::Result<Run>,
 ) -> anyhow::Result<Simulated> {
     let scenario = &input.scenario;
     let record = scenario.record.context("the scenario records nothing")?;
-    let file = staging_file(dir)?;
-    let failed = || format!("failed to write {}", dir.join(RECORDING).display());
+    let file = staging.create(RECORDING)?;
+    let failed = || format!("failed to write {}", staging.dir().join(RECORDING).display());
     let text = std::str::from_utf8(&input.bytes).context("the scenario file is not UTF-8 text")?;
     let source = Source {
         tool: &reporting.tool,
-        file: &input.path.display().to_string(),
+        file: &input.name,
         text,
         seed: reporting.request.seed,
         record_flag: reporting.request.record,
     };
-    let mut recorder = Recorder::new(BufWriter::new(file.as_file()), scenario, record, &source).with_context(failed)?;
+    let mut recorder = Recorder::new(BufWriter::new(&file), scenario, record, &source).with_context(failed)?;
     let run = simulate(&mut recorder)?;
     let verdicts = sightline_oracles::check(scenario, &run);
     recorder
@@ -136,32 +147,42 @@ pub fn recorded(
         .flush()
         .with_context(failed)?;
     // The hash is of the bytes on disk: the MCAP writer seeks back as it writes.
-    let bytes = std::fs::read(file.path()).with_context(failed)?;
+    let bytes = std::fs::read(staging.path(RECORDING)).with_context(failed)?;
     let info = RecordingInfo {
         file: RECORDING.into(),
         sha256: sha256_hex(&bytes),
         point: record.point,
         label: scenario.points[record.point].label(),
     };
-    Ok((run, verdicts, Some((file, info))))
+    Ok((run, verdicts, Some(info)))
 }
 
 /// Where each scenario's evidence goes (`out` with one scenario, `out/STEM/`
 /// with several, `out/STEM/` under the working directory without `out`); `None`
-/// (after printing why) when two scenarios would share a directory.
+/// (after printing why) when two scenarios would share a directory, or one read
+/// from standard input has no `out`.
 pub fn evidence_dirs<'a>(out: Option<&Path>, inputs: impl IntoIterator<Item = &'a Input>) -> Option<Vec<PathBuf>> {
-    let files: Vec<&Path> = inputs.into_iter().map(|i| i.path.as_path()).collect();
-    let dirs: Vec<PathBuf> = match (out, files.len()) {
+    let inputs: Vec<&Input> = inputs.into_iter().collect();
+    if out.is_none()
+        && let Some(input) = inputs.iter().find(|i| i.is_stdin())
+    {
+        eprintln!(
+            "{}: error: a scenario read from standard input has no file name to name its evidence directory after; give --out DIR",
+            input.name
+        );
+        return None;
+    }
+    let dirs: Vec<PathBuf> = match (out, inputs.len()) {
         (Some(out), 1) => vec![out.to_path_buf()],
-        (Some(out), _) => files.iter().map(|f| out.join(stem(f))).collect(),
-        (None, _) => files.iter().map(|f| default_dir(f)).collect(),
+        (Some(out), _) => inputs.iter().map(|i| out.join(stem(&i.path))).collect(),
+        (None, _) => inputs.iter().map(|i| default_dir(&i.path)).collect(),
     };
     let mut seen = HashSet::new();
-    for (dir, file) in dirs.iter().zip(&files) {
+    for (dir, input) in dirs.iter().zip(&inputs) {
         if !seen.insert(dir) {
             eprintln!(
                 "{}: error: its evidence would overwrite another scenario's in {}; run the files separately with --out",
-                file.display(),
+                input.name,
                 dir.display()
             );
             return None;

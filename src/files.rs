@@ -1,9 +1,11 @@
-//! Reading input files: only regular files, and no more than a limit, so that a
-//! FIFO, a device (`/dev/zero`) or a huge file is refused at once with a clear
-//! message instead of blocking `check` or filling memory.
+//! Reading input files: only regular files (or standard input, piped), and no
+//! more than a limit, so that a FIFO, a device (`/dev/zero`), a symbolic link
+//! loop or a huge file is refused at once with a clear message instead of
+//! blocking `check` or filling memory.
 
+use std::collections::HashSet;
 use std::fs::File;
-use std::io::{self, ErrorKind, Read};
+use std::io::{self, ErrorKind, IsTerminal, Read};
 use std::path::Path;
 
 /// A mebibyte.
@@ -20,27 +22,71 @@ pub const DATA_LIMIT: u64 = 512 * MIB;
 /// when it is anything else (a directory, a FIFO, a device, a socket) or holds
 /// more than `limit` bytes, even if it grows while it is read.
 pub fn read_regular(path: &Path, limit: u64) -> io::Result<Vec<u8>> {
-    let kind = std::fs::metadata(path)?.file_type();
+    let kind = match std::fs::metadata(path) {
+        Ok(metadata) => metadata.file_type(),
+        Err(_) if is_link_loop(path) => return Err(refused("a symbolic link loop, not a regular file")),
+        Err(error) => return Err(error),
+    };
     if !kind.is_file() {
         let what = if kind.is_dir() {
             "a directory"
         } else {
             not_regular(&kind)
         };
-        return Err(io::Error::new(
-            ErrorKind::InvalidInput,
-            format!("{what}, not a regular file"),
+        return Err(refused(&format!("{what}, not a regular file")));
+    }
+    read_limited(File::open(path)?, limit)
+}
+
+/// The bytes of standard input (`-` on the command line), within `limit`;
+/// refused when it is a terminal (nothing was piped in, and a read would wait
+/// for typing) or a directory (`< dir`).
+pub fn read_stdin(limit: u64) -> io::Result<Vec<u8>> {
+    let stdin = io::stdin();
+    if stdin.is_terminal() {
+        return Err(refused(
+            "it is a terminal; pipe a scenario into it (`sightline check - < FILE`) or name the file",
         ));
     }
+    #[cfg(unix)]
+    {
+        use std::os::fd::AsFd;
+        let file = File::from(stdin.as_fd().try_clone_to_owned()?);
+        if file.metadata()?.is_dir() {
+            return Err(refused("a directory, not a regular file"));
+        }
+    }
+    read_limited(stdin.lock(), limit)
+}
+
+/// Everything `reader` holds, refused past `limit` bytes (reading at most one
+/// more), so a source that never ends is cut off.
+fn read_limited(reader: impl Read, limit: u64) -> io::Result<Vec<u8>> {
     let mut bytes = Vec::new();
-    File::open(path)?.take(limit + 1).read_to_end(&mut bytes)?;
+    reader.take(limit + 1).read_to_end(&mut bytes)?;
     if bytes.len() as u64 > limit {
-        return Err(io::Error::new(
-            ErrorKind::InvalidInput,
-            format!("larger than the limit of {} MiB", limit / MIB),
-        ));
+        return Err(refused(&format!("larger than the limit of {} MiB", limit / MIB)));
     }
     Ok(bytes)
+}
+
+/// An input refused for what it is.
+fn refused(why: &str) -> io::Error {
+    io::Error::new(ErrorKind::InvalidInput, why)
+}
+
+/// Whether `path` is a symbolic link whose chain of links comes back on itself
+/// (or is longer than the 40 links Linux follows).
+fn is_link_loop(path: &Path) -> bool {
+    let mut seen = HashSet::new();
+    let mut at = path.to_path_buf();
+    while let Ok(target) = std::fs::read_link(&at) {
+        if !seen.insert(at.clone()) || seen.len() > 40 {
+            return true;
+        }
+        at = at.parent().unwrap_or(Path::new("")).join(target);
+    }
+    false
 }
 
 /// What a file that is neither regular nor a directory is.
@@ -84,6 +130,22 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let error = read_regular(dir.path(), TEXT_LIMIT).unwrap_err();
         assert_eq!(error.to_string(), "a directory, not a regular file");
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_symbolic_link_loop_is_named() {
+        let dir = tempfile::tempdir().unwrap();
+        let (a, b) = (dir.path().join("a.yaml"), dir.path().join("b.yaml"));
+        std::os::unix::fs::symlink("b.yaml", &a).unwrap();
+        std::os::unix::fs::symlink("a.yaml", &b).unwrap();
+        let error = read_regular(&a, TEXT_LIMIT).unwrap_err();
+        assert_eq!(error.to_string(), "a symbolic link loop, not a regular file");
+        // A link to a missing file is no loop: the system's own message stays.
+        let dangling = dir.path().join("c.yaml");
+        std::os::unix::fs::symlink("missing.yaml", &dangling).unwrap();
+        let error = read_regular(&dangling, TEXT_LIMIT).unwrap_err();
+        assert_eq!(error.kind(), ErrorKind::NotFound);
     }
 
     #[cfg(unix)]

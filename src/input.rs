@@ -1,19 +1,36 @@
-//! Reading and compiling scenario files, reporting every problem on stderr.
+//! Reading and compiling scenario files (or standard input, `-`), reporting
+//! every problem on stderr.
 
 use std::path::{Path, PathBuf};
 
 use sightline_dsl::{Options, Scenario};
 
-use crate::files::{DATA_LIMIT, TEXT_LIMIT, read_regular};
+use crate::files::{DATA_LIMIT, TEXT_LIMIT, read_regular, read_stdin};
+
+/// The path that names standard input on the command line.
+pub const STDIN: &str = "-";
+
+/// How messages and evidence name standard input. The files a scenario read
+/// from it imports are found from the working directory.
+pub const STDIN_NAME: &str = "<stdin>";
 
 /// A compiled scenario file and the bytes it was compiled from.
 pub struct Input {
-    /// The path as given.
+    /// The path as given (`-` for standard input).
     pub path: PathBuf,
+    /// The name messages and evidence give it: the path, or `<stdin>`.
+    pub name: String,
     /// The file's bytes (hashed into the evidence).
     pub bytes: Vec<u8>,
     /// The compiled scenario.
     pub scenario: Scenario,
+}
+
+impl Input {
+    /// Whether it was read from standard input.
+    pub fn is_stdin(&self) -> bool {
+        self.path == Path::new(STDIN)
+    }
 }
 
 /// Reads and compiles every file (`seed` overriding each one's, `record`
@@ -29,7 +46,16 @@ pub fn load_all(paths: &[PathBuf], seed: Option<u64>, record: bool) -> Option<Ve
     };
     let mut inputs = Vec::new();
     let mut valid = true;
+    let is_stdin = |path: &&PathBuf| *path == Path::new(STDIN);
+    if paths.iter().filter(is_stdin).count() > 1 {
+        eprintln!("{STDIN_NAME}: error: `-` is given more than once; standard input can be read only once");
+        valid = false;
+    }
+    let mut stdin_read = false;
     for path in paths {
+        if is_stdin(&path) && std::mem::replace(&mut stdin_read, true) {
+            continue;
+        }
         match load(path, &options) {
             Ok(input) => inputs.push(input),
             Err(message) => {
@@ -42,13 +68,22 @@ pub fn load_all(paths: &[PathBuf], seed: Option<u64>, record: bool) -> Option<Ve
 }
 
 fn load(path: &Path, options: &Options<'_>) -> Result<Input, String> {
-    let name = path.display().to_string();
-    let bytes = read_regular(path, TEXT_LIMIT).map_err(|e| format!("{name}: error: failed to read the file: {e}"))?;
+    let (name, bytes) = if path == Path::new(STDIN) {
+        let bytes =
+            read_stdin(TEXT_LIMIT).map_err(|e| format!("{STDIN_NAME}: error: failed to read standard input: {e}"))?;
+        (STDIN_NAME.to_string(), bytes)
+    } else {
+        let name = path.display().to_string();
+        let bytes =
+            read_regular(path, TEXT_LIMIT).map_err(|e| format!("{name}: error: failed to read the file: {e}"))?;
+        (name, bytes)
+    };
     let text =
         sightline_dsl::utf8_text(&bytes).map_err(|at| format!("{name}:{at}: error: the file is not UTF-8 text"))?;
     let scenario = sightline_dsl::compile(&name, text, options).map_err(|errors| errors.to_string())?;
     Ok(Input {
         path: path.to_path_buf(),
+        name,
         bytes,
         scenario,
     })

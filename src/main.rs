@@ -12,13 +12,24 @@ mod exit;
 mod files;
 mod input;
 mod output;
+mod signals;
+mod staging;
 mod summary;
 mod template;
 
 fn main() -> ExitCode {
     let cli = cli::Cli::parse();
+    if let Err(error) = signals::install() {
+        eprintln!("error: failed to handle interrupting signals: {error}");
+        return exit::Exit::Internal.into();
+    }
     // A panic is a defect in sightline: the hook has printed it; exit 3, not 101.
-    match std::panic::catch_unwind(|| cmd::dispatch(cli)) {
+    let ended = std::panic::catch_unwind(|| cmd::dispatch(cli));
+    // A signal being handled ends the process itself, with its own status,
+    // once it has removed what this run staged: wait for it rather than
+    // report what its clean-up did to this run.
+    signals::with_pending(|_| ());
+    match ended {
         Ok(Ok(exit)) => exit.into(),
         Ok(Err(error)) => {
             eprintln!("error: {error:#}");

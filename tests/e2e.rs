@@ -63,6 +63,15 @@ mod falsify;
 #[path = "e2e/shard.rs"]
 mod shard;
 
+// Evidence written as a set: a failed, killed or interrupted run never leaves a
+// mix or a temporary; a commit cut short is finished by the next run.
+#[path = "e2e/evidence_set.rs"]
+mod evidence_set;
+
+// `-`: the scenario on standard input, and what is refused.
+#[path = "e2e/stdin.rs"]
+mod stdin;
+
 // `--template DIR`: custom report templates checked before anything runs, escaped, rendered.
 #[path = "e2e/template.rs"]
 mod template;

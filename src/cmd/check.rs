@@ -15,7 +15,7 @@ pub fn check(files: &[PathBuf]) -> Exit {
         let scenario = &input.scenario;
         say(format_args!(
             "{}: ok ({} sweep point{}, {} requirement{})",
-            input.path.display(),
+            input.name,
             scenario.points.len(),
             if scenario.points.len() == 1 { "" } else { "s" },
             scenario.requirements.len(),

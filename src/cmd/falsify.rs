@@ -12,13 +12,15 @@ use anyhow::Context;
 use rayon::prelude::*;
 use sightline_dsl::{Options, Scenario, Vary, display_value};
 use sightline_oracles::{Score, Search};
-use sightline_reports::{Execution, Falsification, Page, Tool, falsify_html, falsify_json, sha256_hex};
+use sightline_reports::{Execution, Falsification, Page, falsify_html, falsify_json, sha256_hex};
 
 use crate::cli::{FalsifyArgs, SearchMode};
+use crate::evidence::{EVIDENCE_SET, evidence_dirs, tool};
 use crate::exit::Exit;
 use crate::files::{DATA_LIMIT, read_regular};
 use crate::input::load_all;
-use crate::output::{default_dir, relative, say, write_atomically};
+use crate::output::{relative, say};
+use crate::staging::Staging;
 use crate::template::templates;
 
 /// Cases simulated side by side: one per core of the 2-core machines sightline
@@ -45,7 +47,7 @@ pub fn falsify(args: &FalsifyArgs) -> anyhow::Result<Exit> {
     let (Some(input), Some(templates)) = (input, templates) else {
         return Ok(Exit::Invalid);
     };
-    let path = input.path.display().to_string();
+    let path = input.name.clone();
     let scenario = &input.scenario;
     if scenario.vary.is_empty() {
         eprintln!("{path}: error: nothing to falsify: the scenario has no `vary` section");
@@ -53,7 +55,10 @@ pub fn falsify(args: &FalsifyArgs) -> anyhow::Result<Exit> {
     }
     let text =
         sightline_dsl::utf8_text(&input.bytes).map_err(|_| anyhow::anyhow!("{path} was valid UTF-8 when compiled"))?;
-    let dir = args.out.clone().unwrap_or_else(|| default_dir(&args.file));
+    let Some(dir) = evidence_dirs(args.out.as_deref(), [&input]).and_then(|dirs| dirs.into_iter().next()) else {
+        return Ok(Exit::Invalid);
+    };
+    let mut staging = Staging::open(&dir, EVIDENCE_SET)?;
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(args.jobs.map_or(0, usize::from))
         .build()
@@ -99,7 +104,12 @@ pub fn falsify(args: &FalsifyArgs) -> anyhow::Result<Exit> {
         Err(Stop::Internal(error)) => return Err(error),
     };
     let elapsed = started.elapsed();
-    let mut command = format!("sightline falsify {path} --cases {} --seed {}", args.cases, search.seed);
+    let mut command = format!(
+        "sightline falsify {} --cases {} --seed {}",
+        input.path.display(),
+        args.cases,
+        search.seed
+    );
     if !search.guided {
         command.push_str(" --search random");
     }
@@ -110,11 +120,7 @@ pub fn falsify(args: &FalsifyArgs) -> anyhow::Result<Exit> {
     let rate = evaluations as f64 / elapsed.as_secs_f64().max(1e-9);
     let counterexample_path = dir.join("counterexample.yaml");
     let reproduce = format!("sightline run {}", counterexample_path.display());
-    let tool = Tool {
-        name: "sightline".into(),
-        version: env!("CARGO_PKG_VERSION").into(),
-        git: env!("SIGHTLINE_GIT").into(),
-    };
+    let tool = tool();
     let execution = Execution::on_this_machine(pool.current_num_threads(), started_at, elapsed);
     let found = outcome.counterexample.map(|i| &outcome.cases[i]);
     let falsification = Falsification {
@@ -139,19 +145,12 @@ pub fn falsify(args: &FalsifyArgs) -> anyhow::Result<Exit> {
         }
         Err(error) => return Err(error.into()),
     };
-    let reports = [
-        ("falsify.json", report_json.as_str()),
-        ("report.html", report_html.as_str()),
-    ];
+    staging.write("falsify.json", report_json.as_bytes())?;
+    staging.write("report.html", report_html.as_bytes())?;
     let Some(found) = found else {
-        write_atomically(&dir, &reports, Vec::new())?;
-        // A counterexample left by an earlier search would contradict this one.
-        match std::fs::remove_file(&counterexample_path) {
-            Err(error) if error.kind() != std::io::ErrorKind::NotFound => {
-                return Err(error).context("failed to remove an earlier counterexample.yaml");
-            }
-            _ => {}
-        }
+        // The commit also removes a counterexample.yaml of an earlier search,
+        // which would contradict this one.
+        staging.commit()?;
         let closest = outcome
             .cases
             .iter()
@@ -184,12 +183,8 @@ pub fn falsify(args: &FalsifyArgs) -> anyhow::Result<Exit> {
         header.push_str(&format!("#   {}: {}\n", vary.path, display_value(&vary.value(index))));
     }
     header.push_str(&format!("# Reproduce: {reproduce}\n"));
-    let counterexample = header + &case_text;
-    write_atomically(
-        &dir,
-        &[("counterexample.yaml", &counterexample), reports[0], reports[1]],
-        Vec::new(),
-    )?;
+    staging.write("counterexample.yaml", (header + &case_text).as_bytes())?;
+    staging.commit()?;
     say(format_args!(
         "FOUND {path}: {requirement} {} (margin {margin}) at {}; first broken by case {}, {} cases in all ({evaluations} simulations, {rate:.1}/s) -> {}",
         found.score.status.name(),

@@ -21,10 +21,11 @@ use sightline_reports::{Execution, Page, Shard, ShardInput, campaign_id, read_sh
 
 use super::shard::inputs_of;
 use crate::cli::MergeArgs;
-use crate::evidence::{Reporting, Request, evidence_dirs, recorded, tool, write_evidence};
+use crate::evidence::{EVIDENCE_SET, Reporting, Request, evidence_dirs, recorded, tool, write_evidence};
 use crate::exit::Exit;
 use crate::files::{DATA_LIMIT, read_regular};
 use crate::input::{Input, load_all};
+use crate::staging::Staging;
 use crate::template::templates;
 
 /// One scenario of the campaign, ready to render.
@@ -74,18 +75,19 @@ pub fn merge(args: &MergeArgs) -> anyhow::Result<Exit> {
             templates: &templates,
         };
         let scenario = &input.scenario;
+        let mut staging = Staging::open(dir, EVIDENCE_SET)?;
         let simulated = match scenario.record {
             None => {
                 let verdicts = sightline_oracles::check(scenario, &run);
                 (run, verdicts, None)
             }
-            Some(record) => recorded(&input, &reporting, dir, |recorder| {
+            Some(record) => recorded(&input, &reporting, &mut staging, |recorder| {
                 let outcome = sightline_engine::simulate_point(scenario, record.point, recorder);
                 if outcome != run.points[record.point] {
                     bail!(
                         "{}: the recorded point, simulated again, differs from its shard's outcome: \
                          sightline is not deterministic here; please report it with the scenario",
-                        input.path.display()
+                        input.name
                     );
                 }
                 Ok(run)
@@ -94,7 +96,7 @@ pub fn merge(args: &MergeArgs) -> anyhow::Result<Exit> {
         let here = Execution::on_this_machine(rayon::current_num_threads(), started, clock.elapsed());
         let shards: Vec<Execution> = shards.into_iter().map(|(_, execution, _)| execution).collect();
         let execution = Execution::campaign(&shards, &here);
-        exit = exit.max(write_evidence(&input, &reporting, dir, simulated, execution)?);
+        exit = exit.max(write_evidence(&input, &reporting, staging, simulated, execution)?);
     }
     Ok(exit)
 }
@@ -246,7 +248,7 @@ fn assemble_all(shards: Vec<(PathBuf, Shard)>) -> Result<Vec<Merged>, String> {
     loaded
         .into_iter()
         .map(|(input, _, parts)| {
-            let file = input.path.display().to_string();
+            let file = input.name.clone();
             let units = parts.values().flat_map(|(_, shard)| shard.units.iter().cloned());
             let run = sightline_engine::assemble(&input.scenario, units)
                 .map_err(|e| format!("{file}: error: the shards do not make up its run: {e}"))?;
@@ -294,7 +296,7 @@ fn in_domains(merged: &[Merged]) -> Result<(), String> {
             lines.push(format!(
                 "{}: error: {}, {problem}: {OUT_OF_DOMAIN}",
                 path.display(),
-                merged.input.path.display()
+                merged.input.name
             ));
         }
     }

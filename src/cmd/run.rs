@@ -6,10 +6,11 @@ use anyhow::Context;
 use sightline_reports::{Execution, Page};
 
 use crate::cli::RunArgs;
-use crate::evidence::{Reporting, Request, evidence_dirs, recorded, tool, write_evidence};
+use crate::evidence::{EVIDENCE_SET, Reporting, Request, evidence_dirs, recorded, tool, write_evidence};
 use crate::exit::Exit;
 use crate::input::load_all;
 use crate::output::progress;
+use crate::staging::Staging;
 use crate::summary::refuse_out_of_domain;
 use crate::template::templates;
 
@@ -29,6 +30,13 @@ pub fn run(args: &RunArgs) -> anyhow::Result<Exit> {
     let Some(dirs) = evidence_dirs(args.out.as_deref(), &inputs) else {
         return Ok(Exit::Invalid);
     };
+    if let Some(input) = inputs.iter().find(|i| i.is_stdin() && args.shard.is_some()) {
+        eprintln!(
+            "{}: error: a shard's scenario must be a file: `sightline merge` reads it again",
+            input.name
+        );
+        return Ok(Exit::Invalid);
+    }
     let pool = worker_pool(args.jobs)?;
     if let Some(shard) = args.shard {
         return super::shard::run_shard(&pool, shard, &inputs, &dirs, request);
@@ -41,8 +49,10 @@ pub fn run(args: &RunArgs) -> anyhow::Result<Exit> {
     let mut exit = Exit::Pass;
     for (input, dir) in inputs.iter().zip(&dirs) {
         let scenario = &input.scenario;
+        // Opened before the simulation: an unwritable directory is found at once.
+        let mut staging = Staging::open(dir, EVIDENCE_SET)?;
         let (started, clock) = (SystemTime::now(), Instant::now());
-        let bar = progress(scenario.points.len(), &input.path.display().to_string());
+        let bar = progress(scenario.points.len(), &input.name);
         let mut done = |n: usize| bar.inc(n as u64);
         let simulated = match scenario.record {
             None => {
@@ -50,18 +60,18 @@ pub fn run(args: &RunArgs) -> anyhow::Result<Exit> {
                 let verdicts = sightline_oracles::check(scenario, &run);
                 (run, verdicts, None)
             }
-            Some(record) => recorded(input, &reporting, dir, |recorder| {
+            Some(record) => recorded(input, &reporting, &mut staging, |recorder| {
                 Ok(pool.install(|| sightline_engine::simulate_traced(scenario, record.point, recorder, &mut done)))
             })?,
         };
         bar.finish_and_clear();
         // A value outside its domain is a defect of the engine: never judged.
         let why = "no correct simulation gives such a value, a defect in sightline; nothing is judged";
-        if let Some(exit) = refuse_out_of_domain(&input.path.display(), scenario, &simulated.0, why) {
+        if let Some(exit) = refuse_out_of_domain(&input.name, scenario, &simulated.0, why) {
             return Ok(exit);
         }
         let execution = Execution::on_this_machine(pool.current_num_threads(), started, clock.elapsed());
-        exit = exit.max(write_evidence(input, &reporting, dir, simulated, execution)?);
+        exit = exit.max(write_evidence(input, &reporting, staging, simulated, execution)?);
     }
     Ok(exit)
 }

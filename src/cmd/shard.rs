@@ -9,11 +9,9 @@
 //! ([`campaign_id`]), which every shard computes alike from the build, the
 //! files and their hashes, `--seed`, `--record` and N.
 
-use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::time::{Instant, SystemTime};
 
-use anyhow::Context;
 use rayon::prelude::*;
 use sightline_reports::{Execution, Shard, ShardInput, campaign_id, sha256_hex, shard_bytes};
 
@@ -21,7 +19,8 @@ use crate::cli::ShardSpec;
 use crate::evidence::{Request, tool};
 use crate::exit::Exit;
 use crate::input::Input;
-use crate::output::{progress, say, staging_file, write_atomically};
+use crate::output::{progress, say};
+use crate::staging::Staging;
 
 /// The name of shard `spec`'s file in a scenario's evidence directory.
 pub fn shard_file_name(spec: ShardSpec) -> String {
@@ -38,7 +37,7 @@ pub fn run_shard(
     dirs: &[PathBuf],
     request: Request,
 ) -> anyhow::Result<Exit> {
-    let files: Vec<String> = inputs.iter().map(|i| i.path.display().to_string()).collect();
+    let files: Vec<String> = inputs.iter().map(|i| i.name.clone()).collect();
     let all_inputs: Vec<Vec<ShardInput>> = inputs.iter().map(inputs_of).collect();
     let campaign = campaign_id(&tool(), &all_inputs, request.seed, request.record, spec.count);
     let mut first = 0;
@@ -51,7 +50,7 @@ pub fn run_shard(
             .map(|(_, unit)| unit.clone())
             .collect();
         first += all.len();
-        let path = input.path.display().to_string();
+        let path = input.name.clone();
         let (started, clock) = (SystemTime::now(), Instant::now());
         let bar = progress(mine.len(), &path);
         let units = pool.install(|| {
@@ -94,7 +93,7 @@ pub fn run_shard(
 /// The scenario file and the files it imports, with their hashes.
 pub fn inputs_of(input: &Input) -> Vec<ShardInput> {
     let scenario = ShardInput {
-        path: input.path.display().to_string(),
+        path: input.name.clone(),
         sha256: sha256_hex(&input.bytes),
     };
     let imports = input.scenario.imports.iter().map(|import| ShardInput {
@@ -104,10 +103,9 @@ pub fn inputs_of(input: &Input) -> Vec<ShardInput> {
     std::iter::once(scenario).chain(imports).collect()
 }
 
-/// Writes `bytes` to `dir/name` atomically.
+/// Writes `bytes` to `dir/name` as a set of one file, beside the other shards'.
 fn write_file(dir: &Path, name: &str, bytes: &[u8]) -> anyhow::Result<()> {
-    let mut file = staging_file(dir)?;
-    file.write_all(bytes)
-        .with_context(|| format!("failed to write {}", dir.join(name).display()))?;
-    write_atomically(dir, &[], vec![(file, name)])
+    let mut staging = Staging::open(dir, &[])?;
+    staging.write(name, bytes)?;
+    staging.commit()
 }

@@ -244,6 +244,27 @@ fn fifos_and_devices_are_refused_at_once() {
     }
 }
 
+/// A symbolic link loop given as the scenario is named for what it is, not
+/// left to the system's "too many levels of symbolic links" (#15).
+#[cfg(unix)]
+#[test]
+fn a_symbolic_link_loop_is_refused() {
+    let tmp = temp_dir();
+    let (first, second) = (tmp.path().join("a.yaml"), tmp.path().join("b.yaml"));
+    std::os::unix::fs::symlink(&second, &first).unwrap();
+    std::os::unix::fs::symlink(&first, &second).unwrap();
+    let outcome = sightline(["check", arg(&first)]);
+    outcome.assert_exit(2);
+    assert_eq!(
+        outcome.stderr,
+        format!(
+            "{}: error: failed to read the file: a symbolic link loop, not a regular file\n",
+            arg(&first)
+        ),
+        "{outcome}"
+    );
+}
+
 /// A scenario file over 16 MiB is refused without being compiled.
 #[test]
 fn an_oversized_scenario_is_refused() {

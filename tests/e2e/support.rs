@@ -5,7 +5,7 @@
 use std::ffi::OsStr;
 use std::fmt;
 use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::process::{Command, Stdio};
 
 use sha2::{Digest, Sha256};
 
@@ -87,6 +87,15 @@ where
     I: IntoIterator<Item = S>,
     S: AsRef<OsStr>,
 {
+    sightline_fed(dir, args, Stdio::null())
+}
+
+/// Runs the real `sightline` binary with `args` in `dir`, `stdin` its standard input.
+pub fn sightline_fed<I, S>(dir: &Path, args: I, stdin: impl Into<Stdio>) -> Outcome
+where
+    I: IntoIterator<Item = S>,
+    S: AsRef<OsStr>,
+{
     let args: Vec<S> = args.into_iter().collect();
     let command = std::iter::once("sightline".to_string())
         .chain(args.iter().map(|a| a.as_ref().to_string_lossy().into_owned()))
@@ -95,6 +104,7 @@ where
     let output = Command::new(env!("CARGO_BIN_EXE_sightline"))
         .args(&args)
         .current_dir(dir)
+        .stdin(stdin)
         .output()
         .unwrap_or_else(|e| panic!("failed to start {command}: {e}"));
     let text = |bytes: Vec<u8>, stream: &str| {
