@@ -10,6 +10,10 @@
 //! cannot. Where the file system has no locks, or the owner died before it made
 //! its manifest, a folder last changed before this process first looked is
 //! taken as left.
+//!
+//! Versions before evidence was staged as a set wrote each file through a
+//! temporary `.sightline-XXXXXX` file (six letters or digits), which a killed run
+//! left behind; such a file older than this run is removed too.
 
 use std::collections::BTreeSet;
 use std::fs::{self, File, OpenOptions, TryLockError};
@@ -39,6 +43,17 @@ pub fn clean(dir: &Path, own: Option<&Path>) -> anyhow::Result<()> {
     for entry in fs::read_dir(dir).with_context(|| format!("failed to read {}", dir.display()))? {
         let entry = entry.with_context(|| format!("failed to read {}", dir.display()))?;
         let name = entry.file_name().to_string_lossy().into_owned();
+        if is_legacy_temporary(&name)
+            && entry.file_type().is_ok_and(|kind| kind.is_file())
+            && matches!(by_age(&entry.path(), started), Ok(Owner::Gone(_)))
+        {
+            fs::remove_file(entry.path()).with_context(|| format!("failed to remove {}", entry.path().display()))?;
+            eprintln!(
+                "note: {}: removed {name}, left by an interrupted run of an earlier version",
+                dir.display()
+            );
+            continue;
+        }
         if (name.starts_with(STAGING) || name.starts_with(COMMIT))
             && entry.file_type().is_ok_and(|kind| kind.is_dir())
             && own != Some(entry.path().as_path())
@@ -68,6 +83,13 @@ pub fn clean(dir: &Path, own: Option<&Path>) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// Whether `name` is a temporary file of an earlier version: `.sightline-` and
+/// six letters or digits.
+fn is_legacy_temporary(name: &str) -> bool {
+    name.strip_prefix(".sightline-")
+        .is_some_and(|id| id.len() == 6 && id.bytes().all(|b| b.is_ascii_alphanumeric()))
+}
+
 /// Whether a staging or commit folder's owner lives.
 enum Owner {
     /// It does: the folder is its work in progress.
@@ -90,9 +112,9 @@ fn owner(folder: &Path, started: SystemTime) -> std::io::Result<Owner> {
     }
 }
 
-/// Gone when `folder` was last changed before `started`.
-fn by_age(folder: &Path, started: SystemTime) -> std::io::Result<Owner> {
-    let changed = fs::metadata(folder)?.modified()?;
+/// Gone when `path` was last changed before `started`.
+fn by_age(path: &Path, started: SystemTime) -> std::io::Result<Owner> {
+    let changed = fs::metadata(path)?.modified()?;
     Ok(if changed < started {
         Owner::Gone(None)
     } else {
@@ -162,7 +184,7 @@ mod tests {
     }
 
     #[test]
-    fn a_commit_is_finished_and_other_names_are_not_touched() {
+    fn a_commit_is_finished_an_earlier_temporary_removed_and_other_names_kept() {
         let dir = tempfile::tempdir().unwrap();
         let commit = dir.path().join(format!("{COMMIT}1-x"));
         fs::create_dir(&commit).unwrap();
@@ -171,7 +193,13 @@ mod tests {
         fs::write(commit.join(MANIFEST), manifest.text()).unwrap();
         fs::write(dir.path().join("run.mcap"), "old").unwrap();
         fs::write(dir.path().join(".sightline-other"), "not ours").unwrap();
+        for name in [".sightline-a1B2c3", ".sightline-a1B2c"] {
+            let old = File::create(dir.path().join(name)).unwrap();
+            old.set_modified(SystemTime::UNIX_EPOCH).unwrap();
+        }
         clean(dir.path(), None).unwrap();
+        assert!(!dir.path().join(".sightline-a1B2c3").exists());
+        assert!(dir.path().join(".sightline-a1B2c").exists());
         assert_eq!(fs::read_to_string(dir.path().join("results.json")).unwrap(), "new");
         assert!(!dir.path().join("run.mcap").exists());
         assert!(!commit.exists());
