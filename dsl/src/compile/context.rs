@@ -3,6 +3,7 @@
 use crate::de::DeError;
 use crate::error::{Error, ErrorKind, Location};
 use crate::path::{Path, Segment};
+use crate::raw::range::{self, Range};
 use crate::yaml::{Node, Value};
 
 /// Collects located errors while a pass walks one spanned tree.
@@ -61,19 +62,44 @@ impl<'a> Context<'a> {
         ok
     }
 
-    /// Checks a finite number > 0.
-    pub(super) fn positive(&mut self, path: &Path, value: f64) -> bool {
-        self.expect(value.is_finite() && value > 0.0, path, "a number > 0", value)
+    /// Checks a number within its physical `range`. The error names the bound
+    /// the value passes (`a number > 0`, `a number ≤ 150`), or the whole range
+    /// for NaN.
+    pub(super) fn within(&mut self, path: &Path, value: f64, range: Range) -> bool {
+        if range.contains(value) {
+            return true;
+        }
+        let expected = if value.is_nan() {
+            range.words()
+        } else if value >= range.max {
+            range.upper()
+        } else {
+            range.lower()
+        };
+        self.error(
+            path,
+            ErrorKind::OutOfRange {
+                expected,
+                found: value.to_string(),
+            },
+        );
+        false
     }
 
-    /// Checks a finite number ≥ 0.
-    pub(super) fn non_negative(&mut self, path: &Path, value: f64) -> bool {
-        self.expect(value.is_finite() && value >= 0.0, path, "a number ≥ 0", value)
+    /// Checks each coordinate of each point of a list.
+    pub(super) fn points_within(&mut self, path: &Path, points: &[[f64; 2]], range: Range) -> bool {
+        let mut ok = true;
+        for (i, point) in points.iter().enumerate() {
+            for (axis, &v) in point.iter().enumerate() {
+                ok &= self.within(&path.index(i).index(axis), v, range);
+            }
+        }
+        ok
     }
 
     /// Checks a probability in [0, 1].
     pub(super) fn probability(&mut self, path: &Path, value: f64) -> bool {
-        self.expect((0.0..=1.0).contains(&value), path, "a number from 0 to 1", value)
+        self.expect(range::PROBABILITY.contains(value), path, "a number from 0 to 1", value)
     }
 
     /// Checks a finite number.

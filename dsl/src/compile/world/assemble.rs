@@ -13,6 +13,7 @@ use crate::compile::traces::Imported;
 use crate::error::ErrorKind;
 use crate::model::World;
 use crate::path::Path;
+use crate::raw::range;
 use crate::raw::{RawScenario, RawTime};
 
 /// The most steps a run may have.
@@ -101,7 +102,8 @@ pub(crate) fn world(ctx: &mut Context<'_>, raw: &RawScenario, imported: Option<&
 }
 
 fn time_steps(ctx: &mut Context<'_>, time: &RawTime, path: &Path) -> Option<usize> {
-    let ok = ctx.positive(&path.key("duration"), time.duration) & ctx.positive(&path.key("step"), time.step);
+    let ok = ctx.within(&path.key("duration"), time.duration, range::DURATION)
+        & ctx.within(&path.key("step"), time.step, range::STEP);
     if !ok {
         return None;
     }

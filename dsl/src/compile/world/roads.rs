@@ -3,14 +3,15 @@
 
 use std::collections::HashSet;
 
-use crate::compile::checks::{distinct_from_imported, finite_points, unique_ids};
+use crate::compile::checks::{coordinates, distinct_from_imported, unique_ids};
 use crate::compile::context::Context;
 use crate::compile::traces::Imported;
 use crate::error::ErrorKind;
-use crate::geometry::{MAX_CHORD_ERROR, Polyline, arc};
+use crate::geometry::{Polyline, arc};
 use crate::model::{Direction, LaneLink, Road};
 use crate::path::Path;
 use crate::raw::RawRoad;
+use crate::raw::range;
 
 /// The declared roads, then those of `traces.net`.
 pub(super) fn roads(ctx: &mut Context<'_>, raw: &[RawRoad], imported: Option<&Imported>) -> Option<Vec<Road>> {
@@ -28,9 +29,9 @@ pub(super) fn roads(ctx: &mut Context<'_>, raw: &[RawRoad], imported: Option<&Im
     let mut roads = Vec::new();
     for (i, road) in raw.iter().enumerate() {
         let path = list.index(i);
-        let shape_ok = ctx.expect(road.lanes >= 1, &path.key("lanes"), "at least 1", road.lanes.into())
-            & ctx.positive(&path.key("lane_width"), road.lane_width)
-            & ctx.positive(&path.key("speed_limit"), road.speed_limit);
+        let shape_ok = ctx.within(&path.key("lanes"), road.lanes.into(), range::LANES)
+            & ctx.within(&path.key("lane_width"), road.lane_width, range::BODY)
+            & ctx.within(&path.key("speed_limit"), road.speed_limit, range::SPEED_POSITIVE);
         match (shape_ok, reference_line(ctx, road, &path)) {
             (true, Some(reference)) => {
                 let lanes = (0..road.lanes)
@@ -77,7 +78,7 @@ fn reference_line(ctx: &mut Context<'_>, road: &RawRoad, path: &Path) -> Option<
     }
     if let Some(points) = &road.polyline {
         let line_path = path.key("polyline");
-        if !finite_points(ctx, &line_path, points) {
+        if !coordinates(ctx, &line_path, points) {
             return None;
         }
         let line = Polyline::new(points.iter().copied());
@@ -91,9 +92,9 @@ fn reference_line(ctx: &mut Context<'_>, road: &RawRoad, path: &Path) -> Option<
     }
     if let Some(a) = &road.arc {
         let arc_path = path.key("arc");
-        let ok = finite_points(ctx, &arc_path.key("center"), &[a.center])
-            & ctx.positive(&arc_path.key("radius"), a.radius)
-            & ctx.finite(&arc_path.key("start_deg"), a.start_deg)
+        let ok = coordinates(ctx, &arc_path.key("center"), &[a.center])
+            & ctx.within(&arc_path.key("radius"), a.radius, range::RADIUS)
+            & ctx.within(&arc_path.key("start_deg"), a.start_deg, range::ANGLE)
             & ctx.expect(
                 a.end_deg.is_finite() && a.end_deg != a.start_deg && (a.end_deg - a.start_deg).abs() <= 360.0,
                 &arc_path.key("end_deg"),
@@ -114,13 +115,17 @@ fn reference_line(ctx: &mut Context<'_>, road: &RawRoad, path: &Path) -> Option<
     let ring = road.roundabout.as_ref()?;
     let ring_path = path.key("roundabout");
     let inner = ring.radius - f64::from(road.lanes - 1) * road.lane_width;
-    let ok = finite_points(ctx, &ring_path.key("center"), &[ring.center])
-        & ctx.expect(
-            ring.radius.is_finite() && inner > MAX_CHORD_ERROR,
-            &ring_path.key("radius"),
-            "a radius larger than the inner lanes take",
-            ring.radius,
-        );
+    let ok = coordinates(ctx, &ring_path.key("center"), &[ring.center])
+        & (ctx.within(&ring_path.key("radius"), ring.radius, range::RADIUS)
+            && ctx.expect(
+                inner >= range::RADIUS.min,
+                &ring_path.key("radius"),
+                &format!(
+                    "a radius that leaves the innermost lane at least {} m from the centre",
+                    range::RADIUS.min
+                ),
+                ring.radius,
+            ));
     let sweep = match ring.direction {
         Direction::Ccw => std::f64::consts::TAU,
         Direction::Cw => -std::f64::consts::TAU,
