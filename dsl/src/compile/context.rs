@@ -1,4 +1,7 @@
-//! The error collector shared by the compile passes.
+//! The error collector shared by the compile passes, and the declarations that
+//! failed to compile.
+
+use std::collections::HashSet;
 
 use crate::de::DeError;
 use crate::error::{Error, ErrorKind, Location};
@@ -11,6 +14,17 @@ pub(super) struct Context<'a> {
     pub(super) file: &'a str,
     pub(super) tree: &'a Node,
     pub(super) errors: Vec<Error>,
+    /// Declarations whose own errors are recorded: known, but not compiled.
+    failed: HashSet<(Declaration, String)>,
+}
+
+/// A kind of declaration that others name by id.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub(super) enum Declaration {
+    /// An entry of `roads`, named by routes.
+    Road,
+    /// An entry of `sensor_models`, named by agents.
+    SensorModel,
 }
 
 impl<'a> Context<'a> {
@@ -19,7 +33,20 @@ impl<'a> Context<'a> {
             file,
             tree,
             errors: Vec::new(),
+            failed: HashSet::new(),
         }
+    }
+
+    /// Notes that the declaration `id` failed to compile, after its errors are
+    /// recorded: a reference to it is then not reported as missing, since the
+    /// cause is the declaration, not the reference.
+    pub(super) fn declaration_failed(&mut self, kind: Declaration, id: &str) {
+        self.failed.insert((kind, id.to_string()));
+    }
+
+    /// Whether `id` is a declaration that failed to compile.
+    pub(super) fn is_failed(&self, kind: Declaration, id: &str) -> bool {
+        self.failed.contains(&(kind, id.to_string()))
     }
 
     /// Whether the file gives the node at `path`.
@@ -76,13 +103,13 @@ impl<'a> Context<'a> {
         } else {
             range.lower()
         };
-        self.error(
-            path,
-            ErrorKind::OutOfRange {
-                expected,
-                found: value.to_string(),
-            },
-        );
+        // 1e308 as written, not as 309 digits.
+        let found = if value != 0.0 && !(1.0e-4..1.0e15).contains(&value.abs()) {
+            format!("{value:e}")
+        } else {
+            value.to_string()
+        };
+        self.error(path, ErrorKind::OutOfRange { expected, found });
         false
     }
 

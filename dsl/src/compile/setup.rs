@@ -1,5 +1,6 @@
 //! Ranges, units and defaults of the simulation settings: raw → [`Setup`].
 
+use super::budget::within_budget;
 use super::checks::{coordinates, whole_multiple};
 use super::context::Context;
 use super::kind::{Kind, ignored_keys};
@@ -60,11 +61,12 @@ pub(super) fn setup(ctx: &mut Context<'_>, raw: &RawScenario, imported: Option<&
     } else {
         None
     };
-    Some(Setup {
+    let setup = Setup {
         seed: raw.seed,
         experiment: experiment?,
         occupancy,
-    })
+    };
+    within_budget(ctx, &setup).then_some(setup)
 }
 
 fn grid(ctx: &mut Context<'_>, raw: &RawGrid, path: &Path) -> Option<Grid> {

@@ -6,7 +6,7 @@ use std::collections::{HashMap, HashSet};
 
 use super::routes::route_path;
 use crate::compile::checks::{coordinates, known_names, unique_ids};
-use crate::compile::context::Context;
+use crate::compile::context::{Context, Declaration};
 use crate::compile::traces::{Imported, imported_agents, trace_motion};
 use crate::error::ErrorKind;
 use crate::geometry::Polyline;
@@ -95,6 +95,8 @@ fn agent_of(ctx: &mut Context<'_>, raw: &RawAgent, path: &Path, scene: &Scene<'_
     for (i, name) in raw.sensors.iter().enumerate() {
         match scene.sensors.get(name) {
             Some(sensor) => resolved.push(sensor.clone()),
+            // The model's own errors say why.
+            None if ctx.is_failed(Declaration::SensorModel, name) => sensors_ok = false,
             None => {
                 let mut known: Vec<&str> = scene.sensors.keys().map(String::as_str).collect();
                 known.sort_unstable();

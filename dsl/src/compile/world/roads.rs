@@ -4,7 +4,7 @@
 use std::collections::HashSet;
 
 use crate::compile::checks::{coordinates, distinct_from_imported, unique_ids};
-use crate::compile::context::Context;
+use crate::compile::context::{Context, Declaration};
 use crate::compile::traces::Imported;
 use crate::error::ErrorKind;
 use crate::geometry::{Polyline, arc};
@@ -13,8 +13,10 @@ use crate::path::Path;
 use crate::raw::RawRoad;
 use crate::raw::range;
 
-/// The declared roads, then those of `traces.net`.
-pub(super) fn roads(ctx: &mut Context<'_>, raw: &[RawRoad], imported: Option<&Imported>) -> Option<Vec<Road>> {
+/// The declared roads that compile, then those of `traces.net`; and whether
+/// every declared road compiled. A road that does not is noted in `ctx`, so
+/// the routes that name it are not reported as naming a missing road.
+pub(super) fn roads(ctx: &mut Context<'_>, raw: &[RawRoad], imported: Option<&Imported>) -> (Vec<Road>, bool) {
     let list = Path::root().key("roads");
     let net_roads = imported.map_or(&[][..], |i| &i.roads);
     let net_ids: HashSet<&str> = net_roads.iter().map(|r| r.id.as_str()).collect();
@@ -45,7 +47,10 @@ pub(super) fn roads(ctx: &mut Context<'_>, raw: &[RawRoad], imported: Option<&Im
                     links: Vec::new(),
                 });
             }
-            _ => ok = false,
+            _ => {
+                ctx.declaration_failed(Declaration::Road, &road.id);
+                ok = false;
+            }
         }
     }
     // The network's links index its own roads, which follow the declared ones.
@@ -63,7 +68,7 @@ pub(super) fn roads(ctx: &mut Context<'_>, raw: &[RawRoad], imported: Option<&Im
             ..road.clone()
         }
     }));
-    ok.then_some(roads)
+    (roads, ok)
 }
 
 /// Lane 0's centreline of a road.
@@ -101,20 +106,26 @@ fn reference_line(ctx: &mut Context<'_>, road: &RawRoad, path: &Path) -> Option<
                 "an angle other than start_deg, within 360° of it",
                 a.end_deg,
             );
-        return ok
-            .then(|| {
-                Polyline::new(arc(
-                    a.center,
-                    a.radius,
-                    a.start_deg.to_radians(),
-                    a.end_deg.to_radians(),
-                ))
-            })
-            .flatten();
+        if !ok {
+            return None;
+        }
+        let line = Polyline::new(arc(
+            a.center,
+            a.radius,
+            a.start_deg.to_radians(),
+            a.end_deg.to_radians(),
+        ));
+        if line.is_none() {
+            ctx.error(
+                &arc_path.key("end_deg"),
+                ErrorKind::Invalid("the arc has no length: its end is too close to its start".into()),
+            );
+        }
+        return line;
     }
     let ring = road.roundabout.as_ref()?;
     let ring_path = path.key("roundabout");
-    let inner = ring.radius - f64::from(road.lanes - 1) * road.lane_width;
+    let inner = ring.radius - f64::from(road.lanes.saturating_sub(1)) * road.lane_width;
     let ok = coordinates(ctx, &ring_path.key("center"), &[ring.center])
         & (ctx.within(&ring_path.key("radius"), ring.radius, range::RADIUS)
             && ctx.expect(

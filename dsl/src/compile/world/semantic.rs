@@ -113,7 +113,7 @@ pub(super) fn traffic(
     ctx: &mut Context<'_>,
     raw: &RawTraffic,
     roads: &[Road],
-    crosswalks: &[Crosswalk],
+    crosswalks: Option<&[Crosswalk]>,
 ) -> Option<Traffic> {
     let path = Path::root().key("traffic");
     let mut ok = true;
@@ -180,7 +180,8 @@ pub(super) fn traffic(
         let mut fields_ok = ctx.within(&path.key("per_minute"), p.per_minute, range::ARRIVALS)
             & ctx.within(&path.key("speed"), p.speed, range::SPEED_POSITIVE)
             & ctx.within(&path.key("approach"), p.approach, range::GAP);
-        if crosswalks.is_empty() {
+        // Crosswalks that failed to compile have their own errors.
+        if crosswalks.is_some_and(<[Crosswalk]>::is_empty) {
             ctx.error(
                 &path,
                 ErrorKind::Invalid("pedestrian traffic crosses at `crosswalks`, and there are none".into()),

@@ -3,13 +3,16 @@
 
 use std::collections::HashMap;
 
-use crate::compile::context::Context;
+use crate::compile::context::{Context, Declaration};
 use crate::model::{Localization, Sensor};
 use crate::path::Path;
 use crate::raw::range;
 use crate::raw::{RawNoise, RawScenario, RawSensorModel};
 
-pub(super) fn sensor_models(ctx: &mut Context<'_>, raw: &RawScenario) -> Option<HashMap<String, Sensor>> {
+/// The sensor models that compile, by id, and whether all did. A model that
+/// does not is noted in `ctx`, so the agents that name it are not reported as
+/// naming a missing model.
+pub(super) fn sensor_models(ctx: &mut Context<'_>, raw: &RawScenario) -> (HashMap<String, Sensor>, bool) {
     let map = Path::root().key("sensor_models");
     let mut ok = true;
     let mut sensors = HashMap::new();
@@ -19,10 +22,13 @@ pub(super) fn sensor_models(ctx: &mut Context<'_>, raw: &RawScenario) -> Option<
             Some(sensor) => {
                 sensors.insert(name.clone(), sensor);
             }
-            None => ok = false,
+            None => {
+                ctx.declaration_failed(Declaration::SensorModel, name);
+                ok = false;
+            }
         }
     }
-    ok.then_some(sensors)
+    (sensors, ok)
 }
 
 fn sensor(ctx: &mut Context<'_>, name: &str, raw: &RawSensorModel, path: &Path) -> Option<Sensor> {
