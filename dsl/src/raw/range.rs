@@ -156,7 +156,7 @@ pub(crate) const EXTENT: Range = Range::above(0.0, 2.0e6);
 /// Where along its way an agent appears, metres.
 pub(crate) const OFFSET: Range = Range::closed(0.0, 1.0e7);
 /// The side of a grid cell, metres.
-pub(crate) const CELL: Range = Range::closed(0.01, 1.0e4);
+pub(crate) const CELL: Range = Range::above(0.0, 1.0e4);
 /// The size of a road user, a lane, a crossing, a conflict distance, metres.
 pub(crate) const BODY: Range = Range::above(0.0, 100.0);
 /// A gap or a walk that may be 0, metres.
