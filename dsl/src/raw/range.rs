@@ -254,7 +254,7 @@ pub(crate) const FREE: Range = Range::open(0.0, 0.5);
 /// A confidence level.
 pub(crate) const CONFIDENCE: Range = Range::open(0.5, 1.0);
 /// The sum of the Dirichlet parameters of the mass model.
-pub(crate) const CONCENTRATION: Range = Range::closed(1.0, 1.0e6);
+pub(crate) const CONCENTRATION: Range = Range::closed(1.0, 1.0e12);
 /// γ, the growth of misdetection with distance (ε0 + γ/100 < 1 is checked too).
 pub(crate) const GAMMA: Range = Range::open_above(0.0, 100.0);
 /// The hybrid rule's switch: metres (difference) or a ratio ≥ 1.
