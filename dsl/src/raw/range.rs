@@ -34,7 +34,7 @@ impl Range {
     }
 
     /// (min, max].
-    const fn above(min: f64, max: f64) -> Self {
+    const fn left_open(min: f64, max: f64) -> Self {
         Self {
             min,
             min_included: false,
@@ -44,7 +44,7 @@ impl Range {
     }
 
     /// [min, max).
-    const fn open_above(min: f64, max: f64) -> Self {
+    const fn right_open(min: f64, max: f64) -> Self {
         Self {
             min,
             min_included: true,
@@ -152,13 +152,13 @@ fn number(value: f64) -> Value {
 pub(crate) const COORDINATE: Range = Range::closed(-1.0e6, 1.0e6);
 /// A distance at the scale of the map (a grid side, a region's radius, a
 /// distance band, a proximity), metres.
-pub(crate) const EXTENT: Range = Range::above(0.0, 2.0e6);
+pub(crate) const EXTENT: Range = Range::left_open(0.0, 2.0e6);
 /// Where along its way an agent appears, metres.
 pub(crate) const OFFSET: Range = Range::closed(0.0, 1.0e7);
 /// The side of a grid cell, metres.
-pub(crate) const CELL: Range = Range::above(0.0, 1.0e4);
+pub(crate) const CELL: Range = Range::left_open(0.0, 1.0e4);
 /// The size of a road user, a lane, a crossing, a conflict distance, metres.
-pub(crate) const BODY: Range = Range::above(0.0, 100.0);
+pub(crate) const BODY: Range = Range::left_open(0.0, 100.0);
 /// A gap or a walk that may be 0, metres.
 pub(crate) const GAP: Range = Range::closed(0.0, 1000.0);
 /// Where a sensor sits on its agent, metres from the agent's centre.
@@ -166,7 +166,7 @@ pub(crate) const MOUNT: Range = Range::closed(-100.0, 100.0);
 /// The radius of an arc or a roundabout, metres.
 pub(crate) const RADIUS: Range = Range::closed(1.0, 1.0e6);
 /// The range of a sensor, metres.
-pub(crate) const SENSOR_RANGE: Range = Range::above(0.0, 1.0e4);
+pub(crate) const SENSOR_RANGE: Range = Range::left_open(0.0, 1.0e4);
 /// The number of lanes of a road.
 pub(crate) const LANES: Range = Range::closed(1.0, 16.0);
 
@@ -177,34 +177,34 @@ pub(crate) const ANGLE: Range = Range::closed(-360.0, 360.0);
 /// The angle of an arc's end (within a turn of its start), degrees.
 pub(crate) const ARC_END: Range = Range::closed(-720.0, 720.0);
 /// A field of view, degrees.
-pub(crate) const FIELD_OF_VIEW: Range = Range::above(0.0, 360.0);
+pub(crate) const FIELD_OF_VIEW: Range = Range::left_open(0.0, 360.0);
 /// The angle between two rays that carve free space, degrees.
 pub(crate) const RAY_SPACING: Range = Range::closed(0.01, 10.0);
 /// A change of heading that triggers a message, degrees.
-pub(crate) const HEADING_CHANGE: Range = Range::above(0.0, 180.0);
+pub(crate) const HEADING_CHANGE: Range = Range::left_open(0.0, 180.0);
 /// A σ of an angle, degrees.
 pub(crate) const ANGLE_SIGMA: Range = Range::closed(0.0, 180.0);
 /// A σ of an angle that must be positive, degrees.
-pub(crate) const ANGLE_SIGMA_POSITIVE: Range = Range::above(0.0, 180.0);
+pub(crate) const ANGLE_SIGMA_POSITIVE: Range = Range::left_open(0.0, 180.0);
 
 // Time.
 
 /// The length of a run, seconds.
-pub(crate) const DURATION: Range = Range::above(0.0, 86_400.0);
+pub(crate) const DURATION: Range = Range::left_open(0.0, 86_400.0);
 /// The time between two steps, seconds.
 pub(crate) const STEP: Range = Range::closed(0.001, 60.0);
 /// A time within a run, or a span that may be 0, seconds.
 pub(crate) const TIME: Range = Range::closed(0.0, 86_400.0);
 /// A span that must be positive, seconds.
-pub(crate) const SPAN: Range = Range::above(0.0, 86_400.0);
+pub(crate) const SPAN: Range = Range::left_open(0.0, 86_400.0);
 /// A short reaction or prediction span (headway, horizon, latency), seconds.
-pub(crate) const REACTION: Range = Range::above(0.0, 60.0);
+pub(crate) const REACTION: Range = Range::left_open(0.0, 60.0);
 /// A delay that may be 0, seconds.
 pub(crate) const LATENCY: Range = Range::closed(0.0, 60.0);
 /// A time of an imported trace, seconds.
 pub(crate) const TRACE_TIME: Range = Range::closed(0.0, 1.0e9);
 /// A rate of cycles or pictures, Hz.
-pub(crate) const RATE: Range = Range::above(0.0, 1000.0);
+pub(crate) const RATE: Range = Range::left_open(0.0, 1000.0);
 /// A rate that may be 0 (none), Hz.
 pub(crate) const RATE_OR_ZERO: Range = Range::closed(0.0, 1000.0);
 
@@ -213,11 +213,11 @@ pub(crate) const RATE_OR_ZERO: Range = Range::closed(0.0, 1000.0);
 /// A speed, m/s.
 pub(crate) const SPEED: Range = Range::closed(0.0, 150.0);
 /// A speed that must be positive (a limit, a walking speed, a change), m/s.
-pub(crate) const SPEED_POSITIVE: Range = Range::above(0.0, 150.0);
+pub(crate) const SPEED_POSITIVE: Range = Range::left_open(0.0, 150.0);
 /// An acceleration or a deceleration, m/s².
-pub(crate) const ACCELERATION: Range = Range::above(0.0, 100.0);
+pub(crate) const ACCELERATION: Range = Range::left_open(0.0, 100.0);
 /// A factor on a speed (a limit factor, a speed hypothesis).
-pub(crate) const SPEED_FACTOR: Range = Range::above(0.0, 10.0);
+pub(crate) const SPEED_FACTOR: Range = Range::left_open(0.0, 10.0);
 /// A non-compliant driver's factor on the speed limit.
 pub(crate) const OVERSPEED_FACTOR: Range = Range::closed(1.0, 10.0);
 
@@ -235,7 +235,7 @@ pub(crate) const SHARE: Range = Range::closed(0.0, 1.0e6);
 /// A σ at distance 0, in the unit of what it disturbs (m, m/s).
 pub(crate) const SIGMA: Range = Range::closed(0.0, 100.0);
 /// A σ that must be positive.
-pub(crate) const SIGMA_POSITIVE: Range = Range::above(0.0, 100.0);
+pub(crate) const SIGMA_POSITIVE: Range = Range::left_open(0.0, 100.0);
 /// The growth of a σ per metre of distance.
 pub(crate) const SIGMA_PER_M: Range = Range::closed(0.0, 1.0);
 
@@ -244,7 +244,7 @@ pub(crate) const SIGMA_PER_M: Range = Range::closed(0.0, 1.0);
 /// A probability or a share.
 pub(crate) const PROBABILITY: Range = Range::closed(0.0, 1.0);
 /// A probability that must be positive (a share of seeds, a share of speed).
-pub(crate) const PROBABILITY_POSITIVE: Range = Range::above(0.0, 1.0);
+pub(crate) const PROBABILITY_POSITIVE: Range = Range::left_open(0.0, 1.0);
 /// A probability strictly between 0 and 1.
 pub(crate) const PROBABILITY_OPEN: Range = Range::open(0.0, 1.0);
 /// The probability of occupancy a detection conveys.
@@ -256,7 +256,7 @@ pub(crate) const CONFIDENCE: Range = Range::open(0.5, 1.0);
 /// The sum of the Dirichlet parameters of the mass model.
 pub(crate) const CONCENTRATION: Range = Range::closed(1.0, 1.0e12);
 /// γ, the growth of misdetection with distance (ε0 + γ/100 < 1 is checked too).
-pub(crate) const GAMMA: Range = Range::open_above(0.0, 100.0);
+pub(crate) const GAMMA: Range = Range::right_open(0.0, 100.0);
 /// The hybrid rule's switch: metres (difference) or a ratio ≥ 1.
 pub(crate) const SWITCH: Range = Range::closed(0.0, 2.0e6);
 /// The numerical tolerance of an invariant.
@@ -271,9 +271,9 @@ pub(crate) const SENSITIVITY: Range = Range::closed(-200.0, 0.0);
 /// A loss or a σ of shadowing, dB.
 pub(crate) const DECIBELS: Range = Range::closed(0.0, 100.0);
 /// A carrier frequency, GHz.
-pub(crate) const CARRIER: Range = Range::above(0.0, 100.0);
+pub(crate) const CARRIER: Range = Range::left_open(0.0, 100.0);
 /// An antenna height, metres.
-pub(crate) const ANTENNA: Range = Range::above(0.0, 1000.0);
+pub(crate) const ANTENNA: Range = Range::left_open(0.0, 1000.0);
 
 // Counts.
 
