@@ -89,7 +89,10 @@ pub fn reference_markdown() -> String {
             .map(|r| r.iter().filter_map(Value::as_str).collect())
             .unwrap_or_default();
         for (key, property) in object["properties"].as_object().into_iter().flatten() {
-            let (type_text, target) = describe_type(property, &definitions);
+            let (mut type_text, target) = describe_type(property, &definitions);
+            if let Some(range) = range_text(property) {
+                type_text = format!("{type_text} in {range}");
+            }
             let default = if required.contains(&key.as_str()) {
                 "required".to_string()
             } else {
@@ -192,6 +195,27 @@ fn describe_type(property: &Value, definitions: &Map<String, Value>) -> (String,
     }
 }
 
+/// The range of a number, or of the numbers of a list or a point, in
+/// interval notation (`(0, 100]`), when the schema bounds it.
+fn range_text(property: &Value) -> Option<String> {
+    let mut node = property;
+    while node.get("items").is_some() {
+        node = &node["items"];
+    }
+    let bound = |key: &str| node.get(key).map(Value::to_string);
+    let (low, open_low) = match (bound("minimum"), bound("exclusiveMinimum")) {
+        (Some(min), _) => (min, "["),
+        (None, Some(min)) => (min, "("),
+        _ => return None,
+    };
+    let (high, open_high) = match (bound("maximum"), bound("exclusiveMaximum")) {
+        (Some(max), _) => (max, "]"),
+        (None, Some(max)) => (max, ")"),
+        _ => return None,
+    };
+    Some(format!("{open_low}{low}, {high}{open_high}"))
+}
+
 /// The definition name a property points at, through `$ref`, `allOf` or a nullable `anyOf`.
 fn reference(property: &Value) -> Option<String> {
     if let Some(r) = property["$ref"].as_str() {
@@ -236,6 +260,6 @@ mod tests {
         ] {
             assert!(markdown.contains(section), "missing {section}");
         }
-        assert!(markdown.contains("| `gamma` | number | required |"));
+        assert!(markdown.contains("| `gamma` | number in [0, 100) | required |"));
     }
 }

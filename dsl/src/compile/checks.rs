@@ -1,5 +1,5 @@
 //! Checks the sections share: ids unique in a list and distinct from imported
-//! ones, finite points, a length in whole steps, and the known names an error
+//! ones, points within the world, a length in whole steps, and the known names an error
 //! about a dangling reference lists.
 
 use std::collections::{HashMap, HashSet};
@@ -8,6 +8,7 @@ use super::context::{Context, locate};
 use crate::de::closest;
 use crate::error::{ErrorKind, Location};
 use crate::path::Path;
+use crate::raw::range;
 
 /// Records a duplicate-id error for every repeated id of a list; returns whether all are unique.
 pub(super) fn unique_ids<'a>(ctx: &mut Context<'_>, list: &Path, ids: impl Iterator<Item = &'a str>) -> bool {
@@ -53,14 +54,9 @@ pub(super) fn distinct_from_imported<'a>(
     ok
 }
 
-pub(super) fn finite_points(ctx: &mut Context<'_>, path: &Path, points: &[[f64; 2]]) -> bool {
-    let mut ok = true;
-    for (i, point) in points.iter().enumerate() {
-        for (axis, &v) in point.iter().enumerate() {
-            ok &= ctx.finite(&path.index(i).index(axis), v);
-        }
-    }
-    ok
+/// Checks that every coordinate of `points` lies in the world's range.
+pub(super) fn coordinates(ctx: &mut Context<'_>, path: &Path, points: &[[f64; 2]]) -> bool {
+    ctx.points_within(path, points, range::COORDINATE)
 }
 
 /// The number of whole `step`s in `length`, or `None` when it is not whole.

@@ -1,8 +1,12 @@
-//! The error collector shared by the compile passes.
+//! The error collector shared by the compile passes, and the declarations that
+//! failed to compile.
+
+use std::collections::HashSet;
 
 use crate::de::DeError;
 use crate::error::{Error, ErrorKind, Location};
 use crate::path::{Path, Segment};
+use crate::raw::range::{self, Range};
 use crate::yaml::{Node, Value};
 
 /// Collects located errors while a pass walks one spanned tree.
@@ -10,6 +14,17 @@ pub(super) struct Context<'a> {
     pub(super) file: &'a str,
     pub(super) tree: &'a Node,
     pub(super) errors: Vec<Error>,
+    /// Declarations whose own errors are recorded: known, but not compiled.
+    failed: HashSet<(Declaration, String)>,
+}
+
+/// A kind of declaration that others name by id.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub(super) enum Declaration {
+    /// An entry of `roads`, named by routes.
+    Road,
+    /// An entry of `sensor_models`, named by agents.
+    SensorModel,
 }
 
 impl<'a> Context<'a> {
@@ -18,7 +33,20 @@ impl<'a> Context<'a> {
             file,
             tree,
             errors: Vec::new(),
+            failed: HashSet::new(),
         }
+    }
+
+    /// Notes that the declaration `id` failed to compile, after its errors are
+    /// recorded: a reference to it is then not reported as missing, since the
+    /// cause is the declaration, not the reference.
+    pub(super) fn declaration_failed(&mut self, kind: Declaration, id: &str) {
+        self.failed.insert((kind, id.to_string()));
+    }
+
+    /// Whether `id` is a declaration that failed to compile.
+    pub(super) fn is_failed(&self, kind: Declaration, id: &str) -> bool {
+        self.failed.contains(&(kind, id.to_string()))
     }
 
     /// Whether the file gives the node at `path`.
@@ -61,19 +89,44 @@ impl<'a> Context<'a> {
         ok
     }
 
-    /// Checks a finite number > 0.
-    pub(super) fn positive(&mut self, path: &Path, value: f64) -> bool {
-        self.expect(value.is_finite() && value > 0.0, path, "a number > 0", value)
+    /// Checks a number within its physical `range`. The error names the bound
+    /// the value passes (`a number > 0`, `a number ≤ 150`), or the whole range
+    /// for NaN.
+    pub(super) fn within(&mut self, path: &Path, value: f64, range: Range) -> bool {
+        if range.contains(value) {
+            return true;
+        }
+        let expected = if value.is_nan() {
+            range.words()
+        } else if value >= range.max {
+            range.upper()
+        } else {
+            range.lower()
+        };
+        // 1e308 as written, not as 309 digits.
+        let found = if value != 0.0 && !(1.0e-4..1.0e15).contains(&value.abs()) {
+            format!("{value:e}")
+        } else {
+            value.to_string()
+        };
+        self.error(path, ErrorKind::OutOfRange { expected, found });
+        false
     }
 
-    /// Checks a finite number ≥ 0.
-    pub(super) fn non_negative(&mut self, path: &Path, value: f64) -> bool {
-        self.expect(value.is_finite() && value >= 0.0, path, "a number ≥ 0", value)
+    /// Checks each coordinate of each point of a list.
+    pub(super) fn points_within(&mut self, path: &Path, points: &[[f64; 2]], range: Range) -> bool {
+        let mut ok = true;
+        for (i, point) in points.iter().enumerate() {
+            for (axis, &v) in point.iter().enumerate() {
+                ok &= self.within(&path.index(i).index(axis), v, range);
+            }
+        }
+        ok
     }
 
     /// Checks a probability in [0, 1].
     pub(super) fn probability(&mut self, path: &Path, value: f64) -> bool {
-        self.expect((0.0..=1.0).contains(&value), path, "a number from 0 to 1", value)
+        self.expect(range::PROBABILITY.contains(value), path, "a number from 0 to 1", value)
     }
 
     /// Checks a finite number.

@@ -6,9 +6,13 @@
 //! point per distinct configuration; the keys a combination leaves without
 //! effect) → `vary` (the space falsify searches) → `requirements` (ids, checks,
 //! `where` filters) → `record` (the recorded point and grid rate) → `Scenario`.
-//! `context` collects the located errors of every pass, and `checks` holds the
-//! checks the sections share (unique ids, finite points, whole steps).
+//! `context` collects the located errors of every pass (and the declarations
+//! that failed, so what names them is not reported as missing), `checks` holds
+//! the checks the sections share (unique ids, points within the world, whole
+//! steps), and `budget` the resource model every setup must fit
+//! (`docs/limits.md`).
 
+mod budget;
 mod checks;
 mod context;
 mod kind;

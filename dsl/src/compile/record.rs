@@ -7,6 +7,7 @@ use crate::error::ErrorKind;
 use crate::model::{Experiment, Point, Record};
 use crate::path::Path;
 use crate::raw::RawRecord;
+use crate::raw::range;
 
 /// Fused grids recorded per simulated second when the file does not say.
 const DEFAULT_GRID_RATE: f64 = 1.0;
@@ -28,7 +29,7 @@ pub(super) fn record(
     let path = Path::root().key("record");
     let rate_ok = raw
         .grid_rate
-        .is_none_or(|rate| ctx.non_negative(&path.key("grid_rate"), rate));
+        .is_none_or(|rate| ctx.within(&path.key("grid_rate"), rate, range::RATE_OR_ZERO));
     if raw.point.is_some() && !raw.filter.is_empty() {
         ctx.error(
             &path.key("where"),

@@ -12,6 +12,7 @@ use crate::model::{
     Temporal,
 };
 use crate::path::Path;
+use crate::raw::range;
 use crate::raw::{RawCheck, RawReference, RawRequirement};
 
 /// Tolerance of an invariant check when the file gives none.
@@ -257,7 +258,7 @@ fn check(ctx: &mut Context<'_>, raw: &RawCheck, path: &Path) -> Option<Check> {
         }
         let tolerance = raw.tolerance.unwrap_or(DEFAULT_TOLERANCE);
         return ctx
-            .non_negative(&path.key("tolerance"), tolerance)
+            .within(&path.key("tolerance"), tolerance, range::TOLERANCE)
             .then_some(Check::Invariant { invariant, tolerance });
     }
     if let Some(signal) = raw.signal {
@@ -280,7 +281,9 @@ fn check(ctx: &mut Context<'_>, raw: &RawCheck, path: &Path) -> Option<Check> {
             }
         };
         let bound = bound(ctx, threshold.at_least, threshold.at_most, &path.key(key))?;
-        let within_ok = raw.within.is_none_or(|w| ctx.positive(&path.key("within"), w));
+        let within_ok = raw
+            .within
+            .is_none_or(|w| ctx.within(&path.key("within"), w, range::SPAN));
         return within_ok.then_some(Check::Temporal {
             signal,
             operator,
@@ -320,9 +323,6 @@ fn bound(ctx: &mut Context<'_>, at_least: Option<f64>, at_most: Option<f64>, pat
 /// Default confidence of a check over seeds.
 const DEFAULT_CONFIDENCE: f64 = 0.95;
 
-/// Most seeds a check may run over.
-const MAX_SEEDS: u32 = 10_000;
-
 /// The check over seeds, if any: `Some(None)` for a check on the point's own run,
 /// `None` after an error.
 fn over_seeds(ctx: &mut Context<'_>, raw: &RawCheck, path: &Path) -> Option<Option<OverSeeds>> {
@@ -350,18 +350,18 @@ fn over_seeds(ctx: &mut Context<'_>, raw: &RawCheck, path: &Path) -> Option<Opti
     }
     let confidence = raw.confidence.unwrap_or(DEFAULT_CONFIDENCE);
     let ok = ctx.expect(
-        (2..=MAX_SEEDS).contains(&seeds),
+        range::SEEDS.contains(f64::from(seeds)),
         &path.key("seeds"),
-        &format!("a whole number from 2 to {MAX_SEEDS}"),
+        &format!("a whole number from 2 to {}", range::SEEDS.max),
         f64::from(seeds),
     ) & ctx.expect(
-        confidence > 0.5 && confidence < 1.0,
+        range::CONFIDENCE.contains(confidence),
         &path.key("confidence"),
         "a level above 0.5 and below 1",
         confidence,
     ) & raw.holds_in.is_none_or(|share| {
         ctx.expect(
-            share > 0.0 && share <= 1.0,
+            range::PROBABILITY_POSITIVE.contains(share),
             &path.key("holds_in"),
             "a share above 0 and at most 1",
             share,

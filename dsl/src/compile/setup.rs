@@ -1,6 +1,7 @@
 //! Ranges, units and defaults of the simulation settings: raw → [`Setup`].
 
-use super::checks::whole_multiple;
+use super::budget::within_budget;
+use super::checks::{coordinates, whole_multiple};
 use super::context::Context;
 use super::kind::{Kind, ignored_keys};
 use super::traces::Imported;
@@ -11,6 +12,7 @@ use crate::model::{
     SwitchMeasure, Truth, Weighting,
 };
 use crate::path::Path;
+use crate::raw::range;
 use crate::raw::{RawDecision, RawField, RawFusion, RawGrid, RawLayout, RawMasses, RawScenario, RawTruth};
 
 /// The largest grid sightline accepts, in cells. The field experiment keeps one
@@ -59,25 +61,22 @@ pub(super) fn setup(ctx: &mut Context<'_>, raw: &RawScenario, imported: Option<&
     } else {
         None
     };
-    Some(Setup {
+    let setup = Setup {
         seed: raw.seed,
         experiment: experiment?,
         occupancy,
-    })
+    };
+    within_budget(ctx, &setup).then_some(setup)
 }
 
 fn grid(ctx: &mut Context<'_>, raw: &RawGrid, path: &Path) -> Option<Grid> {
-    let origin_ok = raw
-        .origin
-        .iter()
-        .enumerate()
-        .all(|(i, &v)| ctx.finite(&path.key("origin").index(i), v));
+    let origin_ok = coordinates(ctx, &path.key("origin"), &[raw.origin]);
     let sizes_ok = raw
         .size
         .iter()
         .enumerate()
-        .all(|(i, &v)| ctx.positive(&path.key("size").index(i), v));
-    let cell_ok = ctx.positive(&path.key("cell"), raw.cell);
+        .all(|(i, &v)| ctx.within(&path.key("size").index(i), v, range::EXTENT));
+    let cell_ok = ctx.within(&path.key("cell"), raw.cell, range::CELL);
     if !(origin_ok && sizes_ok && cell_ok) {
         return None;
     }
@@ -121,7 +120,7 @@ fn grid(ctx: &mut Context<'_>, raw: &RawGrid, path: &Path) -> Option<Grid> {
 fn field(ctx: &mut Context<'_>, raw: &RawField, grid: &Grid, path: &Path) -> Option<Field> {
     let truth = truth(ctx, &raw.truth, grid, &path.key("truth"));
     let sensors_path = path.key("sensors");
-    let range_ok = ctx.positive(&sensors_path.key("range"), raw.sensors.range);
+    let range_ok = ctx.within(&sensors_path.key("range"), raw.sensors.range, range::SENSOR_RANGE);
     let layout = layout(ctx, &raw.sensors.layout, &sensors_path.key("layout"), grid);
     let masses = masses(ctx, &raw.masses, &path.key("masses"));
     let bands_path = path.key("distance_bands");
@@ -135,7 +134,7 @@ fn field(ctx: &mut Context<'_>, raw: &RawField, grid: &Grid, path: &Path) -> Opt
         );
     }
     for (i, &edge) in raw.distance_bands.iter().enumerate() {
-        bands_ok &= ctx.positive(&bands_path.index(i), edge);
+        bands_ok &= ctx.within(&bands_path.index(i), edge, range::EXTENT);
     }
     Some(Field {
         truth: truth?,
@@ -152,7 +151,7 @@ fn truth(ctx: &mut Context<'_>, raw: &RawTruth, grid: &Grid, path: &Path) -> Opt
         None => 1,
         Some(blob) => {
             let blob_path = path.key("blob");
-            if !ctx.positive(&blob_path, blob) {
+            if !ctx.within(&blob_path, blob, range::EXTENT) {
                 return None;
             }
             match whole_multiple(blob, grid.cell) {
@@ -218,12 +217,7 @@ fn layout(ctx: &mut Context<'_>, raw: &RawLayout, path: &Path, grid: &Grid) -> O
     }
     if let Some(positions) = &raw.positions {
         let list_path = path.key("positions");
-        let mut ok = count_ok(ctx, &list_path, positions.len());
-        for (i, position) in positions.iter().enumerate() {
-            for (axis, &v) in position.iter().enumerate() {
-                ok &= ctx.finite(&list_path.index(i).index(axis), v);
-            }
-        }
+        let ok = count_ok(ctx, &list_path, positions.len()) & coordinates(ctx, &list_path, positions);
         return ok.then(|| Layout::Positions(positions.clone()));
     }
     let random = raw.random.as_ref()?;
@@ -232,14 +226,14 @@ fn layout(ctx: &mut Context<'_>, raw: &RawLayout, path: &Path, grid: &Grid) -> O
 }
 
 fn masses(ctx: &mut Context<'_>, raw: &RawMasses, path: &Path) -> Option<Masses> {
-    let ok = ctx.positive(&path.key("concentration"), raw.concentration)
+    let ok = ctx.within(&path.key("concentration"), raw.concentration, range::CONCENTRATION)
         & ctx.expect(
             raw.epsilon0 > 0.0 && raw.epsilon0 < 1.0,
             &path.key("epsilon0"),
             "a number between 0 and 1 (exclusive)",
             raw.epsilon0,
         )
-        & ctx.non_negative(&path.key("gamma"), raw.gamma);
+        & ctx.within(&path.key("gamma"), raw.gamma, range::GAMMA);
     if !ok {
         return None;
     }
@@ -294,13 +288,15 @@ fn fusion(ctx: &mut Context<'_>, raw: &RawFusion, path: &Path) -> Option<Fusion>
             };
             let threshold_path = path.key("switch").key("threshold");
             let ok = match switch.measure {
-                SwitchMeasure::Difference => ctx.non_negative(&threshold_path, switch.threshold),
-                SwitchMeasure::Ratio => ctx.expect(
-                    switch.threshold.is_finite() && switch.threshold >= 1.0,
-                    &threshold_path,
-                    "a ratio ≥ 1",
-                    switch.threshold,
-                ),
+                SwitchMeasure::Difference => ctx.within(&threshold_path, switch.threshold, range::SWITCH),
+                SwitchMeasure::Ratio => {
+                    ctx.expect(
+                        switch.threshold >= 1.0,
+                        &threshold_path,
+                        "a ratio ≥ 1",
+                        switch.threshold,
+                    ) && ctx.within(&threshold_path, switch.threshold, range::SWITCH)
+                }
             };
             if !ok {
                 return None;

@@ -27,6 +27,7 @@ use crate::model::{
 };
 use crate::path::Path;
 use crate::raw::RawTraces;
+use crate::raw::range;
 
 /// Gaps up to this many sample periods are interpolated across.
 const GAP_PERIODS: f64 = 1.5;
@@ -77,7 +78,7 @@ pub(super) fn load(
         .as_ref()
         .map(|poly| reader.read(&at.key("poly"), poly, ImportKind::SumoPoly, parse_poly))
         .transpose();
-    let begin_ok = ctx.finite(&at.key("begin"), raw.begin);
+    let begin_ok = ctx.within(&at.key("begin"), raw.begin, range::TRACE_TIME);
     let (Ok(fcd), Ok(net), Ok(polygons), true) = (fcd, net, polygons, begin_ok) else {
         return None;
     };

@@ -4,6 +4,7 @@
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
+use super::range;
 use crate::model::AgentKind;
 
 /// A traffic participant or a roadside unit.
@@ -23,6 +24,7 @@ pub(crate) struct RawAgent {
     pub lane: u32,
     /// Pedestrians: the points [[x, y], …] it walks through, metres.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(transform = range::COORDINATE.schema())]
     pub path: Option<Vec<[f64; 2]>>,
     /// Vehicles and pedestrians: the id of the object in `traces.fcd` whose
     /// samples it replays, instead of a route or a path.
@@ -30,9 +32,11 @@ pub(crate) struct RawAgent {
     pub trace: Option<String>,
     /// Roadside units: where it stands [x, y], metres.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(transform = range::COORDINATE.schema())]
     pub position: Option<[f64; 2]>,
     /// Roadside units: heading, degrees counter-clockwise from +x.
     #[serde(default)]
+    #[schemars(transform = range::ANGLE.schema())]
     pub heading_deg: f64,
     /// When and where a moving agent appears.
     #[serde(default)]
@@ -57,8 +61,10 @@ pub(crate) struct RawAgent {
 #[schemars(rename = "Start")]
 pub(crate) struct RawStart {
     /// Time it appears, seconds.
+    #[schemars(transform = range::TIME.schema())]
     pub time: f64,
     /// Distance along its route or path where it appears, metres.
+    #[schemars(transform = range::OFFSET.schema())]
     pub offset: f64,
 }
 
@@ -68,16 +74,20 @@ pub(crate) struct RawStart {
 #[schemars(rename = "Speed")]
 pub(crate) struct RawSpeed {
     /// Desired speed, m/s (vehicles never exceed the road's limit times `limit_factor`).
+    #[schemars(transform = range::SPEED.schema())]
     pub target: f64,
     /// Speed when it appears, m/s; the target when absent.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(transform = range::SPEED.schema())]
     pub initial: Option<f64>,
     /// Largest change of speed, m/s².
     #[serde(default = "default_acceleration")]
+    #[schemars(transform = range::ACCELERATION.schema())]
     pub acceleration: f64,
     /// Vehicles: it never exceeds the road's speed limit times this factor
     /// (above 1: a non-compliant driver).
     #[serde(default = "default_limit_factor")]
+    #[schemars(transform = range::SPEED_FACTOR.schema())]
     pub limit_factor: f64,
 }
 
@@ -95,7 +105,9 @@ fn default_acceleration() -> f64 {
 #[schemars(rename = "Size")]
 pub(crate) struct RawSize {
     /// Along the heading, metres.
+    #[schemars(transform = range::BODY.schema())]
     pub length: f64,
     /// Across the heading, metres.
+    #[schemars(transform = range::BODY.schema())]
     pub width: f64,
 }

@@ -4,6 +4,7 @@
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
+use super::range;
 use crate::model::ErrorModel;
 
 /// The static field experiment of seed 001.
@@ -21,6 +22,7 @@ pub(crate) struct RawField {
     /// split by, metres, increasing. A last band holds everything beyond.
     ///
     #[serde(default = "default_distance_bands")]
+    #[schemars(transform = range::EXTENT.schema())]
     pub distance_bands: Vec<f64>,
 }
 
@@ -34,10 +36,12 @@ fn default_distance_bands() -> Vec<f64> {
 #[schemars(rename = "Truth")]
 pub(crate) struct RawTruth {
     /// Probability that a blob is occupied (0–1); the expected occupied share of cells.
+    #[schemars(transform = range::PROBABILITY.schema())]
     pub occupied_fraction: f64,
     /// Side of a square blob, metres; a whole number of cells. Default: one cell,
     /// so every cell is drawn independently.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(transform = range::EXTENT.schema())]
     pub blob: Option<f64>,
 }
 
@@ -47,6 +51,7 @@ pub(crate) struct RawTruth {
 #[schemars(rename = "Sensors")]
 pub(crate) struct RawSensors {
     /// Sensing radius R, metres.
+    #[schemars(transform = range::SENSOR_RANGE.schema())]
     pub range: f64,
     /// Where the sensors are: exactly one of `regular`, `positions`, `random`.
     pub layout: RawLayout,
@@ -62,6 +67,7 @@ pub(crate) struct RawLayout {
     pub regular: Option<RawRegular>,
     /// Explicit positions [[x, y], …] in the world frame, metres.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(transform = range::COORDINATE.schema())]
     pub positions: Option<Vec<[f64; 2]>>,
     /// Positions drawn uniformly over the grid from the scenario seed.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -74,8 +80,10 @@ pub(crate) struct RawLayout {
 #[schemars(rename = "Regular")]
 pub(crate) struct RawRegular {
     /// Number of sensor rows (along y).
+    #[schemars(transform = range::SENSOR_COUNT.schema())]
     pub rows: u32,
     /// Number of sensor columns (along x).
+    #[schemars(transform = range::SENSOR_COUNT.schema())]
     pub cols: u32,
 }
 
@@ -85,6 +93,7 @@ pub(crate) struct RawRegular {
 #[schemars(rename = "Random")]
 pub(crate) struct RawRandom {
     /// Number of sensors.
+    #[schemars(transform = range::SENSOR_COUNT.schema())]
     pub count: u32,
 }
 
@@ -95,12 +104,15 @@ pub(crate) struct RawRandom {
 pub(crate) struct RawMasses {
     /// Sum of the three Dirichlet parameters (the paper's 30 + 1 + 1 = 32).
     #[serde(default = "default_concentration")]
+    #[schemars(transform = range::CONCENTRATION.schema())]
     pub concentration: f64,
     /// ε0, the misdetection at distance 0 (0–1, exclusive; the paper's 0.0625).
     #[serde(default = "default_epsilon0")]
+    #[schemars(transform = range::PROBABILITY_OPEN.schema())]
     pub epsilon0: f64,
     /// γ, the growth of misdetection with distance: ε rises by γ/100 from the sensor
     /// to its range (≥ 0; ε at the range must stay below 1).
+    #[schemars(transform = range::GAMMA.schema())]
     pub gamma: f64,
     /// How misdetection shapes the mass vector.
     #[serde(default)]

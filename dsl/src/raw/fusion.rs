@@ -4,6 +4,7 @@
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
+use super::range;
 use crate::model::{FusionMethod, SourceCombination, SwitchMeasure, WeightScaling};
 
 /// A regular grid of square cells, axis-aligned in the world frame.
@@ -13,10 +14,13 @@ use crate::model::{FusionMethod, SourceCombination, SwitchMeasure, WeightScaling
 pub(crate) struct RawGrid {
     /// World position of the lower-left corner [x, y], metres.
     #[serde(default)]
+    #[schemars(transform = range::COORDINATE.schema())]
     pub origin: [f64; 2],
     /// Width and height [x, y], metres; each a whole number of cells.
+    #[schemars(transform = range::EXTENT.schema())]
     pub size: [f64; 2],
     /// Side of a square cell, metres.
+    #[schemars(transform = range::CELL.schema())]
     pub cell: f64,
 }
 
@@ -51,6 +55,7 @@ pub(crate) struct RawSwitch {
     #[serde(default)]
     pub measure: SwitchMeasure,
     /// Metres for `difference` (≥ 0); a ratio ≥ 1 for `ratio`.
+    #[schemars(transform = range::SWITCH.schema())]
     pub threshold: f64,
 }
 
@@ -61,6 +66,7 @@ pub(crate) struct RawSwitch {
 #[schemars(rename = "Decision")]
 pub(crate) struct RawDecision {
     /// θ (0–1; the paper's 0.8).
+    #[schemars(transform = range::PROBABILITY.schema())]
     pub threshold: f64,
 }
 

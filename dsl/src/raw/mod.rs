@@ -7,12 +7,14 @@
 //! all optional takes its defaults from one `Default` impl (a container
 //! `#[serde(default)]`); a struct with a required key keeps a default function
 //! per defaulted key, since serde has no container default that leaves a key
-//! required. Ranges, ids and references are checked in `compile`.
+//! required. Each number names its physical range (`range`), which the schema carries
+//! and `compile` checks; ids and references are checked in `compile`.
 
 mod agents;
 mod field;
 mod fusion;
 mod perception;
+pub(crate) mod range;
 mod record;
 mod requirements;
 mod scenario;
@@ -30,7 +32,7 @@ pub(crate) use record::RawRecord;
 pub(crate) use requirements::{RawCheck, RawReference, RawRequirement};
 pub(crate) use scenario::RawScenario;
 pub(crate) use semantic::{RawInteractionArea, RawSemantic};
-pub(crate) use sensors::RawSensorModel;
+pub(crate) use sensors::{RawNoise, RawSensorModel};
 pub(crate) use traffic::{RawCrosswalk, RawDriving, RawTraffic};
 pub(crate) use v2x::RawV2x;
 pub(crate) use world::{RawOccluder, RawRoad, RawTime, RawTraces};

@@ -4,6 +4,8 @@
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
+use super::range;
+
 /// Collective perception: who shares, and how an observation becomes evidence.
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, expecting = "a perception mapping with `ego`")]
@@ -21,6 +23,7 @@ pub(crate) struct RawPerception {
     pub inverse_model: RawInverseModel,
     /// Time of the grids pictured in the report, seconds. Default: the middle of the run.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(transform = range::TIME.schema())]
     pub snapshot: Option<f64>,
     /// The area the metrics count: cells whose centre lies in this circle. Default:
     /// the whole grid.
@@ -34,8 +37,10 @@ pub(crate) struct RawPerception {
 #[schemars(rename = "Region")]
 pub(crate) struct RawRegion {
     /// Centre [x, y], metres.
+    #[schemars(transform = range::COORDINATE.schema())]
     pub center: [f64; 2],
     /// Radius, metres.
+    #[schemars(transform = range::EXTENT.schema())]
     pub radius: f64,
 }
 
@@ -45,8 +50,10 @@ pub(crate) struct RawRegion {
 #[schemars(rename = "InverseModel")]
 pub(crate) struct RawInverseModel {
     /// P(occupied) of a cell a detected object covers (0.5–1).
+    #[schemars(transform = range::OCCUPIED.schema())]
     pub occupied: f64,
     /// P(occupied) of a cell seen free along a ray (0–0.5).
+    #[schemars(transform = range::FREE.schema())]
     pub free: f64,
 }
 

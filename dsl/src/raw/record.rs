@@ -5,6 +5,8 @@ use std::collections::BTreeMap;
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
+use super::range;
+
 /// What `sightline run` records into `run.mcap`: one sweep point, step by
 /// step (the scene, detections, fused grids, V2X packets, semantic messages),
 /// and every point's metrics and verdicts. Give `point` or `where`, not both;
@@ -25,6 +27,7 @@ pub(crate) struct RawRecord {
     /// Hz: every `round(1 / (grid_rate · time.step))` steps, at most every step;
     /// 0 records none. Default 1.
     #[serde(skip_serializing_if = "Option::is_none")]
+    #[schemars(transform = range::RATE_OR_ZERO.schema())]
     pub grid_rate: Option<f64>,
     /// Also record each cooperating agent's own grid, at `grid_rate`.
     pub agent_grids: bool,

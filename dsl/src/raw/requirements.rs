@@ -6,6 +6,7 @@ use std::collections::BTreeMap;
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
+use super::range;
 use crate::model::{Invariant, Metric, ObjectProperty, RateBound, Signal};
 
 /// A requirement: an id, its text, and how it is checked.
@@ -56,19 +57,23 @@ pub(crate) struct RawCheck {
     pub invariant: Option<Invariant>,
     /// Numerical tolerance of the invariant (≥ 0). Default 1e-9.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(transform = range::TOLERANCE.schema())]
     pub tolerance: Option<f64>,
     /// Check the metric over this many independent seeds (at least 2): the
     /// point's own seed, then seeds derived from it. It passes only when a
     /// one-sided confidence bound clears the threshold: of the mean (Student t),
     /// or with `holds_in`, of the share of seeds at which the threshold holds.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(transform = range::SEEDS.schema())]
     pub seeds: Option<u32>,
     /// Confidence level of the bound, above 0.5 and below 1. Default 0.95.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(transform = range::CONFIDENCE.schema())]
     pub confidence: Option<f64>,
     /// The share of seeds (0–1] at which the threshold must hold, bounded below
     /// at `confidence`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(transform = range::PROBABILITY_POSITIVE.schema())]
     pub holds_in: Option<f64>,
     /// The bound of that share: `clopper_pearson` (exact, the default) or `wilson`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -84,6 +89,7 @@ pub(crate) struct RawCheck {
     pub eventually: Option<RawThreshold>,
     /// Only the run's first this many seconds count (> 0).
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(transform = range::SPAN.schema())]
     pub within: Option<f64>,
     /// A property every object that came within d_min of the ego must meet
     /// (`at_least` or `at_most`).

@@ -6,6 +6,7 @@ use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use super::perception::RawRegion;
+use super::range;
 use crate::model::{RiskScope, RsuSight, ShareCycles};
 
 /// A region around a conflict zone (junction, roundabout entry, crossing).
@@ -20,6 +21,7 @@ pub(crate) struct RawInteractionArea {
     pub id: String,
     /// Outline [[x, y], …], metres.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(transform = range::COORDINATE.schema())]
     pub polygon: Option<Vec<[f64; 2]>>,
     /// A disc.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -38,22 +40,27 @@ pub(crate) struct RawSemantic {
     pub rsus: Option<Vec<String>>,
     /// Proximity filter: objects farther from the ego are not sent, metres.
     #[serde(default = "default_proximity")]
+    #[schemars(transform = range::EXTENT.schema())]
     pub proximity: f64,
     /// Prediction horizon T_p, seconds.
     #[serde(default = "default_horizon")]
+    #[schemars(transform = range::REACTION.schema())]
     pub horizon: f64,
     /// Conflict distance d_min between predicted centres, metres.
     #[serde(default = "default_d_min")]
+    #[schemars(transform = range::BODY.schema())]
     pub d_min: f64,
     /// Dangerous-driver classification.
     #[serde(default)]
     pub overspeed: RawOverspeed,
     /// Speed hypotheses of a compliant vehicle, as factors of its measured speed.
     #[serde(default = "default_hypotheses")]
+    #[schemars(transform = range::SPEED_FACTOR.schema())]
     pub hypotheses: Vec<f64>,
     /// How often each RSU runs the pipeline and sends its message, Hz; the
     /// simulation step must divide its period.
     #[serde(default = "default_rate")]
+    #[schemars(transform = range::RATE.schema())]
     pub rate: f64,
     /// Which objects the risk layer predicts: `relevant` (those the interaction
     /// layer labelled, as seed 002 writes) or `all` proximate vehicles and crossing
@@ -68,6 +75,7 @@ pub(crate) struct RawSemantic {
     /// How long the LDM keeps an object's history, seconds (at least the overspeed
     /// window).
     #[serde(default = "default_history")]
+    #[schemars(transform = range::SPAN.schema())]
     pub history: f64,
     /// How the ego reacts to a flagged conflict.
     #[serde(default)]
@@ -82,6 +90,7 @@ pub(crate) struct RawSemantic {
     /// Independent runs pooled into each point's measurements (traffic, detections
     /// and packet losses drawn anew; run 0 uses the scenario's seed).
     #[serde(default = "default_runs")]
+    #[schemars(transform = range::RUNS.schema())]
     pub runs: u32,
 }
 
@@ -119,8 +128,10 @@ fn default_runs() -> u32 {
 #[schemars(rename = "Overspeed")]
 pub(crate) struct RawOverspeed {
     /// Window T_w, seconds.
+    #[schemars(transform = range::SPAN.schema())]
     pub window: f64,
     /// Threshold δ_min on the mean violation, m/s.
+    #[schemars(transform = range::SPEED.schema())]
     pub threshold: f64,
 }
 
@@ -139,10 +150,13 @@ impl Default for RawOverspeed {
 #[schemars(rename = "Caution")]
 pub(crate) struct RawCaution {
     /// Time headway the ego keeps while cautious, seconds (with `driving.following: idm`).
+    #[schemars(transform = range::REACTION.schema())]
     pub headway: f64,
     /// Share of its desired speed the ego keeps while cautious (0–1).
+    #[schemars(transform = range::PROBABILITY_POSITIVE.schema())]
     pub speed_factor: f64,
     /// How long the ego stays cautious after the last flagged conflict, seconds.
+    #[schemars(transform = range::TIME.schema())]
     pub hold: f64,
 }
 
@@ -162,12 +176,16 @@ impl Default for RawCaution {
 #[schemars(rename = "Baseline")]
 pub(crate) struct RawBaseline {
     /// Include an object that moved more than this since it was last sent, metres.
+    #[schemars(transform = range::EXTENT.schema())]
     pub distance: f64,
     /// … or whose speed changed by more than this, m/s.
+    #[schemars(transform = range::SPEED_POSITIVE.schema())]
     pub speed: f64,
     /// … or whose heading changed by more than this, degrees.
+    #[schemars(transform = range::HEADING_CHANGE.schema())]
     pub heading_deg: f64,
     /// … or that was last sent at least this long ago, seconds.
+    #[schemars(transform = range::SPAN.schema())]
     pub interval: f64,
 }
 

@@ -4,6 +4,7 @@
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
+use super::range;
 use crate::model::PoseFilter;
 
 /// A sensor model, referred to by agents.
@@ -12,15 +13,18 @@ use crate::model::PoseFilter;
 #[schemars(rename = "SensorModel")]
 pub(crate) struct RawSensorModel {
     /// Range, metres.
+    #[schemars(transform = range::SENSOR_RANGE.schema())]
     pub range: f64,
     /// Horizontal field of view, degrees (360: all around).
     #[serde(default = "default_fov")]
+    #[schemars(transform = range::FIELD_OF_VIEW.schema())]
     pub fov_deg: f64,
     /// Mounting pose in the agent frame (x forward, y left).
     #[serde(default)]
     pub mount: RawMount,
     /// Probability that a visible object in range is detected (0–1).
     #[serde(default = "default_detection_probability")]
+    #[schemars(transform = range::PROBABILITY.schema())]
     pub detection_probability: f64,
     /// Standard deviation of a detection's position error, σ(d) = base + per_m · d
     /// (seed 002, eq. 1, with a linear σ(d)).
@@ -35,6 +39,7 @@ pub(crate) struct RawSensorModel {
     pub velocity_noise: RawNoise,
     /// Angle between the rays that carve free space, degrees.
     #[serde(default = "default_ray_spacing")]
+    #[schemars(transform = range::RAY_SPACING.schema())]
     pub ray_spacing_deg: f64,
 }
 
@@ -56,10 +61,13 @@ fn default_ray_spacing() -> f64 {
 #[schemars(rename = "Mount")]
 pub(crate) struct RawMount {
     /// Forward of the agent's centre, metres.
+    #[schemars(transform = range::MOUNT.schema())]
     pub x: f64,
     /// Left of the agent's centre, metres.
+    #[schemars(transform = range::MOUNT.schema())]
     pub y: f64,
     /// Yaw relative to the agent's heading, degrees.
+    #[schemars(transform = range::ANGLE.schema())]
     pub yaw_deg: f64,
 }
 
@@ -69,8 +77,10 @@ pub(crate) struct RawMount {
 #[schemars(rename = "Noise")]
 pub(crate) struct RawNoise {
     /// σ at distance 0, metres.
+    #[schemars(transform = range::SIGMA.schema())]
     pub base: f64,
     /// Growth of σ per metre of distance.
+    #[schemars(transform = range::SIGMA_PER_M.schema())]
     pub per_m: f64,
 }
 
@@ -80,14 +90,18 @@ pub(crate) struct RawNoise {
 #[schemars(rename = "Localization")]
 pub(crate) struct RawLocalization {
     /// σ of each self-reported x and y measurement, metres.
+    #[schemars(transform = range::SIGMA.schema())]
     pub position_sigma: f64,
     /// σ of each self-reported heading measurement, degrees.
+    #[schemars(transform = range::ANGLE_SIGMA.schema())]
     pub heading_sigma_deg: f64,
     /// How an agent estimates its pose from its measurements.
     pub filter: PoseFilter,
     /// Kalman filter: uncertainty the motion model adds to x and y, metres per √s.
+    #[schemars(transform = range::SIGMA_POSITIVE.schema())]
     pub process_position_sigma: f64,
     /// Kalman filter: uncertainty the motion model adds to the heading, degrees per √s.
+    #[schemars(transform = range::ANGLE_SIGMA_POSITIVE.schema())]
     pub process_heading_sigma_deg: f64,
 }
 

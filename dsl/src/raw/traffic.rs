@@ -5,6 +5,7 @@
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
+use super::range;
 use crate::model::Following;
 
 /// Background traffic generated on declared routes and crosswalks, deterministic
@@ -30,15 +31,18 @@ pub(crate) struct RawTraffic {
 #[schemars(rename = "VehicleTraffic")]
 pub(crate) struct RawVehicleTraffic {
     /// Mean number of vehicles per km of each route, kept by inflow at its start.
+    #[schemars(transform = range::DENSITY.schema())]
     pub density_per_km: f64,
     /// The routes traffic drives, each a list of road ids like an agent's `route`.
     pub routes: Vec<Vec<String>>,
     /// Share of drivers who ignore speed limits (0–1); seed 002 uses 0.4.
     #[serde(default)]
+    #[schemars(transform = range::PROBABILITY.schema())]
     pub non_compliant: f64,
     /// How much faster than the limit a non-compliant driver wants to go: its
     /// limit factor is drawn uniformly from this range [low, high].
     #[serde(default = "default_overspeed")]
+    #[schemars(transform = range::OVERSPEED_FACTOR.schema())]
     pub overspeed_factor: [f64; 2],
     /// Share of each kind among generated vehicles; need not sum to 1.
     #[serde(default)]
@@ -56,15 +60,19 @@ fn default_overspeed() -> [f64; 2] {
 pub(crate) struct RawMix {
     /// Passenger cars.
     #[serde(default)]
+    #[schemars(transform = range::SHARE.schema())]
     pub car: f64,
     /// Trucks.
     #[serde(default)]
+    #[schemars(transform = range::SHARE.schema())]
     pub truck: f64,
     /// Buses.
     #[serde(default)]
+    #[schemars(transform = range::SHARE.schema())]
     pub bus: f64,
     /// Motorbikes.
     #[serde(default)]
+    #[schemars(transform = range::SHARE.schema())]
     pub motorbike: f64,
 }
 
@@ -87,12 +95,15 @@ impl Default for RawMix {
 #[schemars(rename = "PedestrianTraffic")]
 pub(crate) struct RawPedestrianTraffic {
     /// Mean arrivals per minute at each crosswalk (a Poisson process).
+    #[schemars(transform = range::ARRIVALS.schema())]
     pub per_minute: f64,
     /// Walking speed, m/s.
     #[serde(default = "default_walking_speed")]
+    #[schemars(transform = range::SPEED_POSITIVE.schema())]
     pub speed: f64,
     /// How far before the crosswalk a pedestrian appears on the pavement, metres.
     #[serde(default = "default_approach")]
+    #[schemars(transform = range::GAP.schema())]
     pub approach: f64,
 }
 
@@ -112,11 +123,14 @@ pub(crate) struct RawCrosswalk {
     /// Unique id.
     pub id: String,
     /// One kerb [x, y], metres.
+    #[schemars(transform = range::COORDINATE.schema())]
     pub from: [f64; 2],
     /// The other kerb [x, y], metres.
+    #[schemars(transform = range::COORDINATE.schema())]
     pub to: [f64; 2],
     /// Width across the walking direction, metres.
     #[serde(default = "default_crosswalk_width")]
+    #[schemars(transform = range::BODY.schema())]
     pub width: f64,
 }
 
@@ -133,10 +147,13 @@ pub(crate) struct RawDriving {
     /// behind the closest vehicle ahead in the lane.
     pub following: Following,
     /// IDM desired time headway, seconds.
+    #[schemars(transform = range::REACTION.schema())]
     pub headway: f64,
     /// IDM gap kept when standing, metres.
+    #[schemars(transform = range::GAP.schema())]
     pub min_gap: f64,
     /// IDM comfortable deceleration, m/s².
+    #[schemars(transform = range::ACCELERATION.schema())]
     pub deceleration: f64,
 }
 

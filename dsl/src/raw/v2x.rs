@@ -3,6 +3,7 @@
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
+use super::range;
 use crate::model::PathLossModel;
 
 /// V2X assumptions.
@@ -11,8 +12,10 @@ use crate::model::PathLossModel;
 #[schemars(rename = "V2x")]
 pub(crate) struct RawV2x {
     /// Share of generated vehicles that are connected (0–1); seed 002 uses 0.
+    #[schemars(transform = range::PROBABILITY.schema())]
     pub penetration: f64,
     /// Delay from sending to delivery, seconds, besides propagation.
+    #[schemars(transform = range::LATENCY.schema())]
     pub latency: f64,
     /// The radio channel.
     pub channel: RawChannel,
@@ -26,20 +29,28 @@ pub(crate) struct RawChannel {
     /// Path-loss model.
     pub model: PathLossModel,
     /// Transmit power, dBm.
+    #[schemars(transform = range::POWER.schema())]
     pub tx_power_dbm: f64,
     /// σ of the log-normal shadowing on a line-of-sight link, dB.
+    #[schemars(transform = range::DECIBELS.schema())]
     pub shadowing_sigma_db: f64,
     /// σ of the shadowing on a link an occluder blocks, dB.
+    #[schemars(transform = range::DECIBELS.schema())]
     pub nlos_shadowing_sigma_db: f64,
     /// Fixed implementation losses, dB.
+    #[schemars(transform = range::DECIBELS.schema())]
     pub device_loss_db: f64,
     /// Receiver sensitivity, dBm.
+    #[schemars(transform = range::SENSITIVITY.schema())]
     pub sensitivity_dbm: f64,
     /// Carrier frequency, GHz.
+    #[schemars(transform = range::CARRIER.schema())]
     pub carrier_ghz: f64,
     /// Antenna height of vehicles and pedestrians, metres.
+    #[schemars(transform = range::ANTENNA.schema())]
     pub vehicle_antenna_m: f64,
     /// Antenna height of roadside units, metres.
+    #[schemars(transform = range::ANTENNA.schema())]
     pub rsu_antenna_m: f64,
 }
 

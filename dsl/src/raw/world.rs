@@ -4,6 +4,7 @@
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
+use super::range;
 use crate::model::Direction;
 
 /// Simulated time.
@@ -12,8 +13,10 @@ use crate::model::Direction;
 #[schemars(rename = "Time")]
 pub(crate) struct RawTime {
     /// Length of the run, seconds.
+    #[schemars(transform = range::DURATION.schema())]
     pub duration: f64,
     /// Time between steps, seconds; the duration is a whole number of steps.
+    #[schemars(transform = range::STEP.schema())]
     pub step: f64,
 }
 
@@ -46,6 +49,7 @@ pub(crate) struct RawTraces {
     pub junction_areas: bool,
     /// The trace's time that becomes the scenario's time 0, seconds.
     #[serde(default)]
+    #[schemars(transform = range::TRACE_TIME.schema())]
     pub begin: f64,
 }
 
@@ -66,6 +70,7 @@ pub(crate) struct RawRoad {
     pub id: String,
     /// Centreline of lane 0 as points [[x, y], …], metres, in the direction of travel.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(transform = range::COORDINATE.schema())]
     pub polyline: Option<Vec<[f64; 2]>>,
     /// Centreline of lane 0 as a circular arc.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -75,11 +80,14 @@ pub(crate) struct RawRoad {
     pub roundabout: Option<RawRoundabout>,
     /// Number of lanes; lane k lies k lane widths left of lane 0.
     #[serde(default = "default_lanes")]
+    #[schemars(transform = range::LANES.schema())]
     pub lanes: u32,
     /// Lane width, metres.
     #[serde(default = "default_lane_width")]
+    #[schemars(transform = range::BODY.schema())]
     pub lane_width: f64,
     /// Speed limit, m/s.
+    #[schemars(transform = range::SPEED_POSITIVE.schema())]
     pub speed_limit: f64,
 }
 
@@ -97,12 +105,16 @@ fn default_lane_width() -> f64 {
 #[schemars(rename = "Arc")]
 pub(crate) struct RawArc {
     /// Centre [x, y], metres.
+    #[schemars(transform = range::COORDINATE.schema())]
     pub center: [f64; 2],
     /// Radius, metres.
+    #[schemars(transform = range::RADIUS.schema())]
     pub radius: f64,
     /// Angle of the first point, degrees counter-clockwise from +x.
+    #[schemars(transform = range::ANGLE.schema())]
     pub start_deg: f64,
     /// Angle of the last point, degrees.
+    #[schemars(transform = range::ARC_END.schema())]
     pub end_deg: f64,
 }
 
@@ -112,8 +124,10 @@ pub(crate) struct RawArc {
 #[schemars(rename = "Roundabout")]
 pub(crate) struct RawRoundabout {
     /// Centre [x, y], metres.
+    #[schemars(transform = range::COORDINATE.schema())]
     pub center: [f64; 2],
     /// Radius of lane 0's centreline, metres.
+    #[schemars(transform = range::RADIUS.schema())]
     pub radius: f64,
     /// Direction of travel: `ccw` (right-hand traffic) or `cw`.
     #[serde(default)]
@@ -128,6 +142,7 @@ pub(crate) struct RawOccluder {
     /// Unique id.
     pub id: String,
     /// Outline [[x, y], …], metres, at least three corners (not repeated at the end).
+    #[schemars(transform = range::COORDINATE.schema())]
     pub polygon: Vec<[f64; 2]>,
     /// Height, metres. Not modelled: sight and radio are computed in the plane,
     /// so `check` refuses it.

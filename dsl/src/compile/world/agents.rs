@@ -5,14 +5,15 @@
 use std::collections::{HashMap, HashSet};
 
 use super::routes::route_path;
-use crate::compile::checks::{finite_points, known_names, unique_ids};
-use crate::compile::context::Context;
+use crate::compile::checks::{coordinates, known_names, unique_ids};
+use crate::compile::context::{Context, Declaration};
 use crate::compile::traces::{Imported, imported_agents, trace_motion};
 use crate::error::ErrorKind;
 use crate::geometry::Polyline;
 use crate::model::{Agent, AgentKind, Motion, Road, Sensor};
 use crate::path::Path;
 use crate::raw::RawAgent;
+use crate::raw::range;
 
 /// What agents are resolved against.
 pub(super) struct Scene<'a> {
@@ -80,8 +81,8 @@ fn agent_of(ctx: &mut Context<'_>, raw: &RawAgent, path: &Path, scene: &Scene<'_
     let (default_length, default_width) = raw.kind.footprint();
     let (length, width) = match &raw.size {
         Some(size) => {
-            let ok = ctx.positive(&path.key("size").key("length"), size.length)
-                & ctx.positive(&path.key("size").key("width"), size.width);
+            let ok = ctx.within(&path.key("size").key("length"), size.length, range::BODY)
+                & ctx.within(&path.key("size").key("width"), size.width, range::BODY);
             if !ok {
                 return None;
             }
@@ -94,6 +95,8 @@ fn agent_of(ctx: &mut Context<'_>, raw: &RawAgent, path: &Path, scene: &Scene<'_
     for (i, name) in raw.sensors.iter().enumerate() {
         match scene.sensors.get(name) {
             Some(sensor) => resolved.push(sensor.clone()),
+            // The model's own errors say why.
+            None if ctx.is_failed(Declaration::SensorModel, name) => sensors_ok = false,
             None => {
                 let mut known: Vec<&str> = scene.sensors.keys().map(String::as_str).collect();
                 known.sort_unstable();
@@ -160,8 +163,8 @@ fn motion(ctx: &mut Context<'_>, raw: &RawAgent, path: &Path, scene: &Scene<'_>,
         return None;
     }
     if let Some(position) = raw.position {
-        let ok = finite_points(ctx, &path.key("position"), &[position])
-            & ctx.finite(&path.key("heading_deg"), raw.heading_deg);
+        let ok = coordinates(ctx, &path.key("position"), &[position])
+            & ctx.within(&path.key("heading_deg"), raw.heading_deg, range::ANGLE);
         return ok.then_some(Motion::Fixed {
             position,
             heading: raw.heading_deg.to_radians(),
@@ -179,17 +182,17 @@ fn motion(ctx: &mut Context<'_>, raw: &RawAgent, path: &Path, scene: &Scene<'_>,
     };
     let speed_path = path.key("speed");
     let initial = speed.initial.unwrap_or(speed.target);
-    let ok = ctx.non_negative(&speed_path.key("target"), speed.target)
-        & ctx.non_negative(&speed_path.key("initial"), initial)
-        & ctx.positive(&speed_path.key("acceleration"), speed.acceleration)
-        & ctx.positive(&speed_path.key("limit_factor"), speed.limit_factor)
-        & ctx.non_negative(&path.key("start").key("time"), raw.start.time)
-        & ctx.non_negative(&path.key("start").key("offset"), raw.start.offset);
+    let ok = ctx.within(&speed_path.key("target"), speed.target, range::SPEED)
+        & ctx.within(&speed_path.key("initial"), initial, range::SPEED)
+        & ctx.within(&speed_path.key("acceleration"), speed.acceleration, range::ACCELERATION)
+        & ctx.within(&speed_path.key("limit_factor"), speed.limit_factor, range::SPEED_FACTOR)
+        & ctx.within(&path.key("start").key("time"), raw.start.time, range::TIME)
+        & ctx.within(&path.key("start").key("offset"), raw.start.offset, range::OFFSET);
     let (along, limits) = match (&raw.route, &raw.path) {
         (Some(route), _) => route_path(ctx, route, raw.lane, &path.key("route"), scene.roads)?,
         (None, Some(points)) => {
             let path_path = path.key("path");
-            if !finite_points(ctx, &path_path, points) {
+            if !coordinates(ctx, &path_path, points) {
                 return None;
             }
             let Some(line) = Polyline::new(points.iter().copied()) else {

@@ -13,6 +13,7 @@ use crate::compile::traces::Imported;
 use crate::error::ErrorKind;
 use crate::model::World;
 use crate::path::Path;
+use crate::raw::range;
 use crate::raw::{RawScenario, RawTime};
 
 /// The most steps a run may have.
@@ -32,7 +33,7 @@ pub(crate) fn world(ctx: &mut Context<'_>, raw: &RawScenario, imported: Option<&
         return None;
     };
     let steps = time_steps(ctx, time, &root.key("time"));
-    let sensors = sensor_models(ctx, raw);
+    let (sensors, sensors_ok) = sensor_models(ctx, raw);
     let localization = localization(ctx, raw);
     let driving = driving(ctx, &raw.driving);
     let v2x = v2x(ctx, &raw.v2x);
@@ -41,11 +42,11 @@ pub(crate) fn world(ctx: &mut Context<'_>, raw: &RawScenario, imported: Option<&
         // the sections that depend on it would say without it would mislead.
         return None;
     }
-    let roads = roads(ctx, &raw.roads, imported);
+    let (roads, roads_ok) = roads(ctx, &raw.roads, imported);
     let occluders = occluders(ctx, &raw.occluders, imported);
     let scene = Scene {
-        roads: roads.as_deref().unwrap_or_default(),
-        sensors: &sensors?,
+        roads: &roads,
+        sensors: &sensors,
         imported,
         duration: time.duration,
     };
@@ -57,13 +58,12 @@ pub(crate) fn world(ctx: &mut Context<'_>, raw: &RawScenario, imported: Option<&
         (None, _, _) => Some(None),
         _ => None,
     };
-    let roads_known = roads.as_deref().unwrap_or_default();
     let crosswalks = crosswalks(ctx, &raw.crosswalks);
     let interaction_areas = interaction_areas(ctx, &raw.interaction_areas, imported);
     let traffic = raw
         .traffic
         .as_ref()
-        .map(|t| traffic(ctx, t, roads_known, crosswalks.as_deref().unwrap_or_default()));
+        .map(|t| traffic(ctx, t, &roads, crosswalks.as_deref()));
     // A world measuring collective perception refuses `semantic` (see `kind`).
     let semantic = match (&raw.semantic, &agents) {
         (Some(_), _) if raw.perception.is_some() => Some(None),
@@ -85,10 +85,10 @@ pub(crate) fn world(ctx: &mut Context<'_>, raw: &RawScenario, imported: Option<&
     Some(World {
         step: time.step,
         steps: steps?,
-        roads: roads?,
+        roads: roads_ok.then_some(roads)?,
         occluders: occluders?,
         imported: agents.as_ref().map_or(0, |(_, imported)| *imported),
-        agents: agents?.0,
+        agents: sensors_ok.then_some(agents?.0)?,
         localization: localization?,
         perception: perception?,
         traffic: traffic.map_or(Some(None), |t| t.map(Some))?,
@@ -101,7 +101,8 @@ pub(crate) fn world(ctx: &mut Context<'_>, raw: &RawScenario, imported: Option<&
 }
 
 fn time_steps(ctx: &mut Context<'_>, time: &RawTime, path: &Path) -> Option<usize> {
-    let ok = ctx.positive(&path.key("duration"), time.duration) & ctx.positive(&path.key("step"), time.step);
+    let ok = ctx.within(&path.key("duration"), time.duration, range::DURATION)
+        & ctx.within(&path.key("step"), time.step, range::STEP);
     if !ok {
         return None;
     }

@@ -3,7 +3,7 @@
 
 use std::collections::HashSet;
 
-use crate::compile::checks::{distinct_from_imported, finite_points, unique_ids};
+use crate::compile::checks::{coordinates, distinct_from_imported, unique_ids};
 use crate::compile::context::Context;
 use crate::compile::traces::Imported;
 use crate::error::ErrorKind;
@@ -33,7 +33,7 @@ pub(super) fn occluders(
     for (i, occluder) in raw.iter().enumerate() {
         let path = list.index(i);
         let polygon_path = path.key("polygon");
-        if !finite_points(ctx, &polygon_path, &occluder.polygon) {
+        if !coordinates(ctx, &polygon_path, &occluder.polygon) {
             ok = false;
             continue;
         }

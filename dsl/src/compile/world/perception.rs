@@ -1,12 +1,13 @@
 //! Collective perception: the ego, the agents that cooperate with it, the
 //! inverse sensor model, the pictured step and the region the metrics count.
 
-use crate::compile::checks::{finite_points, known_names};
+use crate::compile::checks::{coordinates, known_names};
 use crate::compile::context::Context;
 use crate::error::ErrorKind;
 use crate::model::{Agent, Perception};
 use crate::path::Path;
 use crate::raw::RawPerception;
+use crate::raw::range;
 
 pub(super) fn perception_of(
     ctx: &mut Context<'_>,
@@ -65,12 +66,12 @@ pub(super) fn perception_of(
     let model = &raw.inverse_model;
     let model_path = path.key("inverse_model");
     let ok = ctx.expect(
-        model.occupied > 0.5 && model.occupied < 1.0,
+        range::OCCUPIED.contains(model.occupied),
         &model_path.key("occupied"),
         "a probability above 0.5 and below 1",
         model.occupied,
     ) & ctx.expect(
-        model.free > 0.0 && model.free < 0.5,
+        range::FREE.contains(model.free),
         &model_path.key("free"),
         "a probability above 0 and below 0.5",
         model.free,
@@ -84,8 +85,8 @@ pub(super) fn perception_of(
         snapshot,
     );
     let region_ok = raw.region.as_ref().is_none_or(|r| {
-        finite_points(ctx, &path.key("region").key("center"), &[r.center])
-            & ctx.positive(&path.key("region").key("radius"), r.radius)
+        coordinates(ctx, &path.key("region").key("center"), &[r.center])
+            & ctx.within(&path.key("region").key("radius"), r.radius, range::EXTENT)
     });
     (ok && snapshot_ok && region_ok).then(|| Perception {
         ego,

@@ -3,17 +3,20 @@
 
 use std::collections::HashSet;
 
-use crate::compile::checks::{distinct_from_imported, finite_points, unique_ids};
-use crate::compile::context::Context;
+use crate::compile::checks::{coordinates, distinct_from_imported, unique_ids};
+use crate::compile::context::{Context, Declaration};
 use crate::compile::traces::Imported;
 use crate::error::ErrorKind;
-use crate::geometry::{MAX_CHORD_ERROR, Polyline, arc};
+use crate::geometry::{Polyline, arc};
 use crate::model::{Direction, LaneLink, Road};
 use crate::path::Path;
 use crate::raw::RawRoad;
+use crate::raw::range;
 
-/// The declared roads, then those of `traces.net`.
-pub(super) fn roads(ctx: &mut Context<'_>, raw: &[RawRoad], imported: Option<&Imported>) -> Option<Vec<Road>> {
+/// The declared roads that compile, then those of `traces.net`; and whether
+/// every declared road compiled. A road that does not is noted in `ctx`, so
+/// the routes that name it are not reported as naming a missing road.
+pub(super) fn roads(ctx: &mut Context<'_>, raw: &[RawRoad], imported: Option<&Imported>) -> (Vec<Road>, bool) {
     let list = Path::root().key("roads");
     let net_roads = imported.map_or(&[][..], |i| &i.roads);
     let net_ids: HashSet<&str> = net_roads.iter().map(|r| r.id.as_str()).collect();
@@ -28,9 +31,9 @@ pub(super) fn roads(ctx: &mut Context<'_>, raw: &[RawRoad], imported: Option<&Im
     let mut roads = Vec::new();
     for (i, road) in raw.iter().enumerate() {
         let path = list.index(i);
-        let shape_ok = ctx.expect(road.lanes >= 1, &path.key("lanes"), "at least 1", road.lanes.into())
-            & ctx.positive(&path.key("lane_width"), road.lane_width)
-            & ctx.positive(&path.key("speed_limit"), road.speed_limit);
+        let shape_ok = ctx.within(&path.key("lanes"), road.lanes.into(), range::LANES)
+            & ctx.within(&path.key("lane_width"), road.lane_width, range::BODY)
+            & ctx.within(&path.key("speed_limit"), road.speed_limit, range::SPEED_POSITIVE);
         match (shape_ok, reference_line(ctx, road, &path)) {
             (true, Some(reference)) => {
                 let lanes = (0..road.lanes)
@@ -44,7 +47,10 @@ pub(super) fn roads(ctx: &mut Context<'_>, raw: &[RawRoad], imported: Option<&Im
                     links: Vec::new(),
                 });
             }
-            _ => ok = false,
+            _ => {
+                ctx.declaration_failed(Declaration::Road, &road.id);
+                ok = false;
+            }
         }
     }
     // The network's links index its own roads, which follow the declared ones.
@@ -62,7 +68,7 @@ pub(super) fn roads(ctx: &mut Context<'_>, raw: &[RawRoad], imported: Option<&Im
             ..road.clone()
         }
     }));
-    ok.then_some(roads)
+    (roads, ok)
 }
 
 /// Lane 0's centreline of a road.
@@ -77,7 +83,7 @@ fn reference_line(ctx: &mut Context<'_>, road: &RawRoad, path: &Path) -> Option<
     }
     if let Some(points) = &road.polyline {
         let line_path = path.key("polyline");
-        if !finite_points(ctx, &line_path, points) {
+        if !coordinates(ctx, &line_path, points) {
             return None;
         }
         let line = Polyline::new(points.iter().copied());
@@ -91,36 +97,46 @@ fn reference_line(ctx: &mut Context<'_>, road: &RawRoad, path: &Path) -> Option<
     }
     if let Some(a) = &road.arc {
         let arc_path = path.key("arc");
-        let ok = finite_points(ctx, &arc_path.key("center"), &[a.center])
-            & ctx.positive(&arc_path.key("radius"), a.radius)
-            & ctx.finite(&arc_path.key("start_deg"), a.start_deg)
+        let ok = coordinates(ctx, &arc_path.key("center"), &[a.center])
+            & ctx.within(&arc_path.key("radius"), a.radius, range::RADIUS)
+            & ctx.within(&arc_path.key("start_deg"), a.start_deg, range::ANGLE)
             & ctx.expect(
                 a.end_deg.is_finite() && a.end_deg != a.start_deg && (a.end_deg - a.start_deg).abs() <= 360.0,
                 &arc_path.key("end_deg"),
                 "an angle other than start_deg, within 360° of it",
                 a.end_deg,
             );
-        return ok
-            .then(|| {
-                Polyline::new(arc(
-                    a.center,
-                    a.radius,
-                    a.start_deg.to_radians(),
-                    a.end_deg.to_radians(),
-                ))
-            })
-            .flatten();
+        if !ok {
+            return None;
+        }
+        let line = Polyline::new(arc(
+            a.center,
+            a.radius,
+            a.start_deg.to_radians(),
+            a.end_deg.to_radians(),
+        ));
+        if line.is_none() {
+            ctx.error(
+                &arc_path.key("end_deg"),
+                ErrorKind::Invalid("the arc has no length: its end is too close to its start".into()),
+            );
+        }
+        return line;
     }
     let ring = road.roundabout.as_ref()?;
     let ring_path = path.key("roundabout");
-    let inner = ring.radius - f64::from(road.lanes - 1) * road.lane_width;
-    let ok = finite_points(ctx, &ring_path.key("center"), &[ring.center])
-        & ctx.expect(
-            ring.radius.is_finite() && inner > MAX_CHORD_ERROR,
-            &ring_path.key("radius"),
-            "a radius larger than the inner lanes take",
-            ring.radius,
-        );
+    let inner = ring.radius - f64::from(road.lanes.saturating_sub(1)) * road.lane_width;
+    let ok = coordinates(ctx, &ring_path.key("center"), &[ring.center])
+        & (ctx.within(&ring_path.key("radius"), ring.radius, range::RADIUS)
+            && ctx.expect(
+                inner >= range::RADIUS.min,
+                &ring_path.key("radius"),
+                &format!(
+                    "a radius that leaves the innermost lane at least {} m from the centre",
+                    range::RADIUS.min
+                ),
+                ring.radius,
+            ));
     let sweep = match ring.direction {
         Direction::Ccw => std::f64::consts::TAU,
         Direction::Cw => -std::f64::consts::TAU,

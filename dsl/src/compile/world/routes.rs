@@ -2,7 +2,7 @@
 //! path on one lane, with the speed limit of each part.
 
 use crate::compile::checks::known_names;
-use crate::compile::context::Context;
+use crate::compile::context::{Context, Declaration};
 use crate::error::ErrorKind;
 use crate::geometry::{Polyline, Xy, distance};
 use crate::model::Road;
@@ -27,6 +27,10 @@ pub(super) fn route_path(
     let mut parts: Vec<(&Road, &Polyline)> = Vec::new();
     for (i, id) in route.iter().enumerate() {
         let Some(road) = roads.iter().find(|r| &r.id == id) else {
+            if ctx.is_failed(Declaration::Road, id) {
+                // The road's own errors say why; the route is not at fault.
+                return None;
+            }
             let known: Vec<&str> = roads.iter().map(|r| r.id.as_str()).collect();
             ctx.error(
                 &path.index(i),

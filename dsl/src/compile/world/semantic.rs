@@ -4,7 +4,7 @@
 use std::collections::HashSet;
 
 use super::routes::route_path;
-use crate::compile::checks::{distinct_from_imported, finite_points, known_names, unique_ids, whole_multiple};
+use crate::compile::checks::{coordinates, distinct_from_imported, known_names, unique_ids, whole_multiple};
 use crate::compile::context::Context;
 use crate::compile::traces::Imported;
 use crate::error::ErrorKind;
@@ -14,19 +14,17 @@ use crate::model::{
     PedestrianTraffic, Road, Semantic, Traffic, TrafficRoute, V2x, VehicleTraffic,
 };
 use crate::path::Path;
+use crate::raw::range;
 use crate::raw::{RawCrosswalk, RawDriving, RawInteractionArea, RawSemantic, RawTraffic, RawV2x};
-
-/// Most independent runs a point may pool.
-const MAX_RUNS: u32 = 1000;
 
 pub(super) fn crosswalks(ctx: &mut Context<'_>, raw: &[RawCrosswalk]) -> Option<Vec<Crosswalk>> {
     let list = Path::root().key("crosswalks");
     let mut ok = unique_ids(ctx, &list, raw.iter().map(|c| c.id.as_str()));
     for (i, crosswalk) in raw.iter().enumerate() {
         let path = list.index(i);
-        let ends_ok = finite_points(ctx, &path.key("from"), &[crosswalk.from])
-            & finite_points(ctx, &path.key("to"), &[crosswalk.to]);
-        ok &= ends_ok & ctx.positive(&path.key("width"), crosswalk.width);
+        let ends_ok =
+            coordinates(ctx, &path.key("from"), &[crosswalk.from]) & coordinates(ctx, &path.key("to"), &[crosswalk.to]);
+        ok &= ends_ok & ctx.within(&path.key("width"), crosswalk.width, range::BODY);
         if ends_ok && crosswalk.from == crosswalk.to {
             ctx.error(
                 &path.key("to"),
@@ -70,7 +68,7 @@ pub(super) fn interaction_areas(
         let shape = match (&area.polygon, &area.circle) {
             (Some(polygon), None) => {
                 let polygon_path = path.key("polygon");
-                if !finite_points(ctx, &polygon_path, polygon) {
+                if !coordinates(ctx, &polygon_path, polygon) {
                     None
                 } else if let Some(outline) = counter_clockwise(polygon) {
                     Some(Area::Polygon(outline))
@@ -84,8 +82,8 @@ pub(super) fn interaction_areas(
             }
             (None, Some(circle)) => {
                 let circle_path = path.key("circle");
-                let circle_ok = finite_points(ctx, &circle_path.key("center"), &[circle.center])
-                    & ctx.positive(&circle_path.key("radius"), circle.radius);
+                let circle_ok = coordinates(ctx, &circle_path.key("center"), &[circle.center])
+                    & ctx.within(&circle_path.key("radius"), circle.radius, range::EXTENT);
                 circle_ok.then_some(Area::Circle {
                     center: circle.center,
                     radius: circle.radius,
@@ -115,7 +113,7 @@ pub(super) fn traffic(
     ctx: &mut Context<'_>,
     raw: &RawTraffic,
     roads: &[Road],
-    crosswalks: &[Crosswalk],
+    crosswalks: Option<&[Crosswalk]>,
 ) -> Option<Traffic> {
     let path = Path::root().key("traffic");
     let mut ok = true;
@@ -128,16 +126,19 @@ pub(super) fn traffic(
             (AgentKind::Bus, v.mix.bus, "bus"),
             (AgentKind::Motorbike, v.mix.motorbike, "motorbike"),
         ];
-        let mut fields_ok = ctx.non_negative(&path.key("density_per_km"), v.density_per_km)
+        let factor_path = path.key("overspeed_factor");
+        let mut fields_ok = ctx.within(&path.key("density_per_km"), v.density_per_km, range::DENSITY)
             & ctx.probability(&path.key("non_compliant"), v.non_compliant)
-            & ctx.expect(
-                low.is_finite() && high.is_finite() && 1.0 <= low && low <= high,
-                &path.key("overspeed_factor"),
-                "[low, high] with 1 ≤ low ≤ high",
-                if low < 1.0 { low } else { high },
-            );
+            & ((ctx.within(&factor_path.index(0), low, range::OVERSPEED_FACTOR)
+                & ctx.within(&factor_path.index(1), high, range::OVERSPEED_FACTOR))
+                && ctx.expect(
+                    low <= high,
+                    &factor_path.index(1),
+                    &format!("a high end ≥ the low end {low}"),
+                    high,
+                ));
         for &(_, share, name) in &mix {
-            fields_ok &= ctx.non_negative(&path.key("mix").key(name), share);
+            fields_ok &= ctx.within(&path.key("mix").key(name), share, range::SHARE);
         }
         let total: f64 = mix.iter().map(|&(_, share, _)| share).sum();
         if fields_ok && total <= 0.0 {
@@ -176,10 +177,11 @@ pub(super) fn traffic(
     });
     let pedestrians = raw.pedestrians.as_ref().and_then(|p| {
         let path = path.key("pedestrians");
-        let mut fields_ok = ctx.non_negative(&path.key("per_minute"), p.per_minute)
-            & ctx.positive(&path.key("speed"), p.speed)
-            & ctx.non_negative(&path.key("approach"), p.approach);
-        if crosswalks.is_empty() {
+        let mut fields_ok = ctx.within(&path.key("per_minute"), p.per_minute, range::ARRIVALS)
+            & ctx.within(&path.key("speed"), p.speed, range::SPEED_POSITIVE)
+            & ctx.within(&path.key("approach"), p.approach, range::GAP);
+        // Crosswalks that failed to compile have their own errors.
+        if crosswalks.is_some_and(<[Crosswalk]>::is_empty) {
             ctx.error(
                 &path,
                 ErrorKind::Invalid("pedestrian traffic crosses at `crosswalks`, and there are none".into()),
@@ -198,9 +200,9 @@ pub(super) fn traffic(
 
 pub(super) fn driving(ctx: &mut Context<'_>, raw: &RawDriving) -> Option<Driving> {
     let path = Path::root().key("driving");
-    let ok = ctx.positive(&path.key("headway"), raw.headway)
-        & ctx.non_negative(&path.key("min_gap"), raw.min_gap)
-        & ctx.positive(&path.key("deceleration"), raw.deceleration);
+    let ok = ctx.within(&path.key("headway"), raw.headway, range::REACTION)
+        & ctx.within(&path.key("min_gap"), raw.min_gap, range::GAP)
+        & ctx.within(&path.key("deceleration"), raw.deceleration, range::ACCELERATION);
     ok.then_some(Driving {
         following: raw.following,
         headway: raw.headway,
@@ -220,23 +222,35 @@ pub(super) fn v2x(ctx: &mut Context<'_>, raw: &RawV2x) -> Option<V2x> {
         0.0
     };
     let mut ok = ctx.probability(&path.key("penetration"), raw.penetration)
-        & ctx.non_negative(&path.key("latency"), raw.latency)
-        & ctx.finite(&channel_path.key("tx_power_dbm"), c.tx_power_dbm)
-        & ctx.non_negative(&channel_path.key("shadowing_sigma_db"), c.shadowing_sigma_db)
-        & ctx.non_negative(&channel_path.key("nlos_shadowing_sigma_db"), c.nlos_shadowing_sigma_db)
-        & ctx.non_negative(&channel_path.key("device_loss_db"), c.device_loss_db)
-        & ctx.finite(&channel_path.key("sensitivity_dbm"), c.sensitivity_dbm)
-        & ctx.positive(&channel_path.key("carrier_ghz"), c.carrier_ghz);
+        & ctx.within(&path.key("latency"), raw.latency, range::LATENCY)
+        & ctx.within(&channel_path.key("tx_power_dbm"), c.tx_power_dbm, range::POWER)
+        & ctx.within(
+            &channel_path.key("shadowing_sigma_db"),
+            c.shadowing_sigma_db,
+            range::DECIBELS,
+        )
+        & ctx.within(
+            &channel_path.key("nlos_shadowing_sigma_db"),
+            c.nlos_shadowing_sigma_db,
+            range::DECIBELS,
+        )
+        & ctx.within(&channel_path.key("device_loss_db"), c.device_loss_db, range::DECIBELS)
+        & ctx.within(
+            &channel_path.key("sensitivity_dbm"),
+            c.sensitivity_dbm,
+            range::SENSITIVITY,
+        )
+        & ctx.within(&channel_path.key("carrier_ghz"), c.carrier_ghz, range::CARRIER);
     for (key, height) in [
         ("vehicle_antenna_m", c.vehicle_antenna_m),
         ("rsu_antenna_m", c.rsu_antenna_m),
     ] {
         ok &= ctx.expect(
-            height.is_finite() && height > lowest,
+            height > lowest,
             &channel_path.key(key),
             &format!("a height above {lowest} m"),
             height,
-        );
+        ) && ctx.within(&channel_path.key(key), height, range::ANTENNA);
     }
     ok.then_some(V2x {
         penetration: raw.penetration,
@@ -323,28 +337,52 @@ pub(super) fn semantic_of(ctx: &mut Context<'_>, raw: &RawSemantic, agents: &[Ag
         }
         !r.is_empty()
     });
-    let mut ok = ctx.positive(&path.key("proximity"), raw.proximity)
-        & ctx.positive(&path.key("horizon"), raw.horizon)
-        & ctx.positive(&path.key("d_min"), raw.d_min)
-        & ctx.positive(&path.key("overspeed").key("window"), raw.overspeed.window)
-        & ctx.non_negative(&path.key("overspeed").key("threshold"), raw.overspeed.threshold)
-        & ctx.positive(&path.key("rate"), raw.rate)
-        & ctx.positive(&path.key("caution").key("headway"), raw.caution.headway)
+    let mut ok = ctx.within(&path.key("proximity"), raw.proximity, range::EXTENT)
+        & ctx.within(&path.key("horizon"), raw.horizon, range::REACTION)
+        & ctx.within(&path.key("d_min"), raw.d_min, range::BODY)
+        & ctx.within(&path.key("overspeed").key("window"), raw.overspeed.window, range::SPAN)
+        & ctx.within(
+            &path.key("overspeed").key("threshold"),
+            raw.overspeed.threshold,
+            range::SPEED,
+        )
+        & ctx.within(&path.key("rate"), raw.rate, range::RATE)
+        & ctx.within(
+            &path.key("caution").key("headway"),
+            raw.caution.headway,
+            range::REACTION,
+        )
         & ctx.expect(
-            raw.caution.speed_factor > 0.0 && raw.caution.speed_factor <= 1.0,
+            range::PROBABILITY_POSITIVE.contains(raw.caution.speed_factor),
             &path.key("caution").key("speed_factor"),
             "a number above 0 and at most 1",
             raw.caution.speed_factor,
         )
-        & ctx.non_negative(&path.key("caution").key("hold"), raw.caution.hold)
-        & ctx.positive(&path.key("baseline").key("distance"), raw.baseline.distance)
-        & ctx.positive(&path.key("baseline").key("speed"), raw.baseline.speed)
-        & ctx.positive(&path.key("baseline").key("heading_deg"), raw.baseline.heading_deg)
-        & ctx.positive(&path.key("baseline").key("interval"), raw.baseline.interval);
+        & ctx.within(&path.key("caution").key("hold"), raw.caution.hold, range::TIME)
+        & ctx.within(
+            &path.key("baseline").key("distance"),
+            raw.baseline.distance,
+            range::EXTENT,
+        )
+        & ctx.within(
+            &path.key("baseline").key("speed"),
+            raw.baseline.speed,
+            range::SPEED_POSITIVE,
+        )
+        & ctx.within(
+            &path.key("baseline").key("heading_deg"),
+            raw.baseline.heading_deg,
+            range::HEADING_CHANGE,
+        )
+        & ctx.within(
+            &path.key("baseline").key("interval"),
+            raw.baseline.interval,
+            range::SPAN,
+        );
     ok &= ctx.expect(
-        (1..=MAX_RUNS).contains(&raw.runs),
+        range::RUNS.contains(f64::from(raw.runs)),
         &path.key("runs"),
-        &format!("a whole number from 1 to {MAX_RUNS}"),
+        &format!("a whole number from 1 to {}", range::RUNS.max),
         f64::from(raw.runs),
     );
     if raw.hypotheses.is_empty() {
@@ -355,10 +393,10 @@ pub(super) fn semantic_of(ctx: &mut Context<'_>, raw: &RawSemantic, agents: &[Ag
         ok = false;
     }
     for (i, &factor) in raw.hypotheses.iter().enumerate() {
-        ok &= ctx.positive(&path.key("hypotheses").index(i), factor);
+        ok &= ctx.within(&path.key("hypotheses").index(i), factor, range::SPEED_FACTOR);
     }
     ok &= ctx.expect(
-        raw.history.is_finite() && raw.history >= raw.overspeed.window,
+        range::SPAN.contains(raw.history) && raw.history >= raw.overspeed.window,
         &path.key("history"),
         &format!("at least the overspeed window, {} s", raw.overspeed.window),
         raw.history,

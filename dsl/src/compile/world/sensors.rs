@@ -3,12 +3,16 @@
 
 use std::collections::HashMap;
 
-use crate::compile::context::Context;
+use crate::compile::context::{Context, Declaration};
 use crate::model::{Localization, Sensor};
 use crate::path::Path;
-use crate::raw::{RawScenario, RawSensorModel};
+use crate::raw::range;
+use crate::raw::{RawNoise, RawScenario, RawSensorModel};
 
-pub(super) fn sensor_models(ctx: &mut Context<'_>, raw: &RawScenario) -> Option<HashMap<String, Sensor>> {
+/// The sensor models that compile, by id, and whether all did. A model that
+/// does not is noted in `ctx`, so the agents that name it are not reported as
+/// naming a missing model.
+pub(super) fn sensor_models(ctx: &mut Context<'_>, raw: &RawScenario) -> (HashMap<String, Sensor>, bool) {
     let map = Path::root().key("sensor_models");
     let mut ok = true;
     let mut sensors = HashMap::new();
@@ -18,36 +22,35 @@ pub(super) fn sensor_models(ctx: &mut Context<'_>, raw: &RawScenario) -> Option<
             Some(sensor) => {
                 sensors.insert(name.clone(), sensor);
             }
-            None => ok = false,
+            None => {
+                ctx.declaration_failed(Declaration::SensorModel, name);
+                ok = false;
+            }
         }
     }
-    ok.then_some(sensors)
+    (sensors, ok)
 }
 
 fn sensor(ctx: &mut Context<'_>, name: &str, raw: &RawSensorModel, path: &Path) -> Option<Sensor> {
-    let ok = ctx.positive(&path.key("range"), raw.range)
+    let noise = |ctx: &mut Context<'_>, key: &str, noise: &RawNoise| {
+        ctx.within(&path.key(key).key("base"), noise.base, range::SIGMA)
+            & ctx.within(&path.key(key).key("per_m"), noise.per_m, range::SIGMA_PER_M)
+    };
+    let ok = ctx.within(&path.key("range"), raw.range, range::SENSOR_RANGE)
         & ctx.expect(
-            raw.fov_deg > 0.0 && raw.fov_deg <= 360.0,
+            range::FIELD_OF_VIEW.contains(raw.fov_deg),
             &path.key("fov_deg"),
             "an angle above 0 and at most 360",
             raw.fov_deg,
         )
         & ctx.probability(&path.key("detection_probability"), raw.detection_probability)
-        & ctx.non_negative(&path.key("position_noise").key("base"), raw.position_noise.base)
-        & ctx.non_negative(&path.key("position_noise").key("per_m"), raw.position_noise.per_m)
-        & ctx.non_negative(&path.key("size_noise").key("base"), raw.size_noise.base)
-        & ctx.non_negative(&path.key("size_noise").key("per_m"), raw.size_noise.per_m)
-        & ctx.non_negative(&path.key("velocity_noise").key("base"), raw.velocity_noise.base)
-        & ctx.non_negative(&path.key("velocity_noise").key("per_m"), raw.velocity_noise.per_m)
-        & ctx.expect(
-            raw.ray_spacing_deg > 0.0 && raw.ray_spacing_deg <= 10.0,
-            &path.key("ray_spacing_deg"),
-            "an angle above 0 and at most 10",
-            raw.ray_spacing_deg,
-        )
-        & ctx.finite(&path.key("mount").key("x"), raw.mount.x)
-        & ctx.finite(&path.key("mount").key("y"), raw.mount.y)
-        & ctx.finite(&path.key("mount").key("yaw_deg"), raw.mount.yaw_deg);
+        & noise(ctx, "position_noise", &raw.position_noise)
+        & noise(ctx, "size_noise", &raw.size_noise)
+        & noise(ctx, "velocity_noise", &raw.velocity_noise)
+        & ctx.within(&path.key("ray_spacing_deg"), raw.ray_spacing_deg, range::RAY_SPACING)
+        & ctx.within(&path.key("mount").key("x"), raw.mount.x, range::MOUNT)
+        & ctx.within(&path.key("mount").key("y"), raw.mount.y, range::MOUNT)
+        & ctx.within(&path.key("mount").key("yaw_deg"), raw.mount.yaw_deg, range::ANGLE);
     ok.then(|| Sensor {
         model: name.to_string(),
         range: raw.range,
@@ -69,10 +72,18 @@ fn sensor(ctx: &mut Context<'_>, name: &str, raw: &RawSensorModel, path: &Path) 
 pub(super) fn localization(ctx: &mut Context<'_>, raw: &RawScenario) -> Option<Localization> {
     let path = Path::root().key("localization");
     let l = &raw.localization;
-    let ok = ctx.non_negative(&path.key("position_sigma"), l.position_sigma)
-        & ctx.non_negative(&path.key("heading_sigma_deg"), l.heading_sigma_deg)
-        & ctx.positive(&path.key("process_position_sigma"), l.process_position_sigma)
-        & ctx.positive(&path.key("process_heading_sigma_deg"), l.process_heading_sigma_deg);
+    let ok = ctx.within(&path.key("position_sigma"), l.position_sigma, range::SIGMA)
+        & ctx.within(&path.key("heading_sigma_deg"), l.heading_sigma_deg, range::ANGLE_SIGMA)
+        & ctx.within(
+            &path.key("process_position_sigma"),
+            l.process_position_sigma,
+            range::SIGMA_POSITIVE,
+        )
+        & ctx.within(
+            &path.key("process_heading_sigma_deg"),
+            l.process_heading_sigma_deg,
+            range::ANGLE_SIGMA_POSITIVE,
+        );
     ok.then_some(Localization {
         position_sigma: l.position_sigma,
         heading_sigma: l.heading_sigma_deg.to_radians(),

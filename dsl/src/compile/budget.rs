@@ -1,0 +1,248 @@
+//! The resource model (`docs/limits.md`): each quantity that sizes a point's
+//! work or memory, computed as a product in f64 from the compiled setup before
+//! anything is simulated or allocated, and refused with its numbers when it
+//! exceeds its limit. Together with the ranges of `raw::range` and the limits
+//! on grid cells, steps, sensors, sweep points, runs and seeds, these bound
+//! every loop and allocation of a run.
+
+use super::context::Context;
+use crate::error::ErrorKind;
+use crate::model::{Experiment, Field, Grid, Layout, Setup, Traffic, World};
+use crate::path::Path;
+
+/// The most agents in one run: declared, imported and the traffic expected to
+/// be generated. The semantic pipeline compares every pair near the ego.
+pub const MAX_AGENTS: f64 = 10_000.0;
+
+/// The most agent-steps of a point: agents × steps × runs, the work of moving,
+/// sensing and predicting every agent at every step.
+pub const MAX_AGENT_STEPS: f64 = 1.0e8;
+
+/// The most polyline points the roads' lanes and the agents' ways hold (each
+/// generated vehicle keeps its route).
+pub const MAX_PATH_POINTS: f64 = 1.0e7;
+
+/// The longest total length of all lanes of all roads, metres.
+pub const MAX_LANE_LENGTH: f64 = 1.0e7;
+
+/// The most rays the cooperating agents cast in one step.
+pub const MAX_RAYS_PER_STEP: f64 = 1.0e6;
+
+/// The most grid cells the rays of a point may cross over the run (rays per
+/// step × cells per ray × steps).
+pub const MAX_RAY_CELLS: f64 = 1.0e10;
+
+/// The most grid cells held at once: the grid's cells × (the cooperating
+/// agents' observations + one for the truth and the fused grid).
+pub const MAX_CELLS_HELD: f64 = 1.0e8;
+
+/// The most mass vectors the field experiment draws at a point (sensors × the
+/// cells within a sensor's range).
+pub const MAX_FIELD_DRAWS: f64 = 1.0e9;
+
+/// The most samples of one predicted trajectory (`semantic.horizon` / `time.step`).
+pub const MAX_PREDICTION_SAMPLES: f64 = 10_000.0;
+
+/// Checks every product of the resource model of one point's setup; returns
+/// whether all are within their limits.
+pub(super) fn within_budget(ctx: &mut Context<'_>, setup: &Setup) -> bool {
+    let grid = setup.occupancy.as_ref().map(|o| &o.grid);
+    match (&setup.experiment, grid) {
+        (Experiment::Field(field), Some(grid)) => field_budget(ctx, field, grid),
+        (Experiment::World(world), grid) => world_budget(ctx, world, grid),
+        (Experiment::Field(_), None) => true,
+    }
+}
+
+fn field_budget(ctx: &mut Context<'_>, field: &Field, grid: &Grid) -> bool {
+    let sensors = match &field.layout {
+        Layout::Positions(positions) => positions.len() as f64,
+        Layout::Random { count } => *count as f64,
+    };
+    let in_range = (std::f64::consts::PI * (field.range / grid.cell).powi(2)).min(grid.cells() as f64);
+    limit(
+        ctx,
+        &Path::root().key("field").key("sensors"),
+        sensors * in_range,
+        MAX_FIELD_DRAWS,
+        "mass vectors drawn at a point (sensors × cells within range)",
+        "use fewer sensors, a shorter range or larger cells",
+    )
+}
+
+fn world_budget(ctx: &mut Context<'_>, world: &World, grid: Option<&Grid>) -> bool {
+    let root = Path::root();
+    let duration = world.step * world.steps as f64;
+    let runs = world.semantic.as_ref().map_or(1.0, |s| f64::from(s.runs));
+    let lanes = world.roads.iter().flat_map(|r| &r.lanes);
+    let lane_points: f64 = lanes.clone().map(|l| l.points().len() as f64).sum();
+    let lane_length: f64 = lanes.map(|l| l.length()).sum();
+    let declared_points: f64 = world
+        .agents
+        .iter()
+        .map(|a| a.motion.path().map_or(1.0, |p| p.points().len() as f64))
+        .sum();
+    let generated = world.traffic.as_ref().map(|t| expected_traffic(t, world, duration));
+    let (vehicles, pedestrians, traffic_points) = generated.unwrap_or_default();
+    let agents = world.agents.len() as f64 + vehicles + pedestrians;
+    // The agents are charged to what contributes most of them.
+    let agents_at = if vehicles >= pedestrians.max(world.agents.len() as f64) {
+        root.key("traffic").key("vehicles").key("density_per_km")
+    } else if pedestrians >= world.agents.len() as f64 {
+        root.key("traffic").key("pedestrians").key("per_minute")
+    } else {
+        root.key("agents")
+    };
+    let mut ok = limit(
+        ctx,
+        &root.key("roads"),
+        lane_length,
+        MAX_LANE_LENGTH,
+        "metres of lanes",
+        "model a smaller area",
+    ) & limit(
+        ctx,
+        &agents_at,
+        agents,
+        MAX_AGENTS,
+        "agents in a run (declared, imported and the traffic expected)",
+        "lower the traffic or shorten the run",
+    );
+    ok = ok
+        && limit(
+            ctx,
+            &agents_at,
+            agents * world.steps as f64 * runs,
+            MAX_AGENT_STEPS,
+            "agent-steps at a point (agents × steps × runs)",
+            "lower the traffic, shorten the run, take a longer step or fewer runs",
+        ) & limit(
+            ctx,
+            &root.key("roads"),
+            lane_points + declared_points + traffic_points,
+            MAX_PATH_POINTS,
+            "points on the lanes and the agents' ways",
+            "use fewer lanes, larger arcs or less traffic",
+        );
+    if let Some(semantic) = &world.semantic {
+        ok &= limit(
+            ctx,
+            &root.key("semantic").key("horizon"),
+            semantic.horizon / world.step,
+            MAX_PREDICTION_SAMPLES,
+            "samples in a predicted trajectory (horizon / step)",
+            "use a shorter horizon or a longer step",
+        );
+    }
+    if let (Some(perception), Some(grid)) = (&world.perception, grid) {
+        ok &= limit(
+            ctx,
+            &root.key("grid"),
+            grid.cells() as f64 * (perception.cooperating.len() as f64 + 1.0),
+            MAX_CELLS_HELD,
+            "grid cells held (cells × (cooperating agents + 1))",
+            "use larger cells, a smaller grid or fewer cooperating agents",
+        );
+        ok &= rays_budget(ctx, world, grid);
+    }
+    ok
+}
+
+/// The rays the cooperating agents cast per step, and the cells they cross
+/// over the run, charged to the sensor model that casts the most.
+fn rays_budget(ctx: &mut Context<'_>, world: &World, grid: &Grid) -> bool {
+    let Some(perception) = &world.perception else {
+        return true;
+    };
+    let diagonal = (grid.cols as f64).hypot(grid.rows as f64) * grid.cell;
+    let mut rays = 0.0;
+    let mut cells = 0.0;
+    let mut busiest: Option<(&str, f64)> = None;
+    for sensor in perception.cooperating.iter().flat_map(|&a| &world.agents[a].sensors) {
+        let cast = (sensor.fov / sensor.ray_spacing).ceil().max(1.0);
+        rays += cast;
+        // A ray crosses about one cell per cell side along it, in both axes.
+        cells += cast * 2.0 * sensor.range.min(diagonal) / grid.cell;
+        if busiest.is_none_or(|(_, most)| cast > most) {
+            busiest = Some((&sensor.model, cast));
+        }
+    }
+    let Some((model, _)) = busiest else {
+        return true;
+    };
+    let at = Path::root().key("sensor_models").key(model).key("ray_spacing_deg");
+    limit(
+        ctx,
+        &at,
+        rays,
+        MAX_RAYS_PER_STEP,
+        "rays per step (cooperating agents' sensors × field of view / ray spacing)",
+        "use a coarser `ray_spacing_deg`, a narrower `fov_deg` or fewer cooperating agents",
+    ) && limit(
+        ctx,
+        &at,
+        cells * world.steps as f64,
+        MAX_RAY_CELLS,
+        "grid cells crossed by rays over the run (rays per step × cells per ray × steps)",
+        "use a coarser `ray_spacing_deg`, larger cells, a shorter range or fewer steps",
+    )
+}
+
+/// The vehicles and pedestrians the traffic is expected to generate over a
+/// run, and the path points they hold: on each route its initial population
+/// (density × length) and its inflow (density × entry speed × duration), at
+/// each crosswalk its arrivals (rate × duration).
+fn expected_traffic(traffic: &Traffic, world: &World, duration: f64) -> (f64, f64, f64) {
+    let (mut vehicles, mut points) = (0.0, 0.0);
+    if let Some(vehicle_traffic) = &traffic.vehicles {
+        let per_m = vehicle_traffic.density_per_km / 1000.0;
+        for route in &vehicle_traffic.routes {
+            let entry_speed = route.limits.first().map_or(0.0, |&(_, limit)| limit);
+            let count = per_m * (route.path.length() + entry_speed * duration);
+            vehicles += count;
+            points += count * route.path.points().len() as f64;
+        }
+    }
+    let pedestrians = traffic
+        .pedestrians
+        .as_ref()
+        .map_or(0.0, |p| p.per_minute / 60.0 * duration * world.crosswalks.len() as f64);
+    (vehicles, pedestrians, points + 2.0 * pedestrians)
+}
+
+/// Records a [`ErrorKind::TooLarge`] at `path` unless `value` ≤ `max`; returns whether it is.
+fn limit(ctx: &mut Context<'_>, path: &Path, value: f64, max: f64, what: &str, remedy: &str) -> bool {
+    if value <= max {
+        return true;
+    }
+    ctx.error(
+        path,
+        ErrorKind::TooLarge(format!(
+            "{} {what} exceed the limit of {}; {remedy}",
+            figure(value),
+            figure(max)
+        )),
+    );
+    false
+}
+
+/// A count as people read it: whole below a million, else `3.6e9`.
+fn figure(value: f64) -> String {
+    if value < 1.0e6 {
+        format!("{value:.0}")
+    } else {
+        format!("{value:.1e}").replace(".0e", "e")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::figure;
+
+    #[test]
+    fn figures_are_whole_or_scientific() {
+        assert_eq!(figure(12_345.4), "12345");
+        assert_eq!(figure(3.6e9), "3.6e9");
+        assert_eq!(figure(1.0e8), "1e8");
+    }
+}

@@ -1,0 +1,324 @@
+//! The physical range of every number a scenario gives: one [`Range`] per kind
+//! of quantity, each chosen so that no real scenario meets its bounds and every
+//! value inside them keeps the simulation finite and its loops short
+//! (`docs/limits.md` gives each bound's reason).
+//!
+//! A raw field names its range once, for the JSON Schema
+//! (`#[schemars(transform = range::SPEED.schema())]` writes `minimum`, `maximum` or
+//! their exclusive forms on the number, or on every number of a point or a
+//! list), and `compile` checks the value against the same constant, so the
+//! schema an editor reads and the errors `check` reports cannot disagree.
+
+use schemars::Schema;
+use serde_json::Value;
+
+/// An interval of allowed values: its least and greatest value, each allowed or
+/// excluded.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Range {
+    pub(crate) min: f64,
+    pub(crate) min_included: bool,
+    pub(crate) max: f64,
+    pub(crate) max_included: bool,
+}
+
+impl Range {
+    /// [min, max].
+    const fn closed(min: f64, max: f64) -> Self {
+        Self {
+            min,
+            min_included: true,
+            max,
+            max_included: true,
+        }
+    }
+
+    /// (min, max].
+    const fn left_open(min: f64, max: f64) -> Self {
+        Self {
+            min,
+            min_included: false,
+            max,
+            max_included: true,
+        }
+    }
+
+    /// [min, max).
+    const fn right_open(min: f64, max: f64) -> Self {
+        Self {
+            min,
+            min_included: true,
+            max,
+            max_included: false,
+        }
+    }
+
+    /// (min, max).
+    const fn open(min: f64, max: f64) -> Self {
+        Self {
+            min,
+            min_included: false,
+            max,
+            max_included: false,
+        }
+    }
+
+    /// Whether `value` lies in the range (never for NaN).
+    pub(crate) fn contains(&self, value: f64) -> bool {
+        let above = if self.min_included {
+            value >= self.min
+        } else {
+            value > self.min
+        };
+        let below = if self.max_included {
+            value <= self.max
+        } else {
+            value < self.max
+        };
+        above && below
+    }
+
+    /// What a value below the range should have been: `a number > 0`, `a number ≥ 1`.
+    pub(crate) fn lower(&self) -> String {
+        format!("a number {} {}", if self.min_included { "≥" } else { ">" }, self.min)
+    }
+
+    /// What a value above the range should have been: `a number ≤ 150`.
+    pub(crate) fn upper(&self) -> String {
+        format!("a number {} {}", if self.max_included { "≤" } else { "<" }, self.max)
+    }
+
+    /// Writes the range into a field's schema, for
+    /// `#[schemars(transform = range::SPEED.schema())]`.
+    pub(crate) fn schema(self) -> impl FnMut(&mut Schema) {
+        move |schema| self.write(schema)
+    }
+
+    /// Writes the range on every number of `schema`: the field's own, or each
+    /// item's of a list or a point.
+    fn write(&self, schema: &mut Schema) {
+        let Some(object) = schema.as_object_mut() else {
+            return;
+        };
+        let numeric = |t: &Value| t == "number" || t == "integer";
+        let is_number = match &object.get("type") {
+            Some(Value::Array(types)) => types.iter().any(numeric),
+            Some(t) => numeric(t),
+            None => false,
+        };
+        if is_number {
+            let (min_key, max_key) = (
+                if self.min_included {
+                    "minimum"
+                } else {
+                    "exclusiveMinimum"
+                },
+                if self.max_included {
+                    "maximum"
+                } else {
+                    "exclusiveMaximum"
+                },
+            );
+            object.insert(min_key.into(), number(self.min));
+            object.insert(max_key.into(), number(self.max));
+        }
+        if let Some(items) = object.get_mut("items").and_then(|i| <&mut Schema>::try_from(i).ok()) {
+            self.write(items);
+        }
+    }
+
+    /// The range in words: `a number from 0 to 1`, `a number > 0 and ≤ 150`.
+    pub(crate) fn words(&self) -> String {
+        if self.min_included && self.max_included {
+            format!("a number from {} to {}", self.min, self.max)
+        } else {
+            format!("{} and {}", self.lower(), self.upper().trim_start_matches("a number "))
+        }
+    }
+}
+
+/// A bound as JSON: a whole number without a fraction (`1000000`, not `1000000.0`).
+fn number(value: f64) -> Value {
+    if value.fract() == 0.0 && value.abs() < 9.0e15 {
+        Value::from(value as i64)
+    } else {
+        Value::from(value)
+    }
+}
+
+// Place and size.
+
+/// A coordinate of a point in the world frame, metres.
+pub(crate) const COORDINATE: Range = Range::closed(-1.0e6, 1.0e6);
+/// A distance at the scale of the map (a grid side, a region's radius, a
+/// distance band, a proximity), metres.
+pub(crate) const EXTENT: Range = Range::left_open(0.0, 2.0e6);
+/// Where along its way an agent appears, metres.
+pub(crate) const OFFSET: Range = Range::closed(0.0, 1.0e7);
+/// The side of a grid cell, metres.
+pub(crate) const CELL: Range = Range::left_open(0.0, 1.0e4);
+/// The size of a road user, a lane, a crossing, a conflict distance, metres.
+pub(crate) const BODY: Range = Range::left_open(0.0, 100.0);
+/// A gap or a walk that may be 0, metres.
+pub(crate) const GAP: Range = Range::closed(0.0, 1000.0);
+/// Where a sensor sits on its agent, metres from the agent's centre.
+pub(crate) const MOUNT: Range = Range::closed(-100.0, 100.0);
+/// The radius of an arc or a roundabout, metres.
+pub(crate) const RADIUS: Range = Range::closed(1.0, 1.0e6);
+/// The range of a sensor, metres.
+pub(crate) const SENSOR_RANGE: Range = Range::left_open(0.0, 1.0e4);
+/// The number of lanes of a road.
+pub(crate) const LANES: Range = Range::closed(1.0, 16.0);
+
+// Angles.
+
+/// A heading or an angle of an arc's start, degrees.
+pub(crate) const ANGLE: Range = Range::closed(-360.0, 360.0);
+/// The angle of an arc's end (within a turn of its start), degrees.
+pub(crate) const ARC_END: Range = Range::closed(-720.0, 720.0);
+/// A field of view, degrees.
+pub(crate) const FIELD_OF_VIEW: Range = Range::left_open(0.0, 360.0);
+/// The angle between two rays that carve free space, degrees.
+pub(crate) const RAY_SPACING: Range = Range::closed(0.01, 10.0);
+/// A change of heading that triggers a message, degrees.
+pub(crate) const HEADING_CHANGE: Range = Range::left_open(0.0, 180.0);
+/// A σ of an angle, degrees.
+pub(crate) const ANGLE_SIGMA: Range = Range::closed(0.0, 180.0);
+/// A σ of an angle that must be positive, degrees.
+pub(crate) const ANGLE_SIGMA_POSITIVE: Range = Range::left_open(0.0, 180.0);
+
+// Time.
+
+/// The length of a run, seconds.
+pub(crate) const DURATION: Range = Range::left_open(0.0, 86_400.0);
+/// The time between two steps, seconds.
+pub(crate) const STEP: Range = Range::closed(0.001, 60.0);
+/// A time within a run, or a span that may be 0, seconds.
+pub(crate) const TIME: Range = Range::closed(0.0, 86_400.0);
+/// A span that must be positive, seconds.
+pub(crate) const SPAN: Range = Range::left_open(0.0, 86_400.0);
+/// A short reaction or prediction span (headway, horizon, latency), seconds.
+pub(crate) const REACTION: Range = Range::left_open(0.0, 60.0);
+/// A delay that may be 0, seconds.
+pub(crate) const LATENCY: Range = Range::closed(0.0, 60.0);
+/// A time of an imported trace, seconds.
+pub(crate) const TRACE_TIME: Range = Range::closed(0.0, 1.0e9);
+/// A rate of cycles or pictures, Hz.
+pub(crate) const RATE: Range = Range::left_open(0.0, 1000.0);
+/// A rate that may be 0 (none), Hz.
+pub(crate) const RATE_OR_ZERO: Range = Range::closed(0.0, 1000.0);
+
+// Motion.
+
+/// A speed, m/s.
+pub(crate) const SPEED: Range = Range::closed(0.0, 150.0);
+/// A speed that must be positive (a limit, a walking speed, a change), m/s.
+pub(crate) const SPEED_POSITIVE: Range = Range::left_open(0.0, 150.0);
+/// An acceleration or a deceleration, m/s².
+pub(crate) const ACCELERATION: Range = Range::left_open(0.0, 100.0);
+/// A factor on a speed (a limit factor, a speed hypothesis).
+pub(crate) const SPEED_FACTOR: Range = Range::left_open(0.0, 10.0);
+/// A non-compliant driver's factor on the speed limit.
+pub(crate) const OVERSPEED_FACTOR: Range = Range::closed(1.0, 10.0);
+
+// Traffic.
+
+/// Vehicles per km of a route.
+pub(crate) const DENSITY: Range = Range::closed(0.0, 500.0);
+/// Pedestrian arrivals per minute at a crosswalk.
+pub(crate) const ARRIVALS: Range = Range::closed(0.0, 600.0);
+/// A relative frequency of a vehicle kind.
+pub(crate) const SHARE: Range = Range::closed(0.0, 1.0e6);
+
+// Noise.
+
+/// A σ at distance 0, in the unit of what it disturbs (m, m/s).
+pub(crate) const SIGMA: Range = Range::closed(0.0, 100.0);
+/// A σ that must be positive.
+pub(crate) const SIGMA_POSITIVE: Range = Range::left_open(0.0, 100.0);
+/// The growth of a σ per metre of distance.
+pub(crate) const SIGMA_PER_M: Range = Range::closed(0.0, 1.0);
+
+// Probabilities and the evidence model.
+
+/// A probability or a share.
+pub(crate) const PROBABILITY: Range = Range::closed(0.0, 1.0);
+/// A probability that must be positive (a share of seeds, a share of speed).
+pub(crate) const PROBABILITY_POSITIVE: Range = Range::left_open(0.0, 1.0);
+/// A probability strictly between 0 and 1.
+pub(crate) const PROBABILITY_OPEN: Range = Range::open(0.0, 1.0);
+/// The probability of occupancy a detection conveys.
+pub(crate) const OCCUPIED: Range = Range::open(0.5, 1.0);
+/// The probability of occupancy a free ray conveys.
+pub(crate) const FREE: Range = Range::open(0.0, 0.5);
+/// A confidence level.
+pub(crate) const CONFIDENCE: Range = Range::open(0.5, 1.0);
+/// The sum of the Dirichlet parameters of the mass model.
+pub(crate) const CONCENTRATION: Range = Range::closed(1.0, 1.0e12);
+/// γ, the growth of misdetection with distance (ε0 + γ/100 < 1 is checked too).
+pub(crate) const GAMMA: Range = Range::right_open(0.0, 100.0);
+/// The hybrid rule's switch: metres (difference) or a ratio ≥ 1.
+pub(crate) const SWITCH: Range = Range::closed(0.0, 2.0e6);
+/// The numerical tolerance of an invariant.
+pub(crate) const TOLERANCE: Range = Range::closed(0.0, 1.0);
+
+// Radio.
+
+/// A transmit power, dBm.
+pub(crate) const POWER: Range = Range::closed(-100.0, 100.0);
+/// A receiver sensitivity, dBm.
+pub(crate) const SENSITIVITY: Range = Range::closed(-200.0, 0.0);
+/// A loss or a σ of shadowing, dB.
+pub(crate) const DECIBELS: Range = Range::closed(0.0, 100.0);
+/// A carrier frequency, GHz.
+pub(crate) const CARRIER: Range = Range::left_open(0.0, 100.0);
+/// An antenna height, metres.
+pub(crate) const ANTENNA: Range = Range::left_open(0.0, 1000.0);
+
+// Counts.
+
+/// Sensors in a field's regular layout or drawn at random (also a row or a column).
+pub(crate) const SENSOR_COUNT: Range = Range::closed(1.0, 1000.0);
+/// Independent runs a point pools.
+pub(crate) const RUNS: Range = Range::closed(1.0, 1000.0);
+/// Seeds a check runs over.
+pub(crate) const SEEDS: Range = Range::closed(2.0, 10_000.0);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bounds_are_included_or_excluded_as_declared() {
+        assert!(PROBABILITY.contains(0.0) && PROBABILITY.contains(1.0));
+        assert!(!BODY.contains(0.0) && BODY.contains(100.0) && !BODY.contains(100.5));
+        assert!(!OCCUPIED.contains(0.5) && !OCCUPIED.contains(1.0) && OCCUPIED.contains(0.7));
+        assert!(!SPEED.contains(f64::NAN) && !SPEED.contains(f64::INFINITY));
+    }
+
+    #[test]
+    fn words_name_each_side() {
+        assert_eq!(PROBABILITY.words(), "a number from 0 to 1");
+        assert_eq!(BODY.words(), "a number > 0 and ≤ 100");
+        assert_eq!(BODY.lower(), "a number > 0");
+        assert_eq!(COORDINATE.upper(), "a number ≤ 1000000");
+    }
+
+    #[test]
+    fn the_schema_of_a_point_bounds_each_coordinate() {
+        let mut schema = schemars::json_schema!({
+            "type": "array",
+            "items": { "type": "number", "format": "double" },
+            "minItems": 2,
+            "maxItems": 2
+        });
+        COORDINATE.write(&mut schema);
+        assert_eq!(schema.get("minimum"), None);
+        assert_eq!(schema.get("items").unwrap()["minimum"], -1_000_000);
+        assert_eq!(schema.get("items").unwrap()["maximum"], 1_000_000);
+        let mut optional = schemars::json_schema!({ "type": ["number", "null"] });
+        BODY.write(&mut optional);
+        assert_eq!(optional.get("exclusiveMinimum").unwrap(), 0);
+        assert_eq!(optional.get("maximum").unwrap(), 100);
+    }
+}

@@ -1,0 +1,267 @@
+//! Limits (issue 15): every number within its physical range, every product of
+//! the resource model checked before work, and errors that point at the cause.
+//! See: docs/limits.md.
+
+use proptest::prelude::*;
+use sightline_dsl::{ErrorKind, Errors, Options, compile, schema};
+
+const URBAN: &str = include_str!("../../scenarios/urban-rsu-semantic.yaml");
+const ROUNDABOUT: &str = include_str!("../../scenarios/roundabout-six-agents.yaml");
+const FIELD: &str = include_str!("../../scenarios/evidential-field.yaml");
+
+/// `text` with `from` replaced once by `to` (which must be there).
+fn with(text: &str, from: &str, to: &str) -> String {
+    assert!(text.contains(from), "the scenario has `{from}`");
+    text.replacen(from, to, 1)
+}
+
+fn errors(text: &str) -> Errors {
+    compile("s.yaml", text, &Options::default()).expect_err("the scenario is refused")
+}
+
+/// The 1-based line of the first occurrence of `needle` in `text`.
+fn line_of(text: &str, needle: &str) -> usize {
+    text.lines()
+        .position(|l| l.contains(needle))
+        .expect("the needle is there")
+        + 1
+}
+
+/// Each hostile value of the fuzzing trial is refused at the key that gives it.
+#[test]
+fn issue_15_hostile_values_are_refused_where_they_are_written() {
+    let cases = [
+        (
+            with(
+                URBAN,
+                "size_noise: { base: 0.05, per_m: 0.001 }",
+                "size_noise: { base: 0.05, per_m: 1e308 }",
+            ),
+            "size_noise",
+            "sensor_models.rsu_sensing.size_noise.per_m: expected a number ≤ 1, found 1e308",
+        ),
+        (
+            with(URBAN, "per_minute: 2,", "per_minute: 1e12,"),
+            "per_minute: 1e12",
+            "traffic.pedestrians.per_minute: expected a number ≤ 600, found 1000000000000",
+        ),
+        (
+            with(URBAN, "[[-1.75, 500], [-1.75, 8]]", "[[-1.75, 1e308], [-1.75, 8]]"),
+            "1e308",
+            "roads[0].polyline[0][1]: expected a number ≤ 1000000, found 1e308",
+        ),
+        (
+            with(URBAN, "[[-1.75, 500], [-1.75, 8]]", "[[-1.75, 10000000], [-1.75, 8]]"),
+            "10000000",
+            "roads[0].polyline[0][1]: expected a number ≤ 1000000, found 10000000",
+        ),
+        (
+            with(ROUNDABOUT, "ray_spacing_deg: 0.5", "ray_spacing_deg: 1e-6"),
+            "ray_spacing_deg",
+            "sensor_models.lidar.ray_spacing_deg: expected a number ≥ 0.01, found 1e-6",
+        ),
+        (
+            with(FIELD, "concentration: 32", "concentration: 1e-8"),
+            "concentration",
+            "field.masses.concentration: expected a number ≥ 1, found 1e-8",
+        ),
+    ];
+    for (text, needle, message) in cases {
+        let errors = errors(&text);
+        assert_eq!(errors.0.len(), 1, "{errors}");
+        let error = &errors.0[0];
+        assert!(matches!(error.kind, ErrorKind::OutOfRange { .. }), "{error}");
+        assert_eq!(error.location.line, line_of(&text, needle), "{error}");
+        assert!(error.to_string().ends_with(message), "{error}");
+    }
+}
+
+/// A road whose arc cannot be drawn is the one error: the routes of the ego
+/// and of the traffic that drive on it, or on roads after it, are not
+/// reported as naming a missing road.
+#[test]
+fn issue_15_a_failed_road_is_reported_once_not_at_the_routes_that_name_it() {
+    let text = with(URBAN, "radius: 6.25, start_deg: 0", "radius: 1e-12, start_deg: 0");
+    let errors = errors(&text);
+    assert_eq!(errors.0.len(), 1, "{errors}");
+    assert_eq!(errors.0[0].path, "roads[12].arc.radius");
+    assert_eq!(errors.0[0].location.line, line_of(&text, "1e-12"));
+}
+
+/// A sensor model out of range is the one error, not each agent that names it.
+#[test]
+fn a_failed_sensor_model_is_reported_once_not_at_the_agents_that_name_it() {
+    let text = with(ROUNDABOUT, "range: 80", "range: -80");
+    let errors = errors(&text);
+    assert_eq!(errors.0.len(), 1, "{errors}");
+    assert_eq!(errors.0[0].path, "sensor_models.lidar.range");
+}
+
+/// A name no declaration has is still a dangling reference.
+#[test]
+fn a_route_naming_no_road_is_still_refused() {
+    let text = with(
+        URBAN,
+        "route: [south_in, s_n, north_out]",
+        "route: [south_in, s_n, nowhere]",
+    );
+    let errors = errors(&text);
+    assert!(
+        errors
+            .0
+            .iter()
+            .any(|e| matches!(&e.kind, ErrorKind::DanglingReference(m) if m.starts_with("no road `nowhere`"))),
+        "{errors}"
+    );
+}
+
+/// Products within each range are still checked: many fine rays over many
+/// steps exceed the rays per step, with the numbers.
+#[test]
+fn rays_per_step_are_checked_as_a_product() {
+    let text = with(ROUNDABOUT, "ray_spacing_deg: 0.5", "ray_spacing_deg: 0.01");
+    let text = text.replace("[lidar]", "[lidar, lidar, lidar, lidar, lidar, lidar]");
+    let errors = errors(&text);
+    let too_large: Vec<_> = errors
+        .0
+        .iter()
+        .filter(|e| matches!(e.kind, ErrorKind::TooLarge(_)))
+        .collect();
+    assert!(!too_large.is_empty(), "{errors}");
+    assert_eq!(too_large[0].path, "sensor_models.lidar.ray_spacing_deg");
+    assert!(
+        too_large[0].to_string().contains(
+            "1.3e6 rays per step (cooperating agents' sensors × field of view / ray spacing) exceed the limit of 1e6"
+        ),
+        "{}",
+        too_large[0]
+    );
+}
+
+/// Traffic is counted before it is generated: a dense crowd at every crosswalk
+/// over a long run exceeds the agents of a run.
+#[test]
+fn expected_traffic_is_checked_before_it_is_generated() {
+    let text = with(URBAN, "per_minute: 2,", "per_minute: 600,");
+    let text = with(&text, "duration: 120", "duration: 600");
+    let errors = errors(&text);
+    assert!(
+        errors.0.iter().any(|e| e.path == "traffic.pedestrians.per_minute"
+            && e.to_string()
+                .contains("agents in a run (declared, imported and the traffic expected) exceed the limit of 10000")),
+        "{errors}"
+    );
+}
+
+/// Every number the schema admits has a lower and an upper bound, but for the
+/// few that only compare or count (`docs/limits.md` says why).
+#[test]
+fn every_number_in_the_schema_has_a_range() {
+    const UNBOUNDED: [&str; 12] = [
+        "Scenario.sightline",
+        "Scenario.seed",
+        "Agent.lane",
+        "Perception.cooperating",
+        "Record.point",
+        "Check.at_least",
+        "Check.at_most",
+        "Check.min_samples",
+        "Reference.value",
+        "Threshold.at_least",
+        "Threshold.at_most",
+        "Occluder.height",
+    ];
+    let schema = schema();
+    let mut unbounded = Vec::new();
+    let mut definitions: Vec<(String, &serde_json::Value)> = vec![("Scenario".into(), &schema)];
+    for (name, definition) in schema["definitions"].as_object().unwrap() {
+        definitions.push((name.clone(), definition));
+    }
+    for (name, definition) in definitions {
+        for (key, property) in definition["properties"].as_object().into_iter().flatten() {
+            let mut node = property;
+            while node.get("items").is_some() {
+                node = &node["items"];
+            }
+            let numeric = ["number", "integer"]
+                .iter()
+                .any(|t| node["type"] == *t || node["type"].as_array().is_some_and(|a| a.iter().any(|x| x == *t)));
+            let bounded = |side: &str, exclusive: &str| node.get(side).or(node.get(exclusive)).is_some();
+            if numeric && !(bounded("minimum", "exclusiveMinimum") && bounded("maximum", "exclusiveMaximum")) {
+                unbounded.push(format!("{name}.{key}"));
+            }
+        }
+    }
+    unbounded.retain(|k| !UNBOUNDED.contains(&k.as_str()));
+    assert!(
+        unbounded.is_empty(),
+        "numbers without a range in the schema: {unbounded:?}"
+    );
+}
+
+/// Keys of the bundled scenarios, each with the line that gives it, the
+/// value there, and its documented range.
+const KEYS: [(&str, &str, f64, f64, bool); 6] = [
+    // (scenario, the text to replace, lowest allowed, highest allowed, lowest excluded)
+    ("urban", "per_m: 0.001", 0.0, 1.0, false),
+    ("urban", "per_minute: 2,", 0.0, 600.0, false),
+    ("urban", "d_min: 2", 0.0, 100.0, true),
+    ("roundabout", "ray_spacing_deg: 0.5", 0.01, 10.0, false),
+    ("roundabout", "range: 80", 0.0, 1.0e4, true),
+    ("field", "concentration: 32", 1.0, 1.0e12, false),
+];
+
+fn key_text(case: usize, value: f64) -> (String, String) {
+    let (scenario, written, ..) = KEYS[case];
+    let base = match scenario {
+        "urban" => URBAN,
+        "roundabout" => ROUNDABOUT,
+        _ => FIELD,
+    };
+    let key = written.split(':').next().unwrap();
+    let separator = if written.ends_with(',') { "," } else { "" };
+    (
+        with(base, written, &format!("{key}: {value:e}{separator}")),
+        key.to_string(),
+    )
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(24))]
+
+    /// A finite value within a key's documented range compiles, or fails for
+    /// another reason than its range (a grid rate that no longer divides, a
+    /// budget), never with a panic and never at the key as out of range.
+    #[test]
+    fn values_within_the_range_are_not_refused_as_out_of_range(case in 0..KEYS.len(), t in 0.0..=1.0f64) {
+        let (_, _, low, high, open) = KEYS[case];
+        let value = low + (high - low) * t;
+        prop_assume!(!(open && value == low));
+        let (text, key) = key_text(case, value);
+        if let Err(errors) = compile("s.yaml", &text, &Options::default()) {
+            for error in &errors.0 {
+                prop_assert!(
+                    !(error.path.ends_with(&key) && matches!(error.kind, ErrorKind::OutOfRange { .. })),
+                    "{value} refused: {error}"
+                );
+            }
+        }
+    }
+
+    /// A value outside a key's documented range is refused at the line that
+    /// gives it.
+    #[test]
+    fn values_outside_the_range_are_refused_where_written(
+        case in 0..KEYS.len(),
+        above in any::<bool>(),
+        factor in 1.0f64..1.0e290,
+    ) {
+        let (_, _, low, high, _) = KEYS[case];
+        let value = if above { high * (1.0 + factor) } else { low - factor };
+        let (text, key) = key_text(case, value);
+        let errors = compile("s.yaml", &text, &Options::default()).expect_err("refused");
+        let error = errors.0.iter().find(|e| e.path.ends_with(&key)).expect("an error at the key");
+        prop_assert!(matches!(error.kind, ErrorKind::OutOfRange { .. }), "{error}");
+        prop_assert_eq!(error.location.line, line_of(&text, &format!("{key}: {value:e}")));
+    }
+}
