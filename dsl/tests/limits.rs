@@ -61,6 +61,17 @@ fn issue_15_hostile_values_are_refused_where_they_are_written() {
             "sensor_models.lidar.ray_spacing_deg: expected a number ≥ 0.01, found 1e-6",
         ),
         (
+            // Found after the trial: a process noise whose square underflows to
+            // 0 left the pose filter a singular matrix (a panic).
+            with(
+                ROUNDABOUT,
+                "  filter: kalman\n",
+                "  filter: kalman\n  process_position_sigma: 1e-200\n",
+            ),
+            "process_position_sigma",
+            "localization.process_position_sigma: expected a number ≥ 0.000001, found 1e-200",
+        ),
+        (
             with(FIELD, "concentration: 32", "concentration: 1e-8"),
             "concentration",
             "field.masses.concentration: expected a number ≥ 1, found 1e-8",

@@ -184,8 +184,10 @@ pub(crate) const RAY_SPACING: Range = Range::closed(0.01, 10.0);
 pub(crate) const HEADING_CHANGE: Range = Range::left_open(0.0, 180.0);
 /// A σ of an angle, degrees.
 pub(crate) const ANGLE_SIGMA: Range = Range::closed(0.0, 180.0);
-/// A σ of an angle that must be positive, degrees.
-pub(crate) const ANGLE_SIGMA_POSITIVE: Range = Range::left_open(0.0, 180.0);
+/// A process noise σ of a heading, degrees: at least 1e-6, so that its
+/// square stays a positive number and the pose filter's matrices stay
+/// invertible (σ = 1e-200 squares to 0).
+pub(crate) const PROCESS_ANGLE_SIGMA: Range = Range::closed(1.0e-6, 180.0);
 
 // Time.
 
@@ -234,8 +236,9 @@ pub(crate) const SHARE: Range = Range::closed(0.0, 1.0e6);
 
 /// A σ at distance 0, in the unit of what it disturbs (m, m/s).
 pub(crate) const SIGMA: Range = Range::closed(0.0, 100.0);
-/// A σ that must be positive.
-pub(crate) const SIGMA_POSITIVE: Range = Range::left_open(0.0, 100.0);
+/// A process noise σ of a position, m: at least 1e-6, so that its square
+/// stays a positive number and the pose filter's matrices stay invertible.
+pub(crate) const PROCESS_SIGMA: Range = Range::closed(1.0e-6, 100.0);
 /// The growth of a σ per metre of distance.
 pub(crate) const SIGMA_PER_M: Range = Range::closed(0.0, 1.0);
 

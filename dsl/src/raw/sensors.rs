@@ -98,10 +98,10 @@ pub(crate) struct RawLocalization {
     /// How an agent estimates its pose from its measurements.
     pub filter: PoseFilter,
     /// Kalman filter: uncertainty the motion model adds to x and y, metres per √s.
-    #[schemars(transform = range::SIGMA_POSITIVE.schema())]
+    #[schemars(transform = range::PROCESS_SIGMA.schema())]
     pub process_position_sigma: f64,
     /// Kalman filter: uncertainty the motion model adds to the heading, degrees per √s.
-    #[schemars(transform = range::ANGLE_SIGMA_POSITIVE.schema())]
+    #[schemars(transform = range::PROCESS_ANGLE_SIGMA.schema())]
     pub process_heading_sigma_deg: f64,
 }
 

@@ -77,12 +77,12 @@ pub(super) fn localization(ctx: &mut Context<'_>, raw: &RawScenario) -> Option<L
         & ctx.within(
             &path.key("process_position_sigma"),
             l.process_position_sigma,
-            range::SIGMA_POSITIVE,
+            range::PROCESS_SIGMA,
         )
         & ctx.within(
             &path.key("process_heading_sigma_deg"),
             l.process_heading_sigma_deg,
-            range::ANGLE_SIGMA_POSITIVE,
+            range::PROCESS_ANGLE_SIGMA,
         );
     ok.then_some(Localization {
         position_sigma: l.position_sigma,
