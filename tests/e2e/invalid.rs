@@ -146,6 +146,9 @@ invalid_inputs! {
     // See: issue 15 (hostile input).
     aliases_that_multiply_are_refused_at_a_million_nodes => "alias-bomb",
     a_third_coordinate_is_refused_not_dropped => "point-with-a-third-coordinate",
+    // See: issue 16 (odometry with noise).
+    odometry_out_of_physical_range_is_refused => "odometry-out-of-range",
+    noise_beside_exact_odometry_is_refused => "odometry-exact-with-noise",
 }
 
 #[test]

@@ -4,9 +4,9 @@
 use std::collections::HashMap;
 
 use crate::compile::context::Context;
-use crate::model::{Localization, Sensor};
+use crate::model::{Localization, Odometry, OdometryModel, OdometryNoise, Sensor};
 use crate::path::Path;
-use crate::raw::{RawScenario, RawSensorModel};
+use crate::raw::{RawOdometry, RawScenario, RawSensorModel};
 
 pub(super) fn sensor_models(ctx: &mut Context<'_>, raw: &RawScenario) -> Option<HashMap<String, Sensor>> {
     let map = Path::root().key("sensor_models");
@@ -73,11 +73,50 @@ pub(super) fn localization(ctx: &mut Context<'_>, raw: &RawScenario) -> Option<L
         & ctx.non_negative(&path.key("heading_sigma_deg"), l.heading_sigma_deg)
         & ctx.positive(&path.key("process_position_sigma"), l.process_position_sigma)
         & ctx.positive(&path.key("process_heading_sigma_deg"), l.process_heading_sigma_deg);
+    // Checked whatever the rest gives, so that every error is reported at once.
+    let odometry = odometry(ctx, &l.odometry, &path.key("odometry"))?;
     ok.then_some(Localization {
         position_sigma: l.position_sigma,
         heading_sigma: l.heading_sigma_deg.to_radians(),
         filter: l.filter,
         process_position_sigma: l.process_position_sigma,
         process_heading_sigma: l.process_heading_sigma_deg.to_radians(),
+        odometry,
+    })
+}
+
+/// The largest scale error of a speed reading either way: a speedometer may
+/// read up to 10 % (plus 4 km/h) fast and never slow (UNECE Regulation No. 39);
+/// odometry off by more is broken, not noisy.
+const MAX_SPEED_BIAS: f64 = 0.1;
+
+/// The largest yaw-rate offset, degrees per second: above the 3.75 °/s an
+/// automotive yaw-rate sensor may drift over its life before the stability
+/// control compensates it.
+const MAX_YAW_RATE_BIAS_DEG: f64 = 5.0;
+
+fn odometry(ctx: &mut Context<'_>, raw: &RawOdometry, path: &Path) -> Option<Odometry> {
+    let ok = ctx.non_negative(&path.key("speed_sigma"), raw.speed_sigma)
+        & ctx.expect(
+            raw.speed_bias.abs() <= MAX_SPEED_BIAS,
+            &path.key("speed_bias"),
+            &format!("a fraction from −{MAX_SPEED_BIAS} to {MAX_SPEED_BIAS}"),
+            raw.speed_bias,
+        )
+        & ctx.non_negative(&path.key("yaw_rate_sigma_deg"), raw.yaw_rate_sigma_deg)
+        & ctx.expect(
+            raw.yaw_rate_bias_deg.abs() <= MAX_YAW_RATE_BIAS_DEG,
+            &path.key("yaw_rate_bias_deg"),
+            &format!("a rate from −{MAX_YAW_RATE_BIAS_DEG} to {MAX_YAW_RATE_BIAS_DEG} °/s"),
+            raw.yaw_rate_bias_deg,
+        );
+    ok.then_some(match raw.model {
+        OdometryModel::Exact => Odometry::Exact,
+        OdometryModel::Noisy => Odometry::Noisy(OdometryNoise {
+            speed_sigma: raw.speed_sigma,
+            speed_bias: raw.speed_bias,
+            yaw_rate_sigma: raw.yaw_rate_sigma_deg.to_radians(),
+            yaw_rate_bias: raw.yaw_rate_bias_deg.to_radians(),
+        }),
     })
 }
