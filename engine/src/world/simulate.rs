@@ -213,8 +213,17 @@ pub fn run(
             continue;
         }
         let received = communicate(&sensed);
-        // The ground truth the fused grids are tallied against.
-        truth.mark(grid, &scene.raster, &setting.in_region, &scene.bodies, perception.ego);
+        // The ground truth the fused grids are tallied against: every cooperating
+        // agent in the scene reports its own footprint.
+        let reporting: Vec<usize> = sensed.iter().map(|c| c.agent).collect();
+        truth.mark(
+            grid,
+            &scene.raster,
+            &setting.in_region,
+            &scene.bodies,
+            perception.ego,
+            &reporting,
+        );
         let snapshot = k == perception.snapshot_step;
         let grids = sink.wants_grids(k);
         let fused = fusion.fuse(
