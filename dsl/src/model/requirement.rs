@@ -455,9 +455,9 @@ impl Metric {
             | Self::TotalConflictCells
             | Self::WeightedCells => "fused cells",
             Self::FovGain => "cell-steps the ego observes",
-            Self::OccupiedRecall => "truly occupied cell-steps, cooperating agents' own footprints aside",
+            Self::OccupiedRecall => "occupied cell-steps of non-cooperating road users",
             Self::OccupiedPrecision => "cell-steps decided occupied",
-            Self::BlindRecall => "truly occupied cell-steps the ego does not observe, own footprints aside",
+            Self::BlindRecall => "occupied cell-steps of non-cooperating road users the ego does not observe",
             Self::OccupiedRecallWithSelfReport => "truly occupied cell-steps",
             Self::SelfReportShare => "truly occupied cell-steps decided occupied",
             Self::AnticipationMedian | Self::AnticipationP95 => "anticipation times",
