@@ -278,20 +278,21 @@ fn an_agent_setting_must_name_an_agent_and_a_setting() {
     }
 }
 
-/// See: issue 13 §6. The roundabout's two studies meet where six vehicles
-/// cooperate at the nominal noise (σ = 0.2 m, the file's value): 11 distinct
-/// configurations, not 12, the shared one labelled by both sweeps, and the
-/// requirements at that configuration checked once.
+/// See: issue 13 §6. The roundabout's three studies meet where six vehicles
+/// cooperate at the nominal noise (σ = 0.2 m) with noisy odometry (the file's
+/// values): 12 distinct configurations, not 14, the shared one labelled by
+/// every sweep, and the requirements at that configuration checked once.
 #[test]
 fn the_roundabout_sweeps_meet_at_one_point() {
     let text = include_str!("../../scenarios/roundabout-six-agents.yaml");
     let scenario = compile("roundabout.yaml", text, &Options::default()).unwrap_or_else(|e| panic!("{e}"));
-    assert_eq!(scenario.points.len(), 11);
+    assert_eq!(scenario.points.len(), 12);
     assert_eq!(scenario.sweeps[0].points, [0, 1, 2, 3, 4, 5]);
     assert_eq!(scenario.sweeps[1].points, [6, 7, 5, 8, 9, 10]);
+    assert_eq!(scenario.sweeps[2].points, [11, 5]);
     assert_eq!(
         scenario.points[5].label(),
-        "perception.cooperating=6 | localization.position_sigma=0.2"
+        "perception.cooperating=6 | localization.position_sigma=0.2 | localization.odometry.model=noisy"
     );
     let nominal = scenario
         .requirements
@@ -304,11 +305,12 @@ fn the_roundabout_sweeps_meet_at_one_point() {
         .iter()
         .find(|r| r.id == "RB-NOISE-01")
         .expect("RB-NOISE-01");
+    // Noisy odometry only: the exact-odometry point is a comparison.
     assert_eq!(noise.points, [5, 6, 7, 8, 9, 10]);
     let every = scenario
         .requirements
         .iter()
         .find(|r| r.id == "RB-PREC-01")
         .expect("RB-PREC-01");
-    assert_eq!(every.points, (0..11).collect::<Vec<_>>());
+    assert_eq!(every.points, (0..12).collect::<Vec<_>>());
 }

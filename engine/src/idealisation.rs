@@ -9,8 +9,8 @@
 
 use serde::Serialize;
 use sightline_dsl::{
-    ErrorModel, Experiment, Following, FusionMethod, PathLossModel, PoseFilter, RiskScope, RsuSight, Rule, Scenario,
-    Setup, ShareCycles, SourceCombination, SwitchMeasure, WeightScaling,
+    ErrorModel, Experiment, Following, FusionMethod, OdometryModel, PathLossModel, PoseFilter, RiskScope, RsuSight,
+    Rule, Scenario, Setup, ShareCycles, SourceCombination, SwitchMeasure, WeightScaling,
 };
 
 use crate::{field, fusion, semantic, v2x, world};
@@ -31,6 +31,8 @@ pub struct Idealisation {
 pub enum ModelOption {
     /// `localization.filter`.
     PoseFilter(PoseFilter),
+    /// `localization.odometry.model` (a Kalman filter's).
+    OdometryModel(OdometryModel),
     /// `fusion.method`.
     FusionMethod(FusionMethod),
     /// `fusion.weights`.
@@ -59,6 +61,7 @@ impl ModelOption {
     pub fn idealisations(self) -> &'static [Idealisation] {
         match self {
             Self::PoseFilter(filter) => world::localization_idealisations(filter),
+            Self::OdometryModel(model) => world::odometry_idealisations(model),
             Self::FusionMethod(method) => fusion::method_idealisations(method),
             // The weighted rules' parameters change how evidence is weighed, not
             // what is assumed of it: the method's entry covers them.
@@ -116,7 +119,11 @@ fn options(setup: &Setup) -> Vec<ModelOption> {
         Experiment::World(world) => {
             options.push(ModelOption::Following(world.driving.following));
             if world.perception.is_some() {
-                options.push(ModelOption::PoseFilter(world.localization.filter));
+                let localization = &world.localization;
+                options.push(ModelOption::PoseFilter(localization.filter));
+                if localization.filter == PoseFilter::Kalman {
+                    options.push(ModelOption::OdometryModel(localization.odometry.model()));
+                }
             }
             if let Some(semantic) = &world.semantic {
                 options.extend([

@@ -16,6 +16,8 @@ pub(crate) enum Purpose {
     Masses,
     /// Self-reported pose measurements; one stream per agent.
     Localization,
+    /// Odometry readings (speed, yaw rate); one stream per agent.
+    Odometry,
     /// Detection draws and detection noise; one stream per agent.
     Detections,
     /// Generated traffic; one stream per route, then one per crosswalk.
@@ -37,6 +39,7 @@ impl Purpose {
             Self::Traffic => 6,
             Self::Channel => 7,
             Self::Connectivity => 8,
+            Self::Odometry => 9,
         }
     }
 }

@@ -20,6 +20,7 @@ fn parse<T: DeserializeOwned>(value: &str) -> T {
 fn option(name: &str, value: &str) -> Option<ModelOption> {
     Some(match name {
         "PoseFilter" => ModelOption::PoseFilter(parse(value)),
+        "OdometryModel" => ModelOption::OdometryModel(parse(value)),
         "FusionMethod" => ModelOption::FusionMethod(parse(value)),
         "WeightScaling" => ModelOption::WeightScaling(parse(value)),
         "SourceCombination" => ModelOption::SourceCombination(parse(value)),
@@ -51,6 +52,7 @@ const NOT_OPTIONS: &[(&str, &str)] = &[
 /// The option values that add no idealisation to their model's own, each
 /// explicitly.
 const NONE: &[(&str, &str)] = &[
+    ("PoseFilter", "kalman"),
     ("PoseFilter", "none"),
     ("WeightScaling", "sum_to_one"),
     ("WeightScaling", "mean_one"),
@@ -158,14 +160,23 @@ fn a_run_lists_what_its_options_assume() {
     ] {
         assert!(kalman.contains(&id), "{id} missing from {kalman:?}");
     }
-    assert!(kalman.contains(&"localization.exact-odometry"));
+    // Noisy odometry by default: what it still idealises, never exact odometry.
+    assert!(kalman.contains(&"localization.noisy-odometry") && !kalman.contains(&"localization.exact-odometry"));
+    let exact_odometry = ids(&WORLD.replace("filter: kalman", "filter: kalman, odometry: { model: exact }"));
+    assert!(
+        exact_odometry.contains(&"localization.exact-odometry")
+            && !exact_odometry.contains(&"localization.noisy-odometry")
+    );
     assert!(kalman.contains(&"fusion.bayes-independent"));
     assert!(kalman.contains(&"motion.no-following"));
     // No roadside unit, so none is transparent or surveyed.
     assert!(!kalman.contains(&"sight.rsu-transparent") && !kalman.contains(&"world.surveyed-rsu"));
 
     let unfiltered = ids(&WORLD.replace("filter: kalman", "filter: none"));
-    assert!(!unfiltered.contains(&"localization.exact-odometry"), "{unfiltered:?}");
+    assert!(
+        !unfiltered.iter().any(|id| id.ends_with("-odometry")),
+        "the raw measurement reads no odometry: {unfiltered:?}"
+    );
     let exact = ids(&WORLD.replace("position_sigma: 0.2", "position_sigma: 0"));
     assert!(exact.contains(&"localization.exact") && !exact.contains(&"localization.white-noise"));
     let dempster = ids(&WORLD.replace("method: bayes", "method: dempster"));

@@ -274,13 +274,16 @@ fn world_steps_add_up_to_the_metrics() {
                 sightings.add(cooperator.sightings);
             }
         }
-        assert!(cells.occupied > 0 && cells.detected > 0 && cells.blind_occupied > 0);
+        assert!(cells.occupied > 0 && cells.detected > 0 && cells.blind_occupied > 0 && cells.self_report > 0);
         let expected = CellTally {
             occupied: metrics.occupied,
             detected: metrics.detected,
             false_positives: metrics.false_positives,
             blind_occupied: metrics.blind_occupied,
             blind_detected: metrics.blind_detected,
+            self_report: metrics.self_report,
+            self_report_detected: metrics.self_report_detected,
+            self_report_only: metrics.self_report_only,
         };
         assert_eq!(cells, expected, "point {point}");
         assert_eq!((ego, joint), (metrics.ego_observed, metrics.joint_observed));
@@ -348,10 +351,12 @@ fn fused_grids_come_only_at_the_steps_asked_for() {
             .filter(|(t, c)| **t == truth && c.is_some_and(|c| c.decision == Some(State::Occupied)))
             .count() as u64
     };
-    assert_eq!(tally.detected, decided_occupied(1));
+    // The picture shows every road user alike, cooperating agents' own bodies
+    // (self-report, counted apart) included.
+    assert_eq!(tally.detected + tally.self_report_detected, decided_occupied(1));
     assert_eq!(tally.false_positives, decided_occupied(0));
     assert_eq!(
-        tally.occupied,
+        tally.occupied + tally.self_report,
         snapshot.truth.iter().filter(|&&t| t == 1).count() as u64
     );
     assert!(

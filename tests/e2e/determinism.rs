@@ -79,6 +79,31 @@ fn thread_count_does_not_change_semantic_evidence() {
     }
 }
 
+/// Noisy odometry draws from one stream per agent, a block per step: swept
+/// over its noise, a perception world's evidence is the same at any thread
+/// count.
+// See: issue 16, "Odometry with noise".
+#[test]
+fn thread_count_does_not_change_noisy_odometry_evidence() {
+    let scenario = "tests/fixtures/valid/noisy-odometry.yaml";
+    let tmp = temp_dir();
+    let (one, two, three) = (tmp.path().join("one"), tmp.path().join("two"), tmp.path().join("three"));
+    run_into(scenario, &one, &["--jobs", "1"], 0);
+    run_into(scenario, &two, &["--jobs", "2"], 0);
+    run_into(scenario, &three, &["--jobs", "3"], 0);
+    assert_same_evidence(&one, &two);
+    assert_same_evidence(&one, &three);
+    // The odometry's noise is drawn: each level estimates poses differently.
+    let results = read_json(&one.join("results.json"));
+    let errors: Vec<f64> = results["sweep"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| p["counts"]["localization_error"].as_f64().unwrap())
+        .collect();
+    assert!(errors[0] != errors[1] && errors[1] != errors[2], "{errors:?}");
+}
+
 #[test]
 fn seed_flag_replaces_the_seed_and_changes_the_results() {
     let tmp = temp_dir();

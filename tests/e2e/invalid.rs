@@ -154,6 +154,9 @@ invalid_inputs! {
     a_third_coordinate_is_refused_not_dropped => "point-with-a-third-coordinate",
     yaml_tags_are_refused => "tagged-value",
     nesting_is_refused_past_its_limit => "nesting-too-deep",
+    // See: issue 16 (odometry with noise).
+    odometry_out_of_physical_range_is_refused => "odometry-out-of-range",
+    noise_beside_exact_odometry_is_refused => "odometry-exact-with-noise",
 }
 
 #[test]

@@ -205,7 +205,9 @@ const SECTIONS: &[(&str, &str)] = &[
     (
         "localization",
         r#"{ "position_sigma": 0.1, "heading_sigma_deg": 1, "filter": "kalman", "process_position_sigma": 0.1,
-             "process_heading_sigma_deg": 0.5 }"#,
+             "process_heading_sigma_deg": 0.5,
+             "odometry": { "model": "noisy", "speed_sigma": 0.1, "speed_bias": 0.01, "yaw_rate_sigma_deg": 0.1,
+                           "yaw_rate_bias_deg": 0.2 } }"#,
     ),
     (
         "perception",
@@ -606,6 +608,11 @@ const KEYS: &[Key] = &[
     Key { path: "localization.filter", field: Section, perception: change(&[("localization.filter", r#""none""#)]), semantic: Section },
     Key { path: "localization.process_position_sigma", field: Section, perception: change(&[("localization.process_position_sigma", "1")]), semantic: Section },
     Key { path: "localization.process_heading_sigma_deg", field: Section, perception: change(&[("localization.process_heading_sigma_deg", "5")]), semantic: Section },
+    Key { path: "localization.odometry.model", field: Section, perception: change(&[("localization.odometry.model", r#""exact""#)]), semantic: Section },
+    Key { path: "localization.odometry.speed_sigma", field: Section, perception: change(&[("localization.odometry.speed_sigma", "1")]), semantic: Section },
+    Key { path: "localization.odometry.speed_bias", field: Section, perception: change(&[("localization.odometry.speed_bias", "0.08")]), semantic: Section },
+    Key { path: "localization.odometry.yaw_rate_sigma_deg", field: Section, perception: change(&[("localization.odometry.yaw_rate_sigma_deg", "3")]), semantic: Section },
+    Key { path: "localization.odometry.yaw_rate_bias_deg", field: Section, perception: change(&[("localization.odometry.yaw_rate_bias_deg", "4")]), semantic: Section },
     Key { path: "perception.ego", field: Section, perception: change(&[("perception.ego", r#""cav""#)]), semantic: Section },
     Key { path: "perception.cooperating", field: Section, perception: change(&[("perception.cooperating", "2")]), semantic: Section },
     Key { path: "perception.inverse_model.occupied", field: Section, perception: change(&[("perception.inverse_model", r#"{ "occupied": 0.9 }"#)]), semantic: Section },

@@ -21,7 +21,9 @@
 //! is accepted, so that a sweep or a search may reach 0.
 
 use super::context::has;
-use crate::model::{AgentKind, Experiment, Following, Motion, PathLossModel, PoseFilter, RsuSight, Rule, Setup, World};
+use crate::model::{
+    AgentKind, Experiment, Following, Motion, Odometry, PathLossModel, PoseFilter, RsuSight, Rule, Setup, World,
+};
 use crate::path::{Path, Segment};
 use crate::yaml::{Node, Value};
 use Kind::{Field, Perception, Semantic};
@@ -386,9 +388,16 @@ impl Unused<'_> {
                 "every cooperating agent is a roadside unit, whose pose is surveyed: nobody localizes".into()
             });
         } else if world.localization.filter == PoseFilter::None {
-            for key in ["process_position_sigma", "process_heading_sigma_deg"] {
+            for key in ["process_position_sigma", "process_heading_sigma_deg", "odometry"] {
                 self.check(root.key("localization").key(key), || {
                     "`filter: none` takes each measurement as it is, without the Kalman filter's motion model".into()
+                });
+            }
+        } else if world.localization.odometry == Odometry::Exact {
+            let odometry = root.key("localization").key("odometry");
+            for key in ["speed_sigma", "speed_bias", "yaw_rate_sigma_deg", "yaw_rate_bias_deg"] {
+                self.check(odometry.key(key), || {
+                    "`model: exact` predicts with the agent's exact motion: no reading has noise or bias".into()
                 });
             }
         }

@@ -29,6 +29,6 @@ pub use semantic::{
 pub use v2x::{Channel, PathLossModel, V2x};
 pub use vary::{Domain, RANGE_STEPS, Vary};
 pub use world::{
-    Agent, AgentKind, Direction, LaneLink, Localization, Motion, Occluder, Perception, PoseFilter, Road, Sensor,
-    TraceSample, World,
+    Agent, AgentKind, Direction, LaneLink, Localization, Motion, Occluder, Odometry, OdometryModel, OdometryNoise,
+    Perception, PoseFilter, Road, Sensor, TraceSample, World,
 };

@@ -286,14 +286,22 @@ pub enum Metric {
     /// World: Σ cells observed by any cooperating agent / Σ cells observed by the
     /// ego, minus 1, over the run (seed 000 reports +260 %, that is 2.6).
     FovGain,
-    /// World: share of truly occupied cells the fused grid decides Occupy, over
-    /// the run (0–1).
+    /// World: share of the truly occupied cells the fused grid decides Occupy,
+    /// over the run, the cooperating agents' own footprints (self-report) left
+    /// out (0–1).
     OccupiedRecall,
     /// World: share of the cells the fused grid decides Occupy that are truly
     /// occupied, over the run (0–1).
     OccupiedPrecision,
     /// World: `occupied_recall` over the cells the ego does not observe itself (0–1).
     BlindRecall,
+    /// World: `occupied_recall` with the cooperating agents' own footprints
+    /// counted as well, as a grid that holds every road user is scored (0–1).
+    OccupiedRecallWithSelfReport,
+    /// World: share of the truly occupied cells the fused grid decides Occupy
+    /// that only a cooperating agent's report of its own footprint marks
+    /// occupied, no sensor (0–1).
+    SelfReportShare,
     /// Semantic: median anticipation time, seconds, over objects the ego first
     /// learned of from an RSU while it could not see them and later saw itself.
     AnticipationMedian,
@@ -323,7 +331,7 @@ pub enum Metric {
 
 impl Metric {
     /// Every metric, in documentation order.
-    pub const ALL: [Metric; 27] = [
+    pub const ALL: [Metric; 29] = [
         Self::Accuracy,
         Self::BelowThreshold,
         Self::BelowThresholdFraction,
@@ -342,6 +350,8 @@ impl Metric {
         Self::OccupiedRecall,
         Self::OccupiedPrecision,
         Self::BlindRecall,
+        Self::OccupiedRecallWithSelfReport,
+        Self::SelfReportShare,
         Self::AnticipationMedian,
         Self::AnticipationP95,
         Self::InfrastructureContribution,
@@ -374,6 +384,8 @@ impl Metric {
             Self::OccupiedRecall => "occupied_recall",
             Self::OccupiedPrecision => "occupied_precision",
             Self::BlindRecall => "blind_recall",
+            Self::OccupiedRecallWithSelfReport => "occupied_recall_with_self_report",
+            Self::SelfReportShare => "self_report_share",
             Self::AnticipationMedian => "anticipation_median",
             Self::AnticipationP95 => "anticipation_p95",
             Self::InfrastructureContribution => "infrastructure_contribution",
@@ -391,7 +403,12 @@ impl Metric {
         !self.in_semantic()
             && !matches!(
                 self,
-                Self::FovGain | Self::OccupiedRecall | Self::OccupiedPrecision | Self::BlindRecall
+                Self::FovGain
+                    | Self::OccupiedRecall
+                    | Self::OccupiedPrecision
+                    | Self::BlindRecall
+                    | Self::OccupiedRecallWithSelfReport
+                    | Self::SelfReportShare
             )
     }
 
@@ -438,9 +455,11 @@ impl Metric {
             | Self::TotalConflictCells
             | Self::WeightedCells => "fused cells",
             Self::FovGain => "cell-steps the ego observes",
-            Self::OccupiedRecall => "truly occupied cell-steps",
+            Self::OccupiedRecall => "occupied cell-steps of non-cooperating road users",
             Self::OccupiedPrecision => "cell-steps decided occupied",
-            Self::BlindRecall => "truly occupied cell-steps the ego does not observe",
+            Self::BlindRecall => "occupied cell-steps of non-cooperating road users the ego does not observe",
+            Self::OccupiedRecallWithSelfReport => "truly occupied cell-steps",
+            Self::SelfReportShare => "truly occupied cell-steps decided occupied",
             Self::AnticipationMedian | Self::AnticipationP95 => "anticipation times",
             Self::InfrastructureContribution | Self::ChannelLoad | Self::BaselineChannelLoad => "steps with the ego",
             Self::TransmittedShare | Self::LabelledShare => "object-cycles the RSUs perceive",
@@ -485,6 +504,8 @@ impl Metric {
             | Self::OccupiedRecall
             | Self::OccupiedPrecision
             | Self::BlindRecall
+            | Self::OccupiedRecallWithSelfReport
+            | Self::SelfReportShare
             | Self::TransmittedShare
             | Self::LabelledShare
             | Self::PacketDeliveryRatio => ValueDomain::Fraction,

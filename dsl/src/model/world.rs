@@ -281,6 +281,69 @@ pub struct Localization {
     pub process_position_sigma: f64,
     /// Process noise on the heading, radians per √s.
     pub process_heading_sigma: f64,
+    /// What the Kalman filter's prediction knows of the agent's motion.
+    pub odometry: Odometry,
+}
+
+/// The odometry models the pose filter can predict with (`localization.odometry.model`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum OdometryModel {
+    /// The agent's exact motion since the last step (an idealisation).
+    Exact,
+    /// Speed and yaw rate read with white noise and a constant bias.
+    #[default]
+    Noisy,
+}
+
+/// What the Kalman filter's prediction knows of the agent's motion between two
+/// steps.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub enum Odometry {
+    /// The exact motion.
+    Exact,
+    /// The motion re-integrated from a speed and a yaw rate read with noise.
+    Noisy(OdometryNoise),
+}
+
+impl Odometry {
+    /// The model chosen.
+    pub fn model(&self) -> OdometryModel {
+        match self {
+            Self::Exact => OdometryModel::Exact,
+            Self::Noisy(_) => OdometryModel::Noisy,
+        }
+    }
+}
+
+/// The errors of a speed and a yaw-rate reading, one of each per step.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct OdometryNoise {
+    /// σ of each step's speed reading, m/s.
+    pub speed_sigma: f64,
+    /// Scale error of the speed reading, a fraction of the true speed (0.01:
+    /// it reads 1 % fast).
+    pub speed_bias: f64,
+    /// σ of each step's yaw-rate reading, radians per second.
+    pub yaw_rate_sigma: f64,
+    /// Offset of the yaw-rate reading, radians per second.
+    pub yaw_rate_bias: f64,
+}
+
+impl Default for OdometryNoise {
+    /// Typical wheel-speed and yaw-rate sensors of a production car; the sources
+    /// are in docs/scenario-language.md ("Odometry"): a speed σ of 0.1 m/s per
+    /// 0.1 s reading (a 48-tooth tone wheel counted over a step), tyres worn
+    /// half-way (+1 %), a yaw-rate σ of 0.1 °/s and the largest in-run bias of
+    /// a rate-grade gyroscope, 1000 °/h ≈ 0.28 °/s.
+    fn default() -> Self {
+        Self {
+            speed_sigma: 0.1,
+            speed_bias: 0.01,
+            yaw_rate_sigma: 0.1_f64.to_radians(),
+            yaw_rate_bias: 0.28_f64.to_radians(),
+        }
+    }
 }
 
 /// Collective perception.

@@ -32,7 +32,7 @@ pub(crate) use record::RawRecord;
 pub(crate) use requirements::{RawCheck, RawReference, RawRequirement};
 pub(crate) use scenario::RawScenario;
 pub(crate) use semantic::{RawInteractionArea, RawSemantic};
-pub(crate) use sensors::{RawNoise, RawSensorModel};
+pub(crate) use sensors::{RawNoise, RawOdometry, RawSensorModel};
 pub(crate) use traffic::{RawCrosswalk, RawDriving, RawTraffic};
 pub(crate) use v2x::RawV2x;
 pub(crate) use world::{RawOccluder, RawRoad, RawTime, RawTraces};

@@ -239,6 +239,14 @@ pub(crate) const SIGMA: Range = Range::closed(0.0, 100.0);
 /// A process noise σ of a position, m: at least 1e-6, so that its square
 /// stays a positive number and the pose filter's matrices stay invertible.
 pub(crate) const PROCESS_SIGMA: Range = Range::closed(1.0e-6, 100.0);
+/// The scale error of an odometry speed reading, a fraction of the true speed:
+/// a speedometer may read up to 10 % (plus 4 km/h) fast and never slow (UNECE
+/// Regulation No. 39); odometry off by more is broken, not noisy.
+pub(crate) const SPEED_SCALE_ERROR: Range = Range::closed(-0.1, 0.1);
+/// The offset of a yaw-rate reading, degrees per second: above the 3.75 °/s an
+/// automotive yaw-rate sensor may drift over its life before the stability
+/// control compensates it.
+pub(crate) const YAW_RATE_OFFSET: Range = Range::closed(-5.0, 5.0);
 /// The growth of a σ per metre of distance.
 pub(crate) const SIGMA_PER_M: Range = Range::closed(0.0, 1.0);
 

@@ -5,7 +5,7 @@ use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use super::range;
-use crate::model::PoseFilter;
+use crate::model::{OdometryModel, OdometryNoise, PoseFilter};
 
 /// A sensor model, referred to by agents.
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
@@ -103,6 +103,8 @@ pub(crate) struct RawLocalization {
     /// Kalman filter: uncertainty the motion model adds to the heading, degrees per √s.
     #[schemars(transform = range::PROCESS_ANGLE_SIGMA.schema())]
     pub process_heading_sigma_deg: f64,
+    /// Kalman filter: the odometry its prediction reads.
+    pub odometry: RawOdometry,
 }
 
 impl Default for RawLocalization {
@@ -113,6 +115,46 @@ impl Default for RawLocalization {
             filter: PoseFilter::default(),
             process_position_sigma: 0.1,
             process_heading_sigma_deg: 0.5,
+            odometry: RawOdometry::default(),
+        }
+    }
+}
+
+/// The odometry the Kalman filter predicts with: one speed and one yaw-rate
+/// reading per step (defaults: typical production-car sensors, sources in
+/// docs/scenario-language.md).
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(default, deny_unknown_fields, expecting = "an odometry mapping")]
+#[schemars(rename = "Odometry")]
+pub(crate) struct RawOdometry {
+    /// `exact`: the agent's exact motion; `noisy`: speed and yaw rate read with
+    /// the noise and bias below.
+    pub model: OdometryModel,
+    /// σ of each step's speed reading, m/s.
+    #[schemars(transform = range::SIGMA.schema())]
+    pub speed_sigma: f64,
+    /// Scale error of the speed reading, a fraction of the true speed
+    /// (0.01: 1 % fast), from −0.1 to 0.1.
+    #[schemars(transform = range::SPEED_SCALE_ERROR.schema())]
+    pub speed_bias: f64,
+    /// σ of each step's yaw-rate reading, degrees per second.
+    #[schemars(transform = range::ANGLE_SIGMA.schema())]
+    pub yaw_rate_sigma_deg: f64,
+    /// Offset of the yaw-rate reading, degrees per second, from −5 to 5.
+    #[schemars(transform = range::YAW_RATE_OFFSET.schema())]
+    pub yaw_rate_bias_deg: f64,
+}
+
+impl Default for RawOdometry {
+    /// The model's defaults, kept in one place (`model::OdometryNoise`).
+    fn default() -> Self {
+        let noise = OdometryNoise::default();
+        Self {
+            model: OdometryModel::default(),
+            speed_sigma: noise.speed_sigma,
+            speed_bias: noise.speed_bias,
+            yaw_rate_sigma_deg: noise.yaw_rate_sigma.to_degrees(),
+            yaw_rate_bias_deg: noise.yaw_rate_bias.to_degrees(),
         }
     }
 }

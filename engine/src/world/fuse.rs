@@ -13,7 +13,7 @@ use sightline_dsl::{Grid, Perception, Rule};
 use super::metrics::WorldTally;
 use super::observe::{Observation, Observed};
 use super::raster::cell_center;
-use super::truth::{OCCUPIED, Truth};
+use super::truth::{OCCUPIED, SELF_REPORT, Truth};
 use crate::fusion::{Estimate, Mass, Source, State, decide, fuse, pignistic};
 use crate::idealisation::Idealisation;
 use crate::run::Job;
@@ -57,7 +57,9 @@ impl CellFusion<'_> {
             let mass = match observation.get(cell) {
                 Observed::Unknown => continue,
                 Observed::Free => Mass::new(1.0 - 2.0 * self.free, 0.0, 2.0 * self.free),
-                Observed::Occupied => Mass::new(0.0, 2.0 * self.occupied - 1.0, 2.0 - 2.0 * self.occupied),
+                Observed::Occupied | Observed::Own => {
+                    Mass::new(0.0, 2.0 * self.occupied - 1.0, 2.0 - 2.0 * self.occupied)
+                }
             };
             let distance = if distances {
                 observation
@@ -249,17 +251,28 @@ impl Tallier<'_> {
             tally.estimates.record(&estimate);
             let decision = decide(estimate.decision_mass(), self.threshold);
             let decided = decision == Some(State::Occupied);
-            let blind = ego.get(cell) == Observed::Unknown;
             let counts = &mut tally.cells;
-            if self.truth[cell] == OCCUPIED {
-                counts.occupied += 1;
-                counts.detected += u64::from(decided);
-                if blind {
-                    counts.blind_occupied += 1;
-                    counts.blind_detected += u64::from(decided);
+            match self.truth[cell] {
+                OCCUPIED => {
+                    counts.occupied += 1;
+                    counts.detected += u64::from(decided);
+                    if ego.get(cell) == Observed::Unknown {
+                        counts.blind_occupied += 1;
+                        counts.blind_detected += u64::from(decided);
+                    }
                 }
-            } else if decided {
-                counts.false_positives += 1;
+                SELF_REPORT => {
+                    counts.self_report += 1;
+                    counts.self_report_detected += u64::from(decided);
+                    // Known only through self-report: no sensor found it occupied.
+                    let sensed = self
+                        .fusion
+                        .observations
+                        .iter()
+                        .any(|o| o.get(cell) == Observed::Occupied);
+                    counts.self_report_only += u64::from(decided && !sensed);
+                }
+                _ => counts.false_positives += u64::from(decided),
             }
             if picture {
                 values.probability.push(match estimate {

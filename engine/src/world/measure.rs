@@ -12,7 +12,7 @@ use super::metrics::{CellTally, FusedCell, Snapshot, WorldMetrics, WorldOutcome}
 use super::observe::{Observation, Observed, Sightings};
 use super::raster::Raster;
 use super::state::AgentState;
-use super::truth::{EXCLUDED, OCCUPIED, Truth};
+use super::truth::{EXCLUDED, OCCUPIED, SELF_REPORT, Truth};
 use crate::metrics::EstimateTally;
 use crate::run::Job;
 use crate::sink::TraceSink;
@@ -86,18 +86,22 @@ impl Measures {
         let truth = step.truth.cells();
         let (ego_observed, joint_observed) = (coverage.ego(), coverage.cells().len() as u64);
         // Occupied cells nobody observed count as missed (and as blind: the ego did
-        // not observe them either).
-        let unseen = step
-            .truth
-            .marked()
-            .iter()
-            .filter(|&&c| truth[c] == OCCUPIED && !coverage.covers(c))
-            .count() as u64;
+        // not observe them either); so do a cooperating agent's own cells that
+        // nobody, not even it, observed (its estimated footprint missed them).
+        let unseen = |kind: u8| {
+            step.truth
+                .marked()
+                .iter()
+                .filter(|&&c| truth[c] == kind && !coverage.covers(c))
+                .count() as u64
+        };
+        let (unseen, unseen_own) = (unseen(OCCUPIED), unseen(SELF_REPORT));
         let mut fused = Vec::with_capacity(self.jobs.len());
         for (j, (job, chunks)) in self.jobs.iter_mut().zip(&step.fused.chunks).enumerate() {
             let mut cells = CellTally {
                 occupied: unseen,
                 blind_occupied: unseen,
+                self_report: unseen_own,
                 ..CellTally::default()
             };
             // Chunk by chunk, so that the floating-point sums do not depend on
@@ -190,7 +194,7 @@ fn picture(
     let truth_picture = (0..truth.len())
         .map(|cell| match (raster.is_occluder(cell), truth[cell]) {
             (true, _) => 2,
-            (false, OCCUPIED) => 1,
+            (false, OCCUPIED | SELF_REPORT) => 1,
             // Occluders are handled above: what else is excluded is the ego.
             (false, EXCLUDED) => 3,
             _ => 0,
@@ -200,7 +204,7 @@ fn picture(
         .map(|cell| match ego.get(cell) {
             Observed::Unknown => 0,
             Observed::Free => 1,
-            Observed::Occupied => 2,
+            Observed::Occupied | Observed::Own => 2,
         })
         .collect();
     let mut fused = vec![None; truth.len()];

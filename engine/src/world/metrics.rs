@@ -1,10 +1,19 @@
 //! What a world run measures: occupied-cell recall and precision of the fused grid,
-//! recall in the ego's blind area, the field of view gained by cooperation, and what
-//! sensors saw and missed.
+//! recall in the ego's blind area, the field of view gained by cooperation, how
+//! much of what the fused grid knows is self-report, and what sensors saw and
+//! missed.
 //!
 //! Counts are over cell-steps: a cell occupied at 300 steps counts 300 times.
 //! Only cells in the region of interest are counted, never occluder cells or the
 //! ego's own footprint, and only at steps at which the ego is in the scene.
+//!
+//! The cells a cooperating agent's own body covers (its true footprint) are
+//! self-report: the agent marks them itself, so no sensor had to find them.
+//! Recall (`occupied_recall`, `blind_recall`) counts the other occupied cells,
+//! which answers "does cooperation reveal the road users the ego cannot see?";
+//! the self-report cells are counted apart (`self_report_share`), and with them
+//! (`occupied_recall_with_self_report`) as a grid holding every road user is
+//! scored. Precision counts every cell decided Occupy.
 
 use serde::{Deserialize, Serialize};
 use sightline_dsl::{Metric, Signal};
@@ -35,7 +44,10 @@ impl WorldOutcome {
         let value = |c: &CellTally| match signal {
             Signal::OccupiedRecall => ratio(c.detected, c.occupied),
             Signal::BlindRecall => ratio(c.blind_detected, c.blind_occupied),
-            Signal::OccupiedPrecision => ratio(c.detected, c.detected + c.false_positives),
+            Signal::OccupiedPrecision => {
+                let correct = c.detected + c.self_report_detected;
+                ratio(correct, correct + c.false_positives)
+            }
             Signal::RsuOnlyObjects | Signal::TimeToConflict => None,
         };
         signal.in_world().then(|| {
@@ -53,16 +65,25 @@ impl WorldOutcome {
 pub struct WorldMetrics {
     /// Steps counted (the ego in the scene).
     pub steps: u64,
-    /// Cell-steps truly occupied by an agent other than the ego and RSUs.
+    /// Cell-steps truly occupied by a road user that does not cooperate (not
+    /// the ego, an RSU or a cooperating agent reporting its own footprint).
     pub occupied: u64,
     /// Of those, decided Occupy by the fused grid.
     pub detected: u64,
     /// Cell-steps decided Occupy that are truly free.
     pub false_positives: u64,
-    /// Truly occupied cell-steps the ego did not observe itself.
+    /// Of the `occupied` cell-steps, those the ego did not observe itself.
     pub blind_occupied: u64,
     /// Of those, decided Occupy by the fused grid.
     pub blind_detected: u64,
+    /// Cell-steps truly occupied by a cooperating agent other than the ego
+    /// (its own footprint, which it reports).
+    pub self_report: u64,
+    /// Of those, decided Occupy by the fused grid.
+    pub self_report_detected: u64,
+    /// Of those, the cell-steps no sensor observed occupied: known only
+    /// through self-report.
+    pub self_report_only: u64,
     /// Cell-steps observed by the ego.
     pub ego_observed: u64,
     /// Cell-steps observed by any cooperating agent.
@@ -92,6 +113,14 @@ impl WorldMetrics {
         add(&mut self.false_positives, cells.false_positives);
         add(&mut self.blind_occupied, cells.blind_occupied);
         add(&mut self.blind_detected, cells.blind_detected);
+        add(&mut self.self_report, cells.self_report);
+        add(&mut self.self_report_detected, cells.self_report_detected);
+        add(&mut self.self_report_only, cells.self_report_only);
+    }
+
+    /// Truly occupied cell-steps decided Occupy, self-report included.
+    fn correct(&self) -> u64 {
+        self.detected.saturating_add(self.self_report_detected)
     }
 
     /// The value of `metric`, or `None` where it is not defined for this run.
@@ -100,8 +129,12 @@ impl WorldMetrics {
         match metric {
             Metric::FovGain => ratio(self.joint_observed, self.ego_observed).map(|r| r - 1.0),
             Metric::OccupiedRecall => ratio(self.detected, self.occupied),
-            Metric::OccupiedPrecision => ratio(self.detected, self.detected.saturating_add(self.false_positives)),
+            Metric::OccupiedPrecision => ratio(self.correct(), self.correct().saturating_add(self.false_positives)),
             Metric::BlindRecall => ratio(self.blind_detected, self.blind_occupied),
+            Metric::OccupiedRecallWithSelfReport => {
+                ratio(self.correct(), self.occupied.saturating_add(self.self_report))
+            }
+            Metric::SelfReportShare => ratio(self.self_report_only, self.correct()),
             Metric::MeanUncertainty => self.mean_uncertainty,
             Metric::MeanConflict => self.conflict.as_ref()?.mean,
             Metric::MaxConflict => Some(self.conflict.as_ref()?.max),
@@ -118,8 +151,10 @@ impl WorldMetrics {
         match metric {
             Metric::FovGain => Some(self.ego_observed),
             Metric::OccupiedRecall => Some(self.occupied),
-            Metric::OccupiedPrecision => Some(self.detected.saturating_add(self.false_positives)),
+            Metric::OccupiedPrecision => Some(self.correct().saturating_add(self.false_positives)),
             Metric::BlindRecall => Some(self.blind_occupied),
+            Metric::OccupiedRecallWithSelfReport => Some(self.occupied.saturating_add(self.self_report)),
+            Metric::SelfReportShare => Some(self.correct()),
             Metric::MeanUncertainty => Some(fused),
             Metric::MeanConflict | Metric::MaxConflict | Metric::TotalConflictCells | Metric::WeightedCells => {
                 self.conflict.as_ref().map(|_| fused)
@@ -134,9 +169,10 @@ impl WorldMetrics {
 pub struct Snapshot {
     /// The step.
     pub step: usize,
-    /// Per cell: 0 free, 1 occupied by an agent, 2 occluder, 3 the ego (whose
-    /// footprint no metric counts). Cells outside the region of interest are
-    /// free.
+    /// Per cell: 0 free, 1 occupied by an agent (a cooperating agent's own
+    /// footprint, which the metrics count apart as self-report, included), 2
+    /// occluder, 3 the ego (whose footprint no metric counts). Cells outside the
+    /// region of interest are free.
     pub truth: Vec<u8>,
     /// Per cell, the ego's own grid: 0 unknown, 1 free, 2 occupied.
     pub ego: Vec<u8>,
@@ -162,16 +198,22 @@ pub struct FusedCell {
 /// [`CellTally::add`], a run's (the counts of [`WorldMetrics`]).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub struct CellTally {
-    /// Truly occupied by an agent other than the ego and RSUs.
+    /// Truly occupied by a road user that does not cooperate.
     pub occupied: u64,
     /// Of those, decided Occupy by the fused grid.
     pub detected: u64,
     /// Decided Occupy but truly free.
     pub false_positives: u64,
-    /// Truly occupied and not observed by the ego itself.
+    /// Of the `occupied`, those not observed by the ego itself.
     pub blind_occupied: u64,
     /// Of those, decided Occupy by the fused grid.
     pub blind_detected: u64,
+    /// Truly occupied by a cooperating agent other than the ego (self-report).
+    pub self_report: u64,
+    /// Of those, decided Occupy by the fused grid.
+    pub self_report_detected: u64,
+    /// Of those, observed occupied by no sensor: known only through self-report.
+    pub self_report_only: u64,
 }
 
 impl CellTally {
@@ -182,6 +224,9 @@ impl CellTally {
         self.false_positives += other.false_positives;
         self.blind_occupied += other.blind_occupied;
         self.blind_detected += other.blind_detected;
+        self.self_report += other.self_report;
+        self.self_report_detected += other.self_report_detected;
+        self.self_report_only += other.self_report_only;
     }
 }
 
@@ -208,6 +253,9 @@ mod tests {
             false_positives: 1,
             blind_occupied: 4,
             blind_detected: 2,
+            self_report: 6,
+            self_report_detected: 5,
+            self_report_only: 3,
         };
         metrics.add_step(100, 150, &cells);
         metrics.add_step(50, 50, &cells);
@@ -218,7 +266,21 @@ mod tests {
             (20, 16, 2)
         );
         assert_eq!((metrics.blind_occupied, metrics.blind_detected), (8, 4));
+        assert_eq!(
+            (
+                metrics.self_report,
+                metrics.self_report_detected,
+                metrics.self_report_only
+            ),
+            (12, 10, 6)
+        );
         assert_eq!(metrics.value(Metric::OccupiedRecall), Some(0.8));
+        // (16 + 10) / (20 + 12), over 32 cell-steps; 6 of the 26 correct ones are self-report only.
+        assert_eq!(metrics.value(Metric::OccupiedRecallWithSelfReport), Some(26.0 / 32.0));
+        assert_eq!(metrics.sample_size(Metric::OccupiedRecallWithSelfReport, 0), Some(32));
+        assert_eq!(metrics.value(Metric::SelfReportShare), Some(6.0 / 26.0));
+        assert_eq!(metrics.sample_size(Metric::SelfReportShare, 0), Some(26));
+        assert_eq!(metrics.value(Metric::OccupiedPrecision), Some(26.0 / 28.0));
     }
 
     /// A forged count from a recording saturates rather than overflowing.

@@ -28,7 +28,7 @@ pub use state::{AgentState, Restraint};
 pub use {fuse::CellFusion, observe::StepScene, raster::Raster};
 
 pub(crate) use following::following_idealisations;
-pub(crate) use localization::filter_idealisations as localization_idealisations;
+pub(crate) use localization::{filter_idealisations as localization_idealisations, odometry_idealisations};
 pub(crate) use motion::ON_THEIR_WAY;
 pub(crate) use sight::{ONE_RAY, PLANAR, RSU_TRANSPARENT};
 pub(crate) use simulate::idealisations;

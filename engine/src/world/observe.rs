@@ -9,10 +9,12 @@
 //! σ(d) = base + per_m · d on each axis and with its length and width each off by
 //! Gaussian noise of the size σ(d) (never below 10 cm), and the cells of that
 //! footprint (seen from the estimated pose) are marked occupied. Occupied wins over
-//! free where two observations of the agent meet. Finally the agent marks its own
-//! footprint occupied at its estimated pose: it knows where it is (up to its
-//! localization error), as a V2X sender reports its own state, and its rays, which
-//! pass through its own footprint, must not report it as free space.
+//! free where two observations of the agent meet. Finally the agent reports its own
+//! footprint at its estimated pose ([`Observed::Own`], occupied to fusion): it
+//! knows where it is (up to its localization error), as a V2X sender reports its
+//! own state, and its rays, which pass through its own footprint, must not report
+//! it as free space. The mark is kept apart from a detection's, so that the
+//! metrics can tell self-report from perception.
 
 use rand::RngExt;
 use rand::rngs::ChaCha8Rng;
@@ -51,7 +53,8 @@ pub(crate) const FREE_SPACE: Idealisation = Idealisation {
 pub(crate) const SELF_REPORT: Idealisation = Idealisation {
     id: "observe.self-report",
     text: "Each cooperating agent marks its own footprint occupied at its estimated pose, as a V2X sender \
-           reports its own state.",
+           reports its own state. Its true footprint is not counted in `occupied_recall` or `blind_recall` \
+           (no sensor had to find it): `self_report_share` and `occupied_recall_with_self_report` count it.",
 };
 
 /// What an agent knows of a cell.
@@ -63,6 +66,16 @@ pub enum Observed {
     Free,
     /// Covered by a detected object.
     Occupied,
+    /// Covered by the observer's own footprint, as it reports it (occupied to
+    /// fusion, but no sensor's finding).
+    Own,
+}
+
+impl Observed {
+    /// Whether the cell is reported occupied, by a detection or by self-report.
+    pub fn is_occupied(self) -> bool {
+        matches!(self, Self::Occupied | Self::Own)
+    }
 }
 
 /// One agent's observation grid, reused from step to step.
@@ -170,13 +183,16 @@ impl Observation {
         &self.sighted
     }
 
+    /// Marks `cell`: free < own footprint < detected occupied, the stronger mark kept.
     fn mark(&mut self, cell: usize, observed: Observed) {
         match (self.cells[cell], observed) {
             (Observed::Unknown, _) => {
                 self.cells[cell] = observed;
                 self.touched.push(cell);
             }
-            (Observed::Free, Observed::Occupied) => self.cells[cell] = Observed::Occupied,
+            (Observed::Free, Observed::Occupied | Observed::Own) | (Observed::Own, Observed::Occupied) => {
+                self.cells[cell] = observed;
+            }
             _ => {}
         }
     }
@@ -211,7 +227,7 @@ impl Observation {
         }
         let own = Body::of(index, agent, estimate);
         for cell in box_cells(scene.grid, &own) {
-            self.mark(cell, Observed::Occupied);
+            self.mark(cell, Observed::Own);
         }
     }
 

@@ -159,6 +159,7 @@ struct Cooperator {
     observation: Observation,
     estimator: PoseEstimator,
     localization: ChaCha8Rng,
+    odometry: ChaCha8Rng,
     detections: ChaCha8Rng,
     present: bool,
     /// The pose it placed its observation with.
@@ -173,6 +174,7 @@ impl Cooperator {
             observation: Observation::new(cells),
             estimator: PoseEstimator::new(world.localization),
             localization: stream(seed, Purpose::Localization, agent as u64),
+            odometry: stream(seed, Purpose::Odometry, agent as u64),
             detections: stream(seed, Purpose::Detections, agent as u64),
             present: false,
             estimate: Pose::IDENTITY,
@@ -205,14 +207,23 @@ pub fn run(
     for k in 0..world.steps {
         let time = k as f64 * world.step;
         scene.advance(k, &world.agents);
-        let sensed = sense(&setting, &scene, &mut cooperators);
+        let sensed = sense(&setting, k, &scene, &mut cooperators);
         if scene.states[perception.ego].is_none() {
             unmeasured(k, time, &scene.states, &sensed, sink);
             continue;
         }
         let received = communicate(&sensed);
-        // The ground truth the fused grids are tallied against.
-        truth.mark(grid, &scene.raster, &setting.in_region, &scene.bodies, perception.ego);
+        // The ground truth the fused grids are tallied against: every cooperating
+        // agent in the scene reports its own footprint.
+        let reporting: Vec<usize> = sensed.iter().map(|c| c.agent).collect();
+        truth.mark(
+            grid,
+            &scene.raster,
+            &setting.in_region,
+            &scene.bodies,
+            perception.ego,
+            &reporting,
+        );
         let snapshot = k == perception.snapshot_step;
         let grids = sink.wants_grids(k);
         let fused = fusion.fuse(
@@ -237,11 +248,16 @@ pub fn run(
     measures.finish(jobs)
 }
 
-/// Sense: every cooperating agent in the scene estimates its pose (a roadside
-/// unit knows its surveyed one) and observes with it. Agents update their pose
-/// estimates whether or not the ego is there. Returns what those in the scene
-/// sensed, in cooperation order.
-fn sense<'c>(setting: &Setting<'_>, scene: &Scene<'_>, cooperators: &'c mut [Cooperator]) -> Vec<CooperatorStep<'c>> {
+/// Sense: every cooperating agent in the scene estimates its pose at step `k`
+/// (a roadside unit knows its surveyed one) and observes with it. Agents update
+/// their pose estimates whether or not the ego is there. Returns what those in
+/// the scene sensed, in cooperation order.
+fn sense<'c>(
+    setting: &Setting<'_>,
+    k: usize,
+    scene: &Scene<'_>,
+    cooperators: &'c mut [Cooperator],
+) -> Vec<CooperatorStep<'c>> {
     let world = setting.world;
     let step_scene = StepScene {
         grid: setting.grid,
@@ -257,7 +273,10 @@ fn sense<'c>(setting: &Setting<'_>, scene: &Scene<'_>, cooperators: &'c mut [Coo
             // A roadside unit's position is surveyed.
             Motion::Fixed { .. } => state.pose,
             Motion::Along { .. } | Motion::Trace { .. } => {
-                c.estimator.estimate(state.pose, world.step, &mut c.localization)
+                // Step k's odometry draws are block k of the agent's stream.
+                c.odometry.set_block_pos(k as u64);
+                c.estimator
+                    .estimate(state.pose, world.step, &mut c.localization, &mut c.odometry)
             }
         };
         c.estimate = estimate;

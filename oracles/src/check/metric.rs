@@ -122,7 +122,7 @@ mod tests {
         );
         assert_eq!(
             e.message,
-            "nothing to judge: no truly occupied cell-steps to measure occupied_recall on"
+            "nothing to judge: no occupied cell-steps of non-cooperating road users to measure occupied_recall on"
         );
         // A count over nothing is 0 and would pass `at_most 0`: still not exercised.
         let none_close = Some(Sample { value: Some(0.0), n: 0 });

@@ -80,11 +80,20 @@ pub(super) fn point_body(p: &PointResult) -> (String, Vec<TableView>) {
             let s = &c.sightings;
             let rows = [
                 ("steps with the ego in the scene", c.steps as f64),
-                ("occupied cell-steps", c.occupied as f64),
+                (
+                    "occupied cell-steps (road users that do not cooperate)",
+                    c.occupied as f64,
+                ),
                 ("… decided Occupy", c.detected as f64),
                 ("free cell-steps decided Occupy", c.false_positives as f64),
                 ("occupied cell-steps the ego did not observe", c.blind_occupied as f64),
                 ("… decided Occupy", c.blind_detected as f64),
+                (
+                    "cell-steps of cooperating agents' own bodies (self-report)",
+                    c.self_report as f64,
+                ),
+                ("… decided Occupy", c.self_report_detected as f64),
+                ("… of which no sensor observed occupied", c.self_report_only as f64),
                 ("cell-steps observed by the ego", c.ego_observed as f64),
                 ("cell-steps observed by any cooperating agent", c.joint_observed as f64),
                 ("targets in line of sight (sensor–target pairs)", s.los as f64),

@@ -12,9 +12,10 @@ use crate::results::{PointResult, Results};
 
 /// Metrics every sweep table shows; metrics that requirements or references use
 /// are added after them.
-const TABLE_METRICS: [&str; 11] = [
+const TABLE_METRICS: [&str; 12] = [
     "occupied_recall",
     "blind_recall",
+    "self_report_share",
     "occupied_precision",
     "fov_gain",
     "accuracy",

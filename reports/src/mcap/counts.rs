@@ -8,9 +8,11 @@
 use sightline_dsl::Metric;
 
 /// The metrics the steps of a perception world give, summed over them.
-pub(crate) const WORLD_STEP_METRICS: [Metric; 4] = [
+pub(crate) const WORLD_STEP_METRICS: [Metric; 6] = [
     Metric::FovGain,
     Metric::OccupiedRecall,
     Metric::OccupiedPrecision,
     Metric::BlindRecall,
+    Metric::OccupiedRecallWithSelfReport,
+    Metric::SelfReportShare,
 ];

@@ -123,6 +123,9 @@ pub fn read(bytes: &[u8]) -> Result<Recording, ReadError> {
                                     false_positives: cells.false_positives,
                                     blind_occupied: cells.blind_occupied,
                                     blind_detected: cells.blind_detected,
+                                    self_report: cells.self_report,
+                                    self_report_detected: cells.self_report_detected,
+                                    self_report_only: cells.self_report_only,
                                 };
                                 step_counts.get_or_insert_with(WorldMetrics::default).add_step(
                                     cells.ego_observed,

@@ -273,22 +273,30 @@ pub struct CellSignals {
     pub ego_observed: u64,
     /// Cells any cooperating agent observed (the cells fused).
     pub joint_observed: u64,
-    /// Cells truly occupied by another agent.
+    /// Cells truly occupied by a road user that does not cooperate.
     pub occupied: u64,
     /// Of those, decided occupied.
     pub detected: u64,
     /// Cells decided occupied that are truly free.
     pub false_positives: u64,
-    /// Truly occupied cells the ego did not observe itself.
+    /// Of the `occupied` cells, those the ego did not observe itself.
     pub blind_occupied: u64,
     /// Of those, decided occupied.
     pub blind_detected: u64,
+    /// Cells of a cooperating agent's own body (other than the ego's): self-report.
+    pub self_report: u64,
+    /// Of those, decided occupied.
+    pub self_report_detected: u64,
+    /// Of those, observed occupied by no sensor.
+    pub self_report_only: u64,
     /// This step's `occupied_recall`.
     pub recall: Option<f64>,
     /// This step's `occupied_precision`.
     pub precision: Option<f64>,
     /// This step's `blind_recall`.
     pub blind_recall: Option<f64>,
+    /// This step's `self_report_share`.
+    pub self_report_share: Option<f64>,
     /// This step's `fov_gain`.
     pub fov_gain: Option<f64>,
 }

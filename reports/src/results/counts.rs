@@ -63,16 +63,25 @@ pub struct Coverage {
 pub struct WorldCounts {
     /// Steps counted (the ego in the scene).
     pub steps: u64,
-    /// Cell-steps truly occupied by an agent other than the ego and RSUs.
+    /// Cell-steps truly occupied by a road user that does not cooperate (not
+    /// the ego, an RSU or a cooperating agent's own footprint).
     pub occupied: u64,
     /// Of those, decided Occupy by the fused grid.
     pub detected: u64,
     /// Cell-steps decided Occupy that are truly free.
     pub false_positives: u64,
-    /// Truly occupied cell-steps the ego did not observe itself.
+    /// Of the `occupied` cell-steps, those the ego did not observe itself.
     pub blind_occupied: u64,
     /// Of those, decided Occupy by the fused grid.
     pub blind_detected: u64,
+    /// Cell-steps truly occupied by a cooperating agent other than the ego: its
+    /// own footprint, which it reports itself.
+    pub self_report: u64,
+    /// Of those, decided Occupy by the fused grid.
+    pub self_report_detected: u64,
+    /// Of those, the cell-steps no sensor observed occupied (known only through
+    /// self-report).
+    pub self_report_only: u64,
     /// Cell-steps observed by the ego.
     pub ego_observed: u64,
     /// Cell-steps observed by any cooperating agent.

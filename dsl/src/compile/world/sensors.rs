@@ -4,10 +4,10 @@
 use std::collections::HashMap;
 
 use crate::compile::context::{Context, Declaration};
-use crate::model::{Localization, Sensor};
+use crate::model::{Localization, Odometry, OdometryModel, OdometryNoise, Sensor};
 use crate::path::Path;
 use crate::raw::range;
-use crate::raw::{RawNoise, RawScenario, RawSensorModel};
+use crate::raw::{RawNoise, RawOdometry, RawScenario, RawSensorModel};
 
 /// The sensor models that compile, by id, and whether all did. A model that
 /// does not is noted in `ctx`, so the agents that name it are not reported as
@@ -84,11 +84,38 @@ pub(super) fn localization(ctx: &mut Context<'_>, raw: &RawScenario) -> Option<L
             l.process_heading_sigma_deg,
             range::PROCESS_ANGLE_SIGMA,
         );
+    // Checked whatever the rest gives, so that every error is reported at once.
+    let odometry = odometry(ctx, &l.odometry, &path.key("odometry"))?;
     ok.then_some(Localization {
         position_sigma: l.position_sigma,
         heading_sigma: l.heading_sigma_deg.to_radians(),
         filter: l.filter,
         process_position_sigma: l.process_position_sigma,
         process_heading_sigma: l.process_heading_sigma_deg.to_radians(),
+        odometry,
+    })
+}
+
+fn odometry(ctx: &mut Context<'_>, raw: &RawOdometry, path: &Path) -> Option<Odometry> {
+    let ok = ctx.within(&path.key("speed_sigma"), raw.speed_sigma, range::SIGMA)
+        & ctx.within(&path.key("speed_bias"), raw.speed_bias, range::SPEED_SCALE_ERROR)
+        & ctx.within(
+            &path.key("yaw_rate_sigma_deg"),
+            raw.yaw_rate_sigma_deg,
+            range::ANGLE_SIGMA,
+        )
+        & ctx.within(
+            &path.key("yaw_rate_bias_deg"),
+            raw.yaw_rate_bias_deg,
+            range::YAW_RATE_OFFSET,
+        );
+    ok.then_some(match raw.model {
+        OdometryModel::Exact => Odometry::Exact,
+        OdometryModel::Noisy => Odometry::Noisy(OdometryNoise {
+            speed_sigma: raw.speed_sigma,
+            speed_bias: raw.speed_bias,
+            yaw_rate_sigma: raw.yaw_rate_sigma_deg.to_radians(),
+            yaw_rate_bias: raw.yaw_rate_bias_deg.to_radians(),
+        }),
     })
 }

@@ -74,6 +74,7 @@ impl<W: Write + Seek> Recorder<'_, W> {
                     Observed::Unknown => 0,
                     Observed::Free => 1,
                     Observed::Occupied => 2,
+                    Observed::Own => 3,
                 };
             }
             let grid = crop.grid(&grid, time, &["state"], Numeric::Uint8, &data);
@@ -97,9 +98,13 @@ impl<W: Write + Seek> Recorder<'_, W> {
             false_positives: cells.false_positives,
             blind_occupied: cells.blind_occupied,
             blind_detected: cells.blind_detected,
+            self_report: cells.self_report,
+            self_report_detected: cells.self_report_detected,
+            self_report_only: cells.self_report_only,
             recall: step.value(Metric::OccupiedRecall),
             precision: step.value(Metric::OccupiedPrecision),
             blind_recall: step.value(Metric::BlindRecall),
+            self_report_share: step.value(Metric::SelfReportShare),
             fov_gain: step.value(Metric::FovGain),
         }
     }

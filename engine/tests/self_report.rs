@@ -1,0 +1,137 @@
+//! Self-report counted apart (issue 16, part 2), on scenes small enough to count
+//! by hand: a cooperating agent's own footprint is not a road user that
+//! cooperation revealed, so recall leaves it out and `self_report_share` counts
+//! it.
+// See: issue 16, "Honest recall".
+
+use sightline_dsl::{Metric, compile};
+use sightline_engine::outcome::{WorldMetrics, WorldOutcome};
+use sightline_engine::{Outcome, simulate};
+
+/// One 0.1 s step on a 1 m grid. A wall from x = −30 to 30 between y = 5 and 6
+/// hides the north from the ego, which stands at (0, −10) facing north; `cav`,
+/// connected, stands at (0, 20) facing east. Both carry a 25 m lidar without
+/// noise and localize exactly. A car's 4.5 × 1.8 m footprint centred on
+/// (x, 20) covers the 4 × 2 cells whose centres lie within 2.25 m and 0.9 m of
+/// it: 8 cells. `{others}` adds agents; `{sweep}` a sweep.
+const SCENE: &str = r#"
+sightline: 1
+name: self-report
+seed: 1
+time: { duration: 0.1, step: 0.1 }
+grid: { origin: [-30, -30], size: [60, 60], cell: 1 }
+roads:
+  - { id: ns, polyline: [[0, -30], [0, 30]], speed_limit: 10 }
+  - { id: we, polyline: [[-30, 20], [30, 20]], speed_limit: 10 }
+occluders: [{ id: wall, polygon: [[-30, 5], [30, 5], [30, 6], [-30, 6]] }]
+sensor_models: { lidar: { range: 25 } }
+agents:
+  - { id: ego, kind: car, route: [ns], start: { offset: 20 }, speed: { target: 0 }, connected: true, sensors: [lidar] }
+  - { id: cav, kind: car, route: [we], start: { offset: 30 }, speed: { target: 0 }, connected: true, sensors: [lidar] }
+{others}
+localization: { position_sigma: 0 }
+perception: { ego: ego }
+fusion: { method: bayes }
+decision: { threshold: 0 }
+{sweep}
+"#;
+
+/// A car that does not cooperate, 10 m east of `cav`, hidden from the ego.
+const HIDDEN_CAR: &str = "  - { id: car, kind: car, route: [we], start: { offset: 40 }, speed: { target: 0 } }";
+
+fn run(others: &str, sweep: &str) -> Vec<WorldMetrics> {
+    let text = SCENE.replace("{others}", others).replace("{sweep}", sweep);
+    let scenario = compile("self-report.yaml", &text, &Default::default()).unwrap_or_else(|e| panic!("{e}"));
+    simulate(&scenario)
+        .points
+        .iter()
+        .map(|outcome| match outcome {
+            Outcome::World(WorldOutcome { metrics, .. }) => metrics.clone(),
+            other => panic!("a perception world gives world outcomes, not {other:?}"),
+        })
+        .collect()
+}
+
+/// `metric`'s value and n.
+fn measured(metrics: &WorldMetrics, metric: Metric) -> (Option<f64>, Option<u64>) {
+    (metrics.value(metric), metrics.sample_size(metric, 0))
+}
+
+/// The only occupied cells are `cav`'s own, which it reports and no sensor
+/// sees: all it contributes is self-report, and recall over the other cells
+/// has nothing to count (n = 0, no value), not a perfect 1.
+#[test]
+fn a_cooperator_whose_own_body_is_all_it_reports_adds_only_self_report() {
+    let metrics = run("", "").remove(0);
+    assert_eq!(metrics.steps, 1);
+    assert_eq!(
+        (
+            metrics.self_report,
+            metrics.self_report_detected,
+            metrics.self_report_only
+        ),
+        (8, 8, 8)
+    );
+    assert_eq!((metrics.occupied, metrics.detected, metrics.false_positives), (0, 0, 0));
+    assert_eq!(measured(&metrics, Metric::OccupiedRecall), (None, Some(0)));
+    assert_eq!(measured(&metrics, Metric::BlindRecall), (None, Some(0)));
+    assert_eq!(measured(&metrics, Metric::SelfReportShare), (Some(1.0), Some(8)));
+    assert_eq!(
+        measured(&metrics, Metric::OccupiedRecallWithSelfReport),
+        (Some(1.0), Some(8))
+    );
+    assert_eq!(measured(&metrics, Metric::OccupiedPrecision), (Some(1.0), Some(8)));
+}
+
+/// A car the ego cannot see and `cav` detects. With the ego alone, both cars
+/// are road users to find (16 cells) and none is found. With `cav`
+/// cooperating, its own 8 cells are self-report, and the hidden car's 8 are
+/// revealed: recall and blind recall 1 over 8 cells, half of the 16 cells
+/// known being self-report.
+#[test]
+fn a_hidden_road_user_revealed_by_a_cooperator_counts_in_recall() {
+    let points = run(HIDDEN_CAR, "sweep: { perception.cooperating: [1, 2] }");
+    let (alone, together) = (&points[0], &points[1]);
+
+    assert_eq!((alone.occupied, alone.detected, alone.blind_occupied), (16, 0, 16));
+    assert_eq!(alone.self_report, 0);
+    assert_eq!(measured(alone, Metric::OccupiedRecall), (Some(0.0), Some(16)));
+    assert_eq!(measured(alone, Metric::SelfReportShare), (None, Some(0)));
+
+    assert_eq!((together.occupied, together.detected), (8, 8));
+    assert_eq!((together.blind_occupied, together.blind_detected), (8, 8));
+    assert_eq!(
+        (
+            together.self_report,
+            together.self_report_detected,
+            together.self_report_only
+        ),
+        (8, 8, 8)
+    );
+    assert_eq!(measured(together, Metric::OccupiedRecall), (Some(1.0), Some(8)));
+    assert_eq!(measured(together, Metric::BlindRecall), (Some(1.0), Some(8)));
+    assert_eq!(measured(together, Metric::SelfReportShare), (Some(0.5), Some(16)));
+    assert_eq!(
+        measured(together, Metric::OccupiedRecallWithSelfReport),
+        (Some(1.0), Some(16))
+    );
+}
+
+/// A cooperator's own cells that another cooperator's sensor also finds
+/// occupied are self-report, but not known *only* through it: `car2`, a
+/// second connected car 10 m east of `cav`, and `cav` each see the other.
+#[test]
+fn a_cooperator_seen_by_another_is_not_known_only_through_self_report() {
+    let second = "  - { id: cav2, kind: car, route: [we], start: { offset: 40 }, speed: { target: 0 }, connected: true, sensors: [lidar] }";
+    let metrics = run(second, "").remove(0);
+    assert_eq!(
+        (
+            metrics.self_report,
+            metrics.self_report_detected,
+            metrics.self_report_only
+        ),
+        (16, 16, 0)
+    );
+    assert_eq!(measured(&metrics, Metric::SelfReportShare), (Some(0.0), Some(16)));
+    assert_eq!(measured(&metrics, Metric::OccupiedRecall), (None, Some(0)));
+}
