@@ -81,6 +81,16 @@ mod template;
 #[path = "e2e/browser.rs"]
 mod browser;
 
+// Mutated scenarios, damaged recordings and shard files under a memory and a
+// time cap: refused with a location or run to a whole evidence set (issue 15).
+#[path = "e2e/fuzz.rs"]
+mod fuzz;
+
+// Each class of hostile input of issue 15, made from a bundled scenario by a
+// named edit, under the same caps; interrupted and failed writes of evidence.
+#[path = "e2e/hostile.rs"]
+mod hostile;
+
 // The house rules on the source tree: file sizes, no mutual imports, the engine's closed interface.
 #[path = "e2e/architecture.rs"]
 mod architecture;

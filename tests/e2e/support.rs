@@ -4,8 +4,10 @@
 
 use std::ffi::OsStr;
 use std::fmt;
+use std::io::Write;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
+use std::process::{Command, ExitStatus, Output, Stdio};
+use std::sync::OnceLock;
 
 use sha2::{Digest, Sha256};
 
@@ -48,6 +50,8 @@ pub struct Outcome {
     pub command: String,
     /// The exit code (`None` when killed by a signal).
     pub code: Option<i32>,
+    /// The signal that ended the process, if one did.
+    pub signal: Option<i32>,
     /// Standard output.
     pub stdout: String,
     /// Standard error.
@@ -66,7 +70,10 @@ impl Outcome {
 impl fmt::Display for Outcome {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         writeln!(f, "$ {}", self.command)?;
-        writeln!(f, "exit: {:?}", self.code)?;
+        match self.signal {
+            Some(signal) => writeln!(f, "signal: {signal}")?,
+            None => writeln!(f, "exit: {:?}", self.code)?,
+        }
         writeln!(f, "--- stdout\n{}", self.stdout)?;
         write!(f, "--- stderr\n{}", self.stderr)
     }
@@ -112,10 +119,170 @@ where
     };
     Outcome {
         code: output.status.code(),
+        signal: signal(output.status),
         stdout: text(output.stdout, "stdout"),
         stderr: text(output.stderr, "stderr"),
         command,
     }
+}
+
+/// The signal that ended a process, if one did.
+fn signal(status: ExitStatus) -> Option<i32> {
+    #[cfg(unix)]
+    return std::os::unix::process::ExitStatusExt::signal(&status);
+    #[cfg(not(unix))]
+    return None;
+}
+
+/// The memory cap of a run on hostile input (issue 15): 2 GiB of address space.
+pub const MEMORY_CAP_BYTES: u64 = 2 << 30;
+
+/// The time cap of a run on hostile input, in seconds of wall-clock time; then
+/// the run is killed (SIGKILL).
+pub const TIME_CAP_SECONDS: u32 = 20;
+
+/// The tools that impose the caps: `prlimit` (util-linux) and `timeout` (coreutils).
+const CAP_TOOLS: [&str; 2] = ["prlimit", "timeout"];
+
+/// Whether the tools that impose the caps are on PATH. When one is not, says
+/// once on the terminal that the capped tests are skipped, and panics instead
+/// when `CI` is set: CI must run them (`.ci/run` installs the tools).
+pub fn caps_available() -> bool {
+    static MISSING: OnceLock<Vec<&str>> = OnceLock::new();
+    let missing = MISSING.get_or_init(|| {
+        let missing: Vec<&str> = CAP_TOOLS
+            .into_iter()
+            .filter(|tool| Command::new(tool).arg("--version").output().is_err())
+            .collect();
+        if !missing.is_empty() && std::env::var_os("CI").is_none() {
+            // Straight to the terminal, past the test harness's capture, so
+            // that a passing run still says what it did not test.
+            let _ = writeln!(
+                std::io::stderr(),
+                "skipped: the tests of hostile input need {} on PATH (util-linux, coreutils)",
+                missing.join(" and ")
+            );
+        }
+        missing
+    });
+    assert!(
+        missing.is_empty() || std::env::var_os("CI").is_none(),
+        "CI is set but {} is not on PATH: the tests of hostile input cannot run",
+        missing.join(" and ")
+    );
+    missing.is_empty()
+}
+
+/// Runs the real `sightline` binary with `args` in `dir` under the caps:
+/// `prlimit --as=2147483648 -- timeout --signal=KILL 20 sightline ARGS`. Its
+/// streams are read lossily, so that a run on damaged input is judged rather
+/// than the harness stopped. Call [`caps_available`] first. `timeout` ends
+/// itself with the signal that ended sightline (SIGKILL at the time cap), so
+/// the outcome's `signal` is sightline's.
+pub fn sightline_capped<I, S>(dir: &Path, args: I) -> Outcome
+where
+    I: IntoIterator<Item = S>,
+    S: AsRef<OsStr>,
+{
+    let args: Vec<S> = args.into_iter().collect();
+    let limit = format!("--as={MEMORY_CAP_BYTES}");
+    let seconds = TIME_CAP_SECONDS.to_string();
+    let prefix = [limit.as_str(), "--", "timeout", "--signal=KILL", seconds.as_str()];
+    let command = ["prlimit"]
+        .into_iter()
+        .chain(prefix)
+        .map(str::to_string)
+        .chain(std::iter::once("sightline".to_string()))
+        .chain(args.iter().map(|a| a.as_ref().to_string_lossy().into_owned()))
+        .collect::<Vec<_>>()
+        .join(" ");
+    let output: Output = Command::new("prlimit")
+        .args(prefix)
+        .arg(env!("CARGO_BIN_EXE_sightline"))
+        .args(&args)
+        .current_dir(dir)
+        .output()
+        .unwrap_or_else(|e| panic!("failed to start {command}: {e}"));
+    Outcome {
+        code: output.status.code(),
+        signal: signal(output.status),
+        stdout: String::from_utf8_lossy(&output.stdout).into_owned(),
+        stderr: String::from_utf8_lossy(&output.stderr).into_owned(),
+        command,
+    }
+}
+
+impl Outcome {
+    /// What a run under the caps did that no input may make it do: end by a
+    /// signal (an abort, a crash, or SIGKILL at the time cap), exit with
+    /// another code than 0, 1 or 2, panic, or refuse without saying where
+    /// (exit 2 without a `file:line:col: error:` or `file: error:` line).
+    /// `None` when it kept to that contract.
+    pub fn broken_contract(&self) -> Option<String> {
+        let broken = match (self.code, self.signal) {
+            (Some(0 | 1), _) => String::new(),
+            (Some(2), _) if self.stderr.lines().any(is_located_error) => String::new(),
+            (Some(2), _) => "exit 2 without a `file:line:col: error:` or `file: error:` line".to_string(),
+            (Some(3), _) => "exit 3: an internal error".to_string(),
+            (_, Some(9)) => format!("SIGKILL: over the time cap of {TIME_CAP_SECONDS} s"),
+            (_, Some(6)) => "SIGABRT: an abort (an allocation refused under the memory cap?)".to_string(),
+            (_, Some(signal)) => format!("ended by signal {signal}"),
+            (code, None) => format!("exit {code:?}"),
+        };
+        let broken = match (broken.is_empty(), self.stderr.contains("panicked at")) {
+            (true, false) => return None,
+            (true, true) => "a panic on stderr".to_string(),
+            (false, true) => format!("{broken}, and a panic on stderr"),
+            (false, false) => broken,
+        };
+        Some(broken)
+    }
+}
+
+/// Whether `line` is a located error: `file:line:col: error: …` (1-based
+/// numbers) or `file: error: …`, for any file (the scenario or one it imports).
+pub fn is_located_error(line: &str) -> bool {
+    let Some((place, _)) = line.split_once(": error: ") else {
+        return false;
+    };
+    let mut parts = place.rsplitn(3, ':');
+    let (col, row, file) = (parts.next(), parts.next(), parts.next());
+    let number = |n: Option<&str>| n.and_then(|n| n.parse::<u64>().ok()).is_some_and(|n| n >= 1);
+    match file {
+        Some(file) if number(row) && number(col) => !file.is_empty(),
+        _ => !place.is_empty() && !place.starts_with("error"),
+    }
+}
+
+/// Why the evidence folder `out` breaks the contract after an exit `code`:
+/// a whole set (with or without the recording) after 0 or 1, nothing
+/// otherwise, and never a temporary file beside them.
+pub fn evidence_problem(out: &Path, code: Option<i32>) -> Option<String> {
+    let found = files_under(out);
+    let mut whole: Vec<PathBuf> = EVIDENCE_FILES.iter().map(PathBuf::from).collect();
+    let mut recorded = whole.clone();
+    recorded.push(RECORDING.into());
+    whole.sort();
+    recorded.sort();
+    let fine = match code {
+        Some(0 | 1) => found == whole || found == recorded,
+        _ => found.is_empty(),
+    };
+    (!fine).then(|| format!("the evidence folder holds {found:?} after exit {code:?}"))
+}
+
+/// The hidden temporary entries (`.sightline-*`) a run left in `dir`.
+pub fn leftovers(dir: &Path) -> Vec<String> {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return Vec::new();
+    };
+    let mut found: Vec<String> = entries
+        .map(|entry| entry.expect("failed to read a directory entry").file_name())
+        .map(|name| name.to_string_lossy().into_owned())
+        .filter(|name| name.starts_with(".sightline-"))
+        .collect();
+    found.sort();
+    found
 }
 
 /// A path as a command-line argument (temporary paths are UTF-8 here).
