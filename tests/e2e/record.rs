@@ -279,6 +279,33 @@ fn replay_refuses_a_truncated_recording() {
     assert!(replay.stderr.contains("results.json beside it records"), "{replay}");
 }
 
+/// A channel record of the summary section whose topic claims 2.6 GB is
+/// refused before anything is allocated: the `mcap` crate allocates a string by
+/// its declared length (a fuzz case of issue 15 aborted so under a 2 GiB cap).
+#[test]
+fn replay_refuses_a_length_field_past_its_record_within_the_caps() {
+    let run = roundabout_run();
+    let topic = b"/sightline/verdicts";
+    let mut prefixed = (topic.len() as u32).to_le_bytes().to_vec();
+    prefixed.extend_from_slice(topic);
+    // The last copy is the summary's channel record, read after the data's CRC.
+    let at = run
+        .recording
+        .windows(prefixed.len())
+        .rposition(|w| w == prefixed.as_slice())
+        .expect("the summary repeats the channel");
+    let mut damaged = run.recording.clone();
+    damaged[at..at + 4].copy_from_slice(&2_667_577_362u32.to_le_bytes());
+    let tmp = temp_dir();
+    std::fs::write(tmp.path().join("run.mcap"), &damaged).unwrap();
+    let replay = crate::support::sightline_capped(tmp.path(), ["replay", "run.mcap"]);
+    if let Some(broken) = replay.broken_contract() {
+        panic!("{broken}\n{replay}");
+    }
+    replay.assert_exit(2);
+    assert!(replay.stderr.contains("overruns the record"), "{replay}");
+}
+
 /// A recording whose bytes are not those results.json hashed is refused; a
 /// damaged byte is caught by the CRCs when no results.json is beside it.
 #[test]

@@ -11,6 +11,7 @@ pub use write::{Recorder, Source, WriteError};
 
 mod counts;
 mod foxglove;
+mod lengths;
 mod read;
 pub mod topic;
 mod wire;

@@ -16,6 +16,7 @@ use sightline_engine::outcome::{CellTally, MassAudit, Series, WorldMetrics};
 use sightline_oracles::Measurements;
 
 use super::counts::WORLD_STEP_METRICS;
+use super::lengths;
 use super::topic;
 use super::wire::{MetricValue, OutcomeRecord, RECORDING_FORMAT, ScenarioRecord, SignalsRecord, VerdictRecord};
 use crate::sha256_hex;
@@ -30,6 +31,9 @@ pub enum ReadError {
     /// The MCAP container is damaged: truncated, a bad CRC, a bad record.
     #[error("it is not a complete, intact MCAP file ({0}); it may be truncated or damaged")]
     Mcap(#[from] mcap::McapError),
+    /// A record's length field overruns the record.
+    #[error("it is not a complete, intact MCAP file ({0}); it may be truncated or damaged")]
+    Damaged(String),
     /// A valid MCAP file that sightline did not write (or not this version).
     #[error("it is not a sightline recording: {0}")]
     NotSightline(String),
@@ -93,52 +97,55 @@ pub fn read(bytes: &[u8]) -> Result<Recording, ReadError> {
                 offset += take;
                 reader.notify_read(take);
             }
-            LinearReadEvent::Record { opcode, data } => match mcap::parse_record(opcode, data)? {
-                Record::Channel(channel) => {
-                    topics.insert(channel.id, channel.topic);
-                }
-                Record::Attachment { header, data, .. } => {
-                    attachments.insert(header.name, data.into_owned());
-                }
-                Record::Message { header, data } => {
-                    let Some(name) = topics.get(&header.channel_id) else {
-                        return Err(ReadError::Mcap(mcap::McapError::UnknownChannel(
-                            header.sequence,
-                            header.channel_id,
-                        )));
-                    };
-                    let count = counts.entry(name.clone()).or_default();
-                    *count += 1;
-                    let index = *count as usize;
-                    match name.as_str() {
-                        topic::SCENARIO => scenarios.push(decode(topic::SCENARIO, index, &data)?),
-                        topic::OUTCOME => outcomes.push(decode(topic::OUTCOME, index, &data)?),
-                        topic::VERDICTS => verdicts.push(decode(topic::VERDICTS, index, &data)?),
-                        topic::SIGNALS => {
-                            let signals: SignalsRecord = decode(topic::SIGNALS, index, &data)?;
-                            if let Some(cells) = signals.cells {
-                                let tally = CellTally {
-                                    occupied: cells.occupied,
-                                    detected: cells.detected,
-                                    false_positives: cells.false_positives,
-                                    blind_occupied: cells.blind_occupied,
-                                    blind_detected: cells.blind_detected,
-                                    self_report: cells.self_report,
-                                    self_report_detected: cells.self_report_detected,
-                                    self_report_only: cells.self_report_only,
-                                };
-                                step_counts.get_or_insert_with(WorldMetrics::default).add_step(
-                                    cells.ego_observed,
-                                    cells.joint_observed,
-                                    &tally,
-                                );
-                            }
-                        }
-                        _ => {}
+            LinearReadEvent::Record { opcode, data } => {
+                lengths::check(opcode, data).map_err(ReadError::Damaged)?;
+                match mcap::parse_record(opcode, data)? {
+                    Record::Channel(channel) => {
+                        topics.insert(channel.id, channel.topic);
                     }
+                    Record::Attachment { header, data, .. } => {
+                        attachments.insert(header.name, data.into_owned());
+                    }
+                    Record::Message { header, data } => {
+                        let Some(name) = topics.get(&header.channel_id) else {
+                            return Err(ReadError::Mcap(mcap::McapError::UnknownChannel(
+                                header.sequence,
+                                header.channel_id,
+                            )));
+                        };
+                        let count = counts.entry(name.clone()).or_default();
+                        *count += 1;
+                        let index = *count as usize;
+                        match name.as_str() {
+                            topic::SCENARIO => scenarios.push(decode(topic::SCENARIO, index, &data)?),
+                            topic::OUTCOME => outcomes.push(decode(topic::OUTCOME, index, &data)?),
+                            topic::VERDICTS => verdicts.push(decode(topic::VERDICTS, index, &data)?),
+                            topic::SIGNALS => {
+                                let signals: SignalsRecord = decode(topic::SIGNALS, index, &data)?;
+                                if let Some(cells) = signals.cells {
+                                    let tally = CellTally {
+                                        occupied: cells.occupied,
+                                        detected: cells.detected,
+                                        false_positives: cells.false_positives,
+                                        blind_occupied: cells.blind_occupied,
+                                        blind_detected: cells.blind_detected,
+                                        self_report: cells.self_report,
+                                        self_report_detected: cells.self_report_detected,
+                                        self_report_only: cells.self_report_only,
+                                    };
+                                    step_counts.get_or_insert_with(WorldMetrics::default).add_step(
+                                        cells.ego_observed,
+                                        cells.joint_observed,
+                                        &tally,
+                                    );
+                                }
+                            }
+                            _ => {}
+                        }
+                    }
+                    _ => {}
                 }
-                _ => {}
-            },
+            }
         }
     }
     let scenario = match <[ScenarioRecord; 1]>::try_from(scenarios) {
