@@ -21,6 +21,10 @@ mod invalid;
 #[path = "e2e/verdicts.rs"]
 mod verdicts;
 
+// Calibration of the fused grid: a brier_score requirement, the reliability table and diagram.
+#[path = "e2e/calibration.rs"]
+mod calibration;
+
 // Every key of the language changes the result or is refused, per kind of scenario.
 #[path = "e2e/keys.rs"]
 mod keys;

@@ -17,4 +17,7 @@
 pub use crate::fusion::State;
 pub use crate::metrics::{BandMetrics, ConflictMetrics, Coverage, FieldMetrics, FieldOutcome, MassAudit, Series};
 pub use crate::semantic::{DELIVERY_BIN, DENSITY_BIN, DeliveryBin, DensityRow, LabelCounts, SemanticMetrics, quantile};
-pub use crate::world::{CellTally, FusedCell, Sightings, Snapshot, WorldMetrics, WorldOutcome};
+pub use crate::world::{
+    Calibration, CellTally, FusedCell, RELIABILITY_BINS, ReliabilityBin, Sightings, Snapshot, WorldMetrics,
+    WorldOutcome,
+};

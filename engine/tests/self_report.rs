@@ -4,6 +4,7 @@
 //! it.
 // See: issue 16, "Honest recall".
 
+use approx::assert_relative_eq;
 use sightline_dsl::{Metric, compile};
 use sightline_engine::outcome::{WorldMetrics, WorldOutcome};
 use sightline_engine::{Outcome, simulate};
@@ -39,17 +40,21 @@ decision: { threshold: 0 }
 /// A car that does not cooperate, 10 m east of `cav`, hidden from the ego.
 const HIDDEN_CAR: &str = "  - { id: car, kind: car, route: [we], start: { offset: 40 }, speed: { target: 0 } }";
 
-fn run(others: &str, sweep: &str) -> Vec<WorldMetrics> {
+fn outcomes(others: &str, sweep: &str) -> Vec<WorldOutcome> {
     let text = SCENE.replace("{others}", others).replace("{sweep}", sweep);
     let scenario = compile("self-report.yaml", &text, &Default::default()).unwrap_or_else(|e| panic!("{e}"));
     simulate(&scenario)
         .points
-        .iter()
+        .into_iter()
         .map(|outcome| match outcome {
-            Outcome::World(WorldOutcome { metrics, .. }) => metrics.clone(),
+            Outcome::World(world) => world,
             other => panic!("a perception world gives world outcomes, not {other:?}"),
         })
         .collect()
+}
+
+fn run(others: &str, sweep: &str) -> Vec<WorldMetrics> {
+    outcomes(others, sweep).into_iter().map(|o| o.metrics).collect()
 }
 
 /// `metric`'s value and n.
@@ -134,4 +139,33 @@ fn a_cooperator_seen_by_another_is_not_known_only_through_self_report() {
     );
     assert_eq!(measured(&metrics, Metric::SelfReportShare), (Some(0.0), Some(16)));
     assert_eq!(measured(&metrics, Metric::OccupiedRecall), (None, Some(0)));
+}
+
+/// Calibration (issue 16, part 5) on the scene of the hidden car. Every fused
+/// cell is seen by one agent only (the wall parts their views), so its p is the
+/// inverse model's: 0.3 where seen free, 0.7 where detected; both err by 0.3,
+/// and the Brier score is 0.09. Cells nobody observed are not judged (the
+/// hidden car's with the ego alone), nor is `cav`'s own body when it
+/// cooperates: n is the fused cells less its 8.
+#[test]
+fn brier_score_judges_the_fused_cells_self_report_aside() {
+    let points = outcomes(HIDDEN_CAR, "sweep: { perception.cooperating: [1, 2] }");
+    let (alone, together) = (&points[0], &points[1]);
+    let brier = |o: &WorldOutcome| measured(&o.metrics, Metric::BrierScore);
+
+    let (value, n) = brier(alone);
+    assert_relative_eq!(value.unwrap(), 0.09, epsilon = 1e-9);
+    assert_eq!(n, Some(alone.audit.cells));
+    let bins = &alone.metrics.calibration.bins;
+    assert_eq!(bins[3].cells, alone.audit.cells);
+    assert_eq!(bins[3].observed_frequency(), Some(0.0));
+
+    let (value, n) = brier(together);
+    assert_relative_eq!(value.unwrap(), 0.09, epsilon = 1e-9);
+    assert_eq!(n, Some(together.audit.cells - 8));
+    let bins = &together.metrics.calibration.bins;
+    assert_eq!((bins[7].cells, bins[7].observed_frequency()), (8, Some(1.0)));
+    assert_relative_eq!(bins[7].mean_probability().unwrap(), 0.7, epsilon = 1e-9);
+    assert_eq!(bins[3].cells, together.audit.cells - 16);
+    assert_eq!(bins[3].observed_frequency(), Some(0.0));
 }

@@ -137,7 +137,8 @@ pub fn render(
                 counts,
                 contribution_by_density,
             } => chart::semantic_charts(counts, contribution_by_density),
-            _ => Ok(Vec::new()),
+            Detail::World { counts } => Ok(chart::reliability_chart(&counts.calibration)?.into_iter().collect()),
+            Detail::Field { .. } => Ok(Vec::new()),
         })
         .collect::<Result<Vec<Vec<Chart>>, ChartError>>()?;
     let sweep_charts = chart::sweep_charts(&results)?;

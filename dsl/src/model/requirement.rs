@@ -302,6 +302,10 @@ pub enum Metric {
     /// that only a cooperating agent's report of its own footprint marks
     /// occupied, no sensor (0–1).
     SelfReportShare,
+    /// World: the Brier score of the fused occupancy probabilities, mean
+    /// (p − o)² over the fused cell-steps (self-report left out), with p the
+    /// pignistic probability for evidential methods (0 best, 1 worst).
+    BrierScore,
     /// Semantic: median anticipation time, seconds, over objects the ego first
     /// learned of from an RSU while it could not see them and later saw itself.
     AnticipationMedian,
@@ -331,7 +335,7 @@ pub enum Metric {
 
 impl Metric {
     /// Every metric, in documentation order.
-    pub const ALL: [Metric; 29] = [
+    pub const ALL: [Metric; 30] = [
         Self::Accuracy,
         Self::BelowThreshold,
         Self::BelowThresholdFraction,
@@ -352,6 +356,7 @@ impl Metric {
         Self::BlindRecall,
         Self::OccupiedRecallWithSelfReport,
         Self::SelfReportShare,
+        Self::BrierScore,
         Self::AnticipationMedian,
         Self::AnticipationP95,
         Self::InfrastructureContribution,
@@ -386,6 +391,7 @@ impl Metric {
             Self::BlindRecall => "blind_recall",
             Self::OccupiedRecallWithSelfReport => "occupied_recall_with_self_report",
             Self::SelfReportShare => "self_report_share",
+            Self::BrierScore => "brier_score",
             Self::AnticipationMedian => "anticipation_median",
             Self::AnticipationP95 => "anticipation_p95",
             Self::InfrastructureContribution => "infrastructure_contribution",
@@ -409,6 +415,7 @@ impl Metric {
                     | Self::BlindRecall
                     | Self::OccupiedRecallWithSelfReport
                     | Self::SelfReportShare
+                    | Self::BrierScore
             )
     }
 
@@ -460,6 +467,7 @@ impl Metric {
             Self::BlindRecall => "occupied cell-steps of non-cooperating road users the ego does not observe",
             Self::OccupiedRecallWithSelfReport => "truly occupied cell-steps",
             Self::SelfReportShare => "truly occupied cell-steps decided occupied",
+            Self::BrierScore => "fused cell-steps, self-report left out",
             Self::AnticipationMedian | Self::AnticipationP95 => "anticipation times",
             Self::InfrastructureContribution | Self::ChannelLoad | Self::BaselineChannelLoad => "steps with the ego",
             Self::TransmittedShare | Self::LabelledShare => "object-cycles the RSUs perceive",
@@ -506,6 +514,7 @@ impl Metric {
             | Self::BlindRecall
             | Self::OccupiedRecallWithSelfReport
             | Self::SelfReportShare
+            | Self::BrierScore
             | Self::TransmittedShare
             | Self::LabelledShare
             | Self::PacketDeliveryRatio => ValueDomain::Fraction,

@@ -249,6 +249,14 @@ impl Tallier<'_> {
         for &cell in cells {
             let estimate = self.fusion.estimate(cell, &mut sources);
             tally.estimates.record(&estimate);
+            let probability = match estimate {
+                Estimate::Occupancy(o) => o.probability,
+                Estimate::Evidential { combination, .. } => pignistic(combination.mass),
+            };
+            // Self-report is left out, as recall leaves it out: no sensor had to find it.
+            if self.truth[cell] != SELF_REPORT {
+                tally.calibration.record(probability, self.truth[cell] == OCCUPIED);
+            }
             let decision = decide(estimate.decision_mass(), self.threshold);
             let decided = decision == Some(State::Occupied);
             let counts = &mut tally.cells;
@@ -275,10 +283,7 @@ impl Tallier<'_> {
                 _ => counts.false_positives += u64::from(decided),
             }
             if picture {
-                values.probability.push(match estimate {
-                    Estimate::Occupancy(o) => o.probability as f32,
-                    Estimate::Evidential { combination, .. } => pignistic(combination.mass) as f32,
-                });
+                values.probability.push(probability as f32);
                 values.uncertainty.push(estimate.uncertainty() as f32);
                 values.decision.push(decision);
             }

@@ -7,6 +7,7 @@
 //! order, chunks of fused cells in chunk order), so that the results do not
 //! depend on the thread count.
 
+use super::calibration::Calibration;
 use super::fuse::{CellValues, Fused};
 use super::metrics::{CellTally, FusedCell, Snapshot, WorldMetrics, WorldOutcome};
 use super::observe::{Observation, Observed, Sightings};
@@ -36,6 +37,7 @@ struct JobMeasures {
     /// The counts; the statistics are filled in at the end.
     metrics: WorldMetrics,
     estimates: EstimateTally,
+    calibration: Calibration,
     snapshot: Option<Snapshot>,
     by_step: Vec<(f64, CellTally)>,
 }
@@ -109,6 +111,7 @@ impl Measures {
             for chunk in chunks {
                 cells.add(&chunk.cells);
                 job.estimates.merge(&chunk.estimates);
+                job.calibration.merge(&chunk.calibration);
             }
             job.metrics.add_step(ego_observed, joint_observed, &cells);
             let values = step.fused.values.map(|values| &values[j]);
@@ -154,6 +157,7 @@ impl Measures {
                         localization_error,
                         mean_uncertainty,
                         conflict,
+                        calibration: measured.calibration,
                         ..measured.metrics
                     },
                     audit,

@@ -13,11 +13,14 @@
 //! which answers "does cooperation reveal the road users the ego cannot see?";
 //! the self-report cells are counted apart (`self_report_share`), and with them
 //! (`occupied_recall_with_self_report`) as a grid holding every road user is
-//! scored. Precision counts every cell decided Occupy.
+//! scored. Precision counts every cell decided Occupy. How well the fused
+//! probabilities are calibrated (`brier_score` and its reliability table) is
+//! judged in [`super::calibration`].
 
 use serde::{Deserialize, Serialize};
 use sightline_dsl::{Metric, Signal};
 
+use super::calibration::Calibration;
 use super::observe::Sightings;
 use crate::fusion::State;
 use crate::metrics::Series;
@@ -96,6 +99,8 @@ pub struct WorldMetrics {
     pub mean_uncertainty: Option<f64>,
     /// Conflict statistics (evidential methods only).
     pub conflict: Option<ConflictMetrics>,
+    /// How well the fused probabilities are calibrated.
+    pub calibration: Calibration,
 }
 
 impl WorldMetrics {
@@ -135,6 +140,7 @@ impl WorldMetrics {
                 ratio(self.correct(), self.occupied.saturating_add(self.self_report))
             }
             Metric::SelfReportShare => ratio(self.self_report_only, self.correct()),
+            Metric::BrierScore => self.calibration.brier_score(),
             Metric::MeanUncertainty => self.mean_uncertainty,
             Metric::MeanConflict => self.conflict.as_ref()?.mean,
             Metric::MaxConflict => Some(self.conflict.as_ref()?.max),
@@ -155,6 +161,7 @@ impl WorldMetrics {
             Metric::BlindRecall => Some(self.blind_occupied),
             Metric::OccupiedRecallWithSelfReport => Some(self.occupied.saturating_add(self.self_report)),
             Metric::SelfReportShare => Some(self.correct()),
+            Metric::BrierScore => Some(self.calibration.cells),
             Metric::MeanUncertainty => Some(fused),
             Metric::MeanConflict | Metric::MaxConflict | Metric::TotalConflictCells | Metric::WeightedCells => {
                 self.conflict.as_ref().map(|_| fused)
@@ -235,6 +242,7 @@ impl CellTally {
 pub(crate) struct WorldTally {
     pub(crate) cells: CellTally,
     pub(crate) estimates: EstimateTally,
+    pub(crate) calibration: Calibration,
 }
 
 #[cfg(test)]
@@ -247,6 +255,14 @@ mod tests {
         let mut metrics = WorldMetrics::default();
         assert_eq!(metrics.steps, 0);
         assert_eq!(metrics.value(Metric::OccupiedRecall), None);
+        // Nothing judged: no Brier score, n = 0 (a requirement on it is not exercised).
+        assert_eq!(
+            (
+                metrics.value(Metric::BrierScore),
+                metrics.sample_size(Metric::BrierScore, 0)
+            ),
+            (None, Some(0))
+        );
         let cells = CellTally {
             occupied: 10,
             detected: 8,

@@ -2,6 +2,7 @@
 //! field of view and line of sight, self-localization, and the collective
 //! perception grid fused across cooperating agents.
 
+mod calibration;
 mod following;
 mod fuse;
 mod localization;
@@ -16,6 +17,7 @@ mod state;
 mod traced;
 mod truth;
 
+pub use calibration::{Calibration, RELIABILITY_BINS, ReliabilityBin};
 pub use metrics::{CellTally, FusedCell, Snapshot, WorldMetrics, WorldOutcome};
 pub use motion::Kinematics;
 pub use observe::{Observation, Observed, Sighting, Sightings, in_view, mount_pose};

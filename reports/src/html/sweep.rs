@@ -12,10 +12,11 @@ use crate::results::{PointResult, Results};
 
 /// Metrics every sweep table shows; metrics that requirements or references use
 /// are added after them.
-const TABLE_METRICS: [&str; 12] = [
+const TABLE_METRICS: [&str; 13] = [
     "occupied_recall",
     "blind_recall",
     "self_report_share",
+    "brier_score",
     "occupied_precision",
     "fov_gain",
     "accuracy",

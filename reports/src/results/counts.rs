@@ -94,6 +94,38 @@ pub struct WorldCounts {
     pub mean_uncertainty: Option<f64>,
     /// Conflict statistics (evidential methods only).
     pub conflict: Option<Conflict>,
+    /// How well the fused probabilities are calibrated.
+    pub calibration: Calibration,
+}
+
+/// How well a world's fused occupancy probabilities p (pignistic for
+/// evidential methods) match the truth o over the fused cell-steps,
+/// self-report left out.
+#[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
+#[schemars(deny_unknown_fields)]
+pub struct Calibration {
+    /// Cell-steps judged (n).
+    pub cells: u64,
+    /// Mean (p − o)² (`null` when no cell-step was judged).
+    pub brier_score: Option<f64>,
+    /// The reliability table: 10 equal bins of p, in order.
+    pub bins: Vec<ReliabilityBin>,
+}
+
+/// The fused cell-steps whose probability falls in one bin.
+#[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
+#[schemars(deny_unknown_fields)]
+pub struct ReliabilityBin {
+    /// Lower edge of p (included).
+    pub from: f64,
+    /// Upper edge of p (excluded, but for the last bin's 1).
+    pub to: f64,
+    /// Cell-steps in the bin (n).
+    pub cells: u64,
+    /// Their mean p (`null` for an empty bin).
+    pub mean_probability: Option<f64>,
+    /// Their share truly occupied (`null` for an empty bin).
+    pub observed_frequency: Option<f64>,
 }
 
 /// Targets in range and field of view, by what hides them.

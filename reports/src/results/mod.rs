@@ -29,7 +29,8 @@
 //! fields.
 
 pub use counts::{
-    Band, Conflict, Coverage, DeliveryBin, DensityRow, LabelCounts, MassAudit, SemanticCounts, Sightings, WorldCounts,
+    Band, Calibration, Conflict, Coverage, DeliveryBin, DensityRow, LabelCounts, MassAudit, ReliabilityBin,
+    SemanticCounts, Sightings, WorldCounts,
 };
 pub use document::{FORMAT, InputInfo, Results, ScenarioInfo, Summary};
 pub use metrics::{Measured, MetricEntry, Ordered, Table};

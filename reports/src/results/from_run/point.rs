@@ -6,8 +6,8 @@ use sightline_dsl::Point;
 use sightline_engine::{Outcome, outcome as engine};
 
 use crate::results::{
-    Band, Conflict, Coverage, DeliveryBin, DensityRow, Detail, LabelCounts, LabelResult, MassAudit, Ordered,
-    PointResult, SemanticCounts, Sightings, WorldCounts,
+    Band, Calibration, Conflict, Coverage, DeliveryBin, DensityRow, Detail, LabelCounts, LabelResult, MassAudit,
+    Ordered, PointResult, ReliabilityBin, SemanticCounts, Sightings, WorldCounts,
 };
 
 pub(super) fn point_result((point, outcome): (&Point, &Outcome)) -> PointResult {
@@ -135,6 +135,7 @@ fn world_counts(metrics: &engine::WorldMetrics) -> WorldCounts {
         localization_error,
         mean_uncertainty,
         ref conflict,
+        ref calibration,
     } = *metrics;
     let engine::Sightings {
         los,
@@ -176,6 +177,28 @@ fn world_counts(metrics: &engine::WorldMetrics) -> WorldCounts {
                 weighted_cells,
             }
         }),
+        calibration: calibration_table(calibration),
+    }
+}
+
+fn calibration_table(c: &engine::Calibration) -> Calibration {
+    // Divided, not multiplied by a width: 3 / 10 is 0.3, 3 × 0.1 is not.
+    let edge = |i: usize| i as f64 / engine::RELIABILITY_BINS as f64;
+    Calibration {
+        cells: c.cells,
+        brier_score: c.brier_score(),
+        bins: c
+            .bins
+            .iter()
+            .enumerate()
+            .map(|(i, b)| ReliabilityBin {
+                from: edge(i),
+                to: edge(i + 1),
+                cells: b.cells,
+                mean_probability: b.mean_probability(),
+                observed_frequency: b.observed_frequency(),
+            })
+            .collect(),
     }
 }
 
