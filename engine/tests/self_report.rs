@@ -14,34 +14,14 @@ use sightline_engine::{Outcome, simulate};
 /// connected, stands at (0, 20) facing east. Both carry a 25 m lidar without
 /// noise and localize exactly. A car's 4.5 × 1.8 m footprint centred on
 /// (x, 20) covers the 4 × 2 cells whose centres lie within 2.25 m and 0.9 m of
-/// it: 8 cells. `{others}` adds agents; `{sweep}` a sweep.
-const SCENE: &str = r#"
-sightline: 1
-name: self-report
-seed: 1
-time: { duration: 0.1, step: 0.1 }
-grid: { origin: [-30, -30], size: [60, 60], cell: 1 }
-roads:
-  - { id: ns, polyline: [[0, -30], [0, 30]], speed_limit: 10 }
-  - { id: we, polyline: [[-30, 20], [30, 20]], speed_limit: 10 }
-occluders: [{ id: wall, polygon: [[-30, 5], [30, 5], [30, 6], [-30, 6]] }]
-sensor_models: { lidar: { range: 25 } }
-agents:
-  - { id: ego, kind: car, route: [ns], start: { offset: 20 }, speed: { target: 0 }, connected: true, sensors: [lidar] }
-  - { id: cav, kind: car, route: [we], start: { offset: 30 }, speed: { target: 0 }, connected: true, sensors: [lidar] }
-{others}
-localization: { position_sigma: 0 }
-perception: { ego: ego }
-fusion: { method: bayes }
-decision: { threshold: 0 }
-{sweep}
-"#;
+/// it: 8 cells (tests/fixtures/templates/wall-and-cooperator.yaml.in).
+const SCENE: &str = include_str!("../../tests/fixtures/templates/wall-and-cooperator.yaml.in");
 
 /// A car that does not cooperate, 10 m east of `cav`, hidden from the ego.
 const HIDDEN_CAR: &str = "  - { id: car, kind: car, route: [we], start: { offset: 40 }, speed: { target: 0 } }";
 
 fn outcomes(others: &str, sweep: &str) -> Vec<WorldOutcome> {
-    let text = SCENE.replace("{others}", others).replace("{sweep}", sweep);
+    let text = SCENE.replace("{others}", others).replace("{rest}", sweep);
     let scenario = compile("self-report.yaml", &text, &Default::default()).unwrap_or_else(|e| panic!("{e}"));
     simulate(&scenario)
         .points

@@ -9,35 +9,25 @@ use crate::support::{arg, read, read_json, requirement, sightline, temp_dir};
 /// connected, sees a car 10 m east of it that the ego cannot. Each fused cell
 /// is seen by one agent only, so its p is the inverse model's (0.3 free, 0.7
 /// detected) and errs by 0.3: the Brier score is 0.09.
-const SCENE: &str = r#"
-sightline: 1
-name: calibration
-seed: 1
-time: { duration: 0.1, step: 0.1 }
-grid: { origin: [-30, -30], size: [60, 60], cell: 1 }
-roads:
-  - { id: ns, polyline: [[0, -30], [0, 30]], speed_limit: 10 }
-  - { id: we, polyline: [[-30, 20], [30, 20]], speed_limit: 10 }
-occluders: [{ id: wall, polygon: [[-30, 5], [30, 5], [30, 6], [-30, 6]] }]
-sensor_models: { lidar: { range: 25 } }
-agents:
-  - { id: ego, kind: car, route: [ns], start: { offset: 20 }, speed: { target: 0 }, connected: true, sensors: [lidar] }
-  - { id: cav, kind: car, route: [we], start: { offset: 30 }, speed: { target: 0 }, connected: true, sensors: [lidar] }
-  - { id: car, kind: car, route: [we], start: { offset: 40 }, speed: { target: 0 } }
-localization: { position_sigma: 0 }
-perception: { ego: ego }
-fusion: { method: bayes }
-decision: { threshold: 0 }
-requirements:
+const SCENE: &str = include_str!("../fixtures/templates/wall-and-cooperator.yaml.in");
+
+/// The car 10 m east of `cav`, hidden from the ego.
+const HIDDEN_CAR: &str = "  - { id: car, kind: car, route: [we], start: { offset: 40 }, speed: { target: 0 } }";
+
+const REQUIREMENTS: &str = "requirements:
   - { id: CAL-OK, text: Calibrated enough., check: { metric: brier_score, at_most: 0.1 } }
   - { id: CAL-TIGHT, text: Better calibrated., check: { metric: brier_score, at_most: 0.05 } }
-"#;
+";
 
 #[test]
 fn a_brier_score_requirement_is_judged_with_its_n_and_the_report_draws_the_diagram() {
     let tmp = temp_dir();
     let (file, out) = (tmp.path().join("calibration.yaml"), tmp.path().join("evidence"));
-    std::fs::write(&file, SCENE).unwrap();
+    std::fs::write(
+        &file,
+        SCENE.replace("{others}", HIDDEN_CAR).replace("{rest}", REQUIREMENTS),
+    )
+    .unwrap();
     sightline(["run", arg(&file), "--out", arg(&out)]).assert_exit(1);
 
     let results = read_json(&out.join("results.json"));
