@@ -351,16 +351,9 @@ fn refuse_unused(ctx: &mut Context<'_>, tree: &Node, sweeps: &[Vec<AxisNodes<'_>
 fn settings(raw: &RawScenario, setup: &crate::model::Setup, shared: &mut Sections) -> Settings {
     let mut json = serde_json::to_value(raw).expect("raw scenario types serialize to JSON");
     let object = json.as_object_mut().expect("a scenario serializes to an object");
-    for key in [
-        "sightline",
-        "name",
-        "description",
-        "requirements",
-        "sweep",
-        "references",
-        "vary",
-        "record",
-    ] {
+    // What names and describes the file, and the sections read once, are no
+    // settings of a point.
+    for key in ["sightline", "name", "description"].into_iter().chain(READ_ONCE) {
         object.remove(key);
     }
     // Sections the scenario's kind ignores are no settings of its points.
