@@ -33,7 +33,8 @@ pub const MAX_RAYS_PER_STEP: f64 = 1.0e6;
 pub const MAX_RAY_CELLS: f64 = 1.0e10;
 
 /// The most grid cells held at once: the grid's cells × (the cooperating
-/// agents' observations + one for the truth and the fused grid).
+/// agents' observations + one for the truth and the fused grid + over the
+/// radio, the ego's copy of what each other cooperating agent sent).
 pub const MAX_CELLS_HELD: f64 = 1.0e8;
 
 /// The most mass vectors the field experiment draws at a point (sensors × the
@@ -135,12 +136,18 @@ fn world_budget(ctx: &mut Context<'_>, world: &World, grid: Option<&Grid>) -> bo
         );
     }
     if let (Some(perception), Some(grid)) = (&world.perception, grid) {
+        let cooperating = perception.cooperating.len() as f64;
+        let received = if perception.messages.is_some() {
+            cooperating - 1.0
+        } else {
+            0.0
+        };
         ok &= limit(
             ctx,
             &root.key("grid"),
-            grid.cells() as f64 * (perception.cooperating.len() as f64 + 1.0),
+            grid.cells() as f64 * (cooperating + 1.0 + received),
             MAX_CELLS_HELD,
-            "grid cells held (cells × (cooperating agents + 1))",
+            "grid cells held (cells × (cooperating agents + 1, + the grids received over the radio))",
             "use larger cells, a smaller grid or fewer cooperating agents",
         );
         ok &= rays_budget(ctx, world, grid);

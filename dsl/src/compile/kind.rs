@@ -1,18 +1,15 @@
-//! What each kind of scenario reads, and the keys `check` refuses because they
-//! would change nothing that is simulated or measured.
+//! What each kind of scenario reads: the kind itself, and the keys `check`
+//! refuses because the settings around them leave them without effect.
 //!
 //! A scenario is one of three kinds, by the section it gives: the field
 //! experiment (`field`), a world measuring collective perception
 //! (`perception`), or a world running the semantic pipeline (`semantic`). Two
-//! passes refuse what a scenario writes without effect:
-//! - [`ignored_keys`]: sections and keys its kind never reads (`v2x` in a
-//!   collective-perception world), wherever they are written (the setup pass
-//!   refuses them); a sweep or `vary` axis that sets one is refused by
-//!   [`ignored`];
-//! - [`unused`]: keys the settings around them leave without effect in one
-//!   configuration (a weight scaling for a rule that weighs nothing, a sensor
-//!   model no agent carries). The driver refuses those where every sweep point
-//!   agrees, and `vary` refuses a value that would make one.
+//! passes refuse what a scenario writes without effect: the keys its kind never
+//! reads ([`super::ignored`]), and [`unused`]: keys the settings around them
+//! leave without effect in one configuration (a weight scaling for a rule that
+//! weighs nothing, a sensor model no agent carries). The driver refuses those
+//! where every sweep point agrees, and `vary` refuses a value that would make
+//! one.
 //!
 //! A key is refused when what it configures does not run: its kind never
 //! models it, another variant is chosen (a method, a filter, a path-loss model),
@@ -24,9 +21,8 @@ use super::context::has;
 use crate::model::{
     AgentKind, Experiment, Following, Motion, Odometry, PathLossModel, PoseFilter, RsuSight, Rule, Setup, World,
 };
-use crate::path::{Path, Segment};
+use crate::path::Path;
 use crate::yaml::{Node, Value};
-use Kind::{Field, Perception, Semantic};
 
 /// What a scenario simulates and measures, which decides the keys it reads.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -59,248 +55,6 @@ impl Kind {
             Experiment::World(world) if world.perception.is_some() => Self::Perception,
             Experiment::World(_) => Self::Semantic,
         }
-    }
-}
-
-/// A section or key a kind of scenario never reads: a dotted pattern in which
-/// `*` stands for any map key or list index.
-struct Ignored {
-    kinds: &'static [Kind],
-    pattern: &'static str,
-    why: &'static str,
-}
-
-const WORLDS: &[Kind] = &[Perception, Semantic];
-
-const NOT_A_WORLD: &str = "it belongs to a world, and the scenario simulates the field experiment (`field`); \
-                           a scenario simulates one or the other";
-const NO_WORLD_RECORDING: &str = "the field experiment has no steps, so `run.mcap` records no grid";
-const NO_GRID: &str = "a semantic world fuses no occupancy grid (`grid`, `fusion` and `decision` belong to the \
-                       field experiment and to collective perception)";
-const NO_SEMANTIC_PIPELINE: &str = "it serves the semantic pipeline's generated traffic and relevance layer, \
-                                    which a collective-perception world does not run";
-
-/// Every section and key a kind never reads, in the order they are reported.
-const IGNORED: &[Ignored] = &[
-    // The field experiment has no world.
-    Ignored {
-        kinds: &[Field],
-        pattern: "time",
-        why: NOT_A_WORLD,
-    },
-    Ignored {
-        kinds: &[Field],
-        pattern: "traces",
-        why: NOT_A_WORLD,
-    },
-    Ignored {
-        kinds: &[Field],
-        pattern: "roads",
-        why: NOT_A_WORLD,
-    },
-    Ignored {
-        kinds: &[Field],
-        pattern: "occluders",
-        why: NOT_A_WORLD,
-    },
-    Ignored {
-        kinds: &[Field],
-        pattern: "sensor_models",
-        why: NOT_A_WORLD,
-    },
-    Ignored {
-        kinds: &[Field],
-        pattern: "agents",
-        why: NOT_A_WORLD,
-    },
-    Ignored {
-        kinds: &[Field],
-        pattern: "localization",
-        why: NOT_A_WORLD,
-    },
-    Ignored {
-        kinds: &[Field],
-        pattern: "perception",
-        why: NOT_A_WORLD,
-    },
-    Ignored {
-        kinds: &[Field],
-        pattern: "traffic",
-        why: NOT_A_WORLD,
-    },
-    Ignored {
-        kinds: &[Field],
-        pattern: "crosswalks",
-        why: NOT_A_WORLD,
-    },
-    Ignored {
-        kinds: &[Field],
-        pattern: "interaction_areas",
-        why: NOT_A_WORLD,
-    },
-    Ignored {
-        kinds: &[Field],
-        pattern: "driving",
-        why: NOT_A_WORLD,
-    },
-    Ignored {
-        kinds: &[Field],
-        pattern: "v2x",
-        why: NOT_A_WORLD,
-    },
-    Ignored {
-        kinds: &[Field],
-        pattern: "semantic",
-        why: NOT_A_WORLD,
-    },
-    Ignored {
-        kinds: &[Field],
-        pattern: "record.grid_rate",
-        why: NO_WORLD_RECORDING,
-    },
-    Ignored {
-        kinds: &[Field],
-        pattern: "record.agent_grids",
-        why: NO_WORLD_RECORDING,
-    },
-    // Collective perception: no radio yet, no generated traffic, no semantic pipeline.
-    Ignored {
-        kinds: &[Perception],
-        pattern: "v2x",
-        why: "a collective-perception world does not model the radio yet: every cooperating agent's grid \
-              reaches the ego at the step it is observed, complete and without delay (issue 16 will model it)",
-    },
-    Ignored {
-        kinds: &[Perception],
-        pattern: "semantic",
-        why: "a world measures `perception` or `semantic`, not both: split it into two scenarios",
-    },
-    Ignored {
-        kinds: &[Perception],
-        pattern: "traffic",
-        why: "background traffic is generated in semantic worlds only; a collective-perception world moves \
-              the agents it declares",
-    },
-    Ignored {
-        kinds: &[Perception],
-        pattern: "crosswalks",
-        why: NO_SEMANTIC_PIPELINE,
-    },
-    Ignored {
-        kinds: &[Perception],
-        pattern: "interaction_areas",
-        why: NO_SEMANTIC_PIPELINE,
-    },
-    Ignored {
-        kinds: &[Perception],
-        pattern: "traces.junction_areas",
-        why: NO_SEMANTIC_PIPELINE,
-    },
-    Ignored {
-        kinds: &[Perception],
-        pattern: "sensor_models.*.velocity_noise",
-        why: "an occupancy grid holds no speeds: collective perception measures none",
-    },
-    // The semantic pipeline: no occupancy grid, no self-localization, no free space.
-    Ignored {
-        kinds: &[Semantic],
-        pattern: "grid",
-        why: NO_GRID,
-    },
-    Ignored {
-        kinds: &[Semantic],
-        pattern: "fusion",
-        why: NO_GRID,
-    },
-    Ignored {
-        kinds: &[Semantic],
-        pattern: "decision",
-        why: NO_GRID,
-    },
-    Ignored {
-        kinds: &[Semantic],
-        pattern: "record.grid_rate",
-        why: "a semantic world fuses no grid, so `run.mcap` records none",
-    },
-    Ignored {
-        kinds: &[Semantic],
-        pattern: "record.agent_grids",
-        why: "a semantic world fuses no grid, so `run.mcap` records none",
-    },
-    Ignored {
-        kinds: &[Semantic],
-        pattern: "localization",
-        why: "a semantic world does not model self-localization: the ego and the roadside units know their \
-              own poses exactly",
-    },
-    Ignored {
-        kinds: &[Semantic],
-        pattern: "sensor_models.*.ray_spacing_deg",
-        why: "a semantic world carves no free space: a sensor sees an object along one ray to its centre",
-    },
-    // Every world is flat.
-    Ignored {
-        kinds: WORLDS,
-        pattern: "occluders.*.height",
-        why: "sight and radio are computed in the plane (a 2-D world), so an occluder's height changes nothing",
-    },
-];
-
-/// Whether the dotted `pattern` (with `*` for any key or index) is a prefix of `path`.
-fn covers(pattern: &str, path: &[Segment]) -> bool {
-    let parts: Vec<&str> = pattern.split('.').collect();
-    parts.len() <= path.len()
-        && parts.iter().zip(path).all(|(part, segment)| match segment {
-            _ if *part == "*" => true,
-            Segment::Key(key) => key == part,
-            Segment::Index(_) => false,
-        })
-}
-
-/// Why a scenario of `kind` never reads the setting at `path`: the setting or
-/// a section holding it is one its kind ignores. `None` when it may read it.
-pub(super) fn ignored(kind: Kind, path: &Path) -> Option<&'static str> {
-    IGNORED
-        .iter()
-        .find(|rule| rule.kinds.contains(&kind) && covers(rule.pattern, path.segments()))
-        .map(|rule| rule.why)
-}
-
-/// Every key of `tree` that a scenario of `kind` never reads, with why; a key
-/// inside one already listed is not listed again.
-pub(super) fn ignored_keys(tree: &Node, kind: Kind) -> Vec<(Path, &'static str)> {
-    let mut found: Vec<(Path, &'static str)> = Vec::new();
-    for rule in IGNORED.iter().filter(|rule| rule.kinds.contains(&kind)) {
-        let parts: Vec<&str> = rule.pattern.split('.').collect();
-        for path in expand(tree, Path::root(), &parts) {
-            if !found
-                .iter()
-                .any(|(outer, _)| path.segments().starts_with(outer.segments()))
-            {
-                found.push((path, rule.why));
-            }
-        }
-    }
-    found
-}
-
-/// The paths in `node` (at `at`) that the pattern `parts` matches.
-fn expand(node: &Node, at: Path, parts: &[&str]) -> Vec<Path> {
-    let Some((first, rest)) = parts.split_first() else {
-        return vec![at];
-    };
-    match &node.value {
-        Value::Map(entries) => entries
-            .iter()
-            .filter(|(key, _)| *first == "*" || key.name == *first)
-            .flat_map(|(key, child)| expand(child, at.key(&key.name), rest))
-            .collect(),
-        Value::Seq(items) if *first == "*" => items
-            .iter()
-            .enumerate()
-            .flat_map(|(i, child)| expand(child, at.index(i), rest))
-            .collect(),
-        _ => Vec::new(),
     }
 }
 
@@ -431,6 +185,9 @@ impl Unused<'_> {
                     });
                 }
             }
+            self.v2x(world);
+        }
+        if world.perception.as_ref().is_some_and(|p| p.messages.is_some()) {
             self.v2x(world);
         }
     }
@@ -574,6 +331,18 @@ impl Unused<'_> {
             }
             PathLossModel::Tr36885Urban => {}
         }
+        if let Some(perception) = &world.perception {
+            if !perception
+                .cooperating
+                .iter()
+                .any(|&a| world.agents[a].kind == AgentKind::Rsu)
+            {
+                self.check(channel.key("rsu_antenna_m"), || {
+                    "no roadside unit cooperates, so every message goes between vehicles' antennas".into()
+                });
+            }
+            return;
+        }
         let generated = world.traffic.as_ref().is_some_and(|t| t.vehicles.is_some());
         if !generated && world.imported == 0 {
             self.check(v2x.key("penetration"), || {
@@ -582,25 +351,5 @@ impl Unused<'_> {
                     .into()
             });
         }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn path(dotted: &str) -> Path {
-        Path::parse_dotted(dotted).unwrap()
-    }
-
-    #[test]
-    fn a_section_covers_the_settings_inside_it() {
-        assert!(ignored(Perception, &path("v2x.channel.tx_power_dbm")).is_some());
-        assert!(ignored(Perception, &path("v2x")).is_some());
-        assert!(ignored(Semantic, &path("v2x.latency")).is_none());
-        assert!(ignored(Semantic, &path("sensor_models.lidar.ray_spacing_deg")).is_some());
-        assert!(ignored(Semantic, &path("sensor_models.lidar.range")).is_none());
-        // A mapping that holds an ignored key is not ignored as a whole.
-        assert!(ignored(Perception, &path("sensor_models.lidar")).is_none());
     }
 }

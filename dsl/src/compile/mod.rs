@@ -15,6 +15,7 @@
 mod budget;
 mod checks;
 mod context;
+mod ignored;
 mod kind;
 mod record;
 mod requirements;

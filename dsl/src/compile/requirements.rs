@@ -406,6 +406,21 @@ fn defined_everywhere(
             );
             return false;
         }
+        let radio = match &point.setup.experiment {
+            Experiment::World(world) => world.perception.as_ref().map(|p| p.messages.is_some()),
+            Experiment::Field(_) => None,
+        };
+        if metric.needs_radio() && radio == Some(false) {
+            ctx.error(
+                path,
+                ErrorKind::Invalid(format!(
+                    "metric `{}` is measured over the radio, and the scenario declares no `v2x`: every grid reaches \
+                     the ego whole and at once",
+                    metric.name()
+                )),
+            );
+            return false;
+        }
         let fusion = point.setup.occupancy.as_ref().map(|o| &o.fusion.rule);
         if let Some(rule) = fusion.filter(|rule| metric.is_evidential_only() && !rule.is_evidential()) {
             let method = rule.method().name();

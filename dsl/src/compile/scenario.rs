@@ -6,7 +6,8 @@ use std::sync::Arc;
 use std::{fmt, io};
 
 use super::context::{Context, has, locate_key};
-use super::kind::{self, Kind, ignored};
+use super::ignored::ignored;
+use super::kind::{self, Kind};
 use super::record::record;
 use super::requirements::{references, requirements};
 use super::setup::setup;

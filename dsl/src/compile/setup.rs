@@ -3,7 +3,8 @@
 use super::budget::within_budget;
 use super::checks::{coordinates, whole_multiple};
 use super::context::Context;
-use super::kind::{Kind, ignored_keys};
+use super::ignored::ignored_keys;
+use super::kind::Kind;
 use super::traces::Imported;
 use super::world::world;
 use crate::error::ErrorKind;

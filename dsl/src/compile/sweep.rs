@@ -7,7 +7,8 @@ use std::hash::{DefaultHasher, Hasher};
 use std::io;
 
 use super::context::Context;
-use super::kind::{Kind, ignored};
+use super::ignored::ignored;
+use super::kind::Kind;
 use crate::de::{closest, one_of};
 use crate::error::{ErrorKind, Location};
 use crate::model::{Label, Point, Setup};

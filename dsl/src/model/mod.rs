@@ -3,6 +3,7 @@
 
 mod field;
 mod fusion;
+mod metric;
 mod requirement;
 mod scenario;
 mod semantic;
@@ -14,9 +15,9 @@ pub use field::{ErrorModel, Field, Layout, Masses, Truth};
 pub use fusion::{
     Decision, Fusion, FusionMethod, Rule, SourceCombination, Switch, SwitchMeasure, WeightScaling, Weighting,
 };
+pub use metric::{Metric, ValueDomain};
 pub use requirement::{
-    Bound, Check, Invariant, Metric, ObjectProperty, OverSeeds, RateBound, Reference, Requirement, Signal, Statistic,
-    Temporal, ValueDomain,
+    Bound, Check, Invariant, ObjectProperty, OverSeeds, RateBound, Reference, Requirement, Signal, Statistic, Temporal,
 };
 pub use scenario::{
     Assignment, Axis, Experiment, Grid, Import, ImportKind, Label, Occupancy, Point, Record, Scenario, Settings, Setup,
@@ -26,7 +27,10 @@ pub use semantic::{
     Area, Baseline, Caution, Crosswalk, Driving, Following, InteractionArea, PedestrianTraffic, RiskScope, RsuSight,
     Semantic, ShareCycles, Traffic, TrafficRoute, VehicleTraffic,
 };
-pub use v2x::{Channel, PathLossModel, V2x};
+pub use v2x::{
+    Channel, MESSAGE_HEADER_BYTES, Messages, Oversize, PathLossModel, SENSOR_INFORMATION_BYTES, SMALLEST_PAYLOAD_BYTES,
+    V2x,
+};
 pub use vary::{Domain, RANGE_STEPS, Vary};
 pub use world::{
     Agent, AgentKind, Direction, LaneLink, Localization, Motion, Occluder, Odometry, OdometryModel, OdometryNoise,

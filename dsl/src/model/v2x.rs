@@ -16,6 +16,63 @@ pub struct V2x {
     pub channel: Channel,
 }
 
+/// Bytes of a message besides its cells: the ITS PDU header, management
+/// container and station data (121 bytes), and one sensor information
+/// container per sensor (35 bytes each), as ETSI TR 103 562 (Table 3) measures
+/// the mandatory fields of a CPM.
+pub const MESSAGE_HEADER_BYTES: u32 = 121;
+/// Bytes of one sensor information container (ETSI TR 103 562, Table 3).
+pub const SENSOR_INFORMATION_BYTES: u32 = 35;
+/// Bytes of the smallest grid payload: one row (3 bytes) holding one run (4 bytes).
+pub const SMALLEST_PAYLOAD_BYTES: u32 = 7;
+
+/// The messages cooperating agents send the ego in a collective-perception
+/// world that declares `v2x`: how often, how large, and how long what arrives
+/// stays evidence.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Messages {
+    /// Messages each cooperating agent generates per second (a fixed rate; the
+    /// first at its first step in the scene).
+    pub rate_hz: f64,
+    /// Largest message, bytes (the CPM size limit, ETSI TS 103 324 MTU_CPM).
+    pub max_bytes: u32,
+    /// What a grid that does not fit in one message becomes.
+    pub oversize: Oversize,
+    /// Received evidence older than this is dropped, seconds since it was sensed.
+    pub max_age: f64,
+    /// Time constant of the decay of received evidence toward unknown, seconds;
+    /// `None`: evidence keeps its weight until `max_age`.
+    pub decay: Option<f64>,
+}
+
+impl Default for Messages {
+    /// 10 Hz (TS 103 324's shortest vehicle interval, T_GenCpmMin = 100 ms),
+    /// 1100 bytes (the segmentation threshold of ETSI TR 103 562's simulations),
+    /// split, dropped after 1 s (ours: T_GenCpmMax), no decay.
+    fn default() -> Self {
+        Self {
+            rate_hz: 10.0,
+            max_bytes: 1100,
+            oversize: Oversize::Split,
+            max_age: 1.0,
+            decay: None,
+        }
+    }
+}
+
+/// What a sender does with a grid larger than one message.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum Oversize {
+    /// Sends it in as many messages as it needs, rows in order, each on its own
+    /// over the channel.
+    Split,
+    /// Sends one message: the runs of cells in order of priority (its own
+    /// footprint, occupied cells, then free cells nearest the sender first),
+    /// as many as fit; the rest is not sent.
+    Select,
+}
+
 /// Path-loss models of 3GPP TR 36.885 (V14.0.0), Annex A.1.4.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]

@@ -4,7 +4,7 @@
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
-use super::{Crosswalk, Driving, InteractionArea, Semantic, Traffic, V2x};
+use super::{Crosswalk, Driving, InteractionArea, Messages, Semantic, Traffic, V2x};
 use crate::geometry::{Polyline, Xy};
 
 /// A simulated traffic scene (language sections `time` … `semantic`). It measures
@@ -361,4 +361,8 @@ pub struct Perception {
     pub snapshot_step: usize,
     /// The circle (centre, radius in metres) the metrics count; `None`: the whole grid.
     pub region: Option<(Xy, f64)>,
+    /// The messages that carry cooperating agents' grids over the radio
+    /// ([`World::v2x`]) when the scenario declares `v2x`; `None`: every grid
+    /// reaches the ego whole at the step it is observed.
+    pub messages: Option<Messages>,
 }

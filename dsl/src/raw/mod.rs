@@ -34,5 +34,5 @@ pub(crate) use scenario::RawScenario;
 pub(crate) use semantic::{RawInteractionArea, RawSemantic};
 pub(crate) use sensors::{RawNoise, RawOdometry, RawSensorModel};
 pub(crate) use traffic::{RawCrosswalk, RawDriving, RawTraffic};
-pub(crate) use v2x::RawV2x;
+pub(crate) use v2x::{RawMessages, RawV2x};
 pub(crate) use world::{RawOccluder, RawRoad, RawTime, RawTraces};

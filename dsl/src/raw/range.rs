@@ -207,6 +207,12 @@ pub(crate) const LATENCY: Range = Range::closed(0.0, 60.0);
 pub(crate) const TRACE_TIME: Range = Range::closed(0.0, 1.0e9);
 /// A rate of cycles or pictures, Hz.
 pub(crate) const RATE: Range = Range::left_open(0.0, 1000.0);
+/// The generation rate of collective perception messages, Hz: ETSI TS 103 324
+/// generates a CPM every 100 ms to 1000 ms (50 ms for a roadside unit).
+pub(crate) const MESSAGE_RATE: Range = Range::closed(1.0, 20.0);
+/// The size limit of a message, bytes: room for a header (121 bytes), a
+/// sensor and a few cells, up to the largest IP packet.
+pub(crate) const MESSAGE_BYTES: Range = Range::closed(200.0, 65_535.0);
 /// A rate that may be 0 (none), Hz.
 pub(crate) const RATE_OR_ZERO: Range = Range::closed(0.0, 1000.0);
 

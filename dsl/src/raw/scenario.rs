@@ -83,9 +83,11 @@ pub(crate) struct RawScenario {
     /// World: how vehicles keep their distance.
     #[serde(default)]
     pub driving: RawDriving,
-    /// World: V2X assumptions.
-    #[serde(default)]
-    pub v2x: RawV2x,
+    /// World: V2X assumptions; in collective perception, the radio the
+    /// cooperating agents' grids go through (without it, they reach the ego
+    /// whole and at once).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub v2x: Option<RawV2x>,
     /// World: the roadside units' semantic pipeline for an assisted ego (seed 002).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub semantic: Option<RawSemantic>,

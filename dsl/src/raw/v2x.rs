@@ -1,24 +1,74 @@
-//! V2X assumptions: penetration, latency and the radio channel.
+//! V2X assumptions: penetration, latency, the radio channel, and the messages
+//! of collective perception.
 
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use super::range;
-use crate::model::PathLossModel;
+use crate::model::{Messages, Oversize, PathLossModel};
 
 /// V2X assumptions.
 #[derive(Debug, Clone, Default, Serialize, Deserialize, JsonSchema)]
 #[serde(default, deny_unknown_fields, expecting = "a v2x mapping")]
 #[schemars(rename = "V2x")]
 pub(crate) struct RawV2x {
-    /// Share of generated vehicles that are connected (0–1); seed 002 uses 0.
+    /// Semantic worlds: share of generated and imported vehicles that are
+    /// connected (0–1; default 0, as seed 002). Collective perception: share of
+    /// the connected agents with sensors, besides the ego, that cooperate (the
+    /// first in file order; default all), instead of `perception.cooperating`.
+    #[serde(skip_serializing_if = "Option::is_none")]
     #[schemars(transform = range::PROBABILITY.schema())]
-    pub penetration: f64,
+    pub penetration: Option<f64>,
     /// Delay from sending to delivery, seconds, besides propagation.
     #[schemars(transform = range::LATENCY.schema())]
     pub latency: f64,
     /// The radio channel.
     pub channel: RawChannel,
+    /// Collective perception: the messages that carry the cooperating agents'
+    /// grids to the ego.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub messages: Option<RawMessages>,
+}
+
+/// The messages of collective perception (defaults: `model::Messages`).
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(default, deny_unknown_fields, expecting = "a messages mapping")]
+#[schemars(rename = "Messages")]
+pub(crate) struct RawMessages {
+    /// Messages each cooperating agent generates per second, Hz (ETSI TS 103 324
+    /// allows 1 to 10 for a vehicle, up to 20 for a roadside unit).
+    #[schemars(transform = range::MESSAGE_RATE.schema())]
+    pub rate_hz: f64,
+    /// Largest message, bytes (TS 103 324's MTU_CPM; default 1100, the
+    /// segmentation threshold of ETSI TR 103 562's simulations).
+    #[schemars(transform = range::MESSAGE_BYTES.schema())]
+    pub max_bytes: u32,
+    /// What a grid larger than one message becomes: `split` (several messages)
+    /// or `select` (one message, the most important cells first).
+    pub oversize: Oversize,
+    /// Received evidence older than this (since it was sensed) is dropped,
+    /// seconds; at least one step.
+    #[schemars(transform = range::REACTION.schema())]
+    pub max_age: f64,
+    /// Time constant of the decay of received evidence toward unknown, seconds
+    /// (its mass is discounted by exp(−age / decay)). Default: no decay.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    #[schemars(transform = range::REACTION.schema())]
+    pub decay: Option<f64>,
+}
+
+impl Default for RawMessages {
+    /// The model's defaults, kept in one place (`model::Messages`).
+    fn default() -> Self {
+        let messages = Messages::default();
+        Self {
+            rate_hz: messages.rate_hz,
+            max_bytes: messages.max_bytes,
+            oversize: messages.oversize,
+            max_age: messages.max_age,
+            decay: messages.decay,
+        }
+    }
 }
 
 /// The radio channel (defaults: seed 002 and 3GPP TR 36.885).

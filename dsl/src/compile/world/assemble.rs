@@ -14,7 +14,7 @@ use crate::error::ErrorKind;
 use crate::model::World;
 use crate::path::Path;
 use crate::raw::range;
-use crate::raw::{RawScenario, RawTime};
+use crate::raw::{RawScenario, RawTime, RawV2x};
 
 /// The most steps a run may have.
 pub const MAX_STEPS: usize = 100_000;
@@ -36,7 +36,7 @@ pub(crate) fn world(ctx: &mut Context<'_>, raw: &RawScenario, imported: Option<&
     let (sensors, sensors_ok) = sensor_models(ctx, raw);
     let localization = localization(ctx, raw);
     let driving = driving(ctx, &raw.driving);
-    let v2x = v2x(ctx, &raw.v2x);
+    let v2x = v2x(ctx, raw.v2x.as_ref().unwrap_or(&RawV2x::default()));
     if raw.traces.is_some() && imported.is_none() {
         // A file of `traces` failed to load, and its errors are recorded: what
         // the sections that depend on it would say without it would mislead.
@@ -53,7 +53,7 @@ pub(crate) fn world(ctx: &mut Context<'_>, raw: &RawScenario, imported: Option<&
     let agents = agents(ctx, &raw.agents, &scene);
     let perception = match (&raw.perception, &agents, steps) {
         (Some(perception), Some((agents, _)), Some(steps)) => {
-            perception_of(ctx, perception, agents, time.step, steps).map(Some)
+            perception_of(ctx, perception, raw.v2x.as_ref(), agents, time.step, steps).map(Some)
         }
         (None, _, _) => Some(None),
         _ => None,

@@ -221,7 +221,8 @@ pub(super) fn v2x(ctx: &mut Context<'_>, raw: &RawV2x) -> Option<V2x> {
     } else {
         0.0
     };
-    let mut ok = ctx.probability(&path.key("penetration"), raw.penetration)
+    let penetration = raw.penetration.unwrap_or(0.0);
+    let mut ok = ctx.probability(&path.key("penetration"), penetration)
         & ctx.within(&path.key("latency"), raw.latency, range::LATENCY)
         & ctx.within(&channel_path.key("tx_power_dbm"), c.tx_power_dbm, range::POWER)
         & ctx.within(
@@ -253,7 +254,7 @@ pub(super) fn v2x(ctx: &mut Context<'_>, raw: &RawV2x) -> Option<V2x> {
         ) && ctx.within(&channel_path.key(key), height, range::ANTENNA);
     }
     ok.then_some(V2x {
-        penetration: raw.penetration,
+        penetration,
         latency: raw.latency,
         channel: Channel {
             model: c.model,
