@@ -10,7 +10,7 @@ use rand::SeedableRng;
 use rand::rngs::ChaCha8Rng;
 use sightline_dsl::{Experiment, Scenario, World};
 use sightline_engine::internals::{
-    Bodies, CellFusion, Kinematics, Observation, Occluders, Raster, StepScene, Visibility, visibility,
+    Bodies, CellFusion, Evidence, Kinematics, Observation, Occluders, Raster, StepScene, Visibility, visibility,
 };
 use sightline_engine::simulate;
 
@@ -113,7 +113,7 @@ fn step(c: &mut Criterion) {
     let mut cells: Vec<usize> = observations.iter().flat_map(|o| o.touched().to_vec()).collect();
     cells.sort_unstable();
     cells.dedup();
-    let present: Vec<&Observation> = observations.iter().collect();
+    let present: Vec<&dyn Evidence> = observations.iter().map(|o| o as &dyn Evidence).collect();
     let fusion = CellFusion {
         grid: &grid,
         rule: &occupancy.fusion.rule,

@@ -384,3 +384,27 @@ impl Tally {
         }
     }
 }
+
+/// The `q` quantile of ascending `sorted` values, linear between order statistics
+/// (Hyndman and Fan's type 7, the default of R and NumPy); `None` when empty.
+pub fn quantile(sorted: &[f64], q: f64) -> Option<f64> {
+    let last = sorted.len().checked_sub(1)?;
+    let position = q * last as f64;
+    let below = position.floor() as usize;
+    let above = (below + 1).min(last);
+    Some(sorted[below] + (sorted[above] - sorted[below]) * (position - below as f64))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn quantiles_interpolate_between_order_statistics() {
+        let values = [1.0, 2.0, 3.0, 4.0, 10.0];
+        assert_eq!(quantile(&values, 0.5), Some(3.0));
+        // Position 0.95 × 4 = 3.8: 4 + 0.8 × (10 − 4) = 8.8.
+        assert!((quantile(&values, 0.95).unwrap() - 8.8).abs() < 1e-12);
+        assert_eq!(quantile(&[], 0.5), None);
+    }
+}

@@ -7,17 +7,20 @@
 //!   [`FieldMetrics`], the same by distance band ([`BandMetrics`]), sensor
 //!   [`Coverage`] and the [`MassAudit`] of every fused cell.
 //! - A perception world (seed 000): [`WorldOutcome`], its [`WorldMetrics`]
-//!   (summed from each step's [`CellTally`]), [`Sightings`] by visibility, and
-//!   the grids of one step ([`Snapshot`] of [`FusedCell`]s with their decided
+//!   (summed from each step's [`CellTally`]), [`Sightings`] by visibility,
+//!   recall by distance to the nearest sender ([`RecallByDistance`]), what
+//!   went over the radio ([`RadioStats`]), and the grids of one step ([`Snapshot`] of [`FusedCell`]s with their decided
 //!   [`State`]).
 //! - A semantic world (seed 002): [`SemanticMetrics`] with its density rows
 //!   ([`DensityRow`]), delivery bins ([`DeliveryBin`]), label counts
 //!   ([`LabelCounts`]) and per-step [`Series`].
 
 pub use crate::fusion::State;
-pub use crate::metrics::{BandMetrics, ConflictMetrics, Coverage, FieldMetrics, FieldOutcome, MassAudit, Series};
-pub use crate::semantic::{DELIVERY_BIN, DENSITY_BIN, DeliveryBin, DensityRow, LabelCounts, SemanticMetrics, quantile};
+pub use crate::metrics::{
+    BandMetrics, ConflictMetrics, Coverage, FieldMetrics, FieldOutcome, MassAudit, Series, quantile,
+};
+pub use crate::semantic::{DELIVERY_BIN, DENSITY_BIN, DeliveryBin, DensityRow, LabelCounts, SemanticMetrics};
 pub use crate::world::{
-    Calibration, CellTally, FusedCell, RELIABILITY_BINS, ReliabilityBin, Sightings, Snapshot, WorldMetrics,
-    WorldOutcome,
+    Calibration, CellTally, DISTANCE_BIN, DISTANCE_BINS, DistanceBin, FusedCell, RELIABILITY_BINS, RadioStats,
+    RecallByDistance, ReliabilityBin, Sightings, Snapshot, WorldMetrics, WorldOutcome,
 };

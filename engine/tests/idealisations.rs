@@ -47,6 +47,10 @@ const NOT_OPTIONS: &[(&str, &str)] = &[
         "what an agent is (its footprint and role), not how it is modelled",
     ),
     ("Direction", "a roundabout's geometry"),
+    (
+        "Oversize",
+        "how a sender fits its grid into messages: behaviour the radio models, neither way idealised",
+    ),
 ];
 
 /// The option values that add no idealisation to their model's own, each

@@ -54,6 +54,18 @@ impl Mass {
         }
     }
 
+    /// Shafer's discounting by a source's `reliability` α in [0, 1]: α of every
+    /// mass is kept, the rest moves to Θ (m'(A) = α m(A) for A ≠ Θ,
+    /// m'(Θ) = 1 − α + α m(Θ)). Its pignistic probability moves toward 1/2 in
+    /// proportion: BetP' = 1/2 + α (BetP − 1/2).
+    pub fn discounted(self, reliability: f64) -> Self {
+        Self::new(
+            reliability * self.empty,
+            reliability * self.occupied,
+            1.0 - reliability * (self.empty + self.occupied),
+        )
+    }
+
     /// The sum of the three masses.
     pub fn total(&self) -> f64 {
         self.empty + self.occupied + self.unknown

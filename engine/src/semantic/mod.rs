@@ -17,7 +17,7 @@ mod simulate;
 mod traffic;
 
 pub use message::{Item, Labels};
-pub use metrics::{DELIVERY_BIN, DENSITY_BIN, DeliveryBin, DensityRow, LabelCounts, SemanticMetrics, quantile};
+pub use metrics::{DELIVERY_BIN, DENSITY_BIN, DeliveryBin, DensityRow, LabelCounts, SemanticMetrics};
 pub use risk::Conflict;
 pub use simulate::run;
 

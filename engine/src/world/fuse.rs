@@ -10,12 +10,14 @@
 use rayon::prelude::*;
 use sightline_dsl::{Grid, Perception, Rule};
 
+use super::evidence::Evidence;
 use super::metrics::WorldTally;
-use super::observe::{Observation, Observed};
+use super::observe::Observed;
 use super::raster::cell_center;
 use super::truth::{OCCUPIED, SELF_REPORT, Truth};
 use crate::fusion::{Estimate, Mass, Source, State, decide, fuse, pignistic};
 use crate::idealisation::Idealisation;
+use crate::math::Point;
 use crate::run::Job;
 
 /// The inverse sensor model is two constants.
@@ -29,16 +31,18 @@ pub(crate) const INVERSE_MODEL: Idealisation = Idealisation {
 ///
 /// Each observation becomes the least-committed mass whose pignistic probability
 /// is the inverse sensor model's: free → (1 − 2f, 0, 2f), occupied →
-/// (0, 2o − 1, 2 − 2o). Bayes fuses their pignistic probabilities (f and o back);
-/// the weighted rules weigh each by the distance from the agent's nearest sensor
-/// to the cell (floored at half a cell).
+/// (0, 2o − 1, 2 − 2o), discounted toward unknown by the evidence's weight
+/// when it has aged over the radio. Bayes fuses their pignistic probabilities
+/// (f and o back for fresh evidence); the weighted rules weigh each by the
+/// distance from the agent's nearest sensor to the cell (floored at half a
+/// cell).
 pub struct CellFusion<'a> {
     /// The grid.
     pub grid: &'a Grid,
     /// The fusion rule.
     pub rule: &'a Rule,
-    /// The observations to fuse, the ego's first.
-    pub observations: &'a [&'a Observation],
+    /// The evidence to fuse, the ego's own observation first.
+    pub observations: &'a [&'a dyn Evidence],
     /// P(occupied) of a detected cell.
     pub occupied: f64,
     /// P(occupied) of a cell seen free.
@@ -61,9 +65,11 @@ impl CellFusion<'_> {
                     Mass::new(0.0, 2.0 * self.occupied - 1.0, 2.0 - 2.0 * self.occupied)
                 }
             };
+            let weight = observation.weight(cell);
+            let mass = if weight < 1.0 { mass.discounted(weight) } else { mass };
             let distance = if distances {
                 observation
-                    .sensor_positions
+                    .sensors(cell)
                     .iter()
                     .map(|p| (*p - center).length())
                     .fold(f64::INFINITY, f64::min)
@@ -106,7 +112,7 @@ impl Coverage {
 
     /// Covers every cell of `received` (the ego's observation first) that
     /// `counted` admits.
-    fn cover(&mut self, received: &[&Observation], counted: impl Fn(usize) -> bool) {
+    fn cover(&mut self, received: &[&dyn Evidence], counted: impl Fn(usize) -> bool) {
         for &cell in &self.cells {
             self.covered[cell] = false;
         }
@@ -186,7 +192,8 @@ impl<'a, 'j> Fusion<'a, 'j> {
     /// `truth`; with `picture`, also the fused values of those cells.
     pub(super) fn fuse(
         &mut self,
-        received: &[&Observation],
+        received: &[&dyn Evidence],
+        senders: &[Point],
         truth: &Truth,
         counted: impl Fn(usize) -> bool,
         picture: bool,
@@ -204,6 +211,7 @@ impl<'a, 'j> Fusion<'a, 'j> {
                 },
                 threshold: job.decision.threshold,
                 truth: truth.cells(),
+                senders,
             };
             let fused: Vec<(WorldTally, CellValues)> = self
                 .coverage
@@ -236,6 +244,9 @@ struct Tallier<'a> {
     fusion: CellFusion<'a>,
     threshold: f64,
     truth: &'a [u8],
+    /// The true positions of the cooperating agents other than the ego in the
+    /// scene, for recall by distance to the nearest.
+    senders: &'a [Point],
 }
 
 impl Tallier<'_> {
@@ -264,6 +275,11 @@ impl Tallier<'_> {
                 OCCUPIED => {
                     counts.occupied += 1;
                     counts.detected += u64::from(decided);
+                    let center = cell_center(self.fusion.grid, cell);
+                    let nearest = self.senders.iter().map(|s| (*s - center).length()).reduce(f64::min);
+                    if let Some(distance) = nearest {
+                        tally.by_distance.record(distance, decided);
+                    }
                     if ego.get(cell) == Observed::Unknown {
                         counts.blind_occupied += 1;
                         counts.blind_detected += u64::from(decided);

@@ -7,13 +7,17 @@
 //! order, chunks of fused cells in chunk order), so that the results do not
 //! depend on the thread count.
 
+use sightline_dsl::Grid;
+
 use super::calibration::Calibration;
 use super::fuse::{CellValues, Fused};
-use super::metrics::{CellTally, FusedCell, Snapshot, WorldMetrics, WorldOutcome};
+use super::metrics::{CellTally, FusedCell, RecallByDistance, Snapshot, WorldMetrics, WorldOutcome};
 use super::observe::{Observation, Observed, Sightings};
-use super::raster::Raster;
+use super::radio::RadioStats;
+use super::raster::{Raster, cell_center};
 use super::state::AgentState;
 use super::truth::{EXCLUDED, OCCUPIED, SELF_REPORT, Truth};
+use crate::math::Point;
 use crate::metrics::EstimateTally;
 use crate::run::Job;
 use crate::sink::TraceSink;
@@ -38,6 +42,7 @@ struct JobMeasures {
     metrics: WorldMetrics,
     estimates: EstimateTally,
     calibration: Calibration,
+    by_distance: RecallByDistance,
     snapshot: Option<Snapshot>,
     by_step: Vec<(f64, CellTally)>,
 }
@@ -56,6 +61,10 @@ pub(super) struct MeasuredStep<'a> {
     pub(super) sensed: &'a [CooperatorStep<'a>],
     /// The step's ground truth.
     pub(super) truth: &'a Truth,
+    /// The grid.
+    pub(super) grid: &'a Grid,
+    /// The true positions of the cooperating agents other than the ego in the scene.
+    pub(super) senders: &'a [Point],
     /// Every job's fused grid.
     pub(super) fused: Fused<'a>,
     /// Whether it is the snapshot step.
@@ -98,6 +107,16 @@ impl Measures {
                 .count() as u64
         };
         let (unseen, unseen_own) = (unseen(OCCUPIED), unseen(SELF_REPORT));
+        // The same occupied cells, missed, by distance to the nearest sender.
+        let mut unseen_by_distance = RecallByDistance::default();
+        for &cell in step.truth.marked() {
+            if truth[cell] == OCCUPIED && !coverage.covers(cell) {
+                let center = cell_center(step.grid, cell);
+                if let Some(distance) = step.senders.iter().map(|s| (*s - center).length()).reduce(f64::min) {
+                    unseen_by_distance.record(distance, false);
+                }
+            }
+        }
         let mut fused = Vec::with_capacity(self.jobs.len());
         for (j, (job, chunks)) in self.jobs.iter_mut().zip(&step.fused.chunks).enumerate() {
             let mut cells = CellTally {
@@ -108,10 +127,12 @@ impl Measures {
             };
             // Chunk by chunk, so that the floating-point sums do not depend on
             // the thread count.
+            job.by_distance.merge(&unseen_by_distance);
             for chunk in chunks {
                 cells.add(&chunk.cells);
                 job.estimates.merge(&chunk.estimates);
                 job.calibration.merge(&chunk.calibration);
+                job.by_distance.merge(&chunk.by_distance);
             }
             job.metrics.add_step(ego_observed, joint_observed, &cells);
             let values = step.fused.values.map(|values| &values[j]);
@@ -143,8 +164,8 @@ impl Measures {
         });
     }
 
-    /// Every job's outcome.
-    pub(super) fn finish(self, jobs: &[Job<'_>]) -> Vec<WorldOutcome> {
+    /// Every job's outcome, with what went over the radio (`None` without one).
+    pub(super) fn finish(self, jobs: &[Job<'_>], radio: Option<RadioStats>) -> Vec<WorldOutcome> {
         let localization_error = (self.error_count > 0).then(|| self.error_sum / self.error_count as f64);
         self.jobs
             .into_iter()
@@ -158,6 +179,8 @@ impl Measures {
                         mean_uncertainty,
                         conflict,
                         calibration: measured.calibration,
+                        recall_by_distance: measured.by_distance,
+                        radio: radio.clone().map(Box::new),
                         ..measured.metrics
                     },
                     audit,

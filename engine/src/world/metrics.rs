@@ -22,8 +22,10 @@ use sightline_dsl::{Metric, Signal};
 
 use super::calibration::Calibration;
 use super::observe::Sightings;
+use super::radio::RadioStats;
 use crate::fusion::State;
 use crate::metrics::Series;
+use crate::metrics::quantile;
 use crate::metrics::{ConflictMetrics, EstimateTally, MassAudit};
 
 /// Everything measured at one sweep point of a world.
@@ -101,6 +103,11 @@ pub struct WorldMetrics {
     pub conflict: Option<ConflictMetrics>,
     /// How well the fused probabilities are calibrated.
     pub calibration: Calibration,
+    /// Recall by distance to the nearest cooperating agent other than the ego.
+    pub recall_by_distance: RecallByDistance,
+    /// What went over the radio; `None` without one (no `v2x`). Boxed: an
+    /// outcome of every kind stays small.
+    pub radio: Option<Box<RadioStats>>,
 }
 
 impl WorldMetrics {
@@ -141,6 +148,16 @@ impl WorldMetrics {
             }
             Metric::SelfReportShare => ratio(self.self_report_only, self.correct()),
             Metric::BrierScore => self.calibration.brier_score(),
+            Metric::PacketDeliveryRatio => {
+                let radio = self.radio.as_ref()?;
+                ratio(radio.received, radio.sent)
+            }
+            Metric::MessageAgeMean => self.radio.as_ref()?.mean_age(),
+            Metric::MessageAgeP95 => quantile(&self.radio.as_ref()?.sorted_ages(), 0.95),
+            Metric::BytesPerSecondPerAgent => {
+                let radio = self.radio.as_ref()?;
+                (radio.sender_steps > 0).then(|| radio.bytes as f64 / (radio.sender_steps as f64 * radio.step))
+            }
             Metric::MeanUncertainty => self.mean_uncertainty,
             Metric::MeanConflict => self.conflict.as_ref()?.mean,
             Metric::MaxConflict => Some(self.conflict.as_ref()?.max),
@@ -162,6 +179,9 @@ impl WorldMetrics {
             Metric::OccupiedRecallWithSelfReport => Some(self.occupied.saturating_add(self.self_report)),
             Metric::SelfReportShare => Some(self.correct()),
             Metric::BrierScore => Some(self.calibration.cells),
+            Metric::PacketDeliveryRatio => self.radio.as_ref().map(|r| r.sent),
+            Metric::MessageAgeMean | Metric::MessageAgeP95 => self.radio.as_ref().map(|r| r.fused()),
+            Metric::BytesPerSecondPerAgent => self.radio.as_ref().map(|r| r.sender_steps),
             Metric::MeanUncertainty => Some(fused),
             Metric::MeanConflict | Metric::MaxConflict | Metric::TotalConflictCells | Metric::WeightedCells => {
                 self.conflict.as_ref().map(|_| fused)
@@ -237,12 +257,55 @@ impl CellTally {
     }
 }
 
+/// Width of a bin of [`RecallByDistance`], metres.
+pub const DISTANCE_BIN: f64 = 25.0;
+/// Bins of [`RecallByDistance`]: four of [`DISTANCE_BIN`], then everything farther.
+pub const DISTANCE_BINS: usize = 5;
+
+/// Occupied-cell recall (self-report left out, as `occupied_recall`) by the
+/// distance from the cell to the nearest cooperating agent other than the ego
+/// in the scene: bin i holds distances in [25 i, 25 (i + 1)) m, the last bin
+/// 100 m and beyond. Cell-steps with no such agent in the scene are not
+/// counted.
+#[derive(Debug, Clone, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct RecallByDistance {
+    /// The bins, nearest first. Boxed: an outcome of every kind stays small.
+    pub bins: Box<[DistanceBin; DISTANCE_BINS]>,
+}
+
+/// The occupied cell-steps of one bin of [`RecallByDistance`].
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct DistanceBin {
+    /// Occupied cell-steps of road users that do not cooperate.
+    pub occupied: u64,
+    /// Of them, decided Occupy by the fused grid.
+    pub detected: u64,
+}
+
+impl RecallByDistance {
+    /// Counts an occupied cell-step `distance` metres from the nearest sender.
+    pub(crate) fn record(&mut self, distance: f64, detected: bool) {
+        let bin = ((distance / DISTANCE_BIN) as usize).min(DISTANCE_BINS - 1);
+        self.bins[bin].occupied += 1;
+        self.bins[bin].detected += u64::from(detected);
+    }
+
+    /// Adds `other`'s counts.
+    pub(crate) fn merge(&mut self, other: &RecallByDistance) {
+        for (bin, other) in self.bins.iter_mut().zip(other.bins.iter()) {
+            bin.occupied += other.occupied;
+            bin.detected += other.detected;
+        }
+    }
+}
+
 /// One method's tallies over a chunk of fused cells of one step.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub(crate) struct WorldTally {
     pub(crate) cells: CellTally,
     pub(crate) estimates: EstimateTally,
     pub(crate) calibration: Calibration,
+    pub(crate) by_distance: RecallByDistance,
 }
 
 #[cfg(test)]

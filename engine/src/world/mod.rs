@@ -3,14 +3,18 @@
 //! perception grid fused across cooperating agents.
 
 mod calibration;
+mod evidence;
 mod following;
 mod fuse;
 mod localization;
 mod measure;
+mod message;
 mod metrics;
 mod motion;
 mod observe;
+mod radio;
 mod raster;
+mod received;
 mod sight;
 mod simulate;
 mod state;
@@ -18,16 +22,20 @@ mod traced;
 mod truth;
 
 pub use calibration::{Calibration, RELIABILITY_BINS, ReliabilityBin};
-pub use metrics::{CellTally, FusedCell, Snapshot, WorldMetrics, WorldOutcome};
+pub use metrics::{
+    CellTally, DISTANCE_BIN, DISTANCE_BINS, DistanceBin, FusedCell, RecallByDistance, Snapshot, WorldMetrics,
+    WorldOutcome,
+};
 pub use motion::Kinematics;
 pub use observe::{Observation, Observed, Sighting, Sightings, in_view, mount_pose};
+pub use radio::RadioStats;
 pub use sight::{Bodies, Body, Occluders, Visibility, visibility};
 pub use simulate::run;
 pub use state::{AgentState, Restraint};
 
 /// The step's pieces, for the engine's benches (feature `internals`).
 #[cfg(feature = "internals")]
-pub use {fuse::CellFusion, observe::StepScene, raster::Raster};
+pub use {evidence::Evidence, fuse::CellFusion, observe::StepScene, raster::Raster};
 
 pub(crate) use following::following_idealisations;
 pub(crate) use localization::{filter_idealisations as localization_idealisations, odometry_idealisations};

@@ -184,7 +184,7 @@ impl Observation {
     }
 
     /// Marks `cell`: free < own footprint < detected occupied, the stronger mark kept.
-    fn mark(&mut self, cell: usize, observed: Observed) {
+    pub(super) fn mark(&mut self, cell: usize, observed: Observed) {
         match (self.cells[cell], observed) {
             (Observed::Unknown, _) => {
                 self.cells[cell] = observed;

@@ -1,6 +1,8 @@
 //! The step loop of a world, as a sequence of phases: **move** (agents advance
 //! and their footprints are drawn), **sense** (each cooperating agent estimates
-//! its pose and observes), **communicate** (what reaches the ego), **fuse** (every
+//! its pose and observes), **communicate** (what reaches the ego: over the
+//! [`Radio`] when the scenario declares `v2x`, else every grid whole and at
+//! once), **fuse** (every
 //! job's grid over the cells covered, tallied against the ground truth) and
 //! **measure** (the step added to each job's metrics and reported to the sink).
 //! State carried from step to step lives in [`Scene`], the [`Cooperator`]s, the
@@ -14,18 +16,20 @@ use rand::rngs::ChaCha8Rng;
 use rayon::prelude::*;
 use sightline_dsl::{Agent, AgentKind, Grid, Motion, Perception, World};
 
+use super::evidence::Evidence;
 use super::fuse::{self, Fusion};
 use super::localization::{self, PoseEstimator};
 use super::measure::{MeasuredStep, Measures, unmeasured};
 use super::metrics::WorldOutcome;
 use super::motion::{self, Kinematics};
 use super::observe::{self, Observation, StepScene};
+use super::radio::{self, Radio};
 use super::raster::{Raster, cell_center};
 use super::sight::{self, Bodies, Occluders};
 use super::state::AgentState;
 use super::truth::{EXCLUDED, Truth};
 use crate::idealisation::Idealisation;
-use crate::math::{Pose, Vector};
+use crate::math::{Point, Pose, Vector};
 use crate::rng::{Purpose, stream};
 use crate::run::Job;
 use crate::sink::TraceSink;
@@ -41,9 +45,8 @@ pub(crate) const MEMORYLESS: Idealisation = Idealisation {
 /// Grids are exchanged without a radio.
 pub(crate) const LOSSLESS_EXCHANGE: Idealisation = Idealisation {
     id: "world.lossless-exchange",
-    text: "Every cooperating agent's grid reaches the ego at the step it is observed, complete: collective \
-           perception does not model the radio (loss, delay, bandwidth), and `check` refuses `v2x` in it \
-           (issue 16).",
+    text: "Every cooperating agent's grid reaches the ego at the step it is observed, complete: the scenario \
+           declares no `v2x`, so no radio (loss, delay, size limits) is modelled.",
 };
 
 /// Agents sense together.
@@ -87,7 +90,20 @@ pub(crate) fn idealisations(world: &World, perception: &Perception) -> Vec<Ideal
     if world.agents.iter().any(|a| a.kind == AgentKind::Rsu) {
         listed.push(sight::RSU_TRANSPARENT);
     }
-    listed.extend([MEMORYLESS, LOSSLESS_EXCHANGE, fuse::INVERSE_MODEL]);
+    listed.push(MEMORYLESS);
+    match perception.messages {
+        None => listed.push(LOSSLESS_EXCHANGE),
+        Some(_) => {
+            listed.extend([
+                radio::GRID_MESSAGES,
+                radio::FIXED_RATE,
+                radio::STEP_DELIVERY,
+                crate::v2x::NO_CONTENTION,
+            ]);
+            listed.extend_from_slice(crate::v2x::path_loss_idealisations(world.v2x.channel.model));
+        }
+    }
+    listed.push(fuse::INVERSE_MODEL);
     listed
 }
 
@@ -199,6 +215,10 @@ pub fn run(
         .iter()
         .map(|&agent| Cooperator::new(seed, agent, grid.cells(), world))
         .collect();
+    let mut radio = perception
+        .messages
+        .as_ref()
+        .map(|messages| Radio::new(seed, (&world.v2x, messages), grid, world.step, &perception.cooperating));
     let mut truth = Truth::new(grid.cells());
     let mut fusion = Fusion::new(grid, perception, jobs);
     let mut measures = Measures::new(jobs.len());
@@ -212,10 +232,14 @@ pub fn run(
             unmeasured(k, time, &scene.states, &sensed, sink);
             continue;
         }
-        let received = communicate(&sensed);
-        // The ground truth the fused grids are tallied against: every cooperating
-        // agent in the scene reports its own footprint.
-        let reporting: Vec<usize> = sensed.iter().map(|c| c.agent).collect();
+        if let Some(radio) = &mut radio {
+            radio.communicate(time, &sensed, (&world.agents, &scene.states), &setting.occluders);
+        }
+        let (received, reporting) = communicate(&sensed, radio.as_ref());
+        let senders: Vec<Point> = sensed[1..]
+            .iter()
+            .filter_map(|c| scene.states[c.agent].map(|s| s.position()))
+            .collect();
         truth.mark(
             grid,
             &scene.raster,
@@ -228,6 +252,7 @@ pub fn run(
         let grids = sink.wants_grids(k);
         let fused = fusion.fuse(
             &received,
+            &senders,
             &truth,
             |cell| setting.counted(&scene.raster, &truth, cell),
             snapshot || grids,
@@ -239,13 +264,15 @@ pub fn run(
             raster: &scene.raster,
             sensed: &sensed,
             truth: &truth,
+            grid,
+            senders: &senders,
             fused,
             snapshot,
             grids,
         };
         measures.measure(step, sink);
     }
-    measures.finish(jobs)
+    measures.finish(jobs, radio.map(Radio::finish))
 }
 
 /// Sense: every cooperating agent in the scene estimates its pose at step `k`
@@ -295,10 +322,23 @@ fn sense<'c>(
         .collect()
 }
 
-/// Communicate: the observations that reach the ego, its own first. Every
-/// cooperating agent's observation arrives whole at the step it is made
-/// ([`LOSSLESS_EXCHANGE`]); the radio channel replaces this pass-through in
-/// issue 16.
-fn communicate<'c>(sensed: &[CooperatorStep<'c>]) -> Vec<&'c Observation> {
-    sensed.iter().map(|c| c.observation).collect()
+/// Communicate: the evidence the ego fuses, its own observation first, and
+/// the cooperating agents that report their own footprints to it (the ground
+/// truth counts those as self-report). Without a radio every cooperating
+/// agent's observation arrives whole at the step it is made
+/// ([`LOSSLESS_EXCHANGE`]); over one, what the ego holds of each sender.
+fn communicate<'c>(sensed: &[CooperatorStep<'c>], radio: Option<&'c Radio<'_>>) -> (Vec<&'c dyn Evidence>, Vec<usize>) {
+    let ego = &sensed[0];
+    match radio {
+        None => (
+            sensed.iter().map(|c| c.observation as &dyn Evidence).collect(),
+            sensed.iter().map(|c| c.agent).collect(),
+        ),
+        Some(radio) => (
+            std::iter::once(ego.observation as &dyn Evidence)
+                .chain(radio.received())
+                .collect(),
+            std::iter::once(ego.agent).chain(radio.reporting()).collect(),
+        ),
+    }
 }

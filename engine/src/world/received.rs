@@ -1,0 +1,189 @@
+//! What the ego holds of one cooperating agent's grid over the radio: per
+//! cell, the newest state a received message gave it, and how old that is.
+//!
+//! A message's cells overwrite what older messages of the same sender said of
+//! them; cells no newer message covers keep their older state until it is
+//! `max_age` old (since it was sensed), then they are dropped. With a `decay`
+//! time constant τ, evidence of age a weighs exp(−a / τ): fusion discounts its
+//! mass toward unknown by that weight.
+
+use sightline_dsl::Messages;
+
+use super::evidence::Evidence;
+use super::message::Run;
+use super::observe::Observed;
+use crate::math::Point;
+
+/// One generation of a sender's messages (the messages of one step), as the
+/// ego holds it.
+#[derive(Debug, Clone, Default)]
+struct Generation {
+    /// Its serial number among the sender's generations.
+    serial: u32,
+    /// When it was sensed, seconds.
+    sensed: f64,
+    /// The sender's estimated sensor positions then.
+    sensors: Vec<Point>,
+    /// Its evidence's weight at the current step.
+    weight: f64,
+}
+
+/// The ego's copy of one sender's grid.
+#[derive(Debug)]
+pub(super) struct Held {
+    cells: Vec<Observed>,
+    /// Per cell: the serial of the generation its state came in.
+    from: Vec<u32>,
+    touched: Vec<usize>,
+    /// The generations that may still be live, in slot `serial % slots.len()`:
+    /// more slots than generations fit in `max_age`, so that live ones never
+    /// share a slot.
+    slots: Vec<Option<Generation>>,
+}
+
+impl Held {
+    /// Nothing held, on a grid of `cells` cells, for messages generated at
+    /// `messages.rate_hz` (at most one per step) and dropped at `max_age`.
+    pub(super) fn new(cells: usize, messages: &Messages) -> Self {
+        let live = (messages.max_age * messages.rate_hz).floor() as usize + 2;
+        Self {
+            cells: vec![Observed::Unknown; cells],
+            from: vec![0; cells],
+            touched: Vec::new(),
+            slots: vec![None; live],
+        }
+    }
+
+    /// Takes in a received message of generation `serial`, sensed at `sensed`
+    /// with sensors at `sensors`: its runs overwrite what the ego held of
+    /// their cells.
+    pub(super) fn receive(&mut self, serial: u32, sensed: f64, sensors: &[Point], runs: &[Run]) {
+        let slot = serial as usize % self.slots.len();
+        if self.slots[slot].as_ref().is_none_or(|g| g.serial != serial) {
+            self.slots[slot] = Some(Generation {
+                serial,
+                sensed,
+                sensors: sensors.to_vec(),
+                weight: 1.0,
+            });
+        }
+        for run in runs {
+            for cell in run.cells() {
+                if self.cells[cell] == Observed::Unknown {
+                    self.touched.push(cell);
+                }
+                self.cells[cell] = run.state;
+                self.from[cell] = serial;
+            }
+        }
+    }
+
+    /// Ages what is held to `now`: drops the cells whose evidence is older than
+    /// `messages.max_age` and weighs the rest by the decay.
+    pub(super) fn age(&mut self, now: f64, messages: &Messages) {
+        for slot in &mut self.slots {
+            let Some(generation) = slot else { continue };
+            let age = now - generation.sensed;
+            if age > messages.max_age + 1e-9 {
+                *slot = None;
+            } else {
+                generation.weight = messages.decay.map_or(1.0, |tau| (-age / tau).exp());
+            }
+        }
+        let (cells, from, slots) = (&mut self.cells, &self.from, &self.slots);
+        self.touched.retain(|&cell| {
+            let live = slots[from[cell] as usize % slots.len()]
+                .as_ref()
+                .is_some_and(|g| g.serial == from[cell]);
+            if !live {
+                cells[cell] = Observed::Unknown;
+            }
+            live
+        });
+    }
+
+    /// Whether any evidence of the sender is held: the ego knows of it, its own
+    /// footprint included.
+    pub(super) fn is_live(&self) -> bool {
+        self.slots.iter().any(Option::is_some)
+    }
+
+    fn generation(&self, cell: usize) -> &Generation {
+        self.slots[self.from[cell] as usize % self.slots.len()]
+            .as_ref()
+            .expect("a held cell's generation is live")
+    }
+}
+
+impl Evidence for Held {
+    fn get(&self, cell: usize) -> Observed {
+        self.cells[cell]
+    }
+
+    fn touched(&self) -> &[usize] {
+        &self.touched
+    }
+
+    fn weight(&self, cell: usize) -> f64 {
+        self.generation(cell).weight
+    }
+
+    fn sensors(&self, cell: usize) -> &[Point] {
+        &self.generation(cell).sensors
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use sightline_dsl::Oversize;
+
+    use super::*;
+
+    fn messages(decay: Option<f64>) -> Messages {
+        Messages {
+            rate_hz: 10.0,
+            max_bytes: 1100,
+            oversize: Oversize::Split,
+            max_age: 0.25,
+            decay,
+        }
+    }
+
+    fn run(start: usize, len: u32, state: Observed) -> Run {
+        Run { start, len, state }
+    }
+
+    /// Newer messages overwrite the cells they cover; cells no newer message
+    /// covers are dropped once their evidence is older than `max_age`.
+    #[test]
+    fn newer_overwrites_and_old_expires() {
+        let messages = messages(None);
+        let mut held = Held::new(10, &messages);
+        assert!(!held.is_live());
+        held.receive(0, 0.0, &[Point::new(1.0, 0.0)], &[run(0, 4, Observed::Free)]);
+        held.receive(1, 0.1, &[Point::new(2.0, 0.0)], &[run(2, 2, Observed::Occupied)]);
+        held.age(0.2, &messages);
+        assert!(held.is_live());
+        let states: Vec<Observed> = (0..5).map(|c| held.get(c)).collect();
+        use Observed::{Free, Occupied, Unknown};
+        assert_eq!(states, [Free, Free, Occupied, Occupied, Unknown]);
+        assert_eq!(held.sensors(0), [Point::new(1.0, 0.0)]);
+        assert_eq!(held.sensors(2), [Point::new(2.0, 0.0)]);
+        // At 0.3 s the first generation is 0.3 s old: dropped.
+        held.age(0.3, &messages);
+        assert_eq!(held.touched(), [2, 3]);
+        assert_eq!((held.get(0), held.get(2)), (Unknown, Occupied));
+        held.age(0.4, &messages);
+        assert!(held.touched().is_empty() && !held.is_live());
+    }
+
+    /// With a time constant τ, evidence of age a weighs exp(−a/τ).
+    #[test]
+    fn decay_weighs_by_age() {
+        let messages = messages(Some(0.5));
+        let mut held = Held::new(4, &messages);
+        held.receive(7, 1.0, &[], &[run(0, 1, Observed::Occupied)]);
+        held.age(1.2, &messages);
+        assert!((held.weight(0) - (-0.4_f64).exp()).abs() < 1e-12);
+    }
+}
