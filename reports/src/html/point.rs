@@ -106,7 +106,45 @@ pub(super) fn point_body(p: &PointResult) -> (String, Vec<TableView>) {
                 "mean pose-estimate error, m".into(),
                 or_dash(c.localization_error),
             ]);
-            (format!("{} steps", c.steps), vec![counts_table(rows)])
+            if let Some(radio) = &c.radio {
+                let fused: u64 = radio.ages.iter().map(|a| a.messages).sum();
+                let radio_rows = [
+                    ("messages the cooperating agents sent the ego", radio.sent as f64),
+                    ("… received", radio.received as f64),
+                    ("… fused by the ego before the run ended", fused as f64),
+                    ("bytes sent", radio.bytes as f64),
+                    (
+                        "steps cooperating agents other than the ego were in the scene with it",
+                        radio.sender_steps as f64,
+                    ),
+                ];
+                rows.extend(radio_rows.iter().map(|(k, v)| vec![(*k).to_string(), number(*v)]));
+            }
+            let by_distance = TableView {
+                caption: "Occupied-cell recall by distance to the nearest cooperating agent other than the ego \
+                          (self-report left out)"
+                    .into(),
+                text_columns: 1,
+                head: ["distance", "occupied cell-steps (n)", "decided Occupy", "recall"]
+                    .map(String::from)
+                    .to_vec(),
+                rows: c
+                    .recall_by_distance
+                    .iter()
+                    .map(|r| {
+                        vec![
+                            match r.to {
+                                Some(to) => format!("{} – {} m", number(r.from), number(to)),
+                                None => format!("≥ {} m", number(r.from)),
+                            },
+                            number(r.occupied as f64),
+                            number(r.detected as f64),
+                            or_dash(r.recall),
+                        ]
+                    })
+                    .collect(),
+            };
+            (format!("{} steps", c.steps), vec![counts_table(rows), by_distance])
         }
         Detail::Semantic {
             counts: c,

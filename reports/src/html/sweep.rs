@@ -12,13 +12,15 @@ use crate::results::{PointResult, Results};
 
 /// Metrics every sweep table shows; metrics that requirements or references use
 /// are added after them.
-const TABLE_METRICS: [&str; 13] = [
+const TABLE_METRICS: [&str; 15] = [
     "occupied_recall",
     "blind_recall",
     "self_report_share",
     "brier_score",
     "occupied_precision",
     "fov_gain",
+    "packet_delivery_ratio",
+    "message_age_mean",
     "accuracy",
     "below_threshold",
     "false_alarms",

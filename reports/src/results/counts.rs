@@ -96,6 +96,55 @@ pub struct WorldCounts {
     pub conflict: Option<Conflict>,
     /// How well the fused probabilities are calibrated.
     pub calibration: Calibration,
+    /// Occupied-cell recall (self-report left out) by the distance from the
+    /// cell to the nearest cooperating agent other than the ego, 25 m bins;
+    /// cell-steps with no such agent in the scene are not counted.
+    pub recall_by_distance: Vec<DistanceRow>,
+    /// What went over the radio (`null` when the scenario declares no `v2x`).
+    pub radio: Option<Radio>,
+}
+
+/// The occupied cell-steps of one band of distance to the nearest sender.
+#[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
+#[schemars(deny_unknown_fields)]
+pub struct DistanceRow {
+    /// Nearest distance, metres (included).
+    pub from: f64,
+    /// Farthest distance, metres (excluded; `null`: no bound).
+    pub to: Option<f64>,
+    /// Occupied cell-steps of road users that do not cooperate (n).
+    pub occupied: u64,
+    /// Of them, decided Occupy by the fused grid.
+    pub detected: u64,
+    /// detected / occupied (`null` when n = 0).
+    pub recall: Option<f64>,
+}
+
+/// The messages of collective perception over the radio.
+#[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
+#[schemars(deny_unknown_fields)]
+pub struct Radio {
+    /// Messages the cooperating agents sent the ego.
+    pub sent: u64,
+    /// Of them, received (power at or above the ego's sensitivity).
+    pub received: u64,
+    /// Bytes of the messages sent, headers included.
+    pub bytes: u64,
+    /// Steps cooperating agents other than the ego spent in the scene with it.
+    pub sender_steps: u64,
+    /// The messages the ego fused, by age (seconds from sensing to the first
+    /// step that fused them), ages with no message left out.
+    pub ages: Vec<AgeCount>,
+}
+
+/// How many fused messages were one age.
+#[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
+#[schemars(deny_unknown_fields)]
+pub struct AgeCount {
+    /// Seconds from sensing to fusion.
+    pub age: f64,
+    /// Messages fused at that age.
+    pub messages: u64,
 }
 
 /// How well a world's fused occupancy probabilities p (pignistic for

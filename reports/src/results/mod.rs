@@ -29,8 +29,8 @@
 //! fields.
 
 pub use counts::{
-    Band, Calibration, Conflict, Coverage, DeliveryBin, DensityRow, LabelCounts, MassAudit, ReliabilityBin,
-    SemanticCounts, Sightings, WorldCounts,
+    AgeCount, Band, Calibration, Conflict, Coverage, DeliveryBin, DensityRow, DistanceRow, LabelCounts, MassAudit,
+    Radio, ReliabilityBin, SemanticCounts, Sightings, WorldCounts,
 };
 pub use document::{FORMAT, InputInfo, Results, ScenarioInfo, Summary};
 pub use metrics::{Measured, MetricEntry, Ordered, Table};

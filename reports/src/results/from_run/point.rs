@@ -6,8 +6,8 @@ use sightline_dsl::Point;
 use sightline_engine::{Outcome, outcome as engine};
 
 use crate::results::{
-    Band, Calibration, Conflict, Coverage, DeliveryBin, DensityRow, Detail, LabelCounts, LabelResult, MassAudit,
-    Ordered, PointResult, ReliabilityBin, SemanticCounts, Sightings, WorldCounts,
+    AgeCount, Band, Calibration, Conflict, Coverage, DeliveryBin, DensityRow, Detail, DistanceRow, LabelCounts,
+    LabelResult, MassAudit, Ordered, PointResult, Radio, ReliabilityBin, SemanticCounts, Sightings, WorldCounts,
 };
 
 pub(super) fn point_result((point, outcome): (&Point, &Outcome)) -> PointResult {
@@ -136,6 +136,8 @@ fn world_counts(metrics: &engine::WorldMetrics) -> WorldCounts {
         mean_uncertainty,
         ref conflict,
         ref calibration,
+        ref recall_by_distance,
+        ref radio,
     } = *metrics;
     let engine::Sightings {
         los,
@@ -178,6 +180,43 @@ fn world_counts(metrics: &engine::WorldMetrics) -> WorldCounts {
             }
         }),
         calibration: calibration_table(calibration),
+        recall_by_distance: distance_rows(recall_by_distance),
+        radio: radio.as_deref().map(radio_counts),
+    }
+}
+
+fn distance_rows(by_distance: &engine::RecallByDistance) -> Vec<DistanceRow> {
+    let last = engine::DISTANCE_BINS - 1;
+    by_distance
+        .bins
+        .iter()
+        .enumerate()
+        .map(|(i, bin)| DistanceRow {
+            from: i as f64 * engine::DISTANCE_BIN,
+            to: (i < last).then(|| (i + 1) as f64 * engine::DISTANCE_BIN),
+            occupied: bin.occupied,
+            detected: bin.detected,
+            recall: (bin.occupied > 0).then(|| bin.detected as f64 / bin.occupied as f64),
+        })
+        .collect()
+}
+
+fn radio_counts(radio: &engine::RadioStats) -> Radio {
+    Radio {
+        sent: radio.sent,
+        received: radio.received,
+        bytes: radio.bytes,
+        sender_steps: radio.sender_steps,
+        ages: radio
+            .ages
+            .iter()
+            .enumerate()
+            .filter(|&(_, &messages)| messages > 0)
+            .map(|(a, &messages)| AgeCount {
+                age: a as f64 * radio.step,
+                messages,
+            })
+            .collect(),
     }
 }
 
