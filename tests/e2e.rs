@@ -25,6 +25,10 @@ mod verdicts;
 #[path = "e2e/calibration.rs"]
 mod calibration;
 
+// Collective perception over the radio: a dead radio, a perfect one a step late, selection.
+#[path = "e2e/radio.rs"]
+mod radio;
+
 // Every key of the language changes the result or is refused, per kind of scenario.
 #[path = "e2e/keys.rs"]
 mod keys;

@@ -143,7 +143,6 @@ invalid_inputs! {
     record_unknown_key_lists_the_keys => "record-unknown-key",
     record_where_matching_no_point_and_a_negative_rate_are_reported => "record-where-matches-no-point",
     // See: issue 13, case 1 ("no silent assumptions").
-    radio_in_collective_perception_is_refused_written_swept_or_varied => "perception-v2x",
     grid_fusion_and_localization_in_a_semantic_world_are_refused => "semantic-fusion-keys",
     world_sections_in_the_field_experiment_are_refused => "field-with-world-sections",
     keys_their_settings_leave_without_effect_are_refused => "keys-without-effect",
@@ -157,6 +156,10 @@ invalid_inputs! {
     // See: issue 16 (odometry with noise).
     odometry_out_of_physical_range_is_refused => "odometry-out-of-range",
     noise_beside_exact_odometry_is_refused => "odometry-exact-with-noise",
+    // See: issue 16, "Bad input" (the radio in collective perception).
+    radio_parameters_out_of_physical_range_are_refused => "radio-out-of-range",
+    radio_the_step_cannot_serve_and_two_counts_of_cooperators_are_refused => "radio-limits-of-the-step",
+    a_radio_metric_without_a_radio_is_refused => "radio-metric-without-v2x",
 }
 
 #[test]

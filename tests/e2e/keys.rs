@@ -302,6 +302,8 @@ const MARGINAL_RADIO: &[Set] = &[
         r#"{ "id": "wall", "polygon": [[-6, -22], [-3, -22], [-3, -12], [-6, -12]] }"#,
     ),
 ];
+/// A radio for collective perception: its keys are compared over it.
+const RADIO: &[Set] = &[("v2x.latency", "0.01")];
 /// The same for a semantic world.
 const SEMANTIC_SIGNAL: Set = (
     "requirements.0.check",
@@ -679,17 +681,22 @@ const KEYS: &[Key] = &[
         perception: with(&[("driving.following", r#""idm""#)], &[("driving.deceleration", "1")]),
         semantic: with(&[("driving.following", r#""idm""#)], &[("driving.deceleration", "1")]),
     },
-    Key { path: "v2x.penetration", field: Section, perception: Section, semantic: change(&[("v2x.penetration", "0")]) },
-    Key { path: "v2x.latency", field: Section, perception: Section, semantic: change(&[("v2x.latency", "0.3")]) },
-    Key { path: "v2x.channel.model", field: Section, perception: Section, semantic: change(&[("v2x.channel.model", r#""ideal""#)]) },
-    Key { path: "v2x.channel.tx_power_dbm", field: Section, perception: Section, semantic: change(&[("v2x.channel.tx_power_dbm", "-20")]) },
-    Key { path: "v2x.channel.shadowing_sigma_db", field: Section, perception: Section, semantic: with(MARGINAL_RADIO, &[("v2x.channel.shadowing_sigma_db", "12")]) },
-    Key { path: "v2x.channel.nlos_shadowing_sigma_db", field: Section, perception: Section, semantic: with(MARGINAL_RADIO, &[("v2x.channel.nlos_shadowing_sigma_db", "12")]) },
-    Key { path: "v2x.channel.device_loss_db", field: Section, perception: Section, semantic: change(&[("v2x.channel.device_loss_db", "40")]) },
-    Key { path: "v2x.channel.sensitivity_dbm", field: Section, perception: Section, semantic: change(&[("v2x.channel.sensitivity_dbm", "-60")]) },
-    Key { path: "v2x.channel.carrier_ghz", field: Section, perception: Section, semantic: with(MARGINAL_RADIO, &[("v2x.channel.carrier_ghz", "60")]) },
-    Key { path: "v2x.channel.vehicle_antenna_m", field: Section, perception: Section, semantic: change(&[("v2x.channel.vehicle_antenna_m", "1.1")]) },
-    Key { path: "v2x.channel.rsu_antenna_m", field: Section, perception: Section, semantic: with(MARGINAL_RADIO, &[("v2x.channel.rsu_antenna_m", "1.1")]) },
+    Key { path: "v2x.penetration", field: Section, perception: with(RADIO, &[("v2x.penetration", "0")]), semantic: change(&[("v2x.penetration", "0")]) },
+    Key { path: "v2x.latency", field: Section, perception: with(RADIO, &[("v2x.latency", "0.3")]), semantic: change(&[("v2x.latency", "0.3")]) },
+    Key { path: "v2x.channel.model", field: Section, perception: with(RADIO, &[("v2x.channel.model", r#""ideal""#)]), semantic: change(&[("v2x.channel.model", r#""ideal""#)]) },
+    Key { path: "v2x.channel.tx_power_dbm", field: Section, perception: with(RADIO, &[("v2x.channel.tx_power_dbm", "-20")]), semantic: change(&[("v2x.channel.tx_power_dbm", "-20")]) },
+    Key { path: "v2x.channel.shadowing_sigma_db", field: Section, perception: with(MARGINAL_RADIO, &[("v2x.channel.shadowing_sigma_db", "12")]), semantic: with(MARGINAL_RADIO, &[("v2x.channel.shadowing_sigma_db", "12")]) },
+    Key { path: "v2x.channel.nlos_shadowing_sigma_db", field: Section, perception: with(MARGINAL_RADIO, &[("v2x.channel.nlos_shadowing_sigma_db", "12")]), semantic: with(MARGINAL_RADIO, &[("v2x.channel.nlos_shadowing_sigma_db", "12")]) },
+    Key { path: "v2x.channel.device_loss_db", field: Section, perception: with(RADIO, &[("v2x.channel.device_loss_db", "40")]), semantic: change(&[("v2x.channel.device_loss_db", "40")]) },
+    Key { path: "v2x.channel.sensitivity_dbm", field: Section, perception: with(RADIO, &[("v2x.channel.sensitivity_dbm", "-60")]), semantic: change(&[("v2x.channel.sensitivity_dbm", "-60")]) },
+    Key { path: "v2x.channel.carrier_ghz", field: Section, perception: with(MARGINAL_RADIO, &[("v2x.channel.carrier_ghz", "60")]), semantic: with(MARGINAL_RADIO, &[("v2x.channel.carrier_ghz", "60")]) },
+    Key { path: "v2x.channel.vehicle_antenna_m", field: Section, perception: with(MARGINAL_RADIO, &[("v2x.channel.vehicle_antenna_m", "1.1")]), semantic: change(&[("v2x.channel.vehicle_antenna_m", "1.1")]) },
+    Key { path: "v2x.channel.rsu_antenna_m", field: Section, perception: with(MARGINAL_RADIO, &[("v2x.channel.rsu_antenna_m", "1.1")]), semantic: with(MARGINAL_RADIO, &[("v2x.channel.rsu_antenna_m", "1.1")]) },
+    Key { path: "v2x.messages.rate_hz", field: Section, perception: with(RADIO, &[("v2x.messages.rate_hz", "2")]), semantic: refused_at(&[("v2x.messages.rate_hz", "5")], "v2x.messages") },
+    Key { path: "v2x.messages.max_bytes", field: Section, perception: with(RADIO, &[("v2x.messages.max_bytes", "300")]), semantic: refused_at(&[("v2x.messages.max_bytes", "300")], "v2x.messages") },
+    Key { path: "v2x.messages.oversize", field: Section, perception: with(RADIO, &[("v2x.messages.oversize", r#""select""#)]), semantic: refused_at(&[("v2x.messages.oversize", r#""select""#)], "v2x.messages") },
+    Key { path: "v2x.messages.max_age", field: Section, perception: with(RADIO, &[("v2x.messages.max_age", "0.1")]), semantic: refused_at(&[("v2x.messages.max_age", "0.1")], "v2x.messages") },
+    Key { path: "v2x.messages.decay", field: Section, perception: with(RADIO, &[("v2x.messages.decay", "0.2")]), semantic: refused_at(&[("v2x.messages.decay", "0.2")], "v2x.messages") },
     Key {
         path: "semantic.ego",
         field: Section,
@@ -1353,7 +1360,7 @@ fn every_key_is_effective_or_refused_in_every_kind_of_scenario() {
 #[test]
 fn an_axis_that_sets_an_ignored_key_is_refused_where_it_is_written() {
     for (kind, dotted, value) in [
-        (Kind::Perception, "v2x.channel.tx_power_dbm", "-100"),
+        (Kind::Semantic, "v2x.messages.rate_hz", "5"),
         (Kind::Perception, "traffic.pedestrians.per_minute", "3"),
         (Kind::Semantic, "grid.cell", "0.5"),
         (Kind::Semantic, "fusion.method", r#""bayes""#),
