@@ -306,6 +306,10 @@ pub enum Metric {
     /// (p − o)² over the fused cell-steps (self-report left out), with p the
     /// pignistic probability for evidential methods (0 best, 1 worst).
     BrierScore,
+    /// World: the mean share of an object's outline (its angular extent) in
+    /// line of sight of a cooperating agent's sensor, over the sensor–target
+    /// pairs in range and field of view, a hidden object counting 0 (0–1).
+    MeanVisibleFraction,
     /// Semantic: median anticipation time, seconds, over objects the ego first
     /// learned of from an RSU while it could not see them and later saw itself.
     AnticipationMedian,
@@ -335,7 +339,7 @@ pub enum Metric {
 
 impl Metric {
     /// Every metric, in documentation order.
-    pub const ALL: [Metric; 30] = [
+    pub const ALL: [Metric; 31] = [
         Self::Accuracy,
         Self::BelowThreshold,
         Self::BelowThresholdFraction,
@@ -357,6 +361,7 @@ impl Metric {
         Self::OccupiedRecallWithSelfReport,
         Self::SelfReportShare,
         Self::BrierScore,
+        Self::MeanVisibleFraction,
         Self::AnticipationMedian,
         Self::AnticipationP95,
         Self::InfrastructureContribution,
@@ -392,6 +397,7 @@ impl Metric {
             Self::OccupiedRecallWithSelfReport => "occupied_recall_with_self_report",
             Self::SelfReportShare => "self_report_share",
             Self::BrierScore => "brier_score",
+            Self::MeanVisibleFraction => "mean_visible_fraction",
             Self::AnticipationMedian => "anticipation_median",
             Self::AnticipationP95 => "anticipation_p95",
             Self::InfrastructureContribution => "infrastructure_contribution",
@@ -416,6 +422,7 @@ impl Metric {
                     | Self::OccupiedRecallWithSelfReport
                     | Self::SelfReportShare
                     | Self::BrierScore
+                    | Self::MeanVisibleFraction
             )
     }
 
@@ -468,6 +475,7 @@ impl Metric {
             Self::OccupiedRecallWithSelfReport => "truly occupied cell-steps",
             Self::SelfReportShare => "truly occupied cell-steps decided occupied",
             Self::BrierScore => "fused cell-steps, self-report left out",
+            Self::MeanVisibleFraction => "sensor–target pairs in range and field of view, per step",
             Self::AnticipationMedian | Self::AnticipationP95 => "anticipation times",
             Self::InfrastructureContribution | Self::ChannelLoad | Self::BaselineChannelLoad => "steps with the ego",
             Self::TransmittedShare | Self::LabelledShare => "object-cycles the RSUs perceive",
@@ -515,6 +523,7 @@ impl Metric {
             | Self::OccupiedRecallWithSelfReport
             | Self::SelfReportShare
             | Self::BrierScore
+            | Self::MeanVisibleFraction
             | Self::TransmittedShare
             | Self::LabelledShare
             | Self::PacketDeliveryRatio => ValueDomain::Fraction,

@@ -3,6 +3,7 @@
 //! perception grid fused across cooperating agents.
 
 mod calibration;
+mod fan;
 mod following;
 mod fuse;
 mod localization;
@@ -18,10 +19,11 @@ mod traced;
 mod truth;
 
 pub use calibration::{Calibration, RELIABILITY_BINS, ReliabilityBin};
+pub use fan::{View, view};
 pub use metrics::{CellTally, FusedCell, Snapshot, WorldMetrics, WorldOutcome};
 pub use motion::Kinematics;
 pub use observe::{Observation, Observed, Sighting, Sightings, in_view, mount_pose};
-pub use sight::{Bodies, Body, Occluders, Visibility, visibility};
+pub use sight::{Bodies, Body, Occluders, Outline, Visibility, visibility};
 pub use simulate::run;
 pub use state::{AgentState, Restraint};
 
@@ -32,5 +34,5 @@ pub use {fuse::CellFusion, observe::StepScene, raster::Raster};
 pub(crate) use following::following_idealisations;
 pub(crate) use localization::{filter_idealisations as localization_idealisations, odometry_idealisations};
 pub(crate) use motion::ON_THEIR_WAY;
-pub(crate) use sight::{ONE_RAY, PLANAR, RSU_TRANSPARENT};
+pub(crate) use sight::{ONE_RAY, OUTLINES, PLANAR, RSU_TRANSPARENT};
 pub(crate) use simulate::idealisations;

@@ -14,6 +14,7 @@ use rand::rngs::ChaCha8Rng;
 use rayon::prelude::*;
 use sightline_dsl::{Agent, AgentKind, Grid, Motion, Perception, World};
 
+use super::fan;
 use super::fuse::{self, Fusion};
 use super::localization::{self, PoseEstimator};
 use super::measure::{MeasuredStep, Measures, unmeasured};
@@ -66,7 +67,8 @@ pub(crate) fn idealisations(world: &World, perception: &Perception) -> Vec<Ideal
         sight::PLANAR,
         motion::ON_THEIR_WAY,
         SYNCHRONOUS,
-        sight::ONE_RAY,
+        sight::OUTLINES,
+        fan::FAN,
         observe::DETECTIONS,
         observe::NOISE,
         observe::FREE_SPACE,
