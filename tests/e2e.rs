@@ -25,6 +25,10 @@ mod verdicts;
 #[path = "e2e/calibration.rs"]
 mod calibration;
 
+// Partial visibility: a mean_visible_fraction requirement judged with its n on a hand-counted scene.
+#[path = "e2e/visibility.rs"]
+mod visibility;
+
 // Every key of the language changes the result or is refused, per kind of scenario.
 #[path = "e2e/keys.rs"]
 mod keys;

@@ -54,11 +54,13 @@ pub(crate) const RSU_TRANSPARENT: Idealisation = Idealisation {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Visibility {
-    /// Line of sight is clear.
+    /// Line of sight is clear (to some part of it, for a fan; to its centre,
+    /// for the one-ray rule).
     Los,
-    /// A static occluder (building, wall) blocks it.
+    /// Wholly hidden, and a static occluder (building, wall) blocks it (some
+    /// of its rays, for a fan).
     NlosStatic,
-    /// Only other agents block it.
+    /// Wholly hidden by other agents only.
     NlosDynamic,
 }
 
