@@ -19,7 +19,6 @@ mod traced;
 mod truth;
 
 pub use calibration::{Calibration, RELIABILITY_BINS, ReliabilityBin};
-pub use fan::{View, view};
 pub use metrics::{CellTally, FusedCell, Snapshot, WorldMetrics, WorldOutcome};
 pub use motion::Kinematics;
 pub use observe::{Observation, Observed, Sighting, Sightings, in_view, mount_pose};
@@ -29,7 +28,12 @@ pub use state::{AgentState, Restraint};
 
 /// The step's pieces, for the engine's benches (feature `internals`).
 #[cfg(feature = "internals")]
-pub use {fuse::CellFusion, observe::StepScene, raster::Raster};
+pub use {
+    fan::{View, view},
+    fuse::CellFusion,
+    observe::StepScene,
+    raster::Raster,
+};
 
 pub(crate) use following::following_idealisations;
 pub(crate) use localization::{filter_idealisations as localization_idealisations, odometry_idealisations};
