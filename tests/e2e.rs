@@ -28,6 +28,9 @@ mod calibration;
 // Collective perception over the radio: a dead radio, a perfect one a step late, selection.
 #[path = "e2e/radio.rs"]
 mod radio;
+// Partial visibility: a mean_visible_fraction requirement judged with its n on a hand-counted scene.
+#[path = "e2e/visibility.rs"]
+mod visibility;
 
 // Every key of the language changes the result or is refused, per kind of scenario.
 #[path = "e2e/keys.rs"]

@@ -1,7 +1,8 @@
 //! The bundled roundabout (scenarios/roundabout-six-agents.yaml) with all six
 //! vehicles cooperating: 30 s at 10 Hz over 600 × 600 cells (DESIGN.md target:
 //! ≥ 20× faster than real time, ≤ 1.5 s on 2 cores), then one step (t = 12 s)
-//! phase by phase: line of sight, observation (free-space carving and detections),
+//! phase by phase: line of sight (a fan of rays over each target's outline),
+//! observation (free-space carving and detections),
 //! fusion. Run with `cargo bench -p sightline-engine --bench world`; figures are
 //! recorded in docs/performance.md.
 
@@ -10,7 +11,7 @@ use rand::SeedableRng;
 use rand::rngs::ChaCha8Rng;
 use sightline_dsl::{Experiment, Scenario, World};
 use sightline_engine::internals::{
-    Bodies, CellFusion, Evidence, Kinematics, Observation, Occluders, Raster, StepScene, Visibility, visibility,
+    Bodies, CellFusion, Evidence, Kinematics, Observation, Occluders, Raster, StepScene, Visibility, view,
 };
 use sightline_engine::simulate;
 
@@ -91,9 +92,13 @@ fn step(c: &mut Criterion) {
             for &i in &cooperating {
                 let from = states[i].unwrap().position();
                 for target in bodies.all().iter().filter(|t| t.agent != i) {
-                    let in_range = (target.pose.translation - from).length() <= agents[i].sensors[0].range;
-                    visible +=
-                        usize::from(in_range && visibility(&occluders, &bodies, from, i, target) == Visibility::Los);
+                    let sensor = &agents[i].sensors[0];
+                    let in_range = (target.pose.translation - from).length() <= sensor.range;
+                    visible += usize::from(
+                        in_range
+                            && view(&occluders, &bodies, from, i, target, sensor.ray_spacing).visibility
+                                == Visibility::Los,
+                    );
                 }
             }
             visible

@@ -105,10 +105,8 @@ fn visibility_cases() -> Vec<KnownAnswer> {
         id: "building".into(),
         polygon: vec![[8.0, -5.0], [12.0, -5.0], [12.0, 5.0], [8.0, 5.0]],
     };
-    let body = |agent: usize, x: f64, y: f64, half: [f64; 2]| Body {
-        agent,
-        pose: Pose::new(Vector::new(x, y), 0.0),
-        half_extents: Vector::new(half[0], half[1]),
+    let body = |agent: usize, x: f64, y: f64, half: [f64; 2]| {
+        Body::rectangle(agent, Pose::new(Vector::new(x, y), 0.0), Vector::new(half[0], half[1]))
     };
     let target = body(1, 20.0, 0.0, [1.0, 1.0]);
     let truck = body(2, 10.0, 0.0, [6.0, 1.25]);

@@ -65,7 +65,7 @@ mod world;
 pub mod internals {
     pub use crate::semantic::{Areas, EgoPlan, Ldm, Measurement, Pipeline, route_map, run as run_semantic};
     pub use crate::world::{
-        Bodies, CellFusion, Evidence, Kinematics, Observation, Occluders, Raster, StepScene, Visibility, in_view,
-        visibility,
+        Bodies, CellFusion, Evidence, Kinematics, Observation, Occluders, Raster, StepScene, View, Visibility, in_view,
+        view, visibility,
     };
 }

@@ -9,7 +9,8 @@
 //! - A perception world (seed 000) reports a [`WorldStep`] per step: every
 //!   agent's state, each cooperating agent's estimated pose and observation (its
 //!   own grid, sensor positions and [`Sighting`]s: targets
-//!   in view, their visibility class and where it placed those it detected), and,
+//!   in view, their visibility class, visible fraction and where it placed
+//!   those it detected), and,
 //!   at steps with the ego, each fusion job's cell tallies of the step. Fused
 //!   grids (probability and uncertainty of every observed cell) are handed over
 //!   only at the steps the sink asks for with
@@ -31,7 +32,7 @@
 pub use crate::math::{Point, Pose, Vector};
 pub use crate::semantic::{Conflict, Item, Labels};
 pub use crate::v2x::{Link, Reception};
-pub use crate::world::{AgentState, Body, Observation, Observed, Sighting, Visibility, mount_pose};
+pub use crate::world::{AgentState, Body, Observation, Observed, Outline, Sighting, Visibility, mount_pose};
 
 use crate::world::CellTally;
 

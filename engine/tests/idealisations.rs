@@ -158,7 +158,8 @@ fn a_run_lists_what_its_options_assume() {
     let kalman = ids(WORLD);
     for id in [
         "sight.planar",
-        "sight.one-ray",
+        "sight.outlines",
+        "sight.fan",
         "world.lossless-exchange",
         "localization.white-noise",
     ] {
@@ -175,6 +176,8 @@ fn a_run_lists_what_its_options_assume() {
     assert!(kalman.contains(&"motion.no-following"));
     // No roadside unit, so none is transparent or surveyed.
     assert!(!kalman.contains(&"sight.rsu-transparent") && !kalman.contains(&"world.surveyed-rsu"));
+    // Partial visibility (issue 16, part 4): the fan replaces the one-ray rule.
+    assert!(!kalman.contains(&"sight.one-ray"));
 
     let unfiltered = ids(&WORLD.replace("filter: kalman", "filter: none"));
     assert!(

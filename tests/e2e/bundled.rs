@@ -211,7 +211,9 @@ fn roundabout_scenario_runs_end_to_end() {
     let results = roundabout();
     // See: issue 16. Recall counts the road users that do not cooperate: the
     // claims that held while the cooperating vehicles' own bodies counted fail,
-    // and hold again counted that way.
+    // and hold again counted that way. With partial visibility (part 4) the
+    // partly hidden road users are seen in part, and six vehicles' recall
+    // (0.909) clears 0.90 again; blind recall and recall at σ = 0.5 m do not.
     assert_eq!(results["verdict"], "fail");
     let verdicts: Vec<(&str, &str)> = results["requirements"]
         .as_array()
@@ -222,7 +224,7 @@ fn roundabout_scenario_runs_end_to_end() {
     assert_eq!(
         verdicts,
         [
-            ("RB-REC-06", "fail"),
+            ("RB-REC-06", "pass"),
             ("RB-REC-SR-06", "pass"),
             ("RB-BLIND-06", "fail"),
             ("RB-REC-T-06", "fail"),

@@ -64,6 +64,10 @@ pub enum Metric {
     /// (p − o)² over the fused cell-steps (self-report left out), with p the
     /// pignistic probability for evidential methods (0 best, 1 worst).
     BrierScore,
+    /// World: the mean share of an object's outline (its angular extent) in
+    /// line of sight of a cooperating agent's sensor, over the sensor–target
+    /// pairs in range and field of view, a hidden object counting 0 (0–1).
+    MeanVisibleFraction,
     /// World over the radio: mean age of the messages the ego fuses, seconds from
     /// sensing to the first step the ego fuses the message.
     MessageAgeMean,
@@ -103,7 +107,7 @@ pub enum Metric {
 
 impl Metric {
     /// Every metric, in documentation order.
-    pub const ALL: [Metric; 33] = [
+    pub const ALL: [Metric; 34] = [
         Self::Accuracy,
         Self::BelowThreshold,
         Self::BelowThresholdFraction,
@@ -125,6 +129,7 @@ impl Metric {
         Self::OccupiedRecallWithSelfReport,
         Self::SelfReportShare,
         Self::BrierScore,
+        Self::MeanVisibleFraction,
         Self::MessageAgeMean,
         Self::MessageAgeP95,
         Self::BytesPerSecondPerAgent,
@@ -163,6 +168,7 @@ impl Metric {
             Self::OccupiedRecallWithSelfReport => "occupied_recall_with_self_report",
             Self::SelfReportShare => "self_report_share",
             Self::BrierScore => "brier_score",
+            Self::MeanVisibleFraction => "mean_visible_fraction",
             Self::MessageAgeMean => "message_age_mean",
             Self::MessageAgeP95 => "message_age_p95",
             Self::BytesPerSecondPerAgent => "bytes_per_second_per_agent",
@@ -190,6 +196,7 @@ impl Metric {
                     | Self::OccupiedRecallWithSelfReport
                     | Self::SelfReportShare
                     | Self::BrierScore
+                    | Self::MeanVisibleFraction
                     | Self::MessageAgeMean
                     | Self::MessageAgeP95
                     | Self::BytesPerSecondPerAgent
@@ -255,6 +262,7 @@ impl Metric {
             Self::OccupiedRecallWithSelfReport => "truly occupied cell-steps",
             Self::SelfReportShare => "truly occupied cell-steps decided occupied",
             Self::BrierScore => "fused cell-steps, self-report left out",
+            Self::MeanVisibleFraction => "sensor–target pairs in range and field of view, per step",
             Self::MessageAgeMean | Self::MessageAgeP95 => "messages the ego fuses",
             Self::BytesPerSecondPerAgent => "steps of cooperating agents with the ego",
             Self::AnticipationMedian | Self::AnticipationP95 => "anticipation times",
@@ -304,6 +312,7 @@ impl Metric {
             | Self::OccupiedRecallWithSelfReport
             | Self::SelfReportShare
             | Self::BrierScore
+            | Self::MeanVisibleFraction
             | Self::TransmittedShare
             | Self::LabelledShare
             | Self::PacketDeliveryRatio => ValueDomain::Fraction,

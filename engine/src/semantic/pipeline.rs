@@ -57,11 +57,11 @@ impl Pipeline<'_> {
                 .iter()
                 .map(|&(agent, track)| {
                     let m = track.latest();
-                    Body {
+                    Body::rectangle(
                         agent,
-                        pose: Pose::new(m.position, m.heading),
-                        half_extents: Vector::new(m.length, m.width) / 2.0,
-                    }
+                        Pose::new(m.position, m.heading),
+                        Vector::new(m.length, m.width) / 2.0,
+                    )
                 })
                 .collect(),
         );

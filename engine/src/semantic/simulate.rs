@@ -78,6 +78,7 @@ pub(crate) fn idealisations(world: &World, semantic: &Semantic) -> Vec<Idealisat
     listed.extend([
         EXACT_POSES,
         world::ONE_RAY,
+        world::OUTLINES,
         ego::EGO_SIGHT,
         rsu::RSU_MEASUREMENTS,
         world::RSU_TRANSPARENT,

@@ -1,7 +1,8 @@
 //! What a world run measures: occupied-cell recall and precision of the fused grid,
 //! recall in the ego's blind area, the field of view gained by cooperation, how
 //! much of what the fused grid knows is self-report, and what sensors saw and
-//! missed.
+//! missed (how many sensor–target pairs were in line of sight, and the mean
+//! visible fraction of the targets, `mean_visible_fraction`).
 //!
 //! Counts are over cell-steps: a cell occupied at 300 steps counts 300 times.
 //! Only cells in the region of interest are counted, never occluder cells or the
@@ -158,6 +159,10 @@ impl WorldMetrics {
                 let radio = self.radio.as_ref()?;
                 (radio.sender_steps > 0).then(|| radio.bytes as f64 / (radio.sender_steps as f64 * radio.step))
             }
+            Metric::MeanVisibleFraction => {
+                let pairs = self.sightings.total();
+                (pairs > 0).then(|| self.sightings.visible / pairs as f64)
+            }
             Metric::MeanUncertainty => self.mean_uncertainty,
             Metric::MeanConflict => self.conflict.as_ref()?.mean,
             Metric::MaxConflict => Some(self.conflict.as_ref()?.max),
@@ -182,6 +187,7 @@ impl WorldMetrics {
             Metric::PacketDeliveryRatio => self.radio.as_ref().map(|r| r.sent),
             Metric::MessageAgeMean | Metric::MessageAgeP95 => self.radio.as_ref().map(|r| r.fused()),
             Metric::BytesPerSecondPerAgent => self.radio.as_ref().map(|r| r.sender_steps),
+            Metric::MeanVisibleFraction => Some(self.sightings.total()),
             Metric::MeanUncertainty => Some(fused),
             Metric::MeanConflict | Metric::MaxConflict | Metric::TotalConflictCells | Metric::WeightedCells => {
                 self.conflict.as_ref().map(|_| fused)
@@ -360,6 +366,29 @@ mod tests {
         assert_eq!(metrics.value(Metric::SelfReportShare), Some(6.0 / 26.0));
         assert_eq!(metrics.sample_size(Metric::SelfReportShare, 0), Some(26));
         assert_eq!(metrics.value(Metric::OccupiedPrecision), Some(26.0 / 28.0));
+    }
+
+    /// Four sensor–target pairs: one wholly seen, two half seen, one hidden:
+    /// (1 + 0.5 + 0.5 + 0) / 4 = 0.5, n = 4; no pair, no value and n = 0.
+    #[test]
+    fn the_mean_visible_fraction_counts_hidden_targets_as_zero() {
+        let mut metrics = WorldMetrics::default();
+        assert_eq!(
+            (
+                metrics.value(Metric::MeanVisibleFraction),
+                metrics.sample_size(Metric::MeanVisibleFraction, 0)
+            ),
+            (None, Some(0))
+        );
+        metrics.sightings = Sightings {
+            los: 3,
+            nlos_static: 1,
+            nlos_dynamic: 0,
+            detected: 3,
+            visible: 1.0 + 0.5 + 0.5,
+        };
+        assert_eq!(metrics.value(Metric::MeanVisibleFraction), Some(0.5));
+        assert_eq!(metrics.sample_size(Metric::MeanVisibleFraction, 0), Some(4));
     }
 
     /// A forged count from a recording saturates rather than overflowing.

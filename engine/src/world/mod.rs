@@ -4,6 +4,7 @@
 
 mod calibration;
 mod evidence;
+mod fan;
 mod following;
 mod fuse;
 mod localization;
@@ -29,16 +30,22 @@ pub use metrics::{
 pub use motion::Kinematics;
 pub use observe::{Observation, Observed, Sighting, Sightings, in_view, mount_pose};
 pub use radio::RadioStats;
-pub use sight::{Bodies, Body, Occluders, Visibility, visibility};
+pub use sight::{Bodies, Body, Occluders, Outline, Visibility, visibility};
 pub use simulate::run;
 pub use state::{AgentState, Restraint};
 
 /// The step's pieces, for the engine's benches (feature `internals`).
 #[cfg(feature = "internals")]
-pub use {evidence::Evidence, fuse::CellFusion, observe::StepScene, raster::Raster};
+pub use {
+    evidence::Evidence,
+    fan::{View, view},
+    fuse::CellFusion,
+    observe::StepScene,
+    raster::Raster,
+};
 
 pub(crate) use following::following_idealisations;
 pub(crate) use localization::{filter_idealisations as localization_idealisations, odometry_idealisations};
 pub(crate) use motion::ON_THEIR_WAY;
-pub(crate) use sight::{ONE_RAY, PLANAR, RSU_TRANSPARENT};
+pub(crate) use sight::{ONE_RAY, OUTLINES, PLANAR, RSU_TRANSPARENT};
 pub(crate) use simulate::idealisations;

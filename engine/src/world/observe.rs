@@ -3,13 +3,20 @@
 //!
 //! For each sensor: rays every `ray_spacing` over the field of view are measured in
 //! the true world (how far each runs before an obstacle) and drawn from the
-//! estimated sensor pose, marking the cells they cross free. Every other agent in
-//! range and field of view is classified by line of sight; a visible one is detected
-//! with the sensor's detection probability, at its true position plus Gaussian noise
-//! σ(d) = base + per_m · d on each axis and with its length and width each off by
-//! Gaussian noise of the size σ(d) (never below 10 cm), and the cells of that
-//! footprint (seen from the estimated pose) are marked occupied. Occupied wins over
-//! free where two observations of the agent meet. Finally the agent reports its own
+//! estimated sensor pose, marking the cells they cross free. Every other agent
+//! whose centre is in range and field of view is looked at with a fan of rays
+//! over its outline ([`super::fan`]): its visibility class and visible fraction.
+//! One in line of sight (any part of it) is detected with the sensor's detection
+//! probability, at its true position plus Gaussian noise σ(d) = base + per_m · d
+//! on each axis and with its length and width each off by Gaussian noise of the
+//! size σ(d) (never below 10 cm; a pedestrian's circle keeps its diameter's
+//! draw). Only the seen part of that measured footprint (placed from the
+//! estimated pose) is marked occupied: a cell of the footprint is marked when
+//! the fan's ray nearest to its centre's bearing (from the estimated sensor,
+//! relative to the bearing of the measured centre) was clear, the rays at the
+//! fan's ends standing for everything beyond them. Bearings are taken relative
+//! to the object's centre so that the seen side stays on the object when noise
+//! moves it. Occupied wins over free where two observations of the agent meet. Finally the agent reports its own
 //! footprint at its estimated pose ([`Observed::Own`], occupied to fusion): it
 //! knows where it is (up to its localization error), as a V2X sender reports its
 //! own state, and its rays, which pass through its own footprint, must not report
@@ -21,8 +28,9 @@ use rand::rngs::ChaCha8Rng;
 use rand_distr::{Distribution, StandardNormal};
 use sightline_dsl::{Agent, Grid, Sensor};
 
-use super::raster::{Raster, box_cells, traverse};
-use super::sight::{Bodies, Body, Occluders, Visibility, visibility};
+use super::fan::{View, view};
+use super::raster::{Raster, box_cells, cell_center, traverse};
+use super::sight::{Bodies, Body, Occluders, Outline, Visibility};
 use crate::idealisation::Idealisation;
 use crate::math::{Point, Pose, Vector};
 
@@ -97,8 +105,12 @@ pub struct Sighting {
     pub sensor: usize,
     /// Index of the target agent.
     pub target: usize,
-    /// Whether the target was in line of sight, and what hid it if not.
+    /// Whether the target was in line of sight (any part of it), and what hid
+    /// it if not.
     pub visibility: Visibility,
+    /// The share of the target's angular extent in line of sight, in [0, 1]:
+    /// 0 when hidden, 1 when wholly seen.
+    pub visible_fraction: f64,
     /// Where the observer placed the target when it detected it: the measured
     /// footprint in the world frame, seen from the observer's estimated pose (its
     /// `agent` is the target). `None` when hidden or missed.
@@ -106,9 +118,9 @@ pub struct Sighting {
 }
 
 /// Targets in range and field of view, by what hides them, over a run or a step.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Sightings {
-    /// In line of sight.
+    /// In line of sight, wholly or in part.
     pub los: u64,
     /// Hidden by an occluder.
     pub nlos_static: u64,
@@ -116,6 +128,8 @@ pub struct Sightings {
     pub nlos_dynamic: u64,
     /// Visible targets that were detected.
     pub detected: u64,
+    /// The sum of every target's visible fraction (hidden ones add 0).
+    pub visible: f64,
 }
 
 impl Sightings {
@@ -125,6 +139,12 @@ impl Sightings {
         self.nlos_static += other.nlos_static;
         self.nlos_dynamic += other.nlos_dynamic;
         self.detected += other.detected;
+        self.visible += other.visible;
+    }
+
+    /// Targets in range and field of view, whatever hid them.
+    pub fn total(&self) -> u64 {
+        self.los + self.nlos_static + self.nlos_dynamic
     }
 }
 
@@ -269,8 +289,15 @@ impl Observation {
             let Some(distance) = in_view(sensor, truth, target.pose.translation) else {
                 continue;
             };
-            let seen = visibility(scene.occluders, scene.bodies, truth.translation, index, target);
-            let detected = match seen {
+            let seen = view(
+                scene.occluders,
+                scene.bodies,
+                truth.translation,
+                index,
+                target,
+                sensor.ray_spacing,
+            );
+            let detected = match seen.visibility {
                 Visibility::NlosStatic => {
                     self.sightings.nlos_static += 1;
                     None
@@ -281,26 +308,30 @@ impl Observation {
                 }
                 Visibility::Los => {
                     self.sightings.los += 1;
-                    self.measure(scene.grid, sensor, (truth, estimate), target, distance, rng)
+                    self.measure(scene.grid, sensor, (truth, estimate), (target, &seen), distance, rng)
                 }
             };
+            let visible_fraction = seen.fraction();
+            self.sightings.visible += visible_fraction;
             self.sighted.push(Sighting {
                 sensor: s,
                 target: target.agent,
-                visibility: seen,
+                visibility: seen.visibility,
+                visible_fraction,
                 detected,
             });
         }
     }
 
     /// Detects a visible `target` at `distance` with the sensor's probability and
-    /// marks its measured footprint; returns that footprint, or `None` when missed.
+    /// marks the part of its measured footprint that `seen` shows; returns the
+    /// whole measured footprint, or `None` when missed.
     fn measure(
         &mut self,
         grid: &Grid,
         sensor: &Sensor,
         (truth, estimate): (Pose, Pose),
-        target: &Body,
+        (target, seen): (&Body, &View),
         distance: f64,
         rng: &mut ChaCha8Rng,
     ) -> Option<Body> {
@@ -312,18 +343,28 @@ impl Observation {
         let size_sigma = sensor.size_noise_base + sensor.size_noise_per_m * distance;
         let mut noise = || -> f64 { StandardNormal.sample(&mut *rng) };
         let measured = target.pose.translation + Vector::new(noise(), noise()) * sigma;
-        let size = (target.half_extents * 2.0 + Vector::new(noise(), noise()) * size_sigma).max(Vector::splat(0.1));
+        let mut size = (target.half_extents * 2.0 + Vector::new(noise(), noise()) * size_sigma).max(Vector::splat(0.1));
+        if target.outline == Outline::Circle {
+            size.y = size.x;
+        }
         // Where the sensor believes the object is: the measurement seen from the
         // estimated pose instead of the true one.
-        let seen = estimate * (truth.inverse() * measured);
+        let at = estimate * (truth.inverse() * measured);
         let heading = target.pose.rotation.angle() + estimate.rotation.angle() - truth.rotation.angle();
         let placed = Body {
-            pose: Pose::new(seen, heading),
+            pose: Pose::new(at, heading),
             half_extents: size / 2.0,
             ..*target
         };
+        let bearing = |point: Point| {
+            let offset = point - estimate.translation;
+            offset.y.atan2(offset.x)
+        };
+        let centre = bearing(at);
         for cell in box_cells(grid, &placed) {
-            self.mark(cell, Observed::Occupied);
+            if seen.sees(bearing(cell_center(grid, cell)) - centre) {
+                self.mark(cell, Observed::Occupied);
+            }
         }
         Some(placed)
     }
@@ -374,6 +415,69 @@ mod tests {
         assert!(in_view(&sensor, pose, at(30.0, 45.1)).is_none());
         assert!(in_view(&sensor, pose, at(30.0, -45.1)).is_none());
         assert!(in_view(&sensor, pose, at(30.0, 180.0)).is_none());
+    }
+
+    /// A car 20 m north of a car with an all-round sensor, across its line of
+    /// sight (x from −2.25 to 2.25, y from 19.1 to 20.9), behind the corner of a
+    /// building that covers x < 0, 5 ≤ y ≤ 15 (the fan's case in
+    /// [`super::super::fan`]): half of it is seen, and on the 0.5 m grid the
+    /// detection marks occupied exactly the 20 cells of its footprint whose
+    /// centre lies east of x = 0 (5 columns × 4 rows), none of the 20 west of it.
+    #[test]
+    fn only_the_seen_side_of_a_car_half_behind_a_corner_is_marked_occupied() {
+        use sightline_dsl::{AgentKind, Motion, Occluder};
+
+        let grid = Grid {
+            origin: [-10.0, 0.0],
+            cell: 0.5,
+            cols: 40,
+            rows: 60,
+        };
+        let building = [Occluder {
+            id: "b".into(),
+            polygon: vec![[-10.0, 5.0], [0.0, 5.0], [0.0, 15.0], [-10.0, 15.0]],
+        }];
+        let (mut all_round, heading_north) = sensor(360.0);
+        all_round.ray_spacing = 1.0_f64.to_radians();
+        let observer = Agent {
+            id: "ego".into(),
+            kind: AgentKind::Car,
+            length: 4.5,
+            width: 1.8,
+            motion: Motion::Fixed {
+                position: [0.0, 0.0],
+                heading: heading_north.rotation.angle(),
+            },
+            connected: true,
+            sensors: vec![all_round],
+        };
+        let target = Body::of(1, &observer, Pose::new(Vector::new(0.0, 20.0), 0.0));
+        let bodies = Bodies::new(vec![Body::of(0, &observer, heading_north), target]);
+        let mut raster = Raster::new(grid, &building);
+        raster.set_bodies(bodies.all());
+        let scene = StepScene {
+            grid: &grid,
+            occluders: &Occluders::new(&building),
+            bodies: &bodies,
+            raster: &raster,
+        };
+        let mut observation = Observation::new(grid.cells());
+        let mut rng = <ChaCha8Rng as rand::SeedableRng>::seed_from_u64(0);
+        observation.observe(&scene, (0, &observer), heading_north, heading_north, &mut rng);
+
+        let [sighting] = observation.sighted() else {
+            panic!("one target in view: {:?}", observation.sighted());
+        };
+        assert_eq!(sighting.visibility, Visibility::Los);
+        approx::assert_relative_eq!(sighting.visible_fraction, 0.5, epsilon = 1e-9);
+        let footprint = box_cells(&grid, &target);
+        assert_eq!(footprint.len(), 40);
+        let (east, west): (Vec<usize>, Vec<usize>) = footprint
+            .into_iter()
+            .partition(|&cell| cell_center(&grid, cell).x > 0.0);
+        assert_eq!((east.len(), west.len()), (20, 20));
+        assert!(east.iter().all(|&cell| observation.get(cell) == Observed::Occupied));
+        assert!(west.iter().all(|&cell| observation.get(cell) != Observed::Occupied));
     }
 
     #[test]

@@ -1,6 +1,7 @@
 //! The world on the grid: which cell holds what, and the cells a ray crosses.
 //!
-//! A cell belongs to a shape when its centre lies inside it; a footprint also
+//! A cell belongs to a shape (a footprint's rectangle or circle, an occluder's
+//! polygon) when its centre lies inside it; a footprint also
 //! always owns the cell under its own centre, so that a pedestrian smaller than a
 //! cell is never lost. Rays are walked cell by cell (Amanatides and Woo, "A fast
 //! voxel traversal algorithm", 1987): this is the hot path of free-space carving.
@@ -118,19 +119,18 @@ fn cell_range(
     })
 }
 
-/// The cells whose centre lies in the footprint, and the cell under its centre.
+/// The cells whose centre lies in the footprint (its rectangle or circle), and
+/// the cell under its centre.
 pub fn box_cells(grid: &Grid, body: &Body) -> Vec<usize> {
     let corners = body.corners();
     let min = corners.iter().fold(Vector::splat(f64::INFINITY), |m, c| m.min(*c));
     let max = corners.iter().fold(Vector::splat(f64::NEG_INFINITY), |m, c| m.max(*c));
     let mut cells = Vec::new();
     if let Some((cols, rows)) = cell_range(grid, min, max) {
-        let inverse = body.pose.inverse();
         for row in rows {
             for col in cols.clone() {
                 let cell = row * grid.cols + col;
-                let local = inverse * cell_center(grid, cell);
-                if local.x.abs() <= body.half_extents.x && local.y.abs() <= body.half_extents.y {
+                if body.contains(cell_center(grid, cell)) {
                     cells.push(cell);
                 }
             }
@@ -323,16 +323,8 @@ mod tests {
     #[test]
     fn an_agent_does_not_block_its_own_sensor() {
         let mut raster = Raster::new(grid(), &[]);
-        let own = Body {
-            agent: 3,
-            pose: Pose::new(Vector::new(2.0, 5.0), 0.0),
-            half_extents: Vector::new(1.5, 0.5),
-        };
-        let other = Body {
-            agent: 4,
-            pose: Pose::new(Vector::new(7.5, 5.5), 0.0),
-            half_extents: Vector::new(0.5, 0.5),
-        };
+        let own = Body::rectangle(3, Pose::new(Vector::new(2.0, 5.0), 0.0), Vector::new(1.5, 0.5));
+        let other = Body::rectangle(4, Pose::new(Vector::new(7.5, 5.5), 0.0), Vector::new(0.5, 0.5));
         raster.set_bodies(&[own, other]);
         assert_relative_eq!(raster.free_length(Vector::new(2.0, 5.5), 0.0, 20.0, 3), 5.0);
         raster.set_bodies(&[own]);
@@ -341,12 +333,24 @@ mod tests {
 
     #[test]
     fn a_small_footprint_still_owns_its_centre_cell() {
-        let pedestrian = Body {
-            agent: 0,
-            pose: Pose::new(Vector::new(3.0, 3.0), 0.0),
-            half_extents: Vector::new(0.1, 0.1),
-        };
+        let pedestrian = Body::circle(0, Pose::new(Vector::new(3.0, 3.0), 0.0), 0.1);
         assert_eq!(box_cells(&grid(), &pedestrian), vec![33]);
+    }
+
+    /// A circle of radius 0.8 about the corner (5, 5) of four cells: their
+    /// centres lie 0.71 m away, inside; the next ring's, 1.58 m and more, do not.
+    /// The square of the same half size would hold the same four; at radius
+    /// 1.6 the square holds the 4 × 4 block around the corner, the circle only
+    /// the 12 centres within 1.6 m (the block's corners lie 2.12 m away).
+    #[test]
+    fn a_circle_covers_the_cells_whose_centre_lies_within_its_radius() {
+        let at = Pose::new(Vector::new(5.0, 5.0), 0.3);
+        assert_eq!(box_cells(&grid(), &Body::circle(0, at, 0.8)).len(), 4);
+        let circle = box_cells(&grid(), &Body::circle(0, at, 1.6));
+        assert_eq!(circle.len(), 12);
+        for corner in [33, 36, 63, 66] {
+            assert!(!circle.contains(&corner), "{corner}");
+        }
     }
 
     /// A 4 × 0.6 m box along the diagonal through (5, 5): the centres (4.5, 4.5) and
@@ -354,11 +358,11 @@ mod tests {
     /// along, beyond its 2 m half length; (5.5, 4.5) lies 0.71 m across, beyond 0.3.
     #[test]
     fn a_rotated_box_covers_the_cells_under_it() {
-        let diagonal = Body {
-            agent: 0,
-            pose: Pose::new(Vector::new(5.0, 5.0), std::f64::consts::FRAC_PI_4),
-            half_extents: Vector::new(2.0, 0.3),
-        };
+        let diagonal = Body::rectangle(
+            0,
+            Pose::new(Vector::new(5.0, 5.0), std::f64::consts::FRAC_PI_4),
+            Vector::new(2.0, 0.3),
+        );
         assert_eq!(box_cells(&grid(), &diagonal), vec![44, 55]);
     }
 }

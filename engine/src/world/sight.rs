@@ -1,15 +1,20 @@
 //! Line of sight with parry: occluders (built once) and agent footprints (every
-//! step), each behind a BVH broad phase, and the visibility class of a target.
+//! step), each behind a BVH broad phase, and the one-ray visibility class of a
+//! target.
 //!
-//! A target is visible from a sensor when the segment from the sensor to the
-//! target's centre crosses no occluder and no other agent's footprint. It is
-//! NLoS-static when an occluder is crossed (whatever agents also are), NLoS-dynamic
-//! when only agents are.
+//! A footprint's outline is an oriented rectangle (vehicles, roadside units) or,
+//! for a pedestrian, a circle ([`Outline`]). The perception world decides what a
+//! sensor sees of an object with a fan of rays over its outline
+//! ([`super::fan`]); the semantic world keeps the one-ray rule of
+//! [`visibility`]: a target is visible from a sensor when the segment from the
+//! sensor to the target's centre crosses no occluder and no other agent's
+//! footprint. It is NLoS-static when an occluder is crossed (whatever agents
+//! also are), NLoS-dynamic when only agents are.
 
 use parry2d_f64::bounding_volume::Aabb;
 use parry2d_f64::partitioning::{Bvh, BvhBuildStrategy};
 use parry2d_f64::query::{Ray, RayCast};
-use parry2d_f64::shape::{Cuboid, Polyline};
+use parry2d_f64::shape::{Ball, Cuboid, Polyline};
 use serde::Serialize;
 use sightline_dsl::{Agent, AgentKind, Occluder};
 
@@ -24,12 +29,19 @@ pub(crate) const PLANAR: Idealisation = Idealisation {
            sensor's, and the ground is level.",
 };
 
-/// Visibility is decided by one ray per object.
+/// Visibility is decided by one ray per object (the semantic world).
 pub(crate) const ONE_RAY: Idealisation = Idealisation {
     id: "sight.one-ray",
     text: "An object is visible when the segment from the sensor to the object's centre crosses no building \
            and no other road user: visibility is all or nothing, so a partly hidden object is either seen \
            whole or missed.",
+};
+
+/// Footprints are rectangles and circles.
+pub(crate) const OUTLINES: Idealisation = Idealisation {
+    id: "sight.outlines",
+    text: "A vehicle's footprint is a rectangle of its length and width, a pedestrian's a circle of diameter its \
+           larger size: mirrors, wheels, limbs and rounded corners are not modelled.",
 };
 
 /// Roadside units are not bodies.
@@ -42,11 +54,13 @@ pub(crate) const RSU_TRANSPARENT: Idealisation = Idealisation {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Visibility {
-    /// Line of sight is clear.
+    /// Line of sight is clear (to some part of it, for a fan; to its centre,
+    /// for the one-ray rule).
     Los,
-    /// A static occluder (building, wall) blocks it.
+    /// Wholly hidden, and a static occluder (building, wall) blocks it (some
+    /// of its rays, for a fan).
     NlosStatic,
-    /// Only other agents block it.
+    /// Wholly hidden by other agents only.
     NlosDynamic,
 }
 
@@ -88,6 +102,17 @@ impl Occluders {
     }
 }
 
+/// The shape of a footprint.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Outline {
+    /// An oriented rectangle of the body's half extents (vehicles, roadside units).
+    Rectangle,
+    /// A circle about the body's centre, of radius its half extent along x
+    /// (pedestrians; both half extents are the radius).
+    Circle,
+}
+
 /// An agent's footprint at one step.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Body {
@@ -95,21 +120,63 @@ pub struct Body {
     pub agent: usize,
     /// Centre and heading.
     pub pose: Pose,
-    /// Half length and half width.
+    /// Half length and half width (a circle's radius, twice).
     pub half_extents: Vector,
+    /// Its shape.
+    pub outline: Outline,
 }
 
 impl Body {
-    /// The footprint of agent `index` (described by `agent`) at `pose`.
+    /// The footprint of agent `index` (described by `agent`) at `pose`: a
+    /// pedestrian's a circle of diameter its larger size, any other's a rectangle.
     pub fn of(index: usize, agent: &Agent, pose: Pose) -> Self {
-        Self {
-            agent: index,
-            pose,
-            half_extents: Vector::new(agent.length, agent.width) / 2.0,
+        if agent.kind == AgentKind::Pedestrian {
+            Self::circle(index, pose, agent.length.max(agent.width) / 2.0)
+        } else {
+            Self::rectangle(index, pose, Vector::new(agent.length, agent.width) / 2.0)
         }
     }
 
-    /// The four corners, counter-clockwise.
+    /// A rectangle of agent `agent` at `pose`, with its half length and half width.
+    pub fn rectangle(agent: usize, pose: Pose, half_extents: Vector) -> Self {
+        Self {
+            agent,
+            pose,
+            half_extents,
+            outline: Outline::Rectangle,
+        }
+    }
+
+    /// A circle of agent `agent` about `pose`, of radius `radius`.
+    pub fn circle(agent: usize, pose: Pose, radius: f64) -> Self {
+        Self {
+            agent,
+            pose,
+            half_extents: Vector::splat(radius),
+            outline: Outline::Circle,
+        }
+    }
+
+    /// Whether `point` (world frame) lies inside the outline or on it.
+    pub fn contains(&self, point: Point) -> bool {
+        let local = self.pose.inverse() * point;
+        match self.outline {
+            Outline::Rectangle => local.x.abs() <= self.half_extents.x && local.y.abs() <= self.half_extents.y,
+            Outline::Circle => local.length() <= self.half_extents.x,
+        }
+    }
+
+    /// The distance along `ray` (world frame) at which it enters the outline, up
+    /// to `max_distance`; 0 when it starts inside.
+    pub fn cast_ray(&self, ray: &Ray, max_distance: f64) -> Option<f64> {
+        match self.outline {
+            Outline::Rectangle => Cuboid::new(self.half_extents).cast_ray(&self.pose, ray, max_distance, true),
+            Outline::Circle => Ball::new(self.half_extents.x).cast_ray(&self.pose, ray, max_distance, true),
+        }
+    }
+
+    /// The corners of the rectangle (of the square around a circle),
+    /// counter-clockwise.
     pub fn corners(&self) -> [Point; 4] {
         let Vector { x: l, y: w } = self.half_extents;
         [
@@ -131,6 +198,7 @@ pub struct Bodies {
 impl Bodies {
     /// The footprints of a step.
     pub fn new(bodies: Vec<Body>) -> Self {
+        // The box of a circle's square holds the circle.
         let aabbs: Vec<Aabb> = bodies
             .iter()
             .map(|b| Cuboid::new(b.half_extents).aabb(&b.pose))
@@ -172,20 +240,22 @@ impl Bodies {
                 if skip.contains(&body.agent) {
                     return None;
                 }
-                Cuboid::new(body.half_extents).cast_ray(&body.pose, &ray, best, true)
+                body.cast_ray(&ray, best)
             })
             .is_some()
     }
 }
 
 /// A unit ray from `from` toward `to` and the distance, or `None` when they coincide.
-fn segment_ray(from: Point, to: Point) -> Option<(Ray, f64)> {
+pub(super) fn segment_ray(from: Point, to: Point) -> Option<(Ray, f64)> {
     let d = to - from;
     let length = d.length();
     (length > 1e-9).then(|| (Ray::new(from, d / length), length))
 }
 
-/// The visibility of `target` from a sensor at `from` on agent `observer`.
+/// The visibility of `target` from a sensor at `from` on agent `observer` by
+/// the one-ray rule (the semantic world's; the perception world casts a fan,
+/// [`super::fan::view`]).
 pub fn visibility(occluders: &Occluders, bodies: &Bodies, from: Point, observer: usize, target: &Body) -> Visibility {
     let to = target.pose.translation;
     if occluders.block(from, to) {
@@ -209,19 +279,15 @@ mod tests {
     }
 
     fn car(agent: usize, x: f64, y: f64) -> Body {
-        Body {
-            agent,
-            pose: Pose::new(Vector::new(x, y), 0.0),
-            half_extents: Vector::new(2.25, 0.9),
-        }
+        Body::rectangle(agent, Pose::new(Vector::new(x, y), 0.0), Vector::new(2.25, 0.9))
     }
 
     fn truck(agent: usize, x: f64, y: f64) -> Body {
-        Body {
+        Body::rectangle(
             agent,
-            pose: Pose::new(Vector::new(x, y), std::f64::consts::FRAC_PI_2),
-            half_extents: Vector::new(5.0, 1.25),
-        }
+            Pose::new(Vector::new(x, y), std::f64::consts::FRAC_PI_2),
+            Vector::new(5.0, 1.25),
+        )
     }
 
     /// The visibility of a car at `target` from a sensor at the origin on a car

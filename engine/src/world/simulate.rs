@@ -17,6 +17,7 @@ use rayon::prelude::*;
 use sightline_dsl::{Agent, AgentKind, Grid, Motion, Perception, World};
 
 use super::evidence::Evidence;
+use super::fan;
 use super::fuse::{self, Fusion};
 use super::localization::{self, PoseEstimator};
 use super::measure::{MeasuredStep, Measures, unmeasured};
@@ -69,7 +70,8 @@ pub(crate) fn idealisations(world: &World, perception: &Perception) -> Vec<Ideal
         sight::PLANAR,
         motion::ON_THEIR_WAY,
         SYNCHRONOUS,
-        sight::ONE_RAY,
+        sight::OUTLINES,
+        fan::FAN,
         observe::DETECTIONS,
         observe::NOISE,
         observe::FREE_SPACE,

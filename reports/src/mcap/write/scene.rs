@@ -89,7 +89,8 @@ impl<W: Write + Seek> Recorder<'_, W> {
     }
 
     /// `/perception/<id>/detections`: where each cooperating agent placed what it
-    /// detected, and where it believes it is; emptied when it leaves the scene.
+    /// detected (with the share of it in line of sight), and where it believes
+    /// it is; emptied when it leaves the scene.
     pub(super) fn publish_detections(&mut self, time: u64, cooperators: &[CooperatorStep<'_>]) {
         let stamp = Time::from_nanos(time);
         let now: BTreeSet<usize> = cooperators.iter().map(|c| c.agent).collect();
@@ -112,6 +113,7 @@ impl<W: Write + Seek> Recorder<'_, W> {
                     Entity::new(stamp, format!("{name}#{}", sighting.sensor))
                         .meta("target", &name)
                         .meta("sensor", sighting.sensor)
+                        .meta("visible_fraction", sighting.visible_fraction)
                         .cube(Cube {
                             pose: Pose3::planar(body.pose, height / 2.0),
                             size: Vector3 {

@@ -144,6 +144,7 @@ fn world_counts(metrics: &engine::WorldMetrics) -> WorldCounts {
         nlos_static,
         nlos_dynamic,
         detected: seen,
+        visible: _,
     } = sightings;
     WorldCounts {
         steps,
