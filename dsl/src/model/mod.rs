@@ -18,9 +18,10 @@ pub use requirement::{
     Bound, Check, Invariant, Metric, ObjectProperty, OverSeeds, RateBound, Reference, Requirement, Signal, Statistic,
     Temporal, ValueDomain,
 };
+pub(crate) use scenario::grid_every;
 pub use scenario::{
-    Assignment, Axis, Experiment, Grid, Import, ImportKind, Label, Occupancy, Point, Record, Scenario, Settings, Setup,
-    Sweep, display_value,
+    Assignment, Axis, DEFAULT_START, Experiment, Grid, Import, ImportKind, Label, Occupancy, Point, Record, Scenario,
+    Settings, Setup, Sweep, display_value,
 };
 pub use semantic::{
     Area, Baseline, Caution, Crosswalk, Driving, Following, InteractionArea, PedestrianTraffic, RiskScope, RsuSight,

@@ -283,7 +283,7 @@ impl Recording {
                     };
                     RecordedPoint {
                         metrics: std::iter::once(&o.metrics)
-                            .chain(&o.replicates)
+                            .chain(o.replicates.iter().map(|r| &r.metrics))
                             .map(|values| metrics(values))
                             .collect(),
                         audit: o.audit.map(MassAudit::from),
@@ -294,7 +294,7 @@ impl Recording {
                                 let runs = s
                                     .runs
                                     .iter()
-                                    .map(|run| run.iter().map(|&(t, v)| (t.0, v.0)).collect())
+                                    .map(|run| run.samples.iter().map(|s| (s.time.0, s.value.0)).collect())
                                     .collect();
                                 (s.signal, runs)
                             })
@@ -302,7 +302,7 @@ impl Recording {
                         per_object: o
                             .per_object
                             .iter()
-                            .map(|p| (p.property, p.values.iter().map(|v| v.map(|r| r.0)).collect()))
+                            .map(|p| (p.property, p.values.iter().map(|v| v.value.map(|r| r.0)).collect()))
                             .collect(),
                     }
                 })

@@ -1,0 +1,150 @@
+//! Recordings the viewers load (issue 18, part 1), checked with the viewers'
+//! own artefacts rather than look-alikes: every bundled scenario's run.mcap,
+//! its channels and messages read with the MCAP library, is handed to
+//! `ci/viewers/check-recording.js`, which checks with the npm packages
+//! `ci/viewers/package-lock.json` pins that every `foxglove.*` schema equals the
+//! one `@foxglove/schemas` publishes, that every schema is in the subset
+//! Foxglove's and Lichtblick's parsers accept, and that every message validates
+//! against its schema (ajv).
+//!
+//! `.ci/run` installs the packages (`npm ci`) and sets `SIGHTLINE_VIEWER_CHECKS`;
+//! the test then fails rather than skips. Without it, it runs when `node` and
+//! the installed packages are there, and says why it skips otherwise.
+// See: issue 18, "Recordings the viewers load".
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use crate::bundled::every_run;
+use crate::support::{root, temp_dir};
+
+/// Set by `.ci/run` once `npm ci` has installed `ci/viewers/`: the check must run.
+const CHECKS_VAR: &str = "SIGHTLINE_VIEWER_CHECKS";
+
+/// The folder of the check script and its pinned packages.
+fn viewers() -> PathBuf {
+    root().join("ci/viewers")
+}
+
+/// Whether the check can run here; panics when `.ci/run` asked for it and it
+/// cannot.
+fn checks_available() -> bool {
+    let node = Command::new("node")
+        .arg("--version")
+        .output()
+        .is_ok_and(|o| o.status.success());
+    let installed =
+        viewers().join("node_modules/@foxglove/schemas").is_dir() && viewers().join("node_modules/ajv").is_dir();
+    let required = std::env::var_os(CHECKS_VAR).is_some() || std::env::var_os("CI").is_some();
+    let why = match (node, installed) {
+        (true, true) => return true,
+        (false, _) => "node is not on PATH",
+        (true, false) => "ci/viewers has no node_modules (run `npm ci --prefix ci/viewers`)",
+    };
+    assert!(
+        !required,
+        "{CHECKS_VAR} or CI is set but {why}: the viewers' checks cannot run"
+    );
+    eprintln!("skipped: {why}; .ci/run installs the viewers' packages and runs this check");
+    false
+}
+
+/// One JSON line per schema, then one per message, as `check-recording.js` reads them.
+fn dump(recording: &[u8], out: &Path) {
+    let mut lines = std::io::BufWriter::new(std::fs::File::create(out).unwrap());
+    let summary = mcap::Summary::read(recording)
+        .expect("the recording has a valid summary")
+        .expect("the recording has a summary");
+    for schema in summary.schemas.values() {
+        let line = serde_json::json!({
+            "schema": schema.name,
+            "encoding": schema.encoding,
+            "data": String::from_utf8(schema.data.to_vec()).expect("a JSON Schema is UTF-8"),
+        });
+        writeln!(lines, "{line}").unwrap();
+    }
+    for message in mcap::MessageStream::new(recording).expect("the recording reads") {
+        let message = message.expect("every message reads");
+        let channel = &message.channel;
+        let line = serde_json::json!({
+            "topic": channel.topic,
+            "schema": channel.schema.as_ref().map(|s| s.name.clone()),
+            "encoding": channel.message_encoding,
+            "data": String::from_utf8(message.data.to_vec()).expect("a JSON message is UTF-8"),
+        });
+        writeln!(lines, "{line}").unwrap();
+    }
+    lines.flush().unwrap();
+}
+
+/// Every bundled scenario's recording: Foxglove's published schemas, the
+/// viewers' subset, and every message valid against its schema.
+#[test]
+fn every_recording_matches_the_viewers_schemas() {
+    if !checks_available() {
+        return;
+    }
+    let tmp = temp_dir();
+    for (i, run) in every_run().into_iter().enumerate() {
+        let path = tmp.path().join(format!("{i}.jsonl"));
+        dump(&run.recording, &path);
+        let output = Command::new("node")
+            .arg(viewers().join("check-recording.js"))
+            .arg(&path)
+            .output()
+            .expect("node starts");
+        let stdout = String::from_utf8_lossy(&output.stdout);
+        assert!(
+            output.status.success(),
+            "{}: the viewers' checks found problems:\n{stdout}{}",
+            run.scenario,
+            String::from_utf8_lossy(&output.stderr)
+        );
+        // The summary line: the check saw the schemas and messages.
+        assert!(stdout.contains(": 0 problem(s)"), "{}: {stdout}", run.scenario);
+    }
+}
+
+/// The check is not a check that cannot fail: a look-alike of a Foxglove schema
+/// (the one sightline wrote before issue 18, with `$defs` and `$ref`), a type
+/// array and a message against its schema are each found.
+#[test]
+fn the_viewers_check_finds_what_the_viewers_refuse() {
+    if !checks_available() {
+        return;
+    }
+    let tmp = temp_dir();
+    let path = tmp.path().join("bad.jsonl");
+    let log = serde_json::json!({
+        "title": "foxglove.Log", "type": "object",
+        "$defs": { "Time": { "type": "object", "properties": { "sec": { "type": "integer" } } } },
+        "properties": { "timestamp": { "$ref": "#/$defs/Time" }, "message": { "type": "string" } }
+    });
+    let signals = serde_json::json!({
+        "title": "sightline.Signals", "type": "object",
+        "properties": { "recall": { "type": ["number", "null"] }, "step": { "type": "integer" } },
+        "required": ["step"]
+    });
+    let lines = [
+        serde_json::json!({ "schema": "foxglove.Log", "encoding": "jsonschema", "data": log.to_string() }),
+        serde_json::json!({ "schema": "sightline.Signals", "encoding": "jsonschema", "data": signals.to_string() }),
+        serde_json::json!({ "topic": "/sightline/signals", "schema": "sightline.Signals", "encoding": "json", "data": r#"{"step":"one"}"# }),
+    ];
+    std::fs::write(&path, lines.map(|l| l.to_string()).join("\n")).unwrap();
+    let output = Command::new("node")
+        .arg(viewers().join("check-recording.js"))
+        .arg(&path)
+        .output()
+        .expect("node starts");
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert_eq!(output.status.code(), Some(1), "{stdout}");
+    for expected in [
+        "schema foxglove.Log: differs from the one @foxglove/schemas publishes",
+        "schema foxglove.Log.timestamp: type undefined",
+        "schema sightline.Signals.recall: type [\"number\",\"null\"]",
+        "/sightline/signals: /step must be integer (sightline.Signals)",
+    ] {
+        assert!(stdout.contains(expected), "missing {expected:?} in:\n{stdout}");
+    }
+}
