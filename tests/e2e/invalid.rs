@@ -157,6 +157,9 @@ invalid_inputs! {
     // See: issue 16 (odometry with noise).
     odometry_out_of_physical_range_is_refused => "odometry-out-of-range",
     noise_beside_exact_odometry_is_refused => "odometry-exact-with-noise",
+    // See: issue 18 (the recording's clock).
+    time_start_without_its_offset_is_refused => "time-start-not-a-date",
+    time_start_before_1970_is_out_of_range => "time-start-out-of-range",
 }
 
 #[test]

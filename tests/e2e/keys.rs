@@ -393,6 +393,8 @@ const KEYS: &[Key] = &[
     // Worlds: time, imported traces, roads, buildings.
     Key { path: "time.duration", field: Section, perception: change(&[("time.duration", "0.5")]), semantic: change(&[("time.duration", "5")]) },
     Key { path: "time.step", field: Section, perception: change(&[("time.step", "0.05")]), semantic: change(&[("time.step", "0.05")]) },
+    // The recording's clock: its timestamps (issue 18).
+    Key { path: "time.start", field: Section, perception: with(&[("record", "{}")], &[("time.start", r#""2026-03-01T08:00:00Z""#)]), semantic: with(&[("record", "{}")], &[("time.start", r#""2026-03-01T09:00:00+01:00""#)]) },
     Key { path: "traces.fcd", field: Section, perception: change(&[("traces", r#"{ "fcd": "sumo/grid3x3.fcd.xml" }"#)]), semantic: change(&[("traces", r#"{ "fcd": "sumo/grid3x3.fcd.xml" }"#)]) },
     Key {
         path: "traces.net",

@@ -12,12 +12,14 @@
 //! the installed packages are there, and says why it skips otherwise.
 // See: issue 18, "Recordings the viewers load".
 
+use std::collections::BTreeSet;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::Command;
+use std::sync::OnceLock;
 
 use crate::bundled::every_run;
-use crate::support::{root, temp_dir};
+use crate::support::{RECORDING, arg, read, root, sightline, temp_dir};
 
 /// Set by `.ci/run` once `npm ci` has installed `ci/viewers/`: the check must run.
 const CHECKS_VAR: &str = "SIGHTLINE_VIEWER_CHECKS";
@@ -78,17 +80,140 @@ fn dump(recording: &[u8], out: &Path) {
     lines.flush().unwrap();
 }
 
-/// Every bundled scenario's recording: Foxglove's published schemas, the
-/// viewers' subset, and every message valid against its schema.
+/// Recordings of the topics the bundled ones leave out, by name: a short
+/// roundabout with every vehicle cooperating and each one's own grid, and the
+/// urban junction with a d_min of 6 m (close approaches) and one run per point.
+fn extra_recordings() -> &'static [(&'static str, Vec<u8>)] {
+    static RECORDINGS: OnceLock<Vec<(&'static str, Vec<u8>)>> = OnceLock::new();
+    RECORDINGS.get_or_init(|| {
+        let roundabout = read(&root().join("scenarios/roundabout-six-agents.yaml"))
+            .replace("duration: 30", "duration: 3")
+            .replace("snapshot: 12", "snapshot: 2")
+            + "record: { where: { perception.cooperating: 6 }, agent_grids: true }\n";
+        let urban = read(&root().join("scenarios/urban-rsu-semantic.yaml"))
+            .replace("duration: 120", "duration: 80")
+            .replace("runs: 5 ", "runs: 1 ")
+            .replace("d_min: 2", "d_min: 6")
+            + "record: { point: 0 }\n";
+        let tmp = temp_dir();
+        [
+            ("short roundabout, agent grids", roundabout),
+            ("urban junction, d_min 6 m", urban),
+        ]
+        .into_iter()
+        .enumerate()
+        .map(|(i, (name, text))| {
+            let scenario = tmp.path().join(format!("{i}.yaml"));
+            std::fs::write(&scenario, text).unwrap();
+            let out = tmp.path().join(i.to_string());
+            let run = sightline(["run", arg(&scenario), "--out", arg(&out)]);
+            assert!(matches!(run.code, Some(0 | 1)), "{run}");
+            (name, std::fs::read(out.join(RECORDING)).unwrap())
+        })
+        .collect()
+    })
+}
+
+/// Every recording these tests read: the bundled scenarios' and the extra ones.
+fn recordings() -> Vec<(&'static str, &'static [u8])> {
+    let bundled = every_run()
+        .into_iter()
+        .map(|run| (run.scenario, run.recording.as_slice()));
+    let extra = extra_recordings().iter().map(|(name, bytes)| (*name, bytes.as_slice()));
+    bundled.chain(extra).collect()
+}
+
+/// A topic as the documentation names it: an agent's id as `<id>`.
+fn documented_form(topic: &str) -> String {
+    match topic.split('/').collect::<Vec<_>>()[..] {
+        ["", "perception", _, what] => format!("/perception/<id>/{what}"),
+        _ => topic.to_string(),
+    }
+}
+
+/// The topics `docs/recording.md`'s channel table lists.
+fn documented_topics() -> BTreeSet<String> {
+    let docs = read(&root().join("docs/recording.md"));
+    let table = docs
+        .split("## Channels")
+        .nth(1)
+        .expect("docs/recording.md has a section Channels");
+    table
+        .lines()
+        .filter_map(|line| line.strip_prefix("| `/"))
+        .map(|rest| format!("/{}", &rest[..rest.find('`').expect("a topic in backquotes")]))
+        .collect()
+}
+
+/// The documented topics are exactly the written ones: every topic of the
+/// channel table is written by a real recording, and every topic a recording
+/// writes is in the table; the layout shipped in `docs/` shows only written
+/// topics.
+#[test]
+fn the_documented_topics_are_the_written_ones() {
+    let documented = documented_topics();
+    let mut written = BTreeSet::new();
+    for (name, recording) in recordings() {
+        let summary = mcap::Summary::read(recording).unwrap().unwrap();
+        for channel in summary.channels.values() {
+            let topic = documented_form(&channel.topic);
+            assert!(
+                documented.contains(&topic),
+                "{name} writes {topic}, which docs/recording.md does not list"
+            );
+            written.insert(topic);
+        }
+    }
+    let unwritten: Vec<&String> = documented.difference(&written).collect();
+    assert!(
+        unwritten.is_empty(),
+        "docs/recording.md lists topics no recording writes: {unwritten:?}"
+    );
+    let layout: serde_json::Value = serde_json::from_str(&read(&root().join("docs/foxglove-layout.json"))).unwrap();
+    let mut shown = Vec::new();
+    collect_topics(&layout, &mut shown);
+    assert!(shown.len() >= 5, "the layout shows the recording: {shown:?}");
+    for topic in shown {
+        assert!(
+            written.contains(&documented_form(&topic)),
+            "the layout shows {topic}, which no recording writes"
+        );
+    }
+}
+
+/// Every topic a layout names: keys and string values that start with `/`,
+/// cut at the message path's first `.`.
+fn collect_topics(node: &serde_json::Value, out: &mut Vec<String>) {
+    fn add(text: &str, out: &mut Vec<String>) {
+        if text.starts_with('/') {
+            out.push(text.split('.').next().unwrap_or(text).to_string());
+        }
+    }
+    match node {
+        serde_json::Value::String(text) => add(text, out),
+        serde_json::Value::Object(map) => {
+            for (key, value) in map {
+                add(key, out);
+                collect_topics(value, out);
+            }
+        }
+        serde_json::Value::Array(items) => items.iter().for_each(|item| collect_topics(item, out)),
+        _ => {}
+    }
+}
+
+/// Every recording (the bundled scenarios' and the extra ones): Foxglove's
+/// published schemas, the viewers' subset, and every message valid against its
+/// schema.
 #[test]
 fn every_recording_matches_the_viewers_schemas() {
     if !checks_available() {
         return;
     }
     let tmp = temp_dir();
-    for (i, run) in every_run().into_iter().enumerate() {
+    for (i, (name, recording)) in recordings().into_iter().enumerate() {
         let path = tmp.path().join(format!("{i}.jsonl"));
-        dump(&run.recording, &path);
+        dump(recording, &path);
         let output = Command::new("node")
             .arg(viewers().join("check-recording.js"))
             .arg(&path)
@@ -97,12 +222,11 @@ fn every_recording_matches_the_viewers_schemas() {
         let stdout = String::from_utf8_lossy(&output.stdout);
         assert!(
             output.status.success(),
-            "{}: the viewers' checks found problems:\n{stdout}{}",
-            run.scenario,
+            "{name}: the viewers' checks found problems:\n{stdout}{}",
             String::from_utf8_lossy(&output.stderr)
         );
         // The summary line: the check saw the schemas and messages.
-        assert!(stdout.contains(": 0 problem(s)"), "{}: {stdout}", run.scenario);
+        assert!(stdout.contains(": 0 problem(s)"), "{name}: {stdout}");
     }
 }
 
