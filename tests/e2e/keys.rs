@@ -173,7 +173,10 @@ impl Key {
 /// can hold, and where the refusal is reported when it is not at the section
 /// itself (a `field` makes a world's sections the refused ones).
 const SECTIONS: &[(&str, &str)] = &[
-    ("time", r#"{ "duration": 1, "step": 0.1 }"#),
+    (
+        "time",
+        r#"{ "duration": 1, "step": 0.1, "start": "2026-03-01T08:00:00Z" }"#,
+    ),
     (
         "traces",
         r#"{ "fcd": "sumo/grid3x3.fcd.xml", "net": "sumo/grid3x3.net.xml", "poly": "sumo/grid3x3.poly.xml",

@@ -81,13 +81,17 @@ fn dump(recording: &[u8], out: &Path) {
 }
 
 /// Recordings of the topics the bundled ones leave out, by name: a short
-/// roundabout with every vehicle cooperating and each one's own grid, and the
+/// roundabout with every vehicle cooperating and each one's own grid, its
+/// clock set to 2026-03-01T08:00:00Z (`time.start`, written at +01:00), and the
 /// urban junction with a d_min of 6 m (close approaches) and one run per point.
 fn extra_recordings() -> &'static [(&'static str, Vec<u8>)] {
     static RECORDINGS: OnceLock<Vec<(&'static str, Vec<u8>)>> = OnceLock::new();
     RECORDINGS.get_or_init(|| {
         let roundabout = read(&root().join("scenarios/roundabout-six-agents.yaml"))
-            .replace("duration: 30", "duration: 3")
+            .replace(
+                "duration: 30, step: 0.1",
+                "duration: 3, step: 0.1, start: 2026-03-01T09:00:00+01:00",
+            )
             .replace("snapshot: 12", "snapshot: 2")
             + "record: { where: { perception.cooperating: 6 }, agent_grids: true }\n";
         let urban = read(&root().join("scenarios/urban-rsu-semantic.yaml"))
@@ -121,6 +125,31 @@ fn recordings() -> Vec<(&'static str, &'static [u8])> {
         .map(|run| (run.scenario, run.recording.as_slice()));
     let extra = extra_recordings().iter().map(|(name, bytes)| (*name, bytes.as_slice()));
     bundled.chain(extra).collect()
+}
+
+/// `time.start` places the recording at its date: the first step, the map and
+/// every message's log time count from 2026-03-01T08:00:00Z, whatever offset
+/// the file writes it with (the default epoch is checked with the bundled
+/// roundabout, `record::bundled_roundabout_recording_has_foxglove_channels_and_the_steps`).
+#[test]
+fn time_start_places_the_recording_at_its_date() {
+    let (_, recording) = &extra_recordings()[0];
+    let start = 1_772_352_000_u64 * 1_000_000_000;
+    let messages: Vec<mcap::Message> = mcap::MessageStream::new(recording)
+        .unwrap()
+        .map(|m| m.unwrap())
+        .collect();
+    let first = messages.iter().map(|m| m.log_time).min().unwrap();
+    let last = messages.iter().map(|m| m.log_time).max().unwrap();
+    assert_eq!(first, start);
+    // Three seconds of 0.1 s steps: the last step at 2.9 s.
+    assert_eq!(last, start + 2_900_000_000);
+    let map = messages.iter().find(|m| m.channel.topic == "/scene/map").unwrap();
+    let map: serde_json::Value = serde_json::from_slice(&map.data).unwrap();
+    assert_eq!(
+        map["entities"][0]["timestamp"],
+        serde_json::json!({ "sec": 1_772_352_000, "nsec": 0 })
+    );
 }
 
 /// A topic as the documentation names it: an agent's id as `<id>`.
