@@ -131,3 +131,68 @@ fn string_constants(one_of: &Value) -> Option<Vec<Value>> {
         .map(|alternative| alternative.get("const").filter(|c| c.is_string()).cloned())
         .collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use schemars::JsonSchema;
+    use serde_json::{Value, json};
+
+    use super::flat_schema_of;
+
+    /// A string enum with documented variants: schemars writes `oneOf` of
+    /// string constants.
+    #[derive(JsonSchema)]
+    #[expect(dead_code, reason = "only its schema is read")]
+    enum Kind {
+        /// The first.
+        First,
+        /// The second.
+        Second,
+    }
+
+    #[derive(JsonSchema)]
+    #[expect(dead_code, reason = "only its schema is read")]
+    struct Inner {
+        /// A count.
+        count: u64,
+    }
+
+    #[derive(JsonSchema)]
+    #[schemars(title = "test.Outer")]
+    #[expect(dead_code, reason = "only its schema is read")]
+    struct Outer {
+        /// A number that may be absent.
+        value: Option<f64>,
+        /// A nested object that may be absent.
+        inner: Option<Inner>,
+        /// A list of nested objects.
+        items: Vec<Inner>,
+        /// A kind.
+        kind: Kind,
+    }
+
+    /// Written out by hand: references inlined, each nullable field given its
+    /// one type and left out of `required`, the enum a string with `enum`, no
+    /// `format`, `$defs` or `$schema`.
+    #[test]
+    fn a_schema_is_made_flat_as_written_out_by_hand() {
+        let flat: Value = serde_json::from_slice(&flat_schema_of::<Outer>()).unwrap();
+        assert_eq!(flat["title"], "test.Outer");
+        assert_eq!(flat["type"], "object");
+        assert_eq!(flat["required"], json!(["items", "kind"]));
+        assert_eq!(
+            flat["properties"]["value"],
+            json!({ "type": "number", "description": "A number that may be absent." })
+        );
+        assert_eq!(flat["properties"]["inner"]["type"], "object");
+        assert_eq!(flat["properties"]["inner"]["properties"]["count"]["type"], "integer");
+        assert_eq!(flat["properties"]["items"]["type"], "array");
+        assert_eq!(flat["properties"]["items"]["items"]["required"], json!(["count"]));
+        assert_eq!(flat["properties"]["kind"]["type"], "string");
+        assert_eq!(flat["properties"]["kind"]["enum"], json!(["First", "Second"]));
+        let text = flat.to_string();
+        for refused in ["$ref", "$defs", "$schema", "anyOf", "oneOf", "null", "format"] {
+            assert!(!text.contains(refused), "{refused} in {text}");
+        }
+    }
+}
