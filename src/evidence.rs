@@ -7,8 +7,9 @@ use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
 use anyhow::Context;
+use sightline_dsl::{Record, Scenario};
 use sightline_engine::Run;
-use sightline_oracles::Verdict;
+use sightline_oracles::{Status, Verdict};
 use sightline_reports::mcap::{Recorder, Source};
 use sightline_reports::{Execution, Provenance, RecordingInfo, Templates, Tool, render, sha256_hex};
 
@@ -117,17 +118,52 @@ pub fn write_evidence(
     ))
 }
 
-/// Records `input`'s `record` point into `staging` while `simulate` runs the
-/// scenario with the recorder as its sink, then checks the run and finishes
-/// the recording with its outcomes and verdicts.
+/// The recording of `record`'s point, when the file names it (or the scenario
+/// has one point); otherwise of the worst point of the first failing
+/// requirement of a run judged `verdicts`, or of the first point when none
+/// fails.
+pub fn recorded_point(scenario: &Scenario, record: Record, verdicts: &[Verdict]) -> Record {
+    if record.named {
+        return record;
+    }
+    let worst = verdicts
+        .iter()
+        .find(|v| v.status == Status::Fail)
+        .map(|v| v.decisive.point);
+    record.at_point(&scenario.points, worst.unwrap_or(record.point))
+}
+
+/// Simulates point `point` of `input`'s scenario again, reporting its steps to
+/// `recorder`, and returns `run` (which holds it) once the point's outcome is
+/// found the same.
+pub fn resimulated(
+    input: &Input,
+    point: usize,
+    run: Run,
+    recorder: &mut Recorder<'_, BufWriter<&std::fs::File>>,
+) -> anyhow::Result<Run> {
+    let outcome = sightline_engine::simulate_point(&input.scenario, point, recorder);
+    if outcome != run.points[point] {
+        anyhow::bail!(
+            "{}: the recorded point, simulated again, differs from the run's outcome: \
+             sightline is not deterministic here; please report it with the scenario",
+            input.name
+        );
+    }
+    Ok(run)
+}
+
+/// Records point `record.point` of `input`'s scenario into `staging` while
+/// `simulate` runs the scenario with the recorder as its sink, then checks the
+/// run and finishes the recording with its outcomes and verdicts.
 pub fn recorded(
     input: &Input,
     reporting: &Reporting<'_>,
     staging: &mut Staging,
+    record: Record,
     simulate: impl FnOnce(&mut Recorder<'_, BufWriter<&std::fs::File>>) -> anyhow::Result<Run>,
 ) -> anyhow::Result<Simulated> {
     let scenario = &input.scenario;
-    let record = scenario.record.context("the scenario records nothing")?;
     let file = staging.create(RECORDING)?;
     let failed = || format!("failed to write {}", staging.dir().join(RECORDING).display());
     let text = std::str::from_utf8(&input.bytes).context("the scenario file is not UTF-8 text")?;

@@ -62,6 +62,11 @@ mod bundled;
 #[path = "e2e/record.rs"]
 mod record;
 
+// The recordings against the viewers' own artefacts: Foxglove's published
+// schemas, their parsers' subset, every message valid (node, ci/viewers/).
+#[path = "e2e/viewers.rs"]
+mod viewers;
+
 // The findings pages quote the bundled runs.
 #[path = "e2e/findings.rs"]
 mod findings;

@@ -14,14 +14,15 @@ use std::collections::{BTreeMap, HashMap};
 use std::path::{Path, PathBuf};
 use std::time::{Instant, SystemTime};
 
-use anyhow::bail;
 use sightline_engine::{Run, Unit};
 use sightline_oracles::Quantity;
 use sightline_reports::{Execution, Page, Shard, ShardInput, campaign_id, read_shard};
 
 use super::shard::inputs_of;
 use crate::cli::MergeArgs;
-use crate::evidence::{EVIDENCE_SET, Reporting, Request, evidence_dirs, recorded, tool, write_evidence};
+use crate::evidence::{
+    EVIDENCE_SET, Reporting, Request, evidence_dirs, recorded, recorded_point, resimulated, tool, write_evidence,
+};
 use crate::exit::Exit;
 use crate::files::{DATA_LIMIT, read_regular};
 use crate::input::{Input, load_all};
@@ -81,17 +82,12 @@ pub fn merge(args: &MergeArgs) -> anyhow::Result<Exit> {
                 let verdicts = sightline_oracles::check(scenario, &run);
                 (run, verdicts, None)
             }
-            Some(record) => recorded(&input, &reporting, &mut staging, |recorder| {
-                let outcome = sightline_engine::simulate_point(scenario, record.point, recorder);
-                if outcome != run.points[record.point] {
-                    bail!(
-                        "{}: the recorded point, simulated again, differs from its shard's outcome: \
-                         sightline is not deterministic here; please report it with the scenario",
-                        input.name
-                    );
-                }
-                Ok(run)
-            })?,
+            Some(record) => {
+                let record = recorded_point(scenario, record, &sightline_oracles::check(scenario, &run));
+                recorded(&input, &reporting, &mut staging, record, |recorder| {
+                    resimulated(&input, record.point, run, recorder)
+                })?
+            }
         };
         let here = Execution::on_this_machine(rayon::current_num_threads(), started, clock.elapsed());
         let shards: Vec<Execution> = shards.into_iter().map(|(_, execution, _)| execution).collect();

@@ -6,7 +6,9 @@ use anyhow::Context;
 use sightline_reports::{Execution, Page};
 
 use crate::cli::RunArgs;
-use crate::evidence::{EVIDENCE_SET, Reporting, Request, evidence_dirs, recorded, tool, write_evidence};
+use crate::evidence::{
+    EVIDENCE_SET, Reporting, Request, evidence_dirs, recorded, recorded_point, resimulated, tool, write_evidence,
+};
 use crate::exit::Exit;
 use crate::input::load_all;
 use crate::output::progress;
@@ -60,9 +62,21 @@ pub fn run(args: &RunArgs) -> anyhow::Result<Exit> {
                 let verdicts = sightline_oracles::check(scenario, &run);
                 (run, verdicts, None)
             }
-            Some(record) => recorded(input, &reporting, &mut staging, |recorder| {
-                Ok(pool.install(|| sightline_engine::simulate_traced(scenario, record.point, recorder, &mut done)))
-            })?,
+            // The point to record is known before the run: recorded as it runs.
+            Some(record) if record.named || scenario.points.len() == 1 => {
+                recorded(input, &reporting, &mut staging, record, |recorder| {
+                    Ok(pool.install(|| sightline_engine::simulate_traced(scenario, record.point, recorder, &mut done)))
+                })?
+            }
+            // The worst point of the first failing requirement: known once the
+            // run is judged, then simulated again as it is recorded.
+            Some(record) => {
+                let run = pool.install(|| sightline_engine::simulate_reporting(scenario, &mut done));
+                let record = recorded_point(scenario, record, &sightline_oracles::check(scenario, &run));
+                recorded(input, &reporting, &mut staging, record, |recorder| {
+                    pool.install(|| resimulated(input, record.point, run, recorder))
+                })?
+            }
         };
         bar.finish_and_clear();
         // A value outside its domain is a defect of the engine: never judged.

@@ -160,6 +160,9 @@ invalid_inputs! {
     radio_parameters_out_of_physical_range_are_refused => "radio-out-of-range",
     radio_the_step_cannot_serve_and_two_counts_of_cooperators_are_refused => "radio-limits-of-the-step",
     a_radio_metric_without_a_radio_is_refused => "radio-metric-without-v2x",
+    // See: issue 18 (the recording's clock).
+    time_start_without_its_offset_is_refused => "time-start-not-a-date",
+    time_start_before_1970_is_out_of_range => "time-start-out-of-range",
 }
 
 #[test]

@@ -173,7 +173,10 @@ impl Key {
 /// can hold, and where the refusal is reported when it is not at the section
 /// itself (a `field` makes a world's sections the refused ones).
 const SECTIONS: &[(&str, &str)] = &[
-    ("time", r#"{ "duration": 1, "step": 0.1 }"#),
+    (
+        "time",
+        r#"{ "duration": 1, "step": 0.1, "start": "2026-03-01T08:00:00Z" }"#,
+    ),
     (
         "traces",
         r#"{ "fcd": "sumo/grid3x3.fcd.xml", "net": "sumo/grid3x3.net.xml", "poly": "sumo/grid3x3.poly.xml",
@@ -395,6 +398,8 @@ const KEYS: &[Key] = &[
     // Worlds: time, imported traces, roads, buildings.
     Key { path: "time.duration", field: Section, perception: change(&[("time.duration", "0.5")]), semantic: change(&[("time.duration", "5")]) },
     Key { path: "time.step", field: Section, perception: change(&[("time.step", "0.05")]), semantic: change(&[("time.step", "0.05")]) },
+    // The recording's clock: its timestamps (issue 18).
+    Key { path: "time.start", field: Section, perception: with(&[("record", "{}")], &[("time.start", r#""2026-03-01T08:00:00Z""#)]), semantic: with(&[("record", "{}")], &[("time.start", r#""2026-03-01T09:00:00+01:00""#)]) },
     Key { path: "traces.fcd", field: Section, perception: change(&[("traces", r#"{ "fcd": "sumo/grid3x3.fcd.xml" }"#)]), semantic: change(&[("traces", r#"{ "fcd": "sumo/grid3x3.fcd.xml" }"#)]) },
     Key {
         path: "traces.net",

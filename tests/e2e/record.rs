@@ -66,8 +66,7 @@ fn messages(recording: &[u8], topic: &str) -> Vec<serde_json::Value> {
 
 /// The expected channels: (topic, schema, count).
 #[track_caller]
-fn assert_channels(recording: &[u8], expected: &[(&str, &str, u64)]) {
-    let actual = channels(recording);
+fn assert_channels(actual: BTreeMap<String, Channel>, expected: &[(&str, &str, u64)]) {
     let expected: BTreeMap<String, Channel> = expected
         .iter()
         .map(|&(topic, schema, count)| {
@@ -83,13 +82,23 @@ fn assert_channels(recording: &[u8], expected: &[(&str, &str, u64)]) {
     assert_eq!(actual, expected);
 }
 
-/// The bundled roundabout at default settings records its first point (the ego
-/// alone) for 30 s at 10 Hz, a fused grid a second; far under 20 MB.
+/// The bundled roundabout at default settings records the worst point of its
+/// first failing requirement (#18) for 30 s at 10 Hz, a fused grid a second,
+/// the frame tree and each cooperating vehicle's detections; far under 20 MB.
 #[test]
 fn bundled_roundabout_recording_has_foxglove_channels_and_the_steps() {
     let run = roundabout_run();
-    let point = &run.results["sweep"][0];
-    assert_eq!(point["label"], "perception.cooperating=1");
+    let first_failing = run.results["requirements"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|r| r["verdict"] == "fail")
+        .expect("the roundabout fails a requirement");
+    // Its decisive point: the failing one with the smallest margin.
+    let index = first_failing["point"].as_u64().unwrap() as usize;
+    assert_eq!(run.results["recording"]["point"].as_u64(), Some(index as u64));
+    let point = &run.results["sweep"][index];
+    assert_eq!(run.results["recording"]["label"], point["label"]);
     // The ego is in the scene at every one of the 300 steps, so each is measured.
     assert_eq!(point["counts"]["steps"], 300);
     let recording = &run.recording;
@@ -101,22 +110,60 @@ fn bundled_roundabout_recording_has_foxglove_channels_and_the_steps() {
     let requirements = run.results["requirements"].as_array().unwrap().len() as u64;
     // One outcome per distinct configuration: the three sweeps' 14 rows share one.
     let points = 12;
+    let mut channels = channels(recording);
+    // Each cooperating vehicle's detections, at the steps it is in the scene.
+    let detections: Vec<String> = channels
+        .keys()
+        .filter(|t| t.starts_with("/perception/") && t.ends_with("/detections"))
+        .cloned()
+        .collect();
+    assert!(
+        detections.len() > 1,
+        "the failing point has cooperating vehicles: {detections:?}"
+    );
+    for topic in detections {
+        let channel = channels.remove(&topic).unwrap();
+        assert_eq!(channel.schema, "foxglove.SceneUpdate");
+        assert!((1..=300).contains(&channel.count), "{topic}: {}", channel.count);
+    }
     assert_channels(
-        recording,
+        channels,
         &[
             ("/sightline/scenario", "sightline.Scenario", 1),
             ("/scene/map", "foxglove.SceneUpdate", 1),
+            ("/tf", "foxglove.FrameTransforms", 300),
             ("/scene/agents", "foxglove.SceneUpdate", 300),
-            ("/perception/ego/detections", "foxglove.SceneUpdate", 300),
             // Steps 0, 10, …, 290.
             ("/fusion/grid", "foxglove.Grid", 30),
             ("/sightline/signals", "sightline.Signals", 300),
-            // RB-PREC-01 applies at every point and its metric sums over the steps.
+            // The requirements at the point whose metrics sum over the steps.
             ("/sightline/requirements", "sightline.RequirementSignals", 300),
             ("/sightline/outcome", "sightline.Outcome", points),
             ("/sightline/verdicts", "sightline.Verdict", requirements),
             ("/log", "foxglove.Log", requirements),
         ],
+    );
+    // Timestamps count from the default epoch, 2000-01-01T00:00:00Z: the map at
+    // the epoch, step k at epoch + k · 0.1 s.
+    let epoch = 946_684_800_000_000_000_u64;
+    let times: Vec<u64> = mcap::MessageStream::new(recording)
+        .unwrap()
+        .map(|m| m.unwrap())
+        .filter(|m| m.channel.topic == "/tf")
+        .map(|m| m.log_time)
+        .collect();
+    assert_eq!(times.first(), Some(&epoch));
+    assert_eq!(times.get(10), Some(&(epoch + 1_000_000_000)));
+    let tf = &messages(recording, "/tf")[0]["transforms"];
+    assert_eq!(tf[0]["parent_frame_id"], "map");
+    assert_eq!(tf[0]["child_frame_id"], "ego");
+    assert_eq!(tf[0]["timestamp"]["sec"], 946_684_800);
+    assert!(
+        tf.as_array()
+            .unwrap()
+            .iter()
+            .any(|t| t["parent_frame_id"] == "ego" && t["child_frame_id"] == "ego/sensor0"),
+        "the ego's sensor frames hang under the ego: {tf}"
     );
     // The steps' cell counts add up to the point's.
     let signals = messages(recording, "/sightline/signals");
@@ -130,9 +177,18 @@ fn bundled_roundabout_recording_has_foxglove_channels_and_the_steps() {
         let summed: u64 = signals.iter().map(|s| s["cells"][count].as_u64().unwrap()).sum();
         assert_eq!(Some(summed), point["counts"][count].as_u64(), "{count}");
     }
+    // The requirement recorded for is signalled step by step: its last value is
+    // the point's.
     let last = messages(recording, "/sightline/requirements").pop().unwrap();
-    assert_eq!(last["requirements"][0]["id"], "RB-PREC-01");
-    assert_eq!(last["requirements"][0]["value"], point["metrics"]["occupied_precision"]);
+    let signal = last["requirements"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|r| r["id"] == first_failing["id"])
+        .expect("the first failing requirement is signalled");
+    let metric = signal["metric"].as_str().unwrap();
+    assert_eq!(signal["value"], point["metrics"][metric]);
+    assert!(signal["margin"].as_f64().unwrap() < 0.0, "{signal}");
     // results.json and the report name the recording by its hash.
     let sha = crate::support::sha256_hex(recording);
     assert_eq!(run.results["recording"]["sha256"], sha.as_str());
@@ -158,7 +214,9 @@ fn urban_recording_counts_the_packets_messages_and_approaches() {
     let run = sightline(["run", arg(&scenario), "--out", arg(&out), "--record"]);
     let results = read_json(&out.join("results.json"));
     run.assert_exit(if results["verdict"] == "pass" { 0 } else { 1 });
-    let counts = &results["sweep"][0]["counts"];
+    // The recorded point: the worst of the first failing requirement, if any.
+    let recorded = results["recording"]["point"].as_u64().unwrap() as usize;
+    let counts = &results["sweep"][recorded]["counts"];
     assert_eq!(counts["runs"], 1);
     let recording = std::fs::read(out.join(RECORDING)).unwrap();
     let channels = channels(&recording);

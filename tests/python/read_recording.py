@@ -23,12 +23,12 @@ def problems_of(schema_name, message):
             return ["row_stride is not column_count * cell_stride"]
         if stride == 0 or len(data) % stride != 0:
             return [f"{len(data)} bytes of data are not whole rows of {stride}"]
-        if message["frame_id"] != "world":
-            return ["a grid outside the world frame"]
+        if message["frame_id"] != "map":
+            return ["a grid outside the map frame"]
     elif schema_name == "foxglove.SceneUpdate":
         for entity in message["entities"]:
-            if entity["frame_id"] != "world":
-                return ["an entity outside the world frame"]
+            if entity["frame_id"] != "map":
+                return ["an entity outside the map frame"]
     return []
 
 

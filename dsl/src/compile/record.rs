@@ -1,25 +1,66 @@
 //! The `record` section: which point `run.mcap` records, and how often it
-//! records grids.
+//! records grids; and the recording's clock, `time.start`.
 
 use super::context::Context;
 use super::requirements::select;
 use crate::error::ErrorKind;
-use crate::model::{Experiment, Point, Record};
+use crate::model::{DEFAULT_START, Experiment, Point, Record, grid_every};
 use crate::path::Path;
-use crate::raw::RawRecord;
 use crate::raw::range;
+use crate::raw::{RawRecord, RawTime};
 
 /// Fused grids recorded per simulated second when the file does not say.
 const DEFAULT_GRID_RATE: f64 = 1.0;
 
+/// The earliest `time.start`: 1970-01-01T00:00:00Z, the recording's time 0.
+const EARLIEST_START: &str = "1970-01-01T00:00:00Z";
+/// The latest `time.start`, well before a run's nanoseconds would overflow the
+/// recording's 64-bit timestamps (in 2554).
+const LATEST_START: &str = "2500-01-01T00:00:00Z";
+
+/// Compiles `time.start`: nanoseconds since 1970-01-01T00:00:00Z, `DEFAULT_START`
+/// without it; `None` (after recording why) when it is not a date and time with
+/// its offset, or lies outside 1970 to 2500.
+pub(super) fn start(ctx: &mut Context<'_>, time: Option<&RawTime>) -> Option<u64> {
+    let Some(text) = time.and_then(|t| t.start.as_deref()) else {
+        return Some(DEFAULT_START);
+    };
+    let path = Path::root().key("time").key("start");
+    let Ok(start) = text.parse::<jiff::Timestamp>() else {
+        ctx.error(
+            &path,
+            ErrorKind::InvalidType {
+                expected: "an ISO 8601 date and time with its UTC offset, such as `2026-03-01T08:00:00Z` or \
+                           `2026-03-01T09:00:00+01:00`"
+                    .into(),
+                found: format!("`{text}`"),
+            },
+        );
+        return None;
+    };
+    let bound = |text: &str| text.parse::<jiff::Timestamp>().expect("a valid bound");
+    if start < bound(EARLIEST_START) || start >= bound(LATEST_START) {
+        ctx.error(
+            &path,
+            ErrorKind::OutOfRange {
+                expected: format!("a time from {EARLIEST_START} to before {LATEST_START}"),
+                found: text.into(),
+            },
+        );
+        return None;
+    }
+    u64::try_from(start.as_nanosecond()).ok()
+}
+
 /// Compiles the `record` section (its defaults when `requested` and the file
-/// has none). Without points (the setup is invalid) only what does not depend on
-/// them is checked.
+/// has none), the recording's clock starting at `start`. Without points (the
+/// setup is invalid) only what does not depend on them is checked.
 pub(super) fn record(
     ctx: &mut Context<'_>,
     raw: Option<&RawRecord>,
     requested: bool,
     points: Option<&[Point]>,
+    start: Option<u64>,
 ) -> Option<Record> {
     if raw.is_none() && !requested {
         return None;
@@ -64,29 +105,27 @@ pub(super) fn record(
         return None;
     }
     let grid_rate = raw.grid_rate.unwrap_or(DEFAULT_GRID_RATE);
-    let grid_every = match &points[point].setup.experiment {
-        Experiment::World(world) if grid_rate > 0.0 => {
-            let step_rate = 1.0 / world.step;
-            // A rate written in the file must be one the steps can give; the
-            // default is clamped to every step instead.
-            if raw.grid_rate.is_some() && grid_rate > step_rate * (1.0 + 1e-9) {
-                ctx.error(
-                    &path.key("grid_rate"),
-                    ErrorKind::OutOfRange {
-                        expected: format!("at most the step rate, {step_rate} Hz (one grid per step)"),
-                        found: grid_rate.to_string(),
-                    },
-                );
-                return None;
-            }
-            Some(((step_rate / grid_rate).round() as usize).max(1))
+    // A rate written in the file must be one the steps can give; the default is
+    // clamped to every step instead.
+    if let (Experiment::World(world), Some(rate)) = (&points[point].setup.experiment, raw.grid_rate) {
+        let step_rate = 1.0 / world.step;
+        if rate > step_rate * (1.0 + 1e-9) {
+            ctx.error(
+                &path.key("grid_rate"),
+                ErrorKind::OutOfRange {
+                    expected: format!("at most the step rate, {step_rate} Hz (one grid per step)"),
+                    found: rate.to_string(),
+                },
+            );
+            return None;
         }
-        Experiment::World(_) | Experiment::Field(_) => None,
-    };
+    }
     Some(Record {
         point,
+        named: raw.point.is_some() || !raw.filter.is_empty(),
         grid_rate,
-        grid_every,
+        grid_every: grid_every(&points[point], grid_rate),
         agent_grids: raw.agent_grids,
+        start: start?,
     })
 }

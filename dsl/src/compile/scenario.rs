@@ -8,7 +8,7 @@ use std::{fmt, io};
 use super::context::{Context, has, locate_key};
 use super::ignored::ignored;
 use super::kind::{self, Kind};
-use super::record::record;
+use super::record::{record, start};
 use super::requirements::{references, requirements};
 use super::setup::setup;
 use super::sweep::{self, AxisNodes, Configurations, MAX_SETTINGS_BYTES};
@@ -132,7 +132,8 @@ fn compile_inner(file: &str, source: &str, options: &Options<'_>) -> Result<Scen
     let points = compiled.as_ref().map(Configurations::points);
     let requirements = requirements(&mut ctx, &raw.requirements, points);
     let references = references(&mut ctx, &raw.references, points);
-    let record = record(&mut ctx, raw.record.as_ref(), options.record, points);
+    let start = start(&mut ctx, raw.time.as_ref());
+    let record = record(&mut ctx, raw.record.as_ref(), options.record, points, start);
     ctx.finish(compiled.map(Configurations::into_parts).map(|(points, rows)| {
         Scenario {
             file: file.to_string(),

@@ -19,9 +19,10 @@ pub use metric::{Metric, ValueDomain};
 pub use requirement::{
     Bound, Check, Invariant, ObjectProperty, OverSeeds, RateBound, Reference, Requirement, Signal, Statistic, Temporal,
 };
+pub(crate) use scenario::grid_every;
 pub use scenario::{
-    Assignment, Axis, Experiment, Grid, Import, ImportKind, Label, Occupancy, Point, Record, Scenario, Settings, Setup,
-    Sweep, display_value,
+    Assignment, Axis, DEFAULT_START, Experiment, Grid, Import, ImportKind, Label, Occupancy, Point, Record, Scenario,
+    Settings, Setup, Sweep, display_value,
 };
 pub use semantic::{
     Area, Baseline, Caution, Crosswalk, Driving, Following, InteractionArea, PedestrianTraffic, RiskScope, RsuSight,

@@ -40,8 +40,14 @@ pub struct Scenario {
 /// What `sightline run` records into `run.mcap` (language section `record`).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Record {
-    /// The recorded point, an index into [`Scenario::points`].
+    /// The recorded point, an index into [`Scenario::points`]: the one the file
+    /// names, or else the first until the run is judged (see `named`).
     pub point: usize,
+    /// Whether the file names the recorded point (`point` or `where`). When it
+    /// does not and the scenario has several points, `sightline run` records
+    /// the worst point of the first failing requirement
+    /// ([`at_point`](Self::at_point)), or the first point when none fails.
+    pub named: bool,
     /// Fused grids recorded per simulated second, Hz (0: none).
     pub grid_rate: f64,
     /// Steps between recorded grids (grids at steps 0, `every`, 2 · `every`, …);
@@ -50,12 +56,45 @@ pub struct Record {
     pub grid_every: Option<usize>,
     /// Whether each cooperating agent's own grid is recorded too, at the grid rate.
     pub agent_grids: bool,
+    /// When step 0 happens (`time.start`), nanoseconds since
+    /// 1970-01-01T00:00:00Z: the recording's clock. [`DEFAULT_START`] when the
+    /// file does not say.
+    pub start: u64,
 }
 
+/// The recording's clock when a scenario gives no `time.start`:
+/// 2000-01-01T00:00:00Z, in nanoseconds since 1970-01-01T00:00:00Z. A fixed
+/// epoch rather than the run's wall-clock start, so that the same scenario and
+/// seed give the same recording, byte for byte (results.json holds its hash).
+pub const DEFAULT_START: u64 = 946_684_800_000_000_000;
+
 impl Record {
+    /// The same recording of point `point` of `points` instead: grids at the
+    /// same rate, at most one per step of that point.
+    ///
+    /// # Panics
+    ///
+    /// If `point` is not an index of `points`.
+    pub fn at_point(&self, points: &[Point], point: usize) -> Self {
+        Self {
+            point,
+            grid_every: grid_every(&points[point], self.grid_rate),
+            ..*self
+        }
+    }
+
     /// Whether the grids of `step` are recorded.
     pub fn grids_at(&self, step: usize) -> bool {
         self.grid_every.is_some_and(|every| step.is_multiple_of(every))
+    }
+}
+
+/// Steps between recorded grids of `point` at `grid_rate` grids per simulated
+/// second, at most one per step; `None` at a rate of 0 or without steps.
+pub(crate) fn grid_every(point: &Point, grid_rate: f64) -> Option<usize> {
+    match &point.setup.experiment {
+        Experiment::World(world) if grid_rate > 0.0 => Some(((1.0 / world.step / grid_rate).round() as usize).max(1)),
+        Experiment::World(_) | Experiment::Field(_) => None,
     }
 }
 

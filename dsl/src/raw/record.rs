@@ -10,7 +10,8 @@ use super::range;
 /// What `sightline run` records into `run.mcap`: one sweep point, step by
 /// step (the scene, detections, fused grids, V2X packets, semantic messages),
 /// and every point's metrics and verdicts. Give `point` or `where`, not both;
-/// neither records the first point.
+/// neither records the worst point of the first failing requirement (the first
+/// point when none fails).
 #[derive(Debug, Clone, Default, Serialize, Deserialize, JsonSchema)]
 #[serde(default, deny_unknown_fields, expecting = "a record mapping")]
 #[schemars(rename = "Record")]

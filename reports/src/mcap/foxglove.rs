@@ -1,7 +1,9 @@
 //! The Foxglove well-known message types sightline writes (JSON encoding), with
-//! the JSON Schemas it registers for them (`schemas/`, written from the field
-//! reference at docs.foxglove.dev). Foxglove recognises them by schema name and
-//! draws them without plugins.
+//! the JSON Schemas it registers for them: `schemas/` holds Foxglove's own, as
+//! npm `@foxglove/schemas` publishes them (its `jsonschema` export, the version
+//! `ci/viewers/package.json` pins, MIT licence), and CI checks that they are
+//! equal. Foxglove and Lichtblick recognise them by schema name and draw them
+//! without plugins.
 
 use base64::Engine;
 use serde::Serialize;
@@ -14,12 +16,14 @@ pub(crate) const SCENE_UPDATE_SCHEMA: &str = include_str!("schemas/foxglove.Scen
 pub(crate) const GRID_SCHEMA: &str = include_str!("schemas/foxglove.Grid.json");
 /// `foxglove.Log`'s JSON Schema.
 pub(crate) const LOG_SCHEMA: &str = include_str!("schemas/foxglove.Log.json");
+/// `foxglove.FrameTransforms`' JSON Schema.
+pub(crate) const FRAME_TRANSFORMS_SCHEMA: &str = include_str!("schemas/foxglove.FrameTransforms.json");
 
-/// The frame every entity and grid is drawn in: the scenario's world frame
-/// (metres, x east, y north, z up).
-pub(crate) const FRAME: &str = "world";
+/// The root of the frame tree, which every entity and grid is drawn in: the
+/// scenario's world frame (metres, x east, y north, z up).
+pub(crate) const FRAME: &str = "map";
 
-/// Simulated time as Foxglove's `time`.
+/// A recording time as Foxglove's `time`.
 #[derive(Debug, Clone, Copy, Serialize)]
 pub(crate) struct Time {
     sec: u64,
@@ -27,7 +31,7 @@ pub(crate) struct Time {
 }
 
 impl Time {
-    /// The time `nanos` nanoseconds after the start.
+    /// The time `nanos` nanoseconds after 1970-01-01T00:00:00Z.
     pub(crate) fn from_nanos(nanos: u64) -> Self {
         Self {
             sec: nanos / 1_000_000_000,
@@ -65,6 +69,35 @@ struct Quaternion {
 pub(crate) struct Pose3 {
     position: Vector3,
     orientation: Quaternion,
+}
+
+/// `foxglove.FrameTransform`: where frame `child` lies in frame `parent`.
+#[derive(Debug, Clone, Serialize)]
+pub(crate) struct FrameTransform {
+    timestamp: Time,
+    parent_frame_id: String,
+    child_frame_id: String,
+    translation: Vector3,
+    rotation: Quaternion,
+}
+
+impl FrameTransform {
+    /// Frame `child` at `pose` in frame `parent`, at `timestamp`.
+    pub(crate) fn new(timestamp: Time, parent: impl Into<String>, child: impl Into<String>, pose: Pose3) -> Self {
+        Self {
+            timestamp,
+            parent_frame_id: parent.into(),
+            child_frame_id: child.into(),
+            translation: pose.position,
+            rotation: pose.orientation,
+        }
+    }
+}
+
+/// `foxglove.FrameTransforms`.
+#[derive(Debug, Clone, Serialize)]
+pub(crate) struct FrameTransforms {
+    pub(crate) transforms: Vec<FrameTransform>,
 }
 
 /// Millimetres are plenty for a picture and keep the recording small.

@@ -4,12 +4,14 @@
 pub use read::{ReadError, RecordedRun, Recording, read};
 pub use wire::{
     ApproachRecord, ArrivalRecord, AuditRecord, CellSignals, ConflictRecord, ImportRecord, ItemRecord, MessageRecord,
-    MetricValue, OutcomeRecord, PacketRecord, PointVerdictRecord, RECORDING_FORMAT, Real, RequirementSignal,
-    RequirementSignals, ScenarioRecord, SemanticSignals, SignalsRecord, VerdictRecord,
+    MetricValue, ObjectRecord, ObjectValue, OutcomeRecord, PacketRecord, PointVerdictRecord, RECORDING_FORMAT, Real,
+    ReplicateRecord, RequirementSignal, RequirementSignals, ScenarioRecord, SemanticSignals, SeriesRecord, SeriesRun,
+    SeriesSample, SignalsRecord, VerdictRecord,
 };
 pub use write::{Recorder, Source, WriteError};
 
 mod counts;
+mod flat;
 mod foxglove;
 mod lengths;
 mod read;

@@ -88,6 +88,7 @@ pub fn read(bytes: &[u8]) -> Result<Recording, ReadError> {
     let mut counts: BTreeMap<String, u64> = BTreeMap::new();
     let mut attachments: BTreeMap<String, Vec<u8>> = BTreeMap::new();
     let mut step_counts: Option<WorldMetrics> = None;
+    let mut malformed: Option<ReadError> = None;
     let mut offset = 0;
     while let Some(event) = reader.next_event() {
         match event? {
@@ -116,12 +117,18 @@ pub fn read(bytes: &[u8]) -> Result<Recording, ReadError> {
                         let count = counts.entry(name.clone()).or_default();
                         *count += 1;
                         let index = *count as usize;
+                        // A chunk's CRC is checked once the chunk is read, after its
+                        // messages: a message that does not decode is reported only
+                        // when the container around it is intact (a damaged byte is
+                        // damage, not a malformed message).
+                        let first = &mut malformed;
                         match name.as_str() {
-                            topic::SCENARIO => scenarios.push(decode(topic::SCENARIO, index, &data)?),
-                            topic::OUTCOME => outcomes.push(decode(topic::OUTCOME, index, &data)?),
-                            topic::VERDICTS => verdicts.push(decode(topic::VERDICTS, index, &data)?),
+                            topic::SCENARIO => scenarios.extend(kept(decode(topic::SCENARIO, index, &data), first)),
+                            topic::OUTCOME => outcomes.extend(kept(decode(topic::OUTCOME, index, &data), first)),
+                            topic::VERDICTS => verdicts.extend(kept(decode(topic::VERDICTS, index, &data), first)),
                             topic::SIGNALS => {
-                                let signals: SignalsRecord = decode(topic::SIGNALS, index, &data)?;
+                                let decoded = kept(decode::<SignalsRecord>(topic::SIGNALS, index, &data), first);
+                                let Some(signals) = decoded else { continue };
                                 if let Some(cells) = signals.cells {
                                     let tally = CellTally {
                                         occupied: cells.occupied,
@@ -147,6 +154,9 @@ pub fn read(bytes: &[u8]) -> Result<Recording, ReadError> {
                 }
             }
         }
+    }
+    if let Some(error) = malformed {
+        return Err(error);
     }
     let scenario = match <[ScenarioRecord; 1]>::try_from(scenarios) {
         Ok([scenario]) => scenario,
@@ -205,6 +215,12 @@ pub fn read(bytes: &[u8]) -> Result<Recording, ReadError> {
 
 fn decode<T: DeserializeOwned>(topic: &'static str, index: usize, data: &[u8]) -> Result<T, ReadError> {
     serde_json::from_slice(data).map_err(|error| ReadError::Message { topic, index, error })
+}
+
+/// The decoded message, or `None` with its error kept in `first` (the first one
+/// only).
+fn kept<T>(message: Result<T, ReadError>, first: &mut Option<ReadError>) -> Option<T> {
+    message.map_err(|error| first.get_or_insert(error)).ok()
 }
 
 /// The recorded measurements of every point, for the oracles.
@@ -283,7 +299,7 @@ impl Recording {
                     };
                     RecordedPoint {
                         metrics: std::iter::once(&o.metrics)
-                            .chain(&o.replicates)
+                            .chain(o.replicates.iter().map(|r| &r.metrics))
                             .map(|values| metrics(values))
                             .collect(),
                         audit: o.audit.map(MassAudit::from),
@@ -294,7 +310,7 @@ impl Recording {
                                 let runs = s
                                     .runs
                                     .iter()
-                                    .map(|run| run.iter().map(|&(t, v)| (t.0, v.0)).collect())
+                                    .map(|run| run.samples.iter().map(|s| (s.time.0, s.value.0)).collect())
                                     .collect();
                                 (s.signal, runs)
                             })
@@ -302,7 +318,7 @@ impl Recording {
                         per_object: o
                             .per_object
                             .iter()
-                            .map(|p| (p.property, p.values.iter().map(|v| v.map(|r| r.0)).collect()))
+                            .map(|p| (p.property, p.values.iter().map(|v| v.value.map(|r| r.0)).collect()))
                             .collect(),
                     }
                 })

@@ -14,6 +14,9 @@ pub const SIGNALS: &str = "/sightline/signals";
 pub const REQUIREMENTS: &str = "/sightline/requirements";
 /// `foxglove.SceneUpdate`, once at time 0: roads, occluders, areas, the region.
 pub const MAP: &str = "/scene/map";
+/// `foxglove.FrameTransforms`, every step: the frame tree, `map` → each agent
+/// in the scene → its sensors.
+pub const TRANSFORMS: &str = "/tf";
 /// `foxglove.SceneUpdate`, every step: agents, their ids and fields of view.
 pub const AGENTS: &str = "/scene/agents";
 /// `foxglove.Grid`, at the grid rate: fused probability and uncertainty.

@@ -1,6 +1,11 @@
 //! sightline's own channels in a recording: their JSON wire types, whose JSON
-//! Schemas (generated from these types) the recording registers. Those
-//! `sightline replay` reads back also deserialize.
+//! Schemas (generated from these types and made flat by [`flat`](super::flat))
+//! the recording registers. Those `sightline replay` reads back also
+//! deserialize.
+//!
+//! The viewers' schema parsers read one type per field, so a `None` is left out
+//! of its message (never `null`), and a list holds objects or plain values,
+//! never lists or `null`s.
 
 use std::borrow::Cow;
 use std::fmt;
@@ -15,11 +20,14 @@ use crate::Tool;
 
 /// The format of sightline's recordings, written in `/sightline/scenario`;
 /// replay reads this version only.
-pub const RECORDING_FORMAT: &str = "sightline-recording/2";
+pub const RECORDING_FORMAT: &str = "sightline-recording/3";
 
 /// A number that survives JSON exactly: finite values as JSON numbers (read back
-/// bit for bit), NaN and infinities as the strings `NaN`, `inf`, `-inf` (JSON has
-/// no number for them).
+/// bit for bit). JSON has no number for NaN and the infinities, and the viewers'
+/// schema parsers no type but one per field, so the schema says `number`: no
+/// simulation gives a non-finite value, and should a defect give one, it is
+/// written as the string `NaN`, `inf` or `-inf`, read back as such, and refused
+/// by replay's domain check (that message then breaks its schema, as it should).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Real(pub f64);
 
@@ -71,8 +79,8 @@ impl JsonSchema for Real {
 
     fn json_schema(_: &mut SchemaGenerator) -> Schema {
         json_schema!({
-            "description": "A number; NaN and infinities as the strings `NaN`, `inf`, `-inf`",
-            "oneOf": [{ "type": "number" }, { "enum": ["NaN", "inf", "-inf"] }]
+            "type": "number",
+            "description": "A finite number, read back bit for bit"
         })
     }
 }
@@ -92,7 +100,8 @@ pub struct ScenarioRecord {
     pub text: String,
     /// SHA-256 of the text, lowercase hex.
     pub sha256: String,
-    /// The seed `--seed` imposed (`null`: the file's own).
+    /// The seed `--seed` imposed (left out: the file's own).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub seed: Option<u64>,
     /// Whether `--record` asked for the recording (the file may have no `record`).
     pub record_flag: bool,
@@ -127,11 +136,12 @@ pub struct OutcomeRecord {
     pub label: String,
     /// Every metric the point measures, in documentation order.
     pub metrics: Vec<MetricValue>,
-    /// The mass-function audit of its fused cells (`null` where nothing is fused).
+    /// The mass-function audit of its fused cells (left out where nothing is fused).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub audit: Option<AuditRecord>,
-    /// Every metric of each replicate seed its checks over seeds ran (replicate
-    /// 1, 2, …; empty without such a check).
-    pub replicates: Vec<Vec<MetricValue>>,
+    /// Each replicate seed its checks over seeds ran (replicate 1, 2, …; empty
+    /// without such a check).
+    pub replicates: Vec<ReplicateRecord>,
     /// The signals its temporal checks read, over each run.
     pub series: Vec<SeriesRecord>,
     /// The per-object properties its checks read.
@@ -143,8 +153,24 @@ pub struct OutcomeRecord {
 pub struct SeriesRecord {
     /// The signal's name, as in scenario files.
     pub signal: Signal,
-    /// Per run, its defined steps as (time, value).
-    pub runs: Vec<Vec<(Real, Real)>>,
+    /// Per run, its defined steps.
+    pub runs: Vec<SeriesRun>,
+}
+
+/// A signal over one run.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct SeriesRun {
+    /// Its defined steps, in time order.
+    pub samples: Vec<SeriesSample>,
+}
+
+/// A signal's value at one step.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct SeriesSample {
+    /// The step's time, seconds.
+    pub time: Real,
+    /// The signal's value.
+    pub value: Real,
 }
 
 /// A per-object property of one point.
@@ -152,8 +178,23 @@ pub struct SeriesRecord {
 pub struct ObjectRecord {
     /// The property's name, as in scenario files.
     pub property: ObjectProperty,
-    /// Per close approach, in order (`null`: the object has none).
-    pub values: Vec<Option<Real>>,
+    /// Per close approach, in order.
+    pub values: Vec<ObjectValue>,
+}
+
+/// A per-object property of one close approach.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct ObjectValue {
+    /// Its value (left out: the object has none).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub value: Option<Real>,
+}
+
+/// Every metric of one replicate seed.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct ReplicateRecord {
+    /// Every metric it measures, in documentation order.
+    pub metrics: Vec<MetricValue>,
 }
 
 /// One metric's value and sample size.
@@ -161,7 +202,8 @@ pub struct ObjectRecord {
 pub struct MetricValue {
     /// The metric's name, as in scenario files.
     pub metric: Metric,
-    /// Its value (`null` where it is undefined: an empty population).
+    /// Its value (left out where it is undefined: an empty population).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub value: Option<Real>,
     /// The number of samples it is computed over (see the metric's population
     /// in the language reference).
@@ -176,8 +218,10 @@ pub struct AuditRecord {
     /// Cells with a NaN or infinite mass.
     pub non_finite: u64,
     /// Smallest finite mass of any cell.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub min_mass: Option<Real>,
     /// Largest finite mass of any cell.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub max_mass: Option<Real>,
     /// Largest |Σ masses − 1| of any finite cell.
     pub max_sum_error: Real,
@@ -219,12 +263,15 @@ pub struct VerdictRecord {
     /// `pass`, `not_exercised`, `fail` or `error`.
     pub verdict: String,
     /// Why a not-exercised verdict is acceptable, when the scenario says so.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub accepted: Option<String>,
     /// The deciding measured value.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub value: Option<Real>,
     /// The threshold (for invariants: the tolerance).
     pub threshold: Real,
     /// The deciding signed margin (≥ 0 holds).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub margin: Option<Real>,
     /// The deciding check in words.
     pub message: String,
@@ -240,12 +287,15 @@ pub struct PointVerdictRecord {
     /// `pass`, `not_exercised`, `fail` or `error`.
     pub verdict: String,
     /// The measured value.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub value: Option<Real>,
     /// Its sample size.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub n: Option<u64>,
     /// What the value holds.
     pub measured: String,
     /// The signed margin.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub margin: Option<Real>,
     /// The check in words.
     pub message: String,
@@ -257,16 +307,18 @@ pub struct PointVerdictRecord {
 pub struct SignalsRecord {
     /// The step; step k is at time k · `time.step`.
     pub step: usize,
-    /// A perception world's fused grid at this step (`null` in a semantic world,
+    /// A perception world's fused grid at this step (left out in a semantic world,
     /// or when the ego is not in the scene: such steps count in no metric).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub cells: Option<CellSignals>,
-    /// A semantic world's traffic at this step (`null` in a perception world).
+    /// A semantic world's traffic at this step (left out in a perception world).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub semantic: Option<SemanticSignals>,
 }
 
 /// The fused grid of one step against the truth, counted over the cells the
 /// metrics count (the region of interest, occluders and the ego's footprint left
-/// out). Ratios are `null` where undefined.
+/// out). Ratios are left out where undefined.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct CellSignals {
     /// Cells the ego observed.
@@ -290,14 +342,19 @@ pub struct CellSignals {
     /// Of those, observed occupied by no sensor.
     pub self_report_only: u64,
     /// This step's `occupied_recall`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub recall: Option<f64>,
     /// This step's `occupied_precision`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub precision: Option<f64>,
     /// This step's `blind_recall`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub blind_recall: Option<f64>,
     /// This step's `self_report_share`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub self_report_share: Option<f64>,
     /// This step's `fov_gain`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub fov_gain: Option<f64>,
 }
 
@@ -318,7 +375,8 @@ pub struct SemanticSignals {
     pub approaches: u64,
     /// Of those, without a conflict flagged to the ego beforehand.
     pub missed: u64,
-    /// The shortest time to conflict the RSUs predicted, seconds (`null`: none).
+    /// The shortest time to conflict the RSUs predicted, seconds (left out: none).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub min_time_to_conflict: Option<f64>,
 }
 
@@ -340,12 +398,14 @@ pub struct RequirementSignal {
     pub id: String,
     /// Its metric.
     pub metric: Metric,
-    /// The metric over the steps so far (`null` while undefined). A semantic
+    /// The metric over the steps so far (left out while undefined). A semantic
     /// point's metric is over its first run only.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub value: Option<f64>,
     /// The threshold.
     pub threshold: f64,
     /// The signed margin so far (≥ 0 holds).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub margin: Option<f64>,
 }
 
@@ -363,12 +423,14 @@ pub struct PacketRecord {
     /// message to the ego) or `direct` (a connected road user's state to the ego).
     pub kind: String,
     /// A downlink's size on the channel, bytes.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub bytes: Option<u64>,
     /// Distance between the antennas, metres.
     pub distance_m: f64,
     /// Whether the direct path is free of buildings.
     pub los: bool,
-    /// Received power, dBm (`null` when not finite).
+    /// Received power, dBm (left out when not finite).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rssi_dbm: Option<f64>,
     /// Whether it reached the receiver's sensitivity.
     pub received: bool,
@@ -408,13 +470,15 @@ pub struct ItemRecord {
     /// The object's agent id.
     pub agent: String,
     /// Occluded from the ego: `static` (by a building) or `dynamic` (by road
-    /// users only); `null` in line of sight.
+    /// users only); left out in line of sight.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub nlos: Option<String>,
     /// Interaction relevance.
     pub relevant: bool,
     /// A dangerous driver (speed violation).
     pub speeding: bool,
     /// A predicted conflict with the ego's plan.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub conflict: Option<ConflictRecord>,
 }
 
@@ -438,11 +502,6 @@ pub struct ApproachRecord {
     /// Whether a conflict with it had reached the ego before: `false` is a
     /// missed critical.
     pub flagged: bool,
-}
-
-/// The JSON Schema of `T`, as registered in a recording.
-pub(crate) fn schema_of<T: JsonSchema>() -> Vec<u8> {
-    serde_json::to_vec(&schemars::schema_for!(T)).expect("a JSON Schema serializes")
 }
 
 #[cfg(test)]

@@ -92,7 +92,8 @@ pub struct Recorder<'s, W: Write + Seek> {
     sequence: u32,
     /// The first write error; once set, nothing more is written.
     failure: Option<WriteError>,
-    /// Log time of the latest step, nanoseconds.
+    /// Log time of the latest step, nanoseconds since 1970 (the recording's
+    /// clock starts at `record.start`).
     last: u64,
     agents: Vec<Agent>,
     /// Per agent, its sensors' field-of-view outlines in the sensor frame.
@@ -155,7 +156,7 @@ impl<'s, W: Write + Seek> Recorder<'s, W> {
             schemas: BTreeMap::new(),
             sequence: 0,
             failure: None,
-            last: 0,
+            last: record.start,
             agents: Vec::new(),
             fields_of_view: Vec::new(),
             ego: world.and_then(|w| {
@@ -175,7 +176,7 @@ impl<'s, W: Write + Seek> Recorder<'s, W> {
         recorder.publish(
             topic::SCENARIO,
             SCENARIO,
-            0,
+            record.start,
             &ScenarioRecord {
                 format: RECORDING_FORMAT.into(),
                 tool: source.tool.clone(),
@@ -199,16 +200,16 @@ impl<'s, W: Write + Seek> Recorder<'s, W> {
         );
         for import in &scenario.imports {
             recorder.out.attach(&Attachment {
-                log_time: 0,
-                create_time: 0,
+                log_time: record.start,
+                create_time: record.start,
                 name: import.path.clone(),
                 media_type: "application/xml".into(),
                 data: std::borrow::Cow::Borrowed(&import.bytes),
             })?;
         }
         if let Some(world) = world {
-            let map = map_entities(world, recorder.grid.as_ref());
-            recorder.publish(topic::MAP, SCENE, 0, &SceneUpdate::add(map));
+            let map = map_entities(world, recorder.grid.as_ref(), record.start);
+            recorder.publish(topic::MAP, SCENE, record.start, &SceneUpdate::add(map));
         }
         recorder.take_failure()?;
         Ok(recorder)
@@ -243,6 +244,12 @@ impl<'s, W: Write + Seek> Recorder<'s, W> {
             .collect();
         let message = RequirementSignals { step, requirements };
         self.publish(topic::REQUIREMENTS, REQUIREMENTS, time, &message);
+    }
+
+    /// The recording's time `seconds` of simulated time after step 0, nanoseconds
+    /// since 1970.
+    fn at(&self, seconds: f64) -> u64 {
+        self.record.start.saturating_add(nanos(seconds))
     }
 
     fn agent_id(&self, index: usize) -> String {

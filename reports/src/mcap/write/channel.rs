@@ -10,10 +10,11 @@ use mcap::records::MessageHeader;
 use serde::Serialize;
 
 use super::{Recorder, WriteError};
-use crate::mcap::foxglove::{GRID_SCHEMA, LOG_SCHEMA, SCENE_UPDATE_SCHEMA};
+use crate::mcap::flat::flat_schema_of as schema_of;
+use crate::mcap::foxglove::{FRAME_TRANSFORMS_SCHEMA, GRID_SCHEMA, LOG_SCHEMA, SCENE_UPDATE_SCHEMA};
 use crate::mcap::wire::{
     ApproachRecord, ArrivalRecord, MessageRecord, OutcomeRecord, PacketRecord, RequirementSignals, ScenarioRecord,
-    SignalsRecord, VerdictRecord, schema_of,
+    SignalsRecord, VerdictRecord,
 };
 
 /// A channel's schema: its name and its JSON Schema.
@@ -29,11 +30,14 @@ impl SchemaSpec {
     }
 }
 
-// Foxglove's schemas as written in `schemas/`; sightline's derived from the record
-// types (each named by its `title`).
+// Foxglove's schemas as published (`schemas/`); sightline's derived from the
+// record types (each named by its `title`) and made flat.
 pub(super) const SCENE: SchemaSpec =
     SchemaSpec::new("foxglove.SceneUpdate", || SCENE_UPDATE_SCHEMA.as_bytes().to_vec());
 pub(super) const GRID: SchemaSpec = SchemaSpec::new("foxglove.Grid", || GRID_SCHEMA.as_bytes().to_vec());
+pub(super) const TRANSFORMS: SchemaSpec = SchemaSpec::new("foxglove.FrameTransforms", || {
+    FRAME_TRANSFORMS_SCHEMA.as_bytes().to_vec()
+});
 pub(super) const LOG: SchemaSpec = SchemaSpec::new("foxglove.Log", || LOG_SCHEMA.as_bytes().to_vec());
 pub(super) const SCENARIO: SchemaSpec = SchemaSpec::new("sightline.Scenario", schema_of::<ScenarioRecord>);
 pub(super) const OUTCOME: SchemaSpec = SchemaSpec::new("sightline.Outcome", schema_of::<OutcomeRecord>);

@@ -13,7 +13,8 @@ use super::{Recorder, WriteError};
 use crate::mcap::foxglove::{Level, Log, Time};
 use crate::mcap::topic;
 use crate::mcap::wire::{
-    AuditRecord, MetricValue, ObjectRecord, OutcomeRecord, PointVerdictRecord, Real, SeriesRecord, VerdictRecord,
+    AuditRecord, MetricValue, ObjectRecord, ObjectValue, OutcomeRecord, PointVerdictRecord, Real, ReplicateRecord,
+    SeriesRecord, SeriesRun, SeriesSample, VerdictRecord,
 };
 
 impl<W: Write + Seek> Recorder<'_, W> {
@@ -49,7 +50,12 @@ impl<W: Write + Seek> Recorder<'_, W> {
                 label: point.label(),
                 metrics: metric_values(outcome),
                 audit: outcome.audit().copied().map(AuditRecord::from),
-                replicates: run.replicates[point.index].iter().map(metric_values).collect(),
+                replicates: run.replicates[point.index]
+                    .iter()
+                    .map(|outcome| ReplicateRecord {
+                        metrics: metric_values(outcome),
+                    })
+                    .collect(),
                 series: signals
                     .into_iter()
                     .filter_map(|signal| {
@@ -58,7 +64,15 @@ impl<W: Write + Seek> Recorder<'_, W> {
                             signal,
                             runs: runs
                                 .iter()
-                                .map(|series| series.iter().map(|&(t, v)| (Real(t), Real(v))).collect())
+                                .map(|series| SeriesRun {
+                                    samples: series
+                                        .iter()
+                                        .map(|&(time, value)| SeriesSample {
+                                            time: Real(time),
+                                            value: Real(value),
+                                        })
+                                        .collect(),
+                                })
                                 .collect(),
                         })
                     })
@@ -69,7 +83,7 @@ impl<W: Write + Seek> Recorder<'_, W> {
                         let values = outcome.per_object(property)?;
                         Some(ObjectRecord {
                             property,
-                            values: values.iter().map(|v| v.map(Real)).collect(),
+                            values: values.iter().map(|v| ObjectValue { value: v.map(Real) }).collect(),
                         })
                     })
                     .collect(),

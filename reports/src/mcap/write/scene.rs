@@ -1,7 +1,8 @@
 //! The scene a recording shows in Foxglove's 3D panel: the map (`/scene/map`),
-//! the agents with their fields of view (`/scene/agents`) and what each
-//! cooperating agent detected (`/perception/<id>/detections`), with the shapes
-//! and colours they are drawn in.
+//! the frame tree (`/tf`: `map` → each agent → its sensors), the agents with
+//! their fields of view (`/scene/agents`) and what each cooperating agent
+//! detected (`/perception/<id>/detections`), with the shapes and colours they
+//! are drawn in.
 
 use std::collections::BTreeSet;
 use std::f64::consts::{PI, TAU};
@@ -11,9 +12,17 @@ use sightline_dsl::{Agent, AgentKind, Area, Grid as CellGrid, World};
 use sightline_engine::trace::{AgentState, Body, CooperatorStep, Vector};
 
 use super::Recorder;
-use super::channel::SCENE;
-use crate::mcap::foxglove::{Color, Cube, Entity, Line, LineType, Pose3, SceneUpdate, Text, Time, Vector3};
+use super::channel::{SCENE, TRANSFORMS};
+use crate::mcap::foxglove::{
+    Color, Cube, Entity, FRAME, FrameTransform, FrameTransforms, Line, LineType, Pose3, SceneUpdate, Text, Time,
+    Vector3,
+};
 use crate::mcap::topic;
+
+/// The frame of sensor `index` of agent `agent` (`<agent>/sensor<index>`).
+fn sensor_frame(agent: &str, index: usize) -> String {
+    format!("{agent}/sensor{index}")
+}
 
 /// Segments of a full circle (a 360° sensor's range, a region).
 const CIRCLE_SEGMENTS: usize = 72;
@@ -36,10 +45,29 @@ const DETECTION: Color = Color::rgba(1.0, 0.2, 0.6, 0.7);
 const ESTIMATE: Color = Color::rgba(0.1, 0.9, 0.9, 0.9);
 
 impl<W: Write + Seek> Recorder<'_, W> {
-    /// `/scene/agents`: every agent in the scene as a box with its id, and its
-    /// sensors' fields of view.
+    /// `/tf` and `/scene/agents`: every agent in the scene as a frame and as a
+    /// box with its id, and its sensors as frames and fields of view.
     pub(super) fn publish_agents(&mut self, time: u64, states: &[Option<AgentState>]) {
         let stamp = Time::from_nanos(time);
+        let transforms = states
+            .iter()
+            .zip(&self.agents)
+            .zip(&self.fields_of_view)
+            .filter_map(|((state, agent), sensors)| Some((state.as_ref()?, agent, sensors)))
+            .flat_map(|(state, agent, sensors)| {
+                let own = FrameTransform::new(stamp, FRAME, agent.id.clone(), Pose3::planar(state.pose, 0.0));
+                let mounts = sensors.iter().enumerate().map(|(i, (mount, _, _))| {
+                    FrameTransform::new(
+                        stamp,
+                        agent.id.clone(),
+                        sensor_frame(&agent.id, i),
+                        Pose3::planar(*mount, 0.0),
+                    )
+                });
+                std::iter::once(own).chain(mounts)
+            })
+            .collect();
+        self.publish(topic::TRANSFORMS, TRANSFORMS, time, &FrameTransforms { transforms });
         let entities = states
             .iter()
             .enumerate()
@@ -154,9 +182,9 @@ pub(super) fn field_of_view(range: f64, fov: f64) -> (LineType, Vec<Vector>) {
 }
 
 /// `/scene/map`: the grid's outline (where there is a grid), roads, occluders,
-/// interaction areas, crosswalks and the perception region.
-pub(super) fn map_entities(world: &World, grid: Option<&CellGrid>) -> Vec<Entity> {
-    let stamp = Time::from_nanos(0);
+/// interaction areas, crosswalks and the perception region, stamped `start`.
+pub(super) fn map_entities(world: &World, grid: Option<&CellGrid>, start: u64) -> Vec<Entity> {
+    let stamp = Time::from_nanos(start);
     let flat = |points: &[[f64; 2]]| points.iter().map(|&[x, y]| Vector::new(x, y)).collect::<Vec<_>>();
     let loop_line =
         |points: Vec<Vector>, thickness, color| Line::new(LineType::Loop, Pose3::identity(), points, thickness, color);

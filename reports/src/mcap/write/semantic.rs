@@ -7,7 +7,7 @@ use std::io::{Seek, Write};
 use sightline_engine::trace::{Item, PacketKind, SemanticStep, Visibility};
 
 use super::channel::{APPROACH, ARRIVAL, MESSAGE, PACKET, SIGNALS};
-use super::{Recorder, Running, nanos};
+use super::{Recorder, Running};
 use crate::mcap::topic;
 use crate::mcap::wire::{
     ApproachRecord, ArrivalRecord, ConflictRecord, ItemRecord, MessageRecord, PacketRecord, SemanticSignals,
@@ -19,14 +19,14 @@ impl<W: Write + Seek> Recorder<'_, W> {
     /// ego, the agents, every packet and semantic message sent, the close
     /// approaches, and the step's signals, its counts added to the running sums.
     pub(super) fn publish_semantic_step(&mut self, step: &SemanticStep<'_>) {
-        let time = nanos(step.time);
+        let time = self.at(step.time);
         self.last = time;
         for arrival in step.arrivals {
             let record = ArrivalRecord {
                 at: arrival.at,
                 items: self.items(&arrival.items),
             };
-            self.publish(topic::ARRIVALS, ARRIVAL, nanos(arrival.at), &record);
+            self.publish(topic::ARRIVALS, ARRIVAL, self.at(arrival.at), &record);
         }
         self.publish_agents(time, step.agents);
         let mut signals = SemanticSignals {

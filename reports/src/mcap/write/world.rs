@@ -9,7 +9,7 @@ use sightline_engine::outcome::{CellTally, WorldMetrics};
 use sightline_engine::trace::{CooperatorStep, FusedGrid, Measured, Observed, WorldStep};
 
 use super::channel::{GRID, SIGNALS};
-use super::{Recorder, Running, nanos};
+use super::{Recorder, Running};
 use crate::mcap::foxglove::{Grid, Numeric, Time};
 use crate::mcap::topic;
 use crate::mcap::wire::{CellSignals, SignalsRecord};
@@ -19,7 +19,7 @@ impl<W: Write + Seek> Recorder<'_, W> {
     /// cooperating agent's detections, the fused grid and the agents' own grids
     /// (at the grid rate), and the step's signals.
     pub(super) fn publish_world_step(&mut self, step: &WorldStep<'_>) {
-        let time = nanos(step.time);
+        let time = self.at(step.time);
         self.last = time;
         self.publish_agents(time, step.agents);
         self.publish_detections(time, step.cooperators);

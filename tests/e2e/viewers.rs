@@ -1,0 +1,303 @@
+//! Recordings the viewers load (issue 18, part 1), checked with the viewers'
+//! own artefacts rather than look-alikes: every bundled scenario's run.mcap,
+//! its channels and messages read with the MCAP library, is handed to
+//! `ci/viewers/check-recording.js`, which checks with the npm packages
+//! `ci/viewers/package-lock.json` pins that every `foxglove.*` schema equals the
+//! one `@foxglove/schemas` publishes, that every schema is in the subset
+//! Foxglove's and Lichtblick's parsers accept, and that every message validates
+//! against its schema (ajv).
+//!
+//! `.ci/run` installs the packages (`npm ci`) and sets `SIGHTLINE_VIEWER_CHECKS`;
+//! the test then fails rather than skips. Without it, it runs when `node` and
+//! the installed packages are there, and says why it skips otherwise.
+// See: issue 18, "Recordings the viewers load".
+
+use std::collections::BTreeSet;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::sync::OnceLock;
+
+use crate::bundled::every_run;
+use crate::support::{RECORDING, arg, read, root, sightline, temp_dir};
+
+/// Set by `.ci/run` once `npm ci` has installed `ci/viewers/`: the check must run.
+const CHECKS_VAR: &str = "SIGHTLINE_VIEWER_CHECKS";
+
+/// The folder of the check script and its pinned packages.
+fn viewers() -> PathBuf {
+    root().join("ci/viewers")
+}
+
+/// Whether the check can run here; panics when `.ci/run` asked for it and it
+/// cannot.
+fn checks_available() -> bool {
+    let node = Command::new("node")
+        .arg("--version")
+        .output()
+        .is_ok_and(|o| o.status.success());
+    let installed =
+        viewers().join("node_modules/@foxglove/schemas").is_dir() && viewers().join("node_modules/ajv").is_dir();
+    let required = std::env::var_os(CHECKS_VAR).is_some() || std::env::var_os("CI").is_some();
+    let why = match (node, installed) {
+        (true, true) => return true,
+        (false, _) => "node is not on PATH",
+        (true, false) => "ci/viewers has no node_modules (run `npm ci --prefix ci/viewers`)",
+    };
+    assert!(
+        !required,
+        "{CHECKS_VAR} or CI is set but {why}: the viewers' checks cannot run"
+    );
+    eprintln!("skipped: {why}; .ci/run installs the viewers' packages and runs this check");
+    false
+}
+
+/// One JSON line per schema, then one per message, as `check-recording.js` reads them.
+fn dump(recording: &[u8], out: &Path) {
+    let mut lines = std::io::BufWriter::new(std::fs::File::create(out).unwrap());
+    let summary = mcap::Summary::read(recording)
+        .expect("the recording has a valid summary")
+        .expect("the recording has a summary");
+    for schema in summary.schemas.values() {
+        let line = serde_json::json!({
+            "schema": schema.name,
+            "encoding": schema.encoding,
+            "data": String::from_utf8(schema.data.to_vec()).expect("a JSON Schema is UTF-8"),
+        });
+        writeln!(lines, "{line}").unwrap();
+    }
+    for message in mcap::MessageStream::new(recording).expect("the recording reads") {
+        let message = message.expect("every message reads");
+        let channel = &message.channel;
+        let line = serde_json::json!({
+            "topic": channel.topic,
+            "schema": channel.schema.as_ref().map(|s| s.name.clone()),
+            "encoding": channel.message_encoding,
+            "data": String::from_utf8(message.data.to_vec()).expect("a JSON message is UTF-8"),
+        });
+        writeln!(lines, "{line}").unwrap();
+    }
+    lines.flush().unwrap();
+}
+
+/// Recordings of the topics the bundled ones leave out, by name: a short
+/// roundabout with every vehicle cooperating and each one's own grid, its
+/// clock set to 2026-03-01T08:00:00Z (`time.start`, written at +01:00), and the
+/// urban junction with a d_min of 6 m (close approaches) and one run per point.
+fn extra_recordings() -> &'static [(&'static str, Vec<u8>)] {
+    static RECORDINGS: OnceLock<Vec<(&'static str, Vec<u8>)>> = OnceLock::new();
+    RECORDINGS.get_or_init(|| {
+        let roundabout = read(&root().join("scenarios/roundabout-six-agents.yaml"))
+            .replace(
+                "duration: 30, step: 0.1",
+                "duration: 3, step: 0.1, start: 2026-03-01T09:00:00+01:00",
+            )
+            .replace("snapshot: 12", "snapshot: 2")
+            + "record: { where: { perception.cooperating: 6 }, agent_grids: true }\n";
+        let urban = read(&root().join("scenarios/urban-rsu-semantic.yaml"))
+            .replace("duration: 120", "duration: 80")
+            .replace("runs: 5 ", "runs: 1 ")
+            .replace("d_min: 2", "d_min: 6")
+            + "record: { point: 0 }\n";
+        let tmp = temp_dir();
+        [
+            ("short roundabout, agent grids", roundabout),
+            ("urban junction, d_min 6 m", urban),
+        ]
+        .into_iter()
+        .enumerate()
+        .map(|(i, (name, text))| {
+            let scenario = tmp.path().join(format!("{i}.yaml"));
+            std::fs::write(&scenario, text).unwrap();
+            let out = tmp.path().join(i.to_string());
+            let run = sightline(["run", arg(&scenario), "--out", arg(&out)]);
+            assert!(matches!(run.code, Some(0 | 1)), "{run}");
+            (name, std::fs::read(out.join(RECORDING)).unwrap())
+        })
+        .collect()
+    })
+}
+
+/// Every recording these tests read: the bundled scenarios' and the extra ones.
+fn recordings() -> Vec<(&'static str, &'static [u8])> {
+    let bundled = every_run()
+        .into_iter()
+        .map(|run| (run.scenario, run.recording.as_slice()));
+    let extra = extra_recordings().iter().map(|(name, bytes)| (*name, bytes.as_slice()));
+    bundled.chain(extra).collect()
+}
+
+/// `time.start` places the recording at its date: the first step, the map and
+/// every message's log time count from 2026-03-01T08:00:00Z, whatever offset
+/// the file writes it with (the default epoch is checked with the bundled
+/// roundabout, `record::bundled_roundabout_recording_has_foxglove_channels_and_the_steps`).
+#[test]
+fn time_start_places_the_recording_at_its_date() {
+    let (_, recording) = &extra_recordings()[0];
+    let start = 1_772_352_000_u64 * 1_000_000_000;
+    let messages: Vec<mcap::Message> = mcap::MessageStream::new(recording)
+        .unwrap()
+        .map(|m| m.unwrap())
+        .collect();
+    let first = messages.iter().map(|m| m.log_time).min().unwrap();
+    let last = messages.iter().map(|m| m.log_time).max().unwrap();
+    assert_eq!(first, start);
+    // Three seconds of 0.1 s steps: the last step at 2.9 s.
+    assert_eq!(last, start + 2_900_000_000);
+    let map = messages.iter().find(|m| m.channel.topic == "/scene/map").unwrap();
+    let map: serde_json::Value = serde_json::from_slice(&map.data).unwrap();
+    assert_eq!(
+        map["entities"][0]["timestamp"],
+        serde_json::json!({ "sec": 1_772_352_000, "nsec": 0 })
+    );
+}
+
+/// A topic as the documentation names it: an agent's id as `<id>`.
+fn documented_form(topic: &str) -> String {
+    match topic.split('/').collect::<Vec<_>>()[..] {
+        ["", "perception", _, what] => format!("/perception/<id>/{what}"),
+        _ => topic.to_string(),
+    }
+}
+
+/// The topics `docs/recording.md`'s channel table lists.
+fn documented_topics() -> BTreeSet<String> {
+    let docs = read(&root().join("docs/recording.md"));
+    let table = docs
+        .split("## Channels")
+        .nth(1)
+        .expect("docs/recording.md has a section Channels");
+    table
+        .lines()
+        .filter_map(|line| line.strip_prefix("| `/"))
+        .map(|rest| format!("/{}", &rest[..rest.find('`').expect("a topic in backquotes")]))
+        .collect()
+}
+
+/// The documented topics are exactly the written ones: every topic of the
+/// channel table is written by a real recording, and every topic a recording
+/// writes is in the table; the layout shipped in `docs/` shows only written
+/// topics.
+#[test]
+fn the_documented_topics_are_the_written_ones() {
+    let documented = documented_topics();
+    let mut written = BTreeSet::new();
+    for (name, recording) in recordings() {
+        let summary = mcap::Summary::read(recording).unwrap().unwrap();
+        for channel in summary.channels.values() {
+            let topic = documented_form(&channel.topic);
+            assert!(
+                documented.contains(&topic),
+                "{name} writes {topic}, which docs/recording.md does not list"
+            );
+            written.insert(topic);
+        }
+    }
+    let unwritten: Vec<&String> = documented.difference(&written).collect();
+    assert!(
+        unwritten.is_empty(),
+        "docs/recording.md lists topics no recording writes: {unwritten:?}"
+    );
+    let layout: serde_json::Value = serde_json::from_str(&read(&root().join("docs/foxglove-layout.json"))).unwrap();
+    let mut shown = Vec::new();
+    collect_topics(&layout, &mut shown);
+    assert!(shown.len() >= 5, "the layout shows the recording: {shown:?}");
+    for topic in shown {
+        assert!(
+            written.contains(&documented_form(&topic)),
+            "the layout shows {topic}, which no recording writes"
+        );
+    }
+}
+
+/// Every topic a layout names: keys and string values that start with `/`,
+/// cut at the message path's first `.`.
+fn collect_topics(node: &serde_json::Value, out: &mut Vec<String>) {
+    fn add(text: &str, out: &mut Vec<String>) {
+        if text.starts_with('/') {
+            out.push(text.split('.').next().unwrap_or(text).to_string());
+        }
+    }
+    match node {
+        serde_json::Value::String(text) => add(text, out),
+        serde_json::Value::Object(map) => {
+            for (key, value) in map {
+                add(key, out);
+                collect_topics(value, out);
+            }
+        }
+        serde_json::Value::Array(items) => items.iter().for_each(|item| collect_topics(item, out)),
+        _ => {}
+    }
+}
+
+/// Every recording (the bundled scenarios' and the extra ones): Foxglove's
+/// published schemas, the viewers' subset, and every message valid against its
+/// schema.
+#[test]
+fn every_recording_matches_the_viewers_schemas() {
+    if !checks_available() {
+        return;
+    }
+    let tmp = temp_dir();
+    for (i, (name, recording)) in recordings().into_iter().enumerate() {
+        let path = tmp.path().join(format!("{i}.jsonl"));
+        dump(recording, &path);
+        let output = Command::new("node")
+            .arg(viewers().join("check-recording.js"))
+            .arg(&path)
+            .output()
+            .expect("node starts");
+        let stdout = String::from_utf8_lossy(&output.stdout);
+        assert!(
+            output.status.success(),
+            "{name}: the viewers' checks found problems:\n{stdout}{}",
+            String::from_utf8_lossy(&output.stderr)
+        );
+        // The summary line: the check saw the schemas and messages.
+        assert!(stdout.contains(": 0 problem(s)"), "{name}: {stdout}");
+    }
+}
+
+/// The check is not a check that cannot fail: a look-alike of a Foxglove schema
+/// (the one sightline wrote before issue 18, with `$defs` and `$ref`), a type
+/// array and a message against its schema are each found.
+#[test]
+fn the_viewers_check_finds_what_the_viewers_refuse() {
+    if !checks_available() {
+        return;
+    }
+    let tmp = temp_dir();
+    let path = tmp.path().join("bad.jsonl");
+    let log = serde_json::json!({
+        "title": "foxglove.Log", "type": "object",
+        "$defs": { "Time": { "type": "object", "properties": { "sec": { "type": "integer" } } } },
+        "properties": { "timestamp": { "$ref": "#/$defs/Time" }, "message": { "type": "string" } }
+    });
+    let signals = serde_json::json!({
+        "title": "sightline.Signals", "type": "object",
+        "properties": { "recall": { "type": ["number", "null"] }, "step": { "type": "integer" } },
+        "required": ["step"]
+    });
+    let lines = [
+        serde_json::json!({ "schema": "foxglove.Log", "encoding": "jsonschema", "data": log.to_string() }),
+        serde_json::json!({ "schema": "sightline.Signals", "encoding": "jsonschema", "data": signals.to_string() }),
+        serde_json::json!({ "topic": "/sightline/signals", "schema": "sightline.Signals", "encoding": "json", "data": r#"{"step":"one"}"# }),
+    ];
+    std::fs::write(&path, lines.map(|l| l.to_string()).join("\n")).unwrap();
+    let output = Command::new("node")
+        .arg(viewers().join("check-recording.js"))
+        .arg(&path)
+        .output()
+        .expect("node starts");
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert_eq!(output.status.code(), Some(1), "{stdout}");
+    for expected in [
+        "schema foxglove.Log: differs from the one @foxglove/schemas publishes",
+        "schema foxglove.Log.timestamp: type undefined",
+        "schema sightline.Signals.recall: type [\"number\",\"null\"]",
+        "/sightline/signals: /step must be integer (sightline.Signals)",
+    ] {
+        assert!(stdout.contains(expected), "missing {expected:?} in:\n{stdout}");
+    }
+}
