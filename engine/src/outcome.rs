@@ -12,11 +12,15 @@
 //!   [`State`]).
 //! - A semantic world (seed 002): [`SemanticMetrics`] with its density rows
 //!   ([`DensityRow`]), delivery bins ([`DeliveryBin`]), label counts
-//!   ([`LabelCounts`]) and per-step [`Series`].
+//!   ([`LabelCounts`]), per-step [`Series`], and the per-object
+//!   [`ObjectRecord`]s with their [`Category`] and [`Closest`] approach.
 
 pub use crate::fusion::State;
 pub use crate::metrics::{BandMetrics, ConflictMetrics, Coverage, FieldMetrics, FieldOutcome, MassAudit, Series};
-pub use crate::semantic::{DELIVERY_BIN, DENSITY_BIN, DeliveryBin, DensityRow, LabelCounts, SemanticMetrics, quantile};
+pub use crate::semantic::{
+    Category, Closest, DELIVERY_BIN, DENSITY_BIN, DeliveryBin, DensityRow, LabelCounts, ObjectRecord, SemanticMetrics,
+    quantile,
+};
 pub use crate::world::{
     Calibration, CellTally, FusedCell, RELIABILITY_BINS, ReliabilityBin, Sightings, Snapshot, WorldMetrics,
     WorldOutcome,

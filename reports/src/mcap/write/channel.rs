@@ -12,8 +12,8 @@ use serde::Serialize;
 use super::{Recorder, WriteError};
 use crate::mcap::foxglove::{GRID_SCHEMA, LOG_SCHEMA, SCENE_UPDATE_SCHEMA};
 use crate::mcap::wire::{
-    ApproachRecord, ArrivalRecord, MessageRecord, OutcomeRecord, PacketRecord, RequirementSignals, ScenarioRecord,
-    SignalsRecord, VerdictRecord, schema_of,
+    ApproachRecord, ArrivalRecord, MessageRecord, OutcomeRecord, PacketRecord, RequirementSignals, RoadUserRecord,
+    ScenarioRecord, SignalsRecord, VerdictRecord, schema_of,
 };
 
 /// A channel's schema: its name and its JSON Schema.
@@ -45,6 +45,7 @@ pub(super) const PACKET: SchemaSpec = SchemaSpec::new("sightline.Packet", schema
 pub(super) const MESSAGE: SchemaSpec = SchemaSpec::new("sightline.SemanticMessage", schema_of::<MessageRecord>);
 pub(super) const ARRIVAL: SchemaSpec = SchemaSpec::new("sightline.Arrival", schema_of::<ArrivalRecord>);
 pub(super) const APPROACH: SchemaSpec = SchemaSpec::new("sightline.Approach", schema_of::<ApproachRecord>);
+pub(super) const OBJECT: SchemaSpec = SchemaSpec::new("sightline.Object", schema_of::<RoadUserRecord>);
 
 impl<W: Write + Seek> Recorder<'_, W> {
     /// Writes `message` on `topic` (created with `schema` on first use) at
