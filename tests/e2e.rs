@@ -55,6 +55,11 @@ mod bundled;
 #[path = "e2e/record.rs"]
 mod record;
 
+// The per-object record of a semantic run: one road user per category by hand,
+// the bundled junction's road users counted by category.
+#[path = "e2e/objects.rs"]
+mod objects;
+
 // The findings pages quote the bundled runs.
 #[path = "e2e/findings.rs"]
 mod findings;

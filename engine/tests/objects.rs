@@ -27,7 +27,11 @@ fn metrics() -> SemanticMetrics {
 }
 
 fn by_id<'a>(metrics: &'a SemanticMetrics, id: &str) -> &'a ObjectRecord {
-    metrics.objects.iter().find(|o| o.id == id).unwrap_or_else(|| panic!("{id} is relevant"))
+    metrics
+        .objects
+        .iter()
+        .find(|o| o.id == id)
+        .unwrap_or_else(|| panic!("{id} is relevant"))
 }
 
 /// Each message's arrival: its cycle plus the latency, within the light time.
@@ -55,7 +59,11 @@ fn each_category_occurs_once_with_its_times_by_hand() {
     assert_eq!(c.first_v2x, None);
     let closest = c.closest.unwrap();
     assert_relative_eq!(closest.time, 9.1, epsilon = 1e-9);
-    assert_relative_eq!(closest.distance, (1.5f64.powi(2) + 0.15f64.powi(2)).sqrt(), epsilon = 1e-9);
+    assert_relative_eq!(
+        closest.distance,
+        (1.5f64.powi(2) + 0.15f64.powi(2)).sqrt(),
+        epsilon = 1e-9
+    );
     assert_eq!(c.min_ttc, Some(0.0));
     assert_eq!(c.anticipation(), None);
 
@@ -70,7 +78,11 @@ fn each_category_occurs_once_with_its_times_by_hand() {
     assert_arrived(b.first_v2x, 2.1);
     assert_eq!(b.first_seen, None);
     assert_relative_eq!(b.closest.unwrap().time, 10.1, epsilon = 1e-9);
-    assert_relative_eq!(b.closest.unwrap().distance, (900.0f64 + 0.05 * 0.05).sqrt(), epsilon = 1e-9);
+    assert_relative_eq!(
+        b.closest.unwrap().distance,
+        (900.0f64 + 0.05 * 0.05).sqrt(),
+        epsilon = 1e-9
+    );
     assert_eq!(b.min_ttc, None, "it stands 30 m off the ego's way");
     assert_relative_eq!(b.anticipation().unwrap(), 10.1 - 2.12, epsilon = 1e-6);
 

@@ -250,7 +250,10 @@ fn object_tables(objects: &ObjectList) -> [TableView; 2] {
         text_columns: 1,
         head: vec!["category".into(), "road users".into()],
         rows: [
-            ("warned_before_seen: named by V2X before the ego saw it", c.warned_before_seen),
+            (
+                "warned_before_seen: named by V2X before the ego saw it",
+                c.warned_before_seen,
+            ),
             ("warned_never_seen: named by V2X, never seen", c.warned_never_seen),
             ("seen_first: seen no later than named", c.seen_first),
             ("never_known: neither named nor seen", c.never_known),

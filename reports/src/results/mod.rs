@@ -35,17 +35,15 @@ pub use counts::{
     SemanticCounts, Sightings, WorldCounts,
 };
 pub use document::{FORMAT, InputInfo, Results, ScenarioInfo, Summary};
+pub(crate) use from_run::object_result;
 pub use metrics::{Measured, MetricEntry, Ordered, Table};
-pub use objects::{
-    CategoryCounts, ClosestApproach, MAX_OBJECT_RECORDS, ObjectCategory, ObjectList, ObjectResult,
-};
+pub use objects::{CategoryCounts, ClosestApproach, MAX_OBJECT_RECORDS, ObjectCategory, ObjectList, ObjectResult};
 pub use point::{Detail, LabelResult, PointResult};
 pub use provenance::{Provenance, RecordingInfo, Tool};
 pub use reference::{Assumption, ReferencePoint, ReferenceResult};
 pub use requirement::{
     CheckInfo, OverSeeds, PointVerdict, RateBound, RequirementResult, SeedStatistics, Statistic, Status,
 };
-pub(crate) use from_run::object_result;
 pub use schema::results_schema;
 pub use sweep::{Axis, Sweep, SweepRow};
 

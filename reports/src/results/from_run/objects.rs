@@ -4,9 +4,7 @@
 use sightline_dsl::AgentKind;
 use sightline_engine::outcome as engine;
 
-use crate::results::{
-    CategoryCounts, ClosestApproach, MAX_OBJECT_RECORDS, ObjectCategory, ObjectList, ObjectResult,
-};
+use crate::results::{CategoryCounts, ClosestApproach, MAX_OBJECT_RECORDS, ObjectCategory, ObjectList, ObjectResult};
 
 pub(super) fn object_list(records: &[engine::ObjectRecord]) -> ObjectList {
     let count = |category| records.iter().filter(|r| r.category == category).count() as u64;
@@ -49,11 +47,17 @@ pub(crate) fn object_result(record: &engine::ObjectRecord) -> ObjectResult {
         first_seen,
         first_v2x,
         first_warning,
-        closest: closest.map(|engine::Closest { time, distance, position }| ClosestApproach {
-            time,
-            distance,
-            position,
-        }),
+        closest: closest.map(
+            |engine::Closest {
+                 time,
+                 distance,
+                 position,
+             }| ClosestApproach {
+                time,
+                distance,
+                position,
+            },
+        ),
         min_ttc,
         category: match category {
             engine::Category::WarnedBeforeSeen => ObjectCategory::WarnedBeforeSeen,
