@@ -293,7 +293,7 @@ mod tests {
 
     #[test]
     fn time_to_collision_at_rest_is_none_outside_d_min() {
-        assert_eq!(time_to_within(Vector::new(5.0, 0.0), Vector::zeros(), 2.0), None);
+        assert_eq!(time_to_within(Vector::new(5.0, 0.0), Vector::ZERO, 2.0), None);
     }
 
     #[test]
