@@ -3,6 +3,7 @@
 
 mod field;
 mod fusion;
+mod metric;
 mod requirement;
 mod scenario;
 mod semantic;
@@ -14,9 +15,9 @@ pub use field::{ErrorModel, Field, Layout, Masses, Truth};
 pub use fusion::{
     Decision, Fusion, FusionMethod, Rule, SourceCombination, Switch, SwitchMeasure, WeightScaling, Weighting,
 };
+pub use metric::{Metric, ValueDomain};
 pub use requirement::{
-    Bound, Check, Invariant, Metric, ObjectProperty, OverSeeds, RateBound, Reference, Requirement, Signal, Statistic,
-    Temporal, ValueDomain,
+    Bound, Check, Invariant, ObjectProperty, OverSeeds, RateBound, Reference, Requirement, Signal, Statistic, Temporal,
 };
 pub use scenario::{
     Assignment, Axis, Experiment, Grid, Import, ImportKind, Label, Occupancy, Point, Record, Scenario, Settings, Setup,

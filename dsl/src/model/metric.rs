@@ -1,0 +1,406 @@
+//! The metrics requirements check and references report, and the values a
+//! measured quantity can take.
+
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// Metrics. Counts are numbers of cells. Some exist only in the field experiment,
+/// some only in worlds (see [`Metric::in_field`], [`Metric::in_world`],
+/// [`Metric::in_semantic`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum Metric {
+    /// Share of all cells whose decided state equals the ground truth (0–1).
+    Accuracy,
+    /// Cells with no decision (p_max − p_others < θ): seed 001's Table III.
+    BelowThreshold,
+    /// `below_threshold` as a share of all cells (0–1).
+    BelowThresholdFraction,
+    /// Cells decided Occupy that are truly empty.
+    FalseAlarms,
+    /// Cells decided Empty that are truly occupied.
+    MissedDetections,
+    /// `false_alarms` + `missed_detections`: confident wrong decisions.
+    ConfidentErrors,
+    /// `confident_errors` as a share of all cells (0–1).
+    ConfidentErrorRate,
+    /// Cells decided Unknown (the Unknown mass dominates).
+    DecidedUnknown,
+    /// Cells no sensor observes.
+    Unobserved,
+    /// Mean per-cell uncertainty over observed cells (0–1): the Unknown mass for
+    /// evidential methods, the binary entropy of the occupancy probability (bits)
+    /// for `bayes`.
+    MeanUncertainty,
+    /// Mean conflict K over observed cells (evidential methods only, 0–1).
+    MeanConflict,
+    /// Largest conflict K of any cell (evidential methods only, 0–1).
+    MaxConflict,
+    /// Cells whose sources are in total conflict, K = 1 (evidential methods only).
+    TotalConflictCells,
+    /// Cells fused with the distance-weighted rule (evidential methods only).
+    WeightedCells,
+    /// World: Σ cells observed by any cooperating agent / Σ cells observed by the
+    /// ego, minus 1, over the run (seed 000 reports +260 %, that is 2.6).
+    FovGain,
+    /// World: share of the truly occupied cells the fused grid decides Occupy,
+    /// over the run, the cooperating agents' own footprints (self-report) left
+    /// out (0–1).
+    OccupiedRecall,
+    /// World: share of the cells the fused grid decides Occupy that are truly
+    /// occupied, over the run (0–1).
+    OccupiedPrecision,
+    /// World: `occupied_recall` over the cells the ego does not observe itself (0–1).
+    BlindRecall,
+    /// World: `occupied_recall` with the cooperating agents' own footprints
+    /// counted as well, as a grid that holds every road user is scored (0–1).
+    OccupiedRecallWithSelfReport,
+    /// World: share of the truly occupied cells the fused grid decides Occupy
+    /// that only a cooperating agent's report of its own footprint marks
+    /// occupied, no sensor (0–1).
+    SelfReportShare,
+    /// World: the Brier score of the fused occupancy probabilities, mean
+    /// (p − o)² over the fused cell-steps (self-report left out), with p the
+    /// pignistic probability for evidential methods (0 best, 1 worst).
+    BrierScore,
+    /// Semantic: median anticipation time by the paper's definition (seed 002,
+    /// eq. 5), seconds, over objects the ego first learned of from an RSU while
+    /// it could not see them and later saw itself.
+    AnticipationMedian,
+    /// Semantic: 95th percentile of the paper's anticipation time, seconds.
+    AnticipationP95,
+    /// Semantic: mean number of objects per step the ego knows only through an RSU.
+    InfrastructureContribution,
+    /// Semantic: share of the objects the RSUs perceive that they send (0–1), over
+    /// the cycles `semantic.shares_over` selects.
+    TransmittedShare,
+    /// Semantic: share of the objects the RSUs perceive that they send with at
+    /// least one label: NLoS, relevance, speed violation or conflict (0–1), over
+    /// the cycles `semantic.shares_over` selects.
+    LabelledShare,
+    /// Semantic: bytes per second the RSUs' semantic messages put on the channel.
+    ChannelLoad,
+    /// Semantic: bytes per second an ETSI collective perception sender would put
+    /// on the channel for the same objects.
+    BaselineChannelLoad,
+    /// Semantic: share of RSU messages to the ego that arrive (0–1).
+    PacketDeliveryRatio,
+    /// Semantic: objects per run that came within d_min of the ego without a
+    /// conflict flagged in a message the ego received beforehand (the mean over
+    /// `semantic.runs`).
+    MissedCriticals,
+    /// Semantic: median of our anticipation time, seconds, over the relevant
+    /// objects a V2X message named before the ego saw them: first own sight −
+    /// first V2X knowledge (`warned_before_seen`), or closest approach − first
+    /// V2X knowledge, at least 0 (`warned_never_seen`).
+    ObjectAnticipationMedian,
+    /// Semantic: 95th percentile of our anticipation time, seconds.
+    ObjectAnticipationP95,
+    /// Semantic: relevant objects per run that a V2X message named before the
+    /// ego saw them (category `warned_before_seen`; the mean over `semantic.runs`).
+    ObjectsWarnedBeforeSeen,
+    /// Semantic: relevant objects per run that a V2X message named and the ego
+    /// never saw (`warned_never_seen`).
+    ObjectsWarnedNeverSeen,
+    /// Semantic: relevant objects per run the ego saw no later than a V2X
+    /// message named them, or that no message named (`seen_first`).
+    ObjectsSeenFirst,
+    /// Semantic: relevant objects per run that no V2X message named and the ego
+    /// never saw (`never_known`).
+    ObjectsNeverKnown,
+}
+
+impl Metric {
+    /// Every metric, in documentation order.
+    pub const ALL: [Metric; 36] = [
+        Self::Accuracy,
+        Self::BelowThreshold,
+        Self::BelowThresholdFraction,
+        Self::FalseAlarms,
+        Self::MissedDetections,
+        Self::ConfidentErrors,
+        Self::ConfidentErrorRate,
+        Self::DecidedUnknown,
+        Self::Unobserved,
+        Self::MeanUncertainty,
+        Self::MeanConflict,
+        Self::MaxConflict,
+        Self::TotalConflictCells,
+        Self::WeightedCells,
+        Self::FovGain,
+        Self::OccupiedRecall,
+        Self::OccupiedPrecision,
+        Self::BlindRecall,
+        Self::OccupiedRecallWithSelfReport,
+        Self::SelfReportShare,
+        Self::BrierScore,
+        Self::AnticipationMedian,
+        Self::AnticipationP95,
+        Self::InfrastructureContribution,
+        Self::TransmittedShare,
+        Self::LabelledShare,
+        Self::ChannelLoad,
+        Self::BaselineChannelLoad,
+        Self::PacketDeliveryRatio,
+        Self::MissedCriticals,
+        Self::ObjectAnticipationMedian,
+        Self::ObjectAnticipationP95,
+        Self::ObjectsWarnedBeforeSeen,
+        Self::ObjectsWarnedNeverSeen,
+        Self::ObjectsSeenFirst,
+        Self::ObjectsNeverKnown,
+    ];
+
+    /// The name as written in scenario files.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Accuracy => "accuracy",
+            Self::BelowThreshold => "below_threshold",
+            Self::BelowThresholdFraction => "below_threshold_fraction",
+            Self::FalseAlarms => "false_alarms",
+            Self::MissedDetections => "missed_detections",
+            Self::ConfidentErrors => "confident_errors",
+            Self::ConfidentErrorRate => "confident_error_rate",
+            Self::DecidedUnknown => "decided_unknown",
+            Self::Unobserved => "unobserved",
+            Self::MeanUncertainty => "mean_uncertainty",
+            Self::MeanConflict => "mean_conflict",
+            Self::MaxConflict => "max_conflict",
+            Self::TotalConflictCells => "total_conflict_cells",
+            Self::WeightedCells => "weighted_cells",
+            Self::FovGain => "fov_gain",
+            Self::OccupiedRecall => "occupied_recall",
+            Self::OccupiedPrecision => "occupied_precision",
+            Self::BlindRecall => "blind_recall",
+            Self::OccupiedRecallWithSelfReport => "occupied_recall_with_self_report",
+            Self::SelfReportShare => "self_report_share",
+            Self::BrierScore => "brier_score",
+            Self::AnticipationMedian => "anticipation_median",
+            Self::AnticipationP95 => "anticipation_p95",
+            Self::InfrastructureContribution => "infrastructure_contribution",
+            Self::TransmittedShare => "transmitted_share",
+            Self::LabelledShare => "labelled_share",
+            Self::ChannelLoad => "channel_load",
+            Self::BaselineChannelLoad => "baseline_channel_load",
+            Self::PacketDeliveryRatio => "packet_delivery_ratio",
+            Self::MissedCriticals => "missed_criticals",
+            Self::ObjectAnticipationMedian => "object_anticipation_median",
+            Self::ObjectAnticipationP95 => "object_anticipation_p95",
+            Self::ObjectsWarnedBeforeSeen => "objects_warned_before_seen",
+            Self::ObjectsWarnedNeverSeen => "objects_warned_never_seen",
+            Self::ObjectsSeenFirst => "objects_seen_first",
+            Self::ObjectsNeverKnown => "objects_never_known",
+        }
+    }
+
+    /// Whether the field experiment measures it.
+    pub fn in_field(self) -> bool {
+        !self.in_semantic()
+            && !matches!(
+                self,
+                Self::FovGain
+                    | Self::OccupiedRecall
+                    | Self::OccupiedPrecision
+                    | Self::BlindRecall
+                    | Self::OccupiedRecallWithSelfReport
+                    | Self::SelfReportShare
+                    | Self::BrierScore
+            )
+    }
+
+    /// Whether worlds that measure collective perception measure it.
+    pub fn in_world(self) -> bool {
+        !self.in_semantic()
+            && !matches!(
+                self,
+                Self::Accuracy
+                    | Self::BelowThreshold
+                    | Self::BelowThresholdFraction
+                    | Self::FalseAlarms
+                    | Self::MissedDetections
+                    | Self::ConfidentErrors
+                    | Self::ConfidentErrorRate
+                    | Self::DecidedUnknown
+                    | Self::Unobserved
+            )
+    }
+
+    /// Whether worlds that measure the semantic pipeline measure it.
+    pub fn in_semantic(self) -> bool {
+        matches!(
+            self,
+            Self::AnticipationMedian
+                | Self::AnticipationP95
+                | Self::InfrastructureContribution
+                | Self::TransmittedShare
+                | Self::LabelledShare
+                | Self::ChannelLoad
+                | Self::BaselineChannelLoad
+                | Self::PacketDeliveryRatio
+                | Self::MissedCriticals
+                | Self::ObjectAnticipationMedian
+                | Self::ObjectAnticipationP95
+                | Self::ObjectsWarnedBeforeSeen
+                | Self::ObjectsWarnedNeverSeen
+                | Self::ObjectsSeenFirst
+                | Self::ObjectsNeverKnown
+        )
+    }
+
+    /// What the metric's sample size n counts: the population it is computed
+    /// over. An empty population leaves a requirement on it not exercised.
+    pub fn population(self) -> &'static str {
+        match self {
+            Self::MeanUncertainty
+            | Self::MeanConflict
+            | Self::MaxConflict
+            | Self::TotalConflictCells
+            | Self::WeightedCells => "fused cells",
+            Self::FovGain => "cell-steps the ego observes",
+            Self::OccupiedRecall => "occupied cell-steps of non-cooperating road users",
+            Self::OccupiedPrecision => "cell-steps decided occupied",
+            Self::BlindRecall => "occupied cell-steps of non-cooperating road users the ego does not observe",
+            Self::OccupiedRecallWithSelfReport => "truly occupied cell-steps",
+            Self::SelfReportShare => "truly occupied cell-steps decided occupied",
+            Self::BrierScore => "fused cell-steps, self-report left out",
+            Self::AnticipationMedian | Self::AnticipationP95 => "anticipation times",
+            Self::ObjectAnticipationMedian | Self::ObjectAnticipationP95 => {
+                "relevant objects named by V2X before the ego saw them"
+            }
+            Self::ObjectsWarnedBeforeSeen
+            | Self::ObjectsWarnedNeverSeen
+            | Self::ObjectsSeenFirst
+            | Self::ObjectsNeverKnown => "relevant objects",
+            Self::InfrastructureContribution | Self::ChannelLoad | Self::BaselineChannelLoad => "steps with the ego",
+            Self::TransmittedShare | Self::LabelledShare => "object-cycles the RSUs perceive",
+            Self::PacketDeliveryRatio => "messages to the ego",
+            Self::MissedCriticals => "close approaches",
+            _ => "cells",
+        }
+    }
+
+    /// The fewest samples a requirement on the metric needs by default; below
+    /// it the requirement is not exercised. One for every metric but the
+    /// quantiles, which need the smallest sample whose order statistics give a
+    /// distribution-free two-sided 95 % confidence interval of the quantile
+    /// (the sample's minimum and maximum cover the q quantile with probability
+    /// 1 − qⁿ − (1 − q)ⁿ ≥ 0.95): 6 for the median, 59 for the 95th percentile.
+    pub fn default_min_samples(self) -> u64 {
+        match self {
+            Self::AnticipationMedian | Self::ObjectAnticipationMedian => 6,
+            Self::AnticipationP95 | Self::ObjectAnticipationP95 => 59,
+            _ => 1,
+        }
+    }
+
+    /// Whether the metric exists only for evidential (Dempster–Shafer) methods.
+    pub fn is_evidential_only(self) -> bool {
+        matches!(
+            self,
+            Self::MeanConflict | Self::MaxConflict | Self::TotalConflictCells | Self::WeightedCells
+        )
+    }
+
+    /// The values it can take, as its documentation states them. A measured
+    /// value outside is a defect (or damage), never something to judge.
+    pub fn domain(self) -> ValueDomain {
+        match self {
+            Self::Accuracy
+            | Self::BelowThresholdFraction
+            | Self::ConfidentErrorRate
+            | Self::MeanUncertainty
+            | Self::MeanConflict
+            | Self::MaxConflict
+            | Self::OccupiedRecall
+            | Self::OccupiedPrecision
+            | Self::BlindRecall
+            | Self::OccupiedRecallWithSelfReport
+            | Self::SelfReportShare
+            | Self::BrierScore
+            | Self::TransmittedShare
+            | Self::LabelledShare
+            | Self::PacketDeliveryRatio => ValueDomain::Fraction,
+            Self::BelowThreshold
+            | Self::FalseAlarms
+            | Self::MissedDetections
+            | Self::ConfidentErrors
+            | Self::DecidedUnknown
+            | Self::Unobserved
+            | Self::TotalConflictCells
+            | Self::WeightedCells => ValueDomain::Count,
+            // fov_gain: the joint field of view contains the ego's, so the gain
+            // is never negative. Means over steps or runs (contribution, missed
+            // criticals, objects per category) are not whole numbers.
+            Self::FovGain
+            | Self::AnticipationMedian
+            | Self::AnticipationP95
+            | Self::InfrastructureContribution
+            | Self::ChannelLoad
+            | Self::BaselineChannelLoad
+            | Self::MissedCriticals
+            | Self::ObjectAnticipationMedian
+            | Self::ObjectAnticipationP95
+            | Self::ObjectsWarnedBeforeSeen
+            | Self::ObjectsWarnedNeverSeen
+            | Self::ObjectsSeenFirst
+            | Self::ObjectsNeverKnown => ValueDomain::NonNegative,
+        }
+    }
+}
+
+/// The values a measured quantity can take; every one of them is finite. (A
+/// quantity that is not defined for a run is absent, not a value.)
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum ValueDomain {
+    /// A share, a rate or a probability: [0, 1].
+    Fraction,
+    /// A number of things: a whole number ≥ 0.
+    Count,
+    /// Seconds, bytes per second, a mean count or a gain: ≥ 0.
+    NonNegative,
+}
+
+impl ValueDomain {
+    /// Whether `value` lies in the domain (a NaN or an infinity never does).
+    pub fn contains(self, value: f64) -> bool {
+        value.is_finite()
+            && value >= 0.0
+            && match self {
+                Self::Fraction => value <= 1.0,
+                Self::Count => value.fract() == 0.0,
+                Self::NonNegative => true,
+            }
+    }
+}
+
+impl std::fmt::Display for ValueDomain {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Self::Fraction => "[0, 1]",
+            Self::Count => "whole numbers ≥ 0",
+            Self::NonNegative => "finite numbers ≥ 0",
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn domains_hold_their_ends_and_refuse_what_lies_beyond() {
+        use ValueDomain::*;
+        for (domain, inside, outside) in [
+            (Fraction, [0.0, 0.5, 1.0], [-1e-12, 1.0 + 1e-12, 1.11]),
+            (Count, [0.0, 3.0, 1e15], [-1.0, 2.5, 1e-300]),
+            (NonNegative, [0.0, 0.25, 1e300], [-0.25, -1e-300, -1.0]),
+        ] {
+            for value in inside {
+                assert!(domain.contains(value), "{value} in {domain}");
+            }
+            for value in outside.into_iter().chain([f64::NAN, f64::INFINITY, f64::NEG_INFINITY]) {
+                assert!(!domain.contains(value), "{value} not in {domain}");
+            }
+        }
+    }
+}
