@@ -19,11 +19,11 @@
 //! - **closest approach**: the step, among those with both in the scene, at which
 //!   the centres are closest (the first such step on a tie), that distance, and
 //!   where the road user was then (so that it can be placed in an area).
-//! - **least time to collision**: over the steps with both in the scene, the
-//!   shortest time after which the centres would come within `d_min` if both
-//!   kept their speed and heading (0 when they are within it); none when they
-//!   are never on such a course. Centres and `d_min` as the close approaches
-//!   count them; footprints (oriented boxes) are not used.
+//! - **least time to collision**: over the steps at which it is within
+//!   `semantic.proximity` of the ego, the shortest time after which the centres
+//!   would come within `d_min` if both kept their speed and heading (0 when
+//!   they are within it); none when they are never on such a course. Centres
+//!   and `d_min` as the close approaches count them; footprints (oriented boxes) are not used.
 
 use serde::{Deserialize, Serialize};
 use sightline_dsl::{Agent, AgentKind, Semantic};
@@ -115,7 +115,8 @@ pub struct ObjectRecord {
     /// Its closest approach to the ego (`None` only for a road user never in
     /// the scene together with the ego).
     pub closest: Option<Closest>,
-    /// Its least time to collision with the ego, seconds.
+    /// Its least time to collision with the ego while within
+    /// `semantic.proximity` of it, seconds.
     pub min_ttc: Option<f64>,
     /// How the ego came to know it.
     pub category: Category,
@@ -170,6 +171,7 @@ impl Encounters {
 
     /// The step at `time` with the ego at `ego` and every agent's state in `states`.
     pub(super) fn step(&mut self, time: f64, ego: AgentState, states: &[Option<AgentState>]) {
+        let ego_velocity = velocity(ego);
         for (agent, state) in states.iter().enumerate() {
             let Some(state) = state.filter(|_| agent != self.ego) else {
                 continue;
@@ -177,9 +179,6 @@ impl Encounters {
             let encounter = &mut self.by_agent[agent];
             let offset = state.position() - ego.position();
             let distance = offset.length();
-            if distance < self.proximity {
-                encounter.proximate.get_or_insert(time);
-            }
             if encounter.closest.is_none_or(|c| distance < c.distance) {
                 let at = state.position();
                 encounter.closest = Some(Closest {
@@ -188,8 +187,13 @@ impl Encounters {
                     position: [at.x, at.y],
                 });
             }
-            let closing = velocity(state) - velocity(ego);
-            if let Some(ttc) = time_to_within(offset, closing, self.d_min) {
+            // Farther, a time to collision says nothing the nearer steps do not;
+            // leaving those steps out keeps the record cheap in dense traffic.
+            if distance >= self.proximity {
+                continue;
+            }
+            encounter.proximate.get_or_insert(time);
+            if let Some(ttc) = time_to_within(offset, velocity(state) - ego_velocity, self.d_min) {
                 encounter.min_ttc = Some(encounter.min_ttc.map_or(ttc, |least| least.min(ttc)));
             }
         }
@@ -240,8 +244,8 @@ impl Encounters {
 
 /// An agent's velocity: its speed along its heading.
 fn velocity(state: AgentState) -> Vector {
-    let heading = state.heading();
-    Vector::new(heading.cos(), heading.sin()) * state.speed
+    let rotation = state.pose.rotation;
+    Vector::new(rotation.cos(), rotation.sin()) * state.speed
 }
 
 /// The shortest time t ≥ 0 after which |`offset` + `closing` · t| ≤ `d_min`:

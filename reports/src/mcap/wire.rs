@@ -474,7 +474,8 @@ pub struct RoadUserRecord {
     pub closest_x: Option<f64>,
     /// Where it was then, y, metres.
     pub closest_y: Option<f64>,
-    /// Its least time to collision with the ego, seconds.
+    /// Its least time to collision with the ego while within
+    /// `semantic.proximity` of it, seconds.
     pub min_ttc: Option<f64>,
     /// `warned_before_seen`, `warned_never_seen`, `seen_first` or `never_known`.
     pub category: String,

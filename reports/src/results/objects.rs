@@ -94,7 +94,8 @@ pub struct ObjectResult {
     /// Its closest approach to the ego (`null` only if never in the scene with it).
     pub closest: Option<ClosestApproach>,
     /// Its least constant-velocity time until the centres come within `d_min`,
-    /// seconds (0: within it at some step; `null`: never on such a course).
+    /// over the steps it is within `semantic.proximity` of the ego, seconds (0:
+    /// within it at some step; `null`: never on such a course).
     pub min_ttc: Option<f64>,
     /// How the ego came to know it.
     pub category: ObjectCategory,
