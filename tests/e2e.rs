@@ -66,6 +66,10 @@ mod record;
 // schemas, their parsers' subset, every message valid (node, ci/viewers/).
 #[path = "e2e/viewers.rs"]
 mod viewers;
+// The per-object record of a semantic run: one road user per category by hand,
+// the bundled junction's road users counted by category.
+#[path = "e2e/objects.rs"]
+mod objects;
 
 // The findings pages quote the bundled runs.
 #[path = "e2e/findings.rs"]

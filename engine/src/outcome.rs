@@ -13,13 +13,16 @@
 //!   [`State`]).
 //! - A semantic world (seed 002): [`SemanticMetrics`] with its density rows
 //!   ([`DensityRow`]), delivery bins ([`DeliveryBin`]), label counts
-//!   ([`LabelCounts`]) and per-step [`Series`].
+//!   ([`LabelCounts`]), per-step [`Series`], and the per-object
+//!   [`ObjectRecord`]s with their [`Category`] and [`Closest`] approach.
 
 pub use crate::fusion::State;
 pub use crate::metrics::{
     BandMetrics, ConflictMetrics, Coverage, FieldMetrics, FieldOutcome, MassAudit, Series, quantile,
 };
-pub use crate::semantic::{DELIVERY_BIN, DENSITY_BIN, DeliveryBin, DensityRow, LabelCounts, SemanticMetrics};
+pub use crate::semantic::{
+    Category, Closest, DELIVERY_BIN, DENSITY_BIN, DeliveryBin, DensityRow, LabelCounts, ObjectRecord, SemanticMetrics,
+};
 pub use crate::world::{
     Calibration, CellTally, DISTANCE_BIN, DISTANCE_BINS, DistanceBin, FusedCell, RELIABILITY_BINS, RadioStats,
     RecallByDistance, ReliabilityBin, Sightings, Snapshot, WorldMetrics, WorldOutcome,

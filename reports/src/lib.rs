@@ -136,6 +136,7 @@ pub fn render(
             Detail::Semantic {
                 counts,
                 contribution_by_density,
+                objects: _,
             } => chart::semantic_charts(counts, contribution_by_density),
             Detail::World { counts } => Ok(chart::reliability_chart(&counts.calibration)?.into_iter().collect()),
             Detail::Field { .. } => Ok(Vec::new()),

@@ -199,7 +199,8 @@ fn bundled_roundabout_recording_has_foxglove_channels_and_the_steps() {
 /// The urban junction shortened to 80 s (the ego reaches the junction after
 /// 60 s) with one run per point, half the road users connected (direct packets)
 /// and a d_min of 6 m (close approaches): the recording's messages are the
-/// record's, counted as results.json counts them.
+/// record's, counted as results.json counts them, and its relevant road users
+/// are results.json's (issue 17).
 #[test]
 fn urban_recording_counts_the_packets_messages_and_approaches() {
     let text = read(&root().join("scenarios/urban-rsu-semantic.yaml"))
@@ -246,6 +247,29 @@ fn urban_recording_counts_the_packets_messages_and_approaches() {
     );
     assert!(channels["/semantic/arrivals"].count <= received);
     assert_eq!(channels["/v2x/packets"].schema, "sightline.Packet");
+    assert_eq!(channels["/semantic/objects"].schema, "sightline.Object");
+    // Every point's road users; the first point's are results.json's first.
+    let objects: Vec<serde_json::Value> = messages(&recording, "/semantic/objects")
+        .into_iter()
+        .filter(|o| o["point"] == 0)
+        .collect();
+    let listed = results["sweep"][0]["objects"]["records"].as_array().unwrap();
+    assert!(!listed.is_empty());
+    assert_eq!(objects.len(), listed.len());
+    for (recorded, listed) in objects.iter().zip(listed) {
+        for field in [
+            "id",
+            "class",
+            "first_relevant",
+            "first_seen",
+            "first_v2x",
+            "category",
+            "min_ttc",
+        ] {
+            assert_eq!(recorded[field], listed[field], "{field}");
+        }
+        assert_eq!(recorded["closest_time"], listed["closest"]["time"]);
+    }
 }
 
 /// The lines `run` or `replay` printed, with the first line's destination (`->

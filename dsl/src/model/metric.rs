@@ -76,10 +76,11 @@ pub enum Metric {
     /// World over the radio: bytes per second each cooperating agent other than
     /// the ego sends, over the steps it is in the scene with the ego.
     BytesPerSecondPerAgent,
-    /// Semantic: median anticipation time, seconds, over objects the ego first
-    /// learned of from an RSU while it could not see them and later saw itself.
+    /// Semantic: median anticipation time by the paper's definition (seed 002,
+    /// eq. 5), seconds, over objects the ego first learned of from an RSU while
+    /// it could not see them and later saw itself.
     AnticipationMedian,
-    /// Semantic: 95th percentile of the anticipation time, seconds.
+    /// Semantic: 95th percentile of the paper's anticipation time, seconds.
     AnticipationP95,
     /// Semantic: mean number of objects per step the ego knows only through an RSU.
     InfrastructureContribution,
@@ -103,11 +104,30 @@ pub enum Metric {
     /// conflict flagged in a message the ego received beforehand (the mean over
     /// `semantic.runs`).
     MissedCriticals,
+    /// Semantic: median of our anticipation time, seconds, over the relevant
+    /// objects a V2X message named before the ego saw them: first own sight −
+    /// first V2X knowledge (`warned_before_seen`), or closest approach − first
+    /// V2X knowledge, at least 0 (`warned_never_seen`).
+    ObjectAnticipationMedian,
+    /// Semantic: 95th percentile of our anticipation time, seconds.
+    ObjectAnticipationP95,
+    /// Semantic: relevant objects per run that a V2X message named before the
+    /// ego saw them (category `warned_before_seen`; the mean over `semantic.runs`).
+    ObjectsWarnedBeforeSeen,
+    /// Semantic: relevant objects per run that a V2X message named and the ego
+    /// never saw (`warned_never_seen`).
+    ObjectsWarnedNeverSeen,
+    /// Semantic: relevant objects per run the ego saw no later than a V2X
+    /// message named them, or that no message named (`seen_first`).
+    ObjectsSeenFirst,
+    /// Semantic: relevant objects per run that no V2X message named and the ego
+    /// never saw (`never_known`).
+    ObjectsNeverKnown,
 }
 
 impl Metric {
     /// Every metric, in documentation order.
-    pub const ALL: [Metric; 34] = [
+    pub const ALL: [Metric; 40] = [
         Self::Accuracy,
         Self::BelowThreshold,
         Self::BelowThresholdFraction,
@@ -142,6 +162,12 @@ impl Metric {
         Self::BaselineChannelLoad,
         Self::PacketDeliveryRatio,
         Self::MissedCriticals,
+        Self::ObjectAnticipationMedian,
+        Self::ObjectAnticipationP95,
+        Self::ObjectsWarnedBeforeSeen,
+        Self::ObjectsWarnedNeverSeen,
+        Self::ObjectsSeenFirst,
+        Self::ObjectsNeverKnown,
     ];
 
     /// The name as written in scenario files.
@@ -181,6 +207,12 @@ impl Metric {
             Self::BaselineChannelLoad => "baseline_channel_load",
             Self::PacketDeliveryRatio => "packet_delivery_ratio",
             Self::MissedCriticals => "missed_criticals",
+            Self::ObjectAnticipationMedian => "object_anticipation_median",
+            Self::ObjectAnticipationP95 => "object_anticipation_p95",
+            Self::ObjectsWarnedBeforeSeen => "objects_warned_before_seen",
+            Self::ObjectsWarnedNeverSeen => "objects_warned_never_seen",
+            Self::ObjectsSeenFirst => "objects_seen_first",
+            Self::ObjectsNeverKnown => "objects_never_known",
         }
     }
 
@@ -234,6 +266,12 @@ impl Metric {
                 | Self::BaselineChannelLoad
                 | Self::PacketDeliveryRatio
                 | Self::MissedCriticals
+                | Self::ObjectAnticipationMedian
+                | Self::ObjectAnticipationP95
+                | Self::ObjectsWarnedBeforeSeen
+                | Self::ObjectsWarnedNeverSeen
+                | Self::ObjectsSeenFirst
+                | Self::ObjectsNeverKnown
         )
     }
 
@@ -270,6 +308,13 @@ impl Metric {
             Self::TransmittedShare | Self::LabelledShare => "object-cycles the RSUs perceive",
             Self::PacketDeliveryRatio => "messages to the ego",
             Self::MissedCriticals => "close approaches",
+            Self::ObjectAnticipationMedian | Self::ObjectAnticipationP95 => {
+                "relevant objects named by V2X before the ego saw them"
+            }
+            Self::ObjectsWarnedBeforeSeen
+            | Self::ObjectsWarnedNeverSeen
+            | Self::ObjectsSeenFirst
+            | Self::ObjectsNeverKnown => "relevant objects",
             _ => "cells",
         }
     }
@@ -282,8 +327,8 @@ impl Metric {
     /// 1 − qⁿ − (1 − q)ⁿ ≥ 0.95): 6 for the median, 59 for the 95th percentile.
     pub fn default_min_samples(self) -> u64 {
         match self {
-            Self::AnticipationMedian => 6,
-            Self::AnticipationP95 | Self::MessageAgeP95 => 59,
+            Self::AnticipationMedian | Self::ObjectAnticipationMedian => 6,
+            Self::AnticipationP95 | Self::MessageAgeP95 | Self::ObjectAnticipationP95 => 59,
             _ => 1,
         }
     }
@@ -326,7 +371,7 @@ impl Metric {
             | Self::WeightedCells => ValueDomain::Count,
             // fov_gain: the joint field of view contains the ego's, so the gain
             // is never negative. Means over steps or runs (contribution, missed
-            // criticals) are not whole numbers.
+            // criticals, objects per category) are not whole numbers.
             Self::FovGain
             | Self::MessageAgeMean
             | Self::MessageAgeP95
@@ -336,7 +381,13 @@ impl Metric {
             | Self::InfrastructureContribution
             | Self::ChannelLoad
             | Self::BaselineChannelLoad
-            | Self::MissedCriticals => ValueDomain::NonNegative,
+            | Self::MissedCriticals
+            | Self::ObjectAnticipationMedian
+            | Self::ObjectAnticipationP95
+            | Self::ObjectsWarnedBeforeSeen
+            | Self::ObjectsWarnedNeverSeen
+            | Self::ObjectsSeenFirst
+            | Self::ObjectsNeverKnown => ValueDomain::NonNegative,
         }
     }
 }

@@ -99,9 +99,10 @@ pub(crate) struct RawCheck {
     /// metric's population (cells, steps, messages, anticipation times…), the
     /// signal's defined steps in each run, the objects of a per-object check,
     /// or the fused cells of an invariant. Below it the requirement is not
-    /// exercised at that point. Default 1; 6 for `anticipation_median` and 59
-    /// for `anticipation_p95` (the smallest samples whose extremes bound the
-    /// quantile with 95 % confidence).
+    /// exercised at that point. Default 1; 6 for the medians
+    /// (`anticipation_median`, `object_anticipation_median`) and 59 for the 95th
+    /// percentiles (the smallest samples whose extremes bound the quantile with
+    /// 95 % confidence).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub min_samples: Option<u64>,
 }

@@ -36,8 +36,10 @@ pub(super) struct Knowledge {
     pub(super) first_seen: Option<f64>,
     /// When its own V2X message last arrived.
     last_direct: Option<f64>,
+    /// When its own V2X message first arrived.
+    pub(super) first_direct: Option<f64>,
     /// When a message flagging a conflict with it first reached the ego.
-    flagged: Option<f64>,
+    pub(super) flagged: Option<f64>,
     /// Whether it is within d_min of the ego now.
     close: bool,
 }
@@ -98,7 +100,9 @@ impl Ego {
 
     /// Takes in road user `agent`'s own message, arrived at `at`.
     pub(super) fn hear(&mut self, agent: usize, at: f64) {
-        self.knowledge[agent].last_direct = Some(at);
+        let known = &mut self.knowledge[agent];
+        known.last_direct = Some(at);
+        known.first_direct.get_or_insert(at);
     }
 
     /// Whether the ego drives cautiously at `time`.

@@ -1,12 +1,13 @@
 //! The measure phase of a semantic world: each step's view of the ego, each
-//! RSU's selection and each packet added to the run's metrics, and every step's
-//! record handed to the trace sink.
+//! RSU's selection and each packet added to the run's metrics, each road user's
+//! encounter with the ego, and every step's record handed to the trace sink.
 
-use sightline_dsl::World;
+use sightline_dsl::{Agent, Semantic, World};
 
 use super::ego::{Ego, EgoView};
 use super::message::{Item, baseline_bytes};
 use super::metrics::{DELIVERY_BIN, SemanticMetrics};
+use super::objects::Encounters;
 use super::rsu::Selection;
 use crate::metrics::Series;
 use crate::sink::TraceSink;
@@ -22,13 +23,16 @@ pub(super) struct Measures {
     rsu_only: Series,
     /// Per RSU cycle whose message flags a conflict: the shortest time to it.
     time_to_conflict: Series,
+    /// Each road user's encounter with the ego, for the per-object records.
+    encounters: Encounters,
     /// The current step's record.
     log: SemanticLog,
 }
 
 impl Measures {
-    /// Nothing measured yet in `world`, whose scene has `agents` agents.
-    pub(super) fn new(world: &World, agents: usize) -> Self {
+    /// Nothing measured yet in `world` run with `semantic`, whose scene has
+    /// `agents` agents.
+    pub(super) fn new(world: &World, semantic: &Semantic, agents: usize) -> Self {
         Self {
             metrics: SemanticMetrics {
                 runs: 1,
@@ -38,6 +42,7 @@ impl Measures {
             network_km: world.roads.iter().map(|r| r.lanes[0].length()).sum::<f64>() / 1000.0,
             rsu_only: Vec::new(),
             time_to_conflict: Vec::new(),
+            encounters: Encounters::new(semantic, agents),
             log: SemanticLog::default(),
         }
     }
@@ -47,9 +52,17 @@ impl Measures {
         self.log.arrivals.extend(arrivals);
     }
 
-    /// A step `dt` long at `time` with the ego in the scene, cautious or not,
-    /// perceiving `view`.
-    pub(super) fn ego_step(&mut self, time: f64, dt: f64, cautious: bool, view: EgoView) {
+    /// A step `dt` long at `time` with the ego in the scene at `ego`, cautious
+    /// or not, perceiving `view` of the agents in `states`.
+    pub(super) fn ego_step(
+        &mut self,
+        (time, dt): (f64, f64),
+        ego: AgentState,
+        states: &[Option<AgentState>],
+        cautious: bool,
+        view: EgoView,
+    ) {
+        self.encounters.step(time, ego, states);
         let metrics = &mut self.metrics;
         metrics.steps += 1;
         metrics.duration += dt;
@@ -120,9 +133,11 @@ impl Measures {
         self.log.clear();
     }
 
-    /// The run's metrics, with what the `ego` came to know over it.
-    pub(super) fn finish(self, ego: &Ego) -> SemanticMetrics {
+    /// The run's metrics, with what the `ego` came to know of the `agents` over
+    /// it, its road users' records labelled with pooled run `run`.
+    pub(super) fn finish(self, ego: &Ego, agents: &[Agent], run: u32) -> SemanticMetrics {
         let mut metrics = self.metrics;
+        metrics.objects = self.encounters.records(run, agents, ego.knowledge());
         for known in ego.knowledge() {
             if let Some((received, false)) = known.first_received {
                 match known.first_seen {

@@ -3,6 +3,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::objects::{Category, ObjectRecord};
 use crate::metrics::{Series, quantile};
 use sightline_dsl::Metric;
 
@@ -23,9 +24,10 @@ pub struct SemanticMetrics {
     pub duration: f64,
     /// Vehicles and pedestrians the traffic generator added.
     pub generated: u64,
-    /// Anticipation times, seconds, ascending: for each object the ego first
-    /// learned of from an RSU while it could not see it, the time it first could
-    /// minus the time the message arrived.
+    /// Anticipation times by the paper's definition, seconds, ascending: for
+    /// each object the ego first learned of from an RSU while it could not see
+    /// it, the time it first could minus the time the message arrived. (Ours,
+    /// per object, is [`ObjectRecord::anticipation`].)
     pub anticipation: Vec<f64>,
     /// Objects learned of while hidden that the ego never saw before the run ended.
     pub never_seen: u64,
@@ -73,6 +75,9 @@ pub struct SemanticMetrics {
     /// conflict: (time, the shortest predicted time to conflict in it).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub time_to_conflict: Vec<Series>,
+    /// Every road user relevant to the ego, run by run (in pooled order), each
+    /// run's in order of becoming relevant.
+    pub objects: Vec<ObjectRecord>,
 }
 
 /// Sent object-cycles by label.
@@ -141,6 +146,7 @@ impl SemanticMetrics {
             warnings,
             rsu_only,
             time_to_conflict,
+            objects,
         } = other;
         self.runs += runs;
         self.steps += steps;
@@ -177,6 +183,20 @@ impl SemanticMetrics {
         self.warnings.extend(warnings);
         self.rsu_only.extend(rsu_only);
         self.time_to_conflict.extend(time_to_conflict);
+        self.objects.extend(objects);
+    }
+
+    /// Our anticipation times ([`ObjectRecord::anticipation`]) of the objects
+    /// that have one, seconds, ascending.
+    pub fn object_anticipation(&self) -> Vec<f64> {
+        let mut times: Vec<f64> = self.objects.iter().filter_map(ObjectRecord::anticipation).collect();
+        times.sort_by(f64::total_cmp);
+        times
+    }
+
+    /// The relevant objects in `category`, over the pooled runs.
+    pub fn objects_in(&self, category: Category) -> u64 {
+        self.objects.iter().filter(|o| o.category == category).count() as u64
     }
 
     /// The value of `metric`, or `None` where it is not defined for this run.
@@ -195,6 +215,12 @@ impl SemanticMetrics {
             Metric::BaselineChannelLoad => rate(self.baseline_bytes),
             Metric::PacketDeliveryRatio => ratio(self.delivered, self.messages),
             Metric::MissedCriticals => Some(self.missed_criticals as f64 / f64::from(self.runs.max(1))),
+            Metric::ObjectAnticipationMedian => quantile(&self.object_anticipation(), 0.5),
+            Metric::ObjectAnticipationP95 => quantile(&self.object_anticipation(), 0.95),
+            Metric::ObjectsWarnedBeforeSeen => Some(self.per_run(Category::WarnedBeforeSeen)),
+            Metric::ObjectsWarnedNeverSeen => Some(self.per_run(Category::WarnedNeverSeen)),
+            Metric::ObjectsSeenFirst => Some(self.per_run(Category::SeenFirst)),
+            Metric::ObjectsNeverKnown => Some(self.per_run(Category::NeverKnown)),
             _ => None,
         }
     }
@@ -209,8 +235,20 @@ impl SemanticMetrics {
             Metric::ChannelLoad | Metric::BaselineChannelLoad => self.steps,
             Metric::PacketDeliveryRatio => self.messages,
             Metric::MissedCriticals => self.close_approaches,
+            Metric::ObjectAnticipationMedian | Metric::ObjectAnticipationP95 => {
+                self.objects.iter().filter(|o| o.anticipation().is_some()).count() as u64
+            }
+            Metric::ObjectsWarnedBeforeSeen
+            | Metric::ObjectsWarnedNeverSeen
+            | Metric::ObjectsSeenFirst
+            | Metric::ObjectsNeverKnown => self.objects.len() as u64,
             _ => return None,
         })
+    }
+
+    /// The relevant objects in `category` per pooled run.
+    fn per_run(&self, category: Category) -> f64 {
+        self.objects_in(category) as f64 / f64::from(self.runs.max(1))
     }
 
     /// The contribution by density bin, densest last, empty bins left out (all of

@@ -8,6 +8,7 @@ mod map;
 mod measure;
 mod message;
 mod metrics;
+mod objects;
 mod pipeline;
 mod radio;
 mod relevance;
@@ -18,6 +19,7 @@ mod traffic;
 
 pub use message::{Item, Labels};
 pub use metrics::{DELIVERY_BIN, DENSITY_BIN, DeliveryBin, DensityRow, LabelCounts, SemanticMetrics};
+pub use objects::{Category, Closest, ObjectRecord};
 pub use risk::Conflict;
 pub use simulate::run;
 

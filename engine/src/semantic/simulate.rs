@@ -104,10 +104,10 @@ pub(crate) fn idealisations(world: &World, semantic: &Semantic) -> Vec<Idealisat
 /// Run 0 reports each step to `sink`; the others run in parallel afterwards and
 /// report nothing. The result does not depend on the thread count.
 pub fn run(seed: u64, world: &World, semantic: &Semantic, sink: &mut impl TraceSink) -> SemanticMetrics {
-    let mut pooled = run_once(seed, world, semantic, sink);
+    let mut pooled = run_once((seed, 0), world, semantic, sink);
     let others: Vec<SemanticMetrics> = (1..semantic.runs)
         .into_par_iter()
-        .map(|r| run_once(derived_seed(seed, Derived::Run, r), world, semantic, &mut NoTrace))
+        .map(|r| run_once((derived_seed(seed, Derived::Run, r), r), world, semantic, &mut NoTrace))
         .collect();
     for metrics in others {
         pooled.pool(metrics);
@@ -115,8 +115,9 @@ pub fn run(seed: u64, world: &World, semantic: &Semantic, sink: &mut impl TraceS
     pooled
 }
 
-/// One run of a world's semantic pipeline, reporting each step to `sink`.
-fn run_once(seed: u64, world: &World, semantic: &Semantic, sink: &mut impl TraceSink) -> SemanticMetrics {
+/// Pooled run `run` of a world's semantic pipeline, with its `seed`, reporting
+/// each step to `sink`.
+fn run_once((seed, run): (u64, u32), world: &World, semantic: &Semantic, sink: &mut impl TraceSink) -> SemanticMetrics {
     let agents = traffic::scene(seed, world);
     let dt = world.step;
     let occluders = Occluders::new(&world.occluders);
@@ -141,7 +142,7 @@ fn run_once(seed: u64, world: &World, semantic: &Semantic, sink: &mut impl Trace
     let mut radio = Radio::new(seed, &world.v2x, semantic.ego, agents.len());
     let mut kinematics = Kinematics::new(&agents, dt, world.driving);
     let mut ego = Ego::new(semantic.ego, agents.len());
-    let mut measures = Measures::new(world, agents.len());
+    let mut measures = Measures::new(world, semantic, agents.len());
     let mut states = Vec::new();
     sink.start(&agents);
 
@@ -159,10 +160,17 @@ fn run_once(seed: u64, world: &World, semantic: &Semantic, sink: &mut impl Trace
         measures.arrivals(arrivals);
         // Sense: the ego's view of the scene, measured, and the caution it
         // drives with from the next step on; the RSUs' perception.
-        if let Some(pose) = ego_state.map(|s| s.pose) {
-            let view = ego.sense(time, &agents[semantic.ego], pose, &occluders, &bodies, semantic.d_min);
+        if let Some(ego_now) = ego_state {
+            let view = ego.sense(
+                time,
+                &agents[semantic.ego],
+                ego_now.pose,
+                &occluders,
+                &bodies,
+                semantic.d_min,
+            );
             kinematics.restrain(semantic.ego, ego.restraint(time, semantic));
-            measures.ego_step(time, dt, ego.cautious(time), view);
+            measures.ego_step((time, dt), ego_now, &states, ego.cautious(time), view);
         }
         for rsu in rsus.iter_mut().filter(|_| cycle) {
             rsu.perceive(&agents, &states, &occluders, &bodies, semantic, time);
@@ -187,7 +195,7 @@ fn run_once(seed: u64, world: &World, semantic: &Semantic, sink: &mut impl Trace
         // Measure: the step's record.
         measures.record(k, time, &states, sink);
     }
-    measures.finish(&ego)
+    measures.finish(&ego, &agents, run)
 }
 
 /// A V2X cycle with the ego in the scene: what the RSUs and the ego exchange.

@@ -6,7 +6,7 @@ use sightline_dsl::Metric;
 use sightline_engine::outcome::{DELIVERY_BIN, DENSITY_BIN, quantile};
 
 use super::format::{TableView, number, or_dash};
-use crate::results::{DensityRow, Detail, PointResult, SemanticCounts};
+use crate::results::{DensityRow, Detail, ObjectCategory, ObjectList, ObjectResult, PointResult, SemanticCounts};
 
 const BAND_COLUMNS: [&str; 7] = [
     "distance to nearest sensor",
@@ -149,6 +149,7 @@ pub(super) fn point_body(p: &PointResult) -> (String, Vec<TableView>) {
         Detail::Semantic {
             counts: c,
             contribution_by_density,
+            objects,
         } => (
             format!(
                 "{} pooled run(s): {} steps with the ego, {} generated road users, {} anticipated objects",
@@ -157,7 +158,11 @@ pub(super) fn point_body(p: &PointResult) -> (String, Vec<TableView>) {
                 c.generated,
                 c.anticipation.len()
             ),
-            semantic_tables(c, contribution_by_density),
+            {
+                let mut tables = semantic_tables(c, contribution_by_density);
+                tables.extend(object_tables(objects));
+                tables
+            },
         ),
     }
 }
@@ -259,4 +264,91 @@ fn semantic_tables(c: &SemanticCounts, density: &[DensityRow]) -> Vec<TableView>
         by_density,
         by_distance,
     ]
+}
+
+/// Rows of the object table in the report; results.json lists more.
+const REPORT_OBJECT_ROWS: usize = 50;
+
+/// The order of the report's object rows: the road users V2X is for first.
+const REPORT_ORDER: [ObjectCategory; 4] = [
+    ObjectCategory::NeverKnown,
+    ObjectCategory::WarnedNeverSeen,
+    ObjectCategory::WarnedBeforeSeen,
+    ObjectCategory::SeenFirst,
+];
+
+/// The relevant road users by category, and the first of their records.
+fn object_tables(objects: &ObjectList) -> [TableView; 2] {
+    let c = &objects.categories;
+    let by_category = TableView {
+        caption: format!(
+            "Relevant road users by how the ego came to know them (n = {} over the pooled runs)",
+            objects.relevant
+        ),
+        text_columns: 1,
+        head: vec!["category".into(), "road users".into()],
+        rows: [
+            (
+                "warned_before_seen: named by V2X before the ego saw it",
+                c.warned_before_seen,
+            ),
+            ("warned_never_seen: named by V2X, never seen", c.warned_never_seen),
+            ("seen_first: seen no later than named", c.seen_first),
+            ("never_known: neither named nor seen", c.never_known),
+        ]
+        .iter()
+        .map(|(k, v)| vec![(*k).to_string(), number(*v as f64)])
+        .collect(),
+    };
+    let shown: Vec<&ObjectResult> = REPORT_ORDER
+        .iter()
+        .flat_map(|&category| objects.records.iter().filter(move |o| o.category == category))
+        .take(REPORT_OBJECT_ROWS)
+        .collect();
+    let records = TableView {
+        caption: format!(
+            "Relevant road users: {} of {} ({} in results.json), never known first, then warned and never seen, \
+             warned before seen, seen first; times in seconds, — where it never happened",
+            shown.len(),
+            objects.relevant,
+            objects.records.len()
+        ),
+        text_columns: 4,
+        head: [
+            "run",
+            "id",
+            "class",
+            "category",
+            "relevant",
+            "seen",
+            "V2X",
+            "warned",
+            "closest at",
+            "closest, m",
+            "least TTC",
+            "anticipation",
+        ]
+        .map(String::from)
+        .to_vec(),
+        rows: shown
+            .iter()
+            .map(|o| {
+                vec![
+                    o.run.to_string(),
+                    o.id.clone(),
+                    o.class.to_string(),
+                    o.category.name().to_string(),
+                    number(o.first_relevant),
+                    or_dash(o.first_seen),
+                    or_dash(o.first_v2x),
+                    or_dash(o.first_warning),
+                    or_dash(o.closest.map(|c| c.time)),
+                    or_dash(o.closest.map(|c| c.distance)),
+                    or_dash(o.min_ttc),
+                    or_dash(o.anticipation),
+                ]
+            })
+            .collect(),
+    };
+    [by_category, records]
 }

@@ -29,6 +29,8 @@ pub const MESSAGES: &str = "/semantic/messages";
 pub const ARRIVALS: &str = "/semantic/arrivals";
 /// `sightline.Approach`, one per object coming within d_min of the ego.
 pub const APPROACHES: &str = "/semantic/approaches";
+/// `sightline.Object`, once per relevant road user of each semantic point at the end.
+pub const OBJECTS: &str = "/semantic/objects";
 
 /// `foxglove.SceneUpdate`, every step a cooperating agent is in the scene: what
 /// it detected, where it placed it, and where it believes it is.

@@ -504,6 +504,58 @@ pub struct ApproachRecord {
     pub flagged: bool,
 }
 
+/// `/semantic/objects` (after the last step, one per relevant road user of
+/// each semantic point, at most `MAX_OBJECT_RECORDS` per point): its record as
+/// results.json lists it, flat. Times are seconds; left out: never happened.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[schemars(title = "sightline.Object")]
+pub struct RoadUserRecord {
+    /// The point's index.
+    pub point: usize,
+    /// The pooled run.
+    pub run: u32,
+    /// The road user's agent id.
+    pub id: String,
+    /// Its kind.
+    pub class: String,
+    /// Its length, metres.
+    pub length: f64,
+    /// Its width, metres.
+    pub width: f64,
+    /// When it became relevant.
+    pub first_relevant: f64,
+    /// When the ego first saw it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub first_seen: Option<f64>,
+    /// When the first V2X message naming it reached the ego.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub first_v2x: Option<f64>,
+    /// When the first message flagging a conflict with it reached the ego.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub first_warning: Option<f64>,
+    /// When it came closest to the ego.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub closest_time: Option<f64>,
+    /// How close, between the centres, metres.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub closest_distance: Option<f64>,
+    /// Where it was then, x, metres.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub closest_x: Option<f64>,
+    /// Where it was then, y, metres.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub closest_y: Option<f64>,
+    /// Its least time to collision with the ego while within
+    /// `semantic.proximity` of it, seconds.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub min_ttc: Option<f64>,
+    /// `warned_before_seen`, `warned_never_seen`, `seen_first` or `never_known`.
+    pub category: String,
+    /// Our anticipation time, seconds.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub anticipation: Option<f64>,
+}
+
 #[cfg(test)]
 mod tests {
     use super::Real;

@@ -18,6 +18,8 @@
 //!   sweeps that reach them.
 //! - `counts`: the counts behind the metrics (distance bands, coverage, the
 //!   mass audit, a world's and a semantic run's counts).
+//! - `objects`: a semantic point's per-object record ([`ObjectList`]), at most
+//!   [`MAX_OBJECT_RECORDS`] listed.
 //! - `metrics`: the top-level metrics (a value, or one table per sweep) and
 //!   the insertion-ordered map ([`Ordered`]) they are written as.
 //! - `reference`: published figures beside measured values, and the
@@ -33,7 +35,9 @@ pub use counts::{
     Radio, ReliabilityBin, SemanticCounts, Sightings, WorldCounts,
 };
 pub use document::{FORMAT, InputInfo, Results, ScenarioInfo, Summary};
+pub(crate) use from_run::object_result;
 pub use metrics::{Measured, MetricEntry, Ordered, Table};
+pub use objects::{CategoryCounts, ClosestApproach, MAX_OBJECT_RECORDS, ObjectCategory, ObjectList, ObjectResult};
 pub use point::{Detail, LabelResult, PointResult};
 pub use provenance::{Provenance, RecordingInfo, Tool};
 pub use reference::{Assumption, ReferencePoint, ReferenceResult};
@@ -47,6 +51,7 @@ mod counts;
 mod document;
 mod from_run;
 mod metrics;
+mod objects;
 mod point;
 mod provenance;
 mod reference;

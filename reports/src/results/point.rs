@@ -4,7 +4,7 @@
 
 use serde::Serialize;
 
-use super::{Band, Coverage, DensityRow, MassAudit, Ordered, SemanticCounts, WorldCounts};
+use super::{Band, Coverage, DensityRow, MassAudit, ObjectList, Ordered, SemanticCounts, WorldCounts};
 
 /// Everything measured at one point.
 #[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
@@ -71,5 +71,7 @@ pub enum Detail {
         counts: SemanticCounts,
         /// Objects known to the ego only through an RSU, by traffic density.
         contribution_by_density: Vec<DensityRow>,
+        /// Every road user relevant to the ego, with its category.
+        objects: ObjectList,
     },
 }

@@ -13,8 +13,8 @@ use super::{Recorder, WriteError};
 use crate::mcap::flat::flat_schema_of as schema_of;
 use crate::mcap::foxglove::{FRAME_TRANSFORMS_SCHEMA, GRID_SCHEMA, LOG_SCHEMA, SCENE_UPDATE_SCHEMA};
 use crate::mcap::wire::{
-    ApproachRecord, ArrivalRecord, MessageRecord, OutcomeRecord, PacketRecord, RequirementSignals, ScenarioRecord,
-    SignalsRecord, VerdictRecord,
+    ApproachRecord, ArrivalRecord, MessageRecord, OutcomeRecord, PacketRecord, RequirementSignals, RoadUserRecord,
+    ScenarioRecord, SignalsRecord, VerdictRecord,
 };
 
 /// A channel's schema: its name and its JSON Schema.
@@ -49,6 +49,7 @@ pub(super) const PACKET: SchemaSpec = SchemaSpec::new("sightline.Packet", schema
 pub(super) const MESSAGE: SchemaSpec = SchemaSpec::new("sightline.SemanticMessage", schema_of::<MessageRecord>);
 pub(super) const ARRIVAL: SchemaSpec = SchemaSpec::new("sightline.Arrival", schema_of::<ArrivalRecord>);
 pub(super) const APPROACH: SchemaSpec = SchemaSpec::new("sightline.Approach", schema_of::<ApproachRecord>);
+pub(super) const OBJECT: SchemaSpec = SchemaSpec::new("sightline.Object", schema_of::<RoadUserRecord>);
 
 impl<W: Write + Seek> Recorder<'_, W> {
     /// Writes `message` on `topic` (created with `schema` on first use) at

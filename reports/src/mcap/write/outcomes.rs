@@ -1,5 +1,6 @@
 //! The end of a recording: every point's outcome with what its checks read
-//! (`/sightline/outcome`), and every verdict, structured (`/sightline/verdicts`)
+//! (`/sightline/outcome`), a semantic point's relevant road users
+//! (`/semantic/objects`), and every verdict, structured (`/sightline/verdicts`)
 //! and as a log line (`/log`), written once the run is over.
 
 use std::io::{Seek, Write};
@@ -8,14 +9,15 @@ use sightline_dsl::{Check, ObjectProperty, Signal};
 use sightline_engine::{Outcome, Run};
 use sightline_oracles::Verdict;
 
-use super::channel::{LOG, OUTCOME, VERDICT};
+use super::channel::{LOG, OBJECT, OUTCOME, VERDICT};
 use super::{Recorder, WriteError};
 use crate::mcap::foxglove::{Level, Log, Time};
 use crate::mcap::topic;
 use crate::mcap::wire::{
     AuditRecord, MetricValue, ObjectRecord, ObjectValue, OutcomeRecord, PointVerdictRecord, Real, ReplicateRecord,
-    SeriesRecord, SeriesRun, SeriesSample, VerdictRecord,
+    RoadUserRecord, SeriesRecord, SeriesRun, SeriesSample, VerdictRecord,
 };
+use crate::results::{MAX_OBJECT_RECORDS, object_result};
 
 impl<W: Write + Seek> Recorder<'_, W> {
     /// Writes every point's outcome, every verdict (structured and as log lines)
@@ -89,6 +91,11 @@ impl<W: Write + Seek> Recorder<'_, W> {
                     .collect(),
             };
             self.publish(topic::OUTCOME, OUTCOME, end, &record);
+            if let Outcome::Semantic(metrics) = outcome {
+                for object in metrics.objects.iter().take(MAX_OBJECT_RECORDS) {
+                    self.publish(topic::OBJECTS, OBJECT, end, &road_user_record(point.index, object));
+                }
+            }
         }
         for (requirement, verdict) in scenario.requirements.iter().zip(verdicts) {
             self.publish(topic::VERDICTS, VERDICT, end, &verdict_record(requirement, verdict));
@@ -114,6 +121,31 @@ impl<W: Write + Seek> Recorder<'_, W> {
         self.take_failure()?;
         self.out.finish()?;
         Ok(self.out.into_inner())
+    }
+}
+
+/// A relevant road user, flat, as results.json lists it.
+fn road_user_record(point: usize, object: &sightline_engine::outcome::ObjectRecord) -> RoadUserRecord {
+    let listed = object_result(object);
+    let closest = listed.closest;
+    RoadUserRecord {
+        point,
+        run: listed.run,
+        id: listed.id,
+        class: listed.class.into(),
+        length: listed.length,
+        width: listed.width,
+        first_relevant: listed.first_relevant,
+        first_seen: listed.first_seen,
+        first_v2x: listed.first_v2x,
+        first_warning: listed.first_warning,
+        closest_time: closest.map(|c| c.time),
+        closest_distance: closest.map(|c| c.distance),
+        closest_x: closest.map(|c| c.position[0]),
+        closest_y: closest.map(|c| c.position[1]),
+        min_ttc: listed.min_ttc,
+        category: listed.category.name().into(),
+        anticipation: listed.anticipation,
     }
 }
 

@@ -7,8 +7,12 @@
 //! - `document`: [`Results::new`](super::Results::new), the sweeps and the
 //!   top-level metrics;
 //! - `requirement`: a verdict and the check it judged;
-//! - `point`: a point's outcome and the engine's counts behind it.
+//! - `point`: a point's outcome and the engine's counts behind it;
+//! - `objects`: a semantic point's per-object records.
 
 mod document;
+mod objects;
 mod point;
+
+pub(crate) use objects::object_result;
 mod requirement;

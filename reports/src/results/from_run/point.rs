@@ -5,6 +5,7 @@
 use sightline_dsl::Point;
 use sightline_engine::{Outcome, outcome as engine};
 
+use super::objects::object_list;
 use crate::results::{
     AgeCount, Band, Calibration, Conflict, Coverage, DeliveryBin, DensityRow, Detail, DistanceRow, LabelCounts,
     LabelResult, MassAudit, Ordered, PointResult, Radio, ReliabilityBin, SemanticCounts, Sightings, WorldCounts,
@@ -58,6 +59,7 @@ pub(super) fn point_result((point, outcome): (&Point, &Outcome)) -> PointResult 
             Outcome::Semantic(m) => Detail::Semantic {
                 counts: semantic_counts(m),
                 contribution_by_density: m.contribution_by_density().into_iter().map(density_row).collect(),
+                objects: object_list(&m.objects),
             },
         },
     }
@@ -244,7 +246,7 @@ fn calibration_table(c: &engine::Calibration) -> Calibration {
 
 /// A semantic run's counts; its per-step series (`contribution`, `rsu_only`,
 /// `time_to_conflict`) stay out of results.json (the contribution is written
-/// by density instead).
+/// by density instead), and its per-object records go in their own list.
 fn semantic_counts(metrics: &engine::SemanticMetrics) -> SemanticCounts {
     let engine::SemanticMetrics {
         runs,
@@ -270,6 +272,7 @@ fn semantic_counts(metrics: &engine::SemanticMetrics) -> SemanticCounts {
         ref warnings,
         rsu_only: _,
         time_to_conflict: _,
+        objects: _,
     } = *metrics;
     let engine::LabelCounts {
         nlos_static,

@@ -1,0 +1,352 @@
+//! The per-object record of a semantic run (issue 17): for every road user
+//! relevant to the ego, when it became relevant, when the ego first saw it,
+//! first heard of it through V2X and was first warned of a conflict with it,
+//! its closest approach, its least time to collision, and its [`Category`].
+//!
+//! The definitions, all on the truth and the ego's own clock (seconds from the
+//! start of the run):
+//! - **relevant**: a road user other than the ego and the RSUs whose centre comes
+//!   closer to the ego's than `semantic.proximity` (the pipeline's first layer,
+//!   on true positions) at a step with both in the scene, or that a message the
+//!   ego received names. It becomes relevant at the first of the two.
+//! - **first own sight**: the first step at which the ego sees it (its centre in
+//!   range, field of view and line of sight of one of the ego's sensors).
+//! - **first V2X knowledge**: the arrival of the first message the ego received
+//!   that names it: an RSU's semantic message, or its own status message if it
+//!   is connected.
+//! - **first warning**: the arrival of the first RSU message the ego received
+//!   that flags a conflict with it.
+//! - **closest approach**: the step, among those with both in the scene, at which
+//!   the centres are closest (the first such step on a tie), that distance, and
+//!   where the road user was then (so that it can be placed in an area).
+//! - **least time to collision**: over the steps at which it is within
+//!   `semantic.proximity` of the ego, the shortest time after which the centres
+//!   would come within `d_min` if both kept their speed and heading (0 when
+//!   they are within it); none when they are never on such a course. Centres
+//!   and `d_min` as the close approaches count them; footprints (oriented boxes) are not used.
+
+use serde::{Deserialize, Serialize};
+use sightline_dsl::{Agent, AgentKind, Semantic};
+
+use super::ego::Knowledge;
+use crate::math::Vector;
+use crate::world::AgentState;
+
+/// How the ego came to know a road user: by V2X, by its own sight, in which
+/// order, or not at all. Exactly one holds for each relevant road user.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Category {
+    /// A V2X message named it strictly before the ego first saw it.
+    WarnedBeforeSeen,
+    /// A V2X message named it, and the ego never saw it.
+    WarnedNeverSeen,
+    /// The ego saw it no later than the first V2X message naming it, or no
+    /// message named it.
+    SeenFirst,
+    /// Neither: no message named it and the ego never saw it.
+    NeverKnown,
+}
+
+impl Category {
+    /// Every category, in documentation order.
+    pub const ALL: [Category; 4] = [
+        Self::WarnedBeforeSeen,
+        Self::WarnedNeverSeen,
+        Self::SeenFirst,
+        Self::NeverKnown,
+    ];
+
+    /// The name tools read (results.json, the recording).
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::WarnedBeforeSeen => "warned_before_seen",
+            Self::WarnedNeverSeen => "warned_never_seen",
+            Self::SeenFirst => "seen_first",
+            Self::NeverKnown => "never_known",
+        }
+    }
+
+    /// The category of a road user first named by V2X at `first_v2x` and first
+    /// seen at `first_seen`; a tie goes to sight.
+    pub fn of(first_v2x: Option<f64>, first_seen: Option<f64>) -> Self {
+        match (first_v2x, first_seen) {
+            (Some(told), Some(seen)) if told < seen => Self::WarnedBeforeSeen,
+            (Some(_), None) => Self::WarnedNeverSeen,
+            (_, Some(_)) => Self::SeenFirst,
+            (None, None) => Self::NeverKnown,
+        }
+    }
+}
+
+/// Where and when a road user came closest to the ego.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Closest {
+    /// The time, seconds.
+    pub time: f64,
+    /// The distance between the centres, metres.
+    pub distance: f64,
+    /// The road user's centre then, world frame [x, y], metres.
+    pub position: [f64; 2],
+}
+
+/// One relevant road user over one run.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ObjectRecord {
+    /// The pooled run it belongs to (0: the run with the point's own seed).
+    pub run: u32,
+    /// Its agent id (generated road users: `routeI-N` on the I-th traffic
+    /// route, `CROSSWALK-N` at a crosswalk).
+    pub id: String,
+    /// Its kind.
+    pub class: AgentKind,
+    /// Its length, metres.
+    pub length: f64,
+    /// Its width, metres.
+    pub width: f64,
+    /// When it became relevant, seconds.
+    pub first_relevant: f64,
+    /// When the ego first saw it.
+    pub first_seen: Option<f64>,
+    /// When the first message naming it reached the ego.
+    pub first_v2x: Option<f64>,
+    /// When the first message flagging a conflict with it reached the ego.
+    pub first_warning: Option<f64>,
+    /// Its closest approach to the ego (`None` only for a road user never in
+    /// the scene together with the ego).
+    pub closest: Option<Closest>,
+    /// Its least time to collision with the ego while within
+    /// `semantic.proximity` of it, seconds.
+    pub min_ttc: Option<f64>,
+    /// How the ego came to know it.
+    pub category: Category,
+}
+
+impl ObjectRecord {
+    /// Seconds the ego knew of it through V2X before it could know it on its
+    /// own, by category:
+    /// - `warned_before_seen`: first own sight − first V2X knowledge (> 0);
+    /// - `warned_never_seen`: closest approach − first V2X knowledge, or 0 when
+    ///   the first message came after the closest approach;
+    /// - `seen_first`, `never_known`: none (V2X gave nothing ahead of sight, or
+    ///   nothing at all).
+    pub fn anticipation(&self) -> Option<f64> {
+        let told = self.first_v2x?;
+        match self.category {
+            Category::WarnedBeforeSeen => self.first_seen.map(|seen| seen - told),
+            Category::WarnedNeverSeen => self.closest.map(|c| (c.time - told).max(0.0)),
+            Category::SeenFirst | Category::NeverKnown => None,
+        }
+    }
+}
+
+/// What the steps showed of one road user relative to the ego.
+#[derive(Debug, Clone, Copy, Default)]
+struct Encounter {
+    /// The first step it was within the proximity of the ego.
+    proximate: Option<f64>,
+    closest: Option<Closest>,
+    min_ttc: Option<f64>,
+}
+
+/// The encounters of every road user with the ego over a run.
+pub(super) struct Encounters {
+    ego: usize,
+    proximity: f64,
+    d_min: f64,
+    /// By agent index.
+    by_agent: Vec<Encounter>,
+}
+
+impl Encounters {
+    /// Nothing seen yet of the `agents` agents of a scene run with `semantic`.
+    pub(super) fn new(semantic: &Semantic, agents: usize) -> Self {
+        Self {
+            ego: semantic.ego,
+            proximity: semantic.proximity,
+            d_min: semantic.d_min,
+            by_agent: vec![Encounter::default(); agents],
+        }
+    }
+
+    /// The step at `time` with the ego at `ego` and every agent's state in `states`.
+    pub(super) fn step(&mut self, time: f64, ego: AgentState, states: &[Option<AgentState>]) {
+        let ego_velocity = velocity(ego);
+        for (agent, state) in states.iter().enumerate() {
+            let Some(state) = state.filter(|_| agent != self.ego) else {
+                continue;
+            };
+            let encounter = &mut self.by_agent[agent];
+            let offset = state.position() - ego.position();
+            let distance = offset.length();
+            if encounter.closest.is_none_or(|c| distance < c.distance) {
+                let at = state.position();
+                encounter.closest = Some(Closest {
+                    time,
+                    distance,
+                    position: [at.x, at.y],
+                });
+            }
+            // Farther, a time to collision says nothing the nearer steps do not;
+            // leaving those steps out keeps the record cheap in dense traffic.
+            if distance >= self.proximity {
+                continue;
+            }
+            encounter.proximate.get_or_insert(time);
+            if let Some(ttc) = time_to_within(offset, velocity(state) - ego_velocity, self.d_min) {
+                encounter.min_ttc = Some(encounter.min_ttc.map_or(ttc, |least| least.min(ttc)));
+            }
+        }
+    }
+
+    /// The record of every relevant road user among `agents`, with what the
+    /// ego knew of each (`knowledge`, by agent index), in order of becoming
+    /// relevant (then of agent index), labelled with pooled run `run`.
+    pub(super) fn records(&self, run: u32, agents: &[Agent], knowledge: &[Knowledge]) -> Vec<ObjectRecord> {
+        let mut records: Vec<(usize, ObjectRecord)> = self
+            .by_agent
+            .iter()
+            .zip(knowledge)
+            .enumerate()
+            .filter(|&(agent, _)| agent != self.ego && agents[agent].kind != AgentKind::Rsu)
+            .filter_map(|(agent, (encounter, known))| {
+                let named = known.first_received.map(|(at, _)| at);
+                let first_relevant = match (encounter.proximate, named) {
+                    (Some(near), Some(named)) => near.min(named),
+                    (near, named) => near.or(named)?,
+                };
+                let first_v2x = match (named, known.first_direct) {
+                    (Some(a), Some(b)) => Some(a.min(b)),
+                    (a, b) => a.or(b),
+                };
+                let spec = &agents[agent];
+                let record = ObjectRecord {
+                    run,
+                    id: spec.id.clone(),
+                    class: spec.kind,
+                    length: spec.length,
+                    width: spec.width,
+                    first_relevant,
+                    first_seen: known.first_seen,
+                    first_v2x,
+                    first_warning: known.flagged,
+                    closest: encounter.closest,
+                    min_ttc: encounter.min_ttc,
+                    category: Category::of(first_v2x, known.first_seen),
+                };
+                Some((agent, record))
+            })
+            .collect();
+        records.sort_by(|(a, x), (b, y)| x.first_relevant.total_cmp(&y.first_relevant).then(a.cmp(b)));
+        records.into_iter().map(|(_, record)| record).collect()
+    }
+}
+
+/// An agent's velocity: its speed along its heading.
+fn velocity(state: AgentState) -> Vector {
+    let rotation = state.pose.rotation;
+    Vector::new(rotation.cos(), rotation.sin()) * state.speed
+}
+
+/// The shortest time t ≥ 0 after which |`offset` + `closing` · t| ≤ `d_min`:
+/// 0 when already within, `None` when never (moving apart, or passing wide).
+fn time_to_within(offset: Vector, closing: Vector, d_min: f64) -> Option<f64> {
+    let c = offset.dot(offset) - d_min * d_min;
+    if c <= 0.0 {
+        return Some(0.0);
+    }
+    let a = closing.dot(closing);
+    let b = 2.0 * offset.dot(closing);
+    // Outside now: the roots share a sign (their product c / a > 0), so the
+    // course reaches d_min ahead only when b < 0 and the discriminant holds.
+    let discriminant = b * b - 4.0 * a * c;
+    (a > 0.0 && b < 0.0 && discriminant >= 0.0).then(|| (-b - discriminant.sqrt()) / (2.0 * a))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use approx::assert_relative_eq;
+
+    /// Head on at 10 m/s closing from 22 m with d_min 2: 20 m to go, 2 s.
+    #[test]
+    fn time_to_collision_head_on() {
+        let t = time_to_within(Vector::new(22.0, 0.0), Vector::new(-10.0, 0.0), 2.0).unwrap();
+        assert_relative_eq!(t, 2.0, epsilon = 1e-12);
+        assert_eq!(
+            time_to_within(Vector::new(22.0, 0.0), Vector::new(10.0, 0.0), 2.0),
+            None
+        );
+        assert_eq!(
+            time_to_within(Vector::new(1.0, 1.0), Vector::new(10.0, 0.0), 2.0),
+            Some(0.0)
+        );
+    }
+
+    /// Passing 3 m abeam never comes within 2 m; 1.2 m abeam does, after
+    /// (10 − √(2² − 1.2²)) / 5 = (10 − 1.6) / 5 = 1.68 s.
+    #[test]
+    fn time_to_collision_of_a_passing_course() {
+        assert_eq!(
+            time_to_within(Vector::new(10.0, 3.0), Vector::new(-5.0, 0.0), 2.0),
+            None
+        );
+        let t = time_to_within(Vector::new(10.0, 1.2), Vector::new(-5.0, 0.0), 2.0).unwrap();
+        assert_relative_eq!(t, 1.68, epsilon = 1e-12);
+    }
+
+    #[test]
+    fn time_to_collision_at_rest_is_none_outside_d_min() {
+        assert_eq!(time_to_within(Vector::new(5.0, 0.0), Vector::ZERO, 2.0), None);
+    }
+
+    #[test]
+    fn each_road_user_falls_in_exactly_one_category() {
+        use Category::*;
+        for (told, seen, category) in [
+            (Some(1.0), Some(2.0), WarnedBeforeSeen),
+            (Some(1.0), None, WarnedNeverSeen),
+            (Some(2.0), Some(2.0), SeenFirst),
+            (Some(3.0), Some(2.0), SeenFirst),
+            (None, Some(2.0), SeenFirst),
+            (None, None, NeverKnown),
+        ] {
+            assert_eq!(Category::of(told, seen), category, "{told:?} {seen:?}");
+        }
+    }
+
+    fn record(category: Category, first_v2x: Option<f64>, first_seen: Option<f64>, closest: f64) -> ObjectRecord {
+        ObjectRecord {
+            run: 0,
+            id: "x".into(),
+            class: AgentKind::Car,
+            length: 4.5,
+            width: 1.8,
+            first_relevant: 0.0,
+            first_seen,
+            first_v2x,
+            first_warning: None,
+            closest: Some(Closest {
+                time: closest,
+                distance: 1.0,
+                position: [0.0, 0.0],
+            }),
+            min_ttc: None,
+            category,
+        }
+    }
+
+    #[test]
+    fn anticipation_by_category() {
+        use Category::*;
+        assert_eq!(
+            record(WarnedBeforeSeen, Some(1.5), Some(4.0), 6.0).anticipation(),
+            Some(2.5)
+        );
+        assert_eq!(record(WarnedNeverSeen, Some(1.5), None, 6.0).anticipation(), Some(4.5));
+        // Told only after its closest approach: nothing gained.
+        assert_eq!(record(WarnedNeverSeen, Some(7.0), None, 6.0).anticipation(), Some(0.0));
+        assert_eq!(record(SeenFirst, Some(4.0), Some(1.0), 6.0).anticipation(), None);
+        assert_eq!(record(NeverKnown, None, None, 6.0).anticipation(), None);
+    }
+}

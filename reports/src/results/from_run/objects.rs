@@ -1,0 +1,82 @@
+//! A semantic point's per-object records, mapped to results.json: counted by
+//! category, and listed up to [`MAX_OBJECT_RECORDS`].
+
+use sightline_dsl::AgentKind;
+use sightline_engine::outcome as engine;
+
+use crate::results::{CategoryCounts, ClosestApproach, MAX_OBJECT_RECORDS, ObjectCategory, ObjectList, ObjectResult};
+
+pub(super) fn object_list(records: &[engine::ObjectRecord]) -> ObjectList {
+    let count = |category| records.iter().filter(|r| r.category == category).count() as u64;
+    ObjectList {
+        relevant: records.len() as u64,
+        categories: CategoryCounts {
+            warned_before_seen: count(engine::Category::WarnedBeforeSeen),
+            warned_never_seen: count(engine::Category::WarnedNeverSeen),
+            seen_first: count(engine::Category::SeenFirst),
+            never_known: count(engine::Category::NeverKnown),
+        },
+        records: records.iter().take(MAX_OBJECT_RECORDS).map(object_result).collect(),
+        omitted: records.len().saturating_sub(MAX_OBJECT_RECORDS) as u64,
+    }
+}
+
+/// One record; also what the recording and the report show of it.
+pub(crate) fn object_result(record: &engine::ObjectRecord) -> ObjectResult {
+    let engine::ObjectRecord {
+        run,
+        ref id,
+        class,
+        length,
+        width,
+        first_relevant,
+        first_seen,
+        first_v2x,
+        first_warning,
+        closest,
+        min_ttc,
+        category,
+    } = *record;
+    ObjectResult {
+        run,
+        id: id.clone(),
+        class: class_name(class),
+        length,
+        width,
+        first_relevant,
+        first_seen,
+        first_v2x,
+        first_warning,
+        closest: closest.map(
+            |engine::Closest {
+                 time,
+                 distance,
+                 position,
+             }| ClosestApproach {
+                time,
+                distance,
+                position,
+            },
+        ),
+        min_ttc,
+        category: match category {
+            engine::Category::WarnedBeforeSeen => ObjectCategory::WarnedBeforeSeen,
+            engine::Category::WarnedNeverSeen => ObjectCategory::WarnedNeverSeen,
+            engine::Category::SeenFirst => ObjectCategory::SeenFirst,
+            engine::Category::NeverKnown => ObjectCategory::NeverKnown,
+        },
+        anticipation: record.anticipation(),
+    }
+}
+
+/// The kind's name as scenario files write it.
+fn class_name(kind: AgentKind) -> &'static str {
+    match kind {
+        AgentKind::Car => "car",
+        AgentKind::Truck => "truck",
+        AgentKind::Bus => "bus",
+        AgentKind::Motorbike => "motorbike",
+        AgentKind::Pedestrian => "pedestrian",
+        AgentKind::Rsu => "rsu",
+    }
+}
