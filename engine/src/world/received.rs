@@ -39,6 +39,9 @@ pub(super) struct Held {
     /// more slots than generations fit in `max_age`, so that live ones never
     /// share a slot.
     slots: Vec<Option<Generation>>,
+    /// Whether a generation left its slot since the held cells were last
+    /// checked: some may still name it.
+    stale: bool,
 }
 
 impl Held {
@@ -51,6 +54,7 @@ impl Held {
             from: vec![0; cells],
             touched: Vec::new(),
             slots: vec![None; live],
+            stale: false,
         }
     }
 
@@ -60,6 +64,7 @@ impl Held {
     pub(super) fn receive(&mut self, serial: u32, sensed: f64, sensors: &[Point], runs: &[Run]) {
         let slot = serial as usize % self.slots.len();
         if self.slots[slot].as_ref().is_none_or(|g| g.serial != serial) {
+            self.stale |= self.slots[slot].is_some();
             self.slots[slot] = Some(Generation {
                 serial,
                 sensed,
@@ -81,14 +86,19 @@ impl Held {
     /// Ages what is held to `now`: drops the cells whose evidence is older than
     /// `messages.max_age` and weighs the rest by the decay.
     pub(super) fn age(&mut self, now: f64, messages: &Messages) {
+        let mut dropped = std::mem::take(&mut self.stale);
         for slot in &mut self.slots {
             let Some(generation) = slot else { continue };
             let age = now - generation.sensed;
             if age > messages.max_age + 1e-9 {
                 *slot = None;
+                dropped = true;
             } else {
                 generation.weight = messages.decay.map_or(1.0, |tau| (-age / tau).exp());
             }
+        }
+        if !dropped {
+            return;
         }
         let (cells, from, slots) = (&mut self.cells, &self.from, &self.slots);
         self.touched.retain(|&cell| {
