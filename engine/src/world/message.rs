@@ -92,7 +92,11 @@ pub(crate) fn runs(observation: &Observation, grid: &Grid) -> Vec<Run> {
                 Some(run) if run.state == state && run.len < MAX_RUN => run.len += 1,
                 _ => {
                     runs.extend(open.take().filter(|r| r.state != Observed::Unknown));
-                    open = Some(Run { start: cell, len: 1, state });
+                    open = Some(Run {
+                        start: cell,
+                        len: 1,
+                        state,
+                    });
                 }
             }
         }

@@ -22,11 +22,12 @@
 //! the grid is sent as the sender placed it, in the world frame.
 
 use rand::rngs::ChaCha8Rng;
+use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use sightline_dsl::{Agent, AgentKind, Grid, Messages, V2x};
 
 use super::evidence::Evidence;
-use super::message::{Run, header_bytes, pack, runs};
+use super::message::{Message, Run, header_bytes, pack, runs};
 use super::received::Held;
 use super::sight::Occluders;
 use super::state::AgentState;
@@ -182,6 +183,8 @@ impl<'a> Radio<'a> {
         let ego = states[self.ego]
             .expect("the radio runs while the ego is in the scene")
             .position();
+        // Which senders generate now, in cooperation order.
+        let mut due: Vec<(usize, &CooperatorStep<'_>)> = Vec::new();
         for c in sensed.iter().filter(|c| c.agent != self.ego) {
             let index = self
                 .senders
@@ -196,18 +199,40 @@ impl<'a> Radio<'a> {
             // The next generation is due a period after this one was, not after
             // this step: a rate that is not a whole number of steps keeps its mean.
             let period = 1.0 / self.messages.rate_hz;
-            let mut due = sender.due.unwrap_or(time) + period;
-            while due <= time + 1e-9 {
-                due += period;
+            let mut next = sender.due.unwrap_or(time) + period;
+            while next <= time + 1e-9 {
+                next += period;
             }
-            sender.due = Some(due);
+            sender.due = Some(next);
             sender.serial += 1;
+            due.push((index, c));
+        }
+        // Encoding draws nothing: it runs in parallel, and the messages go out
+        // in cooperation order, each sender drawing from its own stream.
+        let (grid, messages) = (self.grid, self.messages);
+        let packed: Vec<Vec<Message>> = due
+            .par_iter()
+            .map(|(_, c)| {
+                let observation = c.observation;
+                let sensor = observation
+                    .sensor_positions
+                    .first()
+                    .copied()
+                    .unwrap_or_else(|| states[c.agent].expect("a sensing agent is in the scene").position());
+                pack(
+                    &runs(observation, grid),
+                    grid,
+                    header_bytes(observation.sensor_positions.len()),
+                    messages.max_bytes,
+                    messages.oversize,
+                    sensor,
+                )
+            })
+            .collect();
+        let channel = &self.v2x.channel;
+        for ((index, c), packed) in due.into_iter().zip(packed) {
+            let sender = &mut self.senders[index];
             let position = states[c.agent].expect("a sensing agent is in the scene").position();
-            let observation = c.observation;
-            let header = header_bytes(observation.sensor_positions.len());
-            let all = runs(observation, self.grid);
-            let sender_sensor = observation.sensor_positions.first().copied().unwrap_or(position);
-            let channel = &self.v2x.channel;
             let link = Link {
                 distance_m: (ego - position).length(),
                 los: !occluders.block(position, ego),
@@ -218,14 +243,6 @@ impl<'a> Radio<'a> {
                 },
                 rx_antenna_m: channel.vehicle_antenna_m,
             };
-            let packed = pack(
-                &all,
-                self.grid,
-                header,
-                self.messages.max_bytes,
-                self.messages.oversize,
-                sender_sensor,
-            );
             for message in packed {
                 self.stats.sent += 1;
                 self.stats.bytes += u64::from(message.bytes);
@@ -237,7 +254,7 @@ impl<'a> Radio<'a> {
                             sender: index,
                             serial: sender.serial,
                             sensed: time,
-                            sensors: observation.sensor_positions.clone(),
+                            sensors: c.observation.sensor_positions.clone(),
                             runs: message.runs,
                         },
                     );
@@ -254,9 +271,9 @@ impl<'a> Radio<'a> {
                 .held
                 .receive(parcel.serial, parcel.sensed, &parcel.sensors, &parcel.runs);
         }
-        for sender in &mut self.senders {
-            sender.held.age(time, self.messages);
-        }
+        self.senders
+            .par_iter_mut()
+            .for_each(|sender| sender.held.age(time, messages));
     }
 
     /// The ego's copies of the senders' grids that hold evidence, in
