@@ -240,7 +240,8 @@ const SECTIONS: &[(&str, &str)] = &[
         r#"{ "penetration": 0.5, "latency": 0.01,
              "channel": { "model": "tr36885_urban", "tx_power_dbm": 23, "shadowing_sigma_db": 3, "nlos_shadowing_sigma_db": 4,
                           "device_loss_db": 3, "sensitivity_dbm": -90, "carrier_ghz": 5.9, "vehicle_antenna_m": 1.5,
-                          "rsu_antenna_m": 5 } }"#,
+                          "rsu_antenna_m": 5 },
+             "messages": { "rate_hz": 10, "max_bytes": 1100, "oversize": "split", "max_age": 1, "decay": 0.5 } }"#,
     ),
     (
         "semantic",
@@ -307,6 +308,18 @@ const MARGINAL_RADIO: &[Set] = &[
 ];
 /// A radio for collective perception: its keys are compared over it.
 const RADIO: &[Set] = &[("v2x.latency", "0.01")];
+/// The same with messages too small for a grid, for the keys that fit one.
+const SMALL_MESSAGES: &[Set] = &[("v2x.latency", "0.01"), ("v2x.messages.max_bytes", "300")];
+/// The same with a wall between the roadside unit and the ego's way and a
+/// receiver at the edge of reception, for the keys of blocked links.
+const BLOCKED_RADIO: &[Set] = &[
+    ("v2x.latency", "0.01"),
+    ("v2x.channel.sensitivity_dbm", "-48"),
+    (
+        "occluders.+",
+        r#"{ "id": "wall", "polygon": [[-5, -12], [-4, -12], [-4, -4], [-5, -4]] }"#,
+    ),
+];
 /// The same for a semantic world.
 const SEMANTIC_SIGNAL: Set = (
     "requirements.0.check",
@@ -691,15 +704,15 @@ const KEYS: &[Key] = &[
     Key { path: "v2x.channel.model", field: Section, perception: with(RADIO, &[("v2x.channel.model", r#""ideal""#)]), semantic: change(&[("v2x.channel.model", r#""ideal""#)]) },
     Key { path: "v2x.channel.tx_power_dbm", field: Section, perception: with(RADIO, &[("v2x.channel.tx_power_dbm", "-20")]), semantic: change(&[("v2x.channel.tx_power_dbm", "-20")]) },
     Key { path: "v2x.channel.shadowing_sigma_db", field: Section, perception: with(MARGINAL_RADIO, &[("v2x.channel.shadowing_sigma_db", "12")]), semantic: with(MARGINAL_RADIO, &[("v2x.channel.shadowing_sigma_db", "12")]) },
-    Key { path: "v2x.channel.nlos_shadowing_sigma_db", field: Section, perception: with(MARGINAL_RADIO, &[("v2x.channel.nlos_shadowing_sigma_db", "12")]), semantic: with(MARGINAL_RADIO, &[("v2x.channel.nlos_shadowing_sigma_db", "12")]) },
+    Key { path: "v2x.channel.nlos_shadowing_sigma_db", field: Section, perception: with(BLOCKED_RADIO, &[("v2x.channel.nlos_shadowing_sigma_db", "12")]), semantic: with(MARGINAL_RADIO, &[("v2x.channel.nlos_shadowing_sigma_db", "12")]) },
     Key { path: "v2x.channel.device_loss_db", field: Section, perception: with(RADIO, &[("v2x.channel.device_loss_db", "40")]), semantic: change(&[("v2x.channel.device_loss_db", "40")]) },
-    Key { path: "v2x.channel.sensitivity_dbm", field: Section, perception: with(RADIO, &[("v2x.channel.sensitivity_dbm", "-60")]), semantic: change(&[("v2x.channel.sensitivity_dbm", "-60")]) },
+    Key { path: "v2x.channel.sensitivity_dbm", field: Section, perception: with(RADIO, &[("v2x.channel.sensitivity_dbm", "-30")]), semantic: change(&[("v2x.channel.sensitivity_dbm", "-60")]) },
     Key { path: "v2x.channel.carrier_ghz", field: Section, perception: with(MARGINAL_RADIO, &[("v2x.channel.carrier_ghz", "60")]), semantic: with(MARGINAL_RADIO, &[("v2x.channel.carrier_ghz", "60")]) },
     Key { path: "v2x.channel.vehicle_antenna_m", field: Section, perception: with(MARGINAL_RADIO, &[("v2x.channel.vehicle_antenna_m", "1.1")]), semantic: change(&[("v2x.channel.vehicle_antenna_m", "1.1")]) },
-    Key { path: "v2x.channel.rsu_antenna_m", field: Section, perception: with(MARGINAL_RADIO, &[("v2x.channel.rsu_antenna_m", "1.1")]), semantic: with(MARGINAL_RADIO, &[("v2x.channel.rsu_antenna_m", "1.1")]) },
+    Key { path: "v2x.channel.rsu_antenna_m", field: Section, perception: with(BLOCKED_RADIO, &[("v2x.channel.rsu_antenna_m", "1.1")]), semantic: with(MARGINAL_RADIO, &[("v2x.channel.rsu_antenna_m", "1.1")]) },
     Key { path: "v2x.messages.rate_hz", field: Section, perception: with(RADIO, &[("v2x.messages.rate_hz", "2")]), semantic: refused_at(&[("v2x.messages.rate_hz", "5")], "v2x.messages") },
     Key { path: "v2x.messages.max_bytes", field: Section, perception: with(RADIO, &[("v2x.messages.max_bytes", "300")]), semantic: refused_at(&[("v2x.messages.max_bytes", "300")], "v2x.messages") },
-    Key { path: "v2x.messages.oversize", field: Section, perception: with(RADIO, &[("v2x.messages.oversize", r#""select""#)]), semantic: refused_at(&[("v2x.messages.oversize", r#""select""#)], "v2x.messages") },
+    Key { path: "v2x.messages.oversize", field: Section, perception: with(SMALL_MESSAGES, &[("v2x.messages.oversize", r#""select""#)]), semantic: refused_at(&[("v2x.messages.oversize", r#""select""#)], "v2x.messages") },
     Key { path: "v2x.messages.max_age", field: Section, perception: with(RADIO, &[("v2x.messages.max_age", "0.1")]), semantic: refused_at(&[("v2x.messages.max_age", "0.1")], "v2x.messages") },
     Key { path: "v2x.messages.decay", field: Section, perception: with(RADIO, &[("v2x.messages.decay", "0.2")]), semantic: refused_at(&[("v2x.messages.decay", "0.2")], "v2x.messages") },
     Key {

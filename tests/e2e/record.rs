@@ -108,8 +108,8 @@ fn bundled_roundabout_recording_has_foxglove_channels_and_the_steps() {
         recording.len()
     );
     let requirements = run.results["requirements"].as_array().unwrap().len() as u64;
-    // One outcome per distinct configuration: the three sweeps' 14 rows share one.
-    let points = 12;
+    // One outcome per distinct configuration: the six sweeps' 22 rows share one.
+    let points = 17;
     let mut channels = channels(recording);
     // Each cooperating vehicle's detections, at the steps it is in the scene.
     let detections: Vec<String> = channels

@@ -329,6 +329,13 @@ impl Unused<'_> {
                     });
                 }
             }
+            PathLossModel::Tr37885Urban => {
+                for key in ["vehicle_antenna_m", "rsu_antenna_m"] {
+                    self.check(channel.key(key), || {
+                        "TR 37.885's urban V2V path loss ignores antenna heights".into()
+                    });
+                }
+            }
             PathLossModel::Tr36885Urban => {}
         }
         if let Some(perception) = &world.perception {

@@ -73,15 +73,21 @@ pub enum Oversize {
     Select,
 }
 
-/// Path-loss models of 3GPP TR 36.885 (V14.0.0), Annex A.1.4.
+/// Path-loss models of 3GPP TR 36.885 (V14.0.0), Annex A.1.4, and of TR 37.885
+/// (NR V2X, V15), Table 6.2.1-1.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum PathLossModel {
     /// Urban case: WINNER+ B1 (Manhattan grid) for LOS; NLOS where an occluder
     /// blocks the direct link.
     Tr36885Urban,
-    /// Freeway case: LOS only (PL = 32.4 + 20 log10 d + 20 log10 fc).
+    /// Freeway case: LOS only (PL = 32.4 + 20 log10 d + 20 log10 fc). TR 37.885's
+    /// highway line is the same.
     Tr36885Highway,
+    /// NR V2X urban grid (TR 37.885, V2V): LOS PL = 38.77 + 16.7 log10 d +
+    /// 18.2 log10 fc; NLOS (an occluder blocks the link) PL = 36.85 + 30 log10 d
+    /// + 18.9 log10 fc.
+    Tr37885Urban,
     /// Every packet arrives (no path loss, no shadowing).
     Ideal,
 }

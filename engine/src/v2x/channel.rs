@@ -44,6 +44,21 @@
 //!   model is treated as LOS, line and shadowing alike.
 //! - **Ideal.** No path loss and no shadowing: every packet is received, and
 //!   [`transmit`] draws nothing from the random stream.
+//!
+//! # NR V2X (3GPP TR 37.885 V15, Table 6.2.1-1), `tr37885_urban`
+//!
+//! The urban grid's V2V lines, `d` in metres, `fc` in GHz, with the same 3 m
+//! floor as above (ours: the TR states none for V2V):
+//! - **LOS**: PL = 38.77 + 16.7 log10 d + 18.2 log10 fc, shadowing σ 3 dB;
+//! - **NLOS** (a building blocks the link): PL = 36.85 + 30 log10 d +
+//!   18.9 log10 fc, σ 4 dB (`nlos_shadowing_sigma_db`); above the LOS line at
+//!   every distance from 3 m.
+//!
+//! The TR's third state, NLOSv (a link blocked by vehicles, with an added
+//! log-normal blockage loss), is not modelled: only buildings make a link
+//! NLOS. The TR's highway line is the freeway line above (`tr36885_highway`).
+//! Its 3-D distance is taken in the plane, as every link here is. The constants
+//! are checked against ns-3's `ThreeGppV2vUrbanPropagationLossModel`.
 
 use std::f64::consts::SQRT_2;
 
@@ -80,6 +95,13 @@ pub(crate) const HIGHWAY_LOS: Idealisation = Idealisation {
     text: "The freeway model treats every link as line of sight, buildings or not.",
 };
 
+/// NR V2X: vehicles never block a link.
+pub(crate) const NO_NLOSV: Idealisation = Idealisation {
+    id: "v2x.no-nlosv",
+    text: "TR 37.885's NLOSv state (a link blocked by vehicles, with its extra blockage loss) is not modelled: only \
+           buildings make a link NLOS.",
+};
+
 /// No channel at all.
 pub(crate) const IDEAL: Idealisation = Idealisation {
     id: "v2x.ideal",
@@ -91,6 +113,7 @@ pub(crate) fn path_loss_idealisations(model: PathLossModel) -> &'static [Idealis
     match model {
         PathLossModel::Tr36885Urban => &[INDEPENDENT_SHADOWING, NLOS_CORNER],
         PathLossModel::Tr36885Highway => &[INDEPENDENT_SHADOWING, HIGHWAY_LOS],
+        PathLossModel::Tr37885Urban => &[INDEPENDENT_SHADOWING, NO_NLOSV],
         PathLossModel::Ideal => &[IDEAL],
     }
 }
@@ -141,6 +164,8 @@ pub fn path_loss_db(channel: &Channel, link: &Link) -> f64 {
     match channel.model {
         PathLossModel::Ideal => 0.0,
         PathLossModel::Tr36885Highway => free_space_db(distance, carrier),
+        PathLossModel::Tr37885Urban if link.los => 38.77 + 16.7 * distance.log10() + 18.2 * carrier.log10(),
+        PathLossModel::Tr37885Urban => 36.85 + 30.0 * distance.log10() + 18.9 * carrier.log10(),
         PathLossModel::Tr36885Urban => {
             let heights = effective_heights(link);
             let los = free_space_db(distance, carrier).max(b1_los_db(distance, carrier, heights));
@@ -181,7 +206,8 @@ pub fn transmit(channel: &Channel, link: &Link, rng: &mut impl Rng) -> Reception
 /// σ of the shadowing on `link`: the NLOS σ only for a blocked urban link (the
 /// freeway case treats every link as LOS).
 fn shadowing_sigma_db(channel: &Channel, link: &Link) -> f64 {
-    if channel.model == PathLossModel::Tr36885Urban && !link.los {
+    let urban = matches!(channel.model, PathLossModel::Tr36885Urban | PathLossModel::Tr37885Urban);
+    if urban && !link.los {
         channel.nlos_shadowing_sigma_db
     } else {
         channel.shadowing_sigma_db
@@ -336,6 +362,21 @@ mod tests {
         assert_abs_diff_eq!(loss(urban, vehicle_link(10.0, false)), 70.166459, epsilon = HAND_DB);
         assert_abs_diff_eq!(loss(urban, vehicle_link(50.0, false)), 109.711187, epsilon = HAND_DB);
         assert_abs_diff_eq!(loss(urban, vehicle_link(200.0, false)), 147.848067, epsilon = HAND_DB);
+    }
+
+    /// TR 37.885 at 5.9 GHz (log10 5.9 = 0.770852): LOS 38.77 + 16.7 log10 d +
+    /// 14.029506, NLOS 36.85 + 30 log10 d + 14.569103.
+    #[test]
+    fn nr_urban_by_hand() {
+        let nr = PathLossModel::Tr37885Urban;
+        for (distance, los, nlos) in [
+            (10.0, 69.499507, 81.419103),
+            (50.0, 81.172306, 102.388203),
+            (200.0, 91.226708, 120.450003),
+        ] {
+            assert_abs_diff_eq!(loss(nr, vehicle_link(distance, true)), los, epsilon = HAND_DB);
+            assert_abs_diff_eq!(loss(nr, vehicle_link(distance, false)), nlos, epsilon = HAND_DB);
+        }
     }
 
     /// 47.817040 + 20 log10 d: 67.817040 at 10 m, + 33.979400 = 81.796440 at 50 m,
