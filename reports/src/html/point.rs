@@ -61,10 +61,7 @@ pub(super) fn point_body(p: &PointResult) -> (String, Vec<TableView>) {
                     .iter()
                     .map(|b| {
                         vec![
-                            match b.to {
-                                Some(to) => format!("{} – {} m", number(b.from), number(to)),
-                                None => format!("≥ {} m", number(b.from)),
-                            },
+                            distance_band(b.from, b.to),
                             number(b.cells as f64),
                             or_dash(b.accuracy),
                             number(b.below_threshold as f64),
@@ -133,10 +130,7 @@ pub(super) fn point_body(p: &PointResult) -> (String, Vec<TableView>) {
                     .iter()
                     .map(|r| {
                         vec![
-                            match r.to {
-                                Some(to) => format!("{} – {} m", number(r.from), number(to)),
-                                None => format!("≥ {} m", number(r.from)),
-                            },
+                            distance_band(r.from, r.to),
                             number(r.occupied as f64),
                             number(r.detected as f64),
                             or_dash(r.recall),
@@ -351,4 +345,12 @@ fn object_tables(objects: &ObjectList) -> [TableView; 2] {
             .collect(),
     };
     [by_category, records]
+}
+
+/// A band of distance: "from – to m", or "≥ from m" when it has no bound.
+fn distance_band(from: f64, to: Option<f64>) -> String {
+    match to {
+        Some(to) => format!("{} – {} m", number(from), number(to)),
+        None => format!("≥ {} m", number(from)),
+    }
 }
