@@ -275,11 +275,7 @@ impl Tallier<'_> {
                 OCCUPIED => {
                     counts.occupied += 1;
                     counts.detected += u64::from(decided);
-                    let center = cell_center(self.fusion.grid, cell);
-                    let nearest = self.senders.iter().map(|s| (*s - center).length()).reduce(f64::min);
-                    if let Some(distance) = nearest {
-                        tally.by_distance.record(distance, decided);
-                    }
+                    tally.by_distance.record(self.fusion.grid, self.senders, cell, decided);
                     if ego.get(cell) == Observed::Unknown {
                         counts.blind_occupied += 1;
                         counts.blind_detected += u64::from(decided);

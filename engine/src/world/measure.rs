@@ -14,7 +14,7 @@ use super::fuse::{CellValues, Fused};
 use super::metrics::{CellTally, FusedCell, RecallByDistance, Snapshot, WorldMetrics, WorldOutcome};
 use super::observe::{Observation, Observed, Sightings};
 use super::radio::RadioStats;
-use super::raster::{Raster, cell_center};
+use super::raster::Raster;
 use super::state::AgentState;
 use super::truth::{EXCLUDED, OCCUPIED, SELF_REPORT, Truth};
 use crate::math::Point;
@@ -111,10 +111,7 @@ impl Measures {
         let mut unseen_by_distance = RecallByDistance::default();
         for &cell in step.truth.marked() {
             if truth[cell] == OCCUPIED && !coverage.covers(cell) {
-                let center = cell_center(step.grid, cell);
-                if let Some(distance) = step.senders.iter().map(|s| (*s - center).length()).reduce(f64::min) {
-                    unseen_by_distance.record(distance, false);
-                }
+                unseen_by_distance.record(step.grid, step.senders, cell, false);
             }
         }
         let mut fused = Vec::with_capacity(self.jobs.len());

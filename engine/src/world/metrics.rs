@@ -19,12 +19,14 @@
 //! judged in [`super::calibration`].
 
 use serde::{Deserialize, Serialize};
-use sightline_dsl::{Metric, Signal};
+use sightline_dsl::{Grid, Metric, Signal};
 
 use super::calibration::Calibration;
 use super::observe::Sightings;
 use super::radio::RadioStats;
+use super::raster::cell_center;
 use crate::fusion::State;
+use crate::math::Point;
 use crate::metrics::Series;
 use crate::metrics::quantile;
 use crate::metrics::{ConflictMetrics, EstimateTally, MassAudit};
@@ -289,8 +291,13 @@ pub struct DistanceBin {
 }
 
 impl RecallByDistance {
-    /// Counts an occupied cell-step `distance` metres from the nearest sender.
-    pub(crate) fn record(&mut self, distance: f64, detected: bool) {
+    /// Counts the occupied `cell` of `grid` by its distance to the nearest of
+    /// `senders`; nothing when there is none.
+    pub(crate) fn record(&mut self, grid: &Grid, senders: &[Point], cell: usize, detected: bool) {
+        let center = cell_center(grid, cell);
+        let Some(distance) = senders.iter().map(|s| (*s - center).length()).reduce(f64::min) else {
+            return;
+        };
         let bin = ((distance / DISTANCE_BIN) as usize).min(DISTANCE_BINS - 1);
         self.bins[bin].occupied += 1;
         self.bins[bin].detected += u64::from(detected);

@@ -183,8 +183,8 @@ impl<'a> Radio<'a> {
         let ego = states[self.ego]
             .expect("the radio runs while the ego is in the scene")
             .position();
-        // Which senders generate now, in cooperation order.
-        let mut due: Vec<(usize, &CooperatorStep<'_>)> = Vec::new();
+        // Which senders generate now, in cooperation order, and where they are.
+        let mut due: Vec<(usize, &CooperatorStep<'_>, Point)> = Vec::new();
         for c in sensed.iter().filter(|c| c.agent != self.ego) {
             let index = self
                 .senders
@@ -205,20 +205,17 @@ impl<'a> Radio<'a> {
             }
             sender.due = Some(next);
             sender.serial += 1;
-            due.push((index, c));
+            let position = states[c.agent].expect("a sensing agent is in the scene").position();
+            due.push((index, c, position));
         }
         // Encoding draws nothing: it runs in parallel, and the messages go out
         // in cooperation order, each sender drawing from its own stream.
         let (grid, messages) = (self.grid, self.messages);
         let packed: Vec<Vec<Message>> = due
             .par_iter()
-            .map(|(_, c)| {
+            .map(|&(_, c, position)| {
                 let observation = c.observation;
-                let sensor = observation
-                    .sensor_positions
-                    .first()
-                    .copied()
-                    .unwrap_or_else(|| states[c.agent].expect("a sensing agent is in the scene").position());
+                let sensor = observation.sensor_positions.first().copied().unwrap_or(position);
                 pack(
                     &runs(observation, grid),
                     grid,
@@ -230,9 +227,8 @@ impl<'a> Radio<'a> {
             })
             .collect();
         let channel = &self.v2x.channel;
-        for ((index, c), packed) in due.into_iter().zip(packed) {
+        for ((index, c, position), packed) in due.into_iter().zip(packed) {
             let sender = &mut self.senders[index];
-            let position = states[c.agent].expect("a sensing agent is in the scene").position();
             let link = Link {
                 distance_m: (ego - position).length(),
                 los: !occluders.block(position, ego),

@@ -65,9 +65,8 @@ pub(super) fn perception_of(
         );
         return None;
     }
-    if let Some(share) = penetration
-        && !ctx.probability(&Path::root().key("v2x").key("penetration"), share)
-    {
+    // A share out of range is reported where `v2x` is compiled.
+    if penetration.is_some_and(|share| !range::PROBABILITY.contains(share)) {
         return None;
     }
     let count = match (raw.cooperating, penetration) {
