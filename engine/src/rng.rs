@@ -26,6 +26,8 @@ pub(crate) enum Purpose {
     Channel,
     /// Which vehicles imported from a trace are connected; one stream.
     Connectivity,
+    /// The ETSI baseline's packet losses; one stream per roadside unit.
+    BaselineChannel,
 }
 
 impl Purpose {
@@ -40,6 +42,7 @@ impl Purpose {
             Self::Channel => 7,
             Self::Connectivity => 8,
             Self::Odometry => 9,
+            Self::BaselineChannel => 10,
         }
     }
 }

@@ -4,7 +4,9 @@ use std::collections::HashMap;
 
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
-use sightline_dsl::{Agent, Check, Decision, Experiment, Fusion, Metric, ObjectProperty, Scenario, Setup, Signal};
+use sightline_dsl::{
+    Agent, Check, Decision, Experiment, Fusion, Metric, ObjectProperty, ObjectSelection, Scenario, Setup, Signal,
+};
 
 use crate::field;
 use crate::metrics::Series;
@@ -91,13 +93,21 @@ impl Outcome {
         }
     }
 
-    /// `property` of every object that came within d_min of the ego, in order
-    /// (`None` for an object without the property); `None` where it is not measured.
-    pub fn per_object(&self, property: ObjectProperty) -> Option<&[Option<f64>]> {
-        match (self, property) {
-            (Self::Semantic(m), ObjectProperty::WarningTime) => Some(&m.warnings),
-            (Self::Field(_) | Self::World(_), _) => None,
-        }
+    /// `property` of every road user `selection` keeps, in order (`None` for
+    /// one without the property): of every object that came within d_min of
+    /// the ego for `warning_time` (which selects nothing), of every relevant
+    /// road user's record for the others; `None` where it is not measured.
+    pub fn per_object(&self, property: ObjectProperty, selection: &ObjectSelection) -> Option<Vec<Option<f64>>> {
+        let Self::Semantic(m) = self else { return None };
+        Some(if property.of_record() {
+            m.objects
+                .iter()
+                .filter(|record| record.selected_by(selection))
+                .map(|record| record.property(property))
+                .collect()
+        } else {
+            m.warnings.clone()
+        })
     }
 
     /// The mass-function audit of every fused cell; `None` where nothing is fused.

@@ -39,7 +39,11 @@ fn option(name: &str, value: &str) -> Option<ModelOption> {
 const NOT_OPTIONS: &[(&str, &str)] = &[
     ("Metric", "what a requirement measures"),
     ("Signal", "what a requirement follows over time"),
-    ("ObjectProperty", "what a requirement asks of every close object"),
+    (
+        "ObjectProperty",
+        "what a requirement asks of every road user it selects",
+    ),
+    ("Comparison", "how a requirement compares two metrics"),
     ("Invariant", "what a requirement asks of every fused cell"),
     ("RateBound", "how a check over seeds bounds a share"),
     (

@@ -8,7 +8,7 @@
 
 use std::fmt;
 
-use sightline_dsl::{Metric, ObjectProperty, Scenario, Signal, ValueDomain};
+use sightline_dsl::{Check, Metric, ObjectProperty, Scenario, Signal, ValueDomain};
 
 use crate::Measurements;
 
@@ -40,11 +40,11 @@ pub enum Quantity {
         /// The step's time, seconds.
         time: f64,
     },
-    /// A property of one of the objects that came within d_min of the ego.
+    /// A property of one of the road users a per-object check judges.
     Object {
         /// The property.
         property: ObjectProperty,
-        /// The object's position in the point's list, from 0.
+        /// The road user's position in the list the check judges, from 0.
         object: usize,
     },
 }
@@ -79,7 +79,8 @@ impl fmt::Display for OutOfDomain {
 
 /// Every value in `measurements` outside its domain, point by point: each
 /// metric of each of the point's runs (its own and the replicates its checks
-/// over seeds need), each signal at each step, each object's property. Empty
+/// over seeds need), each signal at each step, each property of each road
+/// user a per-object check judges. Empty
 /// when all are in their domains.
 pub fn out_of_domain(scenario: &Scenario, measurements: &(impl Measurements + ?Sized)) -> Vec<OutOfDomain> {
     let mut runs = vec![0; scenario.points.len()];
@@ -107,10 +108,16 @@ pub fn out_of_domain(scenario: &Scenario, measurements: &(impl Measurements + ?S
                 check(point, Quantity::Signal { signal, time }, value);
             }
         }
-        let property = ObjectProperty::WarningTime;
-        for (object, value) in measurements.per_object(point, property).iter().flatten().enumerate() {
-            if let Some(value) = *value {
-                check(point, Quantity::Object { property, object }, value);
+        let judged = scenario.requirements.iter().filter(|r| r.points.contains(&point));
+        for requirement in judged {
+            let Check::PerObject { property, .. } = requirement.check else {
+                continue;
+            };
+            let values = measurements.per_object(point, property, &requirement.objects);
+            for (object, value) in values.iter().flatten().enumerate() {
+                if let Some(value) = *value {
+                    check(point, Quantity::Object { property, object }, value);
+                }
             }
         }
     }

@@ -2,7 +2,7 @@
 //! replicates' values for checks over seeds, its signals over time and its
 //! per-object properties.
 
-use sightline_dsl::{Metric, ObjectProperty, Signal};
+use sightline_dsl::{Metric, ObjectProperty, ObjectSelection, Signal};
 use sightline_engine::outcome::MassAudit;
 use sightline_engine::outcome::Series;
 use sightline_engine::{Run, Sample};
@@ -22,9 +22,15 @@ pub trait Measurements {
     /// `signal` over each run of point `point`; `None` where it is not measured.
     fn series(&self, point: usize, signal: Signal) -> Option<Vec<Series>>;
 
-    /// `property` of each object that came within d_min of the ego at point
-    /// `point`; `None` where it is not measured.
-    fn per_object(&self, point: usize, property: ObjectProperty) -> Option<Vec<Option<f64>>>;
+    /// `property` of each road user `selection` keeps at point `point` (see
+    /// [`Outcome::per_object`](sightline_engine::Outcome::per_object)); `None`
+    /// where it is not measured.
+    fn per_object(
+        &self,
+        point: usize,
+        property: ObjectProperty,
+        selection: &ObjectSelection,
+    ) -> Option<Vec<Option<f64>>>;
 }
 
 impl Measurements for Run {
@@ -43,7 +49,12 @@ impl Measurements for Run {
         self.points[point].series(signal)
     }
 
-    fn per_object(&self, point: usize, property: ObjectProperty) -> Option<Vec<Option<f64>>> {
-        self.points[point].per_object(property).map(<[_]>::to_vec)
+    fn per_object(
+        &self,
+        point: usize,
+        property: ObjectProperty,
+        selection: &ObjectSelection,
+    ) -> Option<Vec<Option<f64>>> {
+        self.points[point].per_object(property, selection)
     }
 }

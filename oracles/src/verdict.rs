@@ -184,6 +184,15 @@ fn verdict(scenario: &Scenario, requirement: &Requirement, measurements: &(impl 
                         .collect();
                     seeds::evaluate(m, bound, over, &samples, min)
                 }
+                Check::Compare {
+                    metric: m,
+                    other,
+                    by,
+                    bound,
+                } => {
+                    let samples = [m, other].map(|metric| (metric, measurements.sample(point, 0, metric)));
+                    metric::compare(samples, by, bound, min)
+                }
                 Check::Temporal {
                     signal,
                     operator,
@@ -199,8 +208,9 @@ fn verdict(scenario: &Scenario, requirement: &Requirement, measurements: &(impl 
                     temporal::evaluate(signal, operator, bound, window, &runs)
                 }
                 Check::PerObject { property, bound } => {
-                    let values = measurements.per_object(point, property).unwrap_or_default();
-                    object::evaluate(property, bound, &values, min)
+                    let selection = &requirement.objects;
+                    let values = measurements.per_object(point, property, selection).unwrap_or_default();
+                    object::evaluate((property, selection), bound, &values, min)
                 }
                 Check::Invariant {
                     invariant: i,
@@ -230,9 +240,10 @@ fn verdict(scenario: &Scenario, requirement: &Requirement, measurements: &(impl 
                 }),
             ..
         } => share,
-        Check::Metric { bound, .. } | Check::Temporal { bound, .. } | Check::PerObject { bound, .. } => {
-            bound.threshold()
-        }
+        Check::Metric { bound, .. }
+        | Check::Compare { bound, .. }
+        | Check::Temporal { bound, .. }
+        | Check::PerObject { bound, .. } => bound.threshold(),
         Check::Invariant { tolerance, .. } => tolerance,
     };
     Verdict {

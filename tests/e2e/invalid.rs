@@ -97,6 +97,8 @@ invalid_inputs! {
     checks_over_seeds_are_validated => "check-over-seeds-errors",
     temporal_and_per_object_checks_are_validated => "temporal-check-errors",
     interaction_area_has_one_shape => "interaction-area-two-shapes",
+    object_selections_and_comparisons_are_validated => "object-selection-errors",
+    declared_areas_take_their_own_ids => "area-id-taken",
     semantic_traffic_errors_are_all_reported => "semantic-traffic-errors",
     malformed_yaml_is_a_syntax_error => "syntax-unclosed-flow",
     empty_file_is_refused => "empty",

@@ -232,6 +232,10 @@ const SECTIONS: &[(&str, &str)] = &[
         r#"[ { "id": "i", "polygon": [[0, 0], [1, 0], [1, 1]], "circle": { "center": [0, 0], "radius": 1 } } ]"#,
     ),
     (
+        "areas",
+        r#"[ { "id": "a", "polygon": [[0, 0], [1, 0], [1, 1]], "circle": { "center": [0, 0], "radius": 1 } } ]"#,
+    ),
+    (
         "driving",
         r#"{ "following": "idm", "headway": 1.5, "min_gap": 2, "deceleration": 3 }"#,
     ),
@@ -321,6 +325,19 @@ const BLOCKED_RADIO: &[Set] = &[
     ),
 ];
 /// The same for a semantic world.
+/// A per-object check on every relevant road user's record, for the keys
+/// that select among them.
+const PER_OBJECT: Set = (
+    "requirements.0.check",
+    r#"{ "per_object": "closest_distance", "at_least": 0 }"#,
+);
+/// Where a selection outside a per-object check is refused.
+const OBJECTS_AT: &str = "requirements[0].check.objects";
+/// A comparison with the ETSI baseline, for `by`.
+const COMPARISON: Set = (
+    "requirements.0.check",
+    r#"{ "metric": "channel_load", "at_most": 1000000, "relative_to": "baseline" }"#,
+);
 const SEMANTIC_SIGNAL: Set = (
     "requirements.0.check",
     r#"{ "signal": "rsu_only_objects", "always": { "at_least": 0 } }"#,
@@ -680,6 +697,26 @@ const KEYS: &[Key] = &[
         perception: Section,
         semantic: with(&[("interaction_areas.0", r#"{ "id": "junction", "circle": { "center": [0, 0], "radius": 12 } }"#)], &[("interaction_areas.0.circle.radius", "40")]),
     },
+    // A declared area names road users' records (results.json `objects`).
+    Key { path: "areas[].id", field: Section, perception: Section, semantic: Descriptive },
+    Key {
+        path: "areas[].polygon",
+        field: Section,
+        perception: Section,
+        semantic: with(&[("areas", r#"[ { "id": "zone", "polygon": [[-40, -40], [40, -40], [40, 40], [-40, 40]] } ]"#)], &[("areas.0.polygon", "[[100, 100], [110, 100], [110, 110]]")]),
+    },
+    Key {
+        path: "areas[].circle.center",
+        field: Section,
+        perception: Section,
+        semantic: with(&[("areas", r#"[ { "id": "zone", "circle": { "center": [0, 0], "radius": 30 } } ]"#)], &[("areas.0.circle.center", "[200, 200]")]),
+    },
+    Key {
+        path: "areas[].circle.radius",
+        field: Section,
+        perception: Section,
+        semantic: with(&[("areas", r#"[ { "id": "zone", "circle": { "center": [0, 0], "radius": 30 } } ]"#)], &[("areas.0.circle.radius", "1")]),
+    },
     Key { path: "driving.following", field: Section, perception: change(&[("driving.following", r#""idm""#)]), semantic: change(&[("driving.following", r#""idm""#)]) },
     Key {
         path: "driving.headway",
@@ -860,6 +897,48 @@ const KEYS: &[Key] = &[
         field: refused(&[("requirements.0.check", r#"{ "per_object": "warning_time", "at_least": 1 }"#)]),
         perception: refused(&[("requirements.0.check", r#"{ "per_object": "warning_time", "at_least": 1 }"#)]),
         semantic: change(&[("requirements.0.check", r#"{ "per_object": "warning_time", "at_least": 1 }"#)]),
+    },
+    Key {
+        path: "requirements[].check.relative_to",
+        field: refused(&[("requirements.0.check", r#"{ "metric": "accuracy", "at_least": 0.5, "relative_to": "baseline" }"#)]),
+        perception: refused(&[("requirements.0.check", r#"{ "metric": "occupied_recall", "at_least": 0.5, "relative_to": "baseline" }"#)]),
+        semantic: with(&[("requirements.0.check", r#"{ "metric": "channel_load", "at_most": 1000000 }"#)], &[("requirements.0.check.relative_to", r#""baseline""#)]),
+    },
+    Key {
+        path: "requirements[].check.by",
+        field: refused(&[("requirements.0.check", r#"{ "metric": "accuracy", "at_least": 0.5, "by": "difference" }"#)]),
+        perception: refused(&[("requirements.0.check", r#"{ "metric": "occupied_recall", "at_least": 0.5, "by": "difference" }"#)]),
+        semantic: with(&[COMPARISON], &[("requirements.0.check.by", r#""difference""#)]),
+    },
+    Key {
+        path: "requirements[].check.objects.ids",
+        field: refused_at(&[("requirements.0.check", r#"{ "metric": "accuracy", "at_least": 0.5, "objects": { "ids": ["x"] } }"#)], OBJECTS_AT),
+        perception: refused_at(&[("requirements.0.check", r#"{ "metric": "occupied_recall", "at_least": 0.5, "objects": { "ids": ["car"] } }"#)], OBJECTS_AT),
+        semantic: with(&[PER_OBJECT], &[("requirements.0.check.objects", r#"{ "ids": ["car"] }"#)]),
+    },
+    Key {
+        path: "requirements[].check.objects.classes",
+        field: refused_at(&[("requirements.0.check", r#"{ "metric": "accuracy", "at_least": 0.5, "objects": { "classes": ["car"] } }"#)], OBJECTS_AT),
+        perception: refused_at(&[("requirements.0.check", r#"{ "metric": "occupied_recall", "at_least": 0.5, "objects": { "classes": ["car"] } }"#)], OBJECTS_AT),
+        semantic: with(&[PER_OBJECT], &[("requirements.0.check.objects", r#"{ "classes": ["pedestrian"] }"#)]),
+    },
+    Key {
+        path: "requirements[].check.objects.areas",
+        field: refused_at(&[("requirements.0.check", r#"{ "metric": "accuracy", "at_least": 0.5, "objects": { "areas": ["a"] } }"#)], OBJECTS_AT),
+        perception: refused_at(&[("requirements.0.check", r#"{ "metric": "occupied_recall", "at_least": 0.5, "objects": { "areas": ["a"] } }"#)], OBJECTS_AT),
+        semantic: with(&[PER_OBJECT], &[("requirements.0.check.objects", r#"{ "areas": ["cw"] }"#)]),
+    },
+    Key {
+        path: "requirements[].check.objects.closer_than",
+        field: refused_at(&[("requirements.0.check", r#"{ "metric": "accuracy", "at_least": 0.5, "objects": { "closer_than": 5 } }"#)], OBJECTS_AT),
+        perception: refused_at(&[("requirements.0.check", r#"{ "metric": "occupied_recall", "at_least": 0.5, "objects": { "closer_than": 5 } }"#)], OBJECTS_AT),
+        semantic: with(&[PER_OBJECT], &[("requirements.0.check.objects", r#"{ "closer_than": 20 }"#)]),
+    },
+    Key {
+        path: "requirements[].check.objects.between",
+        field: refused_at(&[("requirements.0.check", r#"{ "metric": "accuracy", "at_least": 0.5, "objects": { "between": [0, 1] } }"#)], OBJECTS_AT),
+        perception: refused_at(&[("requirements.0.check", r#"{ "metric": "occupied_recall", "at_least": 0.5, "objects": { "between": [0, 1] } }"#)], OBJECTS_AT),
+        semantic: with(&[PER_OBJECT], &[("requirements.0.check.objects", r#"{ "between": [3, 6] }"#)]),
     },
     // More samples than any run has: the verdict turns not exercised.
     Key {

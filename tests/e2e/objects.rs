@@ -57,6 +57,63 @@ fn each_category_is_listed_counted_and_judged() {
     assert!(row("walker_d") < row("car_b") && row("car_b") < row("walker_a") && row("walker_a") < row("walker_c"));
 }
 
+/// Requirements that select road users by id, class, area, distance and
+/// time judge exactly the road users selected, with the values worked out by
+/// hand in `engine/tests/objects.rs`; a selection that keeps nobody is not
+/// exercised, never a pass.
+#[test]
+fn selected_road_users_are_judged_by_hand() {
+    let tmp = temp_dir();
+    let out = tmp.path().join("out");
+    sightline(["run", FOUR, "--out", arg(&out)]).assert_exit(1);
+    let results = read_json(&out.join("results.json"));
+    let verdict = |id: &str| {
+        let r = requirement(&results, id);
+        (
+            r["verdict"].as_str().unwrap().to_string(),
+            r["value"].as_f64(),
+            r["n"].as_u64().unwrap(),
+        )
+    };
+    // car_b: named by the 2.1 cycle's message (2.12 s), closest at 10.1 s.
+    let (status, lead, n) = verdict("OBJ-CAR-01");
+    assert_eq!((status.as_str(), n), ("pass", 1));
+    assert!((lead.unwrap() - 7.98).abs() < 1e-6, "{lead:?}");
+    // West of the lane: walker_c (seen at 3.1, closest at 9.1) and walker_d
+    // (never known), which has no lead and fails the check.
+    assert_eq!(verdict("OBJ-WEST-01"), ("fail".into(), None, 2));
+    // Within 20 m: walker_a (15 m; told at 3.82, seen at 11.5: 7.68 s) and
+    // walker_c (1.5 m, seen first: 0 s); the least decides.
+    assert_eq!(verdict("OBJ-NEAR-01"), ("fail".into(), Some(0.0), 2));
+    let early = requirement(&results, "OBJ-EARLY-01");
+    assert_eq!((&early["verdict"], &early["n"]), (&"not_exercised".into(), &0.into()));
+    assert_eq!(early["fails_run"], false, "accepted");
+    // The record lists the areas each road user was in; the check says what it selects.
+    let areas: Vec<(&str, Vec<&str>)> = results["sweep"][0]["objects"]["records"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|o| {
+            let areas = o["areas"]
+                .as_array()
+                .map_or(Vec::new(), |a| a.iter().map(|v| v.as_str().unwrap()).collect());
+            (o["id"].as_str().unwrap(), areas)
+        })
+        .collect();
+    assert_eq!(
+        areas,
+        [
+            ("walker_c", vec!["west"]),
+            ("car_b", vec![]),
+            ("walker_a", vec![]),
+            ("walker_d", vec!["west"])
+        ]
+    );
+    let check = &requirement(&results, "OBJ-WEST-01")["check"];
+    assert_eq!(check["objects"]["classes"], serde_json::json!(["pedestrian"]));
+    assert_eq!(check["objects"]["areas"], serde_json::json!(["west"]));
+}
+
 /// The category a record's own times give it, as the engine defines it.
 fn category_of(record: &serde_json::Value) -> &'static str {
     match (record["first_v2x"].as_f64(), record["first_seen"].as_f64()) {
@@ -110,4 +167,44 @@ fn the_urban_junction_counts_its_road_users_by_category() {
     }
     let html = unescape_html(&urban_run().report);
     assert!(html.contains("Relevant road users by how the ego came to know them"));
+}
+
+/// URB-PED-01 judges, at every point, exactly the records its selection
+/// names (pedestrians on `cw_south` or `cw_north` that came within 15 m of the
+/// ego), worked out here from the listed records: the same n, and the least
+/// lead from the closest approach back to the first sight or message.
+#[test]
+fn the_urban_pedestrian_requirement_judges_the_records_it_selects() {
+    let results = urban();
+    let requirement = requirement(results, "URB-PED-01");
+    for evaluation in requirement["points"].as_array().unwrap() {
+        let point = &results["sweep"][evaluation["point"].as_u64().unwrap() as usize];
+        let leads: Vec<Option<f64>> = point["objects"]["records"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|r| r["class"] == "pedestrian" && r["closest"]["distance"].as_f64().unwrap() < 15.0)
+            .filter(|r| {
+                let areas = r["areas"].as_array().map_or(&[][..], Vec::as_slice);
+                areas.iter().any(|a| a == "cw_south" || a == "cw_north")
+            })
+            .map(|r| {
+                let known = [r["first_seen"].as_f64(), r["first_v2x"].as_f64()]
+                    .into_iter()
+                    .flatten()
+                    .reduce(f64::min)?;
+                Some(r["closest"]["time"].as_f64().unwrap() - known)
+            })
+            .collect();
+        assert_eq!(evaluation["n"].as_u64(), Some(leads.len() as u64), "{evaluation}");
+        let least = leads
+            .iter()
+            .map(|l| l.expect("every selected pedestrian was known"))
+            .reduce(f64::min);
+        match (least, evaluation["value"].as_f64()) {
+            (Some(least), Some(value)) => assert!((least - value).abs() < 1e-9, "{least} {evaluation}"),
+            (None, None) => assert_eq!(evaluation["verdict"], "not_exercised"),
+            other => panic!("{other:?} {evaluation}"),
+        }
+    }
 }

@@ -28,7 +28,7 @@ fn requirements_with_nothing_to_judge_are_not_exercised_and_fail_the_run() {
     );
     for line in [
         "  not exercised IDLE-WARN: measured none (smallest warning_time of n = 0 objects that came within d_min \
-         of the ego), threshold 1.5, margin none, n = 0: nothing to judge: no object came within d_min of the ego",
+         of the ego), threshold 1.5, margin none, n = 0: nothing to judge: no objects that came within d_min of the ego",
         "  not exercised IDLE-ANT-P95: measured none (95th percentile of n = 6 anticipation times), threshold 10.0, \
          margin none, n = 6: nothing to judge: anticipation_p95 over n = 6 anticipation times, fewer than the 59 \
          the check needs",

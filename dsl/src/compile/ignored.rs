@@ -85,6 +85,11 @@ const IGNORED: &[Ignored] = &[
     },
     Ignored {
         kinds: &[Field],
+        pattern: "areas",
+        why: NOT_A_WORLD,
+    },
+    Ignored {
+        kinds: &[Field],
         pattern: "driving",
         why: NOT_A_WORLD,
     },
@@ -129,6 +134,11 @@ const IGNORED: &[Ignored] = &[
         kinds: &[Perception],
         pattern: "interaction_areas",
         why: NO_SEMANTIC_PIPELINE,
+    },
+    Ignored {
+        kinds: &[Perception],
+        pattern: "areas",
+        why: "areas select road users of per-object checks, which judge the semantic pipeline's records",
     },
     Ignored {
         kinds: &[Perception],

@@ -14,9 +14,11 @@
 
 mod budget;
 mod checks;
+mod compare;
 mod context;
 mod ignored;
 mod kind;
+mod objects;
 mod record;
 mod requirements;
 mod scenario;

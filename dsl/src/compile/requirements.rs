@@ -2,7 +2,9 @@
 
 use std::collections::{BTreeMap, HashMap};
 
+use super::compare;
 use super::context::{Context, locate};
+use super::objects;
 use super::sweep::json_eq;
 use crate::de::closest;
 use crate::error::{ErrorKind, Location};
@@ -77,8 +79,14 @@ pub(super) fn requirements(
         };
         let selected = select(ctx, &requirement.filter, points, &path.key("where"));
         if let (Some(check), Some(selected)) = (check, selected) {
-            if let Check::Metric { metric, .. } = check
-                && !defined_everywhere(ctx, metric, &selected, points, &path.key("check").key("metric"))
+            let metrics = match check {
+                Check::Metric { metric, .. } => vec![(metric, "metric")],
+                Check::Compare { metric, other, .. } => vec![(metric, "metric"), (other, "relative_to")],
+                _ => Vec::new(),
+            };
+            if !metrics
+                .into_iter()
+                .all(|(metric, key)| defined_everywhere(ctx, metric, &selected, points, &path.key("check").key(key)))
             {
                 continue;
             }
@@ -136,8 +144,17 @@ pub(super) fn requirements(
                 );
                 continue;
             }
+            let objects = objects::selection(
+                ctx,
+                requirement.check.objects.as_ref(),
+                requirement.check.per_object,
+                (points, &selected),
+                &path.key("check").key("objects"),
+            );
+            let Some(objects) = objects else { continue };
             let default_min = match check {
                 Check::Metric { metric, .. } => metric.default_min_samples(),
+                Check::Compare { metric, other, .. } => metric.default_min_samples().max(other.default_min_samples()),
                 _ => 1,
             };
             compiled.push(Requirement {
@@ -148,6 +165,7 @@ pub(super) fn requirements(
                 points: selected,
                 min_samples: min_samples.unwrap_or(default_min).max(1),
                 accept_not_exercised: accepted.map(str::to_string),
+                objects,
             });
         }
     }
@@ -227,6 +245,9 @@ fn check(ctx: &mut Context<'_>, raw: &RawCheck, path: &Path) -> Option<Check> {
         }
     }
     if raw.metric.is_none() {
+        if !compare::refuse_without_metric(ctx, raw, path) {
+            return None;
+        }
         let statistical = [
             ("seeds", raw.seeds.is_some()),
             ("confidence", raw.confidence.is_some()),
@@ -297,11 +318,7 @@ fn check(ctx: &mut Context<'_>, raw: &RawCheck, path: &Path) -> Option<Check> {
     }
     let metric = raw.metric.expect("one kind of check is named");
     let over_seeds = over_seeds(ctx, raw, path)?;
-    Some(Check::Metric {
-        metric,
-        bound,
-        over_seeds,
-    })
+    compare::metric_check(ctx, raw, (metric, bound, over_seeds), path)
 }
 
 /// Exactly one of `at_least`, `at_most`, finite, under `path`.

@@ -123,11 +123,22 @@ pub enum Metric {
     /// Semantic: relevant objects per run that no V2X message named and the ego
     /// never saw (`never_known`).
     ObjectsNeverKnown,
+    /// Semantic: `anticipation_median` had the RSUs sent the ETSI baseline's
+    /// collective perception messages instead of the semantic ones: the same
+    /// traffic and ego trajectory, the same links with their own loss draws.
+    BaselineAnticipationMedian,
+    /// Semantic: `anticipation_p95` over the ETSI baseline's messages.
+    BaselineAnticipationP95,
+    /// Semantic: `object_anticipation_median` over the ETSI baseline's
+    /// messages, for the same relevant objects.
+    BaselineObjectAnticipationMedian,
+    /// Semantic: `object_anticipation_p95` over the ETSI baseline's messages.
+    BaselineObjectAnticipationP95,
 }
 
 impl Metric {
     /// Every metric, in documentation order.
-    pub const ALL: [Metric; 40] = [
+    pub const ALL: [Metric; 44] = [
         Self::Accuracy,
         Self::BelowThreshold,
         Self::BelowThresholdFraction,
@@ -168,6 +179,10 @@ impl Metric {
         Self::ObjectsWarnedNeverSeen,
         Self::ObjectsSeenFirst,
         Self::ObjectsNeverKnown,
+        Self::BaselineAnticipationMedian,
+        Self::BaselineAnticipationP95,
+        Self::BaselineObjectAnticipationMedian,
+        Self::BaselineObjectAnticipationP95,
     ];
 
     /// The name as written in scenario files.
@@ -213,7 +228,24 @@ impl Metric {
             Self::ObjectsWarnedNeverSeen => "objects_warned_never_seen",
             Self::ObjectsSeenFirst => "objects_seen_first",
             Self::ObjectsNeverKnown => "objects_never_known",
+            Self::BaselineAnticipationMedian => "baseline_anticipation_median",
+            Self::BaselineAnticipationP95 => "baseline_anticipation_p95",
+            Self::BaselineObjectAnticipationMedian => "baseline_object_anticipation_median",
+            Self::BaselineObjectAnticipationP95 => "baseline_object_anticipation_p95",
         }
+    }
+
+    /// The same quantity measured over the ETSI baseline's messages on the
+    /// same traffic (`relative_to: baseline`), where there is one.
+    pub fn baseline(self) -> Option<Metric> {
+        Some(match self {
+            Self::ChannelLoad => Self::BaselineChannelLoad,
+            Self::AnticipationMedian => Self::BaselineAnticipationMedian,
+            Self::AnticipationP95 => Self::BaselineAnticipationP95,
+            Self::ObjectAnticipationMedian => Self::BaselineObjectAnticipationMedian,
+            Self::ObjectAnticipationP95 => Self::BaselineObjectAnticipationP95,
+            _ => return None,
+        })
     }
 
     /// Whether the field experiment measures it.
@@ -272,6 +304,10 @@ impl Metric {
                 | Self::ObjectsWarnedNeverSeen
                 | Self::ObjectsSeenFirst
                 | Self::ObjectsNeverKnown
+                | Self::BaselineAnticipationMedian
+                | Self::BaselineAnticipationP95
+                | Self::BaselineObjectAnticipationMedian
+                | Self::BaselineObjectAnticipationP95
         )
     }
 
@@ -304,6 +340,12 @@ impl Metric {
             Self::MessageAgeMean | Self::MessageAgeP95 => "messages the ego fuses",
             Self::BytesPerSecondPerAgent => "steps of cooperating agents with the ego",
             Self::AnticipationMedian | Self::AnticipationP95 => "anticipation times",
+            Self::BaselineAnticipationMedian | Self::BaselineAnticipationP95 => {
+                "anticipation times over the ETSI baseline's messages"
+            }
+            Self::BaselineObjectAnticipationMedian | Self::BaselineObjectAnticipationP95 => {
+                "relevant objects named by the ETSI baseline before the ego saw them"
+            }
             Self::InfrastructureContribution | Self::ChannelLoad | Self::BaselineChannelLoad => "steps with the ego",
             Self::TransmittedShare | Self::LabelledShare => "object-cycles the RSUs perceive",
             Self::PacketDeliveryRatio => "messages to the ego",
@@ -327,8 +369,15 @@ impl Metric {
     /// 1 − qⁿ − (1 − q)ⁿ ≥ 0.95): 6 for the median, 59 for the 95th percentile.
     pub fn default_min_samples(self) -> u64 {
         match self {
-            Self::AnticipationMedian | Self::ObjectAnticipationMedian => 6,
-            Self::AnticipationP95 | Self::MessageAgeP95 | Self::ObjectAnticipationP95 => 59,
+            Self::AnticipationMedian
+            | Self::ObjectAnticipationMedian
+            | Self::BaselineAnticipationMedian
+            | Self::BaselineObjectAnticipationMedian => 6,
+            Self::AnticipationP95
+            | Self::MessageAgeP95
+            | Self::ObjectAnticipationP95
+            | Self::BaselineAnticipationP95
+            | Self::BaselineObjectAnticipationP95 => 59,
             _ => 1,
         }
     }
@@ -387,7 +436,11 @@ impl Metric {
             | Self::ObjectsWarnedBeforeSeen
             | Self::ObjectsWarnedNeverSeen
             | Self::ObjectsSeenFirst
-            | Self::ObjectsNeverKnown => ValueDomain::NonNegative,
+            | Self::ObjectsNeverKnown
+            | Self::BaselineAnticipationMedian
+            | Self::BaselineAnticipationP95
+            | Self::BaselineObjectAnticipationMedian
+            | Self::BaselineObjectAnticipationP95 => ValueDomain::NonNegative,
         }
     }
 }
@@ -402,17 +455,19 @@ pub enum ValueDomain {
     Count,
     /// Seconds, bytes per second, a mean count or a gain: ≥ 0.
     NonNegative,
+    /// A signed quantity (a lead time that may be late): any finite value.
+    Real,
 }
 
 impl ValueDomain {
     /// Whether `value` lies in the domain (a NaN or an infinity never does).
     pub fn contains(self, value: f64) -> bool {
         value.is_finite()
-            && value >= 0.0
             && match self {
-                Self::Fraction => value <= 1.0,
-                Self::Count => value.fract() == 0.0,
-                Self::NonNegative => true,
+                Self::Fraction => (0.0..=1.0).contains(&value),
+                Self::Count => value >= 0.0 && value.fract() == 0.0,
+                Self::NonNegative => value >= 0.0,
+                Self::Real => true,
             }
     }
 }
@@ -423,6 +478,7 @@ impl std::fmt::Display for ValueDomain {
             Self::Fraction => "[0, 1]",
             Self::Count => "whole numbers ≥ 0",
             Self::NonNegative => "finite numbers ≥ 0",
+            Self::Real => "finite numbers",
         })
     }
 }

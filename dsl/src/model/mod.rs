@@ -17,7 +17,8 @@ pub use fusion::{
 };
 pub use metric::{Metric, ValueDomain};
 pub use requirement::{
-    Bound, Check, Invariant, ObjectProperty, OverSeeds, RateBound, Reference, Requirement, Signal, Statistic, Temporal,
+    Bound, Check, Comparison, Invariant, ObjectProperty, ObjectSelection, OverSeeds, RateBound, Reference, Requirement,
+    Signal, Statistic, Temporal,
 };
 pub(crate) use scenario::grid_every;
 pub use scenario::{

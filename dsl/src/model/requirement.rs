@@ -4,7 +4,7 @@
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
-use super::{Metric, ValueDomain};
+use super::{AgentKind, Metric, ValueDomain};
 use crate::Location;
 
 /// A requirement with its check and the sweep points it applies to.
@@ -26,6 +26,59 @@ pub struct Requirement {
     /// Why a not-exercised verdict is acceptable, when the scenario says so:
     /// the verdict stays `not_exercised`, and it does not fail the run.
     pub accept_not_exercised: Option<String>,
+    /// The road users a per-object check judges (every one for other checks).
+    pub objects: ObjectSelection,
+}
+
+/// Which relevant road users a per-object check judges: those matching every
+/// criterion given (an empty list or no window matches all).
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct ObjectSelection {
+    /// Agent ids.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub ids: Vec<String>,
+    /// Classes.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub classes: Vec<AgentKind>,
+    /// Ids of crosswalks, interaction areas or declared `areas`: the road
+    /// user's centre was inside one of them at some step with the ego in the scene.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub areas: Vec<String>,
+    /// [from, to], seconds: its closest approach to the ego lies in it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub between: Option<[f64; 2]>,
+    /// Metres: its closest approach to the ego (between centres) came nearer.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub closer_than: Option<f64>,
+}
+
+impl ObjectSelection {
+    /// Whether it selects every road user.
+    pub fn is_all(&self) -> bool {
+        *self == Self::default()
+    }
+
+    /// What it selects, in words (`pedestrians in cw_north`), for messages.
+    pub fn describe(&self) -> String {
+        let mut words = Vec::new();
+        if !self.classes.is_empty() {
+            let classes: Vec<&str> = self.classes.iter().map(|c| c.name()).collect();
+            words.push(format!("of class {}", classes.join(" or ")));
+        }
+        if !self.ids.is_empty() {
+            words.push(format!("with id {}", self.ids.join(" or ")));
+        }
+        if !self.areas.is_empty() {
+            words.push(format!("in {}", self.areas.join(" or ")));
+        }
+        if let Some(distance) = self.closer_than {
+            words.push(format!("closer than {distance} m to the ego"));
+        }
+        if let Some([from, to]) = self.between {
+            words.push(format!("closest to the ego between {from} s and {to} s"));
+        }
+        words.join(", ")
+    }
 }
 
 /// How a requirement is checked.
@@ -53,7 +106,20 @@ pub enum Check {
         /// Only the first this many seconds of the run (`None`: all of it).
         within: Option<f64>,
     },
-    /// A property of every object that came within d_min of the ego.
+    /// A metric compared with another measured on the same run (the same
+    /// traffic): their ratio or difference against the threshold.
+    Compare {
+        /// The metric.
+        metric: Metric,
+        /// What it is compared with: another metric, or its twin over the ETSI
+        /// baseline's messages ([`Metric::baseline`]).
+        other: Metric,
+        /// Ratio or difference.
+        by: Comparison,
+        /// The threshold of metric / other, or of metric − other.
+        bound: Bound,
+    },
+    /// A property of every road user the requirement's `objects` select.
     PerObject {
         /// The property.
         property: ObjectProperty,
@@ -67,6 +133,35 @@ pub enum Check {
         /// Numerical tolerance.
         tolerance: f64,
     },
+}
+
+/// How a comparison combines a metric with the other.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum Comparison {
+    /// metric / other (undefined when other is 0).
+    #[default]
+    Ratio,
+    /// metric − other.
+    Difference,
+}
+
+impl Comparison {
+    /// The name as written in scenario files.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Ratio => "ratio",
+            Self::Difference => "difference",
+        }
+    }
+
+    /// The compared value of `value` against `other` (`None`: a ratio to 0).
+    pub fn of(self, value: f64, other: f64) -> Option<f64> {
+        match self {
+            Self::Ratio => (other != 0.0).then(|| value / other),
+            Self::Difference => Some(value - other),
+        }
+    }
 }
 
 /// A metric check repeated over independent seeds: it passes only when a
@@ -178,27 +273,76 @@ impl Signal {
     }
 }
 
-/// Properties of the objects that came within d_min of the ego.
+/// Properties of road users a per-object check bounds: of the close approaches
+/// (`warning_time`), or of the per-object record of every relevant road user
+/// (the others; [`ObjectProperty::of_record`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum ObjectProperty {
-    /// Seconds from the first RSU message flagging a conflict with the object to
-    /// its close approach (an unflagged object has none, and fails).
+    /// Each object that came within d_min of the ego: seconds from the first
+    /// RSU message flagging a conflict with it to that close approach (an
+    /// unflagged object has none, and fails).
     WarningTime,
+    /// Each relevant road user: seconds from the first RSU message flagging a
+    /// conflict with it to its closest approach to the ego, negative when the
+    /// warning came after (one never flagged has none, and fails).
+    WarningLead,
+    /// Each relevant road user: seconds from when the ego first knew of it, by
+    /// its own sight or a V2X message, to its closest approach, negative when
+    /// it learned of it after (one never known has none, and fails).
+    KnowledgeLead,
+    /// Each relevant road user: seconds V2X told the ego of it before the ego
+    /// could see it (our per-object anticipation: first own sight, or for one
+    /// never seen its closest approach, minus first V2X knowledge); 0 for one
+    /// the ego saw first; one never known has none, and fails.
+    Anticipation,
+    /// Each relevant road user: its closest approach to the ego, metres
+    /// between centres.
+    ClosestDistance,
 }
 
 impl ObjectProperty {
+    /// Every property in documentation order.
+    pub const ALL: [ObjectProperty; 5] = [
+        Self::WarningTime,
+        Self::WarningLead,
+        Self::KnowledgeLead,
+        Self::Anticipation,
+        Self::ClosestDistance,
+    ];
+
     /// The name as written in scenario files.
     pub fn name(self) -> &'static str {
         match self {
             Self::WarningTime => "warning_time",
+            Self::WarningLead => "warning_lead",
+            Self::KnowledgeLead => "knowledge_lead",
+            Self::Anticipation => "anticipation",
+            Self::ClosestDistance => "closest_distance",
+        }
+    }
+
+    /// Whether it is read from the per-object record of every relevant road
+    /// user (so that `objects` can select among them), rather than from the
+    /// close approaches.
+    pub fn of_record(self) -> bool {
+        self != Self::WarningTime
+    }
+
+    /// The road users it is measured over, in words.
+    pub fn population(self) -> &'static str {
+        if self.of_record() {
+            "relevant road users"
+        } else {
+            "objects that came within d_min of the ego"
         }
     }
 
     /// The values an object's property can take (an object may also have none).
     pub fn domain(self) -> ValueDomain {
         match self {
-            Self::WarningTime => ValueDomain::NonNegative,
+            Self::WarningTime | Self::Anticipation | Self::ClosestDistance => ValueDomain::NonNegative,
+            Self::WarningLead | Self::KnowledgeLead => ValueDomain::Real,
         }
     }
 }

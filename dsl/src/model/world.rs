@@ -35,6 +35,9 @@ pub struct World {
     pub crosswalks: Vec<Crosswalk>,
     /// Regions around conflict zones.
     pub interaction_areas: Vec<InteractionArea>,
+    /// Regions named for requirements that select road users by area; they
+    /// change nothing in the simulation.
+    pub areas: Vec<InteractionArea>,
     /// How vehicles keep their distance.
     pub driving: Driving,
     /// V2X assumptions.
@@ -110,6 +113,18 @@ impl AgentKind {
             Self::Motorbike => (2.2, 0.8),
             Self::Pedestrian => (0.6, 0.6),
             Self::Rsu => (0.5, 0.5),
+        }
+    }
+
+    /// The name as scenario files write it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Car => "car",
+            Self::Truck => "truck",
+            Self::Bus => "bus",
+            Self::Motorbike => "motorbike",
+            Self::Pedestrian => "pedestrian",
+            Self::Rsu => "rsu",
         }
     }
 

@@ -7,7 +7,7 @@ use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use super::range;
-use crate::model::{Invariant, Metric, ObjectProperty, RateBound, Signal};
+use crate::model::{AgentKind, Comparison, Invariant, Metric, ObjectProperty, RateBound, Signal};
 
 /// A requirement: an id, its text, and how it is checked.
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
@@ -52,6 +52,18 @@ pub(crate) struct RawCheck {
     /// Passes when the metric is at most this value.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub at_most: Option<f64>,
+    /// Compare the metric with another measured on the same run: `baseline`
+    /// (the same metric over the ETSI baseline's messages, on the same traffic:
+    /// `channel_load`, `anticipation_median`, `anticipation_p95`,
+    /// `object_anticipation_median`, `object_anticipation_p95`) or another
+    /// metric's name. `at_least` / `at_most` then bound their ratio (or, with
+    /// `by: difference`, their difference).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub relative_to: Option<String>,
+    /// How `relative_to` compares: `ratio` (metric / other, the default) or
+    /// `difference` (metric − other).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub by: Option<Comparison>,
     /// An invariant over every fused cell.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub invariant: Option<Invariant>,
@@ -91,10 +103,16 @@ pub(crate) struct RawCheck {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     #[schemars(transform = range::SPAN.schema())]
     pub within: Option<f64>,
-    /// A property every object that came within d_min of the ego must meet
-    /// (`at_least` or `at_most`).
+    /// A property every road user it judges must meet (`at_least` or
+    /// `at_most`): `warning_time` of every object that came within d_min of
+    /// the ego, or a property of every relevant road user's record, optionally
+    /// selected with `objects`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub per_object: Option<ObjectProperty>,
+    /// Which relevant road users a `per_object` check judges (a record
+    /// property's only): those matching every criterion given. Default: all.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub objects: Option<RawObjectSelection>,
     /// The fewest samples a point needs for the check to judge it (≥ 1): the
     /// metric's population (cells, steps, messages, anticipation times…), the
     /// signal's defined steps in each run, the objects of a per-object check,
@@ -105,6 +123,37 @@ pub(crate) struct RawCheck {
     /// 95 % confidence).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub min_samples: Option<u64>,
+}
+
+/// Which relevant road users a per-object check judges.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(
+    deny_unknown_fields,
+    expecting = "an objects mapping with `ids`, `classes`, `areas`, `closer_than` or `between`"
+)]
+#[schemars(rename = "ObjectSelection")]
+pub(crate) struct RawObjectSelection {
+    /// Ids of declared or traced agents (generated road users are selected by
+    /// class and area).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub ids: Vec<String>,
+    /// Classes a road user of the scenario can have.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub classes: Vec<AgentKind>,
+    /// Ids of crosswalks, interaction areas or `areas`: the road user's centre
+    /// was inside one of them at some step with the ego in the scene.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub areas: Vec<String>,
+    /// [from, to], seconds, starting before the run ends: its closest approach
+    /// to the ego lies in this window.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(transform = range::TIME.schema())]
+    pub between: Option<[f64; 2]>,
+    /// Metres (> 0): its closest approach to the ego, between centres, came
+    /// nearer than this.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(transform = range::EXTENT.schema())]
+    pub closer_than: Option<f64>,
 }
 
 /// A threshold at each step of a signal: `at_least` or `at_most`.

@@ -80,6 +80,10 @@ pub(crate) struct RawScenario {
     /// the junctions of `traces.net`).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub interaction_areas: Vec<RawInteractionArea>,
+    /// World: regions named for requirements that select road users by area
+    /// (`objects.areas`); they change nothing in the simulation.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub areas: Vec<RawInteractionArea>,
     /// World: how vehicles keep their distance.
     #[serde(default)]
     pub driving: RawDriving,

@@ -40,6 +40,9 @@ pub(super) struct Knowledge {
     pub(super) first_direct: Option<f64>,
     /// When a message flagging a conflict with it first reached the ego.
     pub(super) flagged: Option<f64>,
+    /// When the ETSI baseline's message naming it would first have reached
+    /// the ego, and whether the ego had seen it before.
+    pub(super) baseline_received: Option<(f64, bool)>,
     /// Whether it is within d_min of the ego now.
     close: bool,
 }
@@ -93,6 +96,20 @@ impl Ego {
                 if item.labels.conflict.is_some() {
                     known.flagged.get_or_insert(*at);
                     self.cautious_until = self.cautious_until.max(at + hold);
+                }
+            }
+        }
+    }
+
+    /// Takes in the ETSI baseline's messages that arrived (when, and the agents
+    /// each names), in order of arrival: what the ego would have known of
+    /// them instead of the semantic messages. They change nothing else.
+    pub(super) fn receive_baseline(&mut self, arrivals: &[(f64, Vec<usize>)]) {
+        for (at, agents) in arrivals {
+            for &agent in agents {
+                let known = &mut self.knowledge[agent];
+                if known.baseline_received.is_none() {
+                    known.baseline_received = Some((*at, known.first_seen.is_some()));
                 }
             }
         }

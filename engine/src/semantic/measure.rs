@@ -42,7 +42,7 @@ impl Measures {
             network_km: world.roads.iter().map(|r| r.lanes[0].length()).sum::<f64>() / 1000.0,
             rsu_only: Vec::new(),
             time_to_conflict: Vec::new(),
-            encounters: Encounters::new(semantic, agents),
+            encounters: Encounters::new(world, semantic, agents),
             log: SemanticLog::default(),
         }
     }
@@ -90,9 +90,9 @@ impl Measures {
         if shared {
             metrics.perceived += selection.perceived as u64;
         }
-        if selection.baseline > 0 {
-            metrics.baseline_objects += selection.baseline as u64;
-            metrics.baseline_bytes += baseline_bytes(selection.baseline) as u64;
+        if !selection.baseline.is_empty() {
+            metrics.baseline_objects += selection.baseline.len() as u64;
+            metrics.baseline_bytes += baseline_bytes(selection.baseline.len()) as u64;
         }
         if shared {
             count_labels(metrics, &selection.items);
@@ -145,8 +145,12 @@ impl Measures {
                     None => metrics.never_seen += 1,
                 }
             }
+            if let (Some((received, false)), Some(seen)) = (known.baseline_received, known.first_seen) {
+                metrics.baseline_anticipation.push(seen - received);
+            }
         }
         metrics.anticipation.sort_by(f64::total_cmp);
+        metrics.baseline_anticipation.sort_by(f64::total_cmp);
         metrics.rsu_only = vec![self.rsu_only];
         metrics.time_to_conflict = vec![self.time_to_conflict];
         metrics

@@ -89,9 +89,10 @@ impl EtsiSender {
         }
     }
 
-    /// Decides which of the `perceived` objects go into this message; returns how many.
-    pub fn select<'a>(&mut self, perceived: impl IntoIterator<Item = (usize, &'a Measurement)>) -> usize {
-        let mut included = 0;
+    /// Decides which of the `perceived` objects (agent index, latest
+    /// measurement) go into this message; returns their agent indices.
+    pub fn select<'a>(&mut self, perceived: impl IntoIterator<Item = (usize, &'a Measurement)>) -> Vec<usize> {
+        let mut included = Vec::new();
         for (agent, now) in perceived {
             let due = self.last.get(&agent).is_none_or(|last| {
                 let turn = now.heading - last.heading;
@@ -102,7 +103,7 @@ impl EtsiSender {
             });
             if due {
                 self.last.insert(agent, *now);
-                included += 1;
+                included.push(agent);
             }
         }
         included
@@ -135,13 +136,21 @@ mod tests {
             heading: 4f64.to_radians(),
             interval: 1.0,
         });
-        assert_eq!(sender.select([(1, &at(0.0, 0.0, 10.0, 0.0))]), 1);
-        assert_eq!(sender.select([(1, &at(0.1, 3.9, 10.0, 0.0))]), 0, "moved 3.9 m");
-        assert_eq!(sender.select([(1, &at(0.2, 4.1, 10.0, 0.0))]), 1, "moved 4.1 m");
-        assert_eq!(sender.select([(1, &at(0.3, 4.2, 10.6, 0.0))]), 1, "0.6 m/s faster");
-        assert_eq!(sender.select([(1, &at(0.4, 4.3, 10.6, 4.5))]), 1, "turned 4.5°");
-        assert_eq!(sender.select([(1, &at(1.3, 4.4, 10.6, 4.5))]), 0, "0.9 s later");
-        assert_eq!(sender.select([(1, &at(1.4, 4.4, 10.6, 4.5))]), 1, "1 s later");
+        assert_eq!(sender.select([(1, &at(0.0, 0.0, 10.0, 0.0))]), [1]);
+        assert_eq!(
+            sender.select([(1, &at(0.1, 3.9, 10.0, 0.0))]),
+            [0usize; 0],
+            "moved 3.9 m"
+        );
+        assert_eq!(sender.select([(1, &at(0.2, 4.1, 10.0, 0.0))]), [1], "moved 4.1 m");
+        assert_eq!(sender.select([(1, &at(0.3, 4.2, 10.6, 0.0))]), [1], "0.6 m/s faster");
+        assert_eq!(sender.select([(1, &at(0.4, 4.3, 10.6, 4.5))]), [1], "turned 4.5°");
+        assert_eq!(
+            sender.select([(1, &at(1.3, 4.4, 10.6, 4.5))]),
+            [0usize; 0],
+            "0.9 s later"
+        );
+        assert_eq!(sender.select([(1, &at(1.4, 4.4, 10.6, 4.5))]), [1], "1 s later");
     }
 
     #[test]

@@ -31,6 +31,9 @@ pub struct SemanticMetrics {
     pub anticipation: Vec<f64>,
     /// Objects learned of while hidden that the ego never saw before the run ended.
     pub never_seen: u64,
+    /// [`Self::anticipation`] had the RSUs sent the ETSI baseline's messages
+    /// instead, ascending.
+    pub baseline_anticipation: Vec<f64>,
     /// Per step with the ego present: objects per km in the scene (`None` in a
     /// world without roads) and objects the ego knew only through an RSU
     /// (summarised by [`Self::contribution_by_density`]).
@@ -129,6 +132,7 @@ impl SemanticMetrics {
             generated,
             anticipation,
             never_seen,
+            baseline_anticipation,
             contribution,
             perceived,
             transmitted,
@@ -155,6 +159,8 @@ impl SemanticMetrics {
         self.anticipation.extend(anticipation);
         self.anticipation.sort_by(f64::total_cmp);
         self.never_seen += never_seen;
+        self.baseline_anticipation.extend(baseline_anticipation);
+        self.baseline_anticipation.sort_by(f64::total_cmp);
         self.contribution.extend(contribution);
         self.perceived += perceived;
         self.transmitted += transmitted;
@@ -189,7 +195,17 @@ impl SemanticMetrics {
     /// Our anticipation times ([`ObjectRecord::anticipation`]) of the objects
     /// that have one, seconds, ascending.
     pub fn object_anticipation(&self) -> Vec<f64> {
-        let mut times: Vec<f64> = self.objects.iter().filter_map(ObjectRecord::anticipation).collect();
+        self.ascending(ObjectRecord::anticipation)
+    }
+
+    /// [`Self::object_anticipation`] over the ETSI baseline's messages.
+    pub fn baseline_object_anticipation(&self) -> Vec<f64> {
+        self.ascending(ObjectRecord::baseline_anticipation)
+    }
+
+    /// The values of `of` over the objects that have one, ascending.
+    fn ascending(&self, of: fn(&ObjectRecord) -> Option<f64>) -> Vec<f64> {
+        let mut times: Vec<f64> = self.objects.iter().filter_map(of).collect();
         times.sort_by(f64::total_cmp);
         times
     }
@@ -221,6 +237,10 @@ impl SemanticMetrics {
             Metric::ObjectsWarnedNeverSeen => Some(self.per_run(Category::WarnedNeverSeen)),
             Metric::ObjectsSeenFirst => Some(self.per_run(Category::SeenFirst)),
             Metric::ObjectsNeverKnown => Some(self.per_run(Category::NeverKnown)),
+            Metric::BaselineAnticipationMedian => quantile(&self.baseline_anticipation, 0.5),
+            Metric::BaselineAnticipationP95 => quantile(&self.baseline_anticipation, 0.95),
+            Metric::BaselineObjectAnticipationMedian => quantile(&self.baseline_object_anticipation(), 0.5),
+            Metric::BaselineObjectAnticipationP95 => quantile(&self.baseline_object_anticipation(), 0.95),
             _ => None,
         }
     }
@@ -242,6 +262,15 @@ impl SemanticMetrics {
             | Metric::ObjectsWarnedNeverSeen
             | Metric::ObjectsSeenFirst
             | Metric::ObjectsNeverKnown => self.objects.len() as u64,
+            Metric::BaselineAnticipationMedian | Metric::BaselineAnticipationP95 => {
+                self.baseline_anticipation.len() as u64
+            }
+            Metric::BaselineObjectAnticipationMedian | Metric::BaselineObjectAnticipationP95 => {
+                self.objects
+                    .iter()
+                    .filter(|o| o.baseline_anticipation().is_some())
+                    .count() as u64
+            }
             _ => return None,
         })
     }

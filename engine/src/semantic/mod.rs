@@ -14,6 +14,7 @@ mod radio;
 mod relevance;
 mod risk;
 mod rsu;
+mod selection;
 mod simulate;
 mod traffic;
 

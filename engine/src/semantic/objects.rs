@@ -19,6 +19,8 @@
 //! - **closest approach**: the step, among those with both in the scene, at which
 //!   the centres are closest (the first such step on a tie), that distance, and
 //!   where the road user was then (so that it can be placed in an area).
+//! - **areas**: the crosswalks, interaction areas and declared `areas` its centre
+//!   was inside at some step with the ego in the scene, in declaration order.
 //! - **least time to collision**: over the steps at which it is within
 //!   `semantic.proximity` of the ego, the shortest time after which the centres
 //!   would come within `d_min` if both kept their speed and heading (0 when
@@ -26,9 +28,10 @@
 //!   and `d_min` as the close approaches count them; footprints (oriented boxes) are not used.
 
 use serde::{Deserialize, Serialize};
-use sightline_dsl::{Agent, AgentKind, Semantic};
+use sightline_dsl::{Agent, AgentKind, Area, Semantic, World};
 
 use super::ego::Knowledge;
+use super::relevance::{contains, crosswalk_area};
 use crate::math::Vector;
 use crate::world::AgentState;
 
@@ -120,6 +123,12 @@ pub struct ObjectRecord {
     pub min_ttc: Option<f64>,
     /// How the ego came to know it.
     pub category: Category,
+    /// When the first message naming it would have reached the ego had the
+    /// RSUs sent the ETSI baseline's messages instead (or its own message, if
+    /// it is connected).
+    pub baseline_v2x: Option<f64>,
+    /// The ids of the regions it was in with the ego in the scene.
+    pub areas: Vec<String>,
 }
 
 impl ObjectRecord {
@@ -131,8 +140,18 @@ impl ObjectRecord {
     /// - `seen_first`, `never_known`: none (V2X gave nothing ahead of sight, or
     ///   nothing at all).
     pub fn anticipation(&self) -> Option<f64> {
-        let told = self.first_v2x?;
-        match self.category {
+        self.anticipation_if_told_at(self.first_v2x)
+    }
+
+    /// [`Self::anticipation`] over the ETSI baseline's messages.
+    pub fn baseline_anticipation(&self) -> Option<f64> {
+        self.anticipation_if_told_at(self.baseline_v2x)
+    }
+
+    /// Our anticipation had V2X first named it at `told`.
+    fn anticipation_if_told_at(&self, told: Option<f64>) -> Option<f64> {
+        let told = told?;
+        match Category::of(Some(told), self.first_seen) {
             Category::WarnedBeforeSeen => self.first_seen.map(|seen| seen - told),
             Category::WarnedNeverSeen => self.closest.map(|c| (c.time - told).max(0.0)),
             Category::SeenFirst | Category::NeverKnown => None,
@@ -156,16 +175,28 @@ pub(super) struct Encounters {
     d_min: f64,
     /// By agent index.
     by_agent: Vec<Encounter>,
+    /// The regions a record names, with their ids.
+    regions: Vec<(String, Area)>,
+    /// By agent index, then region: whether it was inside.
+    inside: Vec<bool>,
 }
 
 impl Encounters {
-    /// Nothing seen yet of the `agents` agents of a scene run with `semantic`.
-    pub(super) fn new(semantic: &Semantic, agents: usize) -> Self {
+    /// Nothing seen yet of the `agents` agents of a scene of `world` run with
+    /// `semantic`.
+    pub(super) fn new(world: &World, semantic: &Semantic, agents: usize) -> Self {
+        let crosswalks = world.crosswalks.iter().map(|c| (c.id.clone(), crosswalk_area(c)));
+        let others = world.interaction_areas.iter().chain(&world.areas);
+        let regions: Vec<(String, Area)> = crosswalks
+            .chain(others.map(|a| (a.id.clone(), a.shape.clone())))
+            .collect();
         Self {
             ego: semantic.ego,
             proximity: semantic.proximity,
             d_min: semantic.d_min,
             by_agent: vec![Encounter::default(); agents],
+            inside: vec![false; agents * regions.len()],
+            regions,
         }
     }
 
@@ -176,6 +207,10 @@ impl Encounters {
             let Some(state) = state.filter(|_| agent != self.ego) else {
                 continue;
             };
+            let regions = self.regions.len();
+            for (inside, (_, area)) in self.inside[agent * regions..][..regions].iter_mut().zip(&self.regions) {
+                *inside = *inside || contains(area, state.position());
+            }
             let encounter = &mut self.by_agent[agent];
             let offset = state.position() - ego.position();
             let distance = offset.length();
@@ -215,10 +250,12 @@ impl Encounters {
                     (Some(near), Some(named)) => near.min(named),
                     (near, named) => near.or(named)?,
                 };
-                let first_v2x = match (named, known.first_direct) {
+                let earliest = |a: Option<f64>, b: Option<f64>| match (a, b) {
                     (Some(a), Some(b)) => Some(a.min(b)),
                     (a, b) => a.or(b),
                 };
+                let first_v2x = earliest(named, known.first_direct);
+                let baseline_v2x = earliest(known.baseline_received.map(|(at, _)| at), known.first_direct);
                 let spec = &agents[agent];
                 let record = ObjectRecord {
                     run,
@@ -233,12 +270,25 @@ impl Encounters {
                     closest: encounter.closest,
                     min_ttc: encounter.min_ttc,
                     category: Category::of(first_v2x, known.first_seen),
+                    baseline_v2x,
+                    areas: self.areas_of(agent),
                 };
                 Some((agent, record))
             })
             .collect();
         records.sort_by(|(a, x), (b, y)| x.first_relevant.total_cmp(&y.first_relevant).then(a.cmp(b)));
         records.into_iter().map(|(_, record)| record).collect()
+    }
+
+    /// The ids of the regions agent `agent` was inside.
+    fn areas_of(&self, agent: usize) -> Vec<String> {
+        let regions = self.regions.len();
+        self.regions
+            .iter()
+            .zip(&self.inside[agent * regions..][..regions])
+            .filter(|&(_, &inside)| inside)
+            .map(|((id, _), _)| id.clone())
+            .collect()
     }
 }
 
@@ -333,6 +383,8 @@ mod tests {
             }),
             min_ttc: None,
             category,
+            baseline_v2x: None,
+            areas: Vec::new(),
         }
     }
 

@@ -1,6 +1,8 @@
 //! The V2X links of a semantic world, over the TR 36.885 channel: the ego's plan
-//! up to each RSU, an RSU's semantic message down to the ego, connected road
-//! users' own messages to the ego, and the messages on their way.
+//! up to each RSU, an RSU's semantic message down to the ego, the ETSI
+//! collective perception message it would have sent instead (the baseline the
+//! semantic pipeline is compared with), connected road users' own messages to
+//! the ego, and the messages on their way.
 
 use rand::rngs::ChaCha8Rng;
 use sightline_dsl::{Agent, AgentKind, V2x};
@@ -14,6 +16,14 @@ use crate::rng::{Purpose, stream};
 use crate::trace::{Arrival, Packet, PacketKind};
 use crate::v2x::{InFlight, Link, arrival, transmit};
 use crate::world::{AgentState, Occluders};
+
+/// The baseline's messages reach an ego that drove as the semantic ones made it.
+pub(crate) const BASELINE_REPLAY: Idealisation = Idealisation {
+    id: "semantic.baseline-replay",
+    text: "The ETSI baseline's messages are evaluated on the semantic run's traffic and ego trajectory, with \
+           their own loss draws: the ego drives as the semantic messages' warnings made it, where an ego served \
+           by the baseline alone, never warned, might have driven otherwise.",
+};
 
 /// Direct messages carry exact states.
 pub(crate) const DIRECT_STATES: Idealisation = Idealisation {
@@ -33,6 +43,8 @@ pub(super) struct Radio<'a> {
     /// Connected road users' direct messages.
     cam_channel: ChaCha8Rng,
     in_flight: InFlight<Vec<Item>>,
+    /// The baseline's messages on their way: the agents each names.
+    baseline_in_flight: InFlight<Vec<usize>>,
 }
 
 impl<'a> Radio<'a> {
@@ -44,6 +56,7 @@ impl<'a> Radio<'a> {
             ego_channel: stream(seed, Purpose::Channel, ego as u64),
             cam_channel: stream(seed, Purpose::Channel, agents as u64),
             in_flight: InFlight::default(),
+            baseline_in_flight: InFlight::default(),
         }
     }
 
@@ -55,6 +68,12 @@ impl<'a> Radio<'a> {
             .into_iter()
             .map(|(at, items)| Arrival { at, items })
             .collect()
+    }
+
+    /// The baseline's messages that reached the ego by `time`, in order of
+    /// arrival: when each arrived and the agents it names.
+    pub(super) fn baseline_arrivals(&mut self, time: f64) -> Vec<(f64, Vec<usize>)> {
+        self.baseline_in_flight.arrived(time)
     }
 
     /// Communicate: the ego at `ego` sends its state and plan at `time` to `rsu`
@@ -96,11 +115,7 @@ impl<'a> Radio<'a> {
     /// way to the ego.
     pub(super) fn downlink(&mut self, rsu: &mut Rsu, uplink: &Link, items: Vec<Item>, time: f64) -> Packet {
         let channel = &self.v2x.channel;
-        let downlink = Link {
-            tx_antenna_m: channel.rsu_antenna_m,
-            rx_antenna_m: channel.vehicle_antenna_m,
-            ..*uplink
-        };
+        let downlink = self.reversed(uplink);
         let bytes = semantic_bytes(items.len());
         let reception = transmit(channel, &downlink, &mut rsu.channel);
         let packet = Packet {
@@ -118,6 +133,27 @@ impl<'a> Radio<'a> {
             self.in_flight.send(at, items);
         }
         packet
+    }
+
+    /// The ETSI baseline: `rsu` sends the ego a collective perception message
+    /// naming the `objects` its inclusion rules chose at `time`, over the
+    /// `uplink` link the other way, with the baseline's own loss draws; a
+    /// received message is on its way to the ego. Nothing else sees it.
+    pub(super) fn baseline_downlink(&mut self, rsu: &mut Rsu, uplink: &Link, objects: Vec<usize>, time: f64) {
+        let downlink = self.reversed(uplink);
+        if transmit(&self.v2x.channel, &downlink, &mut rsu.baseline_channel).received {
+            let at = arrival(time, self.v2x.latency, downlink.distance_m);
+            self.baseline_in_flight.send(at, objects);
+        }
+    }
+
+    /// An RSU's link to the ego: `uplink` the other way.
+    fn reversed(&self, uplink: &Link) -> Link {
+        Link {
+            tx_antenna_m: self.v2x.channel.rsu_antenna_m,
+            rx_antenna_m: self.v2x.channel.vehicle_antenna_m,
+            ..*uplink
+        }
     }
 
     /// Communicate: every connected road user in the scene sends the ego at

@@ -56,14 +56,17 @@ pub(super) struct Rsu {
     detections: ChaCha8Rng,
     /// Its radio's random stream.
     pub(super) channel: ChaCha8Rng,
+    /// Its radio's random stream for the ETSI baseline's messages, kept apart
+    /// so that the baseline leaves the semantic pipeline's draws as they are.
+    pub(super) baseline_channel: ChaCha8Rng,
 }
 
 /// What an RSU selects to send at one cycle.
 pub(super) struct Selection {
     /// Objects in its LDM now, the ego excluded.
     pub(super) perceived: usize,
-    /// Of those, the objects the ETSI baseline would send.
-    pub(super) baseline: usize,
+    /// Of those, the objects the ETSI baseline would send, by agent index.
+    pub(super) baseline: Vec<usize>,
     /// The objects its pipeline sends, with their labels: its semantic message,
     /// empty when it sends none.
     pub(super) items: Vec<Item>,
@@ -80,6 +83,7 @@ impl Rsu {
             plan: None,
             detections: stream(seed, Purpose::Detections, agent as u64),
             channel: stream(seed, Purpose::Channel, agent as u64),
+            baseline_channel: stream(seed, Purpose::BaselineChannel, agent as u64),
         }
     }
 

@@ -87,6 +87,7 @@ pub(crate) fn idealisations(world: &World, semantic: &Semantic) -> Vec<Idealisat
         message::SIZED,
         v2x::NO_CONTENTION,
         ego::KNOWN_FOR_A_WHILE,
+        radio::BASELINE_REPLAY,
     ]);
     let road_users = world
         .agents
@@ -158,6 +159,7 @@ fn run_once((seed, run): (u64, u32), world: &World, semantic: &Semantic, sink: &
         let arrivals = radio.arrivals(time);
         ego.receive(&arrivals, semantic.caution.hold);
         measures.arrivals(arrivals);
+        ego.receive_baseline(&radio.baseline_arrivals(time));
         // Sense: the ego's view of the scene, measured, and the caution it
         // drives with from the next step on; the RSUs' perception.
         if let Some(ego_now) = ego_state {
@@ -227,6 +229,9 @@ impl Cycle<'_> {
             ShareCycles::EgoInRange => link.distance_m <= rsu.range,
         };
         measures.selection(self.time, &selection, shared);
+        if !selection.baseline.is_empty() {
+            radio.baseline_downlink(rsu, &link, selection.baseline, self.time);
+        }
         if selection.items.is_empty() {
             return;
         }

@@ -1,6 +1,6 @@
 //! Metric thresholds.
 
-use sightline_dsl::{Bound, Metric};
+use sightline_dsl::{Bound, Comparison, Metric};
 use sightline_engine::Sample;
 
 use super::short;
@@ -36,11 +36,87 @@ pub(crate) fn evaluate(metric: Metric, bound: Bound, sample: Option<Sample>, min
     Evaluation::judged(value, margin, n, measured, message)
 }
 
+/// Compares a metric with another measured on the same run, each with its
+/// sample (`[(metric, sample), (other, sample)]`): their ratio or difference
+/// against `bound`. Either sample smaller than `min_samples` is not exercised,
+/// and so is a ratio to 0 (nothing to compare with); a metric the
+/// measurements lack, or one undefined over a non-empty population, is an
+/// error. n is the smaller sample's.
+pub(crate) fn compare(
+    samples: [(Metric, Option<Sample>); 2],
+    by: Comparison,
+    bound: Bound,
+    min_samples: u64,
+) -> Evaluation {
+    let mut values = [0.0; 2];
+    let mut sizes = [0; 2];
+    for (i, (metric, sample)) in samples.iter().enumerate() {
+        let name = metric.name();
+        let Some(Sample { value, n }) = *sample else {
+            return Evaluation::error(format!("{name} is not measured at this point"));
+        };
+        if n < min_samples {
+            return Evaluation::not_exercised(
+                n,
+                describe(*metric, n),
+                too_few(name, n, min_samples, metric.population()),
+            );
+        }
+        let Some(value) = value.filter(|v| !v.is_nan()) else {
+            return Evaluation::error(format!("{name} is undefined over n = {n} {}", metric.population()));
+        };
+        (values[i], sizes[i]) = (value, n);
+    }
+    let [(metric, _), (other, _)] = samples;
+    let operator = match by {
+        Comparison::Ratio => "/",
+        Comparison::Difference => "−",
+    };
+    let expression = format!("{} {operator} {}", metric.name(), other.name());
+    let n = sizes[0].min(sizes[1]);
+    let measured = format!(
+        "{expression}: {} and {}",
+        describe(metric, sizes[0]),
+        describe(other, sizes[1])
+    );
+    let Some(value) = by.of(values[0], values[1]) else {
+        return Evaluation::not_exercised(
+            n,
+            measured,
+            format!(
+                "nothing to compare with: {} = 0, so {expression} is undefined",
+                other.name()
+            ),
+        );
+    };
+    let margin = bound.margin(value);
+    let (relation, wanted) = match bound {
+        Bound::AtLeast(_) => (if margin >= 0.0 { "≥" } else { "<" }, "at least"),
+        Bound::AtMost(_) => (if margin >= 0.0 { "≤" } else { ">" }, "at most"),
+    };
+    let message = format!(
+        "{expression} = {} {operator} {} = {} {relation} {threshold} (required {wanted} {threshold}; margin {}; n = {n})",
+        short(values[0]),
+        short(values[1]),
+        short(value),
+        short(margin),
+        threshold = short(bound.threshold())
+    );
+    Evaluation::judged(value, margin, n, measured, message)
+}
+
 /// What a metric's value is, with its n: `median of n = 12 anticipation times`.
 pub(crate) fn describe(metric: Metric, n: u64) -> String {
     let what = match metric {
-        Metric::AnticipationMedian => "median of",
-        Metric::AnticipationP95 => "95th percentile of",
+        Metric::AnticipationMedian
+        | Metric::ObjectAnticipationMedian
+        | Metric::BaselineAnticipationMedian
+        | Metric::BaselineObjectAnticipationMedian => "median of",
+        Metric::AnticipationP95
+        | Metric::ObjectAnticipationP95
+        | Metric::BaselineAnticipationP95
+        | Metric::BaselineObjectAnticipationP95
+        | Metric::MessageAgeP95 => "95th percentile of",
         _ => "value over",
     };
     format!("{what} n = {n} {}", metric.population())
@@ -109,6 +185,42 @@ mod tests {
             1,
         );
         assert_eq!((e.status, e.value), (Status::Fail, Some(0.9)));
+    }
+
+    /// 300 B/s against a baseline's 1000 B/s: a ratio of 0.3, a difference of −700.
+    #[test]
+    fn comparisons_bound_the_ratio_or_the_difference() {
+        let load = |value: f64, n: u64| Some(Sample { value: Some(value), n });
+        let pair = |ours, theirs| {
+            [
+                (Metric::ChannelLoad, load(ours, 50)),
+                (Metric::BaselineChannelLoad, load(theirs, 40)),
+            ]
+        };
+        let e = compare(pair(300.0, 1000.0), Comparison::Ratio, Bound::AtMost(0.5), 1);
+        assert_eq!((e.status, e.value, e.n), (Status::Pass, Some(0.3), Some(40)));
+        assert!((e.margin.unwrap() - 0.2).abs() < 1e-12);
+        assert_eq!(
+            e.message,
+            "channel_load / baseline_channel_load = 300 / 1000 = 0.3 ≤ 0.5 (required at most 0.5; margin 0.2; n = 40)"
+        );
+        let e = compare(pair(600.0, 1000.0), Comparison::Ratio, Bound::AtMost(0.5), 1);
+        assert_eq!(e.status, Status::Fail);
+        let e = compare(pair(300.0, 1000.0), Comparison::Difference, Bound::AtLeast(0.0), 1);
+        assert_eq!((e.status, e.value), (Status::Fail, Some(-700.0)));
+        // Nothing sent by the baseline: no ratio, nothing to compare with.
+        let e = compare(pair(300.0, 0.0), Comparison::Ratio, Bound::AtMost(0.5), 1);
+        assert_eq!(e.status, Status::NotExercised);
+        // Either side too small a sample: not exercised; either side missing: an error.
+        let e = compare(pair(300.0, 1000.0), Comparison::Ratio, Bound::AtMost(0.5), 45);
+        assert_eq!((e.status, e.n), (Status::NotExercised, Some(40)));
+        let e = compare(
+            [(Metric::ChannelLoad, load(1.0, 5)), (Metric::BaselineChannelLoad, None)],
+            Comparison::Ratio,
+            Bound::AtMost(0.5),
+            1,
+        );
+        assert_eq!(e.status, Status::Error);
     }
 
     #[test]

@@ -1,34 +1,45 @@
-//! Properties every object that came within d_min of the ego must meet.
+//! Properties every road user a per-object check judges must meet.
 
-use sightline_dsl::{Bound, ObjectProperty};
+use sightline_dsl::{Bound, ObjectProperty, ObjectSelection};
 
 use super::short;
 use crate::Evaluation;
 
-/// Checks `property` of every close approach against `bound`: the smallest
-/// margin decides; an object without the property (never flagged) fails with
-/// no value. Fewer close approaches than `min_objects` (none, by default) is
-/// not exercised: no object, nothing to judge.
-pub(crate) fn evaluate(property: ObjectProperty, bound: Bound, values: &[Option<f64>], min_objects: u64) -> Evaluation {
+/// Checks `property` of every road user `selection` kept against `bound`: the
+/// smallest margin decides; a road user without the property fails with no
+/// value. Fewer road users than `min_objects` (none, by default) is not
+/// exercised: nothing to judge.
+pub(crate) fn evaluate(
+    (property, selection): (ObjectProperty, &ObjectSelection),
+    bound: Bound,
+    values: &[Option<f64>],
+    min_objects: u64,
+) -> Evaluation {
     let name = property.name();
     let n = values.len() as u64;
-    let measured = format!("smallest {name} of n = {n} objects that came within d_min of the ego");
+    let population = match selection.describe() {
+        all if all.is_empty() => property.population().to_string(),
+        some => format!("{} {some}", property.population()),
+    };
+    let measured = format!("smallest {name} of n = {n} {population}");
     if n < min_objects {
         let message = if n == 0 {
-            "nothing to judge: no object came within d_min of the ego".to_string()
+            format!("nothing to judge: no {population}")
         } else {
-            format!(
-                "nothing to judge: {n} objects came within d_min of the ego, fewer than the {min_objects} the check needs"
-            )
+            format!("nothing to judge: {n} {population}, fewer than the {min_objects} the check needs")
         };
         return Evaluation::not_exercised(n, measured, message);
     }
     let missing = values.iter().filter(|v| v.is_none()).count();
     if missing > 0 {
+        let why = match property {
+            ObjectProperty::WarningTime | ObjectProperty::WarningLead => "never flagged",
+            _ => "never known to the ego",
+        };
         return Evaluation::failed(
             n,
             measured,
-            format!("{missing} of {n} objects that came within d_min of the ego had no {name} (never flagged)"),
+            format!("{missing} of {n} {population} had no {name} ({why})"),
         );
     }
     let (margin, value) = values
@@ -38,7 +49,7 @@ pub(crate) fn evaluate(property: ObjectProperty, bound: Bound, values: &[Option<
         .min_by(|a, b| a.0.total_cmp(&b.0))
         .expect("values are present");
     let message = format!(
-        "smallest {name} over {n} objects = {} (margin {}; n = {n})",
+        "smallest {name} over {n} {population} = {} (margin {}; n = {n})",
         short(value),
         short(margin)
     );
@@ -47,37 +58,70 @@ pub(crate) fn evaluate(property: ObjectProperty, bound: Bound, values: &[Option<
 
 #[cfg(test)]
 mod tests {
+    use sightline_dsl::AgentKind;
+
     use super::*;
     use crate::Status;
 
+    const WARNING_TIME: (ObjectProperty, &ObjectSelection) = (ObjectProperty::WarningTime, &ALL);
+    const ALL: ObjectSelection = ObjectSelection {
+        ids: Vec::new(),
+        classes: Vec::new(),
+        areas: Vec::new(),
+        between: None,
+        closer_than: None,
+    };
+
     #[test]
     fn the_least_warned_object_decides() {
-        let e = evaluate(
-            ObjectProperty::WarningTime,
-            Bound::AtLeast(1.0),
-            &[Some(2.5), Some(1.2), Some(4.0)],
-            1,
-        );
+        let e = evaluate(WARNING_TIME, Bound::AtLeast(1.0), &[Some(2.5), Some(1.2), Some(4.0)], 1);
         assert_eq!((e.status, e.value, e.n), (Status::Pass, Some(1.2), Some(3)));
         assert!((e.margin.unwrap() - 0.2).abs() < 1e-12);
-        let e = evaluate(
-            ObjectProperty::WarningTime,
-            Bound::AtLeast(1.5),
-            &[Some(2.5), Some(1.2)],
-            1,
-        );
+        let e = evaluate(WARNING_TIME, Bound::AtLeast(1.5), &[Some(2.5), Some(1.2)], 1);
         assert_eq!(e.status, Status::Fail);
     }
 
     #[test]
     fn an_unflagged_object_fails_and_no_object_is_not_exercised() {
-        let e = evaluate(ObjectProperty::WarningTime, Bound::AtLeast(0.0), &[Some(3.0), None], 1);
+        let e = evaluate(WARNING_TIME, Bound::AtLeast(0.0), &[Some(3.0), None], 1);
         assert_eq!((e.status, e.value, e.n), (Status::Fail, None, Some(2)));
         assert!(e.message.starts_with("1 of 2 objects"), "{}", e.message);
-        let e = evaluate(ObjectProperty::WarningTime, Bound::AtLeast(1.0), &[], 1);
+        let e = evaluate(WARNING_TIME, Bound::AtLeast(1.0), &[], 1);
         assert_eq!((e.status, e.n), (Status::NotExercised, Some(0)));
-        assert_eq!(e.message, "nothing to judge: no object came within d_min of the ego");
-        let e = evaluate(ObjectProperty::WarningTime, Bound::AtLeast(1.0), &[Some(2.0)], 2);
+        assert_eq!(
+            e.message,
+            "nothing to judge: no objects that came within d_min of the ego"
+        );
+        let e = evaluate(WARNING_TIME, Bound::AtLeast(1.0), &[Some(2.0)], 2);
         assert_eq!(e.status, Status::NotExercised);
+    }
+
+    /// A selection that keeps no road user in a run is not exercised there,
+    /// and says which road users it looked for.
+    #[test]
+    fn an_empty_selection_is_not_exercised_and_named() {
+        let pedestrians = ObjectSelection {
+            classes: vec![AgentKind::Pedestrian],
+            areas: vec!["cw_north".into()],
+            ..Default::default()
+        };
+        let e = evaluate((ObjectProperty::WarningLead, &pedestrians), Bound::AtLeast(2.0), &[], 1);
+        assert_eq!(e.status, Status::NotExercised);
+        assert_eq!(
+            e.message,
+            "nothing to judge: no relevant road users of class pedestrian, in cw_north"
+        );
+        let e = evaluate(
+            (ObjectProperty::KnowledgeLead, &pedestrians),
+            Bound::AtLeast(2.0),
+            &[Some(2.5), None],
+            1,
+        );
+        assert_eq!(e.status, Status::Fail);
+        assert!(
+            e.message.ends_with("had no knowledge_lead (never known to the ego)"),
+            "{}",
+            e.message
+        );
     }
 }

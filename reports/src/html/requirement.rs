@@ -136,7 +136,24 @@ fn describe_check(check: &CheckInfo) -> String {
                 .map_or(String::new(), |w| format!(" within {} s", number(w)));
             return format!("{} {relation}{window}", check.kind);
         }
-        "per_object" => return format!("every object within d_min: {relation}"),
+        "per_object" if check.name == "warning_time" => return format!("every object within d_min: {relation}"),
+        "per_object" => {
+            let selected = check.objects.describe();
+            let users = if selected.is_empty() {
+                "every relevant road user".to_string()
+            } else {
+                format!("every relevant road user {selected}")
+            };
+            return format!("{users}: {relation}");
+        }
+        "compare" => {
+            let other = check.relative_to.unwrap_or_default();
+            let (operator, sign) = (
+                if check.by == Some("difference") { "−" } else { "/" },
+                relation_sign(check.relation),
+            );
+            return format!("{name} {operator} {other} {sign} {threshold}");
+        }
         _ => {}
     }
     let Some(over) = check.over_seeds else {

@@ -10,7 +10,7 @@ use std::collections::BTreeMap;
 use mcap::records::Record;
 use mcap::sans_io::{LinearReadEvent, LinearReader, LinearReaderOptions};
 use serde::de::DeserializeOwned;
-use sightline_dsl::{Metric, ObjectProperty, Signal};
+use sightline_dsl::{Metric, ObjectProperty, ObjectSelection, Signal};
 use sightline_engine::Sample;
 use sightline_engine::outcome::{CellTally, MassAudit, Series, WorldMetrics};
 use sightline_oracles::Measurements;
@@ -236,7 +236,7 @@ struct RecordedPoint {
     metrics: Vec<Vec<(Metric, Sample)>>,
     audit: Option<MassAudit>,
     series: Vec<(Signal, Vec<Series>)>,
-    per_object: Vec<(ObjectProperty, Vec<Option<f64>>)>,
+    per_object: Vec<(ObjectProperty, ObjectSelection, Vec<Option<f64>>)>,
 }
 
 impl Measurements for RecordedRun {
@@ -258,13 +258,18 @@ impl Measurements for RecordedRun {
             .map(|(_, runs)| runs.clone())
     }
 
-    fn per_object(&self, point: usize, property: ObjectProperty) -> Option<Vec<Option<f64>>> {
+    fn per_object(
+        &self,
+        point: usize,
+        property: ObjectProperty,
+        selection: &ObjectSelection,
+    ) -> Option<Vec<Option<f64>>> {
         let point = self.points.get(point)?;
         point
             .per_object
             .iter()
-            .find(|(p, _)| *p == property)
-            .map(|(_, v)| v.clone())
+            .find(|(p, s, _)| *p == property && s == selection)
+            .map(|(_, _, v)| v.clone())
     }
 }
 
@@ -318,7 +323,10 @@ impl Recording {
                         per_object: o
                             .per_object
                             .iter()
-                            .map(|p| (p.property, p.values.iter().map(|v| v.value.map(|r| r.0)).collect()))
+                            .map(|p| {
+                                let values = p.values.iter().map(|v| v.value.map(|r| r.0)).collect();
+                                (p.property, p.selection.clone(), values)
+                            })
                             .collect(),
                     }
                 })

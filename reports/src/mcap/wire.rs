@@ -13,7 +13,7 @@ use std::fmt;
 use schemars::{JsonSchema, Schema, SchemaGenerator, json_schema};
 use serde::de::{self, Visitor};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
-use sightline_dsl::{Metric, ObjectProperty, Signal};
+use sightline_dsl::{Metric, ObjectProperty, ObjectSelection, Signal};
 use sightline_engine::outcome::MassAudit;
 
 use crate::Tool;
@@ -173,16 +173,19 @@ pub struct SeriesSample {
     pub value: Real,
 }
 
-/// A per-object property of one point.
+/// A per-object property of one point, of the road users a check selects.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct ObjectRecord {
     /// The property's name, as in scenario files.
     pub property: ObjectProperty,
-    /// Per close approach, in order.
+    /// The road users it is of (left out: all).
+    #[serde(default, skip_serializing_if = "ObjectSelection::is_all")]
+    pub selection: ObjectSelection,
+    /// Per road user, in order.
     pub values: Vec<ObjectValue>,
 }
 
-/// A per-object property of one close approach.
+/// A per-object property of one road user.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct ObjectValue {
     /// Its value (left out: the object has none).

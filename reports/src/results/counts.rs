@@ -222,6 +222,9 @@ pub struct SemanticCounts {
     pub anticipation: Vec<f64>,
     /// Objects learned of while hidden that the ego never saw before the run ended.
     pub never_seen: u64,
+    /// Anticipation times had the RSUs sent the ETSI baseline's messages
+    /// instead, seconds, ascending.
+    pub baseline_anticipation: Vec<f64>,
     /// Object-cycles perceived by the RSUs, in the cycles the shares count.
     pub perceived: u64,
     /// Object-cycles sent to the ego, in the cycles the shares count.

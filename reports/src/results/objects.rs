@@ -103,6 +103,16 @@ pub struct ObjectResult {
     /// (`warned_before_seen`), closest approach − first V2X, at least 0
     /// (`warned_never_seen`), `null` otherwise.
     pub anticipation: Option<f64>,
+    /// When the first message naming it would have reached the ego had the
+    /// RSUs sent the ETSI baseline's collective perception messages instead,
+    /// seconds (`null`: none would have).
+    pub baseline_v2x: Option<f64>,
+    /// `anticipation` over the ETSI baseline's messages, seconds.
+    pub baseline_anticipation: Option<f64>,
+    /// The ids of the crosswalks, interaction areas and declared `areas` its
+    /// centre was in with the ego in the scene (left out: none).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub areas: Vec<String>,
 }
 
 /// Where and when a road user came closest to the ego.

@@ -3,6 +3,7 @@
 //! what the seeds gave.
 
 use serde::Serialize;
+use sightline_dsl::ObjectSelection;
 
 /// A verdict as results.json writes it, from best to worst.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, schemars::JsonSchema)]
@@ -83,7 +84,7 @@ pub struct RequirementResult {
 #[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
 #[schemars(deny_unknown_fields)]
 pub struct CheckInfo {
-    /// `metric`, `always`, `eventually`, `per_object` or `invariant`.
+    /// `metric`, `compare`, `always`, `eventually`, `per_object` or `invariant`.
     pub kind: &'static str,
     /// The metric, signal, property or invariant name.
     pub name: &'static str,
@@ -97,6 +98,15 @@ pub struct CheckInfo {
     /// For a temporal check: the window's length from the start, seconds.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub within: Option<f64>,
+    /// For a comparison: the metric it is compared with.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub relative_to: Option<&'static str>,
+    /// For a comparison: `ratio` or `difference`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub by: Option<&'static str>,
+    /// For a per-object check: the road users it selects (left out: all).
+    #[serde(skip_serializing_if = "ObjectSelection::is_all")]
+    pub objects: ObjectSelection,
 }
 
 /// A metric check repeated over independent seeds, as written.

@@ -5,7 +5,7 @@ use super::agents::{Scene, agents};
 use super::occluders::occluders;
 use super::perception::perception_of;
 use super::roads::roads;
-use super::semantic::{crosswalks, driving, interaction_areas, semantic_of, traffic, v2x};
+use super::semantic::{areas, crosswalks, driving, interaction_areas, semantic_of, traffic, v2x};
 use super::sensors::{localization, sensor_models};
 use crate::compile::checks::whole_multiple;
 use crate::compile::context::Context;
@@ -60,6 +60,10 @@ pub(crate) fn world(ctx: &mut Context<'_>, raw: &RawScenario, imported: Option<&
     };
     let crosswalks = crosswalks(ctx, &raw.crosswalks);
     let interaction_areas = interaction_areas(ctx, &raw.interaction_areas, imported);
+    let areas = match (&crosswalks, &interaction_areas) {
+        (Some(crosswalks), Some(interaction)) => areas(ctx, &raw.areas, crosswalks, interaction),
+        _ => None,
+    };
     let traffic = raw
         .traffic
         .as_ref()
@@ -94,6 +98,7 @@ pub(crate) fn world(ctx: &mut Context<'_>, raw: &RawScenario, imported: Option<&
         traffic: traffic.map_or(Some(None), |t| t.map(Some))?,
         crosswalks: crosswalks?,
         interaction_areas: interaction_areas?,
+        areas: areas?,
         driving: driving?,
         v2x: v2x?,
         semantic: semantic?,

@@ -62,6 +62,35 @@ pub(super) fn interaction_areas(
             &junction_ids,
             "a junction of `traces.net` (`traces.junction_areas`)",
         );
+    let (mut areas, shapes_ok) = named_areas(ctx, &list, raw);
+    ok &= shapes_ok;
+    areas.extend_from_slice(junctions);
+    ok.then_some(areas)
+}
+
+/// The regions `areas` names for requirements: ids unique among themselves and
+/// distinct from every crosswalk and interaction area, so that an id selects
+/// one kind of region.
+pub(super) fn areas(
+    ctx: &mut Context<'_>,
+    raw: &[RawInteractionArea],
+    crosswalks: &[Crosswalk],
+    interaction: &[InteractionArea],
+) -> Option<Vec<InteractionArea>> {
+    let list = Path::root().key("areas");
+    let crosswalk_ids: HashSet<&str> = crosswalks.iter().map(|c| c.id.as_str()).collect();
+    let interaction_ids: HashSet<&str> = interaction.iter().map(|a| a.id.as_str()).collect();
+    let ids = || raw.iter().map(|a| a.id.as_str());
+    let ok = unique_ids(ctx, &list, ids())
+        & distinct_from_imported(ctx, &list, ids(), &crosswalk_ids, "a crosswalk")
+        & distinct_from_imported(ctx, &list, ids(), &interaction_ids, "an interaction area");
+    let (areas, shapes_ok) = named_areas(ctx, &list, raw);
+    (ok && shapes_ok).then_some(areas)
+}
+
+/// The regions of `list`, each a `polygon` or a `circle`; whether all are valid.
+fn named_areas(ctx: &mut Context<'_>, list: &Path, raw: &[RawInteractionArea]) -> (Vec<InteractionArea>, bool) {
+    let mut ok = true;
     let mut areas = Vec::new();
     for (i, area) in raw.iter().enumerate() {
         let path = list.index(i);
@@ -92,7 +121,7 @@ pub(super) fn interaction_areas(
             _ => {
                 ctx.error(
                     &path,
-                    ErrorKind::Invalid("an interaction area is a `polygon` or a `circle`, exactly one".into()),
+                    ErrorKind::Invalid("an area is a `polygon` or a `circle`, exactly one".into()),
                 );
                 None
             }
@@ -105,8 +134,7 @@ pub(super) fn interaction_areas(
             None => ok = false,
         }
     }
-    areas.extend_from_slice(junctions);
-    ok.then_some(areas)
+    (areas, ok)
 }
 
 pub(super) fn traffic(

@@ -5,7 +5,7 @@
 
 use std::io::{Seek, Write};
 
-use sightline_dsl::{Check, ObjectProperty, Signal};
+use sightline_dsl::{Check, ObjectProperty, ObjectSelection, Signal};
 use sightline_engine::{Outcome, Run};
 use sightline_oracles::Verdict;
 
@@ -39,11 +39,13 @@ impl<W: Write + Seek> Recorder<'_, W> {
         for (point, outcome) in scenario.points.iter().zip(&run.points) {
             // What this point's temporal and per-object checks read, each once.
             let mut signals: Vec<Signal> = Vec::new();
-            let mut properties: Vec<ObjectProperty> = Vec::new();
+            let mut properties: Vec<(ObjectProperty, &ObjectSelection)> = Vec::new();
             for requirement in scenario.requirements.iter().filter(|r| r.points.contains(&point.index)) {
                 match requirement.check {
                     Check::Temporal { signal, .. } if !signals.contains(&signal) => signals.push(signal),
-                    Check::PerObject { property, .. } if !properties.contains(&property) => properties.push(property),
+                    Check::PerObject { property, .. } if !properties.contains(&(property, &requirement.objects)) => {
+                        properties.push((property, &requirement.objects));
+                    }
                     _ => {}
                 }
             }
@@ -81,10 +83,11 @@ impl<W: Write + Seek> Recorder<'_, W> {
                     .collect(),
                 per_object: properties
                     .into_iter()
-                    .filter_map(|property| {
-                        let values = outcome.per_object(property)?;
+                    .filter_map(|(property, selection)| {
+                        let values = outcome.per_object(property, selection)?;
                         Some(ObjectRecord {
                             property,
+                            selection: selection.clone(),
                             values: values.iter().map(|v| ObjectValue { value: v.map(Real) }).collect(),
                         })
                     })

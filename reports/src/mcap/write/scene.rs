@@ -75,7 +75,7 @@ impl<W: Write + Seek> Recorder<'_, W> {
             .map(|(i, state, agent)| {
                 let height = height(agent.kind);
                 let mut entity = Entity::new(stamp, agent.id.clone())
-                    .meta("kind", kind_name(agent.kind))
+                    .meta("kind", agent.kind.name())
                     .meta("speed_mps", format!("{:.2}", state.speed))
                     .cube(Cube {
                         pose: Pose3::planar(state.pose, height / 2.0),
@@ -253,16 +253,5 @@ fn height(kind: AgentKind) -> f64 {
         AgentKind::Motorbike => 1.4,
         AgentKind::Pedestrian => 1.8,
         AgentKind::Rsu => 5.0,
-    }
-}
-
-fn kind_name(kind: AgentKind) -> &'static str {
-    match kind {
-        AgentKind::Car => "car",
-        AgentKind::Truck => "truck",
-        AgentKind::Bus => "bus",
-        AgentKind::Motorbike => "motorbike",
-        AgentKind::Pedestrian => "pedestrian",
-        AgentKind::Rsu => "rsu",
     }
 }

@@ -1,7 +1,6 @@
 //! A semantic point's per-object records, mapped to results.json: counted by
 //! category, and listed up to [`MAX_OBJECT_RECORDS`].
 
-use sightline_dsl::AgentKind;
 use sightline_engine::outcome as engine;
 
 use crate::results::{CategoryCounts, ClosestApproach, MAX_OBJECT_RECORDS, ObjectCategory, ObjectList, ObjectResult};
@@ -36,11 +35,13 @@ pub(crate) fn object_result(record: &engine::ObjectRecord) -> ObjectResult {
         closest,
         min_ttc,
         category,
+        baseline_v2x,
+        ref areas,
     } = *record;
     ObjectResult {
         run,
         id: id.clone(),
-        class: class_name(class),
+        class: class.name(),
         length,
         width,
         first_relevant,
@@ -66,17 +67,8 @@ pub(crate) fn object_result(record: &engine::ObjectRecord) -> ObjectResult {
             engine::Category::NeverKnown => ObjectCategory::NeverKnown,
         },
         anticipation: record.anticipation(),
-    }
-}
-
-/// The kind's name as scenario files write it.
-fn class_name(kind: AgentKind) -> &'static str {
-    match kind {
-        AgentKind::Car => "car",
-        AgentKind::Truck => "truck",
-        AgentKind::Bus => "bus",
-        AgentKind::Motorbike => "motorbike",
-        AgentKind::Pedestrian => "pedestrian",
-        AgentKind::Rsu => "rsu",
+        baseline_v2x,
+        baseline_anticipation: record.baseline_anticipation(),
+        areas: areas.clone(),
     }
 }

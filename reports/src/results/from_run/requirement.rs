@@ -1,7 +1,7 @@
 //! A requirement's verdict and the check it judged, from the language's and
 //! the oracles' types.
 
-use sightline_dsl::{Bound, Check, Requirement, Temporal};
+use sightline_dsl::{Bound, Check, ObjectSelection, Requirement, Temporal};
 use sightline_oracles::Verdict;
 
 use crate::results::{
@@ -13,7 +13,7 @@ pub(super) fn requirement_result(requirement: &Requirement, verdict: &Verdict, l
         id: requirement.id.clone(),
         text: requirement.text.clone(),
         line: requirement.location.line,
-        check: check_info(&requirement.check),
+        check: check_info(requirement),
         verdict: verdict.status.into(),
         fails_run: verdict.fails_run(),
         accept_not_exercised: verdict.accepted.clone(),
@@ -44,51 +44,60 @@ pub(super) fn requirement_result(requirement: &Requirement, verdict: &Verdict, l
     }
 }
 
-fn check_info(check: &Check) -> CheckInfo {
-    match *check {
+fn check_info(requirement: &Requirement) -> CheckInfo {
+    let plain = |kind, name, bound: Bound| CheckInfo {
+        kind,
+        name,
+        relation: relation(bound),
+        threshold: bound.threshold(),
+        over_seeds: None,
+        within: None,
+        relative_to: None,
+        by: None,
+        objects: ObjectSelection::default(),
+    };
+    match requirement.check {
         Check::Metric {
             metric,
             bound,
             over_seeds,
         } => CheckInfo {
-            kind: "metric",
-            name: metric.name(),
-            relation: relation(bound),
-            threshold: bound.threshold(),
             over_seeds: over_seeds.map(self::over_seeds),
-            within: None,
+            ..plain("metric", metric.name(), bound)
+        },
+        Check::Compare {
+            metric,
+            other,
+            by,
+            bound,
+        } => CheckInfo {
+            relative_to: Some(other.name()),
+            by: Some(by.name()),
+            ..plain("compare", metric.name(), bound)
         },
         Check::Temporal {
             signal,
             operator,
             bound,
             within,
-        } => CheckInfo {
-            kind: match operator {
+        } => {
+            let kind = match operator {
                 Temporal::Always => "always",
                 Temporal::Eventually => "eventually",
-            },
-            name: signal.name(),
-            relation: relation(bound),
-            threshold: bound.threshold(),
-            over_seeds: None,
-            within,
-        },
+            };
+            CheckInfo {
+                within,
+                ..plain(kind, signal.name(), bound)
+            }
+        }
         Check::PerObject { property, bound } => CheckInfo {
-            kind: "per_object",
-            name: property.name(),
-            relation: relation(bound),
-            threshold: bound.threshold(),
-            over_seeds: None,
-            within: None,
+            objects: requirement.objects.clone(),
+            ..plain("per_object", property.name(), bound)
         },
         Check::Invariant { invariant, tolerance } => CheckInfo {
-            kind: "invariant",
-            name: invariant.name(),
             relation: "tolerance",
             threshold: tolerance,
-            over_seeds: None,
-            within: None,
+            ..plain("invariant", invariant.name(), Bound::AtMost(tolerance))
         },
     }
 }

@@ -1,0 +1,170 @@
+//! The road users a per-object check judges (`check.objects`): ids, classes and
+//! areas checked against what the scenario can produce at the requirement's
+//! points, the window against the run. A selection that can match nothing is
+//! an error here; one that matches nothing in a run is not exercised there.
+
+use std::collections::BTreeSet;
+
+use super::checks::known_names;
+use super::context::Context;
+use crate::error::ErrorKind;
+use crate::model::{AgentKind, Experiment, ObjectProperty, ObjectSelection, Point, World};
+use crate::path::Path;
+use crate::raw::RawObjectSelection;
+use crate::raw::range;
+
+/// Compiles the selection of a check on `property` (when it is a per-object
+/// check) at the `selected` points; `None` after recording why.
+pub(super) fn selection(
+    ctx: &mut Context<'_>,
+    raw: Option<&RawObjectSelection>,
+    property: Option<ObjectProperty>,
+    (points, selected): (&[Point], &[usize]),
+    path: &Path,
+) -> Option<ObjectSelection> {
+    let Some(raw) = raw else {
+        return Some(ObjectSelection::default());
+    };
+    match property {
+        None => {
+            ctx.error(
+                path,
+                ErrorKind::Invalid("`objects` selects the road users of a `per_object` check".into()),
+            );
+            return None;
+        }
+        Some(property) if !property.of_record() => {
+            ctx.error(
+                path,
+                ErrorKind::Invalid(format!(
+                    "`{}` judges close approaches, which `objects` cannot select; judge the relevant road users' \
+                     records instead (`warning_lead`, `knowledge_lead`, `anticipation`, `closest_distance`)",
+                    property.name()
+                )),
+            );
+            return None;
+        }
+        Some(_) => {}
+    }
+    let worlds: Vec<&World> = selected
+        .iter()
+        .filter_map(|&i| match &points[i].setup.experiment {
+            Experiment::World(world) => Some(&**world),
+            Experiment::Field(_) => None,
+        })
+        .collect();
+    let mut ok = true;
+    let road_users: BTreeSet<&str> = worlds.iter().flat_map(|w| road_users(w).map(|(_, id)| id)).collect();
+    for (i, id) in raw.ids.iter().enumerate() {
+        if !road_users.contains(id.as_str()) {
+            let known: Vec<&str> = road_users.iter().copied().collect();
+            ctx.error(
+                &path.key("ids").index(i),
+                ErrorKind::DanglingReference(format!(
+                    "no road user `{id}` besides the ego and the roadside units ({}); generated road users are \
+                     selected by `classes` and `areas`",
+                    known_names(id, &known)
+                )),
+            );
+            ok = false;
+        }
+    }
+    let classes: BTreeSet<&str> = worlds.iter().flat_map(|w| classes(w)).map(AgentKind::name).collect();
+    for (i, class) in raw.classes.iter().enumerate() {
+        if !classes.contains(class.name()) {
+            let known: Vec<&str> = classes.iter().copied().collect();
+            ctx.error(
+                &path.key("classes").index(i),
+                ErrorKind::DanglingReference(format!(
+                    "no road user of class `{}` can occur in this scenario ({})",
+                    class.name(),
+                    known_names(class.name(), &known)
+                )),
+            );
+            ok = false;
+        }
+    }
+    let areas: BTreeSet<&str> = worlds.iter().flat_map(|w| area_ids(w)).collect();
+    for (i, area) in raw.areas.iter().enumerate() {
+        if !areas.contains(area.as_str()) {
+            let known: Vec<&str> = areas.iter().copied().collect();
+            ctx.error(
+                &path.key("areas").index(i),
+                ErrorKind::DanglingReference(format!(
+                    "no crosswalk, interaction area or `areas` entry `{area}` ({})",
+                    known_names(area, &known)
+                )),
+            );
+            ok = false;
+        }
+    }
+    if let Some([from, to]) = raw.between {
+        let duration = worlds
+            .iter()
+            .map(|w| w.steps as f64 * w.step)
+            .fold(f64::INFINITY, f64::min);
+        // A window may reach past the run's end; one that starts there matches nothing.
+        let valid = from.is_finite() && to.is_finite() && 0.0 <= from && from < to && from < duration;
+        if !valid {
+            ctx.error(
+                &path.key("between"),
+                ErrorKind::Invalid(format!(
+                    "a window [from, to] of seconds, 0 ≤ from < to, starting before the run ends at {duration} s; \
+                     found [{from}, {to}]"
+                )),
+            );
+            ok = false;
+        }
+    }
+    if let Some(distance) = raw.closer_than {
+        ok &= ctx.within(&path.key("closer_than"), distance, range::EXTENT);
+    }
+    ok.then(|| ObjectSelection {
+        ids: raw.ids.clone(),
+        classes: raw.classes.clone(),
+        areas: raw.areas.clone(),
+        between: raw.between,
+        closer_than: raw.closer_than,
+    })
+}
+
+/// The road users of `world` a record can be about: every agent but the ego
+/// and the roadside units, with its index.
+fn road_users(world: &World) -> impl Iterator<Item = (usize, &str)> {
+    let ego = world.semantic.as_ref().map(|s| s.ego);
+    world
+        .agents
+        .iter()
+        .enumerate()
+        .filter(move |&(i, a)| Some(i) != ego && a.kind != AgentKind::Rsu)
+        .map(|(i, a)| (i, a.id.as_str()))
+}
+
+/// The classes a road user of `world` can have: its declared and traced
+/// agents', and its generated traffic's.
+fn classes(world: &World) -> Vec<AgentKind> {
+    let mut kinds: Vec<AgentKind> = road_users(world).map(|(i, _)| world.agents[i].kind).collect();
+    if let Some(traffic) = &world.traffic {
+        kinds.extend(
+            traffic
+                .vehicles
+                .iter()
+                .flat_map(|v| v.mix.iter().map(|&(kind, _)| kind)),
+        );
+        if traffic.pedestrians.is_some() {
+            kinds.push(AgentKind::Pedestrian);
+        }
+    }
+    kinds
+}
+
+/// The ids of every region of `world` a selection can name.
+fn area_ids(world: &World) -> impl Iterator<Item = &str> {
+    let crosswalks = world.crosswalks.iter().map(|c| c.id.as_str());
+    let regions = world
+        .interaction_areas
+        .iter()
+        .chain(&world.areas)
+        .map(|a| a.id.as_str());
+    crosswalks.chain(regions)
+}
