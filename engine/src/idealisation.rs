@@ -51,7 +51,7 @@ pub enum ModelOption {
     RiskScope(RiskScope),
     /// `semantic.rsu_sight`.
     RsuSight(RsuSight),
-    /// `semantic.shares_over`.
+    /// `semantic.shares_over` and `semantic.contribution_over`.
     ShareCycles(ShareCycles),
 }
 
@@ -130,6 +130,7 @@ fn options(setup: &Setup) -> Vec<ModelOption> {
                     ModelOption::RsuSight(semantic.rsu_sight),
                     ModelOption::RiskScope(semantic.risk_for),
                     ModelOption::ShareCycles(semantic.shares_over),
+                    ModelOption::ShareCycles(semantic.contribution_over),
                     ModelOption::PathLossModel(world.v2x.channel.model),
                 ]);
             }

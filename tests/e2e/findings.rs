@@ -66,8 +66,9 @@ fn assert_quotes(quoted: &str, actual: f64, what: &str) {
 
 /// Checks every table of a section whose first column is a swept setting (a
 /// number or a name) and whose other columns are metrics of the point with that
-/// setting, else its counts, or `… (paper)`: the scenario's reference at that
-/// point (`—` where there is none). Returns the number of cells checked.
+/// setting, else its counts, `n(…)`: a metric's sample size, or `… (paper)`: the
+/// scenario's reference at that point (`—` where there is none). Returns the
+/// number of cells checked.
 fn check_swept_tables(results: &serde_json::Value, path: &str, section: &str) -> usize {
     let points = results["sweep"].as_array().unwrap();
     let references = results["references"].as_array().unwrap();
@@ -76,18 +77,13 @@ fn check_swept_tables(results: &serde_json::Value, path: &str, section: &str) ->
         let axis = table.header[0].trim_matches('`');
         for cells in &table.rows {
             let setting = &cells[0];
-            let point = points
-                .iter()
-                .find(|p| {
-                    setting_of(p, axis).is_some_and(|value| {
-                        value.as_str() == Some(setting.as_str())
-                            || value.as_f64().is_some_and(|v| setting.parse() == Ok(v))
-                    })
-                })
-                .unwrap_or_else(|| panic!("{path}: no point with {axis} = {setting}"));
+            let point =
+                point_with(points, axis, setting).unwrap_or_else(|| panic!("{path}: no point with {axis} = {setting}"));
             let index = point["index"].as_u64().unwrap();
             for (column, cell) in table.header.iter().zip(cells).skip(1) {
-                let actual = if let Some(metric) = column.strip_suffix(" (paper)") {
+                let actual = if let Some(metric) = column.strip_prefix("n(").and_then(|c| c.strip_suffix(')')) {
+                    point["samples"][metric].as_f64()
+                } else if let Some(metric) = column.strip_suffix(" (paper)") {
                     references
                         .iter()
                         .find(|r| {
@@ -112,6 +108,51 @@ fn check_swept_tables(results: &serde_json::Value, path: &str, section: &str) ->
     checked
 }
 
+/// The first point of `points` whose setting `axis` is `setting` (a number or a
+/// name).
+fn point_with<'a>(points: &'a [serde_json::Value], axis: &str, setting: &str) -> Option<&'a serde_json::Value> {
+    points.iter().find(|p| {
+        setting_of(p, axis).is_some_and(|value| {
+            value.as_str() == Some(setting) || value.as_f64().is_some_and(|v| setting.parse() == Ok(v))
+        })
+    })
+}
+
+/// Checks the tables of a section that list, for the point with a swept setting
+/// (first column), the infrastructure contribution in one scene-density bin
+/// (`bin`: its lower edge, then `–` and the upper): the steps in it, their
+/// median and mean. Returns the number of rows checked.
+fn check_density_tables(results: &serde_json::Value, path: &str, section: &str) -> usize {
+    let points = results["sweep"].as_array().unwrap();
+    let mut checked = 0;
+    for table in tables(path, section) {
+        assert_eq!(
+            table.header[1..],
+            ["bin", "steps", "median", "mean"],
+            "{path}: {}",
+            table.heading
+        );
+        let axis = table.header[0].trim_matches('`');
+        for cells in &table.rows {
+            let point = point_with(points, axis, &cells[0])
+                .unwrap_or_else(|| panic!("{path}: no point with {axis} = {}", cells[0]));
+            let from: f64 = cells[1].split('–').next().unwrap().parse().unwrap();
+            let row = point["contribution_by_density"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .find(|row| row["from"].as_f64() == Some(from))
+                .unwrap_or_else(|| panic!("{path}: no bin from {from} at {axis} = {}", cells[0]));
+            for (column, cell) in ["steps", "median", "mean"].iter().zip(&cells[2..]) {
+                let what = format!("{path}: {column} of bin {} at {axis} = {}", cells[1], cells[0]);
+                assert_quotes(cell, row[*column].as_f64().unwrap(), &what);
+            }
+            checked += 1;
+        }
+    }
+    checked
+}
+
 #[test]
 fn seed_000_findings_quote_the_bundled_run() {
     let checked = check_swept_tables(roundabout(), "docs/findings/seed-000.md", "Measured beside the paper");
@@ -125,7 +166,11 @@ fn seed_002_findings_quote_the_bundled_run() {
     let path = "docs/findings/seed-002.md";
     let results = urban();
     let checked = check_swept_tables(results, path, "Measured beside the paper");
-    assert_eq!(checked, 4 * 11 + 2 * 3 + 2 * 2);
+    // By density and per road user, then by risk_for, shares_over,
+    // contribution_over, and the ego waiting.
+    assert_eq!(checked, 4 * 13 + 4 * 12 + 2 * 3 + 2 * 3 + 2 * 2 + 10);
+    let bins = check_density_tables(results, path, "Extra objects by scene density");
+    assert_eq!(bins, 7 + 4);
 
     // The paper pools anticipation over its densities: so does this table.
     let points = results["sweep"].as_array().unwrap();

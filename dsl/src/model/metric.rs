@@ -82,7 +82,8 @@ pub enum Metric {
     AnticipationMedian,
     /// Semantic: 95th percentile of the paper's anticipation time, seconds.
     AnticipationP95,
-    /// Semantic: mean number of objects per step the ego knows only through an RSU.
+    /// Semantic: mean number of objects per step the ego knows only through an
+    /// RSU, over the steps `semantic.contribution_over` selects.
     InfrastructureContribution,
     /// Semantic: share of the objects the RSUs perceive that they send (0–1), over
     /// the cycles `semantic.shares_over` selects.
@@ -346,7 +347,8 @@ impl Metric {
             Self::BaselineObjectAnticipationMedian | Self::BaselineObjectAnticipationP95 => {
                 "relevant objects named by the ETSI baseline before the ego saw them"
             }
-            Self::InfrastructureContribution | Self::ChannelLoad | Self::BaselineChannelLoad => "steps with the ego",
+            Self::InfrastructureContribution => "steps with the ego that `contribution_over` counts",
+            Self::ChannelLoad | Self::BaselineChannelLoad => "steps with the ego",
             Self::TransmittedShare | Self::LabelledShare => "object-cycles the RSUs perceive",
             Self::PacketDeliveryRatio => "messages to the ego",
             Self::MissedCriticals => "close approaches",

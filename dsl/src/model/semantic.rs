@@ -134,7 +134,8 @@ pub enum RsuSight {
     LineOfSight,
 }
 
-/// Which RSU cycles the transmitted and labelled shares count.
+/// Which RSU cycles the transmitted and labelled shares count, and which steps
+/// the infrastructure contribution counts.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum ShareCycles {
@@ -179,6 +180,8 @@ pub struct Semantic {
     pub baseline: Baseline,
     /// Which cycles the transmitted and labelled shares count.
     pub shares_over: ShareCycles,
+    /// Which steps the infrastructure contribution counts.
+    pub contribution_over: ShareCycles,
     /// Independent runs pooled into each point's measurements (run 0 uses the
     /// scenario's seed).
     pub runs: u32,

@@ -87,6 +87,11 @@ pub(crate) struct RawSemantic {
     /// (the ego within range of one of the RSU's sensors) or `all`.
     #[serde(default)]
     pub shares_over: ShareCycles,
+    /// Which steps the infrastructure contribution (objects the ego knows only
+    /// through an RSU) counts: `ego_in_range` (the ego within range of one of
+    /// an RSU's sensors: seed 002's ego, always served) or `all`.
+    #[serde(default)]
+    pub contribution_over: ShareCycles,
     /// Independent runs pooled into each point's measurements (traffic, detections
     /// and packet losses drawn anew; run 0 uses the scenario's seed).
     #[serde(default = "default_runs")]

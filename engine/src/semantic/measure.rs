@@ -53,13 +53,14 @@ impl Measures {
     }
 
     /// A step `dt` long at `time` with the ego in the scene at `ego`, cautious
-    /// or not, perceiving `view` of the agents in `states`.
+    /// or not, perceiving `view` of the agents in `states`; `counted`: the step
+    /// counts toward the infrastructure contribution.
     pub(super) fn ego_step(
         &mut self,
         (time, dt): (f64, f64),
         ego: AgentState,
         states: &[Option<AgentState>],
-        cautious: bool,
+        (cautious, counted): (bool, bool),
         view: EgoView,
     ) {
         self.encounters.step(time, ego, states);
@@ -78,8 +79,10 @@ impl Measures {
                 flagged: flagged.is_some(),
             });
         }
-        let density = (self.network_km > 0.0).then(|| f64::from(view.present) / self.network_km);
-        metrics.contribution.push((density, view.through_rsu));
+        if counted {
+            let density = (self.network_km > 0.0).then(|| f64::from(view.present) / self.network_km);
+            metrics.contribution.push((density, view.through_rsu));
+        }
         self.rsu_only.push((time, f64::from(view.through_rsu)));
     }
 

@@ -201,6 +201,7 @@ mod tests {
                 interval: 1.0,
             },
             shares_over: ShareCycles::EgoInRange,
+            contribution_over: ShareCycles::EgoInRange,
             runs: 1,
         }
     }

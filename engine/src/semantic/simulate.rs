@@ -25,7 +25,10 @@
 //! - The transmitted and labelled shares count, by default, the cycles in which
 //!   the ego is within range of one of the RSU's sensors (`shares_over:
 //!   ego_in_range`): seed 002 places RSUs along the ego's way, so its ego is
-//!   always served. `shares_over: all` counts every cycle.
+//!   always served. `shares_over: all` counts every cycle. Likewise the
+//!   infrastructure contribution counts the steps with the ego within range of
+//!   one of an RSU's sensors (`contribution_over: ego_in_range`), or every step
+//!   with the ego (`all`).
 //! - Density is the number of vehicles and pedestrians in the scene per km of
 //!   road (lane 0 of every road, those of a SUMO network too); without roads it
 //!   is undefined, and the contribution is not binned by density.
@@ -172,7 +175,14 @@ fn run_once((seed, run): (u64, u32), world: &World, semantic: &Semantic, sink: &
                 semantic.d_min,
             );
             kinematics.restrain(semantic.ego, ego.restraint(time, semantic));
-            measures.ego_step((time, dt), ego_now, &states, ego.cautious(time), view);
+            let served = rsus.iter().any(|rsu| {
+                states[rsu.agent].is_some_and(|s| (s.position() - ego_now.position()).length() <= rsu.range)
+            });
+            let counted = match semantic.contribution_over {
+                ShareCycles::All => true,
+                ShareCycles::EgoInRange => served,
+            };
+            measures.ego_step((time, dt), ego_now, &states, (ego.cautious(time), counted), view);
         }
         for rsu in rsus.iter_mut().filter(|_| cycle) {
             rsu.perceive(&agents, &states, &occluders, &bodies, semantic, time);

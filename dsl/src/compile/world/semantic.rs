@@ -471,6 +471,7 @@ pub(super) fn semantic_of(ctx: &mut Context<'_>, raw: &RawSemantic, agents: &[Ag
             interval: raw.baseline.interval,
         },
         shares_over: raw.shares_over,
+        contribution_over: raw.contribution_over,
         runs: raw.runs,
     })
 }
