@@ -74,13 +74,14 @@ fn a_world_run_read_back_from_shards_is_the_run() {
     assert_eq!(run, simulate(&scenario));
 }
 
-/// The bundled urban junction, 20 s long, two pooled runs per point: semantic
+/// The bundled urban junction, 20 s long (the ego is not yet near the RSU, so
+/// the contribution counts every step), two pooled runs per point: semantic
 /// outcomes with their per-step series.
 #[test]
 fn semantic_outcomes_and_their_series_come_back() {
     let text = include_str!("../../scenarios/urban-rsu-semantic.yaml")
         .replace("duration: 120", "duration: 20")
-        .replace("runs: 5 ", "runs: 2 ");
+        .replace("  runs: 5 ", "  contribution_over: all\n  runs: 2 ");
     let scenario = compiled(&text);
     let written = shard(&scenario, units(&scenario)[..1].to_vec());
     let Outcome::Semantic(metrics) = &written.units[0].1[0] else {

@@ -35,6 +35,6 @@ pub use v2x::{
 };
 pub use vary::{Domain, RANGE_STEPS, Vary};
 pub use world::{
-    Agent, AgentKind, Direction, LaneLink, Localization, Motion, Occluder, Odometry, OdometryModel, OdometryNoise,
-    Perception, PoseFilter, Road, Sensor, TraceSample, World,
+    Agent, AgentKind, Direction, Entry, LaneLink, Localization, Motion, Occluder, Odometry, OdometryModel,
+    OdometryNoise, Perception, PoseFilter, Road, Sensor, TraceSample, World,
 };

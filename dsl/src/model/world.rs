@@ -176,6 +176,20 @@ pub struct Agent {
     pub sensors: Vec<Sensor>,
 }
 
+/// When an agent that follows a path enters the scene, with car following
+/// (without it, every agent enters at its start time).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Entry {
+    /// At its start time, or as soon after as its place is clear: a declared
+    /// agent, or a vehicle arriving at the start of its way, queues.
+    Queue,
+    /// At its start time or never: a vehicle placed along its way as the run
+    /// starts, whose place another road user holds, is not in the scene (it
+    /// would otherwise appear there later, out of nowhere).
+    OnTime,
+}
+
 /// How an agent moves.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[serde(rename_all = "snake_case")]
@@ -206,6 +220,8 @@ pub enum Motion {
         limit_factor: f64,
         /// Largest change of speed, m/s².
         acceleration: f64,
+        /// Whether it may enter later than `start_time` when its place is taken.
+        entry: Entry,
     },
     /// It replays recorded samples (a SUMO trace): in the scene from its first
     /// sample to its last, interpolated between them.

@@ -2,8 +2,13 @@
 //!
 //! Vehicles (ours, where seed 002 relies on SUMO's defaults):
 //! - each route starts populated: gaps between vehicles are exponential with mean
-//!   1000 / density metres (a Poisson process along the route), never shorter than
-//!   a vehicle length plus 2 m;
+//!   1000 / density metres (a Poisson process along the route), never shorter
+//!   than what an entry needs: the standing gap (`driving.min_gap`, or 2 m
+//!   without car following) plus, with car following, one headway at the
+//!   follower's desired speed, between their footprints. Routes that share a
+//!   road are populated independently, so with car following a vehicle whose
+//!   place another route's vehicle holds is left out (it enters on time or
+//!   never: `Entry::OnTime`) rather than appearing there later out of nowhere;
 //! - new vehicles enter at the route's start as a Poisson process of rate
 //!   density × v / 1000 per second, v the route's first speed limit, which keeps
 //!   the density of free-flowing traffic; arrivals are at least 2 s apart;
@@ -19,7 +24,10 @@
 use rand::RngExt;
 use rand::rngs::ChaCha8Rng;
 use sightline_dsl::geometry::{Polyline, Xy};
-use sightline_dsl::{Agent, AgentKind, Crosswalk, Motion, PedestrianTraffic, TrafficRoute, VehicleTraffic, World};
+use sightline_dsl::{
+    Agent, AgentKind, Crosswalk, Driving, Entry, Following, Motion, PedestrianTraffic, TrafficRoute, VehicleTraffic,
+    World,
+};
 
 use crate::idealisation::Idealisation;
 use crate::rng::{Purpose, stream};
@@ -31,7 +39,8 @@ pub(crate) const GENERATED: Idealisation = Idealisation {
            pedestrians arrive as a Poisson process and cross straight at constant speed.",
 };
 
-/// Shortest gap between generated vehicles, metres, and between arrivals, seconds.
+/// Shortest gap between generated vehicles without car following, metres, and
+/// between arrivals, seconds.
 const MIN_GAP: f64 = 2.0;
 const MIN_HEADWAY: f64 = 2.0;
 
@@ -63,7 +72,7 @@ fn generate(seed: u64, world: &World) -> Vec<Agent> {
             let mut rng = stream(seed, Purpose::Traffic, r as u64);
             route_traffic(
                 &mut rng,
-                vehicles,
+                (vehicles, &world.driving),
                 route,
                 r,
                 duration,
@@ -88,7 +97,7 @@ fn exponential(rng: &mut ChaCha8Rng, mean: f64) -> f64 {
 
 fn route_traffic(
     rng: &mut ChaCha8Rng,
-    traffic: &VehicleTraffic,
+    (traffic, driving): (&VehicleTraffic, &Driving),
     route: &TrafficRoute,
     index: usize,
     duration: f64,
@@ -114,13 +123,33 @@ fn route_traffic(
         count += 1;
         agent
     };
-    // The initial population, from the end of the route backwards.
+    // The initial population, from the end of the route backwards, each vehicle
+    // far enough behind the one ahead for its entry to be clear.
+    let (standing, headway) = match driving.following {
+        Following::Idm => (driving.min_gap, driving.headway),
+        Following::None => (MIN_GAP, 0.0),
+    };
+    let mut ahead: Option<(f64, f64)> = None;
     let mut offset = length - exponential(rng, spacing);
     while offset > 0.0 {
-        let agent = vehicle(rng, 0.0, offset);
-        let next = offset - exponential(rng, spacing).max(agent.length + MIN_GAP);
+        let mut agent = vehicle(rng, 0.0, offset);
+        if let Some((ahead_offset, ahead_length)) = ahead {
+            // The desired speed bounds the speed it enters with.
+            let Motion::Along { target_speed, .. } = agent.motion else {
+                unreachable!("a generated vehicle follows its route")
+            };
+            let clear = ahead_offset - (ahead_length + agent.length) / 2.0 - standing - headway * target_speed;
+            if clear <= 0.0 {
+                break;
+            }
+            if clear < offset {
+                offset = clear;
+                place(&mut agent, route, offset);
+            }
+        }
+        ahead = Some((offset, agent.length));
         agents.push(agent);
-        offset = next;
+        offset -= exponential(rng, spacing);
     }
     // Inflow at the start.
     let entry_speed = route.limits.first().map_or(10.0, |&(_, limit)| limit);
@@ -160,11 +189,6 @@ fn draw_vehicle(
     let connected = rng.random::<f64>() < penetration;
     let fastest = route.limits.iter().map(|&(_, limit)| limit).fold(0.0, f64::max);
     let (length, width) = kind.footprint();
-    let limit_here = route
-        .limits
-        .iter()
-        .find(|&&(end, _)| start_offset < end)
-        .map_or(fastest, |&(_, limit)| limit);
     Agent {
         id,
         kind,
@@ -175,7 +199,7 @@ fn draw_vehicle(
             limits: route.limits.clone(),
             start_time,
             start_offset,
-            initial_speed: limit_here * limit_factor,
+            initial_speed: limit_at(route, start_offset) * limit_factor,
             target_speed: fastest * limit_factor,
             limit_factor,
             acceleration: if matches!(kind, AgentKind::Truck | AgentKind::Bus) {
@@ -183,9 +207,43 @@ fn draw_vehicle(
             } else {
                 2.0
             },
+            // The initial population is placed along the route; a vehicle
+            // whose place another route's vehicle holds is left out rather
+            // than appearing there later. Arrivals at the start queue.
+            entry: if start_offset > 0.0 {
+                Entry::OnTime
+            } else {
+                Entry::Queue
+            },
         },
         connected,
         sensors: Vec::new(),
+    }
+}
+
+/// The speed limit of `route` at `offset`: the first that ends after it, else
+/// the fastest.
+fn limit_at(route: &TrafficRoute, offset: f64) -> f64 {
+    let fastest = route.limits.iter().map(|&(_, limit)| limit).fold(0.0, f64::max);
+    route
+        .limits
+        .iter()
+        .find(|&&(end, _)| offset < end)
+        .map_or(fastest, |&(_, limit)| limit)
+}
+
+/// Moves generated vehicle `agent` of `route` to start at `offset`, at its
+/// factor of the limit there.
+fn place(agent: &mut Agent, route: &TrafficRoute, offset: f64) {
+    if let Motion::Along {
+        start_offset,
+        initial_speed,
+        limit_factor,
+        ..
+    } = &mut agent.motion
+    {
+        *start_offset = offset;
+        *initial_speed = limit_at(route, offset) * *limit_factor;
     }
 }
 
@@ -224,6 +282,7 @@ fn crossings(
                 target_speed: traffic.speed,
                 limit_factor: 1.0,
                 acceleration: 1.0,
+                entry: Entry::Queue,
             },
             connected: false,
             sensors: Vec::new(),
@@ -246,7 +305,7 @@ fn walk(from: Xy, to: Xy, approach: f64) -> Polyline {
 mod tests {
     use std::path::Path;
 
-    use sightline_dsl::{AgentKind, Experiment, Options, World, compile};
+    use sightline_dsl::{AgentKind, Experiment, Motion, Options, World, compile};
 
     use super::scene;
 
@@ -314,5 +373,66 @@ semantic: { ego: ego }
         let drawn = half.iter().filter(|&&(_, connected)| connected).count();
         assert!(0 < drawn && drawn < vehicles, "{drawn} of {vehicles}");
         assert_eq!(half, connected(0.5), "the draw is seeded");
+    }
+
+    /// The bundled junction at each density: every generated vehicle appears
+    /// either as the run starts or at the start of its route (issue 17: a
+    /// vehicle of the initial population used to wait for its place and appear
+    /// there later, mid-road). Routes that share a road are populated
+    /// independently, so some of the initial population is left out.
+    #[test]
+    fn generated_vehicles_appear_at_the_start_of_the_run_or_of_their_route() {
+        let file = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenarios/urban-rsu-semantic.yaml");
+        let text = std::fs::read_to_string(file).unwrap();
+        let scenario = compile(file, &text, &Options::default()).unwrap_or_else(|e| panic!("{e}"));
+        let densities = scenario
+            .points
+            .iter()
+            .filter(|p| p.labels.iter().any(|l| l.sweep == Some(0)));
+        let mut left_out = Vec::new();
+        for point in densities {
+            let Experiment::World(world) = &point.setup.experiment else {
+                panic!("a world")
+            };
+            let agents = scene(11, world);
+            let mut kinematics = crate::world::Kinematics::new(&agents, world.step, world.driving);
+            let mut states = Vec::new();
+            let mut appeared = vec![None; agents.len()];
+            for k in 0..world.steps {
+                kinematics.advance(k, &mut states);
+                for (first, state) in appeared.iter_mut().zip(&states) {
+                    if first.is_none()
+                        && let Some(state) = state
+                    {
+                        *first = Some((k, state.offset));
+                    }
+                }
+            }
+            let mut initial = (0, 0);
+            for (agent, first) in agents.iter().zip(&appeared).filter(|(a, _)| a.kind.is_vehicle()) {
+                let Motion::Along { start_offset, .. } = agent.motion else {
+                    continue;
+                };
+                match first {
+                    Some((0, _)) => {}
+                    Some((k, offset)) => {
+                        assert_eq!(*offset, 0.0, "{} appeared mid-road at step {k}", agent.id);
+                    }
+                    // Left out, or an arrival still queueing at the end.
+                    None => {}
+                }
+                if start_offset > 0.0 {
+                    initial = (initial.0 + usize::from(first.is_none()), initial.1 + 1);
+                }
+            }
+            left_out.push(initial);
+        }
+        // Left out of the initial population, of those placed, density by
+        // density (docs/findings/seed-002.md quotes them): few in light
+        // traffic, more as two routes' vehicles crowd each road.
+        eprintln!("initial vehicles left out, of those placed: {left_out:?}");
+        let share = |(out, placed): (usize, usize)| out as f64 / placed as f64;
+        assert!(share(left_out[0]) < 0.2, "{left_out:?}");
+        assert!(left_out.windows(2).all(|w| share(w[0]) < share(w[1])), "{left_out:?}");
     }
 }

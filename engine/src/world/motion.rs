@@ -12,7 +12,7 @@
 //! with it, a vehicle follows the road user ahead and enters only a clear lane
 //! (`world::following`). A traced agent replays its samples (`world::traced`).
 
-use sightline_dsl::{Agent, Driving, Motion};
+use sightline_dsl::{Agent, Driving, Entry, Motion};
 
 use super::following::CarFollowing;
 use super::state::{AgentState, Restraint};
@@ -89,26 +89,26 @@ impl<'a> Kinematics<'a> {
                     start_time,
                     start_offset,
                     initial_speed,
+                    entry,
                     ..
                 } => {
                     self.progress[i] = match self.progress[i] {
                         // A tolerance of a millionth of a step keeps `start: 0.3` with
                         // `step: 0.1` from waiting a step for 0.30000000000000004.
-                        Progress::Waiting
-                            if time + 1e-6 * self.step >= *start_time
-                                && self.following.entry_clear(
-                                    i,
-                                    path,
-                                    *start_offset,
-                                    *initial_speed,
-                                    &self.entered,
-                                    states,
-                                ) =>
-                        {
-                            self.entered.push(i);
-                            Progress::Moving {
-                                offset: *start_offset,
-                                speed: *initial_speed,
+                        Progress::Waiting if time + 1e-6 * self.step >= *start_time => {
+                            if self
+                                .following
+                                .entry_clear(i, path, *start_offset, *initial_speed, &self.entered, states)
+                            {
+                                self.entered.push(i);
+                                Progress::Moving {
+                                    offset: *start_offset,
+                                    speed: *initial_speed,
+                                }
+                            } else if *entry == Entry::OnTime {
+                                Progress::Gone
+                            } else {
+                                Progress::Waiting
                             }
                         }
                         Progress::Moving { offset, speed } => {
@@ -196,6 +196,7 @@ mod tests {
                 target_speed: 10.0,
                 limit_factor: 1.0,
                 acceleration: 2.0,
+                entry: Entry::Queue,
             },
             connected: false,
             sensors: Vec::new(),
@@ -369,6 +370,25 @@ mod tests {
         let mut kinematics = Kinematics::new(&agents, 0.1, driving(Following::None));
         kinematics.advance(0, &mut states);
         assert!(states.iter().all(Option::is_some));
+    }
+
+    /// A car placed at offset 0 as the run starts, whose place a car ahead at
+    /// offset 5 holds, is left out when it may only enter on time; queueing, it
+    /// appears there 18 steps later (above).
+    #[test]
+    fn an_entry_on_time_whose_place_is_taken_never_enters() {
+        let leader = with(walker(0.0, 10.0, 30.0), |offset, _, _, _| *offset = 5.0);
+        let mut late = with(walker(0.0, 10.0, 30.0), |offset, _, _, _| *offset = 0.0);
+        if let Motion::Along { entry, .. } = &mut late.motion {
+            *entry = Entry::OnTime;
+        }
+        let agents = [leader, late];
+        let mut kinematics = Kinematics::new(&agents, 0.1, driving(Following::Idm));
+        let mut states = Vec::new();
+        for k in 0..40 {
+            kinematics.advance(k, &mut states);
+            assert!(states[0].is_some() && states[1].is_none(), "step {k}");
+        }
     }
 
     // Trace replay (`world::traced`).

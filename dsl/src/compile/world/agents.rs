@@ -10,7 +10,7 @@ use crate::compile::context::{Context, Declaration};
 use crate::compile::traces::{Imported, imported_agents, trace_motion};
 use crate::error::ErrorKind;
 use crate::geometry::Polyline;
-use crate::model::{Agent, AgentKind, Motion, Road, Sensor};
+use crate::model::{Agent, AgentKind, Entry, Motion, Road, Sensor};
 use crate::path::Path;
 use crate::raw::RawAgent;
 use crate::raw::range;
@@ -229,6 +229,7 @@ fn motion(ctx: &mut Context<'_>, raw: &RawAgent, path: &Path, scene: &Scene<'_>,
         target_speed: speed.target,
         limit_factor: speed.limit_factor,
         acceleration: speed.acceleration,
+        entry: Entry::Queue,
     })
 }
 
