@@ -436,3 +436,205 @@ fn place_objects(world: &World, roads: &mut [MapRoad]) {
         });
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use std::f64::consts::{FRAC_PI_2, PI};
+
+    use sightline_dsl::geometry::{Arc, Polyline};
+    use sightline_dsl::{Experiment, LaneLink};
+
+    use super::*;
+
+    fn road(points: &[Xy], arc: Option<Arc>) -> Road {
+        Road {
+            id: "r".into(),
+            lanes: vec![Polyline::new(points.iter().copied()).unwrap()],
+            lane_width: 3.5,
+            speed_limit: 10.0,
+            links: Vec::<LaneLink>::new(),
+            arc,
+        }
+    }
+
+    #[track_caller]
+    fn assert_close(a: f64, b: f64) {
+        assert!((a - b).abs() < 1e-9, "{a} ≠ {b}");
+    }
+
+    #[test]
+    fn a_polyline_is_one_line_record_per_segment() {
+        // (0, 0) → (30, 40): 50 m at atan2(40, 30); then (30, 40) → (30, 100): 60 m north.
+        let records = reference(&road(&[[0.0, 0.0], [30.0, 40.0], [30.0, 100.0]], None));
+        assert_eq!(records.len(), 2);
+        let [a, b] = [records[0], records[1]];
+        assert_eq!((a.s, a.x, a.y, a.length, a.curvature), (0.0, 0.0, 0.0, 50.0, 0.0));
+        assert_close(a.hdg, 0.927_295_218_001_612_2);
+        assert_eq!((b.s, b.x, b.y, b.length, b.curvature), (50.0, 30.0, 40.0, 60.0, 0.0));
+        assert_close(b.hdg, FRAC_PI_2);
+        let (end, hdg) = pose_at(&records, 110.0);
+        assert_close(end[0], 30.0);
+        assert_close(end[1], 100.0);
+        assert_close(hdg, FRAC_PI_2);
+    }
+
+    #[test]
+    fn an_arc_is_one_arc_record() {
+        // The urban junction's right turn n_w: centre (−8, 8), r = 6.25 m, from
+        // 0° clockwise to −90°: it starts at (−1.75, 8) heading south (−π/2),
+        // is 6.25 · π/2 = 9.8175 m long with curvature −1/6.25 = −0.16, and
+        // ends at (−8, 1.75) heading west (−π).
+        let arc = Arc {
+            center: [-8.0, 8.0],
+            radius: 6.25,
+            start: 0.0,
+            sweep: -FRAC_PI_2,
+        };
+        let records = reference(&road(&arc.points(), Some(arc)));
+        assert_eq!(records.len(), 1);
+        let g = records[0];
+        assert_eq!((g.s, g.x, g.y), (0.0, -1.75, 8.0));
+        assert_close(g.hdg, -FRAC_PI_2);
+        assert_close(g.length, 9.817_477_042_468_104);
+        assert_close(g.curvature, -0.16);
+        let (end, hdg) = g.at(g.length);
+        assert_close(end[0], -8.0);
+        assert_close(end[1], 1.75);
+        assert_close(hdg, -PI);
+    }
+
+    #[test]
+    fn a_ring_is_a_whole_circle() {
+        // Radius 20 counter-clockwise from 0°: starts at (20, 0) heading north,
+        // 40π m long, curvature 1/20.
+        let ring = Arc {
+            center: [0.0, 0.0],
+            radius: 20.0,
+            start: 0.0,
+            sweep: 2.0 * PI,
+        };
+        let g = reference(&road(&ring.points(), Some(ring)))[0];
+        assert_eq!((g.x, g.y), (20.0, 0.0));
+        assert_close(g.hdg, FRAC_PI_2);
+        assert_close(g.length, 40.0 * PI);
+        assert_close(g.curvature, 0.05);
+    }
+
+    #[test]
+    fn lanes_lie_right_of_a_centre_lane_left_of_the_leftmost() {
+        let mut road = MapRoad {
+            id: 1,
+            name: "r".into(),
+            geometry: Vec::new(),
+            lanes: 2,
+            lane_width: 3.5,
+            speed_limit: 10.0,
+            junction: None,
+            predecessor: None,
+            successor: None,
+            objects: Vec::new(),
+        };
+        // Lane 0 (the reference line) is OpenDRIVE's −2, centred 3.5 m right of
+        // the centre lane at 5.25 m: 5.25 − 3.5 − 1.75 = 0.
+        assert_eq!(road.lane_offset(), 5.25);
+        assert_eq!((road.lane_id(0), road.lane_id(1)), (-2, -1));
+        road.lanes = 1;
+        assert_eq!((road.lane_offset(), road.lane_id(0)), (1.75, -1));
+    }
+
+    fn world_of(text: &str) -> World {
+        let scenario = sightline_dsl::compile("s.yaml", text, &Default::default()).unwrap();
+        let Experiment::World(world) = &scenario.points[0].setup.experiment else {
+            panic!("a world");
+        };
+        (**world).clone()
+    }
+
+    #[test]
+    fn the_urban_junction_has_its_turns_as_connecting_roads() {
+        let world = world_of(include_str!("../../../scenarios/urban-falsify.yaml"));
+        let map = map(&world).unwrap();
+        assert!(map.notes.is_empty(), "{:?}", map.notes);
+        assert_eq!(map.junctions.len(), 1);
+        // Eight movements through the junction, one lane each.
+        assert_eq!(map.junctions[0].connections.len(), 8);
+        let by_name = |name: &str| map.roads.iter().find(|r| r.name == name).unwrap();
+        let (north_in, n_s, south_out) = (by_name("north_in"), by_name("n_s"), by_name("south_out"));
+        assert_eq!(n_s.junction, Some(1));
+        assert_eq!(
+            n_s.predecessor,
+            Some(Link::Road {
+                id: north_in.id,
+                start: false
+            })
+        );
+        assert_eq!(
+            n_s.successor,
+            Some(Link::Road {
+                id: south_out.id,
+                start: true
+            })
+        );
+        assert_eq!(north_in.successor, Some(Link::Junction(1)));
+        assert_eq!(south_out.predecessor, Some(Link::Junction(1)));
+        assert_eq!(north_in.predecessor, None);
+        // Four buildings and four crosswalks, each on a road.
+        let objects: Vec<&Object> = map.roads.iter().flat_map(|r| &r.objects).collect();
+        assert_eq!(objects.iter().filter(|o| o.kind == ObjectKind::Building).count(), 4);
+        assert_eq!(objects.iter().filter(|o| o.kind == ObjectKind::Crosswalk).count(), 4);
+    }
+
+    #[test]
+    fn objects_keep_their_world_corners() {
+        let world = world_of(include_str!("../../../scenarios/urban-falsify.yaml"));
+        let map = map(&world).unwrap();
+        let mut checked = 0;
+        for road in &map.roads {
+            for object in &road.objects {
+                let (p, h) = pose_at(&road.geometry, object.s);
+                let origin = [p[0] - object.t * h.sin(), p[1] + object.t * h.cos()];
+                let world_corners: Vec<Xy> = object
+                    .corners
+                    .iter()
+                    .map(|[u, v]| {
+                        [
+                            origin[0] + u * h.cos() - v * h.sin(),
+                            origin[1] + u * h.sin() + v * h.cos(),
+                        ]
+                    })
+                    .collect();
+                if object.name == "block_ne" {
+                    let expected = [[8.0, 8.0], [150.0, 8.0], [150.0, 150.0], [8.0, 150.0]];
+                    for (got, want) in world_corners.iter().zip(expected) {
+                        assert_close(got[0], want[0]);
+                        assert_close(got[1], want[1]);
+                    }
+                    checked += 1;
+                }
+                if object.name == "cw_north" {
+                    // From (−6, 11) to (6, 11), 3 m wide.
+                    let ys: Vec<f64> = world_corners.iter().map(|c| c[1]).collect();
+                    assert!(
+                        ys.iter().all(|y| (y - 9.5).abs() < 1e-9 || (y - 12.5).abs() < 1e-9),
+                        "{ys:?}"
+                    );
+                    checked += 1;
+                }
+            }
+        }
+        assert_eq!(checked, 2, "block_ne and cw_north are placed");
+    }
+
+    #[test]
+    fn a_roundabout_s_arms_are_left_unlinked_and_said_so() {
+        let world = world_of(include_str!("../../../scenarios/roundabout-six-agents.yaml"));
+        let map = map(&world).unwrap();
+        assert!(map.junctions.is_empty());
+        assert!(
+            map.roads
+                .iter()
+                .all(|r| r.predecessor.is_none() && r.successor.is_none())
+        );
+        assert_eq!(map.notes.len(), 8, "four arms in, four out: {:?}", map.notes);
+    }
+}
