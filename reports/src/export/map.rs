@@ -326,7 +326,7 @@ fn link(world: &World, roads: &mut [MapRoad], notes: &mut Vec<String>) -> Vec<Ju
         road.successor = Some(Link::Road { id: q + 1, start: true });
     }
     // The ordinary roads' ends: into a junction, to one road, or unlinked.
-    for r in 0..roads.len() {
+    for (r, road) in roads.iter_mut().enumerate() {
         if connecting.contains_key(&r) {
             continue;
         }
@@ -362,12 +362,12 @@ fn link(world: &World, roads: &mut [MapRoad], notes: &mut Vec<String>) -> Vec<Ju
                 notes.push(format!(
                     "the {side} of road `{}` joins roads that do not form a junction of connecting roads: \
                      the map does not link it",
-                    roads[r].name
+                    road.name
                 ));
             }
         }
-        roads[r].successor = successor;
-        roads[r].predecessor = predecessor;
+        road.successor = successor;
+        road.predecessor = predecessor;
     }
     junctions
 }
