@@ -50,6 +50,11 @@ pub enum Command {
         #[arg(long)]
         markdown: bool,
     },
+    /// Write a scenario's world (or a falsify counterexample's) as ASAM
+    /// OpenSCENARIO 1.2 and its roads as an ASAM OpenDRIVE 1.7 map, for esmini
+    /// or CARLA: DIR/scenario.xosc and DIR/scenario.xodr. Exit 0: written,
+    /// 2: invalid input or nothing to export, 3: internal error.
+    Export(ExportArgs),
     /// Check sightline against known answers computed by hand (fusion, line of
     /// sight, radio channel, confidence bounds); for tool qualification.
     Selftest,
@@ -84,6 +89,23 @@ pub struct RunArgs {
     /// merge` combines the N shards. Exit 0 when the shard is written.
     #[arg(long, value_name = "K/N", value_parser = shard)]
     pub shard: Option<ShardSpec>,
+}
+
+#[derive(Debug, Args)]
+pub struct ExportArgs {
+    /// Scenario file, or a counterexample.yaml of `sightline falsify` (`-`:
+    /// standard input, with --out).
+    pub file: PathBuf,
+    /// Output directory. Default: out/STEM/.
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
+    /// The sweep point to export, by its label as results.json and the report
+    /// name it (`v2x.penetration=0.4`). Default: the first point.
+    #[arg(long, value_name = "LABEL")]
+    pub point: Option<String>,
+    /// Replace the scenario's seed (which draws generated traffic and noise).
+    #[arg(long, value_name = "N")]
+    pub seed: Option<u64>,
 }
 
 /// Slice K of N (1 ≤ K ≤ N).

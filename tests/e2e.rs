@@ -53,6 +53,10 @@ mod docs;
 #[path = "e2e/results_schema.rs"]
 mod results_schema;
 
+// `sightline export`: OpenSCENARIO and OpenDRIVE checked by the ASAM Quality Checker.
+#[path = "e2e/export.rs"]
+mod export;
+
 // The bundled scenarios run end to end (the slow tests), each once.
 #[path = "e2e/bundled.rs"]
 mod bundled;

@@ -179,6 +179,27 @@ fn lerp(a: Xy, b: Xy, t: f64) -> Xy {
     [a[0] + (b[0] - a[0]) * t, a[1] + (b[1] - a[1]) * t]
 }
 
+/// A circular arc: `radius` about `center` from angle `start` through `sweep`
+/// (radians; counter-clockwise when `sweep` > 0, a whole ring when |`sweep`| = 2π).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Arc {
+    /// Centre, metres.
+    pub center: Xy,
+    /// Radius, metres.
+    pub radius: f64,
+    /// Angle of the first point, radians counter-clockwise from +x.
+    pub start: f64,
+    /// Signed angle swept, radians.
+    pub sweep: f64,
+}
+
+impl Arc {
+    /// Its points, as [`arc`] samples them.
+    pub fn points(&self) -> Vec<Xy> {
+        arc(self.center, self.radius, self.start, self.start + self.sweep)
+    }
+}
+
 /// Points of the arc of `radius` about `center` from angle `start` to `end`
 /// (radians; counter-clockwise when `end` > `start`), both ends included, with
 /// chords within [`MAX_CHORD_ERROR`] of the arc.

@@ -18,6 +18,11 @@
 //! generated from these types by [`results_schema`], is published as
 //! `docs/results.schema.json`.
 //!
+//! `sightline export` writes a scenario's world for other simulators:
+//! [`export`] simulates one sweep point and returns an ASAM OpenSCENARIO
+//! scenario and its ASAM OpenDRIVE map (written formats belong here, beside
+//! the evidence; the language owns only the compiled model they are made from).
+//!
 //! The recording is written as the engine runs: [`mcap::Recorder`] is a
 //! [`TraceSink`](sightline_engine::TraceSink), and [`mcap::read`] reads it back
 //! for `sightline replay`.
@@ -25,6 +30,7 @@
 
 pub use chart::{Chart, ChartError, Line, anticipation, kde, lines_chart, silverman_bandwidth};
 pub use execution::{Execution, rfc3339};
+pub use export::{Export, ExportError, ExportRequest, OPENDRIVE_VERSION, OPENSCENARIO_VERSION, export};
 pub use falsify::{Falsification, falsify_json};
 pub use falsify_html::falsify_html;
 pub use html::html;
@@ -42,6 +48,7 @@ pub use template::{Loader, Location, Page, TemplateError, TemplateErrorKind, Tem
 
 mod chart;
 mod execution;
+mod export;
 mod falsify;
 mod falsify_html;
 mod html;

@@ -1,6 +1,7 @@
 //! One module per subcommand.
 
 mod check;
+mod export;
 mod falsify;
 mod merge;
 mod replay;
@@ -20,6 +21,7 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<Exit> {
         Command::Merge(args) => merge::merge(&args),
         Command::Check { files } => Ok(check::check(&files)),
         Command::Schema { markdown } => schema::schema(markdown),
+        Command::Export(args) => export::export(&args),
         Command::Selftest => Ok(selftest::selftest()),
         Command::Replay { file } => Ok(replay::replay(&file)),
     }

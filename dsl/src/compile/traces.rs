@@ -267,6 +267,7 @@ fn net_roads(ctx: &mut Context<'_>, at: &Path, net: &Network) -> Option<Vec<Road
             lane_width: first.width,
             speed_limit: first.speed,
             links: Vec::new(),
+            arc: None,
         });
     }
     if !ok {

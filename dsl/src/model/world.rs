@@ -5,7 +5,7 @@ use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use super::{Crosswalk, Driving, InteractionArea, Messages, Semantic, Traffic, V2x};
-use crate::geometry::{Polyline, Xy};
+use crate::geometry::{Arc, Polyline, Xy};
 
 /// A simulated traffic scene (language sections `time` … `semantic`). It measures
 /// collective perception (`perception`), the semantic pipeline (`semantic`), or both.
@@ -17,6 +17,11 @@ pub struct World {
     pub steps: usize,
     /// Roads, for pictures: id and lane centrelines.
     pub roads: Vec<Road>,
+    /// The pairs of roads (indices into `roads`) that a declared route (an
+    /// agent's or generated traffic's) drives from the first into the second,
+    /// sorted and without repeats. The engine follows the routes' paths; maps
+    /// written for other tools (`sightline export`) link the roads with these.
+    pub connections: Vec<(usize, usize)>,
     /// Static obstacles to sight.
     pub occluders: Vec<Occluder>,
     /// Every agent: the declared ones in file order, then the objects of
@@ -60,6 +65,9 @@ pub struct Road {
     /// Where its lanes continue across junctions (roads of a SUMO network;
     /// empty for declared roads).
     pub links: Vec<LaneLink>,
+    /// The circle lane 0 follows when it is declared as an `arc` or a
+    /// `roundabout` (`lanes` hold its chords); `None` for a polyline.
+    pub arc: Option<Arc>,
 }
 
 /// A lane of one road continuing into a lane of another across a junction.

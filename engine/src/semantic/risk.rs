@@ -342,6 +342,7 @@ mod tests {
             lane_width: 3.2,
             speed_limit: 13.9,
             links,
+            arc: None,
         }
     }
 

@@ -11,7 +11,9 @@ use crate::compile::checks::whole_multiple;
 use crate::compile::context::Context;
 use crate::compile::traces::Imported;
 use crate::error::ErrorKind;
-use crate::model::World;
+use std::collections::BTreeSet;
+
+use crate::model::{Road, World};
 use crate::path::Path;
 use crate::raw::range;
 use crate::raw::{RawScenario, RawTime, RawV2x};
@@ -86,9 +88,11 @@ pub(crate) fn world(ctx: &mut Context<'_>, raw: &RawScenario, imported: Option<&
         );
         return None;
     }
+    let connections = connections(raw, &roads);
     Some(World {
         step: time.step,
         steps: steps?,
+        connections,
         roads: roads_ok.then_some(roads)?,
         occluders: occluders?,
         imported: agents.as_ref().map_or(0, |(_, imported)| *imported),
@@ -103,6 +107,25 @@ pub(crate) fn world(ctx: &mut Context<'_>, raw: &RawScenario, imported: Option<&
         v2x: v2x?,
         semantic: semantic?,
     })
+}
+
+/// The pairs of roads, by index, that a declared route drives from one into
+/// the other (an agent's `route`, a route of `traffic.vehicles`), sorted. The
+/// routes themselves are checked where they are resolved (`routes`).
+fn connections(raw: &RawScenario, roads: &[Road]) -> Vec<(usize, usize)> {
+    let index = |id: &String| roads.iter().position(|road| &road.id == id);
+    let agent_routes = raw.agents.iter().filter_map(|agent| agent.route.as_ref());
+    let traffic_routes = raw
+        .traffic
+        .iter()
+        .filter_map(|traffic| traffic.vehicles.as_ref())
+        .flat_map(|vehicles| &vehicles.routes);
+    let pairs: BTreeSet<(usize, usize)> = agent_routes
+        .chain(traffic_routes)
+        .flat_map(|route| route.windows(2))
+        .filter_map(|pair| Some((index(&pair[0])?, index(&pair[1])?)))
+        .collect();
+    pairs.into_iter().collect()
 }
 
 fn time_steps(ctx: &mut Context<'_>, time: &RawTime, path: &Path) -> Option<usize> {

@@ -7,7 +7,7 @@ use crate::compile::checks::{coordinates, distinct_from_imported, unique_ids};
 use crate::compile::context::{Context, Declaration};
 use crate::compile::traces::Imported;
 use crate::error::ErrorKind;
-use crate::geometry::{Polyline, arc};
+use crate::geometry::{Arc, Polyline};
 use crate::model::{Direction, LaneLink, Road};
 use crate::path::Path;
 use crate::raw::RawRoad;
@@ -35,7 +35,7 @@ pub(super) fn roads(ctx: &mut Context<'_>, raw: &[RawRoad], imported: Option<&Im
             & ctx.within(&path.key("lane_width"), road.lane_width, range::BODY)
             & ctx.within(&path.key("speed_limit"), road.speed_limit, range::SPEED_POSITIVE);
         match (shape_ok, reference_line(ctx, road, &path)) {
-            (true, Some(reference)) => {
+            (true, Some((reference, arc))) => {
                 let lanes = (0..road.lanes)
                     .map(|k| reference.offset_left(f64::from(k) * road.lane_width))
                     .collect();
@@ -45,6 +45,7 @@ pub(super) fn roads(ctx: &mut Context<'_>, raw: &[RawRoad], imported: Option<&Im
                     lane_width: road.lane_width,
                     speed_limit: road.speed_limit,
                     links: Vec::new(),
+                    arc,
                 });
             }
             _ => {
@@ -71,8 +72,9 @@ pub(super) fn roads(ctx: &mut Context<'_>, raw: &[RawRoad], imported: Option<&Im
     (roads, ok)
 }
 
-/// Lane 0's centreline of a road.
-fn reference_line(ctx: &mut Context<'_>, road: &RawRoad, path: &Path) -> Option<Polyline> {
+/// Lane 0's centreline of a road, and the circle it follows when it is an arc
+/// or a ring.
+fn reference_line(ctx: &mut Context<'_>, road: &RawRoad, path: &Path) -> Option<(Polyline, Option<Arc>)> {
     let given = [road.polyline.is_some(), road.arc.is_some(), road.roundabout.is_some()];
     if given.iter().filter(|&&g| g).count() != 1 {
         ctx.error(
@@ -93,7 +95,7 @@ fn reference_line(ctx: &mut Context<'_>, road: &RawRoad, path: &Path) -> Option<
                 ErrorKind::Invalid("a polyline needs two distinct points".into()),
             );
         }
-        return line;
+        return line.map(|line| (line, None));
     }
     if let Some(a) = &road.arc {
         let arc_path = path.key("arc");
@@ -109,19 +111,20 @@ fn reference_line(ctx: &mut Context<'_>, road: &RawRoad, path: &Path) -> Option<
         if !ok {
             return None;
         }
-        let line = Polyline::new(arc(
-            a.center,
-            a.radius,
-            a.start_deg.to_radians(),
-            a.end_deg.to_radians(),
-        ));
+        let circle = Arc {
+            center: a.center,
+            radius: a.radius,
+            start: a.start_deg.to_radians(),
+            sweep: (a.end_deg - a.start_deg).to_radians(),
+        };
+        let line = Polyline::new(circle.points());
         if line.is_none() {
             ctx.error(
                 &arc_path.key("end_deg"),
                 ErrorKind::Invalid("the arc has no length: its end is too close to its start".into()),
             );
         }
-        return line;
+        return line.map(|line| (line, Some(circle)));
     }
     let ring = road.roundabout.as_ref()?;
     let ring_path = path.key("roundabout");
@@ -141,6 +144,12 @@ fn reference_line(ctx: &mut Context<'_>, road: &RawRoad, path: &Path) -> Option<
         Direction::Ccw => std::f64::consts::TAU,
         Direction::Cw => -std::f64::consts::TAU,
     };
-    ok.then(|| Polyline::new(arc(ring.center, ring.radius, 0.0, sweep)))
+    let circle = Arc {
+        center: ring.center,
+        radius: ring.radius,
+        start: 0.0,
+        sweep,
+    };
+    ok.then(|| Polyline::new(circle.points()).map(|line| (line, Some(circle))))
         .flatten()
 }

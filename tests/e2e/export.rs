@@ -1,0 +1,202 @@
+//! `sightline export` (issue 19, part 3): every bundled world and a falsify
+//! counterexample written as OpenSCENARIO and OpenDRIVE, both files passing
+//! the ASAM Quality Checker with no error when `SIGHTLINE_QC_PYTHON` names a
+//! Python that has it (`.ci/run` sets it; with `CI` set the test fails rather
+//! than skip without it); the sweep point chosen by label; the same bytes from
+//! the same scenario; and scenarios it cannot export refused with nothing written.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use crate::support::{arg, read, root, sightline, temp_dir};
+
+/// Names a Python with asam-qc-opendrive and asam-qc-openscenarioxml.
+const QC_VAR: &str = "SIGHTLINE_QC_PYTHON";
+
+const SCENARIO: &str = "scenario.xosc";
+const MAP: &str = "scenario.xodr";
+
+/// The Python with the ASAM Quality Checker, `None` (after saying why) when
+/// none is named outside CI.
+fn checker() -> Option<PathBuf> {
+    match std::env::var_os(QC_VAR) {
+        Some(python) => Some(PathBuf::from(python)),
+        None if std::env::var_os("CI").is_some() => panic!("{QC_VAR} is not set in CI; .ci/run sets it"),
+        None => {
+            eprintln!(
+                "skipped the ASAM Quality Checker: {QC_VAR} is not set; set it to a Python with \
+                 asam-qc-opendrive and asam-qc-openscenarioxml (see .ci/run)"
+            );
+            None
+        }
+    }
+}
+
+/// Runs the checker on an export's folder and panics on any error it reports.
+#[track_caller]
+fn assert_checked(python: &Path, dir: &Path) {
+    let output = Command::new(python)
+        .arg(root().join("tests/python/check_export.py"))
+        .arg(dir)
+        .output()
+        .unwrap_or_else(|e| panic!("failed to start {}: {e}", python.display()));
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(
+        output.status.success(),
+        "the ASAM Quality Checker found errors in {}:\n{stdout}{}",
+        dir.display(),
+        String::from_utf8_lossy(&output.stderr)
+    );
+    assert_eq!(stdout.matches(" 0 errors").count(), 2, "{stdout}");
+}
+
+/// Every bundled scenario file.
+fn bundled() -> Vec<PathBuf> {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(root().join("scenarios"))
+        .expect("scenarios/ is readable")
+        .map(|entry| entry.expect("an entry of scenarios/").path())
+        .filter(|path| path.extension().is_some_and(|e| e == "yaml"))
+        .collect();
+    files.sort();
+    files
+}
+
+#[test]
+fn every_bundled_world_exports_and_passes_the_asam_checker() {
+    let tmp = temp_dir();
+    let python = checker();
+    let mut exported = 0;
+    for file in bundled() {
+        let relative = file.strip_prefix(root()).expect("under the root");
+        let out = tmp.path().join(file.file_stem().expect("a file name"));
+        let outcome = sightline(["export", arg(relative), "--out", arg(&out)]);
+        if read(&file).contains("\nfield:") {
+            outcome.assert_exit(2);
+            assert!(outcome.stderr.contains("error: nothing to export"), "{outcome}");
+            assert!(!out.exists(), "nothing is written for a field experiment");
+            continue;
+        }
+        outcome.assert_exit(0);
+        assert!(outcome.stdout.starts_with("EXPORTED "), "{outcome}");
+        let scenario = read(&out.join(SCENARIO));
+        let map = read(&out.join(MAP));
+        assert!(
+            scenario.contains(r#"<FileHeader revMajor="1" revMinor="2""#),
+            "{relative:?}"
+        );
+        assert!(scenario.contains(r#"<LogicFile filepath="scenario.xodr"/>"#));
+        assert!(map.contains(r#"<header revMajor="1" revMinor="7""#), "{relative:?}");
+        if let Some(python) = &python {
+            assert_checked(python, &out);
+        }
+        exported += 1;
+    }
+    assert!(exported >= 4, "the bundled worlds: {exported}");
+}
+
+#[test]
+fn a_counterexample_exports_and_passes_the_asam_checker() {
+    let tmp = temp_dir();
+    let search = tmp.path().join("search");
+    sightline([
+        "falsify",
+        "scenarios/urban-falsify.yaml",
+        "--cases",
+        "8",
+        "--out",
+        arg(&search),
+    ])
+    .assert_exit(1);
+    let counterexample = search.join("counterexample.yaml");
+    let out = tmp.path().join("export");
+    let outcome = sightline(["export", arg(&counterexample), "--out", arg(&out)]);
+    outcome.assert_exit(0);
+    // The counterexample's generated traffic is there, drawn from its seed.
+    assert!(outcome.stdout.contains("generated)"), "{outcome}");
+    let scenario = read(&out.join(SCENARIO));
+    assert!(scenario.contains(r#"<ScenarioObject name="ego">"#));
+    assert!(scenario.contains(r#"<MiscObject name="rsu" mass="100" miscObjectCategory="pole">"#));
+    if let Some(python) = checker() {
+        assert_checked(&python, &out);
+    }
+}
+
+#[test]
+fn the_same_scenario_exports_the_same_bytes_and_a_point_is_chosen_by_label() {
+    let tmp = temp_dir();
+    let file = "scenarios/roundabout-six-agents.yaml";
+    let [a, b, c] = ["a", "b", "c"].map(|name| tmp.path().join(name));
+    sightline(["export", file, "--out", arg(&a)]).assert_exit(0);
+    sightline(["export", file, "--out", arg(&b)]).assert_exit(0);
+    for name in [SCENARIO, MAP] {
+        assert_eq!(
+            read(&a.join(name)),
+            read(&b.join(name)),
+            "{name} differs between two exports"
+        );
+    }
+    assert!(
+        read(&a.join(SCENARIO)).contains("at v2x.penetration=0 (seed 7)"),
+        "the first point by default"
+    );
+    let outcome = sightline([
+        "export",
+        file,
+        "--point",
+        "localization.position_sigma=0.5",
+        "--out",
+        arg(&c),
+    ]);
+    outcome.assert_exit(0);
+    assert!(read(&c.join(SCENARIO)).contains("at localization.position_sigma=0.5 (seed 7)"));
+    // The map is the same at every point; the agents' trajectories are not.
+    assert_eq!(read(&a.join(MAP)), read(&c.join(MAP)));
+    assert_ne!(read(&a.join(SCENARIO)), read(&c.join(SCENARIO)));
+}
+
+#[test]
+fn an_unknown_point_a_world_without_roads_and_a_field_are_refused_with_nothing_written() {
+    let tmp = temp_dir();
+    let out = tmp.path().join("out");
+    let unknown = sightline([
+        "export",
+        "scenarios/roundabout-six-agents.yaml",
+        "--point",
+        "nope",
+        "--out",
+        arg(&out),
+    ]);
+    unknown.assert_exit(2);
+    assert!(
+        unknown
+            .stderr
+            .contains("--point: no sweep point is labelled `nope` (the points: `v2x.penetration=0`"),
+        "{unknown}"
+    );
+    let roads = sightline(["export", "tests/fixtures/export/no-roads.yaml", "--out", arg(&out)]);
+    roads.assert_exit(2);
+    assert_eq!(
+        roads.stderr,
+        "tests/fixtures/export/no-roads.yaml: error: nothing to export as a map: the scenario declares no \
+         roads (OpenDRIVE needs at least one)\n"
+    );
+    let field = sightline(["export", "tests/fixtures/valid/small-field.yaml", "--out", arg(&out)]);
+    field.assert_exit(2);
+    assert!(!out.exists(), "nothing is written for a refused export");
+}
+
+#[test]
+fn an_export_that_cannot_be_put_in_place_leaves_neither_file() {
+    let tmp = temp_dir();
+    let out = tmp.path().join("out");
+    // A directory where the map would go stops the commit before anything moves.
+    std::fs::create_dir_all(out.join(MAP)).expect("a directory in the way");
+    let outcome = sightline(["export", "scenarios/urban-falsify.yaml", "--out", arg(&out)]);
+    outcome.assert_exit(3);
+    assert!(!out.join(SCENARIO).exists(), "no half-written export:\n{outcome}");
+    let left: Vec<String> = std::fs::read_dir(&out)
+        .expect("the folder")
+        .map(|e| e.expect("an entry").file_name().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(left, vec![MAP.to_string()], "only the directory in the way");
+}
