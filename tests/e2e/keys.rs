@@ -1123,6 +1123,7 @@ fn evidence(text: &str) -> Result<String, Vec<Error>> {
         },
         scenario_path: FILE.into(),
         scenario_sha256: "0".repeat(64),
+        scenario_text: String::new(),
         recording: None,
         execution: Execution {
             os: "test".into(),

@@ -7,7 +7,9 @@
 
 use quick_junit::{NonSuccessKind, TestCaseStatus};
 
-use crate::support::{FAILING, arg, read, read_json, read_junit, requirement, sightline, temp_dir, unescape_html};
+use crate::support::{
+    FAILING, arg, case_output, read, read_json, read_junit, requirement, sightline, temp_dir, unescape_html,
+};
 
 /// The bundled urban junction for one run, with d_min of 1 cm: no road user
 /// comes that close, and six anticipation times are measured.
@@ -79,7 +81,7 @@ fn requirements_with_nothing_to_judge_are_not_exercised_and_fail_the_run() {
     let suite = &junit.test_suites[0];
     assert_eq!((suite.tests, suite.failures, suite.errors), (6, 4, 0));
     for case in &suite.test_cases {
-        let verdict = case.properties.iter().find(|p| p.name.as_str() == "verdict").unwrap();
+        let verdict = case_output(case)["verdict"].clone();
         match (case.name.as_str(), &case.status) {
             ("IDLE-ANT-MEDIAN", TestCaseStatus::Success { .. }) => {}
             ("IDLE-MISS-ACCEPTED", TestCaseStatus::Skipped { message, .. }) => {
@@ -104,7 +106,7 @@ fn requirements_with_nothing_to_judge_are_not_exercised_and_fail_the_run() {
                     "{message}"
                 );
                 assert!(message.contains("; n = "), "{message}");
-                assert_eq!(verdict.value.as_str(), "not_exercised");
+                assert_eq!(verdict, "not_exercised");
             }
             (name, status) => panic!("{name}: {status:?}"),
         }

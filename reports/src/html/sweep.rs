@@ -6,7 +6,7 @@ use serde::Serialize;
 
 use sightline_dsl::display_value;
 
-use super::format::{TableView, number, or_dash};
+use super::format::{TableView, head, metric_unit, number, or_dash, with_unit};
 use crate::chart::Chart;
 use crate::results::{PointResult, Results};
 
@@ -93,11 +93,11 @@ fn sweep_table(results: &Results, axes: &[&str], rows: &[Row<'_>]) -> TableView 
     metrics.retain(|m| rows.iter().any(|(p, _)| p.metrics.0.iter().any(|(k, _)| k == m)));
     let has_published = |metric: &str| results.references.iter().any(|r| r.metric == metric);
 
-    let mut head: Vec<String> = axes.iter().map(|a| (*a).to_string()).collect();
+    let mut heads: Vec<String> = axes.iter().map(|a| (*a).to_string()).collect();
     for metric in &metrics {
-        head.push((*metric).to_string());
+        heads.push(head(metric, metric_unit(metric)));
         if has_published(metric) {
-            head.push(format!("{metric} (published)"));
+            heads.push(head(&format!("{metric}, published"), metric_unit(metric)));
         }
     }
     let rows = rows
@@ -125,7 +125,7 @@ fn sweep_table(results: &Results, axes: &[&str], rows: &[Row<'_>]) -> TableView 
         .collect();
     TableView {
         caption: String::new(),
-        head,
+        head: heads,
         rows,
         text_columns: axes.len(),
     }
@@ -136,16 +136,17 @@ pub(super) fn comparisons(results: &Results) -> Vec<ComparisonView> {
         .references
         .iter()
         .flat_map(|r| {
+            let unit = metric_unit(r.metric);
             r.points.iter().map(move |p| ComparisonView {
                 source: r.source.clone(),
                 label: p.label.clone(),
                 metric: r.metric,
-                published: number(r.published),
-                measured: or_dash(p.measured),
+                published: with_unit(Some(r.published), unit),
+                measured: with_unit(p.measured, unit),
                 ratio: p
                     .measured
                     .filter(|_| r.published != 0.0)
-                    .map_or_else(|| "—".into(), |m| format!("{:.2}×", m / r.published)),
+                    .map_or_else(|| "—".into(), |m| format!("{}×", number(m / r.published))),
             })
         })
         .collect()
