@@ -59,7 +59,11 @@ pub fn junit(results: &Results) -> Report {
                     "{} {}: measured {value}{} ({}); threshold {relation}; margin {margin}; n = {n}: {}",
                     point.verdict.words(),
                     name,
-                    if unit == "1" { String::new() } else { format!(" {unit}") },
+                    if unit == "1" || point.value.is_none() {
+                        String::new()
+                    } else {
+                        format!(" {unit}")
+                    },
                     point.measured,
                     point.message
                 );
