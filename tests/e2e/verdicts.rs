@@ -118,7 +118,7 @@ fn requirements_with_nothing_to_judge_are_not_exercised_and_fail_the_run() {
     assert!(html.contains(r#"data-verdict="not_exercised" data-gate="fail""#));
     assert!(html.contains("NOT EXERCISED:\n  1 of 6 requirements pass, 5 not exercised (1 accepted)."));
     assert!(html.contains(
-        r##"<li data-requirement="IDLE-WARN" data-verdict="not_exercised"><a href="#req-IDLE-WARN">IDLE-WARN</a> not exercised: measured — (smallest warning_time of n = 0 objects that came within d_min of the ego), threshold ≥ 1.5000, margin —, n = 0.</li>"##
+        r##"<li data-requirement="IDLE-WARN" data-verdict="not_exercised"><a href="#req-IDLE-WARN" class="id">IDLE-WARN</a> not exercised: measured — (smallest warning_time of n = 0 objects that came within d_min of the ego), threshold ≥ 1.5 s, margin —, n = 0.</li>"##
     ));
     assert!(html.contains("accepted: d_min is 1 cm in this fixture, so no close approach is expected."));
 }
