@@ -118,7 +118,7 @@ mod tests {
         assert_eq!(number(0.9), "0.9");
         assert_eq!(number(-0.00102), "-0.00102");
         assert_eq!(number(1e-9), "1 × 10⁻⁹");
-        assert_eq!(number(-1.2345e-5), "-1.235 × 10⁻⁵");
+        assert_eq!(number(-1.2346e-5), "-1.235 × 10⁻⁵");
         assert_eq!(number(9.99996e-5), "1 × 10⁻⁴");
         assert_eq!(number(123.456), "123.5");
         assert_eq!(number(1234.5678), "1,235");
