@@ -83,6 +83,7 @@ pub fn write_evidence(
         tool: reporting.tool.clone(),
         scenario_path: path.clone(),
         scenario_sha256: sha256_hex(&input.bytes),
+        scenario_text: String::from_utf8_lossy(&input.bytes).into_owned(),
         recording,
         execution,
     };

@@ -40,6 +40,10 @@ mod keys;
 #[path = "e2e/determinism.rs"]
 mod determinism;
 
+// junit.xml validated against Jenkins' junit-10.xsd and read with junitparser.
+#[path = "e2e/junit.rs"]
+mod junit;
+
 // Redacted evidence of the fixtures against `tests/golden/<scenario>/`.
 #[path = "e2e/golden.rs"]
 mod golden;

@@ -74,6 +74,7 @@ impl Bundled {
             tool,
             scenario_path: self.file.into(),
             scenario_sha256: sha256_hex(self.text.as_bytes()),
+            scenario_text: self.text.into(),
             recording: Some(RecordingInfo {
                 file: "run.mcap".into(),
                 sha256: sha256_hex(&recording),

@@ -1,24 +1,42 @@
-//! junit.xml: one test suite per scenario, one test case per requirement and sweep
-//! point. The counts on `<testsuites>` and `<testsuite>` come from quick-junit,
-//! which derives them from the test cases it holds.
+//! junit.xml: one test suite per scenario, one test case per requirement and
+//! sweep point (`sightline run`) or per requirement (`sightline falsify`). The
+//! counts on `<testsuites>` and `<testsuite>` come from quick-junit, which
+//! derives them from the test cases it holds.
+//!
+//! What a CI server shows: a case's `classname` is the scenario's name as a
+//! dotted identifier (`sightline.roundabout_six_cooperating_vehicles`), its
+//! `file` and `line` the requirement's place in the scenario file, its `time`
+//! a share of the run's wall-clock time. No published JUnit schema allows
+//! `<properties>` in a `<testcase>` (Jenkins' junit-10.xsd, Ant's, JUnit 5's),
+//! so each case's measured value, threshold, margin and n are `name: value`
+//! lines of its `<system-out>`, which CI servers show beside the case, passing
+//! cases too; the suite's `<properties>` name the scenario, its hash, the seed
+//! and the tool. A suite is named by the scenario's name and its file, so two
+//! scenarios of the same name are two suites.
+
+use std::time::Duration;
+
+use quick_junit::{NonSuccessKind, Report, TestCase, TestCaseStatus, TestSuite};
 
 use crate::results::{Results, Status};
-use quick_junit::{NonSuccessKind, Report, TestCase, TestCaseStatus, TestSuite};
 
 /// The JUnit report of one scenario's results.
 pub fn junit(results: &Results) -> Report {
-    let mut suite = TestSuite::new(results.scenario.name.as_str());
-    suite.add_property(("scenario", results.scenario.path.as_str()));
-    suite.add_property(("scenario_sha256", results.scenario.sha256.as_str()));
+    let scenario = &results.scenario;
+    let mut suite = new_suite(&scenario.name, &scenario.path, &scenario.sha256);
     if let Some(seed) = results.seed {
         suite.add_property(("seed", seed.to_string().as_str()));
     }
+    let tool = &results.tool;
     suite.add_property((
         "tool",
-        format!("{} {} ({})", results.tool.name, results.tool.version, results.tool.git).as_str(),
+        format!("{} {} ({})", tool.name, tool.version, tool.git).as_str(),
     ));
+    let cases: usize = results.requirements.iter().map(|r| r.points.len()).sum();
+    let duration = Duration::from_secs_f64(results.execution.duration_seconds.max(0.0));
     for requirement in &results.requirements {
         let check = format!("{}:{}", requirement.check.kind, requirement.check.name);
+        let unit = requirement.check.unit;
         for point in &requirement.points {
             let name = if point.label.is_empty() {
                 requirement.id.clone()
@@ -32,15 +50,20 @@ pub fn junit(results: &Results) -> Report {
                 (Status::NotExercised | Status::Fail, _) => TestCaseStatus::non_success(NonSuccessKind::Failure),
                 (Status::Error, _) => TestCaseStatus::non_success(NonSuccessKind::Error),
             };
-            let value = point.value.map_or("none".to_string(), |v| format!("{v:?}"));
-            let margin = point.margin.map_or("none".to_string(), |v| format!("{v:?}"));
+            let shown = |v: Option<f64>| v.map_or("none".to_string(), |v| format!("{v:?}"));
+            let (value, margin) = (shown(point.value), shown(point.margin));
             let n = point.n.map_or("unknown".to_string(), |n| n.to_string());
             let relation = format!("{} {:?}", requirement.check.relation, requirement.check.threshold);
             if point.verdict != Status::Pass {
                 let mut message = format!(
-                    "{} {}: measured {value} ({}); threshold {relation}; margin {margin}; n = {n}: {}",
+                    "{} {}: measured {value}{} ({}); threshold {relation}; margin {margin}; n = {n}: {}",
                     point.verdict.words(),
                     name,
+                    if unit == "1" || point.value.is_none() {
+                        String::new()
+                    } else {
+                        format!(" {unit}")
+                    },
                     point.measured,
                     point.message
                 );
@@ -55,19 +78,112 @@ pub fn junit(results: &Results) -> Report {
                         requirement.text, point.measured
                     ));
             }
-            let mut case = TestCase::new(name, status);
-            case.set_classname(results.scenario.path.as_str());
-            case.add_property(("requirement", requirement.id.as_str()));
-            case.add_property(("line", requirement.line.to_string().as_str()));
-            case.add_property(("check", check.as_str()));
-            case.add_property(("verdict", point.verdict.name()));
-            case.add_property(("value", value.as_str()));
-            case.add_property(("margin", margin.as_str()));
-            case.add_property(("n", n.as_str()));
+            let mut case = new_case(name, status, &scenario.name, &scenario.path, requirement.line);
+            case.set_time(duration / cases.max(1) as u32);
+            case.set_system_out(lines(&[
+                ("requirement", requirement.id.as_str()),
+                ("text", requirement.text.as_str()),
+                ("check", check.as_str()),
+                ("verdict", point.verdict.name()),
+                ("value", value.as_str()),
+                ("unit", unit),
+                ("threshold", relation.as_str()),
+                ("margin", margin.as_str()),
+                ("n", n.as_str()),
+                ("measured", point.measured.as_str()),
+            ]));
             suite.add_test_case(case);
         }
     }
     let mut report = Report::new("sightline");
+    suite.set_time(duration);
+    suite
+        .extra
+        .insert("timestamp".into(), results.execution.started.as_str().into());
     report.add_test_suite(suite);
     report
+}
+
+/// The text of a JUnit report. quick-junit writes a `skipped` count on the
+/// root `<testsuites>`, which no published Jenkins schema allows there; it is
+/// dropped (each `<testsuite>` keeps its own), so that the file validates
+/// against Jenkins' junit-10.xsd.
+pub fn junit_xml(report: &Report) -> Result<String, quick_junit::SerializeError> {
+    let text = report.to_string()?;
+    let root = text
+        .find("<testsuites ")
+        .map(|at| (at, at + text[at..].find('>').unwrap_or(0)));
+    let skipped = root.and_then(|(at, end)| {
+        let from = at + text[at..end].find(" skipped=\"")?;
+        let to = from + " skipped=\"".len() + text[from + " skipped=\"".len()..].find('"')? + 1;
+        Some((from, to))
+    });
+    Ok(match skipped {
+        Some((from, to)) => format!("{}{}", &text[..from], &text[to..]),
+        None => text,
+    })
+}
+
+/// The suite of scenario `name` in file `path` (a suite per file, so two
+/// scenarios of one name do not collide), its hash a property.
+pub(crate) fn new_suite(name: &str, path: &str, sha256: &str) -> TestSuite {
+    let mut suite = TestSuite::new(format!("{name} ({path})"));
+    suite.extra.insert("file".into(), path.into());
+    suite.add_property(("scenario", path));
+    suite.add_property(("scenario_name", name));
+    suite.add_property(("scenario_sha256", sha256));
+    suite
+}
+
+/// A test case of a requirement at `line` of the scenario `name` in `path`.
+pub(crate) fn new_case(name: String, status: TestCaseStatus, scenario: &str, path: &str, line: usize) -> TestCase {
+    let mut case = TestCase::new(name, status);
+    case.set_classname(classname(scenario));
+    case.extra.insert("file".into(), path.into());
+    case.extra.insert("line".into(), line.to_string().into());
+    case
+}
+
+/// `name: value` lines, for a case's `<system-out>`.
+pub(crate) fn lines(pairs: &[(&str, &str)]) -> String {
+    pairs.iter().map(|(name, value)| format!("{name}: {value}\n")).collect()
+}
+
+/// A scenario's name as a dotted identifier under `sightline.`: lowercase
+/// letters, digits and underscores (`Roundabout, six cooperating vehicles` →
+/// `sightline.roundabout_six_cooperating_vehicles`); `sightline.scenario` for
+/// a name with no letter or digit.
+pub(crate) fn classname(name: &str) -> String {
+    let words: Vec<String> = name
+        .split(|c: char| !c.is_alphanumeric())
+        .filter(|w| !w.is_empty())
+        .map(str::to_lowercase)
+        .collect();
+    let mut identifier = words.join("_");
+    if identifier.is_empty() {
+        identifier = "scenario".into();
+    } else if identifier.starts_with(|c: char| c.is_numeric()) {
+        identifier.insert(0, '_');
+    }
+    format!("sightline.{identifier}")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn classnames_are_dotted_identifiers_of_the_name() {
+        assert_eq!(
+            classname("Roundabout, six cooperating vehicles"),
+            "sightline.roundabout_six_cooperating_vehicles"
+        );
+        assert_eq!(
+            classname("SUMO grid / RSU (seed 002)"),
+            "sightline.sumo_grid_rsu_seed_002"
+        );
+        assert_eq!(classname("3 vans"), "sightline._3_vans");
+        assert_eq!(classname(" <> "), "sightline.scenario");
+        assert_eq!(classname("Straße"), "sightline.straße");
+    }
 }

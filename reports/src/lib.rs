@@ -31,10 +31,10 @@
 pub use chart::{Chart, ChartError, Line, anticipation, kde, lines_chart, silverman_bandwidth};
 pub use execution::{Execution, rfc3339};
 pub use export::{Export, ExportError, ExportRequest, OPENDRIVE_VERSION, OPENSCENARIO_VERSION, export};
-pub use falsify::{Falsification, falsify_json};
+pub use falsify::{Falsification, falsify_json, falsify_junit};
 pub use falsify_html::falsify_html;
-pub use html::html;
-pub use junit::junit;
+pub use html::{RunPage, html};
+pub use junit::{junit, junit_xml};
 pub use picture::{Legend, Picture, Pictures, Scale, Swatch, pictures};
 pub use results::{
     Assumption, Axis, Band, CheckInfo, Conflict, Coverage, DeliveryBin, DensityRow, Detail, FORMAT, InputInfo,
@@ -112,7 +112,7 @@ pub fn render(
     let results = Results::new(scenario, run, verdicts, provenance);
     let mut results_json = serde_json::to_string_pretty(&results)?;
     results_json.push('\n');
-    let junit_xml = junit(&results).to_string()?;
+    let junit_xml = junit_xml(&junit(&results))?;
     let pictures = scenario
         .points
         .iter()
@@ -150,7 +150,15 @@ pub fn render(
         })
         .collect::<Result<Vec<Vec<Chart>>, ChartError>>()?;
     let sweep_charts = chart::sweep_charts(&results)?;
-    let report_html = html(&results, reproduce, &pictures, &charts, &sweep_charts, templates)?;
+    let page = RunPage {
+        scenario,
+        text: &provenance.scenario_text,
+        reproduce,
+        pictures: &pictures,
+        charts: &charts,
+        sweep_charts: &sweep_charts,
+    };
+    let report_html = html(&results, &page, templates)?;
     Ok(Evidence {
         results,
         results_json,

@@ -3,7 +3,8 @@
 //! The pages are minijinja templates. The bundled ones are embedded under
 //! stable names: `sightline/page.html` (the layout: `head` with `title` and
 //! `style`, then `header`, `content` and `footer`), the provenance table both
-//! pages include (`sightline/provenance.html`), and the two pages that extend
+//! pages include (`sightline/provenance.html`), the macros they import
+//! (`sightline/macros.html`), and the two pages that extend
 //! it, `sightline/report.html` (`sightline run`) and
 //! `sightline/falsify.html` (`sightline falsify`). A custom set is a directory
 //! holding `report.html` and/or `falsify.html` and whatever they include or
@@ -37,12 +38,13 @@ mod check;
 mod error;
 
 /// The bundled templates, by their stable names.
-const BUNDLED: [(&str, &str); 4] = [
+const BUNDLED: [(&str, &str); 5] = [
     ("sightline/page.html", include_str!("../templates/page.html")),
     (
         "sightline/provenance.html",
         include_str!("../templates/provenance.html"),
     ),
+    ("sightline/macros.html", include_str!("../templates/macros.html")),
     ("sightline/report.html", include_str!("../templates/report.html")),
     ("sightline/falsify.html", include_str!("../templates/falsify.html")),
 ];
@@ -77,11 +79,22 @@ impl Page {
     }
 
     /// The blocks a template of this page must show: what makes the page
-    /// evidence (the verdict, the provenance, what was checked and found, and
-    /// what the models assumed).
+    /// evidence (its document control, the verdict, the scope, what the
+    /// models assumed, the provenance, what was checked and found, the tool's
+    /// self-test and the scenario file).
     pub fn required_blocks(self) -> &'static [&'static str] {
         match self {
-            Self::Run => &["banner", "provenance", "traceability", "evidence", "assumptions"],
+            Self::Run => &[
+                "document_control",
+                "banner",
+                "scope",
+                "assumptions",
+                "provenance",
+                "traceability",
+                "evidence",
+                "selftest",
+                "appendix",
+            ],
             Self::Falsify => &["banner", "provenance", "settings", "cases", "counterexample"],
         }
     }
@@ -262,15 +275,19 @@ mod tests {
         let blocks = |page| Vec::from_iter(Templates::bundled(page).blocks().unwrap());
         let layout = ["content", "footer", "head", "header", "style", "title"];
         let run = [
+            "appendix",
             "argument",
             "assumptions",
             "banner",
             "comparison",
             "description",
             "details",
+            "document_control",
             "evidence",
             "pictures",
             "provenance",
+            "scope",
+            "selftest",
             "sweeps",
             "traceability",
         ];
@@ -387,9 +404,9 @@ mod tests {
         let message = refused(Page::Run, &[("report.html", "{% block banner %}{% endblock %}")]);
         assert_eq!(
             message,
-            "org/report.html: error: the page does not show required block `provenance`: a page of `sightline run` \
-             must show the blocks banner, provenance, traceability, evidence, assumptions (extend `sightline/report.html` \
-             to inherit them)"
+            "org/report.html: error: the page does not show required block `document_control`: a page of `sightline run` \
+             must show the blocks document_control, banner, scope, assumptions, provenance, traceability, evidence, \
+             selftest, appendix (extend `sightline/report.html` to inherit them)"
         );
         // Overriding the block that holds it hides it too.
         let message = refused(
@@ -400,7 +417,7 @@ mod tests {
             )],
         );
         assert!(
-            message.contains("does not show required block `provenance`"),
+            message.contains("does not show required block `document_control`"),
             "{message}"
         );
         // Unless the override shows its parent's body.

@@ -12,7 +12,9 @@ use anyhow::Context;
 use rayon::prelude::*;
 use sightline_dsl::{Options, Scenario, Vary, display_value};
 use sightline_oracles::{Score, Search};
-use sightline_reports::{Execution, Falsification, Page, falsify_html, falsify_json, sha256_hex};
+use sightline_reports::{
+    Execution, Falsification, Page, falsify_html, falsify_json, falsify_junit, junit_xml, sha256_hex,
+};
 
 use crate::cli::{FalsifyArgs, SearchMode};
 use crate::evidence::{EVIDENCE_SET, evidence_dirs, tool};
@@ -39,8 +41,8 @@ enum Stop {
     Internal(anyhow::Error),
 }
 
-/// Searches, then writes `falsify.json`, `report.html` and, when a case breaks
-/// a requirement, `counterexample.yaml`.
+/// Searches, then writes `falsify.json`, `junit.xml`, `report.html` and, when
+/// a case breaks a requirement, `counterexample.yaml`.
 pub fn falsify(args: &FalsifyArgs) -> anyhow::Result<Exit> {
     let input = load_all(std::slice::from_ref(&args.file), None, false).and_then(|inputs| inputs.into_iter().next());
     let templates = templates(args.template.as_deref(), Page::Falsify);
@@ -136,6 +138,7 @@ pub fn falsify(args: &FalsifyArgs) -> anyhow::Result<Exit> {
         execution: &execution,
     };
     let report_json = falsify_json(&falsification)?;
+    let junit_xml = junit_xml(&falsify_junit(&falsification))?;
     let report_html = match falsify_html(&falsification, &templates) {
         Ok(html) => html,
         // A custom template that fails on the data is the input's fault.
@@ -146,6 +149,7 @@ pub fn falsify(args: &FalsifyArgs) -> anyhow::Result<Exit> {
         Err(error) => return Err(error.into()),
     };
     staging.write("falsify.json", report_json.as_bytes())?;
+    staging.write("junit.xml", junit_xml.as_bytes())?;
     staging.write("report.html", report_html.as_bytes())?;
     let Some(found) = found else {
         // The commit also removes a counterexample.yaml of an earlier search,

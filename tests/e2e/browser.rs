@@ -3,8 +3,11 @@
 //! through `tests/python/check_report.py` (Playwright driving Debian's
 //! Chromium). Each page loads offline with no console error and requests
 //! nothing but itself; its banner, title and traceability table say what
-//! results.json says; it runs no script. Reports and full-page screenshots are
-//! kept in `target/tmp/browser/<scenario>/`.
+//! results.json says; it runs no script. Each is also printed to PDF as
+//! Chromium prints it (A4 by default): every column head of every table is in
+//! the PDF's text (read with pypdf) and no table is wider than the page.
+//! Reports, full-page screenshots and PDFs are kept in
+//! `target/tmp/browser/<scenario>/`; each page count is printed.
 //!
 //! Skipped (with a message) only when `SIGHTLINE_BROWSER_PYTHON` is unset;
 //! `.ci/run` sets it, and then any failure fails the test.
@@ -41,13 +44,16 @@ fn page_dir(scenario: &str) -> PathBuf {
     Path::new(env!("CARGO_TARGET_TMPDIR")).join("browser").join(stem)
 }
 
-/// Opens `dir/report.html` in Chromium, saves `dir/screenshot.png` and returns
-/// what the page showed; panics with the checker's reasons when it fails.
+/// Opens `dir/report.html` in Chromium, saves `dir/screenshot.png`, prints it
+/// to `dir/report.pdf` and returns what the page showed; panics with the
+/// checker's reasons when it fails.
 fn open(python: &OsString, dir: &Path) -> serde_json::Value {
     let output = Command::new(python)
         .arg(root().join("tests/python/check_report.py"))
         .arg(dir.join("report.html"))
         .arg(dir.join("screenshot.png"))
+        .arg("--pdf")
+        .arg(dir.join("report.pdf"))
         .output()
         .unwrap_or_else(|e| panic!("failed to start {}: {e}", Path::new(python).display()));
     let stderr = String::from_utf8_lossy(&output.stderr);
@@ -97,6 +103,11 @@ fn assert_page_shows(page: &serde_json::Value, results: &serde_json::Value) {
         );
     }
     assert_eq!(page["title"], format!("sightline report: {name}"), "{scenario}");
+    // Printed on A4 (no scenario asks for Letter), every column head in the
+    // PDF (the checker fails otherwise).
+    assert_eq!(page["pdf"]["paper"], "A4", "{scenario}");
+    assert!(page["pdf"]["pages"].as_u64().is_some_and(|n| n >= 1), "{scenario}");
+    eprintln!("{scenario}: {} pages on A4", page["pdf"]["pages"]);
     assert_eq!(page["heading"], name, "{scenario}");
     let rows: Vec<[&str; 3]> = page["traceability"]
         .as_array()

@@ -4,8 +4,8 @@
 use std::path::Path;
 
 use crate::support::{
-    FAILING, SEED_SWEEP, SMALL_FIELD, arg, files_under, normalise_execution, read, read_json, root, sightline,
-    temp_dir, unescape_html,
+    FAILING, SEED_SWEEP, SMALL_FIELD, arg, files_under, normalise_execution, normalise_junit_times, read, read_json,
+    root, sightline, temp_dir, unescape_html,
 };
 
 /// The bundled seed 002 junction.
@@ -25,7 +25,7 @@ fn run_into(scenario: &str, dir: &Path, extra: &[&str], code: i32) {
 fn assert_same_evidence(a: &Path, b: &Path) {
     for name in ["results.json", "junit.xml", "report.html"] {
         let text = |dir: &Path| match read(&dir.join(name)) {
-            text if name == "junit.xml" => text,
+            text if name == "junit.xml" => normalise_junit_times(&text),
             text => normalise_execution(&text),
         };
         assert!(

@@ -184,7 +184,7 @@ fn a_new_set_replaces_the_previous_one_whole() {
     sightline(search).assert_exit(1);
     assert_eq!(
         names(&out),
-        ["counterexample.yaml", "falsify.json", "report.html"].map(PathBuf::from)
+        ["counterexample.yaml", "falsify.json", "junit.xml", "report.html"].map(PathBuf::from)
     );
     sightline(["run", SMALL_FIELD, "--out", arg(&out)]).assert_exit(0);
     assert_evidence_files(&out);

@@ -4,7 +4,9 @@
 
 use std::path::Path;
 
-use crate::support::{arg, normalise_execution, read, read_json, sightline, temp_dir, unescape_html};
+use quick_junit::{NonSuccessKind, TestCaseStatus};
+
+use crate::support::{arg, normalise_execution, read, read_json, read_junit, sightline, temp_dir, unescape_html};
 
 /// The bundled scenario whose `vary` space holds a counterexample.
 const SCENARIO: &str = "scenarios/urban-falsify.yaml";
@@ -13,6 +15,9 @@ const SCENARIO: &str = "scenarios/urban-falsify.yaml";
 /// 1000 steps).
 const SENSITIVITY: &str = "v2x.channel.sensitivity_dbm";
 const STEP_DB: f64 = 0.04;
+
+/// The bundled scenario's requirements, in file order.
+const REQUIREMENTS: [&str; 1] = ["FALS-PDR-01"];
 
 /// Runs `falsify` on `file` into `out` with extra arguments.
 fn falsify(file: &str, out: &Path, extra: &[&str]) -> crate::support::Outcome {
@@ -49,6 +54,37 @@ fn falsify_finds_the_bundled_counterexample_and_shrinks_it_to_the_boundary() {
         (-100.0..=-60.0).contains(&sensitivity) && sensitivity > -100.0,
         "{sensitivity}"
     );
+
+    // junit.xml: one case per requirement; the broken one fails, naming the file.
+    let junit = read_junit(&out.path().join("junit.xml"));
+    let suite = &junit.test_suites[0];
+    assert_eq!(
+        suite.name.as_str(),
+        "Urban junction, 10 s, falsify the RSU-to-ego link (scenarios/urban-falsify.yaml)"
+    );
+    let ids: Vec<&str> = suite.test_cases.iter().map(|c| c.name.as_str()).collect();
+    assert_eq!(ids, REQUIREMENTS);
+    for case in &suite.test_cases {
+        assert_eq!(
+            case.classname.as_deref(),
+            Some("sightline.urban_junction_10_s_falsify_the_rsu_to_ego_link")
+        );
+        assert_eq!(case.extra["file"].as_str(), SCENARIO);
+        let broken = case.name.as_str() == "FALS-PDR-01";
+        match &case.status {
+            TestCaseStatus::NonSuccess { kind, message, .. } => {
+                assert!(broken, "{} fails", case.name.as_str());
+                assert_eq!(*kind, NonSuccessKind::Failure);
+                let message = message.as_ref().unwrap().as_str();
+                assert!(
+                    message.starts_with("counterexample.yaml breaks FALS-PDR-01 (fail, margin -"),
+                    "{message}"
+                );
+            }
+            TestCaseStatus::Success { .. } => assert!(!broken, "FALS-PDR-01 passes"),
+            other => panic!("{other:?}"),
+        }
+    }
 
     let file = out.path().join("counterexample.yaml");
     let text = read(&file);
@@ -118,8 +154,14 @@ fn the_report_lists_the_search_the_cases_and_the_counterexample() {
         );
         assert!(row.contains(case["requirement"].as_str().unwrap()));
         let margin = case["margin"].as_f64().unwrap();
+        // Four significant digits, as the page writes every number.
+        let shown = row
+            .split("<td class=\"num\">")
+            .filter_map(|cell| cell.split("</td>").next()?.parse::<f64>().ok());
         assert!(
-            row.contains(&format!("<td class=\"num\">{margin:.4}</td>")),
+            shown
+                .into_iter()
+                .any(|v| (v - margin).abs() <= 5e-4 * margin.abs().max(1e-3)),
             "{margin} not in {row}"
         );
     }

@@ -371,6 +371,13 @@ const KEYS: &[Key] = &[
     Key { path: "sightline", field: refused(&[("sightline", "2")]), perception: refused(&[("sightline", "2")]), semantic: refused(&[("sightline", "2")]) },
     Key { path: "name", field: Descriptive, perception: Descriptive, semantic: Descriptive },
     Key { path: "description", field: Descriptive, perception: Descriptive, semantic: Descriptive },
+    // The report as a controlled document (issue 18): its control table and
+    // its page size, nothing simulated, measured or judged.
+    Key { path: "document.version", field: Descriptive, perception: Descriptive, semantic: Descriptive },
+    Key { path: "document.author", field: Descriptive, perception: Descriptive, semantic: Descriptive },
+    Key { path: "document.reviewer", field: Descriptive, perception: Descriptive, semantic: Descriptive },
+    Key { path: "document.approver", field: Descriptive, perception: Descriptive, semantic: Descriptive },
+    Key { path: "document.paper", field: Descriptive, perception: Descriptive, semantic: Descriptive },
     Key { path: "seed", field: change(&[("seed", "2")]), perception: change(&[("seed", "4")]), semantic: change(&[("seed", "6")]) },
     // grid, fusion, decision: what fuses.
     Key {
@@ -1125,6 +1132,7 @@ fn evidence(text: &str) -> Result<String, Vec<Error>> {
         },
         scenario_path: FILE.into(),
         scenario_sha256: "0".repeat(64),
+        scenario_text: String::new(),
         recording: None,
         execution: Execution {
             os: "test".into(),

@@ -7,8 +7,8 @@ use std::process::{Command, Stdio};
 use quick_junit::{NonSuccessKind, TestCaseStatus};
 
 use crate::support::{
-    FAILING, SEED_SWEEP, SHARED_POINT, SMALL_FIELD, arg, assert_evidence_files, files_under, read, read_json,
-    read_junit, root, sha256_hex, sightline, sightline_in, temp_dir, unescape_html,
+    FAILING, SEED_SWEEP, SHARED_POINT, SMALL_FIELD, arg, assert_evidence_files, case_output, files_under, read,
+    read_json, read_junit, root, sha256_hex, sightline, sightline_in, temp_dir, unescape_html,
 };
 
 /// The requirement ids of a fixture, in file order, read from its `- id:` lines.
@@ -353,8 +353,7 @@ fn failing_requirement_exits_1_and_junit_carries_value_and_threshold() {
         "{description:?}"
     );
     assert!(lines.contains(&"n: 1600"), "{description:?}");
-    let requirement_property = case.properties.iter().find(|p| p.name.as_str() == "requirement");
-    assert_eq!(requirement_property.map(|p| p.value.as_str()), Some("NOISE-ACC-01"));
+    assert_eq!(case_output(case)["requirement"], "NOISE-ACC-01");
 
     let passing = suite
         .test_cases
@@ -366,6 +365,31 @@ fn failing_requirement_exits_1_and_junit_carries_value_and_threshold() {
         "{:?}",
         passing.status
     );
+    // Passing cases carry their values too, and every case names the scenario
+    // (not its path), its file and the requirement's line, and takes a time.
+    let output = case_output(passing);
+    assert_eq!(output["verdict"], "pass");
+    assert_eq!(output["threshold"], format!("at_least {threshold:?}"));
+    assert_eq!(output["n"], "1600");
+    assert!(
+        output["value"].parse::<f64>().is_ok_and(|v| v >= threshold),
+        "{output:?}"
+    );
+    assert!(output["margin"].parse::<f64>().is_ok_and(|m| m >= 0.0), "{output:?}");
+    let name = results["scenario"]["name"].as_str().unwrap();
+    assert_eq!(suite.name.as_str(), format!("{name} ({FAILING})"));
+    let line = requirement["line"].as_u64().unwrap().to_string();
+    for case in &suite.test_cases {
+        assert_eq!(
+            case.classname.as_deref(),
+            Some("sightline.small_field_under_heavy_noise")
+        );
+        assert_eq!(case.extra["file"].as_str(), FAILING);
+        assert!(case.time.is_some(), "{} has a time", case.name.as_str());
+        if case.name.starts_with("NOISE-ACC-01") {
+            assert_eq!(case.extra["line"].as_str(), line);
+        }
+    }
 }
 
 /// Every decimal number written in `text`.

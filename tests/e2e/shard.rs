@@ -9,7 +9,9 @@ use std::path::{Path, PathBuf};
 use sightline_engine::Outcome;
 use sightline_reports::{Shard, read_shard, shard_bytes};
 
-use crate::support::{FAILING, SEED_SWEEP, arg, files_under, normalise_execution, read, sightline, temp_dir};
+use crate::support::{
+    FAILING, SEED_SWEEP, arg, files_under, normalise_execution, normalise_junit_times, read, sightline, temp_dir,
+};
 
 /// A world with a shared-data group, replicates and a recording.
 const JUNCTION: &str = "tests/fixtures/valid/small-junction.yaml";
@@ -68,6 +70,7 @@ fn three_shards_merge_into_the_unsharded_evidence() {
         let bytes = std::fs::read(dir.join(file)).unwrap();
         match file.extension().and_then(|e| e.to_str()) {
             Some("json" | "html") => normalise_execution(std::str::from_utf8(&bytes).unwrap()).into_bytes(),
+            Some("xml") => normalise_junit_times(std::str::from_utf8(&bytes).unwrap()).into_bytes(),
             _ => bytes,
         }
     };

@@ -2,6 +2,7 @@
 //! output with expected files (or rewriting them under `SIGHTLINE_BLESS=1`),
 //! reading evidence and redacting what changes from build to build.
 
+use std::collections::BTreeMap;
 use std::ffi::OsStr;
 use std::fmt;
 use std::io::Write;
@@ -368,6 +369,15 @@ pub fn requirement<'a>(results: &'a serde_json::Value, id: &str) -> &'a serde_js
 
 /// Reads and parses a JUnit XML file.
 #[track_caller]
+/// The `name: value` lines of a JUnit case's `<system-out>`, as a map.
+pub fn case_output(case: &quick_junit::TestCase) -> BTreeMap<String, String> {
+    let out = case.system_out.as_ref().map_or("", |o| o.as_str());
+    out.lines()
+        .filter_map(|line| line.split_once(": "))
+        .map(|(k, v)| (k.to_string(), v.to_string()))
+        .collect()
+}
+
 pub fn read_junit(path: &Path) -> quick_junit::Report {
     quick_junit::Report::deserialize_from_str(&read(path))
         .unwrap_or_else(|e| panic!("{} is not JUnit XML: {e}", path.display()))
@@ -453,7 +463,7 @@ fn replace_once(text: &str, from: &str, to: &str) -> String {
 /// provenance rows that show them: the only fields that differ between two
 /// runs of the same scenario and seed.
 const EXECUTION_KEYS: [&str; 5] = ["os", "arch", "threads", "started", "duration_seconds"];
-const EXECUTION_ROWS: [&str; 3] = ["Platform", "Started", "Duration"];
+const EXECUTION_ROWS: [&str; 4] = ["Date", "Platform", "Started", "Duration"];
 
 /// Evidence (results.json, falsify.json or a report.html) with the fields that
 /// differ from run to run (the platform, the worker threads, the start time and
@@ -503,6 +513,10 @@ fn normalise_execution_html(text: &str) -> String {
     for row in EXECUTION_ROWS {
         let start = format!("<th scope=\"row\">{row}</th><td class=\"mono\">");
         let count = text.matches(&start).count();
+        // Only a run's report has document control, and so a date.
+        if row == "Date" && count == 0 {
+            continue;
+        }
         assert_eq!(count, 1, "expected exactly one `{row}` provenance row, found {count}");
         let begin = text.find(&start).expect("counted above") + start.len();
         let end = begin + text[begin..].find("</td>").expect("the cell is closed");
@@ -514,6 +528,7 @@ fn normalise_execution_html(text: &str) -> String {
                 "platform {value:?}"
             ),
             "Started" => assert_started(value),
+            "Date" => assert_started(&format!("{value}T00:00:00Z")),
             _ => assert!(
                 value
                     .strip_suffix(" s")
@@ -573,12 +588,59 @@ pub fn redact_report(text: &str) -> String {
     let begin = text.find(&start).expect("counted above") + start.len();
     let end = begin + text[begin..].find(")</td>").expect("the cell is closed");
     assert!(end > begin, "the tool row names no git revision");
-    format!("{}[GIT]{}", &text[..begin], &text[end..])
+    let text = format!("{}[GIT]{}", &text[..begin], &text[end..]);
+    // The document id hashes results.json, which names the git revision.
+    let start = "<th scope=\"row\">Document id</th><td class=\"mono\">SL-";
+    let begin = text.find(start).expect("the report has a document id") + start.len();
+    let end = begin + text[begin..].find("</td>").expect("the cell is closed");
+    assert!(
+        end - begin == 16 && text[begin..end].chars().all(|c| c.is_ascii_hexdigit()),
+        "document id {:?}",
+        &text[begin..end]
+    );
+    format!("{}[ID]{}", &text[..begin], &text[end..])
 }
 
-/// junit.xml with the `tool` property (name, version and git revision) redacted.
+/// junit.xml with the times that differ from run to run (every `time`
+/// attribute, in seconds, and the suite's `timestamp`, RFC 3339 in UTC)
+/// replaced by placeholders, after checking their form.
+#[track_caller]
+pub fn normalise_junit_times(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    let mut rest = text;
+    let next = |rest: &str| {
+        [rest.find(" time=\""), rest.find(" timestamp=\"")]
+            .into_iter()
+            .flatten()
+            .min()
+    };
+    while let Some(at) = next(rest) {
+        let (key, placeholder) = if rest[at..].starts_with(" time=") {
+            (" time=\"", "[TIME]")
+        } else {
+            (" timestamp=\"", "[STARTED]")
+        };
+        let begin = at + key.len();
+        let end = begin + rest[begin..].find('"').expect("the attribute value is closed");
+        let value = &rest[begin..end];
+        if placeholder == "[TIME]" {
+            assert!(value.parse::<f64>().is_ok_and(|t| t >= 0.0), "time {value:?}");
+        } else {
+            assert_started(value);
+        }
+        out.push_str(&rest[..begin]);
+        out.push_str(placeholder);
+        rest = &rest[end..];
+    }
+    out.push_str(rest);
+    out
+}
+
+/// junit.xml with the `tool` property (name, version and git revision)
+/// redacted and its times normalised ([`normalise_junit_times`]).
 #[track_caller]
 pub fn redact_junit(text: &str) -> String {
+    let text = &normalise_junit_times(text);
     let value = format!("sightline {} (", env!("CARGO_PKG_VERSION"));
     let start = format!("<property name=\"tool\" value=\"{value}");
     let count = text.matches(&start).count();

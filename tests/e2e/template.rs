@@ -5,7 +5,8 @@
 use std::path::Path;
 
 use crate::support::{
-    SMALL_FIELD, arg, assert_evidence_files, files_under, normalise_execution, read, sightline, temp_dir, unescape_html,
+    SMALL_FIELD, arg, assert_evidence_files, files_under, normalise_execution, normalise_junit_times, read, sightline,
+    temp_dir, unescape_html,
 };
 
 /// The example template set in the docs.
@@ -72,7 +73,7 @@ fn a_custom_template_overrides_a_block_of_the_report() {
     }
     for name in ["results.json", "junit.xml"] {
         let evidence = |dir: &Path| match read(&dir.join(name)) {
-            text if name == "junit.xml" => text,
+            text if name == "junit.xml" => normalise_junit_times(&text),
             text => normalise_execution(&text),
         };
         assert_eq!(
@@ -102,9 +103,9 @@ fn a_missing_block_is_refused_and_nothing_is_written() {
     assert_eq!(
         refused.stderr,
         format!(
-            "{}/report.html: error: the page does not show required block `provenance`: a page of `sightline run` \
-             must show the blocks banner, provenance, traceability, evidence, assumptions (extend \
-             `sightline/report.html` to inherit them)\n",
+            "{}/report.html: error: the page does not show required block `document_control`: a page of \
+             `sightline run` must show the blocks document_control, banner, scope, assumptions, provenance, \
+             traceability, evidence, selftest, appendix (extend `sightline/report.html` to inherit them)\n",
             set.display()
         )
     );

@@ -7,7 +7,9 @@
 
 use quick_junit::{NonSuccessKind, TestCaseStatus};
 
-use crate::support::{FAILING, arg, read, read_json, read_junit, requirement, sightline, temp_dir, unescape_html};
+use crate::support::{
+    FAILING, arg, case_output, read, read_json, read_junit, requirement, sightline, temp_dir, unescape_html,
+};
 
 /// The bundled urban junction for one run, with d_min of 1 cm: no road user
 /// comes that close, and six anticipation times are measured.
@@ -79,7 +81,7 @@ fn requirements_with_nothing_to_judge_are_not_exercised_and_fail_the_run() {
     let suite = &junit.test_suites[0];
     assert_eq!((suite.tests, suite.failures, suite.errors), (6, 4, 0));
     for case in &suite.test_cases {
-        let verdict = case.properties.iter().find(|p| p.name.as_str() == "verdict").unwrap();
+        let verdict = case_output(case)["verdict"].clone();
         match (case.name.as_str(), &case.status) {
             ("IDLE-ANT-MEDIAN", TestCaseStatus::Success { .. }) => {}
             ("IDLE-MISS-ACCEPTED", TestCaseStatus::Skipped { message, .. }) => {
@@ -104,7 +106,7 @@ fn requirements_with_nothing_to_judge_are_not_exercised_and_fail_the_run() {
                     "{message}"
                 );
                 assert!(message.contains("; n = "), "{message}");
-                assert_eq!(verdict.value.as_str(), "not_exercised");
+                assert_eq!(verdict, "not_exercised");
             }
             (name, status) => panic!("{name}: {status:?}"),
         }
@@ -116,7 +118,7 @@ fn requirements_with_nothing_to_judge_are_not_exercised_and_fail_the_run() {
     assert!(html.contains(r#"data-verdict="not_exercised" data-gate="fail""#));
     assert!(html.contains("NOT EXERCISED:\n  1 of 6 requirements pass, 5 not exercised (1 accepted)."));
     assert!(html.contains(
-        r##"<li data-requirement="IDLE-WARN" data-verdict="not_exercised"><a href="#req-IDLE-WARN">IDLE-WARN</a> not exercised: measured — (smallest warning_time of n = 0 objects that came within d_min of the ego), threshold ≥ 1.5000, margin —, n = 0.</li>"##
+        r##"<li data-requirement="IDLE-WARN" data-verdict="not_exercised"><a href="#req-IDLE-WARN" class="id">IDLE-WARN</a> not exercised: measured — (smallest warning_time of n = 0 objects that came within d_min of the ego), threshold ≥ 1.5 s, margin —, n = 0.</li>"##
     ));
     assert!(html.contains("accepted: d_min is 1 cm in this fixture, so no close approach is expected."));
 }
@@ -158,11 +160,11 @@ fn the_measured_column_says_what_it_holds() {
     let html = unescape_html(&read(&out.join("report.html")));
     // The failing requirement in the banner, at its point, with its numbers.
     assert!(html.contains(
-        r##"<a href="#req-NOISE-ACC-01">NOISE-ACC-01</a> fail at field.masses.gamma=30: measured 0.9881 (value over n = 1600 cells), threshold ≥ 0.9950, margin -0.0069, n = 1,600.</li>"##
+        r##"<a href="#req-NOISE-ACC-01" class="id">NOISE-ACC-01</a> fail at field.masses.gamma=30: measured 0.9881 (value over n = 1600 cells), threshold ≥ 0.995, margin -0.006875, n = 1,600.</li>"##
     ), "{html}");
     assert!(html.contains(r#"<td class="num">0.9881<div class="what">value over n = 1600 cells</div></td>"#));
     // Each point's details list every metric with its n.
     assert!(html.contains(
-        r#"<tr><td class="text">accuracy</td><td class="text">cells</td><td class="num">0.9881</td><td class="num">1,600</td></tr>"#
+        r#"<tr><td class="text">accuracy</td><td class="text">cells</td><td class="text">1</td><td class="num">0.9881</td><td class="num">1,600</td></tr>"#
     ));
 }

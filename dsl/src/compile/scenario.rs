@@ -16,9 +16,9 @@ use super::traces::{self, Imported};
 use super::vary;
 use crate::de::from_node;
 use crate::error::{Error, ErrorKind, Errors, Location};
-use crate::model::{Assignment, Axis, Experiment, Label, Scenario, Settings, Sweep, display_value};
+use crate::model::{Assignment, Axis, Document, Experiment, Label, Paper, Scenario, Settings, Sweep, display_value};
 use crate::path::Path;
-use crate::raw::RawScenario;
+use crate::raw::{RawDocument, RawPaper, RawScenario};
 use crate::schema::AGENTS;
 use crate::yaml::{self, Node, Value};
 
@@ -159,8 +159,25 @@ fn compile_inner(file: &str, source: &str, options: &Options<'_>) -> Result<Scen
             imports: imported.map(|i| i.files).unwrap_or_default(),
             vary,
             record,
+            document: document(raw.document),
         }
     }))
+}
+
+/// The `document` section: it only labels the report, so nothing is checked
+/// beyond its form.
+fn document(raw: Option<RawDocument>) -> Document {
+    let raw = raw.unwrap_or_default();
+    Document {
+        version: raw.version,
+        author: raw.author,
+        reviewer: raw.reviewer,
+        approver: raw.approver,
+        paper: match raw.paper {
+            Some(RawPaper::Letter) => Paper::Letter,
+            Some(RawPaper::A4) | None => Paper::A4,
+        },
+    }
 }
 
 fn check_version(ctx: &mut Context<'_>) {
@@ -196,7 +213,15 @@ fn check_version(ctx: &mut Context<'_>) {
 /// Top-level sections read once for the whole scenario, not per sweep
 /// combination: a combination is compiled from the file without them, so that a
 /// long sweep axis is not copied and read again at every point.
-const READ_ONCE: [&str; 6] = ["sweep", "sweeps", "vary", "requirements", "references", "record"];
+const READ_ONCE: [&str; 7] = [
+    "sweep",
+    "sweeps",
+    "vary",
+    "requirements",
+    "references",
+    "record",
+    "document",
+];
 
 /// The file without its [`READ_ONCE`] sections.
 fn without_read_once(tree: &Node) -> Node {

@@ -1,6 +1,7 @@
 //! The metrics a requirement checks: their names, which kinds of scenario
 //! measure them, what their sample size n counts, and the values they take
-//! ([`ValueDomain`], shared with signals and object properties).
+//! ([`ValueDomain`], shared with signals and object properties) and their
+//! units ([`Unit`]).
 
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
@@ -443,6 +444,85 @@ impl Metric {
             | Self::BaselineAnticipationP95
             | Self::BaselineObjectAnticipationMedian
             | Self::BaselineObjectAnticipationP95 => ValueDomain::NonNegative,
+        }
+    }
+
+    /// The unit its values are in (the report writes it beside every value).
+    pub fn unit(self) -> Unit {
+        match self {
+            Self::BelowThreshold
+            | Self::FalseAlarms
+            | Self::MissedDetections
+            | Self::ConfidentErrors
+            | Self::DecidedUnknown
+            | Self::Unobserved
+            | Self::TotalConflictCells
+            | Self::WeightedCells => Unit::Cells,
+            Self::MessageAgeMean
+            | Self::MessageAgeP95
+            | Self::AnticipationMedian
+            | Self::AnticipationP95
+            | Self::ObjectAnticipationMedian
+            | Self::ObjectAnticipationP95
+            | Self::BaselineAnticipationMedian
+            | Self::BaselineAnticipationP95
+            | Self::BaselineObjectAnticipationMedian
+            | Self::BaselineObjectAnticipationP95 => Unit::Seconds,
+            Self::BytesPerSecondPerAgent | Self::ChannelLoad | Self::BaselineChannelLoad => Unit::BytesPerSecond,
+            Self::InfrastructureContribution => Unit::Objects,
+            Self::MissedCriticals
+            | Self::ObjectsWarnedBeforeSeen
+            | Self::ObjectsWarnedNeverSeen
+            | Self::ObjectsSeenFirst
+            | Self::ObjectsNeverKnown => Unit::ObjectsPerRun,
+            // Shares, rates, probabilities, a relative gain, a mean mass or
+            // entropy bounded by 1, a Brier score.
+            _ => Unit::One,
+        }
+    }
+}
+
+/// The unit of a measured quantity, one source of truth for the evidence
+/// (results.json's `check.unit`, the report's columns and values, JUnit).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Unit {
+    /// Dimensionless: a share, a rate, a probability, a ratio or a gain (ISO
+    /// 80000-1 writes its unit as 1).
+    One,
+    /// Grid cells.
+    Cells,
+    /// Seconds.
+    Seconds,
+    /// Metres.
+    Metres,
+    /// Bytes per second.
+    BytesPerSecond,
+    /// Road users (a mean over steps is not a whole number).
+    Objects,
+    /// Road users per run (the mean over a point's pooled runs).
+    ObjectsPerRun,
+}
+
+impl Unit {
+    /// The symbol written after a value: `1` for a dimensionless quantity,
+    /// which the report leaves off values and writes in column heads.
+    pub fn symbol(self) -> &'static str {
+        match self {
+            Self::One => "1",
+            Self::Cells => "cells",
+            Self::Seconds => "s",
+            Self::Metres => "m",
+            Self::BytesPerSecond => "B/s",
+            Self::Objects => "objects",
+            Self::ObjectsPerRun => "objects/run",
+        }
+    }
+
+    /// `value` followed by the symbol (none for a dimensionless value).
+    pub fn with(self, value: &str) -> String {
+        match self {
+            Self::One => value.to_string(),
+            other => format!("{value} {}", other.symbol()),
         }
     }
 }

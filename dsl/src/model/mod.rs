@@ -15,15 +15,15 @@ pub use field::{ErrorModel, Field, Layout, Masses, Truth};
 pub use fusion::{
     Decision, Fusion, FusionMethod, Rule, SourceCombination, Switch, SwitchMeasure, WeightScaling, Weighting,
 };
-pub use metric::{Metric, ValueDomain};
+pub use metric::{Metric, Unit, ValueDomain};
 pub use requirement::{
     Bound, Check, Comparison, Invariant, ObjectProperty, ObjectSelection, OverSeeds, RateBound, Reference, Requirement,
     Signal, Statistic, Temporal,
 };
 pub(crate) use scenario::grid_every;
 pub use scenario::{
-    Assignment, Axis, DEFAULT_START, Experiment, Grid, Import, ImportKind, Label, Occupancy, Point, Record, Scenario,
-    Settings, Setup, Sweep, display_value,
+    Assignment, Axis, DEFAULT_START, Document, Experiment, Grid, Import, ImportKind, Label, Occupancy, Paper, Point,
+    Record, Scenario, Settings, Setup, Sweep, display_value,
 };
 pub use semantic::{
     Area, Baseline, Caution, Crosswalk, Driving, Following, InteractionArea, PedestrianTraffic, RiskScope, RsuSight,

@@ -4,7 +4,7 @@
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
-use super::{AgentKind, Metric, ValueDomain};
+use super::{AgentKind, Metric, Unit, ValueDomain};
 use crate::Location;
 
 /// A requirement with its check and the sweep points it applies to.
@@ -133,6 +133,31 @@ pub enum Check {
         /// Numerical tolerance.
         tolerance: f64,
     },
+}
+
+impl Check {
+    /// The unit of the value it compares with its threshold: the metric's,
+    /// signal's or property's; 1 for a ratio of two metrics, a share of seeds
+    /// and an invariant's tolerance.
+    pub fn unit(&self) -> Unit {
+        match *self {
+            Self::Metric {
+                over_seeds:
+                    Some(OverSeeds {
+                        statistic: Statistic::Share { .. },
+                        ..
+                    }),
+                ..
+            }
+            | Self::Compare {
+                by: Comparison::Ratio, ..
+            }
+            | Self::Invariant { .. } => Unit::One,
+            Self::Metric { metric, .. } | Self::Compare { metric, .. } => metric.unit(),
+            Self::Temporal { signal, .. } => signal.unit(),
+            Self::PerObject { property, .. } => property.unit(),
+        }
+    }
 }
 
 /// How a comparison combines a metric with the other.
@@ -271,6 +296,15 @@ impl Signal {
             Self::TimeToConflict => ValueDomain::NonNegative,
         }
     }
+
+    /// The unit of its values.
+    pub fn unit(self) -> Unit {
+        match self {
+            Self::OccupiedRecall | Self::BlindRecall | Self::OccupiedPrecision => Unit::One,
+            Self::RsuOnlyObjects => Unit::Objects,
+            Self::TimeToConflict => Unit::Seconds,
+        }
+    }
 }
 
 /// Properties of road users a per-object check bounds: of the close approaches
@@ -343,6 +377,14 @@ impl ObjectProperty {
         match self {
             Self::WarningTime | Self::Anticipation | Self::ClosestDistance => ValueDomain::NonNegative,
             Self::WarningLead | Self::KnowledgeLead => ValueDomain::Real,
+        }
+    }
+
+    /// The unit of its values.
+    pub fn unit(self) -> Unit {
+        match self {
+            Self::ClosestDistance => Unit::Metres,
+            _ => Unit::Seconds,
         }
     }
 }

@@ -35,6 +35,45 @@ pub struct Scenario {
     pub vary: Vec<super::Vary>,
     /// What `sightline run` records into `run.mcap`; `None`: no recording.
     pub record: Option<Record>,
+    /// The report as a controlled document (language section `document`).
+    pub document: Document,
+}
+
+/// The report as a controlled document: who wrote, reviewed and approved it,
+/// its version and its paper (language section `document`).
+#[derive(Debug, Clone, Default, PartialEq, Eq, Serialize)]
+pub struct Document {
+    /// The document's version as the organisation numbers it.
+    pub version: Option<String>,
+    /// Its author.
+    pub author: Option<String>,
+    /// Its reviewer.
+    pub reviewer: Option<String>,
+    /// Its approver.
+    pub approver: Option<String>,
+    /// The paper it is laid out for when printed.
+    pub paper: Paper,
+}
+
+/// The paper a report is laid out for when printed.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Paper {
+    /// ISO A4, 210 × 297 mm (the default).
+    #[default]
+    A4,
+    /// US Letter, 8.5 × 11 in.
+    Letter,
+}
+
+impl Paper {
+    /// The CSS `@page` size: `A4` or `letter`.
+    pub fn css(self) -> &'static str {
+        match self {
+            Self::A4 => "A4",
+            Self::Letter => "letter",
+        }
+    }
 }
 
 /// What `sightline run` records into `run.mcap` (language section `record`).

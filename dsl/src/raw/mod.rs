@@ -11,6 +11,7 @@
 //! and `compile` checks; ids and references are checked in `compile`.
 
 mod agents;
+mod document;
 mod field;
 mod fusion;
 mod perception;
@@ -25,6 +26,7 @@ mod v2x;
 mod world;
 
 pub(crate) use agents::RawAgent;
+pub(crate) use document::{RawDocument, RawPaper};
 pub(crate) use field::{RawField, RawLayout, RawMasses, RawTruth};
 pub(crate) use fusion::{RawDecision, RawFusion, RawGrid};
 pub(crate) use perception::RawPerception;

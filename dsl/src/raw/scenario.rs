@@ -6,6 +6,7 @@ use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use super::agents::RawAgent;
+use super::document::RawDocument;
 use super::field::RawField;
 use super::fusion::{RawDecision, RawFusion, RawGrid};
 use super::perception::RawPerception;
@@ -31,6 +32,10 @@ pub(crate) struct RawScenario {
     /// What the scenario models and why; shown in reports.
     #[serde(default)]
     pub description: String,
+    /// The report as a controlled document: version, author, reviewer,
+    /// approver and paper size (they label the report only).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub document: Option<RawDocument>,
     /// Seed of every random stream (0 to 2⁶⁴ − 1). The same file and seed give
     /// byte-identical results.
     #[serde(default)]

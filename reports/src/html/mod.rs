@@ -4,14 +4,17 @@
 //! only lays them out.
 //!
 //! - `page`: the page's view (banner, provenance, context) and [`html`];
+//! - `document`: document control, scope and ODD, the self-test, the
+//!   scenario file verbatim;
 //! - `requirement`: each requirement, its check in words and its points;
 //! - `sweep`: the results table of each sweep and the published comparisons;
 //! - `point`: each point's sample sizes and counts;
 //! - `format`: numbers for people, and the tables every section lays out.
 
 pub(crate) use format::{number, or_dash};
-pub use page::html;
+pub use page::{RunPage, html};
 
+mod document;
 mod format;
 mod page;
 mod point;

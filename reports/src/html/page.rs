@@ -4,8 +4,9 @@
 
 use serde::Serialize;
 
-use sightline_dsl::display_value;
+use sightline_dsl::{Scenario, display_value};
 
+use super::document::{AppendixView, DocumentView, SelftestView, appendix, document, scope, selftest};
 use super::format::TableView;
 use super::point::{point_body, samples_table};
 use super::requirement::{Finding, RequirementView, finding, requirement_view};
@@ -15,22 +16,34 @@ use crate::picture::Pictures;
 use crate::results::{Results, Status, Summary};
 use crate::template::{TemplateError, Templates};
 
-/// Renders the report with `templates` (a [`Page::Run`](crate::Page::Run)
-/// set). `reproduce` is the command that re-creates the run; `pictures` holds
-/// the grid pictures of each point (world points only), `charts` the charts of
-/// each point, `sweep_charts` those of each sweep.
-pub fn html(
-    results: &Results,
-    reproduce: &str,
-    pictures: &[Option<Pictures>],
-    charts: &[Vec<Chart>],
-    sweep_charts: &[Vec<Chart>],
-    templates: &Templates,
-) -> Result<String, TemplateError> {
-    let mut view = View::new(results, reproduce, pictures, charts);
-    for (sweep, charts) in view.sweeps.iter_mut().zip(sweep_charts) {
+/// What a run's page shows beyond its results.
+#[derive(Debug, Clone, Copy)]
+pub struct RunPage<'a> {
+    /// The scenario as compiled (its scope and its `document` section).
+    pub scenario: &'a Scenario,
+    /// The scenario file's text, shown verbatim in the appendix.
+    pub text: &'a str,
+    /// The command that re-creates the run.
+    pub reproduce: &'a str,
+    /// The grid pictures of each point (world points only).
+    pub pictures: &'a [Option<Pictures>],
+    /// The charts of each point.
+    pub charts: &'a [Vec<Chart>],
+    /// The charts of each sweep.
+    pub sweep_charts: &'a [Vec<Chart>],
+}
+
+/// Renders the report of `results` with `templates` (a
+/// [`Page::Run`](crate::Page::Run) set).
+pub fn html(results: &Results, page: &RunPage<'_>, templates: &Templates) -> Result<String, TemplateError> {
+    let mut view = View::new(results, page.reproduce, page.pictures, page.charts);
+    for (sweep, charts) in view.sweeps.iter_mut().zip(page.sweep_charts) {
         sweep.charts.clone_from(charts);
     }
+    view.document = Some(document(results, page.scenario));
+    view.scope = scope(page.scenario);
+    view.selftest = Some(selftest());
+    view.appendix = Some(appendix(results, page.text));
     templates.render(&view, results)
 }
 
@@ -52,6 +65,14 @@ struct View<'a> {
     sweeps: Vec<SweepView>,
     comparisons: Vec<ComparisonView>,
     points: Vec<PointView>,
+    /// Document control and the paper size.
+    document: Option<DocumentView>,
+    /// The scope and operational design domain, (aspect, value) rows.
+    scope: Vec<(&'static str, String)>,
+    /// The tool's self-test, run in this process.
+    selftest: Option<SelftestView>,
+    /// The scenario file verbatim.
+    appendix: Option<AppendixView>,
 }
 
 #[derive(Serialize)]
@@ -103,6 +124,10 @@ impl<'a> View<'a> {
                     }
                 })
                 .collect(),
+            document: None,
+            scope: Vec::new(),
+            selftest: None,
+            appendix: None,
         }
     }
 }

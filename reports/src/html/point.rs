@@ -5,17 +5,17 @@
 use sightline_dsl::Metric;
 use sightline_engine::outcome::{DELIVERY_BIN, DENSITY_BIN, quantile};
 
-use super::format::{TableView, number, or_dash};
+use super::format::{TableView, metric_unit, number, or_dash};
 use crate::results::{DensityRow, Detail, ObjectCategory, ObjectList, ObjectResult, PointResult, SemanticCounts};
 
 const BAND_COLUMNS: [&str; 7] = [
     "distance to nearest sensor",
     "cells",
-    "accuracy",
-    "below threshold",
-    "false alarms",
-    "missed detections",
-    "mean conflict",
+    "accuracy (1)",
+    "below threshold (cells)",
+    "false alarms (cells)",
+    "missed detections (cells)",
+    "mean conflict (1)",
 ];
 
 /// Every metric the point measures, with its sample size and what it counts.
@@ -32,6 +32,7 @@ pub(super) fn samples_table(p: &PointResult) -> TableView {
             vec![
                 name.clone(),
                 population.to_string(),
+                metric_unit(name).to_string(),
                 or_dash(p.metrics.get(name)),
                 number(*n as f64),
             ]
@@ -39,9 +40,9 @@ pub(super) fn samples_table(p: &PointResult) -> TableView {
         .collect();
     TableView {
         caption: "Every metric with its sample size n (— where the population is empty)".into(),
-        head: ["metric", "n counts", "value", "n"].map(String::from).to_vec(),
+        head: ["metric", "n counts", "unit", "value", "n"].map(String::from).to_vec(),
         rows,
-        text_columns: 2,
+        text_columns: 3,
     }
 }
 
@@ -122,9 +123,14 @@ pub(super) fn point_body(p: &PointResult) -> (String, Vec<TableView>) {
                           (self-report left out)"
                     .into(),
                 text_columns: 1,
-                head: ["distance", "occupied cell-steps (n)", "decided Occupy", "recall"]
-                    .map(String::from)
-                    .to_vec(),
+                head: [
+                    "distance",
+                    "occupied cell-steps (n)",
+                    "decided Occupy (cell-steps)",
+                    "recall (1)",
+                ]
+                .map(String::from)
+                .to_vec(),
                 rows: c
                     .recall_by_distance
                     .iter()
@@ -204,7 +210,9 @@ fn semantic_tables(c: &SemanticCounts, density: &[DensityRow]) -> Vec<TableView>
     let by_density = TableView {
         caption: "Objects the ego knows only through an RSU, by traffic density".into(),
         text_columns: 1,
-        head: ["objects per km", "steps", "median", "mean"].map(String::from).to_vec(),
+        head: ["objects per km", "steps", "median (objects)", "mean (objects)"]
+            .map(String::from)
+            .to_vec(),
         rows: density
             .iter()
             .map(|r| {
@@ -220,9 +228,14 @@ fn semantic_tables(c: &SemanticCounts, density: &[DensityRow]) -> Vec<TableView>
     let by_distance = TableView {
         caption: "Messages to the ego by RSU–ego distance".into(),
         text_columns: 1,
-        head: ["distance", "sent", "received", "delivery ratio"]
-            .map(String::from)
-            .to_vec(),
+        head: [
+            "distance",
+            "sent (messages)",
+            "received (messages)",
+            "delivery ratio (1)",
+        ]
+        .map(String::from)
+        .to_vec(),
         rows: c
             .delivery_by_distance
             .iter()
@@ -243,9 +256,17 @@ fn semantic_tables(c: &SemanticCounts, density: &[DensityRow]) -> Vec<TableView>
     let anticipation = TableView {
         caption: "Anticipation time, seconds (type 7 quantiles over the pooled objects)".into(),
         text_columns: 0,
-        head: ["objects", "min", "25 %", "median", "75 %", "95 %", "max"]
-            .map(String::from)
-            .to_vec(),
+        head: [
+            "objects",
+            "min (s)",
+            "25 % (s)",
+            "median (s)",
+            "75 % (s)",
+            "95 % (s)",
+            "max (s)",
+        ]
+        .map(String::from)
+        .to_vec(),
         rows: vec![
             std::iter::once(number(c.anticipation.len() as f64))
                 .chain(quantiles.iter().map(|&q| or_dash(quantile(&c.anticipation, q))))
@@ -280,7 +301,7 @@ fn object_tables(objects: &ObjectList) -> [TableView; 2] {
             objects.relevant
         ),
         text_columns: 1,
-        head: vec!["category".into(), "road users".into()],
+        head: vec!["category".into(), "road users (objects)".into()],
         rows: [
             (
                 "warned_before_seen: named by V2X before the ego saw it",
@@ -313,14 +334,14 @@ fn object_tables(objects: &ObjectList) -> [TableView; 2] {
             "id",
             "class",
             "category",
-            "relevant",
-            "seen",
-            "V2X",
-            "warned",
-            "closest at",
-            "closest, m",
-            "least TTC",
-            "anticipation",
+            "relevant (s)",
+            "seen (s)",
+            "V2X (s)",
+            "warned (s)",
+            "closest at (s)",
+            "closest (m)",
+            "least TTC (s)",
+            "anticipation (s)",
         ]
         .map(String::from)
         .to_vec(),

@@ -4,7 +4,7 @@
 
 use serde::Serialize;
 
-use super::format::{number, or_dash};
+use super::format::{number, with_unit};
 use crate::results::{CheckInfo, RateBound, RequirementResult, Statistic};
 
 /// A requirement that did not pass, as the banner names it.
@@ -37,6 +37,8 @@ pub(super) struct RequirementView {
     text: String,
     line: usize,
     check: String,
+    /// The unit of the measured value, threshold and margin (`1`: dimensionless).
+    unit: &'static str,
     measured: String,
     /// What `measured` holds, with its n.
     what: String,
@@ -62,6 +64,7 @@ struct EvaluationView {
 
 pub(super) fn finding(r: &RequirementResult) -> Finding {
     let decisive = r.points.iter().find(|p| p.point == r.point);
+    let unit = r.check.unit;
     Finding {
         id: r.id.clone(),
         anchor: format!("req-{}", r.id),
@@ -70,10 +73,14 @@ pub(super) fn finding(r: &RequirementResult) -> Finding {
         fails_run: r.fails_run,
         accepted: r.accept_not_exercised.clone(),
         label: decisive.map(|p| p.label.clone()).unwrap_or_default(),
-        measured: or_dash(r.value),
+        measured: with_unit(r.value, unit),
         what: r.measured.clone(),
-        threshold: format!("{} {}", relation_sign(r.check.relation), number(r.threshold)),
-        margin: or_dash(r.margin),
+        threshold: format!(
+            "{} {}",
+            relation_sign(r.check.relation),
+            with_unit(Some(r.threshold), unit)
+        ),
+        margin: with_unit(r.margin, unit),
         n: r.n.map_or_else(|| "—".into(), |n| number(n as f64)),
         message: r.message.clone(),
     }
@@ -89,16 +96,18 @@ fn relation_sign(relation: &str) -> &str {
 }
 
 pub(super) fn requirement_view(r: &RequirementResult) -> RequirementView {
+    let unit = r.check.unit;
     RequirementView {
         id: r.id.clone(),
         anchor: format!("req-{}", r.id),
         text: r.text.clone(),
         line: r.line,
         check: describe_check(&r.check),
-        measured: or_dash(r.value),
+        unit,
+        measured: with_unit(r.value, unit),
         what: r.measured.clone(),
-        threshold: number(r.threshold),
-        margin: or_dash(r.margin),
+        threshold: with_unit(Some(r.threshold), unit),
+        margin: with_unit(r.margin, unit),
         verdict: r.verdict.name(),
         words: r.verdict.words(),
         accepted: r.accept_not_exercised.clone(),
@@ -114,9 +123,9 @@ pub(super) fn requirement_view(r: &RequirementResult) -> RequirementView {
                 },
                 verdict: p.verdict.name(),
                 words: p.verdict.words(),
-                measured: or_dash(p.value),
+                measured: with_unit(p.value, unit),
                 what: p.measured.clone(),
-                margin: or_dash(p.margin),
+                margin: with_unit(p.margin, unit),
                 message: p.message.clone(),
             })
             .collect(),
@@ -124,7 +133,7 @@ pub(super) fn requirement_view(r: &RequirementResult) -> RequirementView {
 }
 
 fn describe_check(check: &CheckInfo) -> String {
-    let (name, threshold) = (check.name, number(check.threshold));
+    let (name, threshold) = (check.name, with_unit(Some(check.threshold), check.unit));
     let relation = match check.relation {
         "at_least" | "at_most" => format!("{name} {} {threshold}", relation_sign(check.relation)),
         _ => return format!("invariant {name} (tolerance {threshold})"),

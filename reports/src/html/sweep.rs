@@ -6,7 +6,7 @@ use serde::Serialize;
 
 use sightline_dsl::display_value;
 
-use super::format::{TableView, number, or_dash};
+use super::format::{TableView, head, metric_unit, number, or_dash, with_unit};
 use crate::chart::Chart;
 use crate::results::{PointResult, Results};
 
@@ -30,11 +30,51 @@ const TABLE_METRICS: [&str; 15] = [
     "mean_conflict",
 ];
 
+/// The most value columns a sweep table holds beside its axes: a wider one is
+/// split into several, each with the axes, so that it prints on A4 portrait.
+const COLUMNS_PER_TABLE: usize = 6;
+
 #[derive(Serialize)]
 pub(super) struct SweepView {
     title: String,
+    /// The table, split into parts of at most [`COLUMNS_PER_TABLE`] value
+    /// columns beside the axes.
+    tables: Vec<TableView>,
+    /// The first part (the whole table when it is narrow enough).
     table: TableView,
     pub(super) charts: Vec<Chart>,
+}
+
+/// A sweep's view: its table, and that table in parts narrow enough to print.
+fn sweep_view(title: String, table: TableView) -> SweepView {
+    let axes = table.text_columns;
+    let values = table.head.len().saturating_sub(axes);
+    let parts = values.div_ceil(COLUMNS_PER_TABLE).max(1);
+    let part = |i: usize| {
+        let columns: Vec<usize> = (0..axes)
+            .chain(axes + i * COLUMNS_PER_TABLE..(axes + (i + 1) * COLUMNS_PER_TABLE).min(table.head.len()))
+            .collect();
+        TableView {
+            caption: if parts > 1 {
+                format!("Part {} of {parts}", i + 1)
+            } else {
+                String::new()
+            },
+            head: columns.iter().map(|&c| table.head[c].clone()).collect(),
+            rows: table
+                .rows
+                .iter()
+                .map(|row| columns.iter().map(|&c| row[c].clone()).collect())
+                .collect(),
+            text_columns: axes,
+        }
+    };
+    SweepView {
+        title,
+        tables: (0..parts).map(part).collect(),
+        table,
+        charts: Vec::new(),
+    }
 }
 
 #[derive(Serialize)]
@@ -55,11 +95,7 @@ type Row<'a> = (&'a PointResult, &'a [serde_json::Value]);
 pub(super) fn sweep_tables(results: &Results) -> Vec<SweepView> {
     if results.sweeps.is_empty() {
         let all: Vec<Row<'_>> = results.sweep.iter().map(|point| (point, &[][..])).collect();
-        return vec![SweepView {
-            title: "Results".into(),
-            table: sweep_table(results, &[], &all),
-            charts: Vec::new(),
-        }];
+        return vec![sweep_view("Results".into(), sweep_table(results, &[], &all))];
     }
     results
         .sweeps
@@ -71,11 +107,10 @@ pub(super) fn sweep_tables(results: &Results) -> Vec<SweepView> {
                 .iter()
                 .map(|row| (&results.sweep[row.point], &row.values[..]))
                 .collect();
-            SweepView {
-                title: format!("Results over {}", paths.join(" × ")),
-                table: sweep_table(results, &paths, &rows),
-                charts: Vec::new(),
-            }
+            sweep_view(
+                format!("Results over {}", paths.join(" × ")),
+                sweep_table(results, &paths, &rows),
+            )
         })
         .collect()
 }
@@ -93,11 +128,11 @@ fn sweep_table(results: &Results, axes: &[&str], rows: &[Row<'_>]) -> TableView 
     metrics.retain(|m| rows.iter().any(|(p, _)| p.metrics.0.iter().any(|(k, _)| k == m)));
     let has_published = |metric: &str| results.references.iter().any(|r| r.metric == metric);
 
-    let mut head: Vec<String> = axes.iter().map(|a| (*a).to_string()).collect();
+    let mut heads: Vec<String> = axes.iter().map(|a| (*a).to_string()).collect();
     for metric in &metrics {
-        head.push((*metric).to_string());
+        heads.push(head(metric, metric_unit(metric)));
         if has_published(metric) {
-            head.push(format!("{metric} (published)"));
+            heads.push(head(&format!("{metric}, published"), metric_unit(metric)));
         }
     }
     let rows = rows
@@ -125,7 +160,7 @@ fn sweep_table(results: &Results, axes: &[&str], rows: &[Row<'_>]) -> TableView 
         .collect();
     TableView {
         caption: String::new(),
-        head,
+        head: heads,
         rows,
         text_columns: axes.len(),
     }
@@ -136,16 +171,17 @@ pub(super) fn comparisons(results: &Results) -> Vec<ComparisonView> {
         .references
         .iter()
         .flat_map(|r| {
+            let unit = metric_unit(r.metric);
             r.points.iter().map(move |p| ComparisonView {
                 source: r.source.clone(),
                 label: p.label.clone(),
                 metric: r.metric,
-                published: number(r.published),
-                measured: or_dash(p.measured),
+                published: with_unit(Some(r.published), unit),
+                measured: with_unit(p.measured, unit),
                 ratio: p
                     .measured
                     .filter(|_| r.published != 0.0)
-                    .map_or_else(|| "—".into(), |m| format!("{:.2}×", m / r.published)),
+                    .map_or_else(|| "—".into(), |m| format!("{}×", number(m / r.published))),
             })
         })
         .collect()

@@ -16,6 +16,8 @@ pub struct Provenance {
     pub scenario_path: String,
     /// SHA-256 of the scenario file's bytes, lowercase hex.
     pub scenario_sha256: String,
+    /// The scenario file's text, for the report's appendix.
+    pub scenario_text: String,
     /// The recording written beside the evidence, when there is one.
     pub recording: Option<RecordingInfo>,
     /// The platform, the start and the duration of the run.

@@ -92,6 +92,10 @@ pub struct CheckInfo {
     pub relation: &'static str,
     /// The threshold or tolerance.
     pub threshold: f64,
+    /// The unit of the value compared with the threshold, and of the
+    /// threshold and margin: `1` (dimensionless), `cells`, `s`, `m`, `B/s`,
+    /// `objects` or `objects/run`.
+    pub unit: &'static str,
     /// For a check over seeds: how many, at which confidence, bounding what.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub over_seeds: Option<OverSeeds>,

@@ -50,6 +50,7 @@ fn check_info(requirement: &Requirement) -> CheckInfo {
         name,
         relation: relation(bound),
         threshold: bound.threshold(),
+        unit: requirement.check.unit().symbol(),
         over_seeds: None,
         within: None,
         relative_to: None,

@@ -1,0 +1,225 @@
+//! The parts of the page that make it a document an assessor files: its
+//! control (id, version, date, who wrote, reviewed and approved it), the
+//! scope and operational design domain of the scenario, the result of the
+//! tool's self-test run in this process, and the scenario file verbatim.
+
+use serde::Serialize;
+use sightline_dsl::{Experiment, Scenario, Setup};
+
+use super::format::number;
+use crate::results::Results;
+use crate::sha256_hex;
+
+/// The document-control table and the paper the page is laid out for.
+#[derive(Serialize)]
+pub(super) struct DocumentView {
+    /// (name, value) rows.
+    pub(super) control: Vec<(&'static str, String)>,
+    /// The CSS `@page` size: `A4` or `letter`.
+    pub(super) paper: &'static str,
+}
+
+/// The document id: the first 16 hex digits of the SHA-256 of results.json as
+/// written without `execution`, so that the same run gives the same id on any
+/// machine and any change to what it found, to the scenario or to the tool
+/// gives another.
+pub(super) fn document_id(results: &Results) -> String {
+    let mut value = serde_json::to_value(results).expect("results serialize to JSON");
+    if let Some(object) = value.as_object_mut() {
+        object.remove("execution");
+    }
+    let text = serde_json::to_string(&value).expect("a JSON value serializes");
+    format!("SL-{}", &sha256_hex(text.as_bytes())[..16])
+}
+
+pub(super) fn document(results: &Results, scenario: &Scenario) -> DocumentView {
+    let d = &scenario.document;
+    let given = |v: &Option<String>| {
+        v.clone()
+            .unwrap_or_else(|| "— (not given: `document` in the scenario)".into())
+    };
+    let date = results.execution.started.get(..10).unwrap_or_default().to_string();
+    DocumentView {
+        control: vec![
+            ("Document id", document_id(results)),
+            ("Version", given(&d.version)),
+            ("Date", date),
+            ("Author", given(&d.author)),
+            ("Reviewer", given(&d.reviewer)),
+            ("Approver", given(&d.approver)),
+            (
+                "Paper",
+                match d.paper {
+                    sightline_dsl::Paper::A4 => "A4".into(),
+                    sightline_dsl::Paper::Letter => "US Letter".into(),
+                },
+            ),
+        ],
+        paper: d.paper.css(),
+    }
+}
+
+/// The scope and operational design domain of the scenario, as declared: what
+/// kind of experiment, where and how long, who and what is in it, how they
+/// sense, communicate and fuse, and what is swept. One (aspect, value) row
+/// each, from the first point (the sweep rows say what changes).
+pub(super) fn scope(scenario: &Scenario) -> Vec<(&'static str, String)> {
+    let Some(point) = scenario.points.first() else {
+        return Vec::new();
+    };
+    let setup: &Setup = &point.setup;
+    let mut rows = Vec::new();
+    if let Some(occupancy) = &setup.occupancy {
+        let g = &occupancy.grid;
+        rows.push((
+            "Area",
+            format!(
+                "{} m × {} m from ({}, {}) m, cells of {} m",
+                number(g.cols as f64 * g.cell),
+                number(g.rows as f64 * g.cell),
+                number(g.origin[0]),
+                number(g.origin[1]),
+                number(g.cell)
+            ),
+        ));
+        rows.push(("Fusion", occupancy.fusion.label.clone()));
+    }
+    match &setup.experiment {
+        Experiment::Field(field) => {
+            rows.push((
+                "Experiment",
+                "static evidential field (seed 001): fixed sensors over a generated ground truth".into(),
+            ));
+            let sensors = match &field.layout {
+                sightline_dsl::Layout::Positions(positions) => positions.len(),
+                sightline_dsl::Layout::Random { count } => *count,
+            };
+            rows.push(("Sensors", format!("{sensors} fixed, range {} m", number(field.range))));
+        }
+        Experiment::World(world) => {
+            let kind = if world.semantic.is_some() {
+                "roadside units' semantic pipeline for an assisted ego (seed 002)"
+            } else {
+                "collective perception of connected vehicles (seed 000)"
+            };
+            rows.push(("Experiment", kind.into()));
+            rows.push((
+                "Time",
+                format!(
+                    "{} s in steps of {} s",
+                    number(world.steps as f64 * world.step),
+                    number(world.step)
+                ),
+            ));
+            rows.push((
+                "Road network",
+                format!("{} roads, {} occluders", world.roads.len(), world.occluders.len()),
+            ));
+            let mut kinds: Vec<(&str, usize)> = Vec::new();
+            for agent in &world.agents {
+                match kinds.iter_mut().find(|(k, _)| *k == agent.kind.name()) {
+                    Some((_, n)) => *n += 1,
+                    None => kinds.push((agent.kind.name(), 1)),
+                }
+            }
+            let agents: Vec<String> = kinds.iter().map(|(k, n)| format!("{n} {k}")).collect();
+            rows.push(("Road users and units", agents.join(", ")));
+            if let Some(traffic) = &world.traffic {
+                let vehicles = traffic
+                    .vehicles
+                    .as_ref()
+                    .map(|v| format!("vehicles {} per km", number(v.density_per_km)));
+                let pedestrians = traffic
+                    .pedestrians
+                    .as_ref()
+                    .map(|p| format!("pedestrians {} per minute", number(p.per_minute)));
+                let parts: Vec<String> = vehicles.into_iter().chain(pedestrians).collect();
+                rows.push(("Generated traffic", parts.join(", ")));
+            }
+            let radio = world.semantic.is_some() || world.perception.as_ref().is_some_and(|p| p.messages.is_some());
+            rows.push((
+                "V2X",
+                if radio {
+                    let v = &world.v2x;
+                    let model = serde_json::to_value(v.channel.model)
+                        .ok()
+                        .and_then(|m| m.as_str().map(str::to_string))
+                        .unwrap_or_default();
+                    format!(
+                        "channel {model}, penetration {}, latency {} s",
+                        number(v.penetration),
+                        number(v.latency)
+                    )
+                } else {
+                    "no radio: cooperating agents' grids reach the ego whole and at once".into()
+                },
+            ));
+        }
+    }
+    rows.push((
+        "Sweep",
+        if scenario.sweeps.is_empty() {
+            "none: one configuration".into()
+        } else {
+            scenario
+                .sweeps
+                .iter()
+                .map(|s| s.axes.iter().map(|a| a.path.clone()).collect::<Vec<_>>().join(" × "))
+                .collect::<Vec<_>>()
+                .join("; ")
+        },
+    ));
+    rows.push(("Configurations", scenario.points.len().to_string()));
+    rows
+}
+
+/// The tool's self-test, run in this process: every known answer of the
+/// engine and the oracles (`sightline selftest`).
+#[derive(Serialize)]
+pub(super) struct SelftestView {
+    held: usize,
+    total: usize,
+    rows: Vec<[String; 6]>,
+}
+
+pub(super) fn selftest() -> SelftestView {
+    let cases: Vec<_> = sightline_engine::known_answers()
+        .into_iter()
+        .chain(sightline_oracles::known_answers())
+        .collect();
+    SelftestView {
+        held: cases.iter().filter(|c| c.holds()).count(),
+        total: cases.len(),
+        rows: cases
+            .iter()
+            .map(|c| {
+                [
+                    c.id.to_string(),
+                    c.what.to_string(),
+                    format!("{:?}", c.expected),
+                    format!("{:?}", c.got),
+                    format!("{:?}", c.tolerance),
+                    if c.holds() { "pass" } else { "fail" }.to_string(),
+                ]
+            })
+            .collect(),
+    }
+}
+
+/// The scenario file as written, with its SHA-256, for the appendix.
+#[derive(Serialize)]
+pub(super) struct AppendixView {
+    path: String,
+    sha256: String,
+    lines: usize,
+    text: String,
+}
+
+pub(super) fn appendix(results: &Results, text: &str) -> AppendixView {
+    AppendixView {
+        path: results.scenario.path.clone(),
+        sha256: results.scenario.sha256.clone(),
+        lines: text.lines().count(),
+        text: text.to_string(),
+    }
+}
