@@ -186,6 +186,7 @@ fn draw_vehicle(
         },
         connected,
         sensors: Vec::new(),
+        antenna_m: None,
     }
 }
 
@@ -227,6 +228,7 @@ fn crossings(
             },
             connected: false,
             sensors: Vec::new(),
+            antenna_m: None,
         });
         count += 1;
         time += exponential(rng, mean_interval);

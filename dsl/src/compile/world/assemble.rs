@@ -58,10 +58,10 @@ pub(crate) fn world(ctx: &mut Context<'_>, raw: &RawScenario, imported: Option<&
         (None, _, _) => Some(None),
         _ => None,
     };
-    let crosswalks = crosswalks(ctx, &raw.crosswalks);
+    let crosswalks = crosswalks(ctx, &raw.crosswalks, imported);
     let interaction_areas = interaction_areas(ctx, &raw.interaction_areas, imported);
     let areas = match (&crosswalks, &interaction_areas) {
-        (Some(crosswalks), Some(interaction)) => areas(ctx, &raw.areas, crosswalks, interaction),
+        (Some(crosswalks), Some(interaction)) => areas(ctx, &raw.areas, crosswalks, interaction, imported),
         _ => None,
     };
     let traffic = raw
@@ -102,6 +102,7 @@ pub(crate) fn world(ctx: &mut Context<'_>, raw: &RawScenario, imported: Option<&
         driving: driving?,
         v2x: v2x?,
         semantic: semantic?,
+        uncovered: imported.and_then(|i| i.coverage(time.duration, time.step)).map(|w| w.message),
     })
 }
 

@@ -17,9 +17,23 @@ use crate::path::Path;
 use crate::raw::range;
 use crate::raw::{RawCrosswalk, RawDriving, RawInteractionArea, RawSemantic, RawTraffic, RawV2x};
 
-pub(super) fn crosswalks(ctx: &mut Context<'_>, raw: &[RawCrosswalk]) -> Option<Vec<Crosswalk>> {
+/// The declared crosswalks, then the crossings of `traces.net`.
+pub(super) fn crosswalks(
+    ctx: &mut Context<'_>,
+    raw: &[RawCrosswalk],
+    imported: Option<&Imported>,
+) -> Option<Vec<Crosswalk>> {
     let list = Path::root().key("crosswalks");
-    let mut ok = unique_ids(ctx, &list, raw.iter().map(|c| c.id.as_str()));
+    let crossings = imported.map_or(&[][..], |i| &i.crosswalks);
+    let crossing_ids: HashSet<&str> = crossings.iter().map(|c| c.id.as_str()).collect();
+    let mut ok = unique_ids(ctx, &list, raw.iter().map(|c| c.id.as_str()))
+        & distinct_from_imported(
+            ctx,
+            &list,
+            raw.iter().map(|c| c.id.as_str()),
+            &crossing_ids,
+            "a crossing of `traces.net`",
+        );
     for (i, crosswalk) in raw.iter().enumerate() {
         let path = list.index(i);
         let ends_ok =
@@ -41,6 +55,7 @@ pub(super) fn crosswalks(ctx: &mut Context<'_>, raw: &[RawCrosswalk]) -> Option<
                 to: c.to,
                 width: c.width,
             })
+            .chain(crossings.iter().cloned())
             .collect()
     })
 }
@@ -68,23 +83,28 @@ pub(super) fn interaction_areas(
     ok.then_some(areas)
 }
 
-/// The regions `areas` names for requirements: ids unique among themselves and
-/// distinct from every crosswalk and interaction area, so that an id selects
-/// one kind of region.
+/// The regions `areas` names for requirements, then the walking areas of
+/// `traces.net`: ids unique among themselves and distinct from every crosswalk
+/// and interaction area, so that an id selects one kind of region.
 pub(super) fn areas(
     ctx: &mut Context<'_>,
     raw: &[RawInteractionArea],
     crosswalks: &[Crosswalk],
     interaction: &[InteractionArea],
+    imported: Option<&Imported>,
 ) -> Option<Vec<InteractionArea>> {
     let list = Path::root().key("areas");
+    let walking = imported.map_or(&[][..], |i| &i.walking_areas);
+    let walking_ids: HashSet<&str> = walking.iter().map(|a| a.id.as_str()).collect();
     let crosswalk_ids: HashSet<&str> = crosswalks.iter().map(|c| c.id.as_str()).collect();
     let interaction_ids: HashSet<&str> = interaction.iter().map(|a| a.id.as_str()).collect();
     let ids = || raw.iter().map(|a| a.id.as_str());
     let ok = unique_ids(ctx, &list, ids())
         & distinct_from_imported(ctx, &list, ids(), &crosswalk_ids, "a crosswalk")
-        & distinct_from_imported(ctx, &list, ids(), &interaction_ids, "an interaction area");
-    let (areas, shapes_ok) = named_areas(ctx, &list, raw);
+        & distinct_from_imported(ctx, &list, ids(), &interaction_ids, "an interaction area")
+        & distinct_from_imported(ctx, &list, ids(), &walking_ids, "a walking area of `traces.net`");
+    let (mut areas, shapes_ok) = named_areas(ctx, &list, raw);
+    areas.extend_from_slice(walking);
     (ok && shapes_ok).then_some(areas)
 }
 

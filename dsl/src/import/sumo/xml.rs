@@ -72,6 +72,12 @@ pub(crate) fn error_at_pos(node: Node, pos: usize, message: String) -> SumoError
     }
 }
 
+/// Where element `node` starts (its `<`).
+pub(crate) fn location(node: Node) -> Location {
+    let pos = node.document().text_pos_at(node.range().start);
+    Location::new(pos.row as usize, pos.col as usize)
+}
+
 /// An error at the start (the `<`) of element `node`.
 pub(crate) fn element_error(node: Node, message: String) -> SumoError {
     error_at_pos(node, node.range().start, message)
