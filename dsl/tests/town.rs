@@ -65,11 +65,15 @@ fn crossings_are_crosswalks_and_walking_areas_named_areas() {
         // netconvert's crossings: 4 m wide, kerb to kerb across one lane each
         // way (and the bike lanes on the west arm).
         assert_eq!(crosswalk.width, 4.0, "{}", crosswalk.id);
-        let length = ((crosswalk.to[0] - crosswalk.from[0]).powi(2) + (crosswalk.to[1] - crosswalk.from[1]).powi(2)).sqrt();
+        let length =
+            ((crosswalk.to[0] - crosswalk.from[0]).powi(2) + (crosswalk.to[1] - crosswalk.from[1]).powi(2)).sqrt();
         assert!((6.0..=13.0).contains(&length), "{}: {length}", crosswalk.id);
     }
     let walking: Vec<&str> = world.areas.iter().map(|a| a.id.as_str()).collect();
-    assert!(walking.starts_with(&[":J_w0", ":J_w1", ":J_w2", ":J_w3"]), "{walking:?}");
+    assert!(
+        walking.starts_with(&[":J_w0", ":J_w1", ":J_w2", ":J_w3"]),
+        "{walking:?}"
+    );
 }
 
 #[test]
@@ -84,7 +88,13 @@ fn roads_leave_out_sidewalks_and_take_the_car_lane_s_width_and_speed() {
     assert_eq!((nj.lanes.len(), nj.lane_width, nj.speed_limit), (1, 3.2, 13.89));
     assert_eq!(road("ring_ws").speed_limit, 8.33);
     // Every road links on to another but at the dead ends.
-    assert!(world.roads.iter().filter(|r| r.links.is_empty()).all(|r| ["JW", "JN", "JS", "RE2", "RN2", "RS2"].contains(&r.id.as_str())));
+    assert!(
+        world
+            .roads
+            .iter()
+            .filter(|r| r.links.is_empty())
+            .all(|r| ["JW", "JN", "JS", "RE2", "RN2", "RS2"].contains(&r.id.as_str()))
+    );
 }
 
 #[test]
@@ -104,8 +114,14 @@ fn vehicle_types_give_kinds_and_sizes() {
     assert_eq!(body("walk_"), (AgentKind::Pedestrian, 0.215, 0.478));
     // A bicycle's centre is 0.8 m behind SUMO's front position, not 2.25 m.
     let bike = world.agents.iter().find(|a| a.id.starts_with("bike_")).unwrap();
-    let Motion::Trace { samples, .. } = &bike.motion else { panic!("a trace") };
-    let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../scenarios/sumo-town/town.fcd.xml")).unwrap();
+    let Motion::Trace { samples, .. } = &bike.motion else {
+        panic!("a trace")
+    };
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../scenarios/sumo-town/town.fcd.xml"
+    ))
+    .unwrap();
     let needle = format!("<vehicle id=\"{}\" x=\"", bike.id);
     let at = text.find(&needle).unwrap() + needle.len();
     let x: f64 = text[at..].split('"').next().unwrap().parse().unwrap();
@@ -121,9 +137,20 @@ fn points_of_interest_of_type_rsu_are_roadside_units_at_their_height() {
         .agents
         .iter()
         .filter(|a| a.kind == AgentKind::Rsu)
-        .map(|a| (a.id.as_str(), a.motion.clone(), a.antenna_m, a.connected, a.sensors.len()))
+        .map(|a| {
+            (
+                a.id.as_str(),
+                a.motion.clone(),
+                a.antenna_m,
+                a.connected,
+                a.sensors.len(),
+            )
+        })
         .collect();
-    let fixed = |x, y| Motion::Fixed { position: [x, y], heading: 0.0 };
+    let fixed = |x, y| Motion::Fixed {
+        position: [x, y],
+        heading: 0.0,
+    };
     assert_eq!(
         rsus,
         [
@@ -142,7 +169,9 @@ fn the_run_is_covered_and_nothing_but_dead_end_walking_areas_is_left_out() {
     let warnings: Vec<String> = scenario.warnings.iter().map(|w| w.message.clone()).collect();
     assert_eq!(
         warnings,
-        ["6 edges (`:E2_w0`, `:N_w0`, `:N2_w0`, `:S_w0`, `:S2_w0`, …) of the network (crossings or walking areas) \
-          enclose no area, so no crosswalk or area"]
+        [
+            "6 edges (`:E2_w0`, `:N_w0`, `:N2_w0`, `:S_w0`, `:S2_w0`, …) of the network (crossings or walking areas) \
+          enclose no area, so no crosswalk or area"
+        ]
     );
 }

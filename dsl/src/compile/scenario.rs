@@ -136,7 +136,11 @@ fn compile_inner(file: &str, source: &str, options: &Options<'_>) -> Result<Scen
     let record = record(&mut ctx, raw.record.as_ref(), options.record, points, start);
     let warnings = imported.as_ref().map_or_else(Vec::new, |imported| {
         let mut warnings = imported.warnings.clone();
-        warnings.extend(raw.time.as_ref().and_then(|time| imported.coverage(time.duration, time.step)));
+        warnings.extend(
+            raw.time
+                .as_ref()
+                .and_then(|time| imported.coverage(time.duration, time.step)),
+        );
         warnings
     });
     ctx.finish(compiled.map(Configurations::into_parts).map(|(points, rows)| {

@@ -55,19 +55,23 @@ pub(super) fn read_files(ctx: &mut Context<'_>, raw: &RawTraces, loader: Option<
         Some(written) => {
             let named = Named::Scenario(at.key("sumocfg"));
             let path = scenario_dir.join(written);
-            let config = reader.read(&named, &path, ImportKind::SumoConfig, true, parse_config).ok()?;
+            let config = reader
+                .read(&named, &path, ImportKind::SumoConfig, true, parse_config)
+                .ok()?;
             let dir = path.parent().unwrap_or(FsPath::new("")).to_path_buf();
             Some((config, path.display().to_string(), dir))
         }
         None => None,
     };
     let from_config = |pick: fn(&Config) -> Vec<&ConfigFile>| -> Vec<(Named, PathBuf)> {
-        config.iter().flat_map(|(config, file, dir)| {
-            pick(config)
-                .into_iter()
-                .map(|f| (Named::Config(file.clone(), f.location), dir.join(&f.path)))
-        })
-        .collect()
+        config
+            .iter()
+            .flat_map(|(config, file, dir)| {
+                pick(config)
+                    .into_iter()
+                    .map(|f| (Named::Config(file.clone(), f.location), dir.join(&f.path)))
+            })
+            .collect()
     };
     let from_scenario = |key: &str, written: &[String]| -> Vec<(Named, PathBuf)> {
         written
@@ -87,7 +91,9 @@ pub(super) fn read_files(ctx: &mut Context<'_>, raw: &RawTraces, loader: Option<
     let (fcd, fcd_named) = choose("fcd", raw.fcd.clone().map(|f| vec![f]), |c| c.fcd.iter().collect());
     let (net, net_named) = choose("net", raw.net.clone().map(|f| vec![f]), |c| c.net.iter().collect());
     let (routes, routes_named) = choose("routes", raw.routes.clone(), |c| c.routes.iter().collect());
-    let (poly, poly_named) = choose("poly", raw.poly.clone().map(|f| vec![f]), |c| c.additional.iter().collect());
+    let (poly, poly_named) = choose("poly", raw.poly.clone().map(|f| vec![f]), |c| {
+        c.additional.iter().collect()
+    });
     let Some((named, path)) = fcd.into_iter().next() else {
         let (path, message) = match &raw.sumocfg {
             Some(written) => (

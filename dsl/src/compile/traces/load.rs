@@ -69,7 +69,10 @@ pub(crate) fn load(ctx: &mut Context<'_>, raw: Option<&RawTraces>, loader: Optio
     let at = Path::root().key("traces");
     let files = read_files(ctx, raw, loader);
     let begin_ok = ctx.within(&at.key("begin"), raw.begin, range::TRACE_TIME);
-    let rsus_ok = raw.rsus.as_ref().is_none_or(|rsus| rsus_declared(ctx, &at.key("rsus"), rsus));
+    let rsus_ok = raw
+        .rsus
+        .as_ref()
+        .is_none_or(|rsus| rsus_declared(ctx, &at.key("rsus"), rsus));
     let (Some(files), true, true) = (files, begin_ok, rsus_ok) else {
         return None;
     };
@@ -114,7 +117,10 @@ pub(crate) fn load(ctx: &mut Context<'_>, raw: Option<&RawTraces>, loader: Optio
             warnings.push(Warning {
                 file: file.clone(),
                 location: *location,
-                message: format!("{count} <{name}> element{}: not read", if *count == 1 { "" } else { "s" }),
+                message: format!(
+                    "{count} <{name}> element{}: not read",
+                    if *count == 1 { "" } else { "s" }
+                ),
             });
         }
     }
@@ -294,7 +300,11 @@ impl Imported {
     /// the first step, or its last earlier than the last step, by more than a
     /// sample period (or a step, when longer).
     pub(crate) fn coverage(&self, duration: f64, step: f64) -> Option<Warning> {
-        let times = self.fcd.objects.iter().flat_map(|o| [o.samples.first(), o.samples.last()]);
+        let times = self
+            .fcd
+            .objects
+            .iter()
+            .flat_map(|o| [o.samples.first(), o.samples.last()]);
         let (first, last) = times
             .flatten()
             .map(|s| s.time - self.begin)

@@ -117,7 +117,10 @@ pub(super) fn bodies<'a>(
                     return None;
                 }
             };
-            let kind = match vtype.filter(|t| t.vclass.is_none()).and_then(|t| t.gui_shape.as_deref()) {
+            let kind = match vtype
+                .filter(|t| t.vclass.is_none())
+                .and_then(|t| t.gui_shape.as_deref())
+            {
                 Some(shape) if !object.is_person => shape_kind(shape).unwrap_or(kind),
                 _ if object.is_person => AgentKind::Pedestrian,
                 _ => kind,
@@ -258,11 +261,7 @@ pub(crate) fn trace_motion(imported: &Imported, object: &FcdObject, kind: AgentK
 /// The objects of the trace no declared agent replays or is named after, within
 /// the run's time span, as agents with their type's kind and size, no sensors
 /// and not connected.
-pub(crate) fn imported_agents(
-    imported: &Imported,
-    declared: &HashSet<&str>,
-    duration: f64,
-) -> Vec<Agent> {
+pub(crate) fn imported_agents(imported: &Imported, declared: &HashSet<&str>, duration: f64) -> Vec<Agent> {
     imported
         .objects()
         .filter(|(object, _)| !declared.contains(object.id.as_str()) && imported.overlaps(object, duration))
@@ -358,7 +357,10 @@ mod tests {
         let fcd = parse_fcd(FCD).unwrap();
         let others = vec![
             ("a.rou.xml".to_string(), parse_additional(TYPES).unwrap()),
-            ("b.add.xml".to_string(), parse_additional("<additional>\n<vType id=\"van\"/></additional>").unwrap()),
+            (
+                "b.add.xml".to_string(),
+                parse_additional("<additional>\n<vType id=\"van\"/></additional>").unwrap(),
+            ),
         ];
         let (file, location, message) = bodies(&fcd.objects, &others, "t.fcd.xml").unwrap_err();
         assert_eq!(

@@ -102,7 +102,9 @@ pub(crate) fn world(ctx: &mut Context<'_>, raw: &RawScenario, imported: Option<&
         driving: driving?,
         v2x: v2x?,
         semantic: semantic?,
-        uncovered: imported.and_then(|i| i.coverage(time.duration, time.step)).map(|w| w.message),
+        uncovered: imported
+            .and_then(|i| i.coverage(time.duration, time.step))
+            .map(|w| w.message),
     })
 }
 

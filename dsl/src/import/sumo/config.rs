@@ -115,7 +115,11 @@ fn files(option: Node) -> Result<Vec<ConfigFile>, SumoError> {
 fn one(option: Node, mut files: Vec<ConfigFile>) -> Result<Option<ConfigFile>, SumoError> {
     if files.len() > 1 {
         let attribute = xml::attribute(option, "value")?;
-        let message = format!("option `{}` names {} files; it takes one", option.tag_name().name(), files.len());
+        let message = format!(
+            "option `{}` names {} files; it takes one",
+            option.tag_name().name(),
+            files.len()
+        );
         return Err(xml::value_error(option, &attribute, message));
     }
     Ok(files.pop())
@@ -141,30 +145,43 @@ mod tests {
 "#;
 
     fn paths(files: &[ConfigFile]) -> Vec<(&str, String)> {
-        files.iter().map(|f| (f.path.as_str(), f.location.to_string())).collect()
+        files
+            .iter()
+            .map(|f| (f.path.as_str(), f.location.to_string()))
+            .collect()
     }
 
     #[test]
     fn reads_the_files_with_where_they_are_written() {
         let config = parse_config(CONFIG).unwrap();
         let net = config.net.unwrap();
-        assert_eq!((net.path.as_str(), net.location), ("town.net.xml", Location::new(4, 26)));
+        assert_eq!(
+            (net.path.as_str(), net.location),
+            ("town.net.xml", Location::new(4, 26))
+        );
         assert_eq!(
             paths(&config.routes),
-            [("vtypes.add.xml", "5:29".to_string()), ("town.rou.xml", "5:44".to_string())]
+            [
+                ("vtypes.add.xml", "5:29".to_string()),
+                ("town.rou.xml", "5:44".to_string())
+            ]
         );
         assert_eq!(
             paths(&config.additional),
-            [("town.poly.xml", "6:34".to_string()), ("pois.add.xml", "6:49".to_string())]
+            [
+                ("town.poly.xml", "6:34".to_string()),
+                ("pois.add.xml", "6:49".to_string())
+            ]
         );
         assert_eq!(config.fcd.unwrap().path, "out/town.fcd.xml");
     }
 
     #[test]
     fn options_outside_sections_and_short_names_are_read() {
-        let config =
-            parse_config(r#"<sumoConfiguration><net value="a.net.xml"/><routes value="b.rou.xml"/></sumoConfiguration>"#)
-                .unwrap();
+        let config = parse_config(
+            r#"<sumoConfiguration><net value="a.net.xml"/><routes value="b.rou.xml"/></sumoConfiguration>"#,
+        )
+        .unwrap();
         assert_eq!(config.net.unwrap().path, "a.net.xml");
         assert_eq!(paths(&config.routes), [("b.rou.xml", "1:59".to_string())]);
         assert_eq!(config.fcd, None);

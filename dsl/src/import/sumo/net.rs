@@ -451,9 +451,18 @@ mod tests {
     #[test]
     fn lanes_permit_what_allow_and_disallow_say() {
         let text = NET
-            .replace(r#"<lane id="AB_0" index="0""#, r#"<lane id="AB_0" index="0" allow="pedestrian""#)
-            .replace(r#"<lane id="AB_1" index="1""#, r#"<lane id="AB_1" index="1" disallow="pedestrian bicycle""#)
-            .replace(r#"<lane id="BC_0" index="0""#, r#"<lane id="BC_0" index="0" allow="bicycle""#);
+            .replace(
+                r#"<lane id="AB_0" index="0""#,
+                r#"<lane id="AB_0" index="0" allow="pedestrian""#,
+            )
+            .replace(
+                r#"<lane id="AB_1" index="1""#,
+                r#"<lane id="AB_1" index="1" disallow="pedestrian bicycle""#,
+            )
+            .replace(
+                r#"<lane id="BC_0" index="0""#,
+                r#"<lane id="BC_0" index="0" allow="bicycle""#,
+            );
         let net = parse_net(&text).unwrap();
         let [sidewalk, road] = [&net.edges[0].lanes[0], &net.edges[0].lanes[1]];
         assert!(sidewalk.permits("pedestrian") && !sidewalk.permits("passenger") && !sidewalk.is_for_vehicles());
@@ -461,7 +470,10 @@ mod tests {
         assert!(road.is_for_vehicles());
         let bike_lane = &net.edges[1].lanes[0];
         assert!(bike_lane.is_for_vehicles() && !bike_lane.permits("passenger"));
-        let text = NET.replace(r#"<lane id="AB_0" index="0""#, r#"<lane id="AB_0" index="0" allow="hovercraft""#);
+        let text = NET.replace(
+            r#"<lane id="AB_0" index="0""#,
+            r#"<lane id="AB_0" index="0" allow="hovercraft""#,
+        );
         assert_eq!(
             error(&text),
             "8:42: attribute `allow` of <lane> names vehicle class \"hovercraft\", which SUMO does not know"

@@ -205,7 +205,10 @@ mod tests {
         }
         // A bicycle is not a car, nor a van (issue 19).
         let bicycle = vehicle_class("bicycle").unwrap();
-        assert_eq!((bicycle.replay, bicycle.length, bicycle.width), (As(Bicycle), 1.6, 0.65));
+        assert_eq!(
+            (bicycle.replay, bicycle.length, bicycle.width),
+            (As(Bicycle), 1.6, 0.65)
+        );
         assert_eq!(vehicle_class("delivery").unwrap().replay, As(Truck));
         assert_eq!(builtin_class("DEFAULT_BIKETYPE"), Some(bicycle));
         assert_eq!(builtin_class("car"), None);
