@@ -179,8 +179,10 @@ const SECTIONS: &[(&str, &str)] = &[
     ),
     (
         "traces",
-        r#"{ "fcd": "sumo/grid3x3.fcd.xml", "net": "sumo/grid3x3.net.xml", "poly": "sumo/grid3x3.poly.xml",
-             "occluder_types": ["building"], "junction_areas": true, "begin": 1 }"#,
+        r#"{ "sumocfg": "sumo-town/town.sumocfg", "fcd": "sumo/grid3x3.fcd.xml", "net": "sumo/grid3x3.net.xml",
+             "routes": ["sumo-town/town.rou.xml"], "poly": "sumo/grid3x3.poly.xml",
+             "occluder_types": ["building"], "junction_areas": true, "rsus": { "poi_type": "rsu", "sensors": ["lidar"] },
+             "begin": 1 }"#,
     ),
     (
         "roads",
@@ -362,6 +364,20 @@ const SUMO_SEMANTIC: &[Set] = &[
     ),
 ];
 
+/// The bundled SUMO town's trace from 20 s, without its types (issue 19).
+const TOWN_FCD: Set = ("traces", r#"{ "fcd": "sumo-town/town.fcd.xml", "begin": 20 }"#);
+/// The town's trace and its points of interest, none of them of type `tree`:
+/// roadside units with a sensor model of the perception base, and of the
+/// semantic base.
+const TOWN_POIS_LIDAR: Set = (
+    "traces",
+    r#"{ "fcd": "sumo-town/town.fcd.xml", "poly": "sumo-town/town.poly.xml", "begin": 20, "rsus": { "poi_type": "tree", "sensors": ["lidar"] } }"#,
+);
+const TOWN_POIS_RING: Set = (
+    "traces",
+    r#"{ "fcd": "sumo-town/town.fcd.xml", "poly": "sumo-town/town.poly.xml", "begin": 20, "rsus": { "poi_type": "tree", "sensors": ["ring"] } }"#,
+);
+
 /// Every key of the language: how to change it, or how `check` refuses it, in
 /// each kind of scenario. One entry per line where it fits: a table, not code.
 #[rustfmt::skip]
@@ -455,6 +471,11 @@ const KEYS: &[Key] = &[
         perception: refused(&[("traces", r#"{ "fcd": "sumo/grid3x3.fcd.xml", "net": "sumo/grid3x3.net.xml", "junction_areas": false }"#)]),
         semantic: with(SUMO_SEMANTIC, &[("traces.junction_areas", "false")]),
     },
+    // issue 19: a SUMO configuration, vehicle types, points of interest as RSUs.
+    Key { path: "traces.sumocfg", field: Section, perception: change(&[("traces", r#"{ "sumocfg": "sumo-town/town.sumocfg", "begin": 20 }"#)]), semantic: change(&[("traces", r#"{ "sumocfg": "sumo-town/town.sumocfg", "begin": 20 }"#)]) },
+    Key { path: "traces.routes", field: Section, perception: with(&[TOWN_FCD], &[("traces.routes", r#"["sumo-town/town.rou.xml"]"#)]), semantic: with(&[TOWN_FCD], &[("traces.routes", r#"["sumo-town/town.rou.xml"]"#)]) },
+    Key { path: "traces.rsus.poi_type", field: Section, perception: with(&[TOWN_POIS_LIDAR], &[("traces.rsus.poi_type", r#""rsu""#)]), semantic: with(&[TOWN_POIS_RING], &[("traces.rsus.poi_type", r#""rsu""#)]) },
+    Key { path: "traces.rsus.sensors", field: Section, perception: with(&[TOWN_POIS_LIDAR, ("traces.rsus.poi_type", r#""rsu""#)], &[("traces.rsus.sensors", r#"["cone"]"#)]), semantic: with(&[TOWN_POIS_RING, ("traces.rsus.poi_type", r#""rsu""#)], &[("traces.rsus.sensors", r#"["front"]"#)]) },
     Key {
         path: "traces.begin",
         field: Section,

@@ -199,6 +199,7 @@ mod tests {
             },
             connected: false,
             sensors: Vec::new(),
+            antenna_m: None,
         }
     }
 

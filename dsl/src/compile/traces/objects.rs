@@ -24,6 +24,12 @@ use crate::import::sumo::{
 };
 use crate::model::{Agent, AgentKind, Motion, TraceSample};
 
+/// A problem in an imported file: the file, where in it, and what.
+pub(super) type InFile = (String, Location, String);
+
+/// What a pass found, with its warnings, or the problem that stopped it.
+pub(super) type Found<T> = Result<(T, Vec<Warning>), InFile>;
+
 /// What an object of the trace is: its kind and footprint.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct Body {
@@ -40,7 +46,7 @@ pub(super) fn bodies<'a>(
     objects: &'a [FcdObject],
     others: &[(String, Additional)],
     fcd_file: &str,
-) -> Result<(Vec<Option<Body>>, Vec<Warning>), (String, Location, String)> {
+) -> Found<Vec<Option<Body>>> {
     let mut types: HashMap<&str, (&str, &VType)> = HashMap::new();
     for (file, additional) in others {
         for vtype in &additional.vtypes {
@@ -163,7 +169,7 @@ pub(super) fn poi_rsus(
     others: &[(String, Additional)],
     poi_type: Option<&str>,
     net: Option<&Network>,
-) -> Result<(Vec<PoiRsu>, Vec<Warning>), (String, Location, String)> {
+) -> Found<Vec<PoiRsu>> {
     let mut rsus = Vec::new();
     let mut left: BTreeMap<(&str, &str), (Location, usize)> = BTreeMap::new();
     for (file, additional) in others {

@@ -25,7 +25,7 @@ pub use config::{Config, ConfigFile, parse_config};
 pub use fcd::{Fcd, FcdObject, FcdSample, parse_fcd};
 pub use net::{Connection, DEFAULT_LANE_WIDTH, Edge, Junction, Lane, Network, parse_net};
 pub use vclass::{CLASSES, Replay, VehicleClass, builtin_class, kind_of, shape_kind, vehicle_class};
-pub use xml::SumoError;
+pub use xml::{MAX_ATTRIBUTES, MAX_ELEMENTS, SumoError};
 
 mod additional;
 mod config;
