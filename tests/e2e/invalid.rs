@@ -147,6 +147,8 @@ invalid_inputs! {
     vehicle_type_declared_twice_names_the_first => "traces-duplicate-vtype",
     connection_to_a_missing_edge_is_located_at_it => "traces-net-missing-edge",
     rsus_without_sensors_and_a_wrong_file_kind_are_both_reported => "traces-rsus-without-sensors",
+    rsus_of_a_type_no_point_of_interest_has_are_refused => "traces-rsus-unknown-type",
+    rsu_antenna_below_the_urban_channel_is_refused => "traces-rsu-antenna-too-low",
     unknown_sensor_model_is_a_dangling_reference => "unknown-sensor-model",
     record_point_beyond_the_sweep_is_out_of_range => "record-point-out-of-range",
     record_point_and_where_are_exclusive => "record-point-and-where",

@@ -366,17 +366,15 @@ const SUMO_SEMANTIC: &[Set] = &[
 
 /// The bundled SUMO town's trace from 20 s, without its types (issue 19).
 const TOWN_FCD: Set = ("traces", r#"{ "fcd": "sumo-town/town.fcd.xml", "begin": 20 }"#);
-/// The town's trace and its points of interest, none of them of type `tree`:
-/// roadside units with a sensor model of the perception base, and of the
-/// semantic base.
-const TOWN_POIS_LIDAR: Set = (
+/// The town's trace and its points of interest, no roadside units yet.
+const TOWN_POIS: Set = (
     "traces",
-    r#"{ "fcd": "sumo-town/town.fcd.xml", "poly": "sumo-town/town.poly.xml", "begin": 20, "rsus": { "poi_type": "tree", "sensors": ["lidar"] } }"#,
+    r#"{ "fcd": "sumo-town/town.fcd.xml", "poly": "sumo-town/town.poly.xml", "begin": 20 }"#,
 );
-const TOWN_POIS_RING: Set = (
-    "traces",
-    r#"{ "fcd": "sumo-town/town.fcd.xml", "poly": "sumo-town/town.poly.xml", "begin": 20, "rsus": { "poi_type": "tree", "sensors": ["ring"] } }"#,
-);
+/// The town's points of interest of type `rsu` as roadside units, with a
+/// sensor model of the perception base, and of the semantic base.
+const TOWN_RSUS_LIDAR: Set = ("traces.rsus", r#"{ "poi_type": "rsu", "sensors": ["lidar"] }"#);
+const TOWN_RSUS_RING: Set = ("traces.rsus", r#"{ "poi_type": "rsu", "sensors": ["ring"] }"#);
 
 /// Every key of the language: how to change it, or how `check` refuses it, in
 /// each kind of scenario. One entry per line where it fits: a table, not code.
@@ -474,8 +472,8 @@ const KEYS: &[Key] = &[
     // issue 19: a SUMO configuration, vehicle types, points of interest as RSUs.
     Key { path: "traces.sumocfg", field: Section, perception: change(&[("traces", r#"{ "sumocfg": "sumo-town/town.sumocfg", "begin": 20 }"#)]), semantic: change(&[("traces", r#"{ "sumocfg": "sumo-town/town.sumocfg", "begin": 20 }"#)]) },
     Key { path: "traces.routes", field: Section, perception: with(&[TOWN_FCD], &[("traces.routes", r#"["sumo-town/town.rou.xml"]"#)]), semantic: with(&[TOWN_FCD], &[("traces.routes", r#"["sumo-town/town.rou.xml"]"#)]) },
-    Key { path: "traces.rsus.poi_type", field: Section, perception: with(&[TOWN_POIS_LIDAR], &[("traces.rsus.poi_type", r#""rsu""#)]), semantic: with(&[TOWN_POIS_RING], &[("traces.rsus.poi_type", r#""rsu""#)]) },
-    Key { path: "traces.rsus.sensors", field: Section, perception: with(&[TOWN_POIS_LIDAR, ("traces.rsus.poi_type", r#""rsu""#)], &[("traces.rsus.sensors", r#"["cone"]"#)]), semantic: with(&[TOWN_POIS_RING, ("traces.rsus.poi_type", r#""rsu""#)], &[("traces.rsus.sensors", r#"["front"]"#)]) },
+    Key { path: "traces.rsus.poi_type", field: Section, perception: with(&[TOWN_POIS], &[TOWN_RSUS_LIDAR]), semantic: with(&[TOWN_POIS], &[TOWN_RSUS_RING]) },
+    Key { path: "traces.rsus.sensors", field: Section, perception: with(&[TOWN_POIS, TOWN_RSUS_LIDAR], &[("traces.rsus.sensors", r#"["cone"]"#)]), semantic: with(&[TOWN_POIS, TOWN_RSUS_RING], &[("traces.rsus.sensors", r#"["front"]"#)]) },
     Key {
         path: "traces.begin",
         field: Section,

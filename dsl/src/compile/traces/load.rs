@@ -14,8 +14,9 @@ use std::collections::HashMap;
 
 use super::files::{Files, read_files};
 use super::network::{FILE_START, scene};
-use super::objects::{Body, PoiRsu, bodies, poi_rsus};
+use super::objects::{Body, InFile, PoiRsu, bodies, poi_rsus};
 use crate::compile::Loader;
+use crate::compile::checks::known_names;
 use crate::compile::context::Context;
 use crate::error::{Error, ErrorKind, Location, Warning};
 use crate::geometry::counter_clockwise;
@@ -84,31 +85,41 @@ pub(crate) fn load(ctx: &mut Context<'_>, raw: Option<&RawTraces>, loader: Optio
         imports,
     } = files;
     let mut warnings = Vec::new();
-    let mut import_error = |file: String, location: Location, message: String| {
-        ctx.errors.push(Error {
-            file,
-            location,
-            path: String::new(),
-            kind: ErrorKind::Import(message),
-        });
-    };
     let bodies = match bodies(&fcd.objects, &others, &fcd_file) {
         Ok((bodies, found)) => {
             warnings.extend(found);
             Some(bodies)
         }
-        Err((file, location, message)) => {
-            import_error(file, location, message);
+        Err(problem) => {
+            import_error(ctx, problem);
             None
         }
     };
     let rsus = match poi_rsus(&others, raw.rsus.as_ref().map(|r| r.poi_type.as_str()), net.as_ref()) {
+        Ok((rsus, _)) if rsus.is_empty() && raw.rsus.is_some() => {
+            let mut kinds: Vec<&str> = others
+                .iter()
+                .flat_map(|(_, a)| &a.pois)
+                .map(|p| p.kind.as_str())
+                .collect();
+            kinds.sort_unstable();
+            kinds.dedup();
+            let poi_type = raw.rsus.as_ref().map(|r| r.poi_type.as_str()).unwrap_or_default();
+            ctx.error(
+                &at.key("rsus").key("poi_type"),
+                ErrorKind::DanglingReference(format!(
+                    "no point of interest of type `{poi_type}` in the additional files ({})",
+                    known_names(poi_type, &kinds)
+                )),
+            );
+            None
+        }
         Ok((rsus, found)) => {
             warnings.extend(found);
             Some(rsus)
         }
-        Err((file, location, message)) => {
-            import_error(file, location, message);
+        Err(problem) => {
+            import_error(ctx, problem);
             None
         }
     };
@@ -212,6 +223,16 @@ pub(crate) fn load(ctx: &mut Context<'_>, raw: Option<&RawTraces>, loader: Optio
         files: imports,
         warnings,
     })
+}
+
+/// Records a problem found in an imported file.
+fn import_error(ctx: &mut Context<'_>, (file, location, message): InFile) {
+    ctx.errors.push(Error {
+        file,
+        location,
+        path: String::new(),
+        kind: ErrorKind::Import(message),
+    });
 }
 
 /// Checks `traces.rsus`: a type and at least one sensor.

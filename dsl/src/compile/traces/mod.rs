@@ -3,13 +3,14 @@
 //! turned into what every sweep point shares (`load`): the network's roads,
 //! interaction areas, crosswalks and walking areas (`network`), the occluders,
 //! each traced object's kind and size, and the roadside units of the points of
-//! interest (`objects`); [`trace_motion`] and [`imported_agents`] then build
-//! the agents.
+//! interest (`objects`); [`trace_motion`] and [`imported_agents`] (`replay`)
+//! then build the agents.
 
 mod files;
 mod load;
 mod network;
 mod objects;
+mod replay;
 
 pub(crate) use load::{Imported, load};
-pub(crate) use objects::{imported_agents, trace_motion};
+pub(crate) use replay::{imported_agents, trace_motion};

@@ -1,6 +1,5 @@
-//! The road users of a trace: each object's kind and size from its type, the
-//! motion that replays it, the agents no declared agent replays; and the
-//! roadside units the points of interest stand for.
+//! The road users of a trace: each object's kind and size from its type; and
+//! the roadside units the points of interest stand for.
 //!
 //! Choices, documented in `docs/scenario-language.md`:
 //! - An object's type is looked up among the `<vType>`s of the route and
@@ -10,19 +9,15 @@
 //!   class's SUMO default. SUMO's built-in types (`DEFAULT_VEHTYPE`, …) are
 //!   known without a declaration. A type declared nowhere is read by its name
 //!   ([`kind_of`]) with that kind's default size, with a warning.
-//! - A vehicle's SUMO position is the centre of its front bumper; its samples
-//!   are moved back half its length along its heading to the footprint's
-//!   centre. A person's position is taken as its centre.
 
-use std::collections::{BTreeMap, HashMap, HashSet};
+use std::collections::{BTreeMap, HashMap};
 
-use super::load::Imported;
 use crate::error::{Location, Warning};
-use crate::geometry::{Polyline, Xy, distance};
+use crate::geometry::{Polyline, Xy};
 use crate::import::sumo::{
     Additional, FcdObject, Network, PoiAt, Replay, VType, builtin_class, kind_of, shape_kind, vehicle_class,
 };
-use crate::model::{Agent, AgentKind, Motion, TraceSample};
+use crate::model::AgentKind;
 
 /// A problem in an imported file: the file, where in it, and what.
 pub(super) type InFile = (String, Location, String);
@@ -230,61 +225,6 @@ pub(super) fn poi_rsus(
         })
         .collect();
     Ok((rsus, warnings))
-}
-
-/// The motion of an agent of `kind` and `length` replaying `object`.
-pub(crate) fn trace_motion(imported: &Imported, object: &FcdObject, kind: AgentKind, length: f64) -> Motion {
-    let back = if kind.is_vehicle() { length / 2.0 } else { 0.0 };
-    let mut samples: Vec<TraceSample> = Vec::with_capacity(object.samples.len());
-    for sample in &object.samples {
-        let (sin, cos) = sample.heading.sin_cos();
-        let [x, y] = sample.position;
-        let position = [x - back * cos, y - back * sin];
-        let offset = samples
-            .last()
-            .map_or(0.0, |last| last.offset + distance(last.position, position));
-        samples.push(TraceSample {
-            time: sample.time - imported.begin,
-            position,
-            heading: sample.heading,
-            speed: sample.speed,
-            offset,
-            limit: sample
-                .lane
-                .as_ref()
-                .and_then(|lane| imported.limits.get(lane))
-                .copied()
-                .unwrap_or(f64::INFINITY),
-        });
-    }
-    Motion::Trace {
-        path: Polyline::new(samples.iter().map(|s| s.position)),
-        samples,
-        max_gap: imported.max_gap,
-    }
-}
-
-/// The objects of the trace no declared agent replays or is named after, within
-/// the run's time span, as agents with their type's kind and size, no sensors
-/// and not connected.
-pub(crate) fn imported_agents(imported: &Imported, declared: &HashSet<&str>, duration: f64) -> Vec<Agent> {
-    imported
-        .objects()
-        .filter(|(object, _)| !declared.contains(object.id.as_str()) && imported.overlaps(object, duration))
-        .filter_map(|(object, body)| {
-            let body = body?;
-            Some(Agent {
-                id: object.id.clone(),
-                kind: body.kind,
-                length: body.length,
-                width: body.width,
-                motion: trace_motion(imported, object, body.kind, body.length),
-                connected: false,
-                sensors: Vec::new(),
-                antenna_m: None,
-            })
-        })
-        .collect()
 }
 
 #[cfg(test)]

@@ -5,7 +5,7 @@ use super::agents::{Scene, agents};
 use super::occluders::occluders;
 use super::perception::perception_of;
 use super::roads::roads;
-use super::semantic::{areas, crosswalks, driving, interaction_areas, semantic_of, traffic, v2x};
+use super::semantic::{areas, crosswalks, driving, interaction_areas, own_antennas, semantic_of, traffic, v2x};
 use super::sensors::{localization, sensor_models};
 use crate::compile::checks::whole_multiple;
 use crate::compile::context::Context;
@@ -50,7 +50,10 @@ pub(crate) fn world(ctx: &mut Context<'_>, raw: &RawScenario, imported: Option<&
         imported,
         duration: time.duration,
     };
-    let agents = agents(ctx, &raw.agents, &scene);
+    let agents = agents(ctx, &raw.agents, &scene).filter(|(agents, _)| match &v2x {
+        Some(v2x) => own_antennas(ctx, v2x, agents),
+        None => true,
+    });
     let perception = match (&raw.perception, &agents, steps) {
         (Some(perception), Some((agents, _)), Some(steps)) => {
             perception_of(ctx, perception, raw.v2x.as_ref(), agents, time.step, steps).map(Some)

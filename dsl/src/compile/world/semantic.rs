@@ -259,16 +259,40 @@ pub(super) fn driving(ctx: &mut Context<'_>, raw: &RawDriving) -> Option<Driving
     })
 }
 
+/// The height an antenna must be above, metres: WINNER+ B1 (TR 36.885 urban)
+/// uses effective antenna heights h − 1 m, which must stay above 0.
+fn lowest_antenna(model: PathLossModel) -> f64 {
+    if model == PathLossModel::Tr36885Urban { 1.0 } else { 0.0 }
+}
+
+/// Checks the antennas agents have of their own (roadside units of points of
+/// interest with a `height`) against the channel, at `traces.rsus.poi_type`.
+pub(super) fn own_antennas(ctx: &mut Context<'_>, v2x: &V2x, agents: &[Agent]) -> bool {
+    let lowest = lowest_antenna(v2x.channel.model);
+    let mut ok = true;
+    for agent in agents {
+        let Some(height) = agent.antenna_m else { continue };
+        if height <= lowest || !range::ANTENNA.contains(height) {
+            ctx.error(
+                &Path::root().key("traces").key("rsus").key("poi_type"),
+                ErrorKind::Invalid(format!(
+                    "point of interest `{}` puts its antenna at {height} m (its `height` parameter); \
+                     the channel needs a height above {lowest} m and at most {} m",
+                    agent.id,
+                    range::ANTENNA.max
+                )),
+            );
+            ok = false;
+        }
+    }
+    ok
+}
+
 pub(super) fn v2x(ctx: &mut Context<'_>, raw: &RawV2x) -> Option<V2x> {
     let path = Path::root().key("v2x");
     let c = &raw.channel;
     let channel_path = path.key("channel");
-    // WINNER+ B1 uses effective antenna heights h − 1 m, which must stay above 0.
-    let lowest = if c.model == PathLossModel::Tr36885Urban {
-        1.0
-    } else {
-        0.0
-    };
+    let lowest = lowest_antenna(c.model);
     let penetration = raw.penetration.unwrap_or(0.0);
     let mut ok = ctx.probability(&path.key("penetration"), penetration)
         & ctx.within(&path.key("latency"), raw.latency, range::LATENCY)
