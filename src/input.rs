@@ -36,7 +36,8 @@ impl Input {
 /// Reads and compiles every file (`seed` overriding each one's, `record`
 /// recording each one as `--record` does), the files it imports read from disk
 /// too. Prints every error (as `file:line:col: error: …`) and returns `None` if
-/// any file is invalid.
+/// any file is invalid; prints the warnings of each valid file (as
+/// `file:line:col: warning: …`).
 pub fn load_all(paths: &[PathBuf], seed: Option<u64>, record: bool) -> Option<Vec<Input>> {
     let disk = |path: &Path| read_regular(path, DATA_LIMIT);
     let options = Options {
@@ -81,6 +82,9 @@ fn load(path: &Path, options: &Options<'_>) -> Result<Input, String> {
     let text =
         sightline_dsl::utf8_text(&bytes).map_err(|at| format!("{name}:{at}: error: the file is not UTF-8 text"))?;
     let scenario = sightline_dsl::compile(&name, text, options).map_err(|errors| errors.to_string())?;
+    for warning in &scenario.warnings {
+        eprintln!("{warning}");
+    }
     Ok(Input {
         path: path.to_path_buf(),
         name,

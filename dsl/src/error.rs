@@ -179,6 +179,27 @@ impl fmt::Display for Errors {
 
 impl std::error::Error for Errors {}
 
+/// Something a scenario's run leaves out or cannot vouch for, though it runs:
+/// an element of an imported file that is dropped, a type read by its name, a
+/// trace that does not cover the run. The CLI prints each on stderr, and the
+/// evidence lists them.
+#[derive(Debug, Clone, PartialEq, Eq, serde::Serialize)]
+pub struct Warning {
+    /// The file it is about, as named to the compiler or joined to the
+    /// scenario's directory.
+    pub file: String,
+    /// Where in that file.
+    pub location: Location,
+    /// What, a lowercase fragment.
+    pub message: String,
+}
+
+impl fmt::Display for Warning {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}:{}: warning: {}", self.file, self.location, self.message)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

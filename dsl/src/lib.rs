@@ -30,7 +30,7 @@
 #![warn(missing_docs)]
 
 pub use compile::{Loader, Options, compile, instantiate};
-pub use error::{Error, ErrorKind, Errors, Location, utf8_text};
+pub use error::{Error, ErrorKind, Errors, Location, Warning, utf8_text};
 pub use model::*;
 pub use schema::{reference_markdown, schema};
 

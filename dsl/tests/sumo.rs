@@ -5,7 +5,7 @@ use std::collections::{HashMap, HashSet};
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 use sightline_dsl::AgentKind;
-use sightline_dsl::import::sumo::{DEFAULT_LANE_WIDTH, Fcd, Network, parse_fcd, parse_net, parse_poly};
+use sightline_dsl::import::sumo::{DEFAULT_LANE_WIDTH, Fcd, Network, kind_of, parse_additional, parse_fcd, parse_net};
 
 const NET: &str = include_str!("../../scenarios/sumo/grid3x3.net.xml");
 const POLY: &str = include_str!("../../scenarios/sumo/grid3x3.poly.xml");
@@ -91,7 +91,7 @@ fn the_grid_has_nine_junctions_four_arms_at_its_centre() {
 
 #[test]
 fn the_polygons_are_eight_open_buildings_and_a_park() {
-    let polygons = parse_poly(POLY).unwrap_or_else(|e| panic!("{e}"));
+    let polygons = parse_additional(POLY).unwrap_or_else(|e| panic!("{e}")).polygons;
     let kinds: Vec<_> = polygons.iter().map(|p| p.kind.as_str()).collect();
     assert_eq!(kinds, [["building"; 8].as_slice(), &["park"]].concat());
     for polygon in &polygons {
@@ -105,7 +105,12 @@ fn the_trace_holds_20_vehicles_of_four_kinds_and_4_pedestrians() {
     let fcd = fcd();
     let mut kinds: HashMap<AgentKind, usize> = HashMap::new();
     for object in &fcd.objects {
-        *kinds.entry(object.kind).or_default() += 1;
+        let kind = if object.is_person {
+            AgentKind::Pedestrian
+        } else {
+            kind_of(&object.vtype)
+        };
+        *kinds.entry(kind).or_default() += 1;
     }
     let expected = [
         (AgentKind::Car, 13),
@@ -132,7 +137,7 @@ fn every_object_is_sampled_in_time_order_within_the_minute() {
 fn vehicles_drive_on_the_network_lanes() {
     let net = net();
     let lanes: HashSet<_> = net.edges.iter().flat_map(|e| &e.lanes).map(|l| l.id.as_str()).collect();
-    for object in fcd().objects.iter().filter(|o| o.kind.is_vehicle()) {
+    for object in fcd().objects.iter().filter(|o| !o.is_person) {
         for sample in &object.samples {
             let lane = sample
                 .lane
@@ -152,7 +157,7 @@ fn steady_headings_point_along_the_motion() {
     // rounding of positions to 0.01 m over at least 0.8 m of travel).
     let mut checked = 0;
     let mut quarter_turns = HashSet::new();
-    for object in fcd().objects.iter().filter(|o| o.kind.is_vehicle()) {
+    for object in fcd().objects.iter().filter(|o| !o.is_person) {
         for pair in object.samples.windows(2) {
             let [a, b] = pair else { unreachable!() };
             let (dx, dy) = (b.position[0] - a.position[0], b.position[1] - a.position[1]);

@@ -118,19 +118,22 @@ fn a_sumo_run_becomes_roads_buildings_areas_and_agents() {
 }
 
 #[test]
-fn vehicle_types_map_to_kinds_by_name() {
+fn undeclared_vehicle_types_map_to_kinds_by_name() {
     let world = world(BASE);
+    let agent = |id: &str| world.agents.iter().find(|a| a.id == id).unwrap();
     let kind = |id: &str| {
-        let agent = world.agents.iter().find(|a| a.id == id).unwrap();
+        let agent = agent(id);
         assert_eq!((agent.length, agent.width), agent.kind.footprint(), "{id}");
         agent.kind
     };
-    // SUMO types `car`, `motorcycle`, `truck`, `bus`, `DEFAULT_PEDTYPE`.
+    // SUMO types `car`, `motorcycle`, `truck`, `bus`, which no file declares.
     assert_eq!(kind("veh2"), AgentKind::Car);
     assert_eq!(kind("veh0"), AgentKind::Motorbike);
     assert_eq!(kind("veh13"), AgentKind::Truck);
     assert_eq!(kind("veh4"), AgentKind::Bus);
-    assert_eq!(kind("ped0"), AgentKind::Pedestrian);
+    // SUMO's built-in `DEFAULT_PEDTYPE`, with SUMO's default size.
+    let ped = agent("ped0");
+    assert_eq!((ped.kind, ped.length, ped.width), (AgentKind::Pedestrian, 0.215, 0.478));
 }
 
 /// veh7 first appears at 7 s with its front bumper at (1.60, 111.80), heading

@@ -217,7 +217,7 @@ fn verdict(scenario: &Scenario, requirement: &Requirement, measurements: &(impl 
                     tolerance,
                 } => invariant::evaluate(i, tolerance, measurements.audit(point).as_ref(), min),
             };
-            Evaluation { point, ..evaluation }
+            uncovered(scenario, point, Evaluation { point, ..evaluation })
         })
         .collect();
     let decisive = evaluations
@@ -254,6 +254,22 @@ fn verdict(scenario: &Scenario, requirement: &Requirement, measurements: &(impl 
         accepted: requirement.accept_not_exercised.clone(),
         decisive,
         evaluations,
+    }
+}
+
+/// A pass at a point whose run the imported trace does not cover is not
+/// exercised: part of the run has no traced road users to judge.
+fn uncovered(scenario: &Scenario, point: usize, evaluation: Evaluation) -> Evaluation {
+    match &scenario.points[point].setup.experiment {
+        Experiment::World(world) if evaluation.status == Status::Pass => match &world.uncovered {
+            Some(why) => Evaluation {
+                status: Status::NotExercised,
+                message: format!("{}; not exercised: {why}", evaluation.message),
+                ..evaluation
+            },
+            None => evaluation,
+        },
+        _ => evaluation,
     }
 }
 

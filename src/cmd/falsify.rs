@@ -231,20 +231,29 @@ fn imports_from(dir: &Path, scenario: &Scenario) -> anyhow::Result<Vec<(String, 
     let dir = dir
         .canonicalize()
         .with_context(|| format!("failed to resolve {}", dir.display()))?;
-    scenario
-        .imports
-        .iter()
-        .map(|import| {
-            let file = Path::new(&import.path)
-                .canonicalize()
-                .with_context(|| format!("failed to resolve {}", import.path))?;
-            let relative = relative(&dir, &file);
-            let text = relative
-                .to_str()
-                .with_context(|| format!("{} is not a UTF-8 path", relative.display()))?;
-            Ok((format!("traces.{}", import.kind.key()), text.into()))
-        })
-        .collect()
+    let mut settings: Vec<(String, serde_json::Value)> = Vec::new();
+    // Only the files the scenario names: those a `sumocfg` names are relative
+    // to the configuration, which stays where it is.
+    for import in scenario.imports.iter().filter(|import| import.named) {
+        let file = Path::new(&import.path)
+            .canonicalize()
+            .with_context(|| format!("failed to resolve {}", import.path))?;
+        let relative = relative(&dir, &file);
+        let text: serde_json::Value = relative
+            .to_str()
+            .with_context(|| format!("{} is not a UTF-8 path", relative.display()))?
+            .into();
+        let key = format!("traces.{}", import.kind.key());
+        // `traces.routes` is a list of files, in order.
+        match settings.iter_mut().find(|(k, _)| *k == key) {
+            Some((_, serde_json::Value::Array(files))) => files.push(text),
+            _ if import.kind == sightline_dsl::ImportKind::SumoRoutes => {
+                settings.push((key, serde_json::Value::Array(vec![text])));
+            }
+            _ => settings.push((key, text)),
+        }
+    }
+    Ok(settings)
 }
 
 /// `path=value, …` of one case.

@@ -326,6 +326,12 @@ pub fn sumo_grid_run() -> &'static Bundled {
     RUN.get_or_init(|| run_bundled("scenarios/sumo-grid-semantic.yaml", 0))
 }
 
+/// The bundled SUMO town, read from its `.sumocfg` (issue 19).
+pub fn sumo_town_run() -> &'static Bundled {
+    static RUN: OnceLock<Bundled> = OnceLock::new();
+    RUN.get_or_init(|| run_bundled("scenarios/sumo-town-semantic.yaml", 0))
+}
+
 /// The bundled falsification input, run as written (its values pass).
 pub fn falsify_input_run() -> &'static Bundled {
     static RUN: OnceLock<Bundled> = OnceLock::new();
@@ -333,11 +339,12 @@ pub fn falsify_input_run() -> &'static Bundled {
 }
 
 /// A run of every bundled scenario, in file-name order.
-pub fn every_run() -> [&'static Bundled; 5] {
+pub fn every_run() -> [&'static Bundled; 6] {
     [
         field(),
         roundabout_run(),
         sumo_grid_run(),
+        sumo_town_run(),
         falsify_input_run(),
         urban_run(),
     ]

@@ -314,6 +314,35 @@ fn a_fifo_and_dev_zero_are_refused_within_the_caps() {
     assert_refused_file(tmp.path(), "/dev/zero");
 }
 
+/// A SUMO file of more elements than the parser may hold (1 000 001 empty
+/// elements in 4 MB) is refused before it is parsed, with an error at the
+/// first element past the limit: the root is the first, so the 999 999th
+/// `<v/>` of line 2 (issue 19).
+#[test]
+fn a_sumo_file_past_the_element_limit_is_refused_before_parsing() {
+    if !caps_available() {
+        return;
+    }
+    let tmp = case(
+        "sightline: 1\nname: huge trace\ntime: { duration: 1, step: 0.1 }\ntraces: { fcd: trace.fcd.xml }\n\
+         sensor_models: { front: { range: 50 } }\nagents:\n\
+         - { id: ego, kind: car, trace: v0, connected: true, sensors: [front] }\n\
+         - { id: rsu, kind: rsu, position: [0, 0], sensors: [front] }\nsemantic: { ego: ego }\n",
+    );
+    let mut fcd = String::from("<fcd-export>\n");
+    fcd.push_str(&"<v/>".repeat(1_000_000));
+    fcd.push_str("\n<v/></fcd-export>\n");
+    std::fs::write(tmp.path().join("trace.fcd.xml"), fcd).expect("the trace is written");
+    let check = capped(tmp.path(), &["check", "case.yaml"]);
+    check.assert_exit(2);
+    assert!(
+        check
+            .stderr
+            .starts_with("trace.fcd.xml:2:3999997: error: the file has more than 1000000 elements"),
+        "{check}"
+    );
+}
+
 /// A symbolic link to itself, and two links to each other, are refused.
 #[cfg(unix)]
 #[test]

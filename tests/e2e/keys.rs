@@ -179,8 +179,10 @@ const SECTIONS: &[(&str, &str)] = &[
     ),
     (
         "traces",
-        r#"{ "fcd": "sumo/grid3x3.fcd.xml", "net": "sumo/grid3x3.net.xml", "poly": "sumo/grid3x3.poly.xml",
-             "occluder_types": ["building"], "junction_areas": true, "begin": 1 }"#,
+        r#"{ "sumocfg": "sumo-town/town.sumocfg", "fcd": "sumo/grid3x3.fcd.xml", "net": "sumo/grid3x3.net.xml",
+             "routes": ["sumo-town/town.rou.xml"], "poly": "sumo/grid3x3.poly.xml",
+             "occluder_types": ["building"], "junction_areas": true, "rsus": { "poi_type": "rsu", "sensors": ["lidar"] },
+             "begin": 1 }"#,
     ),
     (
         "roads",
@@ -363,6 +365,18 @@ const SUMO_SEMANTIC: &[Set] = &[
     ),
 ];
 
+/// The bundled SUMO town's trace from 20 s, without its types (issue 19).
+const TOWN_FCD: Set = ("traces", r#"{ "fcd": "sumo-town/town.fcd.xml", "begin": 20 }"#);
+/// The town's trace and its points of interest, no roadside units yet.
+const TOWN_POIS: Set = (
+    "traces",
+    r#"{ "fcd": "sumo-town/town.fcd.xml", "poly": "sumo-town/town.poly.xml", "begin": 20 }"#,
+);
+/// The town's points of interest of type `rsu` as roadside units, with a
+/// sensor model of the perception base, and of the semantic base.
+const TOWN_RSUS_LIDAR: Set = ("traces.rsus", r#"{ "poi_type": "rsu", "sensors": ["lidar"] }"#);
+const TOWN_RSUS_RING: Set = ("traces.rsus", r#"{ "poi_type": "rsu", "sensors": ["ring"] }"#);
+
 /// Every key of the language: how to change it, or how `check` refuses it, in
 /// each kind of scenario. One entry per line where it fits: a table, not code.
 #[rustfmt::skip]
@@ -463,6 +477,11 @@ const KEYS: &[Key] = &[
         perception: refused(&[("traces", r#"{ "fcd": "sumo/grid3x3.fcd.xml", "net": "sumo/grid3x3.net.xml", "junction_areas": false }"#)]),
         semantic: with(SUMO_SEMANTIC, &[("traces.junction_areas", "false")]),
     },
+    // issue 19: a SUMO configuration, vehicle types, points of interest as RSUs.
+    Key { path: "traces.sumocfg", field: Section, perception: change(&[("traces", r#"{ "sumocfg": "sumo-town/town.sumocfg", "begin": 20 }"#)]), semantic: change(&[("traces", r#"{ "sumocfg": "sumo-town/town.sumocfg", "begin": 20 }"#)]) },
+    Key { path: "traces.routes", field: Section, perception: with(&[TOWN_FCD], &[("traces.routes", r#"["sumo-town/town.rou.xml"]"#)]), semantic: with(&[TOWN_FCD], &[("traces.routes", r#"["sumo-town/town.rou.xml"]"#)]) },
+    Key { path: "traces.rsus.poi_type", field: Section, perception: with(&[TOWN_POIS], &[TOWN_RSUS_LIDAR]), semantic: with(&[TOWN_POIS], &[TOWN_RSUS_RING]) },
+    Key { path: "traces.rsus.sensors", field: Section, perception: with(&[TOWN_POIS, TOWN_RSUS_LIDAR], &[("traces.rsus.sensors", r#"["cone"]"#)]), semantic: with(&[TOWN_POIS, TOWN_RSUS_RING], &[("traces.rsus.sensors", r#"["front"]"#)]) },
     Key {
         path: "traces.begin",
         field: Section,

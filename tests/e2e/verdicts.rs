@@ -168,3 +168,43 @@ fn the_measured_column_says_what_it_holds() {
         r#"<tr><td class="text">accuracy</td><td class="text">cells</td><td class="text">1</td><td class="num">0.9881</td><td class="num">1,600</td></tr>"#
     ));
 }
+
+/// A trace that does not cover the run (the grid's minute of SUMO run in a
+/// run of 80 s) is a warning on stderr and in results.json, and a requirement
+/// that would pass is not exercised, so the run fails (issue 19).
+#[test]
+fn a_pass_on_a_run_the_trace_does_not_cover_is_not_exercised() {
+    let tmp = temp_dir();
+    let scenario = tmp.path().join("uncovered.yaml");
+    let text = format!(
+        "sightline: 1\nname: uncovered\ntime: {{ duration: 80, step: 0.1 }}\n\
+         traces: {{ fcd: {root}/scenarios/sumo/grid3x3.fcd.xml, net: {root}/scenarios/sumo/grid3x3.net.xml }}\n\
+         sensor_models: {{ front: {{ range: 80, fov_deg: 70 }}, around: {{ range: 100 }} }}\n\
+         agents:\n  - {{ id: ego, kind: car, trace: veh7, connected: true, sensors: [front] }}\n\
+         \x20 - {{ id: rsu, kind: rsu, position: [93.5, 93.5], sensors: [around] }}\n\
+         semantic: {{ ego: ego }}\n\
+         requirements:\n  - {{ id: PDR, text: Delivered., check: {{ metric: packet_delivery_ratio, at_least: 0 }} }}\n",
+        root = crate::support::root().display()
+    );
+    std::fs::write(&scenario, text).unwrap();
+    let out = tmp.path().join("evidence");
+    let outcome = sightline(["run", arg(&scenario), "--out", arg(&out)]);
+    outcome.assert_exit(1);
+    assert!(
+        outcome.stderr.contains(
+            "grid3x3.fcd.xml:1:1: warning: the trace does not cover the run: it has road users from 0 s to 59.9 s \
+             only of the run's 0 s to 80 s"
+        ),
+        "{outcome}"
+    );
+    let results = read_json(&out.join("results.json"));
+    let pdr = &results["requirements"][0];
+    assert_eq!(pdr["verdict"], "not_exercised", "{pdr}");
+    let warnings = results["warnings"].as_array().unwrap();
+    assert!(warnings.iter().any(|w| {
+        w["message"]
+            .as_str()
+            .unwrap()
+            .starts_with("the trace does not cover the run")
+    }));
+}

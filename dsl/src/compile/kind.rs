@@ -165,12 +165,14 @@ impl Unused<'_> {
             }
         }
         let traces = root.key("traces");
-        if !has(self.tree, &traces.key("poly")) {
+        // A configuration names its network and additional files itself.
+        let config = has(self.tree, &traces.key("sumocfg"));
+        if !config && !has(self.tree, &traces.key("poly")) {
             self.check(traces.key("occluder_types"), || {
                 "it selects polygons of `traces.poly`, and there is none".into()
             });
         }
-        if !has(self.tree, &traces.key("net")) {
+        if !config && !has(self.tree, &traces.key("net")) {
             self.check(traces.key("junction_areas"), || {
                 "junctions come from `traces.net`, and there is none".into()
             });

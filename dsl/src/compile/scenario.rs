@@ -134,6 +134,15 @@ fn compile_inner(file: &str, source: &str, options: &Options<'_>) -> Result<Scen
     let references = references(&mut ctx, &raw.references, points);
     let start = start(&mut ctx, raw.time.as_ref());
     let record = record(&mut ctx, raw.record.as_ref(), options.record, points, start);
+    let warnings = imported.as_ref().map_or_else(Vec::new, |imported| {
+        let mut warnings = imported.warnings.clone();
+        warnings.extend(
+            raw.time
+                .as_ref()
+                .and_then(|time| imported.coverage(time.duration, time.step)),
+        );
+        warnings
+    });
     ctx.finish(compiled.map(Configurations::into_parts).map(|(points, rows)| {
         Scenario {
             file: file.to_string(),
@@ -160,6 +169,7 @@ fn compile_inner(file: &str, source: &str, options: &Options<'_>) -> Result<Scen
             vary,
             record,
             document: document(raw.document),
+            warnings,
         }
     }))
 }

@@ -35,6 +35,10 @@ pub struct Scenario {
     pub vary: Vec<super::Vary>,
     /// What `sightline run` records into `run.mcap`; `None`: no recording.
     pub record: Option<Record>,
+    /// What the run leaves out or cannot vouch for though it runs (elements of
+    /// imported files dropped, types read by their names, a trace that does
+    /// not cover the run), in the order found.
+    pub warnings: Vec<crate::Warning>,
     /// The report as a controlled document (language section `document`).
     pub document: Document,
 }
@@ -148,6 +152,9 @@ pub struct Import {
     /// Its bytes, which the evidence hashes.
     #[serde(skip)]
     pub bytes: Vec<u8>,
+    /// Whether the scenario names it under `traces` (else the configuration
+    /// `traces.sumocfg` names it).
+    pub named: bool,
 }
 
 /// Kinds of imported file.
@@ -158,26 +165,36 @@ pub enum ImportKind {
     SumoFcd,
     /// A SUMO network (`traces.net`).
     SumoNet,
-    /// SUMO polygons (`traces.poly`).
+    /// SUMO polygons, points of interest and vehicle types (`traces.poly`, a
+    /// configuration's `additional-files`).
     SumoPoly,
+    /// A SUMO configuration (`traces.sumocfg`).
+    SumoConfig,
+    /// SUMO routes, for their vehicle types (`traces.routes`, a
+    /// configuration's `route-files`).
+    SumoRoutes,
 }
 
 impl ImportKind {
-    /// Its key under `traces`: `fcd`, `net`, `poly`.
+    /// Its key under `traces`: `fcd`, `net`, `poly`, `sumocfg`, `routes`.
     pub fn key(self) -> &'static str {
         match self {
             Self::SumoFcd => "fcd",
             Self::SumoNet => "net",
             Self::SumoPoly => "poly",
+            Self::SumoConfig => "sumocfg",
+            Self::SumoRoutes => "routes",
         }
     }
 
-    /// Its name in evidence: `sumo_fcd`, `sumo_net`, `sumo_poly`.
+    /// Its name in evidence: `sumo_fcd`, `sumo_net`, `sumo_poly`, `sumo_config`, `sumo_routes`.
     pub fn name(self) -> &'static str {
         match self {
             Self::SumoFcd => "sumo_fcd",
             Self::SumoNet => "sumo_net",
             Self::SumoPoly => "sumo_poly",
+            Self::SumoConfig => "sumo_config",
+            Self::SumoRoutes => "sumo_routes",
         }
     }
 }

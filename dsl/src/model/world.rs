@@ -24,8 +24,9 @@ pub struct World {
     pub connections: Vec<(usize, usize)>,
     /// Static obstacles to sight.
     pub occluders: Vec<Occluder>,
-    /// Every agent: the declared ones in file order, then the objects of
-    /// `traces` that no declared agent replays, in order of first appearance.
+    /// Every agent: the declared ones in file order, the roadside units of
+    /// `traces.rsus`, then the objects of `traces` that no declared agent
+    /// replays, in order of first appearance.
     pub agents: Vec<Agent>,
     /// How many agents, at the end of `agents`, are objects imported from
     /// `traces`; each is connected as generated traffic is (`v2x.penetration`).
@@ -49,6 +50,10 @@ pub struct World {
     pub v2x: V2x,
     /// The roadside units' semantic pipeline, when measured.
     pub semantic: Option<Semantic>,
+    /// Why the run is not all covered by the trace of `traces` (it has no
+    /// road user at its start or end), when it is not: a requirement that
+    /// would pass here is not exercised.
+    pub uncovered: Option<String>,
 }
 
 /// A road's lanes.
@@ -105,6 +110,9 @@ pub enum AgentKind {
     Bus,
     /// A motorbike (2.2 × 0.8 m).
     Motorbike,
+    /// A bicycle and its rider (1.6 × 0.65 m, SUMO's default): a vehicle on
+    /// the roads' lanes, as slow and small as a vulnerable road user.
+    Bicycle,
     /// A pedestrian (0.6 × 0.6 m).
     Pedestrian,
     /// A roadside unit (0.5 × 0.5 m): fixed, never part of the ground truth.
@@ -119,6 +127,7 @@ impl AgentKind {
             Self::Truck => (10.0, 2.5),
             Self::Bus => (12.0, 2.55),
             Self::Motorbike => (2.2, 0.8),
+            Self::Bicycle => (1.6, 0.65),
             Self::Pedestrian => (0.6, 0.6),
             Self::Rsu => (0.5, 0.5),
         }
@@ -131,6 +140,7 @@ impl AgentKind {
             Self::Truck => "truck",
             Self::Bus => "bus",
             Self::Motorbike => "motorbike",
+            Self::Bicycle => "bicycle",
             Self::Pedestrian => "pedestrian",
             Self::Rsu => "rsu",
         }
@@ -138,7 +148,10 @@ impl AgentKind {
 
     /// Whether it drives along roads.
     pub fn is_vehicle(self) -> bool {
-        matches!(self, Self::Car | Self::Truck | Self::Bus | Self::Motorbike)
+        matches!(
+            self,
+            Self::Car | Self::Truck | Self::Bus | Self::Motorbike | Self::Bicycle
+        )
     }
 }
 
@@ -182,6 +195,10 @@ pub struct Agent {
     pub connected: bool,
     /// Its sensors.
     pub sensors: Vec<Sensor>,
+    /// Its antenna's height, metres, when it is its own (a roadside unit
+    /// imported from a SUMO point of interest with a height); `None`: the
+    /// channel's height for its kind (`v2x.channel`).
+    pub antenna_m: Option<f64>,
 }
 
 /// When an agent that follows a path enters the scene, with car following

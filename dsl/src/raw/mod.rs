@@ -37,4 +37,4 @@ pub(crate) use semantic::{RawInteractionArea, RawSemantic};
 pub(crate) use sensors::{RawNoise, RawOdometry, RawSensorModel};
 pub(crate) use traffic::{RawCrosswalk, RawDriving, RawTraffic};
 pub(crate) use v2x::{RawMessages, RawV2x};
-pub(crate) use world::{RawOccluder, RawRoad, RawTime, RawTraces};
+pub(crate) use world::{RawOccluder, RawPoiRsus, RawRoad, RawTime, RawTraces};

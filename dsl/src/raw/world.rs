@@ -29,35 +29,73 @@ pub(crate) struct RawTime {
 
 /// Files written by the traffic simulator SUMO, in its network coordinates
 /// (metres, x east, y north), which become the scenario's world frame. Paths are
-/// relative to the scenario file's directory.
+/// relative to the scenario file's directory; the files a `sumocfg` names are
+/// relative to its own, as SUMO reads them.
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields, expecting = "a traces mapping with `fcd`")]
+#[serde(deny_unknown_fields, expecting = "a traces mapping with `sumocfg` or `fcd`")]
 #[schemars(rename = "Traces")]
 pub(crate) struct RawTraces {
-    /// SUMO floating car data (`sumo --fcd-output`). Every vehicle and person in
-    /// it becomes an agent replaying its samples, unless a declared agent replays
-    /// it (`trace:`); a vehicle type maps to a kind by its name (see the guide).
-    pub fcd: String,
-    /// A SUMO network (`.net.xml`): its roads become `roads` (lane centrelines
-    /// and speed limits), its connections the roadside units' map, and its
-    /// lanes give traced vehicles their speed limits.
+    /// A SUMO configuration (`.sumocfg`): the network (`net-file`), the route
+    /// files (`route-files`, for their vehicle types), the additional files
+    /// (`additional-files`: polygons, points of interest, vehicle types) and
+    /// the FCD output (`fcd-output`) it names are read, unless the keys below
+    /// name others instead.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sumocfg: Option<String>,
+    /// SUMO floating car data (`sumo --fcd-output`); instead of the
+    /// configuration's `fcd-output`, and needed without `sumocfg`. Every vehicle
+    /// and person in it becomes an agent replaying its samples, unless a
+    /// declared agent replays it (`trace:`); its type gives its kind and size
+    /// (see the guide).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fcd: Option<String>,
+    /// A SUMO network (`.net.xml`), instead of the configuration's `net-file`:
+    /// its roads become `roads` (the lanes vehicles may use, with their widths
+    /// and speed limits), its connections the roadside units' map, its
+    /// junctions interaction areas, its crossings crosswalks, its walking areas
+    /// named `areas`, and its lanes give traced vehicles their speed limits.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub net: Option<String>,
-    /// SUMO polygons (`.poly.xml`): those of a type in `occluder_types` become
-    /// occluders.
+    /// SUMO route files, instead of the configuration's `route-files`: their
+    /// vehicle types (`<vType>`: `vClass`, `length`, `width`, `guiShape`)
+    /// give the traced road users their kinds and sizes.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub routes: Option<Vec<String>>,
+    /// A SUMO additional file (`.poly.xml`), instead of the configuration's
+    /// `additional-files`: polygons of a type in `occluder_types` become
+    /// occluders, points of interest of type `rsus.poi_type` roadside units,
+    /// and its vehicle types count as the route files' do.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub poly: Option<String>,
     /// The polygon types that block sight.
     #[serde(default = "default_occluder_types")]
     pub occluder_types: Vec<String>,
-    /// With `net`: every junction at least three roads enter becomes an
-    /// interaction area with the junction's outline, named by its id.
+    /// With a network: every junction where paths from two roads meet or cross
+    /// (roundabouts' too) becomes an interaction area with the junction's
+    /// outline, named by its id.
     #[serde(default = "default_junction_areas")]
     pub junction_areas: bool,
+    /// Points of interest that become roadside units.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rsus: Option<RawPoiRsus>,
     /// The trace's time that becomes the scenario's time 0, seconds.
     #[serde(default)]
     #[schemars(transform = range::TRACE_TIME.schema())]
     pub begin: f64,
+}
+
+/// Roadside units from the points of interest of SUMO's additional files.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, expecting = "an rsus mapping with `poi_type` and `sensors`")]
+#[schemars(rename = "PoiRsus")]
+pub(crate) struct RawPoiRsus {
+    /// The `type` of the points of interest that are roadside units: each
+    /// becomes one, named by its id, standing at its position, connected, with
+    /// its antenna at its `<param key="height">` (metres; the channel's
+    /// `rsu_antenna_m` without one).
+    pub poi_type: String,
+    /// Their sensors, ids of `sensor_models`; at least one.
+    pub sensors: Vec<String>,
 }
 
 fn default_occluder_types() -> Vec<String> {

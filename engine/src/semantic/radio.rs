@@ -91,7 +91,7 @@ impl<'a> Radio<'a> {
             distance_m: (ego.position() - station.position()).length(),
             los: !occluders.block(station.position(), ego.position()),
             tx_antenna_m: channel.vehicle_antenna_m,
-            rx_antenna_m: channel.rsu_antenna_m,
+            rx_antenna_m: rsu.antenna_m.unwrap_or(channel.rsu_antenna_m),
         };
         let reception = transmit(channel, &uplink, &mut self.ego_channel);
         if reception.received {
@@ -115,7 +115,7 @@ impl<'a> Radio<'a> {
     /// way to the ego.
     pub(super) fn downlink(&mut self, rsu: &mut Rsu, uplink: &Link, items: Vec<Item>, time: f64) -> Packet {
         let channel = &self.v2x.channel;
-        let downlink = self.reversed(uplink);
+        let downlink = Self::reversed(uplink);
         let bytes = semantic_bytes(items.len());
         let reception = transmit(channel, &downlink, &mut rsu.channel);
         let packet = Packet {
@@ -140,7 +140,7 @@ impl<'a> Radio<'a> {
     /// `uplink` link the other way, with the baseline's own loss draws; a
     /// received message is on its way to the ego. Nothing else sees it.
     pub(super) fn baseline_downlink(&mut self, rsu: &mut Rsu, uplink: &Link, objects: Vec<usize>, time: f64) {
-        let downlink = self.reversed(uplink);
+        let downlink = Self::reversed(uplink);
         if transmit(&self.v2x.channel, &downlink, &mut rsu.baseline_channel).received {
             let at = arrival(time, self.v2x.latency, downlink.distance_m);
             self.baseline_in_flight.send(at, objects);
@@ -148,10 +148,10 @@ impl<'a> Radio<'a> {
     }
 
     /// An RSU's link to the ego: `uplink` the other way.
-    fn reversed(&self, uplink: &Link) -> Link {
+    fn reversed(uplink: &Link) -> Link {
         Link {
-            tx_antenna_m: self.v2x.channel.rsu_antenna_m,
-            rx_antenna_m: self.v2x.channel.vehicle_antenna_m,
+            tx_antenna_m: uplink.rx_antenna_m,
+            rx_antenna_m: uplink.tx_antenna_m,
             ..*uplink
         }
     }

@@ -49,6 +49,8 @@ pub(super) struct Rsu {
     pub(super) agent: usize,
     /// Its longest sensor range, metres.
     pub(super) range: f64,
+    /// Its antenna's height, metres, when it is its own (else the channel's).
+    pub(super) antenna_m: Option<f64>,
     ldm: Ldm,
     baseline: EtsiSender,
     /// The ego's plan as last received.
@@ -78,6 +80,7 @@ impl Rsu {
         Self {
             agent,
             range: agents[agent].sensors.iter().map(|s| s.range).fold(0.0, f64::max),
+            antenna_m: agents[agent].antenna_m,
             ldm: Ldm::default(),
             baseline: EtsiSender::new(semantic.baseline),
             plan: None,

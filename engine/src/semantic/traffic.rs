@@ -218,6 +218,7 @@ fn draw_vehicle(
         },
         connected,
         sensors: Vec::new(),
+        antenna_m: None,
     }
 }
 
@@ -286,6 +287,7 @@ fn crossings(
             },
             connected: false,
             sensors: Vec::new(),
+            antenna_m: None,
         });
         count += 1;
         time += exponential(rng, mean_interval);

@@ -200,6 +200,7 @@ mod tests {
             },
             connected: false,
             sensors: Vec::new(),
+            antenna_m: None,
         }
     }
 

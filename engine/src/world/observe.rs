@@ -450,6 +450,7 @@ mod tests {
             },
             connected: true,
             sensors: vec![all_round],
+            antenna_m: None,
         };
         let target = Body::of(1, &observer, Pose::new(Vector::new(0.0, 20.0), 0.0));
         let bodies = Bodies::new(vec![Body::of(0, &observer, heading_north), target]);

@@ -232,11 +232,13 @@ impl<'a> Radio<'a> {
             let link = Link {
                 distance_m: (ego - position).length(),
                 los: !occluders.block(position, ego),
-                tx_antenna_m: if agents[c.agent].kind == AgentKind::Rsu {
-                    channel.rsu_antenna_m
-                } else {
-                    channel.vehicle_antenna_m
-                },
+                tx_antenna_m: agents[c.agent]
+                    .antenna_m
+                    .unwrap_or(if agents[c.agent].kind == AgentKind::Rsu {
+                        channel.rsu_antenna_m
+                    } else {
+                        channel.vehicle_antenna_m
+                    }),
                 rx_antenna_m: channel.vehicle_antenna_m,
             };
             for message in packed {

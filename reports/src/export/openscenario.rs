@@ -22,6 +22,7 @@ fn height(kind: AgentKind) -> f64 {
         AgentKind::Truck => 3.5,
         AgentKind::Bus => 3.2,
         AgentKind::Motorbike => 1.4,
+        AgentKind::Bicycle => 1.7,
         AgentKind::Pedestrian => 1.8,
         AgentKind::Rsu => 5.0,
     }
@@ -110,7 +111,7 @@ fn write_entity(xml: &mut Xml, agent: &Agent) {
     xml.start("ScenarioObject", &[("name", agent.id.clone())]);
     let z = height(agent.kind);
     match agent.kind {
-        AgentKind::Car | AgentKind::Truck | AgentKind::Bus | AgentKind::Motorbike => {
+        AgentKind::Car | AgentKind::Truck | AgentKind::Bus | AgentKind::Motorbike | AgentKind::Bicycle => {
             xml.start(
                 "Vehicle",
                 &[

@@ -59,6 +59,25 @@ pub struct Results {
     /// once: what the verdicts take as given ("Assumptions and limitations" in
     /// the report).
     pub assumptions: Vec<Assumption>,
+    /// What the run leaves out or cannot vouch for though it runs (elements of
+    /// imported files dropped, types read by their names, a trace that does
+    /// not cover the run), as `sightline check` prints them on stderr.
+    pub warnings: Vec<WarningInfo>,
+}
+
+/// A warning, located in the file it is about.
+#[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
+#[schemars(deny_unknown_fields)]
+pub struct WarningInfo {
+    /// The file: the scenario's path as given, or an imported file's path
+    /// resolved against the scenario's directory.
+    pub file: String,
+    /// The line, from 1.
+    pub line: usize,
+    /// The column in characters, from 1.
+    pub column: usize,
+    /// What, a lowercase fragment.
+    pub message: String,
 }
 
 /// The schema of `format`: the string [`FORMAT`], and no other.
@@ -84,7 +103,8 @@ pub struct ScenarioInfo {
 #[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
 #[schemars(deny_unknown_fields)]
 pub struct InputInfo {
-    /// `scenario`, or the kind of imported file (`sumo_fcd`, `sumo_net`, `sumo_poly`).
+    /// `scenario`, or the kind of imported file (`sumo_fcd`, `sumo_net`,
+    /// `sumo_poly`, `sumo_config`, `sumo_routes`).
     pub kind: &'static str,
     /// The path: as given for the scenario, resolved against the scenario's
     /// directory for an imported file.

@@ -34,7 +34,7 @@ pub use counts::{
     AgeCount, Band, Calibration, Conflict, Coverage, DeliveryBin, DensityRow, DistanceRow, LabelCounts, MassAudit,
     Radio, ReliabilityBin, SemanticCounts, Sightings, WorldCounts,
 };
-pub use document::{FORMAT, InputInfo, Results, ScenarioInfo, Summary};
+pub use document::{FORMAT, InputInfo, Results, ScenarioInfo, Summary, WarningInfo};
 pub(crate) use from_run::object_result;
 pub use metrics::{Measured, MetricEntry, Ordered, Table};
 pub use objects::{CategoryCounts, ClosestApproach, MAX_OBJECT_RECORDS, ObjectCategory, ObjectList, ObjectResult};

@@ -68,6 +68,12 @@ pub(super) fn agents(ctx: &mut Context<'_>, raw: &[RawAgent], scene: &Scene<'_>)
             None => ok = false,
         }
     }
+    if let Some(imported) = scene.imported {
+        match poi_rsus(ctx, raw, imported, scene) {
+            Some(rsus) => agents.extend(rsus),
+            None => ok = false,
+        }
+    }
     let imported = scene.imported.map_or_else(Vec::new, |imported| {
         let declared = raw.iter().map(|a| a.id.as_str()).chain(replayed.into_keys()).collect();
         imported_agents(imported, &declared, scene.duration)
@@ -75,6 +81,80 @@ pub(super) fn agents(ctx: &mut Context<'_>, raw: &[RawAgent], scene: &Scene<'_>)
     let count = imported.len();
     agents.extend(imported);
     ok.then_some((agents, count))
+}
+
+/// The roadside units of `traces.rsus`: standing, connected, with their
+/// sensors; ids distinct from the declared agents' and the trace's objects'.
+fn poi_rsus(ctx: &mut Context<'_>, raw: &[RawAgent], imported: &Imported, scene: &Scene<'_>) -> Option<Vec<Agent>> {
+    let at = Path::root().key("traces").key("rsus");
+    let mut ok = true;
+    let mut sensors = Vec::new();
+    for (i, name) in imported.rsu_sensors.iter().enumerate() {
+        match resolve_sensor(ctx, name, &at.key("sensors").index(i), scene) {
+            Some(sensor) => sensors.push(sensor),
+            None => ok = false,
+        }
+    }
+    let objects: HashSet<&str> = imported.ids().collect();
+    for rsu in &imported.rsus {
+        let clash = if raw.iter().any(|a| a.id == rsu.id) {
+            Some("a declared agent")
+        } else if objects.contains(rsu.id.as_str()) {
+            Some("an object of the trace")
+        } else {
+            None
+        };
+        if let Some(clash) = clash {
+            ctx.error(
+                &at.key("poi_type"),
+                ErrorKind::Invalid(format!(
+                    "point of interest `{}` would be a roadside unit with the id of {clash}",
+                    rsu.id
+                )),
+            );
+            ok = false;
+        }
+    }
+    let (length, width) = AgentKind::Rsu.footprint();
+    ok.then(|| {
+        imported
+            .rsus
+            .iter()
+            .map(|rsu| Agent {
+                id: rsu.id.clone(),
+                kind: AgentKind::Rsu,
+                length,
+                width,
+                motion: Motion::Fixed {
+                    position: rsu.position,
+                    heading: 0.0,
+                },
+                connected: true,
+                sensors: sensors.clone(),
+                antenna_m: rsu.antenna_m,
+            })
+            .collect()
+    })
+}
+
+/// The sensor model `name`, or an error at `path` (unless the model's own
+/// errors say why).
+fn resolve_sensor(ctx: &mut Context<'_>, name: &str, path: &Path, scene: &Scene<'_>) -> Option<Sensor> {
+    if let Some(sensor) = scene.sensors.get(name) {
+        return Some(sensor.clone());
+    }
+    if !ctx.is_failed(Declaration::SensorModel, name) {
+        let mut known: Vec<&str> = scene.sensors.keys().map(String::as_str).collect();
+        known.sort_unstable();
+        ctx.error(
+            path,
+            ErrorKind::DanglingReference(format!(
+                "no sensor model `{name}` in `sensor_models` ({})",
+                known_names(name, &known)
+            )),
+        );
+    }
+    None
 }
 
 fn agent_of(ctx: &mut Context<'_>, raw: &RawAgent, path: &Path, scene: &Scene<'_>) -> Option<Agent> {
@@ -93,22 +173,9 @@ fn agent_of(ctx: &mut Context<'_>, raw: &RawAgent, path: &Path, scene: &Scene<'_
     let mut resolved = Vec::new();
     let mut sensors_ok = true;
     for (i, name) in raw.sensors.iter().enumerate() {
-        match scene.sensors.get(name) {
-            Some(sensor) => resolved.push(sensor.clone()),
-            // The model's own errors say why.
-            None if ctx.is_failed(Declaration::SensorModel, name) => sensors_ok = false,
-            None => {
-                let mut known: Vec<&str> = scene.sensors.keys().map(String::as_str).collect();
-                known.sort_unstable();
-                ctx.error(
-                    &path.key("sensors").index(i),
-                    ErrorKind::DanglingReference(format!(
-                        "no sensor model `{name}` in `sensor_models` ({})",
-                        known_names(name, &known)
-                    )),
-                );
-                sensors_ok = false;
-            }
+        match resolve_sensor(ctx, name, &path.key("sensors").index(i), scene) {
+            Some(sensor) => resolved.push(sensor),
+            None => sensors_ok = false,
         }
     }
     let motion = motion(ctx, raw, path, scene, length);
@@ -120,6 +187,7 @@ fn agent_of(ctx: &mut Context<'_>, raw: &RawAgent, path: &Path, scene: &Scene<'_
         motion: motion?,
         connected: raw.connected,
         sensors: sensors_ok.then_some(resolved)?,
+        antenna_m: None,
     })
 }
 

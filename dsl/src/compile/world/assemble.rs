@@ -5,7 +5,7 @@ use super::agents::{Scene, agents};
 use super::occluders::occluders;
 use super::perception::perception_of;
 use super::roads::roads;
-use super::semantic::{areas, crosswalks, driving, interaction_areas, semantic_of, traffic, v2x};
+use super::semantic::{areas, crosswalks, driving, interaction_areas, own_antennas, semantic_of, traffic, v2x};
 use super::sensors::{localization, sensor_models};
 use crate::compile::checks::whole_multiple;
 use crate::compile::context::Context;
@@ -52,7 +52,10 @@ pub(crate) fn world(ctx: &mut Context<'_>, raw: &RawScenario, imported: Option<&
         imported,
         duration: time.duration,
     };
-    let agents = agents(ctx, &raw.agents, &scene);
+    let agents = agents(ctx, &raw.agents, &scene).filter(|(agents, _)| match &v2x {
+        Some(v2x) => own_antennas(ctx, v2x, agents),
+        None => true,
+    });
     let perception = match (&raw.perception, &agents, steps) {
         (Some(perception), Some((agents, _)), Some(steps)) => {
             perception_of(ctx, perception, raw.v2x.as_ref(), agents, time.step, steps).map(Some)
@@ -60,10 +63,10 @@ pub(crate) fn world(ctx: &mut Context<'_>, raw: &RawScenario, imported: Option<&
         (None, _, _) => Some(None),
         _ => None,
     };
-    let crosswalks = crosswalks(ctx, &raw.crosswalks);
+    let crosswalks = crosswalks(ctx, &raw.crosswalks, imported);
     let interaction_areas = interaction_areas(ctx, &raw.interaction_areas, imported);
     let areas = match (&crosswalks, &interaction_areas) {
-        (Some(crosswalks), Some(interaction)) => areas(ctx, &raw.areas, crosswalks, interaction),
+        (Some(crosswalks), Some(interaction)) => areas(ctx, &raw.areas, crosswalks, interaction, imported),
         _ => None,
     };
     let traffic = raw
@@ -106,6 +109,9 @@ pub(crate) fn world(ctx: &mut Context<'_>, raw: &RawScenario, imported: Option<&
         driving: driving?,
         v2x: v2x?,
         semantic: semantic?,
+        uncovered: imported
+            .and_then(|i| i.coverage(time.duration, time.step))
+            .map(|w| w.message),
     })
 }
 

@@ -17,9 +17,23 @@ use crate::path::Path;
 use crate::raw::range;
 use crate::raw::{RawCrosswalk, RawDriving, RawInteractionArea, RawSemantic, RawTraffic, RawV2x};
 
-pub(super) fn crosswalks(ctx: &mut Context<'_>, raw: &[RawCrosswalk]) -> Option<Vec<Crosswalk>> {
+/// The declared crosswalks, then the crossings of `traces.net`.
+pub(super) fn crosswalks(
+    ctx: &mut Context<'_>,
+    raw: &[RawCrosswalk],
+    imported: Option<&Imported>,
+) -> Option<Vec<Crosswalk>> {
     let list = Path::root().key("crosswalks");
-    let mut ok = unique_ids(ctx, &list, raw.iter().map(|c| c.id.as_str()));
+    let crossings = imported.map_or(&[][..], |i| &i.crosswalks);
+    let crossing_ids: HashSet<&str> = crossings.iter().map(|c| c.id.as_str()).collect();
+    let mut ok = unique_ids(ctx, &list, raw.iter().map(|c| c.id.as_str()))
+        & distinct_from_imported(
+            ctx,
+            &list,
+            raw.iter().map(|c| c.id.as_str()),
+            &crossing_ids,
+            "a crossing of `traces.net`",
+        );
     for (i, crosswalk) in raw.iter().enumerate() {
         let path = list.index(i);
         let ends_ok =
@@ -41,6 +55,7 @@ pub(super) fn crosswalks(ctx: &mut Context<'_>, raw: &[RawCrosswalk]) -> Option<
                 to: c.to,
                 width: c.width,
             })
+            .chain(crossings.iter().cloned())
             .collect()
     })
 }
@@ -68,23 +83,28 @@ pub(super) fn interaction_areas(
     ok.then_some(areas)
 }
 
-/// The regions `areas` names for requirements: ids unique among themselves and
-/// distinct from every crosswalk and interaction area, so that an id selects
-/// one kind of region.
+/// The regions `areas` names for requirements, then the walking areas of
+/// `traces.net`: ids unique among themselves and distinct from every crosswalk
+/// and interaction area, so that an id selects one kind of region.
 pub(super) fn areas(
     ctx: &mut Context<'_>,
     raw: &[RawInteractionArea],
     crosswalks: &[Crosswalk],
     interaction: &[InteractionArea],
+    imported: Option<&Imported>,
 ) -> Option<Vec<InteractionArea>> {
     let list = Path::root().key("areas");
+    let walking = imported.map_or(&[][..], |i| &i.walking_areas);
+    let walking_ids: HashSet<&str> = walking.iter().map(|a| a.id.as_str()).collect();
     let crosswalk_ids: HashSet<&str> = crosswalks.iter().map(|c| c.id.as_str()).collect();
     let interaction_ids: HashSet<&str> = interaction.iter().map(|a| a.id.as_str()).collect();
     let ids = || raw.iter().map(|a| a.id.as_str());
     let ok = unique_ids(ctx, &list, ids())
         & distinct_from_imported(ctx, &list, ids(), &crosswalk_ids, "a crosswalk")
-        & distinct_from_imported(ctx, &list, ids(), &interaction_ids, "an interaction area");
-    let (areas, shapes_ok) = named_areas(ctx, &list, raw);
+        & distinct_from_imported(ctx, &list, ids(), &interaction_ids, "an interaction area")
+        & distinct_from_imported(ctx, &list, ids(), &walking_ids, "a walking area of `traces.net`");
+    let (mut areas, shapes_ok) = named_areas(ctx, &list, raw);
+    areas.extend_from_slice(walking);
     (ok && shapes_ok).then_some(areas)
 }
 
@@ -239,16 +259,40 @@ pub(super) fn driving(ctx: &mut Context<'_>, raw: &RawDriving) -> Option<Driving
     })
 }
 
+/// The height an antenna must be above, metres: WINNER+ B1 (TR 36.885 urban)
+/// uses effective antenna heights h − 1 m, which must stay above 0.
+fn lowest_antenna(model: PathLossModel) -> f64 {
+    if model == PathLossModel::Tr36885Urban { 1.0 } else { 0.0 }
+}
+
+/// Checks the antennas agents have of their own (roadside units of points of
+/// interest with a `height`) against the channel, at `traces.rsus.poi_type`.
+pub(super) fn own_antennas(ctx: &mut Context<'_>, v2x: &V2x, agents: &[Agent]) -> bool {
+    let lowest = lowest_antenna(v2x.channel.model);
+    let mut ok = true;
+    for agent in agents {
+        let Some(height) = agent.antenna_m else { continue };
+        if height <= lowest || !range::ANTENNA.contains(height) {
+            ctx.error(
+                &Path::root().key("traces").key("rsus").key("poi_type"),
+                ErrorKind::Invalid(format!(
+                    "point of interest `{}` puts its antenna at {height} m (its `height` parameter); \
+                     the channel needs a height above {lowest} m and at most {} m",
+                    agent.id,
+                    range::ANTENNA.max
+                )),
+            );
+            ok = false;
+        }
+    }
+    ok
+}
+
 pub(super) fn v2x(ctx: &mut Context<'_>, raw: &RawV2x) -> Option<V2x> {
     let path = Path::root().key("v2x");
     let c = &raw.channel;
     let channel_path = path.key("channel");
-    // WINNER+ B1 uses effective antenna heights h − 1 m, which must stay above 0.
-    let lowest = if c.model == PathLossModel::Tr36885Urban {
-        1.0
-    } else {
-        0.0
-    };
+    let lowest = lowest_antenna(c.model);
     let penetration = raw.penetration.unwrap_or(0.0);
     let mut ok = ctx.probability(&path.key("penetration"), penetration)
         & ctx.within(&path.key("latency"), raw.latency, range::LATENCY)

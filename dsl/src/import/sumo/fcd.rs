@@ -5,9 +5,8 @@ use std::collections::HashMap;
 
 use roxmltree::{Document, Node};
 
-use super::kind::kind_of;
 use super::xml::{self, SumoError};
-use crate::AgentKind;
+use crate::Location;
 use crate::geometry::Xy;
 
 /// A trace read from SUMO FCD output.
@@ -22,13 +21,14 @@ pub struct Fcd {
 pub struct FcdObject {
     /// Its SUMO id.
     pub id: String,
-    /// [`AgentKind::Pedestrian`] for a `<person>`; for a `<vehicle>`, [`kind_of`]
-    /// its type.
-    pub kind: AgentKind,
+    /// Whether it is a `<person>` (else a `<vehicle>`).
+    pub is_person: bool,
     /// The SUMO type id at its first sample (`type`), empty when the file has none.
     pub vtype: String,
     /// Its samples, in time order.
     pub samples: Vec<FcdSample>,
+    /// Where its first sample is in the file.
+    pub location: Location,
 }
 
 /// Where an object was at one time step.
@@ -110,13 +110,10 @@ pub fn parse_fcd(text: &str) -> Result<Fcd, SumoError> {
                     seen.insert(id, (objects.len(), is_person));
                     objects.push(FcdObject {
                         id: id.to_owned(),
-                        kind: if is_person {
-                            AgentKind::Pedestrian
-                        } else {
-                            kind_of(vtype)
-                        },
+                        is_person,
                         vtype: vtype.to_owned(),
                         samples: vec![sample],
+                        location: xml::location(node),
                     });
                 }
             }
@@ -203,14 +200,14 @@ mod tests {
         let summary: Vec<_> = fcd
             .objects
             .iter()
-            .map(|o| (o.id.as_str(), o.kind, o.vtype.as_str(), o.samples.len()))
+            .map(|o| (o.id.as_str(), o.is_person, o.vtype.as_str(), o.samples.len()))
             .collect();
         assert_eq!(
             summary,
             [
-                ("v0", AgentKind::Truck, "truck", 2),
-                ("p0", AgentKind::Pedestrian, "DEFAULT_PEDTYPE", 2),
-                ("v1", AgentKind::Car, "", 1),
+                ("v0", false, "truck", 2),
+                ("p0", true, "DEFAULT_PEDTYPE", 2),
+                ("v1", false, "", 1),
             ]
         );
         let second = &fcd.objects[0].samples[1];

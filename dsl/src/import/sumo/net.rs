@@ -5,6 +5,7 @@ use std::collections::{HashMap, HashSet};
 
 use roxmltree::Node;
 
+use super::vclass::CLASSES;
 use super::xml::{self, SumoError};
 use crate::geometry::Xy;
 
@@ -56,7 +57,32 @@ pub struct Lane {
     /// Centreline in network coordinates, metres, in the direction of travel;
     /// at least two points.
     pub shape: Vec<Xy>,
+    /// The vehicle classes it permits (`allow`, `disallow`; all when it gives
+    /// neither), one bit per entry of [`CLASSES`](super::CLASSES).
+    pub permitted: u64,
 }
+
+impl Lane {
+    /// Whether it permits the vehicle class named `name`.
+    pub fn permits(&self, name: &str) -> bool {
+        CLASSES
+            .iter()
+            .position(|class| class.name == name)
+            .is_some_and(|i| self.permitted & (1 << i) != 0)
+    }
+
+    /// Whether it permits a class other than people on foot: a lane for
+    /// vehicles, not a sidewalk.
+    pub fn is_for_vehicles(&self) -> bool {
+        CLASSES
+            .iter()
+            .enumerate()
+            .any(|(i, class)| self.permitted & (1 << i) != 0 && !matches!(class.name, "pedestrian" | "wheelchair"))
+    }
+}
+
+/// Every class.
+const ALL_CLASSES: u64 = (1 << CLASSES.len()) - 1;
 
 /// A lane of one edge continuing into a lane of the next.
 #[derive(Debug, Clone, PartialEq)]
@@ -223,12 +249,18 @@ fn junction(node: Node) -> Result<Junction, SumoError> {
 
 /// One `<lane>`.
 fn lane(node: Node) -> Result<Lane, SumoError> {
+    let permitted = match (node.attribute_node("allow"), node.attribute_node("disallow")) {
+        (Some(allow), _) => classes(node, &allow)?,
+        (None, Some(disallow)) => ALL_CLASSES & !classes(node, &disallow)?,
+        (None, None) => ALL_CLASSES,
+    };
     let lane = Lane {
         id: xml::string(node, "id")?.to_owned(),
         index: xml::index(node, "index")?,
         speed: xml::number(node, "speed")?,
         width: xml::number_or(node, "width", DEFAULT_LANE_WIDTH)?,
         shape: xml::shape(node, "shape")?,
+        permitted,
     };
     if lane.shape.len() < 2 {
         let attribute = xml::attribute(node, "shape")?;
@@ -236,6 +268,27 @@ fn lane(node: Node) -> Result<Lane, SumoError> {
         return Err(xml::value_error(node, &attribute, message));
     }
     Ok(lane)
+}
+
+/// The classes a list of `allow` or `disallow` names, as bits of [`CLASSES`].
+fn classes(node: Node, attribute: &roxmltree::Attribute) -> Result<u64, SumoError> {
+    let mut bits = 0;
+    for name in attribute.value().split_ascii_whitespace() {
+        if name == "all" {
+            bits = ALL_CLASSES;
+            continue;
+        }
+        let Some(i) = CLASSES.iter().position(|class| class.name == name) else {
+            let message = format!(
+                "attribute `{}` of {} names vehicle class {name:?}, which SUMO does not know",
+                attribute.name(),
+                xml::tag(node)
+            );
+            return Err(xml::value_error(node, attribute, message));
+        };
+        bits |= 1 << i;
+    }
+    Ok(bits)
 }
 
 #[cfg(test)]
@@ -298,6 +351,7 @@ mod tests {
                 speed: 13.89,
                 width: DEFAULT_LANE_WIDTH,
                 shape: vec![[0.0, -1.6], [98.4, -1.6]],
+                permitted: ALL_CLASSES,
             }
         );
         assert_eq!(ab.lanes[1].width, 3.5);
@@ -391,6 +445,38 @@ mod tests {
         assert_eq!(
             error(&text),
             "29:45: attribute `fromLane` of <connection> is not a non-negative integer: \"one\""
+        );
+    }
+
+    #[test]
+    fn lanes_permit_what_allow_and_disallow_say() {
+        let text = NET
+            .replace(
+                r#"<lane id="AB_0" index="0""#,
+                r#"<lane id="AB_0" index="0" allow="pedestrian""#,
+            )
+            .replace(
+                r#"<lane id="AB_1" index="1""#,
+                r#"<lane id="AB_1" index="1" disallow="pedestrian bicycle""#,
+            )
+            .replace(
+                r#"<lane id="BC_0" index="0""#,
+                r#"<lane id="BC_0" index="0" allow="bicycle""#,
+            );
+        let net = parse_net(&text).unwrap();
+        let [sidewalk, road] = [&net.edges[0].lanes[0], &net.edges[0].lanes[1]];
+        assert!(sidewalk.permits("pedestrian") && !sidewalk.permits("passenger") && !sidewalk.is_for_vehicles());
+        assert!(!road.permits("pedestrian") && !road.permits("bicycle") && road.permits("passenger"));
+        assert!(road.is_for_vehicles());
+        let bike_lane = &net.edges[1].lanes[0];
+        assert!(bike_lane.is_for_vehicles() && !bike_lane.permits("passenger"));
+        let text = NET.replace(
+            r#"<lane id="AB_0" index="0""#,
+            r#"<lane id="AB_0" index="0" allow="hovercraft""#,
+        );
+        assert_eq!(
+            error(&text),
+            "8:42: attribute `allow` of <lane> names vehicle class \"hovercraft\", which SUMO does not know"
         );
     }
 

@@ -20,8 +20,20 @@ pub struct SumoError {
     pub message: String,
 }
 
-/// Parses `text` as XML; a malformed file is an error at the parser's position.
+/// The most elements one SUMO file may hold: the parser keeps every element
+/// and attribute of a file at once, about 0.8 kB an element of FCD output with
+/// what is read from it (`docs/limits.md`).
+pub const MAX_ELEMENTS: usize = 1_000_000;
+
+/// The most attributes (counted as `=` signs) one SUMO file may hold.
+pub const MAX_ATTRIBUTES: usize = 10_000_000;
+
+/// Parses `text` as XML; a file with more than [`MAX_ELEMENTS`] elements or
+/// [`MAX_ATTRIBUTES`] attributes is refused before it is parsed, at the first
+/// one past the limit, and a malformed file is an error at the parser's
+/// position.
 pub(crate) fn parse(text: &str) -> Result<Document<'_>, SumoError> {
+    within_limits(text, MAX_ELEMENTS, MAX_ATTRIBUTES)?;
     Document::parse(text).map_err(|error| {
         let pos = error.pos();
         // roxmltree appends " at row:col" to its messages; the location says it already.
@@ -37,6 +49,35 @@ pub(crate) fn parse(text: &str) -> Result<Document<'_>, SumoError> {
             message: format!("malformed xml: {message}"),
         }
     })
+}
+
+/// Counts the elements (`<` not opening an end tag, a comment or a
+/// declaration) and attributes (`=`) of `text` against their limits.
+fn within_limits(text: &str, max_elements: usize, max_attributes: usize) -> Result<(), SumoError> {
+    let bytes = text.as_bytes();
+    let (mut elements, mut attributes) = (0usize, 0usize);
+    for (i, &byte) in bytes.iter().enumerate() {
+        let (count, limit, what) = match byte {
+            b'<' if !matches!(bytes.get(i + 1), Some(b'/' | b'!' | b'?')) => (&mut elements, max_elements, "elements"),
+            b'=' => (&mut attributes, max_attributes, "attributes"),
+            _ => continue,
+        };
+        *count += 1;
+        if *count > limit {
+            let before = &text[..i];
+            let line = before.matches('\n').count() + 1;
+            let column = before.rsplit('\n').next().unwrap_or_default().chars().count() + 1;
+            return Err(SumoError {
+                location: Location::new(line, column),
+                message: format!(
+                    "the file has more than {limit} {what}, the most sightline reads from one file \
+                     (docs/limits.md); simulate a shorter time or a smaller area, or write fewer samples \
+                     (a longer --device.fcd.period)"
+                ),
+            });
+        }
+    }
+    Ok(())
 }
 
 /// Where `text` ends.
@@ -70,6 +111,12 @@ pub(crate) fn error_at_pos(node: Node, pos: usize, message: String) -> SumoError
         location: Location::new(pos.row as usize, pos.col as usize),
         message,
     }
+}
+
+/// Where element `node` starts (its `<`).
+pub(crate) fn location(node: Node) -> Location {
+    let pos = node.document().text_pos_at(node.range().start);
+    Location::new(pos.row as usize, pos.col as usize)
 }
 
 /// An error at the start (the `<`) of element `node`.
@@ -282,6 +329,22 @@ mod tests {
         assert_eq!(
             first_error(text, |n| shape(n, "shape")),
             "1:19: attribute `shape` of <lane> is empty"
+        );
+    }
+
+    #[test]
+    fn files_past_the_limits_are_refused_at_the_first_element_past_them() {
+        let text = "<?xml version=\"1.0\"?>\n<a>\n  <!-- c --><b x=\"1\"/></a>";
+        assert_eq!(within_limits(text, 2, 10), Ok(()));
+        let error = within_limits(text, 1, 10).unwrap_err();
+        assert_eq!(error.location, Location::new(3, 13));
+        assert!(error.message.starts_with("the file has more than 1 elements"));
+        let error = within_limits(text, 2, 1).unwrap_err();
+        assert_eq!(error.location, Location::new(3, 17));
+        assert!(
+            error.message.starts_with("the file has more than 1 attributes"),
+            "{}",
+            error.message
         );
     }
 

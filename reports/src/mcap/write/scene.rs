@@ -251,6 +251,7 @@ fn height(kind: AgentKind) -> f64 {
         AgentKind::Truck => 3.5,
         AgentKind::Bus => 3.2,
         AgentKind::Motorbike => 1.4,
+        AgentKind::Bicycle => 1.7,
         AgentKind::Pedestrian => 1.8,
         AgentKind::Rsu => 5.0,
     }

@@ -9,7 +9,7 @@ use super::point::point_result;
 use super::requirement::requirement_result;
 use crate::results::{
     Assumption, Axis, FORMAT, InputInfo, Measured, MetricEntry, Ordered, Provenance, ReferencePoint, ReferenceResult,
-    Results, ScenarioInfo, Status, Summary, Sweep, SweepRow, Table,
+    Results, ScenarioInfo, Status, Summary, Sweep, SweepRow, Table, WarningInfo,
 };
 
 impl Results {
@@ -94,6 +94,16 @@ impl Results {
                 .map(|Idealisation { id, text }| Assumption {
                     id: id.into(),
                     text: text.into(),
+                })
+                .collect(),
+            warnings: scenario
+                .warnings
+                .iter()
+                .map(|w| WarningInfo {
+                    file: w.file.clone(),
+                    line: w.location.line,
+                    column: w.location.column,
+                    message: w.message.clone(),
                 })
                 .collect(),
         }
