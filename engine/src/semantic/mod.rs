@@ -2,6 +2,7 @@
 //! a local dynamic map and a four-layer semantic pipeline, the V2X link to the
 //! ego, and what the ego gains from it.
 
+mod criticality;
 mod ego;
 mod ldm;
 mod map;

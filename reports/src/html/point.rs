@@ -320,6 +320,8 @@ fn object_tables(objects: &ObjectList) -> [TableView; 2] {
             "closest at",
             "closest, m",
             "least TTC",
+            "PET",
+            "max DRAC, m/s²",
             "anticipation",
         ]
         .map(String::from)
@@ -339,6 +341,8 @@ fn object_tables(objects: &ObjectList) -> [TableView; 2] {
                     or_dash(o.closest.map(|c| c.time)),
                     or_dash(o.closest.map(|c| c.distance)),
                     or_dash(o.min_ttc),
+                    or_dash(o.pet),
+                    or_dash(o.max_drac),
                     or_dash(o.anticipation),
                 ]
             })
