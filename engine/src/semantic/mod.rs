@@ -34,5 +34,6 @@ pub use {
     relevance::Areas,
 };
 
+pub(crate) use criticality::{Criticality, OrientedBox, post_encroachment};
 pub(crate) use rsu::rsu_sight_idealisations;
 pub(crate) use simulate::idealisations;

@@ -173,7 +173,7 @@ struct Encounter {
     proximate: Option<f64>,
     closest: Option<Closest>,
     /// Its state at each step it was within the proximity of the ego, with
-    /// the index of the ego's state then (in [`Encounters::ego`]).
+    /// the index of the ego's state then (in [`Encounters::ego_states`]).
     near: Vec<(u32, AgentState)>,
 }
 

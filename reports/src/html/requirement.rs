@@ -3,6 +3,7 @@
 //! of the banner.
 
 use serde::Serialize;
+use sightline_dsl::ObjectProperty;
 
 use super::format::{number, or_dash};
 use crate::results::{CheckInfo, RateBound, RequirementResult, Statistic};
@@ -138,11 +139,19 @@ fn describe_check(check: &CheckInfo) -> String {
         }
         "per_object" if check.name == "warning_time" => return format!("every object within d_min: {relation}"),
         "per_object" => {
+            // The criticality measures judge only the road users in conflict.
+            let users = match ObjectProperty::ALL
+                .into_iter()
+                .find(|p| p.name() == name && p.defined_only())
+            {
+                Some(property) => format!("each of the {}", property.population()),
+                None => "every relevant road user".to_string(),
+            };
             let selected = check.objects.describe();
             let users = if selected.is_empty() {
-                "every relevant road user".to_string()
+                users
             } else {
-                format!("every relevant road user {selected}")
+                format!("{users} {selected}")
             };
             return format!("{users}: {relation}");
         }
