@@ -2,7 +2,7 @@
 
 Usage: python crime_case.py CASE.json
 
-The case (written by tests/e2e/crime.rs, which runs sightline on the same scene):
+The case (written by tests/e2e/criticality.rs, which runs sightline on the same scene):
 
     {"dt": 0.1, "steps": 12, "proximity": 50,
      "ego":   {"x": 0, "y": 0, "heading_deg": 0, "speed": 10, "length": 4.5, "width": 1.8},
@@ -20,7 +20,7 @@ JSON object on stdout:
   lanelet along the ego's heading, as wide as 4 m plus the wider of the two.
 - "ttc_star": the least of CRIME's TTC* over the same steps: the first time
   step at which the ego's oriented box collides with the other's occupancy,
-  both following their trajectories, extended past the run (`horizon` seconds)
+  both following their trajectories, extended past the run (HORIZON seconds)
   so that a collision after its end is found. Each road user on its own
   lanelet along its heading, 4 m wider than it, so that the ego stays on the
   road (TTC* collides with the road boundary too).
@@ -30,7 +30,7 @@ JSON object on stdout:
 - "pet": CRIME's PET at step 0 over the run's trajectories: the conflict
   area is the intersection of the two lanelets (each exactly as wide as its
   road user, so that it is the intersection of their swept footprints),
-  both lanelets marked as at an intersection.
+  both lanelets marked as at an intersection (CRIME measures PET only there).
 
 A value CRIME reports as infinite (no collision, no conflict area) is null.
 """
@@ -149,7 +149,11 @@ def over_the_run(case, sce, kind):
         apart = np.linalg.norm(position(case["other"], t) - position(case["ego"], t))
         if apart >= case["proximity"]:
             continue
-        value = finite(crime.compute(OTHER, k, verbose=False) if kind is not TTCStar else crime.compute(k, OTHER, verbose=False))
+        # TTC*'s compute takes the time step first, the others the vehicle.
+        if kind is TTCStar:
+            value = finite(crime.compute(k, OTHER, verbose=False))
+        else:
+            value = finite(crime.compute(OTHER, k, verbose=False))
         if value is not None:
             values.append(value)
     return values

@@ -25,23 +25,22 @@ pub(crate) fn evaluate(
         values.to_vec()
     };
     let n = values.len() as u64;
-    let population = match selection.describe() {
-        all if all.is_empty() => property.population().to_string(),
-        some => format!("{} {some}", property.population()),
+    // Those judged among those selected: "… with the ego (of class
+    // pedestrian; 3 selected)", the selection after the qualifier.
+    let population = match (selection.describe(), property.defined_only()) {
+        (all, true) if all.is_empty() => format!("{} (of {selected} selected)", property.population()),
+        (some, true) => format!("{} ({some}; {selected} selected)", property.population()),
+        (all, false) if all.is_empty() => property.population().to_string(),
+        (some, false) => format!("{} {some}", property.population()),
     };
     let extreme = match bound {
         Bound::AtLeast(_) => "smallest",
         Bound::AtMost(_) => "largest",
     };
-    let left_out = if property.defined_only() {
-        format!(" (of {selected} selected)")
-    } else {
-        String::new()
-    };
-    let measured = format!("{extreme} {name} of n = {n} {population}{left_out}");
+    let measured = format!("{extreme} {name} of n = {n} {population}");
     if n < min_objects {
         let message = if n == 0 {
-            format!("nothing to judge: no {population}{left_out}")
+            format!("nothing to judge: no {population}")
         } else {
             format!("nothing to judge: {n} {population}, fewer than the {min_objects} the check needs")
         };

@@ -140,20 +140,20 @@ fn describe_check(check: &CheckInfo) -> String {
         "per_object" if check.name == "warning_time" => return format!("every object within d_min: {relation}"),
         "per_object" => {
             // The criticality measures judge only the road users in conflict.
-            let users = match ObjectProperty::ALL
+            let conflicts = ObjectProperty::ALL
                 .into_iter()
-                .find(|p| p.name() == name && p.defined_only())
-            {
-                Some(property) => format!("each of the {}", property.population()),
-                None => "every relevant road user".to_string(),
+                .any(|p| p.name() == name && p.defined_only());
+            let users = if conflicts {
+                "every road user in conflict with the ego"
+            } else {
+                "every relevant road user"
             };
             let selected = check.objects.describe();
-            let users = if selected.is_empty() {
-                users
-            } else {
-                format!("{users} {selected}")
+            return match (conflicts, selected.is_empty()) {
+                (_, true) => format!("{users}: {relation}"),
+                (true, false) => format!("{users} ({selected}): {relation}"),
+                (false, false) => format!("{users} {selected}: {relation}"),
             };
-            return format!("{users}: {relation}");
         }
         "compare" => {
             let other = check.relative_to.unwrap_or_default();
