@@ -79,6 +79,11 @@ mod viewers;
 #[path = "e2e/objects.rs"]
 mod objects;
 
+// TTC, PET and DRAC: a scene judged by hand through the CLI, and
+// commonroad-crime on two-road-user scenes where the definitions match.
+#[path = "e2e/criticality.rs"]
+mod criticality;
+
 // The findings pages quote the bundled runs.
 #[path = "e2e/findings.rs"]
 mod findings;

@@ -6,6 +6,7 @@ use sightline_dsl::{Channel, Occluder, PathLossModel, Rule};
 
 use crate::fusion::{Mass, Source, combine, fuse};
 use crate::math::{Pose, Vector};
+use crate::semantic::{Criticality, OrientedBox, post_encroachment};
 use crate::v2x::{Link, path_loss_db};
 use crate::world::{Bodies, Body, Occluders, Visibility, visibility};
 
@@ -54,9 +55,10 @@ impl KnownAnswer {
     }
 }
 
-/// The engine's known answers: fusion, line of sight and the radio channel.
+/// The engine's known answers: fusion, line of sight, the radio channel and
+/// criticality.
 pub fn known_answers() -> Vec<KnownAnswer> {
-    [fusion(), visibility_cases(), channel()]
+    [fusion(), visibility_cases(), channel(), criticality()]
         .into_iter()
         .flatten()
         .collect()
@@ -188,6 +190,66 @@ fn channel() -> Vec<KnownAnswer> {
             "freeway path loss at 200 m, dB",
             93.837640,
             at(PathLossModel::Tr36885Highway, 200.0, true),
+        ),
+    ]
+}
+
+/// TTC, DRAC and PET on oriented boxes 4 m × 2 m (the unit tests of
+/// `semantic::criticality` derive each).
+fn criticality() -> Vec<KnownAnswer> {
+    let along = |deg: f64| Vector::new(deg.to_radians().cos(), deg.to_radians().sin());
+    let car = |x: f64, y: f64, deg: f64| OrientedBox::new(Vector::new(x, y), along(deg), 4.0, 2.0);
+    let moving = |x, y, deg, speed: f64| (car(x, y, deg), along(deg) * speed);
+    let of = |(ego, v_ego): (OrientedBox, Vector), (other, v_other): (OrientedBox, Vector)| {
+        Criticality::of((&ego, v_ego), (&other, v_other))
+    };
+    let nan = f64::NAN;
+    let head_on = of(moving(0.0, 0.0, 0.0, 10.0), moving(30.0, 0.0, 180.0, 5.0));
+    let crossing = of(moving(0.0, 0.0, 0.0, 10.0), moving(20.0, -10.0, 90.0, 5.0));
+    let rear = of(moving(0.0, 0.0, 0.0, 12.0), moving(20.0, 0.0, 0.0, 8.0));
+    let corner = of(moving(0.0, 0.0, 0.0, 0.0), (car(10.0, 0.0, 45.0), along(180.0) * 2.0));
+    let track = |from: Vector, deg: f64, speed: f64| -> Vec<(f64, OrientedBox)> {
+        (0..120)
+            .map(|k| {
+                let t = f64::from(k) * 0.1;
+                (t, OrientedBox::new(from + along(deg) * speed * t, along(deg), 4.0, 2.0))
+            })
+            .collect()
+    };
+    let pet = post_encroachment(
+        &track(Vector::new(-0.25, 0.0), 0.0, 10.0),
+        &track(Vector::new(20.0, -25.25), 90.0, 5.0),
+    );
+    vec![
+        KnownAnswer::close(
+            "CRIT-01",
+            "TTC head on, 26 m closing at 15 m/s, s",
+            26.0 / 15.0,
+            head_on.ttc.unwrap_or(nan),
+        ),
+        KnownAnswer::close(
+            "CRIT-02",
+            "TTC crossing at right angles, s",
+            1.7,
+            crossing.ttc.unwrap_or(nan),
+        ),
+        KnownAnswer::close(
+            "CRIT-03",
+            "TTC of a box turned 45° touching corner first, s",
+            (8.0 - 3.0 / 2f64.sqrt()) / 2.0,
+            corner.ttc.unwrap_or(nan),
+        ),
+        KnownAnswer::close(
+            "CRIT-04",
+            "DRAC behind a slower car, 4² / (2 · 16) m/s²",
+            0.5,
+            rear.drac.unwrap_or(nan),
+        ),
+        KnownAnswer::close(
+            "CRIT-05",
+            "PET of a right-angle crossing sampled every 0.1 s, s",
+            2.2,
+            pet.unwrap_or(nan),
         ),
     ]
 }

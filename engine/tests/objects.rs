@@ -50,8 +50,9 @@ fn each_category_occurs_once_with_its_times_by_hand() {
     // walker_c at (−1.5, 5.1), out of the RSU's 20 m (34 m away): relevant from
     // the start (45.4 m away); in the ego's 30 m once 5.1 − y < 29.96, y > −24.86,
     // t > 3.08: at 3.1. Closest where y is nearest 5.1: y = 5.25 at 9.1, 1.5075 m.
-    // Within d_min = 2 m while |5.1 − y| ≤ √(2² − 1.5²) = 1.32 (from 8.9): the
-    // least time to collision is 0.
+    // Its 0.6 m square spans x ∈ [−1.8, −1.2], the ego's 1.8 m width
+    // x ∈ [−0.9, 0.9]: they never touch, so it has no time to collision, no
+    // DRAC and, their footprints never sharing a spot, no PET.
     let c = by_id(&metrics, "walker_c");
     assert_eq!((c.class, c.category), (AgentKind::Pedestrian, Category::SeenFirst));
     assert_relative_eq!(c.first_relevant, 0.0);
@@ -64,7 +65,7 @@ fn each_category_occurs_once_with_its_times_by_hand() {
         (1.5f64.powi(2) + 0.15f64.powi(2)).sqrt(),
         epsilon = 1e-9
     );
-    assert_eq!(c.min_ttc, Some(0.0));
+    assert_eq!((c.min_ttc, c.max_drac, c.pet), (None, None, None));
     assert_eq!(c.anticipation(), None);
 
     // car_b parked at (30, 10.2), 14.1 m from the RSU: within 50 m of the ego

@@ -265,6 +265,8 @@ fn urban_recording_counts_the_packets_messages_and_approaches() {
             "first_v2x",
             "category",
             "min_ttc",
+            "max_drac",
+            "pet",
         ] {
             assert_eq!(recorded[field], listed[field], "{field}");
         }

@@ -34,12 +34,18 @@ pub(super) fn selection(
             return None;
         }
         Some(property) if !property.of_record() => {
+            let of_record: Vec<String> = ObjectProperty::ALL
+                .iter()
+                .filter(|p| p.of_record())
+                .map(|p| format!("`{}`", p.name()))
+                .collect();
             ctx.error(
                 path,
                 ErrorKind::Invalid(format!(
                     "`{}` judges close approaches, which `objects` cannot select; judge the relevant road users' \
-                     records instead (`warning_lead`, `knowledge_lead`, `anticipation`, `closest_distance`)",
-                    property.name()
+                     records instead ({})",
+                    property.name(),
+                    of_record.join(", ")
                 )),
             );
             return None;

@@ -6,6 +6,8 @@
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
+use super::ObjectProperty;
+
 /// Metrics. Counts are numbers of cells. Some exist only in the field experiment,
 /// some only in worlds (see [`Metric::in_field`], [`Metric::in_world`],
 /// [`Metric::in_semantic`]).
@@ -136,11 +138,23 @@ pub enum Metric {
     BaselineObjectAnticipationMedian,
     /// Semantic: `object_anticipation_p95` over the ETSI baseline's messages.
     BaselineObjectAnticipationP95,
+    /// Semantic: the least time to collision of any relevant road user with
+    /// the ego (the least of the records' `min_ttc`), seconds, over the road
+    /// users on a collision course with it.
+    MinTtc,
+    /// Semantic: the least post-encroachment time of any relevant road user
+    /// with the ego (the least of the records' `pet`), seconds, over the road
+    /// users whose footprints covered a spot the ego's covered.
+    MinPet,
+    /// Semantic: the greatest deceleration rate to avoid a crash the ego
+    /// needed for any relevant road user (the greatest of the records'
+    /// `max_drac`), m/s², over the road users it closed on.
+    MaxDrac,
 }
 
 impl Metric {
     /// Every metric, in documentation order.
-    pub const ALL: [Metric; 44] = [
+    pub const ALL: [Metric; 47] = [
         Self::Accuracy,
         Self::BelowThreshold,
         Self::BelowThresholdFraction,
@@ -185,6 +199,9 @@ impl Metric {
         Self::BaselineAnticipationP95,
         Self::BaselineObjectAnticipationMedian,
         Self::BaselineObjectAnticipationP95,
+        Self::MinTtc,
+        Self::MinPet,
+        Self::MaxDrac,
     ];
 
     /// The name as written in scenario files.
@@ -234,6 +251,9 @@ impl Metric {
             Self::BaselineAnticipationP95 => "baseline_anticipation_p95",
             Self::BaselineObjectAnticipationMedian => "baseline_object_anticipation_median",
             Self::BaselineObjectAnticipationP95 => "baseline_object_anticipation_p95",
+            Self::MinTtc => "min_ttc",
+            Self::MinPet => "min_pet",
+            Self::MaxDrac => "max_drac",
         }
     }
 
@@ -310,6 +330,9 @@ impl Metric {
                 | Self::BaselineAnticipationP95
                 | Self::BaselineObjectAnticipationMedian
                 | Self::BaselineObjectAnticipationP95
+                | Self::MinTtc
+                | Self::MinPet
+                | Self::MaxDrac
         )
     }
 
@@ -360,6 +383,9 @@ impl Metric {
             | Self::ObjectsWarnedNeverSeen
             | Self::ObjectsSeenFirst
             | Self::ObjectsNeverKnown => "relevant objects",
+            Self::MinTtc => ObjectProperty::MinTtc.population(),
+            Self::MinPet => ObjectProperty::Pet.population(),
+            Self::MaxDrac => ObjectProperty::MaxDrac.population(),
             _ => "cells",
         }
     }
@@ -443,7 +469,10 @@ impl Metric {
             | Self::BaselineAnticipationMedian
             | Self::BaselineAnticipationP95
             | Self::BaselineObjectAnticipationMedian
-            | Self::BaselineObjectAnticipationP95 => ValueDomain::NonNegative,
+            | Self::BaselineObjectAnticipationP95
+            | Self::MinTtc
+            | Self::MinPet
+            | Self::MaxDrac => ValueDomain::NonNegative,
         }
     }
 

@@ -333,16 +333,32 @@ pub enum ObjectProperty {
     /// Each relevant road user: its closest approach to the ego, metres
     /// between centres.
     ClosestDistance,
+    /// Each relevant road user on a collision course with the ego: its least
+    /// time to collision, seconds (oriented boxes at constant velocity, over
+    /// the steps within `semantic.proximity`; 0: they touched). One never on
+    /// such a course has none and is not judged.
+    MinTtc,
+    /// Each relevant road user whose footprint covered a spot the ego's
+    /// covered: its post-encroachment time, seconds (0: they touched). One
+    /// without such a spot has none and is not judged.
+    Pet,
+    /// Each relevant road user the ego closed on, on a collision course: the
+    /// greatest deceleration rate to avoid the crash the ego needed, m/s².
+    /// One it never closed on has none and is not judged.
+    MaxDrac,
 }
 
 impl ObjectProperty {
     /// Every property in documentation order.
-    pub const ALL: [ObjectProperty; 5] = [
+    pub const ALL: [ObjectProperty; 8] = [
         Self::WarningTime,
         Self::WarningLead,
         Self::KnowledgeLead,
         Self::Anticipation,
         Self::ClosestDistance,
+        Self::MinTtc,
+        Self::Pet,
+        Self::MaxDrac,
     ];
 
     /// The name as written in scenario files.
@@ -353,6 +369,9 @@ impl ObjectProperty {
             Self::KnowledgeLead => "knowledge_lead",
             Self::Anticipation => "anticipation",
             Self::ClosestDistance => "closest_distance",
+            Self::MinTtc => "min_ttc",
+            Self::Pet => "pet",
+            Self::MaxDrac => "max_drac",
         }
     }
 
@@ -363,19 +382,37 @@ impl ObjectProperty {
         self != Self::WarningTime
     }
 
+    /// Whether a check judges only the road users that have it: a
+    /// criticality measure exists only for a road user in conflict with the
+    /// ego, and one without a conflict is left out of the population rather
+    /// than failed (an empty population is not exercised, never a pass).
+    /// For the others, a road user without the property fails.
+    pub fn defined_only(self) -> bool {
+        matches!(self, Self::MinTtc | Self::Pet | Self::MaxDrac)
+    }
+
     /// The road users it is measured over, in words.
     pub fn population(self) -> &'static str {
-        if self.of_record() {
-            "relevant road users"
-        } else {
-            "objects that came within d_min of the ego"
+        match self {
+            Self::WarningTime => "objects that came within d_min of the ego",
+            Self::MinTtc => "relevant road users on a collision course with the ego",
+            Self::Pet => "relevant road users that covered a spot the ego covered",
+            Self::MaxDrac => "relevant road users the ego closed on, on a collision course",
+            Self::WarningLead | Self::KnowledgeLead | Self::Anticipation | Self::ClosestDistance => {
+                "relevant road users"
+            }
         }
     }
 
     /// The values an object's property can take (an object may also have none).
     pub fn domain(self) -> ValueDomain {
         match self {
-            Self::WarningTime | Self::Anticipation | Self::ClosestDistance => ValueDomain::NonNegative,
+            Self::WarningTime
+            | Self::Anticipation
+            | Self::ClosestDistance
+            | Self::MinTtc
+            | Self::Pet
+            | Self::MaxDrac => ValueDomain::NonNegative,
             Self::WarningLead | Self::KnowledgeLead => ValueDomain::Real,
         }
     }

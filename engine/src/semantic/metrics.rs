@@ -241,6 +241,9 @@ impl SemanticMetrics {
             Metric::BaselineAnticipationP95 => quantile(&self.baseline_anticipation, 0.95),
             Metric::BaselineObjectAnticipationMedian => quantile(&self.baseline_object_anticipation(), 0.5),
             Metric::BaselineObjectAnticipationP95 => quantile(&self.baseline_object_anticipation(), 0.95),
+            Metric::MinTtc => self.criticality(|o| o.min_ttc).reduce(f64::min),
+            Metric::MinPet => self.criticality(|o| o.pet).reduce(f64::min),
+            Metric::MaxDrac => self.criticality(|o| o.max_drac).reduce(f64::max),
             _ => None,
         }
     }
@@ -271,8 +274,16 @@ impl SemanticMetrics {
                     .filter(|o| o.baseline_anticipation().is_some())
                     .count() as u64
             }
+            Metric::MinTtc => self.criticality(|o| o.min_ttc).count() as u64,
+            Metric::MinPet => self.criticality(|o| o.pet).count() as u64,
+            Metric::MaxDrac => self.criticality(|o| o.max_drac).count() as u64,
             _ => return None,
         })
+    }
+
+    /// A criticality measure `of` the relevant objects that have one, in order.
+    fn criticality(&self, of: fn(&ObjectRecord) -> Option<f64>) -> impl Iterator<Item = f64> + '_ {
+        self.objects.iter().filter_map(of)
     }
 
     /// The relevant objects in `category` per pooled run.

@@ -2,6 +2,7 @@
 //! a local dynamic map and a four-layer semantic pipeline, the V2X link to the
 //! ego, and what the ego gains from it.
 
+mod criticality;
 mod ego;
 mod ldm;
 mod map;
@@ -33,5 +34,6 @@ pub use {
     relevance::Areas,
 };
 
+pub(crate) use criticality::{Criticality, OrientedBox, post_encroachment};
 pub(crate) use rsu::rsu_sight_idealisations;
 pub(crate) use simulate::idealisations;

@@ -21,18 +21,18 @@
 //!   where the road user was then (so that it can be placed in an area).
 //! - **areas**: the crosswalks, interaction areas and declared `areas` its centre
 //!   was inside at some step with the ego in the scene, in declaration order.
-//! - **least time to collision**: over the steps at which it is within
-//!   `semantic.proximity` of the ego, the shortest time after which the centres
-//!   would come within `d_min` if both kept their speed and heading (0 when
-//!   they are within it); none when they are never on such a course. Centres
-//!   and `d_min` as the close approaches count them; footprints (oriented boxes) are not used.
+//! - **criticality** ([`super::criticality`]), over the steps at which it is
+//!   within `semantic.proximity` of the ego, on the oriented boxes of both:
+//!   its least time to collision (TTC), its greatest deceleration rate to avoid
+//!   a crash (DRAC), and its post-encroachment time (PET) over the conflict
+//!   area their footprints at those steps share; none where it never had one.
 
 use serde::{Deserialize, Serialize};
 use sightline_dsl::{Agent, AgentKind, Area, Semantic, World};
 
+use super::criticality::{Criticality, OrientedBox, post_encroachment, velocity};
 use super::ego::Knowledge;
 use super::relevance::{contains, crosswalk_area};
-use crate::math::Vector;
 use crate::world::AgentState;
 
 /// How the ego came to know a road user: by V2X, by its own sight, in which
@@ -119,8 +119,15 @@ pub struct ObjectRecord {
     /// the scene together with the ego).
     pub closest: Option<Closest>,
     /// Its least time to collision with the ego while within
-    /// `semantic.proximity` of it, seconds.
+    /// `semantic.proximity` of it, seconds (oriented boxes at constant
+    /// velocity; 0: they overlapped or touched).
     pub min_ttc: Option<f64>,
+    /// Its greatest deceleration rate to avoid a crash while within
+    /// `semantic.proximity` of the ego: what the ego needed, m/s².
+    pub max_drac: Option<f64>,
+    /// Its post-encroachment time with the ego over the steps it was within
+    /// `semantic.proximity` of it, seconds (0: their footprints overlapped).
+    pub pet: Option<f64>,
     /// How the ego came to know it.
     pub category: Category,
     /// When the first message naming it would have reached the ego had the
@@ -160,21 +167,24 @@ impl ObjectRecord {
 }
 
 /// What the steps showed of one road user relative to the ego.
-#[derive(Debug, Clone, Copy, Default)]
+#[derive(Debug, Clone, Default)]
 struct Encounter {
     /// The first step it was within the proximity of the ego.
     proximate: Option<f64>,
     closest: Option<Closest>,
-    min_ttc: Option<f64>,
+    /// Its state at each step it was within the proximity of the ego, with
+    /// the index of the ego's state then (in [`Encounters::ego_states`]).
+    near: Vec<(u32, AgentState)>,
 }
 
 /// The encounters of every road user with the ego over a run.
 pub(super) struct Encounters {
     ego: usize,
     proximity: f64,
-    d_min: f64,
     /// By agent index.
     by_agent: Vec<Encounter>,
+    /// The ego's time and state at each step with it in the scene.
+    ego_states: Vec<(f64, AgentState)>,
     /// The regions a record names, with their ids.
     regions: Vec<(String, Area)>,
     /// By agent index, then region: whether it was inside.
@@ -193,8 +203,8 @@ impl Encounters {
         Self {
             ego: semantic.ego,
             proximity: semantic.proximity,
-            d_min: semantic.d_min,
             by_agent: vec![Encounter::default(); agents],
+            ego_states: Vec::new(),
             inside: vec![false; agents * regions.len()],
             regions,
         }
@@ -202,7 +212,8 @@ impl Encounters {
 
     /// The step at `time` with the ego at `ego` and every agent's state in `states`.
     pub(super) fn step(&mut self, time: f64, ego: AgentState, states: &[Option<AgentState>]) {
-        let ego_velocity = velocity(ego);
+        let ego_step = self.ego_states.len() as u32;
+        self.ego_states.push((time, ego));
         for (agent, state) in states.iter().enumerate() {
             let Some(state) = state.filter(|_| agent != self.ego) else {
                 continue;
@@ -212,8 +223,7 @@ impl Encounters {
                 *inside = *inside || contains(area, state.position());
             }
             let encounter = &mut self.by_agent[agent];
-            let offset = state.position() - ego.position();
-            let distance = offset.length();
+            let distance = (state.position() - ego.position()).length();
             if encounter.closest.is_none_or(|c| distance < c.distance) {
                 let at = state.position();
                 encounter.closest = Some(Closest {
@@ -222,15 +232,13 @@ impl Encounters {
                     position: [at.x, at.y],
                 });
             }
-            // Farther, a time to collision says nothing the nearer steps do not;
+            // Farther, criticality says nothing the nearer steps do not;
             // leaving those steps out keeps the record cheap in dense traffic.
             if distance >= self.proximity {
                 continue;
             }
             encounter.proximate.get_or_insert(time);
-            if let Some(ttc) = time_to_within(offset, velocity(state) - ego_velocity, self.d_min) {
-                encounter.min_ttc = Some(encounter.min_ttc.map_or(ttc, |least| least.min(ttc)));
-            }
+            encounter.near.push((ego_step, state));
         }
     }
 
@@ -250,13 +258,10 @@ impl Encounters {
                     (Some(near), Some(named)) => near.min(named),
                     (near, named) => near.or(named)?,
                 };
-                let earliest = |a: Option<f64>, b: Option<f64>| match (a, b) {
-                    (Some(a), Some(b)) => Some(a.min(b)),
-                    (a, b) => a.or(b),
-                };
-                let first_v2x = earliest(named, known.first_direct);
-                let baseline_v2x = earliest(known.baseline_received.map(|(at, _)| at), known.first_direct);
+                let first_v2x = least(named, known.first_direct);
+                let baseline_v2x = least(known.baseline_received.map(|(at, _)| at), known.first_direct);
                 let spec = &agents[agent];
+                let critical = self.criticality(encounter, (&agents[self.ego], spec));
                 let record = ObjectRecord {
                     run,
                     id: spec.id.clone(),
@@ -268,7 +273,9 @@ impl Encounters {
                     first_v2x,
                     first_warning: known.flagged,
                     closest: encounter.closest,
-                    min_ttc: encounter.min_ttc,
+                    min_ttc: critical.min_ttc,
+                    max_drac: critical.max_drac,
+                    pet: critical.pet,
                     category: Category::of(first_v2x, known.first_seen),
                     baseline_v2x,
                     areas: self.areas_of(agent),
@@ -290,66 +297,52 @@ impl Encounters {
             .map(|((id, _), _)| id.clone())
             .collect()
     }
-}
 
-/// An agent's velocity: its speed along its heading.
-fn velocity(state: AgentState) -> Vector {
-    let rotation = state.pose.rotation;
-    Vector::new(rotation.cos(), rotation.sin()) * state.speed
-}
-
-/// The shortest time t ≥ 0 after which |`offset` + `closing` · t| ≤ `d_min`:
-/// 0 when already within, `None` when never (moving apart, or passing wide).
-fn time_to_within(offset: Vector, closing: Vector, d_min: f64) -> Option<f64> {
-    let c = offset.dot(offset) - d_min * d_min;
-    if c <= 0.0 {
-        return Some(0.0);
+    /// The criticality of a road user (`spec`) in its `encounter` with the
+    /// ego (`ego`), over the steps it was within the proximity.
+    fn criticality(&self, encounter: &Encounter, (ego, spec): (&Agent, &Agent)) -> Critical {
+        let mut critical = Critical::default();
+        let mut ego_boxes = Vec::with_capacity(encounter.near.len());
+        let mut boxes = Vec::with_capacity(encounter.near.len());
+        for &(ego_step, ref state) in &encounter.near {
+            let (time, ref ego_state) = self.ego_states[ego_step as usize];
+            let ego_box = OrientedBox::of(ego_state, ego.length, ego.width);
+            let other = OrientedBox::of(state, spec.length, spec.width);
+            let step = Criticality::of((&ego_box, velocity(ego_state)), (&other, velocity(state)));
+            critical.min_ttc = least(critical.min_ttc, step.ttc);
+            critical.max_drac = pick(critical.max_drac, step.drac, f64::max);
+            ego_boxes.push((time, ego_box));
+            boxes.push((time, other));
+        }
+        critical.pet = post_encroachment(&ego_boxes, &boxes);
+        critical
     }
-    let a = closing.dot(closing);
-    let b = 2.0 * offset.dot(closing);
-    // Outside now: the roots share a sign (their product c / a > 0), so the
-    // course reaches d_min ahead only when b < 0 and the discriminant holds.
-    let discriminant = b * b - 4.0 * a * c;
-    (a > 0.0 && b < 0.0 && discriminant >= 0.0).then(|| (-b - discriminant.sqrt()) / (2.0 * a))
+}
+
+/// A road user's criticality against the ego over a run.
+#[derive(Debug, Clone, Copy, Default)]
+struct Critical {
+    min_ttc: Option<f64>,
+    max_drac: Option<f64>,
+    pet: Option<f64>,
+}
+
+/// The lesser (the earlier) of two values, either absent.
+fn least(a: Option<f64>, b: Option<f64>) -> Option<f64> {
+    pick(a, b, f64::min)
+}
+
+/// `choose` of two values, or the one present.
+fn pick(a: Option<f64>, b: Option<f64>, choose: fn(f64, f64) -> f64) -> Option<f64> {
+    match (a, b) {
+        (Some(a), Some(b)) => Some(choose(a, b)),
+        (a, b) => a.or(b),
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use approx::assert_relative_eq;
-
-    /// Head on at 10 m/s closing from 22 m with d_min 2: 20 m to go, 2 s.
-    #[test]
-    fn time_to_collision_head_on() {
-        let t = time_to_within(Vector::new(22.0, 0.0), Vector::new(-10.0, 0.0), 2.0).unwrap();
-        assert_relative_eq!(t, 2.0, epsilon = 1e-12);
-        assert_eq!(
-            time_to_within(Vector::new(22.0, 0.0), Vector::new(10.0, 0.0), 2.0),
-            None
-        );
-        assert_eq!(
-            time_to_within(Vector::new(1.0, 1.0), Vector::new(10.0, 0.0), 2.0),
-            Some(0.0)
-        );
-    }
-
-    /// Passing 3 m abeam never comes within 2 m; 1.2 m abeam does, after
-    /// (10 − √(2² − 1.2²)) / 5 = (10 − 1.6) / 5 = 1.68 s.
-    #[test]
-    fn time_to_collision_of_a_passing_course() {
-        assert_eq!(
-            time_to_within(Vector::new(10.0, 3.0), Vector::new(-5.0, 0.0), 2.0),
-            None
-        );
-        let t = time_to_within(Vector::new(10.0, 1.2), Vector::new(-5.0, 0.0), 2.0).unwrap();
-        assert_relative_eq!(t, 1.68, epsilon = 1e-12);
-    }
-
-    #[test]
-    fn time_to_collision_at_rest_is_none_outside_d_min() {
-        assert_eq!(time_to_within(Vector::new(5.0, 0.0), Vector::ZERO, 2.0), None);
-    }
-
     #[test]
     fn each_road_user_falls_in_exactly_one_category() {
         use Category::*;
@@ -382,6 +375,8 @@ mod tests {
                 position: [0.0, 0.0],
             }),
             min_ttc: None,
+            max_drac: None,
+            pet: None,
             category,
             baseline_v2x: None,
             areas: Vec::new(),

@@ -41,6 +41,9 @@ impl ObjectRecord {
                 _ => self.anticipation(),
             },
             ObjectProperty::ClosestDistance => self.closest.map(|c| c.distance),
+            ObjectProperty::MinTtc => self.min_ttc,
+            ObjectProperty::Pet => self.pet,
+            ObjectProperty::MaxDrac => self.max_drac,
         }
     }
 }
@@ -70,7 +73,9 @@ mod tests {
                 distance: 3.0,
                 position: [0.0, 11.0],
             }),
-            min_ttc: None,
+            min_ttc: Some(1.5),
+            max_drac: Some(2.0),
+            pet: None,
             category: Category::WarnedBeforeSeen,
             baseline_v2x: Some(1.0),
             areas: vec!["cw_north".into(), "junction".into()],
@@ -85,6 +90,9 @@ mod tests {
         assert_eq!(p.property(ObjectProperty::Anticipation), Some(2.5));
         assert_eq!(p.property(ObjectProperty::ClosestDistance), Some(3.0));
         assert_eq!(p.property(ObjectProperty::WarningTime), None);
+        assert_eq!(p.property(ObjectProperty::MinTtc), Some(1.5));
+        assert_eq!(p.property(ObjectProperty::MaxDrac), Some(2.0));
+        assert_eq!(p.property(ObjectProperty::Pet), None);
         // Never warned, never known: no lead; seen first: no anticipation gained.
         let late = ObjectRecord {
             first_warning: None,

@@ -47,6 +47,7 @@
 use rayon::prelude::*;
 use sightline_dsl::{AgentKind, Semantic, ShareCycles, World};
 
+use super::criticality;
 use super::ego::{self, Ego};
 use super::ldm;
 use super::map::route_map;
@@ -91,6 +92,7 @@ pub(crate) fn idealisations(world: &World, semantic: &Semantic) -> Vec<Idealisat
         v2x::NO_CONTENTION,
         ego::KNOWN_FOR_A_WHILE,
         radio::BASELINE_REPLAY,
+        criticality::BOXES,
     ]);
     let road_users = world
         .agents

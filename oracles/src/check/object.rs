@@ -6,8 +6,10 @@ use super::short;
 use crate::Evaluation;
 
 /// Checks `property` of every road user `selection` kept against `bound`: the
-/// smallest margin decides; a road user without the property fails with no
-/// value. Fewer road users than `min_objects` (none, by default) is not
+/// smallest margin decides. A road user without the property fails with no
+/// value, except for a property only conflicts have
+/// ([`ObjectProperty::defined_only`]): one without a conflict is not judged.
+/// Fewer judged road users than `min_objects` (none, by default) is not
 /// exercised: nothing to judge.
 pub(crate) fn evaluate(
     (property, selection): (ObjectProperty, &ObjectSelection),
@@ -16,12 +18,26 @@ pub(crate) fn evaluate(
     min_objects: u64,
 ) -> Evaluation {
     let name = property.name();
-    let n = values.len() as u64;
-    let population = match selection.describe() {
-        all if all.is_empty() => property.population().to_string(),
-        some => format!("{} {some}", property.population()),
+    let selected = values.len();
+    let values: Vec<Option<f64>> = if property.defined_only() {
+        values.iter().copied().filter(Option::is_some).collect()
+    } else {
+        values.to_vec()
     };
-    let measured = format!("smallest {name} of n = {n} {population}");
+    let n = values.len() as u64;
+    // Those judged among those selected: "… with the ego (of class
+    // pedestrian; 3 selected)", the selection after the qualifier.
+    let population = match (selection.describe(), property.defined_only()) {
+        (all, true) if all.is_empty() => format!("{} (of {selected} selected)", property.population()),
+        (some, true) => format!("{} ({some}; {selected} selected)", property.population()),
+        (all, false) if all.is_empty() => property.population().to_string(),
+        (some, false) => format!("{} {some}", property.population()),
+    };
+    let extreme = match bound {
+        Bound::AtLeast(_) => "smallest",
+        Bound::AtMost(_) => "largest",
+    };
+    let measured = format!("{extreme} {name} of n = {n} {population}");
     if n < min_objects {
         let message = if n == 0 {
             format!("nothing to judge: no {population}")
@@ -49,7 +65,7 @@ pub(crate) fn evaluate(
         .min_by(|a, b| a.0.total_cmp(&b.0))
         .expect("values are present");
     let message = format!(
-        "smallest {name} over {n} {population} = {} (margin {}; n = {n})",
+        "{extreme} {name} over {n} {population} = {} (margin {}; n = {n})",
         short(value),
         short(margin)
     );
@@ -123,5 +139,41 @@ mod tests {
             "{}",
             e.message
         );
+    }
+
+    /// A road user never on a collision course has no TTC and is left out;
+    /// the least TTC of the others decides, and when no selected road user
+    /// had one the check is not exercised, never passed.
+    #[test]
+    fn road_users_without_a_conflict_are_not_judged() {
+        let all = ObjectSelection::default();
+        let e = evaluate(
+            (ObjectProperty::MinTtc, &all),
+            Bound::AtLeast(1.5),
+            &[None, Some(2.0), None, Some(1.7)],
+            1,
+        );
+        assert_eq!((e.status, e.value, e.n), (Status::Pass, Some(1.7), Some(2)));
+        assert_eq!(
+            e.measured,
+            "smallest min_ttc of n = 2 relevant road users on a collision course with the ego (of 4 selected)"
+        );
+        let e = evaluate((ObjectProperty::MinTtc, &all), Bound::AtLeast(1.5), &[None, None], 1);
+        assert_eq!((e.status, e.n), (Status::NotExercised, Some(0)));
+        assert_eq!(
+            e.message,
+            "nothing to judge: no relevant road users on a collision course with the ego (of 2 selected)"
+        );
+        // An upper bound: the greatest DRAC decides.
+        let e = evaluate(
+            (ObjectProperty::MaxDrac, &all),
+            Bound::AtMost(3.0),
+            &[Some(1.0), None, Some(3.4)],
+            1,
+        );
+        assert_eq!((e.status, e.value, e.n), (Status::Fail, Some(3.4), Some(2)));
+        assert!(e.message.starts_with("largest max_drac over 2"), "{}", e.message);
+        let e = evaluate((ObjectProperty::Pet, &all), Bound::AtLeast(1.0), &[Some(0.0)], 1);
+        assert_eq!((e.status, e.value), (Status::Fail, Some(0.0)));
     }
 }

@@ -341,6 +341,8 @@ fn object_tables(objects: &ObjectList) -> [TableView; 2] {
             "closest at (s)",
             "closest (m)",
             "least TTC (s)",
+            "PET (s)",
+            "max DRAC (m/s²)",
             "anticipation (s)",
         ]
         .map(String::from)
@@ -360,6 +362,8 @@ fn object_tables(objects: &ObjectList) -> [TableView; 2] {
                     or_dash(o.closest.map(|c| c.time)),
                     or_dash(o.closest.map(|c| c.distance)),
                     or_dash(o.min_ttc),
+                    or_dash(o.pet),
+                    or_dash(o.max_drac),
                     or_dash(o.anticipation),
                 ]
             })

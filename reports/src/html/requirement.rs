@@ -3,6 +3,7 @@
 //! of the banner.
 
 use serde::Serialize;
+use sightline_dsl::ObjectProperty;
 
 use super::format::{number, with_unit};
 use crate::results::{CheckInfo, RateBound, RequirementResult, Statistic};
@@ -147,13 +148,21 @@ fn describe_check(check: &CheckInfo) -> String {
         }
         "per_object" if check.name == "warning_time" => return format!("every object within d_min: {relation}"),
         "per_object" => {
-            let selected = check.objects.describe();
-            let users = if selected.is_empty() {
-                "every relevant road user".to_string()
+            // The criticality measures judge only the road users in conflict.
+            let conflicts = ObjectProperty::ALL
+                .into_iter()
+                .any(|p| p.name() == name && p.defined_only());
+            let users = if conflicts {
+                "every road user in conflict with the ego"
             } else {
-                format!("every relevant road user {selected}")
+                "every relevant road user"
             };
-            return format!("{users}: {relation}");
+            let selected = check.objects.describe();
+            return match (conflicts, selected.is_empty()) {
+                (_, true) => format!("{users}: {relation}"),
+                (true, false) => format!("{users} ({selected}): {relation}"),
+                (false, false) => format!("{users} {selected}: {relation}"),
+            };
         }
         "compare" => {
             let other = check.relative_to.unwrap_or_default();

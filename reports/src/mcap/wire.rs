@@ -549,9 +549,15 @@ pub struct RoadUserRecord {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub closest_y: Option<f64>,
     /// Its least time to collision with the ego while within
-    /// `semantic.proximity` of it, seconds.
+    /// `semantic.proximity` of it, seconds (oriented boxes).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub min_ttc: Option<f64>,
+    /// Its greatest deceleration rate to avoid a crash then, m/s².
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_drac: Option<f64>,
+    /// Its post-encroachment time with the ego then, seconds.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pet: Option<f64>,
     /// `warned_before_seen`, `warned_never_seen`, `seen_first` or `never_known`.
     pub category: String,
     /// Our anticipation time, seconds.

@@ -93,10 +93,20 @@ pub struct ObjectResult {
     pub first_warning: Option<f64>,
     /// Its closest approach to the ego (`null` only if never in the scene with it).
     pub closest: Option<ClosestApproach>,
-    /// Its least constant-velocity time until the centres come within `d_min`,
-    /// over the steps it is within `semantic.proximity` of the ego, seconds (0:
-    /// within it at some step; `null`: never on such a course).
+    /// Its least time to collision with the ego, seconds: over the steps it
+    /// is within `semantic.proximity` of the ego, the first time the two
+    /// oriented boxes, moving on at constant velocity without turning, touch
+    /// (0: they overlapped or touched; `null`: never on a collision course).
     pub min_ttc: Option<f64>,
+    /// Its greatest deceleration rate to avoid a crash over those steps,
+    /// m/s²: the ego's closing speed along its heading over twice the TTC
+    /// (`null`: the ego never closed on it on a collision course).
+    pub max_drac: Option<f64>,
+    /// Its post-encroachment time with the ego over those steps, seconds: the
+    /// least time between one of the two leaving a spot both footprints
+    /// covered and the other reaching it (0: they overlapped; `null`: no
+    /// common spot).
+    pub pet: Option<f64>,
     /// How the ego came to know it.
     pub category: ObjectCategory,
     /// Our anticipation time, seconds: first seen − first V2X

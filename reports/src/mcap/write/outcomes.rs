@@ -147,6 +147,8 @@ fn road_user_record(point: usize, object: &sightline_engine::outcome::ObjectReco
         closest_x: closest.map(|c| c.position[0]),
         closest_y: closest.map(|c| c.position[1]),
         min_ttc: listed.min_ttc,
+        max_drac: listed.max_drac,
+        pet: listed.pet,
         category: listed.category.name().into(),
         anticipation: listed.anticipation,
     }

@@ -34,6 +34,8 @@ pub(crate) fn object_result(record: &engine::ObjectRecord) -> ObjectResult {
         first_warning,
         closest,
         min_ttc,
+        max_drac,
+        pet,
         category,
         baseline_v2x,
         ref areas,
@@ -60,6 +62,8 @@ pub(crate) fn object_result(record: &engine::ObjectRecord) -> ObjectResult {
             },
         ),
         min_ttc,
+        max_drac,
+        pet,
         category: match category {
             engine::Category::WarnedBeforeSeen => ObjectCategory::WarnedBeforeSeen,
             engine::Category::WarnedNeverSeen => ObjectCategory::WarnedNeverSeen,
