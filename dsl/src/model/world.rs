@@ -133,6 +133,21 @@ impl AgentKind {
         }
     }
 
+    /// A typical height, metres: for what is drawn or exported in 3-D (the
+    /// recording's boxes, OpenSCENARIO's bounding boxes); the world is planar,
+    /// so nothing is computed with it.
+    pub fn height(self) -> f64 {
+        match self {
+            Self::Car => 1.5,
+            Self::Truck => 3.5,
+            Self::Bus => 3.2,
+            Self::Motorbike => 1.4,
+            Self::Bicycle => 1.7,
+            Self::Pedestrian => 1.8,
+            Self::Rsu => 5.0,
+        }
+    }
+
     /// The name as scenario files write it.
     pub fn name(self) -> &'static str {
         match self {

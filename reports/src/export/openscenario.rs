@@ -15,19 +15,6 @@ pub const OPENSCENARIO_VERSION: (u32, u32) = (1, 2);
 /// same bytes (the recording's default clock, `time.start`).
 const DATE: &str = "2000-01-01T00:00:00";
 
-/// Height of each kind of agent, metres (sightline's agents are footprints).
-fn height(kind: AgentKind) -> f64 {
-    match kind {
-        AgentKind::Car => 1.5,
-        AgentKind::Truck => 3.5,
-        AgentKind::Bus => 3.2,
-        AgentKind::Motorbike => 1.4,
-        AgentKind::Bicycle => 1.7,
-        AgentKind::Pedestrian => 1.8,
-        AgentKind::Rsu => 5.0,
-    }
-}
-
 /// What the scenario file says of itself.
 pub(crate) struct Header<'a> {
     /// The file header's description.
@@ -109,7 +96,7 @@ pub(crate) fn openscenario(header: &Header<'_>, motions: &Motions) -> (String, u
 
 fn write_entity(xml: &mut Xml, agent: &Agent) {
     xml.start("ScenarioObject", &[("name", agent.id.clone())]);
-    let z = height(agent.kind);
+    let z = agent.kind.height();
     match agent.kind {
         AgentKind::Car | AgentKind::Truck | AgentKind::Bus | AgentKind::Motorbike | AgentKind::Bicycle => {
             xml.start(

@@ -293,7 +293,7 @@ const REPORT_ORDER: [ObjectCategory; 4] = [
 ];
 
 /// The relevant road users by category, and the first of their records.
-fn object_tables(objects: &ObjectList) -> [TableView; 2] {
+fn object_tables(objects: &ObjectList) -> [TableView; 3] {
     let c = &objects.categories;
     let by_category = TableView {
         caption: format!(
@@ -320,14 +320,19 @@ fn object_tables(objects: &ObjectList) -> [TableView; 2] {
         .flat_map(|&category| objects.records.iter().filter(move |o| o.category == category))
         .take(REPORT_OBJECT_ROWS)
         .collect();
-    let records = TableView {
-        caption: format!(
-            "Relevant road users: {} of {} ({} in results.json), never known first, then warned and never seen, \
-             warned before seen, seen first; times in seconds, — where it never happened",
-            shown.len(),
-            objects.relevant,
-            objects.records.len()
-        ),
+    // Two tables of the same road users, in the same order, so that each
+    // prints on A4: when the ego came to know them, and how close and how
+    // critical their encounter was.
+    let listed = format!(
+        "{} of {} ({} in results.json), never known first, then warned and never seen, warned before seen, seen \
+         first; — where it never happened",
+        shown.len(),
+        objects.relevant,
+        objects.records.len()
+    );
+    let identity = |o: &ObjectResult| vec![o.run.to_string(), o.id.clone(), o.class.to_string()];
+    let knowledge = TableView {
+        caption: format!("Relevant road users, when the ego knew them: {listed}"),
         text_columns: 4,
         head: [
             "run",
@@ -338,11 +343,6 @@ fn object_tables(objects: &ObjectList) -> [TableView; 2] {
             "seen (s)",
             "V2X (s)",
             "warned (s)",
-            "closest at (s)",
-            "closest (m)",
-            "least TTC (s)",
-            "PET (s)",
-            "max DRAC (m/s²)",
             "anticipation (s)",
         ]
         .map(String::from)
@@ -350,26 +350,50 @@ fn object_tables(objects: &ObjectList) -> [TableView; 2] {
         rows: shown
             .iter()
             .map(|o| {
-                vec![
-                    o.run.to_string(),
-                    o.id.clone(),
-                    o.class.to_string(),
+                let mut row = identity(o);
+                row.extend([
                     o.category.name().to_string(),
                     number(o.first_relevant),
                     or_dash(o.first_seen),
                     or_dash(o.first_v2x),
                     or_dash(o.first_warning),
+                    or_dash(o.anticipation),
+                ]);
+                row
+            })
+            .collect(),
+    };
+    let encounters = TableView {
+        caption: format!("Relevant road users, their closest approach and criticality: {listed}"),
+        text_columns: 3,
+        head: [
+            "run",
+            "id",
+            "class",
+            "closest at (s)",
+            "closest (m)",
+            "least TTC (s)",
+            "PET (s)",
+            "max DRAC (m/s²)",
+        ]
+        .map(String::from)
+        .to_vec(),
+        rows: shown
+            .iter()
+            .map(|o| {
+                let mut row = identity(o);
+                row.extend([
                     or_dash(o.closest.map(|c| c.time)),
                     or_dash(o.closest.map(|c| c.distance)),
                     or_dash(o.min_ttc),
                     or_dash(o.pet),
                     or_dash(o.max_drac),
-                    or_dash(o.anticipation),
-                ]
+                ]);
+                row
             })
             .collect(),
     };
-    [by_category, records]
+    [by_category, knowledge, encounters]
 }
 
 /// A band of distance: "from – to m", or "≥ from m" when it has no bound.

@@ -73,7 +73,7 @@ impl<W: Write + Seek> Recorder<'_, W> {
             .enumerate()
             .filter_map(|(i, state)| Some((i, (*state)?, self.agents.get(i)?)))
             .map(|(i, state, agent)| {
-                let height = height(agent.kind);
+                let height = agent.kind.height();
                 let mut entity = Entity::new(stamp, agent.id.clone())
                     .meta("kind", agent.kind.name())
                     .meta("speed_mps", format!("{:.2}", state.speed))
@@ -136,7 +136,7 @@ impl<W: Write + Seek> Recorder<'_, W> {
             for sighting in c.observation.sighted() {
                 let Some(body) = sighting.detected else { continue };
                 let name = self.agent_id(sighting.target);
-                let height = self.agents.get(sighting.target).map_or(1.5, |a| height(a.kind));
+                let height = self.agents.get(sighting.target).map_or(1.5, |a| a.kind.height());
                 entities.push(
                     Entity::new(stamp, format!("{name}#{}", sighting.sensor))
                         .meta("target", &name)
@@ -242,17 +242,4 @@ pub(super) fn map_entities(world: &World, grid: Option<&CellGrid>, start: u64) -
         entities.push(Entity::new(stamp, "region").line(loop_line(circle(center, radius), 0.2, AREA)));
     }
     entities
-}
-
-/// A box's height for an agent of `kind`, metres (pictures only).
-fn height(kind: AgentKind) -> f64 {
-    match kind {
-        AgentKind::Car => 1.5,
-        AgentKind::Truck => 3.5,
-        AgentKind::Bus => 3.2,
-        AgentKind::Motorbike => 1.4,
-        AgentKind::Bicycle => 1.7,
-        AgentKind::Pedestrian => 1.8,
-        AgentKind::Rsu => 5.0,
-    }
 }
