@@ -238,7 +238,7 @@ fn imports_from(dir: &Path, scenario: &Scenario) -> anyhow::Result<Vec<(String, 
             let text = relative
                 .to_str()
                 .with_context(|| format!("{} is not a UTF-8 path", relative.display()))?;
-            Ok((format!("traces.{}", import.kind.key()), text.into()))
+            Ok((format!("{}.{}", import.kind.section(), import.kind.key()), text.into()))
         })
         .collect()
 }

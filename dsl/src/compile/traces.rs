@@ -21,7 +21,8 @@ use std::collections::{HashMap, HashSet};
 use super::context::Context;
 use crate::error::{Error, ErrorKind, utf8_text};
 use crate::geometry::{Polyline, counter_clockwise, distance};
-use crate::import::sumo::{Fcd, FcdObject, Network, SumoError, parse_fcd, parse_net, parse_poly};
+use crate::import::Problem;
+use crate::import::sumo::{Fcd, FcdObject, Network, parse_fcd, parse_net, parse_poly};
 use crate::model::{
     Agent, AgentKind, Area, Import, ImportKind, InteractionArea, LaneLink, Motion, Occluder, Road, TraceSample,
 };
@@ -134,24 +135,24 @@ pub(super) fn load(
 }
 
 /// A file failed to load; the error is recorded.
-struct Failed;
+pub(super) struct Failed;
 
 /// Reads imported files, recording each and every failure.
-struct Reader<'c, 'a, 'f> {
-    ctx: &'c mut Context<'a>,
-    loader: Option<&'f dyn super::Loader>,
-    files: &'f mut Vec<Import>,
+pub(super) struct Reader<'c, 'a, 'f> {
+    pub(super) ctx: &'c mut Context<'a>,
+    pub(super) loader: Option<&'f dyn super::Loader>,
+    pub(super) files: &'f mut Vec<Import>,
 }
 
 impl Reader<'_, '_, '_> {
     /// Reads the file `written` (relative to the scenario's directory) and parses
     /// it; a failure to read is an error at `at`, a malformed file an error in it.
-    fn read<T>(
+    pub(super) fn read<T, E: Problem>(
         &mut self,
         at: &Path,
         written: &str,
         kind: ImportKind,
-        parse: impl Fn(&str) -> Result<T, SumoError>,
+        parse: impl Fn(&str) -> Result<T, E>,
     ) -> Result<T, Failed> {
         let directory = std::path::Path::new(self.ctx.file)
             .parent()
@@ -170,7 +171,7 @@ impl Reader<'_, '_, '_> {
             }
         };
         let parsed = match utf8_text(&bytes) {
-            Ok(text) => parse(text).map_err(|e| (e.location, e.message)),
+            Ok(text) => parse(text).map_err(|e| (e.location(), e.message().to_owned())),
             Err(location) => Err((location, "the file is not UTF-8 text".into())),
         };
         match parsed {

@@ -11,3 +11,32 @@
 
 pub mod opendrive;
 pub mod sumo;
+
+/// A problem a reader found in a file, located in it: what the compile pass
+/// needs to report it as `file:line:col: error: message`.
+pub(crate) trait Problem {
+    /// Where in the file.
+    fn location(&self) -> crate::Location;
+    /// What is wrong.
+    fn message(&self) -> &str;
+}
+
+impl Problem for sumo::SumoError {
+    fn location(&self) -> crate::Location {
+        self.location
+    }
+
+    fn message(&self) -> &str {
+        &self.message
+    }
+}
+
+impl Problem for opendrive::OpenDriveError {
+    fn location(&self) -> crate::Location {
+        self.location
+    }
+
+    fn message(&self) -> &str {
+        &self.message
+    }
+}

@@ -29,7 +29,7 @@ pub struct Scenario {
     pub requirements: Vec<Requirement>,
     /// Published figures, in file order.
     pub references: Vec<Reference>,
-    /// The files the scenario imports (`traces`), in the order read.
+    /// The files the scenario imports (`traces`, `map`), in the order read.
     pub imports: Vec<Import>,
     /// The settings `sightline falsify` varies, in file order (`run` ignores them).
     pub vary: Vec<super::Vary>,
@@ -121,24 +121,36 @@ pub enum ImportKind {
     SumoNet,
     /// SUMO polygons (`traces.poly`).
     SumoPoly,
+    /// An OpenDRIVE road network (`map.opendrive`).
+    OpenDrive,
 }
 
 impl ImportKind {
-    /// Its key under `traces`: `fcd`, `net`, `poly`.
+    /// Its key under its section: `fcd`, `net`, `poly`, `opendrive`.
     pub fn key(self) -> &'static str {
         match self {
             Self::SumoFcd => "fcd",
             Self::SumoNet => "net",
             Self::SumoPoly => "poly",
+            Self::OpenDrive => "opendrive",
         }
     }
 
-    /// Its name in evidence: `sumo_fcd`, `sumo_net`, `sumo_poly`.
+    /// The section that names it: `traces` or `map`.
+    pub fn section(self) -> &'static str {
+        match self {
+            Self::SumoFcd | Self::SumoNet | Self::SumoPoly => "traces",
+            Self::OpenDrive => "map",
+        }
+    }
+
+    /// Its name in evidence: `sumo_fcd`, `sumo_net`, `sumo_poly`, `opendrive`.
     pub fn name(self) -> &'static str {
         match self {
             Self::SumoFcd => "sumo_fcd",
             Self::SumoNet => "sumo_net",
             Self::SumoPoly => "sumo_poly",
+            Self::OpenDrive => "opendrive",
         }
     }
 }

@@ -13,6 +13,7 @@
 mod agents;
 mod field;
 mod fusion;
+mod map;
 mod perception;
 pub(crate) mod range;
 mod record;
@@ -27,6 +28,7 @@ mod world;
 pub(crate) use agents::RawAgent;
 pub(crate) use field::{RawField, RawLayout, RawMasses, RawTruth};
 pub(crate) use fusion::{RawDecision, RawFusion, RawGrid};
+pub(crate) use map::RawMap;
 pub(crate) use perception::RawPerception;
 pub(crate) use record::RawRecord;
 pub(crate) use requirements::{RawCheck, RawObjectSelection, RawReference, RawRequirement};

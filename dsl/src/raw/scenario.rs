@@ -8,6 +8,7 @@ use serde::{Deserialize, Serialize};
 use super::agents::RawAgent;
 use super::field::RawField;
 use super::fusion::{RawDecision, RawFusion, RawGrid};
+use super::map::RawMap;
 use super::perception::RawPerception;
 use super::record::RawRecord;
 use super::requirements::{RawReference, RawRequirement};
@@ -50,7 +51,12 @@ pub(crate) struct RawScenario {
     /// optionally its roads and buildings.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub traces: Option<RawTraces>,
-    /// World: directed roads with their lanes (besides those of `traces.net`).
+    /// World: a road network from an OpenDRIVE file, its roads, sidewalks,
+    /// junctions, crosswalks and buildings.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub map: Option<RawMap>,
+    /// World: directed roads with their lanes (besides those of `traces.net`
+    /// and `map`).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub roads: Vec<RawRoad>,
     /// World: buildings and walls that block sight (besides the polygons of

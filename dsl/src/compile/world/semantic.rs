@@ -6,6 +6,7 @@ use std::collections::HashSet;
 use super::routes::route_path;
 use crate::compile::checks::{coordinates, distinct_from_imported, known_names, unique_ids, whole_multiple};
 use crate::compile::context::Context;
+use crate::compile::map::Mapped;
 use crate::compile::traces::Imported;
 use crate::error::ErrorKind;
 use crate::geometry::counter_clockwise;
@@ -17,9 +18,23 @@ use crate::path::Path;
 use crate::raw::range;
 use crate::raw::{RawCrosswalk, RawDriving, RawInteractionArea, RawSemantic, RawTraffic, RawV2x};
 
-pub(super) fn crosswalks(ctx: &mut Context<'_>, raw: &[RawCrosswalk]) -> Option<Vec<Crosswalk>> {
+/// The declared crosswalks, then the crosswalk objects of `map`.
+pub(super) fn crosswalks(
+    ctx: &mut Context<'_>,
+    raw: &[RawCrosswalk],
+    mapped: Option<&Mapped>,
+) -> Option<Vec<Crosswalk>> {
     let list = Path::root().key("crosswalks");
-    let mut ok = unique_ids(ctx, &list, raw.iter().map(|c| c.id.as_str()));
+    let objects = mapped.map_or(&[][..], |m| &m.crosswalks);
+    let object_ids: HashSet<&str> = objects.iter().map(|c| c.id.as_str()).collect();
+    let mut ok = unique_ids(ctx, &list, raw.iter().map(|c| c.id.as_str()))
+        & distinct_from_imported(
+            ctx,
+            &list,
+            raw.iter().map(|c| c.id.as_str()),
+            &object_ids,
+            "an object of `map`",
+        );
     for (i, crosswalk) in raw.iter().enumerate() {
         let path = list.index(i);
         let ends_ok =
@@ -41,15 +56,17 @@ pub(super) fn crosswalks(ctx: &mut Context<'_>, raw: &[RawCrosswalk]) -> Option<
                 to: c.to,
                 width: c.width,
             })
+            .chain(objects.iter().cloned())
             .collect()
     })
 }
 
-/// The declared interaction areas, then the junctions of `traces.net`.
+/// The declared interaction areas, then the junctions of `traces.net` and `map`.
 pub(super) fn interaction_areas(
     ctx: &mut Context<'_>,
     raw: &[RawInteractionArea],
     imported: Option<&Imported>,
+    mapped: Option<&Mapped>,
 ) -> Option<Vec<InteractionArea>> {
     let list = Path::root().key("interaction_areas");
     let junctions = imported.map_or(&[][..], |i| &i.areas);
@@ -62,9 +79,19 @@ pub(super) fn interaction_areas(
             &junction_ids,
             "a junction of `traces.net` (`traces.junction_areas`)",
         );
+    let map_junctions = mapped.map_or(&[][..], |m| &m.areas);
+    let map_ids: HashSet<&str> = map_junctions.iter().map(|a| a.id.as_str()).collect();
+    ok &= distinct_from_imported(
+        ctx,
+        &list,
+        raw.iter().map(|a| a.id.as_str()),
+        &map_ids,
+        "a junction of `map` (`map.junction_areas`)",
+    );
     let (mut areas, shapes_ok) = named_areas(ctx, &list, raw);
     ok &= shapes_ok;
     areas.extend_from_slice(junctions);
+    areas.extend_from_slice(map_junctions);
     ok.then_some(areas)
 }
 
