@@ -14,6 +14,7 @@ lane (twelve connecting roads, 101-112). Four buildings stand back from the
 corners; a crosswalk crosses the north arm 8 m beyond the junction.
 """
 
+import re
 import sys
 from pathlib import Path
 
@@ -106,7 +107,16 @@ def main(out):
     text = out.read_text()
     start = text.index(' date="')
     end = text.index('"', start + 7) + 1
-    out.write_text(text[:start] + text[end:])
+    text = text[:start] + text[end:]
+    # Its junction creator writes the arcs of the turns as spirals whose
+    # curvature changes by a rounding error (1e-16), on which SUMO's netconvert
+    # 1.28.0 fails (std::bad_alloc); write them as the arcs they are.
+    def arc(match):
+        start, end = float(match.group(1)), float(match.group(2))
+        return f'<arc curvature="{start!r}"/>' if abs(end - start) < 1e-9 else match.group(0)
+
+    text = re.sub(r'<spiral curvStart="([^"]+)" curvEnd="([^"]+)"/>', arc, text)
+    out.write_text(text)
 
 
 if __name__ == "__main__":

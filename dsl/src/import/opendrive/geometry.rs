@@ -197,18 +197,28 @@ pub(crate) struct Evaluator<'g> {
 /// The parameter of a cubic is tabulated every this many metres of arc.
 const TABLE_STEP: f64 = 0.25;
 
+/// 3-point Gauss–Legendre nodes and weights on [−1, 1].
+const GAUSS: [(f64, f64); 3] = [
+    (-0.774_596_669_241_483_4, 5.0 / 9.0),
+    (0.0, 8.0 / 9.0),
+    (0.774_596_669_241_483_4, 5.0 / 9.0),
+];
+
 impl<'g> Evaluator<'g> {
     /// An evaluator of `geometry`.
     pub(crate) fn new(geometry: &'g Geometry) -> Self {
-        let table = match geometry.shape {
-            Shape::Poly3(v) => arc_table(|p| [1.0, derivative(&v, p)], None, geometry.length),
-            Shape::ParamPoly3 { u, v, normalized } => {
-                let end = if normalized { 1.0 } else { geometry.length };
-                arc_table(|p| [derivative(&u, p), derivative(&v, p)], Some(end), geometry.length)
+        let mut evaluator = Self {
+            geometry,
+            table: Vec::new(),
+        };
+        evaluator.table = match geometry.shape {
+            Shape::Poly3(_) => evaluator.arc_table(None),
+            Shape::ParamPoly3 { normalized, .. } => {
+                evaluator.arc_table(Some(if normalized { 1.0 } else { geometry.length }))
             }
             _ => Vec::new(),
         };
-        Self { geometry, table }
+        evaluator
     }
 
     /// The pose at distance `ds` (0 ≤ ds ≤ length) along the record.
@@ -238,6 +248,60 @@ impl<'g> Evaluator<'g> {
         }
     }
 
+    /// A cubic's speed |d(u, v)/dp| at parameter `p`.
+    fn speed(&self, p: f64) -> f64 {
+        match self.geometry.shape {
+            Shape::Poly3(v) => derivative(&v, p).hypot(1.0),
+            Shape::ParamPoly3 { u, v, .. } => derivative(&u, p).hypot(derivative(&v, p)),
+            _ => 1.0,
+        }
+    }
+
+    /// A cubic's arc length from parameter `a` to `b`, by 3-point Gauss–Legendre.
+    fn arc_between(&self, a: f64, b: f64) -> f64 {
+        let (mid, half) = ((a + b) / 2.0, (b - a) / 2.0);
+        GAUSS.iter().map(|&(x, w)| w * self.speed(mid + x * half)).sum::<f64>() * half
+    }
+
+    /// (arc length, parameter) pairs every [`TABLE_STEP`] of the record's
+    /// length or finer: from p = 0 to p = `end`, or (without `end`, for
+    /// poly3, whose speed is at least 1, so that length / step steps suffice)
+    /// until the arc length reaches the record's length, the last step cut
+    /// there.
+    fn arc_table(&self, end: Option<f64>) -> Vec<(f64, f64)> {
+        let length = self.geometry.length;
+        let steps = (length / TABLE_STEP).ceil().max(16.0) as usize;
+        let dp = end.map_or(length / steps as f64, |end| end / steps as f64);
+        let mut table = Vec::with_capacity(steps + 1);
+        table.push((0.0, 0.0));
+        let mut arc = 0.0;
+        for k in 0..steps {
+            if end.is_none() && arc >= length {
+                break;
+            }
+            arc += self.arc_between(k as f64 * dp, (k + 1) as f64 * dp);
+            table.push((arc, (k + 1) as f64 * dp));
+        }
+        if end.is_none() {
+            let n = table.len();
+            if n >= 2 && table[n - 1].0 > length {
+                let (a0, p0) = table[n - 2];
+                table[n - 1] = (length, self.invert(p0, length - a0));
+            }
+        }
+        table
+    }
+
+    /// The parameter `arc` metres of arc past parameter `p0`: a linear guess
+    /// from the speed, refined by Newton steps on the arc length.
+    fn invert(&self, p0: f64, arc: f64) -> f64 {
+        let mut p = p0 + arc / self.speed(p0);
+        for _ in 0..4 {
+            p -= (self.arc_between(p0, p) - arc) / self.speed(p);
+        }
+        p
+    }
+
     /// The cubic's parameter at arc length `ds` × (its arc length / the
     /// record's length), so that the record's end is the cubic's end even when
     /// the file's `length` is not exactly the cubic's arc length.
@@ -246,14 +310,10 @@ impl<'g> Evaluator<'g> {
         let target = ds / self.geometry.length * total;
         let i = self
             .table
-            .partition_point(|&(arc, _)| arc < target)
+            .partition_point(|&(arc, _)| arc <= target)
             .clamp(1, self.table.len() - 1);
-        let ((a0, p0), (a1, p1)) = (self.table[i - 1], self.table[i]);
-        if a1 <= a0 {
-            p0
-        } else {
-            p0 + (p1 - p0) * (target - a0) / (a1 - a0)
-        }
+        let (a0, p0) = self.table[i - 1];
+        if target <= a0 { p0 } else { self.invert(p0, target - a0) }
     }
 }
 
@@ -304,46 +364,6 @@ fn cubic(k: &[f64; 4], p: f64) -> f64 {
 /// b + 2c·p + 3d·p².
 fn derivative(k: &[f64; 4], p: f64) -> f64 {
     k[1] + p * (2.0 * k[2] + 3.0 * p * k[3])
-}
-
-/// (arc length, parameter) pairs of the curve with tangent `velocity(p)`, every
-/// [`TABLE_STEP`] of `length` or finer: from p = 0 to p = `end`, or (without
-/// `end`, for poly3, whose speed is at least 1 so that `length` / step steps
-/// suffice) until the arc length reaches `length`. Each step is integrated by
-/// 3-point Gauss–Legendre.
-fn arc_table(velocity: impl Fn(f64) -> Xy, end: Option<f64>, length: f64) -> Vec<(f64, f64)> {
-    const NODES: [(f64, f64); 3] = [
-        (-0.774_596_669_241_483_4, 5.0 / 9.0),
-        (0.0, 8.0 / 9.0),
-        (0.774_596_669_241_483_4, 5.0 / 9.0),
-    ];
-    let steps = (length / TABLE_STEP).ceil().max(16.0) as usize;
-    let dp = end.map_or(length / steps as f64, |end| end / steps as f64);
-    let speed = |p: f64| {
-        let [x, y] = velocity(p);
-        x.hypot(y)
-    };
-    let mut table = Vec::with_capacity(steps + 1);
-    table.push((0.0, 0.0));
-    let mut arc = 0.0;
-    for k in 0..steps {
-        if end.is_none() && arc >= length {
-            break;
-        }
-        let mid = (k as f64 + 0.5) * dp;
-        arc += NODES.iter().map(|&(x, w)| w * speed(mid + x * dp / 2.0)).sum::<f64>() * dp / 2.0;
-        table.push((arc, (k + 1) as f64 * dp));
-    }
-    if end.is_none() {
-        // Cut the last step where the arc length reaches `length`: the record's
-        // end is the poly3's point at that arc length.
-        let n = table.len();
-        if n >= 2 && table[n - 1].0 > length {
-            let ((a0, p0), (a1, p1)) = (table[n - 2], table[n - 1]);
-            table[n - 1] = (length, p0 + (p1 - p0) * (length - a0) / (a1 - a0));
-        }
-    }
-    table
 }
 
 #[cfg(test)]
