@@ -7,7 +7,7 @@
 use roxmltree::Node;
 
 use super::fresnel::fresnel;
-use super::xml::{self, OpenDriveError};
+use super::xml::{self, Locator, OpenDriveError};
 use crate::Location;
 use crate::geometry::Xy;
 
@@ -80,11 +80,11 @@ pub enum Shape {
 }
 
 /// Reads the records of `<planView>` and checks that they chain.
-pub(crate) fn plan_view(node: Node) -> Result<Vec<Geometry>, OpenDriveError> {
+pub(crate) fn plan_view(node: Node, locator: &Locator) -> Result<Vec<Geometry>, OpenDriveError> {
     xml::allowed_children(node, &["geometry"], &[])?;
     let mut records: Vec<Geometry> = Vec::new();
     for child in xml::children(node, "geometry") {
-        let record = geometry(child)?;
+        let record = geometry(child, locator)?;
         if let Some(previous) = records.last() {
             let end = previous.s + previous.length;
             if (record.s - end).abs() > CHAIN_TOLERANCE {
@@ -122,7 +122,7 @@ pub(crate) fn plan_view(node: Node) -> Result<Vec<Geometry>, OpenDriveError> {
 }
 
 /// One `<geometry>`.
-fn geometry(node: Node) -> Result<Geometry, OpenDriveError> {
+fn geometry(node: Node, locator: &Locator) -> Result<Geometry, OpenDriveError> {
     const SHAPES: [&str; 5] = ["line", "arc", "spiral", "poly3", "paramPoly3"];
     xml::allowed_children(node, &SHAPES, &[])?;
     let s = xml::non_negative(node, "s")?;
@@ -167,7 +167,7 @@ fn geometry(node: Node) -> Result<Geometry, OpenDriveError> {
         start,
         length,
         shape,
-        at: xml::location(node),
+        at: locator.at(node),
     })
 }
 
@@ -181,6 +181,29 @@ impl Geometry {
             Shape::Spiral { start, end } => Some(start.abs().max(end.abs())),
             Shape::Poly3(_) | Shape::ParamPoly3 { .. } => None,
         }
+    }
+}
+
+/// Evaluates a whole reference line at any s, each record's evaluator made once.
+#[derive(Debug, Clone)]
+pub(crate) struct ReferenceLine<'g> {
+    records: Vec<Evaluator<'g>>,
+}
+
+impl<'g> ReferenceLine<'g> {
+    /// An evaluator of the records of one road, in order of s.
+    pub(crate) fn new(records: &'g [Geometry]) -> Self {
+        Self {
+            records: records.iter().map(Evaluator::new).collect(),
+        }
+    }
+
+    /// The pose at `s`, in the record that holds it (the first before it, or
+    /// the first one).
+    pub(crate) fn pose(&self, s: f64) -> Pose {
+        let i = self.records.partition_point(|e| e.geometry.s <= s).max(1) - 1;
+        let record = &self.records[i];
+        record.pose((s - record.geometry.s).clamp(0.0, record.geometry.length))
     }
 }
 
@@ -519,7 +542,7 @@ mod tests {
 
     fn plan(text: &str) -> Result<Vec<Geometry>, String> {
         let doc = xml::parse(text).unwrap();
-        plan_view(doc.root_element()).map_err(|e| e.to_string())
+        plan_view(doc.root_element(), &Locator::new(text)).map_err(|e| e.to_string())
     }
 
     #[test]

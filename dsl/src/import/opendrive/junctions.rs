@@ -3,7 +3,7 @@
 
 use roxmltree::Node;
 
-use super::xml::{self, OpenDriveError};
+use super::xml::{self, Locator, OpenDriveError};
 use crate::Location;
 
 /// A junction.
@@ -49,7 +49,7 @@ pub struct Connection {
 const KINDS: [&str; 4] = ["default", "virtual", "direct", "crossing"];
 
 /// Reads one `<junction>`.
-pub(crate) fn junction(node: Node) -> Result<Junction, OpenDriveError> {
+pub(crate) fn junction(node: Node, locator: &Locator) -> Result<Junction, OpenDriveError> {
     xml::allowed_children(
         node,
         &["connection"],
@@ -68,18 +68,18 @@ pub(crate) fn junction(node: Node) -> Result<Junction, OpenDriveError> {
     )?;
     let kind = xml::choice(node, "type", &KINDS)?.unwrap_or("default");
     let connections = xml::children(node, "connection")
-        .map(connection)
+        .map(|c| connection(c, locator))
         .collect::<Result<_, _>>()?;
     Ok(Junction {
         id: xml::string(node, "id")?.to_owned(),
         kind: kind.to_owned(),
         connections,
-        at: xml::location(node),
+        at: locator.at(node),
     })
 }
 
 /// One `<connection>`.
-fn connection(node: Node) -> Result<Connection, OpenDriveError> {
+fn connection(node: Node, locator: &Locator) -> Result<Connection, OpenDriveError> {
     xml::allowed_children(node, &["laneLink"], &["predecessor", "successor"])?;
     let target = match (node.attribute("connectingRoad"), node.attribute("linkedRoad")) {
         (Some(road), None) | (None, Some(road)) => road,
@@ -101,20 +101,14 @@ fn connection(node: Node) -> Result<Connection, OpenDriveError> {
         }
     };
     let lane_links = xml::children(node, "laneLink")
-        .map(|link| {
-            Ok((
-                xml::integer(link, "from")?,
-                xml::integer(link, "to")?,
-                xml::location(link),
-            ))
-        })
+        .map(|link| Ok((xml::integer(link, "from")?, xml::integer(link, "to")?, locator.at(link))))
         .collect::<Result<_, OpenDriveError>>()?;
     Ok(Connection {
         incoming: xml::string(node, "incomingRoad")?.to_owned(),
         target: target.to_owned(),
         contact,
         lane_links,
-        at: xml::location(node),
+        at: locator.at(node),
     })
 }
 
@@ -133,7 +127,7 @@ mod tests {
 
     fn read(text: &str) -> Result<Junction, String> {
         let doc = xml::parse(text).unwrap();
-        junction(doc.root_element()).map_err(|e| e.to_string())
+        junction(doc.root_element(), &Locator::new(text)).map_err(|e| e.to_string())
     }
 
     #[test]

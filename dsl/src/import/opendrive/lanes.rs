@@ -4,7 +4,7 @@
 
 use roxmltree::Node;
 
-use super::xml::{self, OpenDriveError};
+use super::xml::{self, Locator, OpenDriveError};
 use crate::Location;
 
 /// A cubic in s: a + b·ds + c·ds² + d·ds³ with ds = s − `s`, valid from `s` to
@@ -162,12 +162,12 @@ pub struct Speed {
 
 /// Reads `<lanes>`: lane offsets and lane sections, in order, within the
 /// road's `length`.
-pub(crate) fn lanes(node: Node, length: f64) -> Result<Lanes, OpenDriveError> {
+pub(crate) fn lanes(node: Node, length: f64, locator: &Locator) -> Result<Lanes, OpenDriveError> {
     xml::allowed_children(node, &["laneOffset", "laneSection"], &[])?;
     let offsets = records(node, "laneOffset", "s")?;
     let mut sections: Vec<LaneSection> = Vec::new();
     for child in xml::children(node, "laneSection") {
-        let section = section(child)?;
+        let section = section(child, locator)?;
         let problem = match sections.last() {
             None if section.s > 1e-6 => Some("the first lane section starts after s = 0"),
             Some(previous) if section.s < previous.s => Some("lane sections are not in order of s"),
@@ -215,7 +215,7 @@ fn records(node: Node, name: &'static str, start: &str) -> Result<Vec<Poly3>, Op
 }
 
 /// One `<laneSection>`.
-fn section(node: Node) -> Result<LaneSection, OpenDriveError> {
+fn section(node: Node, locator: &Locator) -> Result<LaneSection, OpenDriveError> {
     xml::allowed_children(node, &["left", "center", "right"], &[])?;
     let s = xml::non_negative(node, "s")?;
     if let Some(single) = node.attribute_node("singleSide")
@@ -234,11 +234,11 @@ fn section(node: Node) -> Result<LaneSection, OpenDriveError> {
         ));
     }
     let left = match xml::child(node, "left") {
-        Some(side) => side_lanes(side, 1)?,
+        Some(side) => side_lanes(side, 1, locator)?,
         None => Vec::new(),
     };
     let right = match xml::child(node, "right") {
-        Some(side) => side_lanes(side, -1)?,
+        Some(side) => side_lanes(side, -1, locator)?,
         None => Vec::new(),
     };
     for centre in xml::child(node, "center")
@@ -253,15 +253,17 @@ fn section(node: Node) -> Result<LaneSection, OpenDriveError> {
         s,
         left,
         right,
-        at: xml::location(node),
+        at: locator.at(node),
     })
 }
 
 /// The lanes of `<left>` (`sign` 1) or `<right>` (−1), ordered from the centre
 /// out; their ids must be 1, 2, … (or −1, −2, …) without gaps.
-fn side_lanes(node: Node, sign: i32) -> Result<Vec<Lane>, OpenDriveError> {
+fn side_lanes(node: Node, sign: i32, locator: &Locator) -> Result<Vec<Lane>, OpenDriveError> {
     xml::allowed_children(node, &["lane"], &[])?;
-    let mut lanes = xml::children(node, "lane").map(lane).collect::<Result<Vec<_>, _>>()?;
+    let mut lanes = xml::children(node, "lane")
+        .map(|l| lane(l, locator))
+        .collect::<Result<Vec<_>, _>>()?;
     lanes.sort_by_key(|lane| lane.id.abs());
     let nodes: Vec<Node> = xml::children(node, "lane").collect();
     for (i, lane) in lanes.iter().enumerate() {
@@ -269,7 +271,7 @@ fn side_lanes(node: Node, sign: i32) -> Result<Vec<Lane>, OpenDriveError> {
         if lane.id != expected {
             let at = nodes
                 .iter()
-                .find(|n| xml::location(**n) == lane.at)
+                .find(|n| locator.at(**n) == lane.at)
                 .copied()
                 .unwrap_or(node);
             let side = if sign > 0 { "<left>" } else { "<right>" };
@@ -289,7 +291,7 @@ fn side_lanes(node: Node, sign: i32) -> Result<Vec<Lane>, OpenDriveError> {
 }
 
 /// One `<lane>` of a side.
-fn lane(node: Node) -> Result<Lane, OpenDriveError> {
+fn lane(node: Node, locator: &Locator) -> Result<Lane, OpenDriveError> {
     xml::allowed_children(
         node,
         &["link", "width", "speed", "border"],
@@ -323,7 +325,7 @@ fn lane(node: Node) -> Result<Lane, OpenDriveError> {
         xml::allowed_children(link, &["predecessor", "successor"], &[])?;
         for (name, list) in [("predecessor", &mut predecessors), ("successor", &mut successors)] {
             for end in xml::children(link, name) {
-                list.push((xml::integer(end, "id")?, xml::location(end)));
+                list.push((xml::integer(end, "id")?, locator.at(end)));
             }
         }
     }
@@ -353,7 +355,7 @@ fn lane(node: Node) -> Result<Lane, OpenDriveError> {
         predecessors,
         successors,
         speeds,
-        at: xml::location(node),
+        at: locator.at(node),
     })
 }
 
@@ -427,7 +429,7 @@ mod tests {
 
     fn read(text: &str) -> Result<Lanes, String> {
         let doc = xml::parse(text).unwrap();
-        lanes(doc.root_element(), 100.0).map_err(|e| e.to_string())
+        lanes(doc.root_element(), 100.0, &Locator::new(text)).map_err(|e| e.to_string())
     }
 
     #[test]

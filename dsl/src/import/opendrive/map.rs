@@ -5,8 +5,8 @@
 
 use std::collections::HashMap;
 
-use super::geometry::{Evaluator, Geometry, Pose};
-use super::junctions::Contact;
+use super::geometry::ReferenceLine;
+use super::junctions::{Contact, Junction};
 use super::lanes::{Lane, LaneDirection, LaneSection, LaneUse, Speed, linear, value_at};
 use super::network::{Element, Network, Road};
 use super::xml::OpenDriveError;
@@ -155,16 +155,21 @@ pub fn build(network: &Network) -> Result<Map, OpenDriveError> {
         .map(|(road, plan)| sample_road(road, plan))
         .collect();
     let lanes = chains(network, &sampled);
+    let mut connecting: HashMap<&str, Vec<usize>> = HashMap::new();
+    for (r, road) in network.roads.iter().enumerate() {
+        if let Some(junction) = &road.junction {
+            connecting.entry(junction.as_str()).or_default().push(r);
+        }
+    }
     let junctions = network
         .junctions
         .iter()
         .filter_map(|junction| {
-            let points: Vec<Xy> = network
-                .roads
-                .iter()
-                .enumerate()
-                .filter(|(_, road)| road.junction.as_deref() == Some(junction.id.as_str()))
-                .flat_map(|(r, road)| drivable_borders(road, &sampled[r]))
+            let points: Vec<Xy> = connecting
+                .get(junction.id.as_str())
+                .into_iter()
+                .flatten()
+                .flat_map(|&r| drivable_borders(&network.roads[r], &sampled[r]))
                 .collect();
             let outline = convex_hull(points);
             (outline.len() >= 3).then(|| JunctionArea {
@@ -176,14 +181,16 @@ pub fn build(network: &Network) -> Result<Map, OpenDriveError> {
     let objects = network
         .roads
         .iter()
+        .filter(|road| !road.objects.is_empty())
         .flat_map(|road| {
+            let reference = ReferenceLine::new(&road.reference);
             road.objects.iter().map(move |object| {
-                let origin = pose_at(&road.reference, object.s.min(road.length));
+                let origin = reference.pose(object.s.min(road.length));
                 MapObject {
                     road: road.id.clone(),
                     id: object.id.clone(),
                     kind: object.kind.clone(),
-                    areas: object.areas(origin, |s| pose_at(&road.reference, s.clamp(0.0, road.length))),
+                    areas: object.areas(origin, |s| reference.pose(s.clamp(0.0, road.length))),
                     road_heading: origin.heading,
                     repeated: object.repeated,
                     at: object.at,
@@ -197,13 +204,6 @@ pub fn build(network: &Network) -> Result<Map, OpenDriveError> {
         junctions,
         objects,
     })
-}
-
-/// The pose of a reference line at `s`.
-pub(crate) fn pose_at(reference: &[Geometry], s: f64) -> Pose {
-    let i = reference.partition_point(|g| g.s <= s).max(1) - 1;
-    let g = &reference[i];
-    Evaluator::new(g).pose((s - g.s).clamp(0.0, g.length))
 }
 
 /// Where a road is sampled: (s, number of steps from the previous s) from 0
@@ -275,6 +275,7 @@ fn section_end(road: &Road, k: usize) -> f64 {
 /// Every lane of every lane section of `road`, sampled at `plan`'s positions
 /// within the section: its centreline along s and its width there.
 fn sample_road(road: &Road, plan: &[(f64, usize)]) -> Vec<HashMap<i32, Sampled>> {
+    let reference = ReferenceLine::new(&road.reference);
     road.lanes
         .sections
         .iter()
@@ -282,7 +283,7 @@ fn sample_road(road: &Road, plan: &[(f64, usize)]) -> Vec<HashMap<i32, Sampled>>
         .map(|(k, section)| {
             let mut lanes: HashMap<i32, Sampled> = HashMap::new();
             for s in positions(plan, section.s, section_end(road, k)) {
-                let pose = pose_at(&road.reference, s);
+                let pose = reference.pose(s);
                 let offset = value_at(&road.lanes.offsets, s);
                 for (side, sign) in [(&section.left, 1.0), (&section.right, -1.0)] {
                     let mut inner = offset;
@@ -406,9 +407,16 @@ fn chains(network: &Network, sampled: &[Vec<HashMap<i32, Sampled>>]) -> Vec<MapL
         lanes.push(chain_lane(network, sampled, &chain));
         members.push(chain);
     }
+    let roads: HashMap<&str, usize> = network
+        .roads
+        .iter()
+        .enumerate()
+        .map(|(i, r)| (r.id.as_str(), i))
+        .collect();
+    let junctions: HashMap<&str, &Junction> = network.junctions.iter().map(|j| (j.id.as_str(), j)).collect();
     for (i, chain) in members.iter().enumerate() {
         let last = *chain.last().expect("a chain has a segment");
-        lanes[i].next = links_from(network, last)
+        lanes[i].next = links_from(network, (&roads, &junctions), last)
             .into_iter()
             .filter_map(|segment| starting.get(&segment).copied())
             .collect();
@@ -499,8 +507,13 @@ fn limits(road: &Road, k: usize, lane: &Lane) -> Vec<Option<f64>> {
 }
 
 /// The first segments of the lanes a lane ending with `last` continues into
-/// in the roads its road meets at that end.
-fn links_from(network: &Network, last: Segment) -> Vec<Segment> {
+/// in the roads its road meets at that end; `roads` and `junctions` index the
+/// network's by id.
+fn links_from(
+    network: &Network,
+    (roads, junctions): (&HashMap<&str, usize>, &HashMap<&str, &Junction>),
+    last: Segment,
+) -> Vec<Segment> {
     let road = &network.roads[last.road];
     let sections = &road.lanes.sections;
     let (end, lanes_section) = match last.way {
@@ -529,7 +542,7 @@ fn links_from(network: &Network, last: Segment) -> Vec<Segment> {
             },
         }
     };
-    let index = |id: &str| network.roads.iter().position(|r| r.id == id);
+    let index = |id: &str| roads.get(id).copied();
     match link.element {
         Element::Road(contact) => {
             let ids = if end == Contact::End {
@@ -542,10 +555,9 @@ fn links_from(network: &Network, last: Segment) -> Vec<Segment> {
             };
             ids.iter().map(|&(id, _)| entering(target, contact, id)).collect()
         }
-        Element::Junction => network
-            .junctions
-            .iter()
-            .filter(|j| j.id == link.id)
+        Element::Junction => junctions
+            .get(link.id.as_str())
+            .into_iter()
             .flat_map(|j| &j.connections)
             .filter(|c| c.incoming == road.id)
             .flat_map(|c| {

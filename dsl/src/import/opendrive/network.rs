@@ -9,7 +9,7 @@ use super::geometry::{CHAIN_TOLERANCE, Geometry, plan_view};
 use super::junctions::{Contact, Junction, contact, junction};
 use super::lanes::{LaneSection, Lanes, Speed, lanes, road_speeds};
 use super::objects::{Object, objects};
-use super::xml::{self, OpenDriveError};
+use super::xml::{self, Locator, OpenDriveError};
 use crate::Location;
 
 /// The longest road sightline reads, metres.
@@ -122,9 +122,12 @@ pub fn parse_opendrive(text: &str) -> Result<Network, OpenDriveError> {
         ));
     };
     let rev_minor = revision(header)?;
-    let roads = xml::children(root, "road").map(road).collect::<Result<Vec<_>, _>>()?;
+    let locator = Locator::new(text);
+    let roads = xml::children(root, "road")
+        .map(|r| road(r, &locator))
+        .collect::<Result<Vec<_>, _>>()?;
     let junctions = xml::children(root, "junction")
-        .map(junction)
+        .map(|j| junction(j, &locator))
         .collect::<Result<Vec<_>, _>>()?;
     let network = Network {
         rev_minor,
@@ -149,7 +152,7 @@ fn revision(header: Node) -> Result<u32, OpenDriveError> {
 }
 
 /// One `<road>`.
-fn road(node: Node) -> Result<Road, OpenDriveError> {
+fn road(node: Node, locator: &Locator) -> Result<Road, OpenDriveError> {
     xml::allowed_children(
         node,
         &["link", "type", "planView", "lanes", "objects"],
@@ -172,20 +175,24 @@ fn road(node: Node) -> Result<Road, OpenDriveError> {
     let (mut predecessor, mut successor) = (None, None);
     if let Some(link) = xml::child(node, "link") {
         xml::allowed_children(link, &["predecessor", "successor"], &[])?;
-        predecessor = xml::child(link, "predecessor").map(road_link).transpose()?;
-        successor = xml::child(link, "successor").map(road_link).transpose()?;
+        predecessor = xml::child(link, "predecessor")
+            .map(|l| road_link(l, locator))
+            .transpose()?;
+        successor = xml::child(link, "successor")
+            .map(|l| road_link(l, locator))
+            .transpose()?;
     }
     let Some(plan) = xml::child(node, "planView") else {
         return Err(xml::element_error(node, format!("road {id} has no <planView>")));
     };
-    let reference = plan_view(plan)?;
+    let reference = plan_view(plan, locator)?;
     check_extent(&id, &reference, length)?;
     let Some(lanes_node) = xml::child(node, "lanes") else {
         return Err(xml::element_error(node, format!("road {id} has no <lanes>")));
     };
-    let lanes = lanes(lanes_node, length)?;
+    let lanes = lanes(lanes_node, length, locator)?;
     let objects = match xml::child(node, "objects") {
-        Some(list) => objects(list)?,
+        Some(list) => objects(list, locator)?,
         None => Vec::new(),
     };
     Ok(Road {
@@ -199,7 +206,7 @@ fn road(node: Node) -> Result<Road, OpenDriveError> {
         lanes,
         speeds: road_speeds(node)?,
         objects,
-        at: xml::location(node),
+        at: locator.at(node),
     })
 }
 
@@ -244,7 +251,7 @@ fn check_extent(id: &str, reference: &[Geometry], length: f64) -> Result<(), Ope
 }
 
 /// A road's `<predecessor>` or `<successor>`.
-fn road_link(node: Node) -> Result<RoadLink, OpenDriveError> {
+fn road_link(node: Node, locator: &Locator) -> Result<RoadLink, OpenDriveError> {
     let element = match xml::choice(node, "elementType", &["road", "junction"])? {
         Some("junction") => Element::Junction,
         Some(_) => match contact(node)? {
@@ -269,7 +276,7 @@ fn road_link(node: Node) -> Result<RoadLink, OpenDriveError> {
     Ok(RoadLink {
         element,
         id: xml::string(node, "elementId")?.to_owned(),
-        at: xml::location(node),
+        at: locator.at(node),
     })
 }
 

@@ -5,7 +5,7 @@
 use roxmltree::Node;
 
 use super::geometry::Pose;
-use super::xml::{self, OpenDriveError};
+use super::xml::{self, Locator, OpenDriveError};
 use crate::Location;
 use crate::geometry::Xy;
 
@@ -65,13 +65,13 @@ pub enum Corners {
 }
 
 /// Reads a road's `<objects>`.
-pub(crate) fn objects(node: Node) -> Result<Vec<Object>, OpenDriveError> {
+pub(crate) fn objects(node: Node, locator: &Locator) -> Result<Vec<Object>, OpenDriveError> {
     xml::allowed_children(node, &["object"], &["objectReference", "tunnel", "bridge"])?;
-    xml::children(node, "object").map(object).collect()
+    xml::children(node, "object").map(|o| object(o, locator)).collect()
 }
 
 /// One `<object>`.
-fn object(node: Node) -> Result<Object, OpenDriveError> {
+fn object(node: Node, locator: &Locator) -> Result<Object, OpenDriveError> {
     xml::allowed_children(
         node,
         &["outline", "outlines", "repeat"],
@@ -114,7 +114,7 @@ fn object(node: Node) -> Result<Object, OpenDriveError> {
         heading: xml::number_or(node, "hdg", 0.0)?,
         footprint,
         repeated: xml::child(node, "repeat").is_some(),
-        at: xml::location(node),
+        at: locator.at(node),
     })
 }
 
@@ -185,7 +185,7 @@ mod tests {
 
     fn read(text: &str) -> Result<Vec<Object>, String> {
         let doc = xml::parse(text).unwrap();
-        objects(doc.root_element()).map_err(|e| e.to_string())
+        objects(doc.root_element(), &Locator::new(text)).map_err(|e| e.to_string())
     }
 
     /// A reference line along +x from the origin.

@@ -76,8 +76,35 @@ fn end_of(text: &str) -> Location {
     Location::new(text.matches('\n').count() + 1, last_line.chars().count() + 1)
 }
 
-/// Where element `node` starts (its `<`).
-pub(crate) fn location(node: Node) -> Location {
+/// Locates elements by line and column in one pass over the text: roxmltree's
+/// own `text_pos_at` counts lines from the start at every call, which over
+/// every element of a large map is quadratic.
+pub(crate) struct Locator {
+    /// The byte offset where each line starts.
+    starts: Vec<usize>,
+}
+
+impl Locator {
+    /// The locator of `text`.
+    pub(crate) fn new(text: &str) -> Self {
+        let starts = std::iter::once(0)
+            .chain(text.match_indices('\n').map(|(i, _)| i + 1))
+            .collect();
+        Self { starts }
+    }
+
+    /// Where element `node` starts (its `<`).
+    pub(crate) fn at(&self, node: Node) -> Location {
+        let pos = node.range().start;
+        let line = self.starts.partition_point(|&start| start <= pos);
+        let start = self.starts[line - 1];
+        let column = node.document().input_text()[start..pos].chars().count() + 1;
+        Location::new(line, column)
+    }
+}
+
+/// Where element `node` starts (its `<`), for an error: counted from the start.
+fn location(node: Node) -> Location {
     let pos = node.document().text_pos_at(node.range().start);
     Location::new(pos.row as usize, pos.col as usize)
 }
