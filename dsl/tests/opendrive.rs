@@ -248,7 +248,7 @@ fn assert_same_lanes(xodr: &str, tool: &Path) {
     );
     for lane in map.lanes.iter().filter(|lane| lane.carries == LaneUse::Drive) {
         let road = lane.name.split(' ').nth(1).unwrap();
-        let id: i32 = lane.name.split(' ').filter_map(|w| w.parse().ok()).last().unwrap();
+        let id: i32 = lane.name.split(' ').rev().find_map(|w| w.parse().ok()).unwrap();
         assert!(
             connecting.contains(&road) || sumo.iter().any(|((r, i), _)| r == road && *i == id),
             "sightline has {}; SUMO does not",

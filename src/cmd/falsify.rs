@@ -217,7 +217,7 @@ fn simulate_case(path: &str, text: &str, vary: &[Vary], indices: &[u64]) -> Resu
     Ok(Score::of(&sightline_oracles::check(&case, &run)))
 }
 
-/// The `traces` settings of `scenario` with each imported file's path relative
+/// The `traces` and `map` settings of `scenario` with each imported file's path relative
 /// to `dir`, where its counterexample goes, so that it reads the same files.
 fn imports_from(dir: &Path, scenario: &Scenario) -> anyhow::Result<Vec<(String, serde_json::Value)>> {
     if scenario.imports.is_empty() {

@@ -60,7 +60,7 @@ pub(crate) struct RawScenario {
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub roads: Vec<RawRoad>,
     /// World: buildings and walls that block sight (besides the polygons of
-    /// `traces.poly`).
+    /// `traces.poly` and the objects of `map`).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub occluders: Vec<RawOccluder>,
     /// World: sensor models by id.
@@ -79,11 +79,11 @@ pub(crate) struct RawScenario {
     /// World: background traffic generated on routes and crosswalks.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub traffic: Option<RawTraffic>,
-    /// World: pedestrian crossings.
+    /// World: pedestrian crossings (besides the crosswalk objects of `map`).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub crosswalks: Vec<RawCrosswalk>,
     /// World: regions around junctions, roundabout entries and crossings (besides
-    /// the junctions of `traces.net`).
+    /// the junctions of `traces.net` and `map`).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub interaction_areas: Vec<RawInteractionArea>,
     /// World: regions named for requirements that select road users by area

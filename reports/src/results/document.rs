@@ -84,7 +84,7 @@ pub struct ScenarioInfo {
 #[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
 #[schemars(deny_unknown_fields)]
 pub struct InputInfo {
-    /// `scenario`, or the kind of imported file (`sumo_fcd`, `sumo_net`, `sumo_poly`).
+    /// `scenario`, or the kind of imported file (`sumo_fcd`, `sumo_net`, `sumo_poly`, `opendrive`).
     pub kind: &'static str,
     /// The path: as given for the scenario, resolved against the scenario's
     /// directory for an imported file.

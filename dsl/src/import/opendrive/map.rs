@@ -11,7 +11,7 @@ use super::lanes::{Lane, LaneDirection, LaneSection, LaneUse, Speed, linear, val
 use super::network::{Element, Network, Road};
 use super::xml::OpenDriveError;
 use crate::Location;
-use crate::geometry::{MAX_CHORD_ERROR, Xy};
+use crate::geometry::{MAX_CHORD_ERROR, Xy, convex_hull};
 
 /// The longest step between two samples of a lane, metres.
 const MAX_STEP: f64 = 1.0;
@@ -569,31 +569,4 @@ fn links_from(
             })
             .collect(),
     }
-}
-
-/// The convex hull of `points`, counter-clockwise (Andrew's monotone chain).
-fn convex_hull(mut points: Vec<Xy>) -> Vec<Xy> {
-    points.sort_by(|a, b| a[0].total_cmp(&b[0]).then(a[1].total_cmp(&b[1])));
-    points.dedup();
-    if points.len() < 3 {
-        return points;
-    }
-    let cross = |o: Xy, a: Xy, b: Xy| (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
-    let mut hull: Vec<Xy> = Vec::with_capacity(points.len() + 1);
-    for pass in [false, true] {
-        let start = hull.len();
-        let ordered: Box<dyn Iterator<Item = &Xy>> = if pass {
-            Box::new(points.iter().rev())
-        } else {
-            Box::new(points.iter())
-        };
-        for &p in ordered {
-            while hull.len() >= start + 2 && cross(hull[hull.len() - 2], hull[hull.len() - 1], p) <= 0.0 {
-                hull.pop();
-            }
-            hull.push(p);
-        }
-        hull.pop();
-    }
-    hull
 }

@@ -426,7 +426,7 @@ fn check_section_links(road: &Road) -> Result<(), OpenDriveError> {
                         return Err(error(
                             at,
                             format!(
-                                "lane {} of road {} links to lane {id} of the next lane section (at s = {}), which has no such lane",
+                                "lane {} of road {} links to lane {id} of the neighbouring lane section (at s = {}), which has no such lane",
                                 lane.id, road.id, other.s
                             ),
                         ));
