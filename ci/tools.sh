@@ -24,8 +24,9 @@ PLAYWRIGHT_VERSION=1.65.2
 XMLSCHEMA_VERSION=4.3.2
 JUNITPARSER_VERSION=5.0.3
 PYPDF_VERSION=7.1.0
-# Eclipse SUMO (netconvert, sumo) and its Python library, for the test that
-# imports what SUMO writes (dsl/tests/netconvert.rs).
+# Eclipse SUMO (netconvert, sumo) and its Python library, for the tests that
+# import what SUMO writes (dsl/tests/netconvert.rs) and compare sightline's
+# lanes of an OpenDRIVE map with netconvert's conversion (dsl/tests/opendrive.rs).
 SUMO_VERSION=1.28.0
 venv=target/ci-python
 missing=()

@@ -1,5 +1,6 @@
 //! Plane geometry the language needs to resolve roads and routes: polylines with
-//! arc length, projections, lane offsets, sampled arcs, polygon orientation. Coordinates are metres in
+//! arc length, projections, lane offsets, sampled arcs, polygon orientation and
+//! convex hulls. Coordinates are metres in
 //! the world frame; angles are radians, counter-clockwise from +x.
 
 use serde::Serialize;
@@ -229,6 +230,33 @@ pub(crate) fn counter_clockwise(polygon: &[Xy]) -> Option<Vec<Xy>> {
     Some(polygon)
 }
 
+/// The convex hull of `points`, counter-clockwise (Andrew's monotone chain).
+pub(crate) fn convex_hull(mut points: Vec<Xy>) -> Vec<Xy> {
+    points.sort_by(|a, b| a[0].total_cmp(&b[0]).then(a[1].total_cmp(&b[1])));
+    points.dedup();
+    if points.len() < 3 {
+        return points;
+    }
+    let cross = |o: Xy, a: Xy, b: Xy| (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
+    let mut hull: Vec<Xy> = Vec::with_capacity(points.len() + 1);
+    for pass in [false, true] {
+        let start = hull.len();
+        let ordered: Box<dyn Iterator<Item = &Xy>> = if pass {
+            Box::new(points.iter().rev())
+        } else {
+            Box::new(points.iter())
+        };
+        for &p in ordered {
+            while hull.len() >= start + 2 && cross(hull[hull.len() - 2], hull[hull.len() - 1], p) <= 0.0 {
+                hull.pop();
+            }
+            hull.push(p);
+        }
+        hull.pop();
+    }
+    hull
+}
+
 /// The signed area of a polygon, positive when counter-clockwise (shoelace formula).
 fn signed_area(polygon: &[Xy]) -> f64 {
     let n = polygon.len();
@@ -286,6 +314,21 @@ mod tests {
     fn offset_keeps_lanes_parallel_through_corners() {
         let lane = square().offset_left(1.0);
         assert_eq!(lane.points(), &[[0.0, 1.0], [9.0, 1.0], [9.0, 10.0]]);
+    }
+
+    #[test]
+    fn the_convex_hull_drops_inner_and_collinear_points() {
+        let points = vec![
+            [0.0, 0.0],
+            [2.0, 0.0],
+            [1.0, 0.0],
+            [2.0, 2.0],
+            [1.0, 1.0],
+            [0.0, 2.0],
+            [2.0, 2.0],
+        ];
+        assert_eq!(convex_hull(points), [[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [0.0, 2.0]]);
+        assert_eq!(convex_hull(vec![[1.0, 1.0], [2.0, 2.0]]).len(), 2);
     }
 
     #[test]

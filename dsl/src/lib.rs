@@ -12,8 +12,9 @@
 //!
 //! The [`import`] tree reads other tools' files the same way, text in and
 //! located errors out, one module per format: [`import::sumo`] reads traffic
-//! from the simulator SUMO. A scenario that imports SUMO files (`traces`) has
-//! them read through the [`Loader`] the caller puts in [`Options`]; the compiled
+//! from the simulator SUMO, [`import::opendrive`] road networks in ASAM
+//! OpenDRIVE. A scenario that imports files (`traces`, `map`) has them read
+//! through the [`Loader`] the caller puts in [`Options`]; the compiled
 //! [`Scenario`] keeps their bytes (`imports`) for the evidence.
 //!
 //! ```

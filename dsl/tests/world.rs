@@ -124,7 +124,7 @@ fn each_kind_moves_its_own_way() {
     );
     let error = first_error(&WORLD.replace("kind: pedestrian, path:", "kind: pedestrian, trace: ped0, path:"));
     assert!(
-        error.ends_with("agents[3]: an agent of kind pedestrian moves by `path` or `trace`, not by both"),
+        error.ends_with("agents[3]: an agent of kind pedestrian moves by `path` or `route` or `trace`, not by both"),
         "{error}"
     );
 }

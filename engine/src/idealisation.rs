@@ -9,8 +9,8 @@
 
 use serde::Serialize;
 use sightline_dsl::{
-    ErrorModel, Experiment, Following, FusionMethod, OdometryModel, PathLossModel, PoseFilter, RiskScope, RsuSight,
-    Rule, Scenario, Setup, ShareCycles, SourceCombination, SwitchMeasure, WeightScaling,
+    ErrorModel, Experiment, Following, FusionMethod, ImportKind, OdometryModel, PathLossModel, PoseFilter, RiskScope,
+    RsuSight, Rule, Scenario, Setup, ShareCycles, SourceCombination, SwitchMeasure, WeightScaling,
 };
 
 use crate::{field, fusion, semantic, v2x, world};
@@ -80,9 +80,32 @@ impl ModelOption {
     }
 }
 
+/// What reading a world's map from an OpenDRIVE file (`map`; the reader is
+/// `sightline_dsl::import::opendrive`) takes as given.
+const OPENDRIVE_MAP: [Idealisation; 3] = [
+    Idealisation {
+        id: "map.flat",
+        text: "The OpenDRIVE map is read flat: elevation, superelevation and the heights of lanes and objects are \
+               dropped, so every road, building and line of sight lies in one plane, and a crest or a dip that \
+               would hide a road user does not.",
+    },
+    Idealisation {
+        id: "map.lane-centre",
+        text: "Vehicles on the map keep to their lane's centreline (sampled at most 1 m apart, within 1 cm of a \
+               curve) and never change lanes; the map's road marks, signals, priorities and access rules are not \
+               read.",
+    },
+    Idealisation {
+        id: "map.speed-limit",
+        text: "A lane's speed limit is the lowest that applies anywhere along it (its own <speed>, else its \
+               road's <type><speed>), or `map.speed_limit` where the map gives none.",
+    },
+];
+
 /// The idealisations that applied to a run of `scenario`: at every sweep
-/// point, those of the models it runs and of the options it chooses. Each is
-/// listed once, in the order of the first point that needs it.
+/// point, those of the models it runs and of the options it chooses, then
+/// those of the imported map. Each is listed once, in the order of the first
+/// point that needs it.
 pub fn idealisations(scenario: &Scenario) -> Vec<Idealisation> {
     let mut listed: Vec<Idealisation> = Vec::new();
     for point in &scenario.points {
@@ -91,6 +114,13 @@ pub fn idealisations(scenario: &Scenario) -> Vec<Idealisation> {
                 listed.push(idealisation);
             }
         }
+    }
+    if scenario
+        .imports
+        .iter()
+        .any(|import| import.kind == ImportKind::OpenDrive)
+    {
+        listed.extend(OPENDRIVE_MAP);
     }
     listed
 }

@@ -221,7 +221,7 @@ fn simulate_case(path: &str, text: &str, vary: &[Vary], indices: &[u64]) -> Resu
     Ok(Score::of(&sightline_oracles::check(&case, &run)))
 }
 
-/// The `traces` settings of `scenario` with each imported file's path relative
+/// The `traces` and `map` settings of `scenario` with each imported file's path relative
 /// to `dir`, where its counterexample goes, so that it reads the same files.
 fn imports_from(dir: &Path, scenario: &Scenario) -> anyhow::Result<Vec<(String, serde_json::Value)>> {
     if scenario.imports.is_empty() {
@@ -243,7 +243,7 @@ fn imports_from(dir: &Path, scenario: &Scenario) -> anyhow::Result<Vec<(String, 
             .to_str()
             .with_context(|| format!("{} is not a UTF-8 path", relative.display()))?
             .into();
-        let key = format!("traces.{}", import.kind.key());
+        let key = format!("{}.{}", import.kind.section(), import.kind.key());
         // `traces.routes` is a list of files, in order.
         match settings.iter_mut().find(|(k, _)| *k == key) {
             Some((_, serde_json::Value::Array(files))) => files.push(text),

@@ -90,7 +90,8 @@ const REDUCED_SEEDS: u64 = 2;
 /// first value (and the requirements and references that select sweep points
 /// with `where`, and the record section's point, dropped with them),
 /// `semantic.runs` to 1 and checks over seeds to [`REDUCED_SEEDS`]. Imported
-/// files are named by absolute path, so the text can be written anywhere.
+/// files (`traces`, `map`) are named by absolute path, so the text can be
+/// written anywhere.
 pub fn reduced(path: &str) -> Value {
     let file = root().join(path);
     let text = std::fs::read_to_string(&file).unwrap_or_else(|e| panic!("failed to read {path}: {e}"));
@@ -141,15 +142,21 @@ pub fn reduced(path: &str) -> Value {
         record.remove("where");
     }
     let directory = file.parent().expect("a file has a folder");
+    let absolute = |import: &mut Value| {
+        if let Some(name) = import.as_str() {
+            *import = Value::from(directory.join(name).to_string_lossy().into_owned());
+        }
+    };
     for import in tree
         .get_mut("traces")
         .and_then(Value::as_mapping_mut)
         .into_iter()
         .flat_map(|t| t.values_mut())
     {
-        if let Some(name) = import.as_str() {
-            *import = Value::from(directory.join(name).to_string_lossy().into_owned());
-        }
+        absolute(import);
+    }
+    if let Some(map) = tree.get_mut("map").and_then(|m| m.get_mut("opendrive")) {
+        absolute(map);
     }
     tree
 }

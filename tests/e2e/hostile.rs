@@ -359,6 +359,51 @@ fn a_symlink_loop_is_refused() {
     assert_refused_file(tmp.path(), "a.yaml");
 }
 
+/// OpenDRIVE maps beyond the reader's limits are refused within the caps, the
+/// error located in the map: one larger than 64 MiB before it is parsed, one
+/// of more than 2 000 000 XML nodes where the parser stops, and one whose
+/// lanes would take millions of points before any is sampled.
+// See: issue 19, part 4.
+#[test]
+fn opendrive_maps_beyond_their_limits_are_refused_within_the_caps() {
+    if !caps_available() {
+        return;
+    }
+    let tmp = temp_dir();
+    let scenario = |map: &str| {
+        format!(
+            "sightline: 1\nname: big map\ntime: {{ duration: 1, step: 0.1 }}\nmap: {{ opendrive: {map} }}\n\
+             sensor_models: {{ s: {{ range: 10 }} }}\nagents:\n  - {{ id: rsu, kind: rsu, position: [0, 0], sensors: [s] }}\n\
+             semantic: {{ ego: rsu }}\n"
+        )
+    };
+    let header = "<OpenDRIVE><header revMajor=\"1\" revMinor=\"8\"/>";
+    let padding = format!("<!-- {} -->", "x".repeat(65 << 20));
+    let many = "<userData/>".repeat(2_100_000);
+    let long = "<road id=\"1\" length=\"100000\" junction=\"-1\"><planView><geometry s=\"0\" x=\"0\" y=\"0\" hdg=\"0\" \
+                length=\"100000\"><arc curvature=\"20\"/></geometry></planView><lanes><laneSection s=\"0\"><center>\
+                <lane id=\"0\" type=\"none\"/></center><right><lane id=\"-1\" type=\"driving\"><width sOffset=\"0\" a=\"3\" \
+                b=\"0\" c=\"0\" d=\"0\"/></lane><lane id=\"-2\" type=\"driving\"><width sOffset=\"0\" a=\"3\" b=\"0\" c=\"0\" \
+                d=\"0\"/></lane></right></laneSection></lanes></road>";
+    for (name, body, message) in [
+        ("large", padding.as_str(), "more than the limit of 64 MiB"),
+        ("nodes", many.as_str(), "XML nodes, the limit"),
+        ("points", long, "points to sample, more than the limit"),
+    ] {
+        let map = format!("{name}.xodr");
+        std::fs::write(tmp.path().join(&map), format!("{header}{body}</OpenDRIVE>")).expect("the map is written");
+        std::fs::write(tmp.path().join("case.yaml"), scenario(&map)).expect("the case is written");
+        let check = capped(tmp.path(), &["check", "case.yaml"]);
+        check.assert_exit(2);
+        let located =
+            |line: &str| line.starts_with(&format!("{map}:")) && is_located_error(line) && line.contains(message);
+        assert!(
+            check.stderr.lines().any(located),
+            "{name}: no error located in {map}\n{check}"
+        );
+    }
+}
+
 /// A run whose report.html cannot be written (a folder stands in its place)
 /// fails, and leaves the previous run's results.json and junit.xml as they
 /// were: a folder holds one run's set, never a mix.

@@ -23,8 +23,9 @@ use crate::support::{arg, assert_matches_file, blessing, files_under, root, sigh
 
 const FIXTURES: &str = "tests/fixtures/invalid";
 
-/// The directory in [`FIXTURES`] that holds the SUMO files fixtures import.
-const IMPORTED: &str = "sumo";
+/// The directories in [`FIXTURES`] that hold the SUMO and OpenDRIVE files
+/// fixtures import.
+const IMPORTED: [&str; 2] = ["sumo", "opendrive"];
 
 /// Panics unless every line of `stderr` has the form `file:line:col: error: …`
 /// with 1-based numbers, `file` the scenario or a SUMO file it imports, so that a
@@ -33,14 +34,16 @@ const IMPORTED: &str = "sumo";
 fn assert_located(file: &str, stderr: &str) {
     assert!(!stderr.is_empty(), "no error printed for {file}");
     assert!(stderr.ends_with('\n'), "stderr does not end in a newline: {stderr:?}");
-    let imported = format!("{FIXTURES}/{IMPORTED}/");
     for line in stderr.lines() {
         let rest = line
             .strip_prefix(file)
             .or_else(|| {
-                let rest = line.strip_prefix(&imported)?;
-                let name = &rest[..rest.find(':')?];
-                root().join(&imported).join(name).is_file().then(|| &rest[name.len()..])
+                IMPORTED.iter().find_map(|dir| {
+                    let imported = format!("{FIXTURES}/{dir}/");
+                    let rest = line.strip_prefix(&imported)?;
+                    let name = &rest[..rest.find(':')?];
+                    root().join(&imported).join(name).is_file().then(|| &rest[name.len()..])
+                })
             })
             .and_then(|r| r.strip_prefix(':'))
             .unwrap_or_else(|| panic!("{line:?} does not start with `{file}:` or the path of a file it imports"));
@@ -176,6 +179,17 @@ invalid_inputs! {
     // See: issue 18 (the recording's clock).
     time_start_without_its_offset_is_refused => "time-start-not-a-date",
     time_start_before_1970_is_out_of_range => "time-start-out-of-range",
+    // See: issue 19, part 4 (bad OpenDRIVE maps).
+    malformed_opendrive_is_located_in_the_map => "opendrive-malformed-xml",
+    unknown_opendrive_element_suggests_the_closest => "opendrive-unknown-element",
+    reference_line_that_does_not_close_is_located_at_its_record => "opendrive-geometry-gap",
+    reference_line_whose_s_does_not_chain_is_located_at_its_record => "opendrive-geometry-s-gap",
+    link_to_a_missing_road_is_located_at_the_link => "opendrive-missing-road",
+    lane_link_to_a_missing_lane_is_located_at_the_link => "opendrive-missing-lane",
+    map_beyond_the_point_limit_is_refused_before_sampling => "opendrive-points-beyond-limit",
+    route_naming_a_missing_lane_suggests_the_closest => "opendrive-unknown-lane",
+    lanes_without_a_speed_limit_need_map_speed_limit => "opendrive-speed-limit-missing",
+    unknown_occluder_type_suggests_the_closest => "opendrive-occluder-type-unknown",
 }
 
 #[test]
@@ -184,7 +198,7 @@ fn every_invalid_fixture_is_tested_and_has_its_stderr() {
     let mut yaml = Vec::new();
     let mut stderr = Vec::new();
     for path in files_under(&dir) {
-        if path.starts_with(IMPORTED) {
+        if IMPORTED.iter().any(|dir| path.starts_with(dir)) {
             continue;
         }
         let name = path.file_stem().unwrap().to_string_lossy().into_owned();

@@ -185,6 +185,11 @@ const SECTIONS: &[(&str, &str)] = &[
              "begin": 1 }"#,
     ),
     (
+        "map",
+        r#"{ "opendrive": "../dsl/tests/opendrive/straight.xodr", "occluder_types": ["building"], "junction_areas": true,
+             "speed_limit": 5 }"#,
+    ),
+    (
         "roads",
         r#"[ { "id": "a", "polyline": [[0, 0], [10, 0]], "lanes": 2, "lane_width": 3, "speed_limit": 10 },
              { "id": "b", "arc": { "center": [0, 0], "radius": 10, "start_deg": 0, "end_deg": 90 }, "speed_limit": 10 },
@@ -377,6 +382,43 @@ const TOWN_POIS: Set = (
 const TOWN_RSUS_LIDAR: Set = ("traces.rsus", r#"{ "poi_type": "rsu", "sensors": ["lidar"] }"#);
 const TOWN_RSUS_RING: Set = ("traces.rsus", r#"{ "poi_type": "rsu", "sensors": ["ring"] }"#);
 
+/// The bundled OpenDRIVE crossroads (`scenarios/opendrive`), for the
+/// semantic pipeline's `map` keys: the ego from the west straight through the
+/// junction, a car from the north turning right across its way, the roadside
+/// unit on the south-west corner.
+const MAP_SEMANTIC: &[Set] = &[
+    ("time", r#"{ "duration": 12, "step": 0.1 }"#),
+    ("roads", "[]"),
+    ("occluders", "[]"),
+    ("crosswalks", "[]"),
+    ("interaction_areas", "[]"),
+    (
+        "traffic",
+        r#"{ "vehicles": { "density_per_km": 30, "routes": [["road 2 lane -1", "road 106 lane -1", "road 4 lane 1"]], "non_compliant": 0.5 },
+             "pedestrians": { "per_minute": 20 } }"#,
+    ),
+    ("map", r#"{ "opendrive": "opendrive/crossroads.xodr" }"#),
+    (
+        "agents",
+        r#"[ { "id": "ego", "kind": "car", "route": ["road 1 lane -1", "road 102 lane -1", "road 3 lane 1"], "start": { "offset": 100 }, "speed": { "target": 10 }, "connected": true, "sensors": ["front"] },
+             { "id": "rsu", "kind": "rsu", "position": [157, 19], "sensors": ["ring"] },
+             { "id": "car", "kind": "car", "route": ["road 4 lane -1", "road 110 lane -1", "road 1 lane 1"], "start": { "offset": 40 }, "speed": { "target": 10 } },
+             { "id": "ped", "kind": "pedestrian", "route": ["road 4 lane -2"], "start": { "offset": 40 }, "speed": { "target": 1.4 } } ]"#,
+    ),
+];
+
+/// A straight road without speed limits through the collective-perception
+/// base's grid (`dsl/tests/opendrive/straight.xodr`), for `map.speed_limit`.
+const MAP_STRAIGHT: &[Set] = &[
+    (
+        "map",
+        r#"{ "opendrive": "../dsl/tests/opendrive/straight.xodr", "speed_limit": 5 }"#,
+    ),
+    ("agents.2.route", r#"["road 1 lane -1"]"#),
+    ("agents.2.start.offset", "5"),
+    ("agents.2.speed.target", "8"),
+];
+
 /// Every key of the language: how to change it, or how `check` refuses it, in
 /// each kind of scenario. One entry per line where it fits: a table, not code.
 #[rustfmt::skip]
@@ -487,6 +529,31 @@ const KEYS: &[Key] = &[
         field: Section,
         perception: with(&[("traces", r#"{ "fcd": "sumo/grid3x3.fcd.xml" }"#)], &[("traces.begin", "5")]),
         semantic: with(SUMO_SEMANTIC, &[("traces.begin", "2")]),
+    },
+    // A map from OpenDRIVE (issue 19).
+    Key {
+        path: "map.opendrive",
+        field: Section,
+        perception: change(&[("map", r#"{ "opendrive": "../dsl/tests/opendrive/straight.xodr", "speed_limit": 5 }"#), ("agents.2.route", r#"["road 1 lane -1"]"#), ("agents.2.start.offset", "5")]),
+        semantic: change(MAP_SEMANTIC),
+    },
+    Key {
+        path: "map.occluder_types",
+        field: Section,
+        perception: with(&[("map", r#"{ "opendrive": "opendrive/crossroads.xodr" }"#), ("grid", r#"{ "origin": [120, -30], "size": [90, 120], "cell": 1 }"#), ("agents.0.route", r#"["road 2 lane -1", "road 106 lane -1", "road 4 lane 1"]"#), ("agents.0.start.offset", "60"), ("agents.1.route", r#"["road 3 lane -1", "road 107 lane -1", "road 1 lane 1"]"#), ("agents.1.start.offset", "60"), ("agents.2.route", r#"["road 1 lane -1"]"#), ("agents.3.path", "[[150, 60], [150, 50]]"), ("agents.4.position", "[157, 19]")], &[("map.occluder_types", r#"["tree"]"#)]),
+        semantic: with(MAP_SEMANTIC, &[("map.occluder_types", r#"["tree"]"#)]),
+    },
+    Key {
+        path: "map.junction_areas",
+        field: Section,
+        perception: refused(&[("map", r#"{ "opendrive": "opendrive/crossroads.xodr", "junction_areas": false }"#)]),
+        semantic: with(MAP_SEMANTIC, &[("map.junction_areas", "false")]),
+    },
+    Key {
+        path: "map.speed_limit",
+        field: Section,
+        perception: with(MAP_STRAIGHT, &[("map.speed_limit", "8")]),
+        semantic: refused(&[("map", r#"{ "opendrive": "opendrive/crossroads.xodr", "speed_limit": 10 }"#)]),
     },
     Key { path: "roads[].id", field: Section, perception: Descriptive, semantic: Descriptive },
     Key { path: "roads[].polyline", field: Section, perception: change(&[("roads.1.polyline", "[[-30, 3], [30, 3]]")]), semantic: change(&[("roads.3.polyline", "[[80, 3], [-80, 3]]")]) },

@@ -40,6 +40,11 @@ const IGNORED: &[Ignored] = &[
     },
     Ignored {
         kinds: &[Field],
+        pattern: "map",
+        why: NOT_A_WORLD,
+    },
+    Ignored {
+        kinds: &[Field],
         pattern: "roads",
         why: NOT_A_WORLD,
     },
@@ -143,6 +148,11 @@ const IGNORED: &[Ignored] = &[
     Ignored {
         kinds: &[Perception],
         pattern: "traces.junction_areas",
+        why: NO_SEMANTIC_PIPELINE,
+    },
+    Ignored {
+        kinds: &[Perception],
+        pattern: "map.junction_areas",
         why: NO_SEMANTIC_PIPELINE,
     },
     Ignored {

@@ -1,6 +1,7 @@
 //! YAML text → [`Scenario`](crate::Scenario), in named passes:
 //! `yaml::parse` (spanned tree) → `de` (raw serde types, located errors) →
-//! `traces` (imported SUMO files, read once through the caller's [`Loader`]) →
+//! `traces` and `map` (imported SUMO and OpenDRIVE files, read once through the
+//! caller's [`Loader`]) →
 //! `setup` (ranges, units, defaults; a world's sections in `world`; the keys the
 //! scenario's kind ignores, see `kind`) → `sweep` (one tree per combination, one
 //! point per distinct configuration; the keys a combination leaves without
@@ -18,7 +19,9 @@ mod compare;
 mod context;
 mod ignored;
 mod kind;
+mod map;
 mod objects;
+mod reader;
 mod record;
 mod requirements;
 mod scenario;

@@ -8,6 +8,7 @@ use std::{fmt, io};
 use super::context::{Context, has, locate_key};
 use super::ignored::ignored;
 use super::kind::{self, Kind};
+use super::map::{self, Mapped};
 use super::record::{record, start};
 use super::requirements::{references, requirements};
 use super::setup::setup;
@@ -98,11 +99,12 @@ fn compile_inner(file: &str, source: &str, options: &Options<'_>) -> Result<Scen
         return Err(ctx.errors);
     }
     let raw: RawScenario = from_node(&tree, &Path::root()).map_err(|e| vec![ctx.de_error(e)])?;
-    // Imported files are read and parsed once: `traces` cannot be swept.
+    // Imported files are read and parsed once: `traces` and `map` cannot be swept.
     let imported = traces::load(&mut ctx, raw.traces.as_ref(), options.loader);
+    let mapped = map::load(&mut ctx, raw.map.as_ref(), options.loader);
     // Check the file as written before expanding the sweep, so that a problem
     // outside the swept keys is reported once, not once per point.
-    let base = setup(&mut ctx, &raw, imported.as_ref());
+    let base = setup(&mut ctx, &raw, imported.as_ref(), mapped.as_ref());
     let setup_tree = without_read_once(&tree);
     let sweeps = sweep::sweeps(&mut ctx, setup_tree.size());
     if let (Some(_), Some(axis)) = (options.seed, sweeps.iter().flatten().find(|a| a.dotted == "seed")) {
@@ -113,11 +115,17 @@ fn compile_inner(file: &str, source: &str, options: &Options<'_>) -> Result<Scen
         );
     }
     let base = base.filter(|_| ctx.errors.is_empty());
-    let vary = vary::vary(&mut ctx, &sweeps, imported.as_ref(), base.as_ref());
+    let vary = vary::vary(&mut ctx, &sweeps, imported.as_ref(), mapped.as_ref(), base.as_ref());
     // Requirements are checked even when the setup is invalid (ids, texts and
     // check forms do not depend on the points), so one pass reports everything.
     let compiled = match base {
-        Some(_) if ctx.errors.is_empty() => match points(file, &setup_tree, &sweeps, options, imported.as_ref()) {
+        Some(_) if ctx.errors.is_empty() => match points(
+            file,
+            &setup_tree,
+            &sweeps,
+            options,
+            (imported.as_ref(), mapped.as_ref()),
+        ) {
             Ok((compiled, unused)) => {
                 refuse_unused(&mut ctx, &setup_tree, &sweeps, &unused);
                 Some(compiled)
@@ -165,7 +173,12 @@ fn compile_inner(file: &str, source: &str, options: &Options<'_>) -> Result<Scen
             points,
             requirements,
             references,
-            imports: imported.map(|i| i.files).unwrap_or_default(),
+            imports: imported
+                .map(|i| i.files)
+                .into_iter()
+                .chain(mapped.map(|m| m.files))
+                .flatten()
+                .collect(),
             vary,
             record,
             document: document(raw.document),
@@ -288,7 +301,7 @@ fn points(
     tree: &Node,
     sweeps: &[Vec<AxisNodes<'_>>],
     options: &Options<'_>,
-    imported: Option<&Imported>,
+    (imported, mapped): (Option<&Imported>, Option<&Mapped>),
 ) -> Result<(Configurations, Unused), Vec<Error>> {
     let mut configurations = Configurations::new(sweeps.len());
     let mut sections = Sections::default();
@@ -297,7 +310,7 @@ fn points(
     for (group, axes, choice, point_tree) in combinations(tree, sweeps) {
         let mut ctx = Context::new(file, &point_tree);
         let compiled = match from_node::<RawScenario>(&point_tree, &Path::root()) {
-            Ok(raw) => setup(&mut ctx, &raw, imported).map(|setup| (raw, setup)),
+            Ok(raw) => setup(&mut ctx, &raw, imported, mapped).map(|setup| (raw, setup)),
             Err(e) => {
                 ctx.errors.push(ctx.de_error(e));
                 None

@@ -5,6 +5,7 @@ use super::checks::{coordinates, whole_multiple};
 use super::context::Context;
 use super::ignored::ignored_keys;
 use super::kind::Kind;
+use super::map::Mapped;
 use super::traces::Imported;
 use super::world::world;
 use crate::error::ErrorKind;
@@ -26,7 +27,12 @@ pub const MAX_SENSORS: usize = 1_000;
 
 /// Compiles the simulation settings of one scenario (or one sweep point), and
 /// refuses the keys its kind of scenario never reads.
-pub(super) fn setup(ctx: &mut Context<'_>, raw: &RawScenario, imported: Option<&Imported>) -> Option<Setup> {
+pub(super) fn setup(
+    ctx: &mut Context<'_>,
+    raw: &RawScenario,
+    imported: Option<&Imported>,
+    mapped: Option<&Mapped>,
+) -> Option<Setup> {
     let root = Path::root();
     let kind = Kind::of(ctx.tree);
     if let Some(kind) = kind {
@@ -49,7 +55,7 @@ pub(super) fn setup(ctx: &mut Context<'_>, raw: &RawScenario, imported: Option<&
             .as_ref()
             .and_then(|g| field(ctx, field_raw, g, &root.key("field")))
             .map(Experiment::Field),
-        None => world(ctx, raw, imported).map(|w| Experiment::World(Box::new(w))),
+        None => world(ctx, raw, imported, mapped).map(|w| Experiment::World(Box::new(w))),
     };
     let occupancy = if fuses {
         let fusion = fusion(ctx, &raw.fusion, &root.key("fusion"));

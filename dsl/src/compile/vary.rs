@@ -7,6 +7,7 @@
 
 use super::context::{Context, locate_key};
 use super::kind;
+use super::map::Mapped;
 use super::setup::setup;
 use super::sweep::{self, AxisNodes, is_prefix};
 use super::traces::Imported;
@@ -27,6 +28,7 @@ pub(super) fn vary(
     ctx: &mut Context<'_>,
     sweeps: &[Vec<AxisNodes<'_>>],
     imported: Option<&Imported>,
+    mapped: Option<&Mapped>,
     base: Option<&Setup>,
 ) -> Vec<Vary> {
     let tree = ctx.tree;
@@ -72,7 +74,7 @@ pub(super) fn vary(
                     path: &path,
                     key_location: key.location,
                 };
-                value_compiles(ctx, &setting, value, imported, base_unused)
+                value_compiles(ctx, &setting, value, (imported, mapped), base_unused)
             })
         {
             continue;
@@ -188,7 +190,7 @@ fn value_compiles(
     ctx: &mut Context<'_>,
     setting: &Setting<'_>,
     value: &Node,
-    imported: Option<&Imported>,
+    (imported, mapped): (Option<&Imported>, Option<&Mapped>),
     base_unused: &[Path],
 ) -> bool {
     let mut probe = ctx.tree.clone();
@@ -199,7 +201,7 @@ fn value_compiles(
     let mut probe_ctx = Context::new(ctx.file, &probe);
     match from_node::<RawScenario>(&probe, &Path::root()) {
         Ok(raw) => {
-            let compiled = setup(&mut probe_ctx, &raw, imported);
+            let compiled = setup(&mut probe_ctx, &raw, imported, mapped);
             if let Some(compiled) = compiled.filter(|_| probe_ctx.errors.is_empty()) {
                 for (unused, why) in kind::unused(&probe, &compiled) {
                     if !base_unused.contains(&unused) {

@@ -29,7 +29,7 @@ pub struct Scenario {
     pub requirements: Vec<Requirement>,
     /// Published figures, in file order.
     pub references: Vec<Reference>,
-    /// The files the scenario imports (`traces`), in the order read.
+    /// The files the scenario imports (`traces`, `map`), in the order read.
     pub imports: Vec<Import>,
     /// The settings `sightline falsify` varies, in file order (`run` ignores them).
     pub vary: Vec<super::Vary>,
@@ -173,10 +173,13 @@ pub enum ImportKind {
     /// SUMO routes, for their vehicle types (`traces.routes`, a
     /// configuration's `route-files`).
     SumoRoutes,
+    /// An OpenDRIVE road network (`map.opendrive`).
+    OpenDrive,
 }
 
 impl ImportKind {
-    /// Its key under `traces`: `fcd`, `net`, `poly`, `sumocfg`, `routes`.
+    /// Its key under its section: `fcd`, `net`, `poly`, `sumocfg`, `routes`,
+    /// `opendrive`.
     pub fn key(self) -> &'static str {
         match self {
             Self::SumoFcd => "fcd",
@@ -184,10 +187,20 @@ impl ImportKind {
             Self::SumoPoly => "poly",
             Self::SumoConfig => "sumocfg",
             Self::SumoRoutes => "routes",
+            Self::OpenDrive => "opendrive",
         }
     }
 
-    /// Its name in evidence: `sumo_fcd`, `sumo_net`, `sumo_poly`, `sumo_config`, `sumo_routes`.
+    /// The section that names it: `traces` or `map`.
+    pub fn section(self) -> &'static str {
+        match self {
+            Self::SumoFcd | Self::SumoNet | Self::SumoPoly | Self::SumoConfig | Self::SumoRoutes => "traces",
+            Self::OpenDrive => "map",
+        }
+    }
+
+    /// Its name in evidence: `sumo_fcd`, `sumo_net`, `sumo_poly`, `sumo_config`,
+    /// `sumo_routes`, `opendrive`.
     pub fn name(self) -> &'static str {
         match self {
             Self::SumoFcd => "sumo_fcd",
@@ -195,6 +208,7 @@ impl ImportKind {
             Self::SumoPoly => "sumo_poly",
             Self::SumoConfig => "sumo_config",
             Self::SumoRoutes => "sumo_routes",
+            Self::OpenDrive => "opendrive",
         }
     }
 }

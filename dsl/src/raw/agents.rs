@@ -16,7 +16,8 @@ pub(crate) struct RawAgent {
     pub id: String,
     /// What it is; sets the default footprint.
     pub kind: AgentKind,
-    /// Vehicles: the road ids it drives along, in order.
+    /// Vehicles: the road ids it drives along, in order (`road R lane L` for
+    /// a lane of `map`). Pedestrians: the sidewalks of `map` it walks along.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub route: Option<Vec<String>>,
     /// Vehicles: the lane it keeps (0: lane 0 of every road).

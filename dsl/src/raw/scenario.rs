@@ -9,6 +9,7 @@ use super::agents::RawAgent;
 use super::document::RawDocument;
 use super::field::RawField;
 use super::fusion::{RawDecision, RawFusion, RawGrid};
+use super::map::RawMap;
 use super::perception::RawPerception;
 use super::record::RawRecord;
 use super::requirements::{RawReference, RawRequirement};
@@ -55,11 +56,16 @@ pub(crate) struct RawScenario {
     /// optionally its roads and buildings.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub traces: Option<RawTraces>,
-    /// World: directed roads with their lanes (besides those of `traces.net`).
+    /// World: a road network from an OpenDRIVE file, its roads, sidewalks,
+    /// junctions, crosswalks and buildings.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub map: Option<RawMap>,
+    /// World: directed roads with their lanes (besides those of `traces.net`
+    /// and `map`).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub roads: Vec<RawRoad>,
     /// World: buildings and walls that block sight (besides the polygons of
-    /// `traces.poly`).
+    /// `traces.poly` and the objects of `map`).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub occluders: Vec<RawOccluder>,
     /// World: sensor models by id.
@@ -78,11 +84,11 @@ pub(crate) struct RawScenario {
     /// World: background traffic generated on routes and crosswalks.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub traffic: Option<RawTraffic>,
-    /// World: pedestrian crossings.
+    /// World: pedestrian crossings (besides the crosswalk objects of `map`).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub crosswalks: Vec<RawCrosswalk>,
     /// World: regions around junctions, roundabout entries and crossings (besides
-    /// the junctions of `traces.net`).
+    /// the junctions of `traces.net` and `map`).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub interaction_areas: Vec<RawInteractionArea>,
     /// World: regions named for requirements that select road users by area

@@ -117,7 +117,7 @@ pub struct ScenarioRecord {
 /// A file the scenario imports.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct ImportRecord {
-    /// `sumo_fcd`, `sumo_net` or `sumo_poly`.
+    /// `sumo_fcd`, `sumo_net`, `sumo_poly` or `opendrive`.
     pub kind: String,
     /// Its path, as the scenario resolved it (the attachment's name).
     pub path: String,

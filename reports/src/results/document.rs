@@ -104,7 +104,7 @@ pub struct ScenarioInfo {
 #[schemars(deny_unknown_fields)]
 pub struct InputInfo {
     /// `scenario`, or the kind of imported file (`sumo_fcd`, `sumo_net`,
-    /// `sumo_poly`, `sumo_config`, `sumo_routes`).
+    /// `sumo_poly`, `sumo_config`, `sumo_routes`, `opendrive`).
     pub kind: &'static str,
     /// The path: as given for the scenario, resolved against the scenario's
     /// directory for an imported file.

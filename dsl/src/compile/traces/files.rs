@@ -6,9 +6,10 @@ use std::path::{Path as FsPath, PathBuf};
 
 use crate::compile::Loader;
 use crate::compile::context::Context;
-use crate::error::{Error, ErrorKind, Location, utf8_text};
+use crate::compile::reader::{Failed, Named, Reader};
+use crate::error::ErrorKind;
 use crate::import::sumo::{
-    Additional, Config, ConfigFile, Fcd, Network, SumoError, parse_additional, parse_config, parse_fcd, parse_net,
+    Additional, Config, ConfigFile, Fcd, Network, parse_additional, parse_config, parse_fcd, parse_net,
 };
 use crate::model::{Import, ImportKind};
 use crate::path::Path;
@@ -27,18 +28,6 @@ pub(super) struct Files {
     pub(super) fcd_file: String,
     /// Every file as read, for the evidence.
     pub(super) imports: Vec<Import>,
-}
-
-/// A file failed to load or parse; the error is recorded.
-pub(super) struct Failed;
-
-/// Where a file is named: a key of the scenario, or a value in the configuration.
-#[derive(Clone)]
-enum Named {
-    /// At this key of the scenario.
-    Scenario(Path),
-    /// In the configuration file at this path, at this location.
-    Config(String, Location),
 }
 
 /// Reads and parses the files of `raw`; `None` (errors recorded) when one fails.
@@ -135,70 +124,4 @@ pub(super) fn read_files(ctx: &mut Context<'_>, raw: &RawTraces, loader: Option<
         fcd_file,
         imports: reader.imports,
     })
-}
-
-/// Reads imported files, recording each and every failure.
-struct Reader<'c, 'a, 'f> {
-    ctx: &'c mut Context<'a>,
-    loader: Option<&'f dyn Loader>,
-    imports: Vec<Import>,
-}
-
-impl Reader<'_, '_, '_> {
-    /// Reads the file at `path` and parses it; a failure to read is an error
-    /// where it is named, a malformed file an error in it.
-    fn read<T>(
-        &mut self,
-        named: &Named,
-        path: &FsPath,
-        kind: ImportKind,
-        by_scenario: bool,
-        parse: impl Fn(&str) -> Result<T, SumoError>,
-    ) -> Result<T, Failed> {
-        let file = path.display().to_string();
-        let bytes = match self.loader.map(|loader| loader.load(path)) {
-            Some(Ok(bytes)) => bytes,
-            failed => {
-                let reason = match failed {
-                    Some(Err(error)) => error.to_string(),
-                    _ => "this compilation was given no file loader".into(),
-                };
-                let kind = ErrorKind::Io { file, reason };
-                match named {
-                    Named::Scenario(at) => self.ctx.error(at, kind),
-                    Named::Config(config, location) => self.ctx.errors.push(Error {
-                        file: config.clone(),
-                        location: *location,
-                        path: String::new(),
-                        kind,
-                    }),
-                }
-                return Err(Failed);
-            }
-        };
-        let parsed = match utf8_text(&bytes) {
-            Ok(text) => parse(text).map_err(|e| (e.location, e.message)),
-            Err(location) => Err((location, "the file is not UTF-8 text".into())),
-        };
-        match parsed {
-            Ok(value) => {
-                self.imports.push(Import {
-                    kind,
-                    path: file,
-                    bytes,
-                    named: by_scenario,
-                });
-                Ok(value)
-            }
-            Err((location, message)) => {
-                self.ctx.errors.push(Error {
-                    file,
-                    location,
-                    path: String::new(),
-                    kind: ErrorKind::Import(message),
-                });
-                Err(Failed)
-            }
-        }
-    }
 }

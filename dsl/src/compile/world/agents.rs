@@ -19,6 +19,8 @@ use crate::raw::range;
 pub(super) struct Scene<'a> {
     /// Every road, declared and imported.
     pub(super) roads: &'a [Road],
+    /// The sidewalks of `map`, which pedestrians' routes name.
+    pub(super) walkways: &'a [Road],
     /// The sensor models by id.
     pub(super) sensors: &'a HashMap<String, Sensor>,
     /// What `traces` imports.
@@ -196,7 +198,7 @@ fn agent_of(ctx: &mut Context<'_>, raw: &RawAgent, path: &Path, scene: &Scene<'_
 fn motion(ctx: &mut Context<'_>, raw: &RawAgent, path: &Path, scene: &Scene<'_>, length: f64) -> Option<Motion> {
     let allowed: &[&str] = match raw.kind {
         AgentKind::Rsu => &["position"],
-        AgentKind::Pedestrian => &["path", "trace"],
+        AgentKind::Pedestrian => &["path", "route", "trace"],
         _ => &["route", "trace"],
     };
     let given: Vec<&str> = [
@@ -257,6 +259,7 @@ fn motion(ctx: &mut Context<'_>, raw: &RawAgent, path: &Path, scene: &Scene<'_>,
         & ctx.within(&path.key("start").key("time"), raw.start.time, range::TIME)
         & ctx.within(&path.key("start").key("offset"), raw.start.offset, range::OFFSET);
     let (along, limits) = match (&raw.route, &raw.path) {
+        (Some(route), _) if raw.kind == AgentKind::Pedestrian => walk(ctx, route, raw.lane, &path.key("route"), scene)?,
         (Some(route), _) => route_path(ctx, route, raw.lane, &path.key("route"), scene.roads)?,
         (None, Some(points)) => {
             let path_path = path.key("path");
@@ -299,6 +302,30 @@ fn motion(ctx: &mut Context<'_>, raw: &RawAgent, path: &Path, scene: &Scene<'_>,
         acceleration: speed.acceleration,
         entry: Entry::Queue,
     })
+}
+
+/// A pedestrian's route along sidewalks of `map`, unlimited in speed.
+fn walk(
+    ctx: &mut Context<'_>,
+    route: &[String],
+    lane: u32,
+    path: &Path,
+    scene: &Scene<'_>,
+) -> Option<(Polyline, Vec<(f64, f64)>)> {
+    if scene.walkways.is_empty() {
+        ctx.error(
+            path,
+            ErrorKind::Invalid(
+                "a pedestrian's `route` names sidewalks of `map` (`road R lane L`), and there are none; give its \
+                 `path`"
+                    .into(),
+            ),
+        );
+        return None;
+    }
+    let (line, _) = route_path(ctx, route, lane, path, scene.walkways)?;
+    let length = line.length();
+    Some((line, vec![(length, f64::INFINITY)]))
 }
 
 /// The motion of an agent replaying object `id` of the trace.

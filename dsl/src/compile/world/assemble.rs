@@ -9,6 +9,7 @@ use super::semantic::{areas, crosswalks, driving, interaction_areas, own_antenna
 use super::sensors::{localization, sensor_models};
 use crate::compile::checks::whole_multiple;
 use crate::compile::context::Context;
+use crate::compile::map::Mapped;
 use crate::compile::traces::Imported;
 use crate::error::ErrorKind;
 use std::collections::BTreeSet;
@@ -22,8 +23,13 @@ use crate::raw::{RawScenario, RawTime, RawV2x};
 pub const MAX_STEPS: usize = 100_000;
 
 /// Compiles the world sections of a scenario that has no `field`, with what its
-/// `traces` import (`None` when it has none).
-pub(crate) fn world(ctx: &mut Context<'_>, raw: &RawScenario, imported: Option<&Imported>) -> Option<World> {
+/// `traces` and `map` import (`None` when it has none).
+pub(crate) fn world(
+    ctx: &mut Context<'_>,
+    raw: &RawScenario,
+    imported: Option<&Imported>,
+    mapped: Option<&Mapped>,
+) -> Option<World> {
     let root = Path::root();
     let Some(time) = &raw.time else {
         ctx.error(
@@ -39,15 +45,16 @@ pub(crate) fn world(ctx: &mut Context<'_>, raw: &RawScenario, imported: Option<&
     let localization = localization(ctx, raw);
     let driving = driving(ctx, &raw.driving);
     let v2x = v2x(ctx, raw.v2x.as_ref().unwrap_or(&RawV2x::default()));
-    if raw.traces.is_some() && imported.is_none() {
-        // A file of `traces` failed to load, and its errors are recorded: what
+    if raw.traces.is_some() && imported.is_none() || raw.map.is_some() && mapped.is_none() {
+        // A file of `traces` or `map` failed to load, and its errors are recorded: what
         // the sections that depend on it would say without it would mislead.
         return None;
     }
-    let (roads, roads_ok) = roads(ctx, &raw.roads, imported);
-    let occluders = occluders(ctx, &raw.occluders, imported);
+    let (roads, roads_ok) = roads(ctx, &raw.roads, imported, mapped);
+    let occluders = occluders(ctx, &raw.occluders, imported, mapped);
     let scene = Scene {
         roads: &roads,
+        walkways: mapped.map_or(&[], |m| &m.walkways),
         sensors: &sensors,
         imported,
         duration: time.duration,
@@ -63,8 +70,8 @@ pub(crate) fn world(ctx: &mut Context<'_>, raw: &RawScenario, imported: Option<&
         (None, _, _) => Some(None),
         _ => None,
     };
-    let crosswalks = crosswalks(ctx, &raw.crosswalks, imported);
-    let interaction_areas = interaction_areas(ctx, &raw.interaction_areas, imported);
+    let crosswalks = crosswalks(ctx, &raw.crosswalks, imported, mapped);
+    let interaction_areas = interaction_areas(ctx, &raw.interaction_areas, imported, mapped);
     let areas = match (&crosswalks, &interaction_areas) {
         (Some(crosswalks), Some(interaction)) => areas(ctx, &raw.areas, crosswalks, interaction, imported),
         _ => None,

@@ -1,10 +1,11 @@
 //! Occluders: the declared buildings and walls, then the polygons of
-//! `traces.poly` that block sight.
+//! `traces.poly` and the objects of `map` that block sight.
 
 use std::collections::HashSet;
 
 use crate::compile::checks::{coordinates, distinct_from_imported, unique_ids};
 use crate::compile::context::Context;
+use crate::compile::map::Mapped;
 use crate::compile::traces::Imported;
 use crate::error::ErrorKind;
 use crate::geometry::counter_clockwise;
@@ -12,11 +13,13 @@ use crate::model::Occluder;
 use crate::path::Path;
 use crate::raw::RawOccluder;
 
-/// The declared occluders, then the polygons of `traces.poly` that block sight.
+/// The declared occluders, then the polygons of `traces.poly` and the objects
+/// of `map` that block sight.
 pub(super) fn occluders(
     ctx: &mut Context<'_>,
     raw: &[RawOccluder],
     imported: Option<&Imported>,
+    mapped: Option<&Mapped>,
 ) -> Option<Vec<Occluder>> {
     let list = Path::root().key("occluders");
     let polygons = imported.map_or(&[][..], |i| &i.occluders);
@@ -29,6 +32,15 @@ pub(super) fn occluders(
             &polygon_ids,
             "a polygon of `traces.poly`",
         );
+    let objects = mapped.map_or(&[][..], |m| &m.occluders);
+    let object_ids: HashSet<&str> = objects.iter().map(|o| o.id.as_str()).collect();
+    ok &= distinct_from_imported(
+        ctx,
+        &list,
+        raw.iter().map(|o| o.id.as_str()),
+        &object_ids,
+        "an object of `map`",
+    );
     let mut occluders = Vec::new();
     for (i, occluder) in raw.iter().enumerate() {
         let path = list.index(i);
@@ -51,5 +63,6 @@ pub(super) fn occluders(
         });
     }
     occluders.extend_from_slice(polygons);
+    occluders.extend_from_slice(objects);
     ok.then_some(occluders)
 }

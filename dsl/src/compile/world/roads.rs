@@ -1,10 +1,12 @@
 //! Roads: the declared ones resolved into lane centrelines (a polyline, an arc
-//! or a roundabout's ring), then those of `traces.net`.
+//! or a roundabout's ring), then those of `traces.net`, then the drivable lanes
+//! of `map`.
 
 use std::collections::HashSet;
 
 use crate::compile::checks::{coordinates, distinct_from_imported, unique_ids};
 use crate::compile::context::{Context, Declaration};
+use crate::compile::map::Mapped;
 use crate::compile::traces::Imported;
 use crate::error::ErrorKind;
 use crate::geometry::{Arc, Polyline};
@@ -13,10 +15,15 @@ use crate::path::Path;
 use crate::raw::RawRoad;
 use crate::raw::range;
 
-/// The declared roads that compile, then those of `traces.net`; and whether
+/// The declared roads that compile, then those of `traces.net` and `map`; and whether
 /// every declared road compiled. A road that does not is noted in `ctx`, so
 /// the routes that name it are not reported as naming a missing road.
-pub(super) fn roads(ctx: &mut Context<'_>, raw: &[RawRoad], imported: Option<&Imported>) -> (Vec<Road>, bool) {
+pub(super) fn roads(
+    ctx: &mut Context<'_>,
+    raw: &[RawRoad],
+    imported: Option<&Imported>,
+    mapped: Option<&Mapped>,
+) -> (Vec<Road>, bool) {
     let list = Path::root().key("roads");
     let net_roads = imported.map_or(&[][..], |i| &i.roads);
     let net_ids: HashSet<&str> = net_roads.iter().map(|r| r.id.as_str()).collect();
@@ -28,6 +35,15 @@ pub(super) fn roads(ctx: &mut Context<'_>, raw: &[RawRoad], imported: Option<&Im
             &net_ids,
             "an edge of `traces.net`",
         );
+    let map_roads = mapped.map_or(&[][..], |m| &m.roads);
+    let map_ids: HashSet<&str> = map_roads.iter().map(|r| r.id.as_str()).collect();
+    ok &= distinct_from_imported(
+        ctx,
+        &list,
+        raw.iter().map(|r| r.id.as_str()),
+        &map_ids,
+        "a lane of `map`",
+    );
     let mut roads = Vec::new();
     for (i, road) in raw.iter().enumerate() {
         let path = list.index(i);
@@ -54,21 +70,23 @@ pub(super) fn roads(ctx: &mut Context<'_>, raw: &[RawRoad], imported: Option<&Im
             }
         }
     }
-    // The network's links index its own roads, which follow the declared ones.
-    let first = roads.len();
-    roads.extend(net_roads.iter().map(|road| {
-        Road {
-            links: road
-                .links
-                .iter()
-                .map(|link| LaneLink {
-                    to_road: first + link.to_road,
-                    ..link.clone()
-                })
-                .collect(),
-            ..road.clone()
-        }
-    }));
+    // Each network's links index its own roads, which follow the declared ones.
+    for imported in [net_roads, map_roads] {
+        let first = roads.len();
+        roads.extend(imported.iter().map(|road| {
+            Road {
+                links: road
+                    .links
+                    .iter()
+                    .map(|link| LaneLink {
+                        to_road: first + link.to_road,
+                        ..link.clone()
+                    })
+                    .collect(),
+                ..road.clone()
+            }
+        }));
+    }
     (roads, ok)
 }
 

@@ -6,6 +6,7 @@ use std::collections::HashSet;
 use super::routes::route_path;
 use crate::compile::checks::{coordinates, distinct_from_imported, known_names, unique_ids, whole_multiple};
 use crate::compile::context::Context;
+use crate::compile::map::Mapped;
 use crate::compile::traces::Imported;
 use crate::error::ErrorKind;
 use crate::geometry::counter_clockwise;
@@ -17,15 +18,19 @@ use crate::path::Path;
 use crate::raw::range;
 use crate::raw::{RawCrosswalk, RawDriving, RawInteractionArea, RawSemantic, RawTraffic, RawV2x};
 
-/// The declared crosswalks, then the crossings of `traces.net`.
+/// The declared crosswalks, then the crossings of `traces.net` and the
+/// crosswalk objects of `map`.
 pub(super) fn crosswalks(
     ctx: &mut Context<'_>,
     raw: &[RawCrosswalk],
     imported: Option<&Imported>,
+    mapped: Option<&Mapped>,
 ) -> Option<Vec<Crosswalk>> {
     let list = Path::root().key("crosswalks");
     let crossings = imported.map_or(&[][..], |i| &i.crosswalks);
+    let objects = mapped.map_or(&[][..], |m| &m.crosswalks);
     let crossing_ids: HashSet<&str> = crossings.iter().map(|c| c.id.as_str()).collect();
+    let object_ids: HashSet<&str> = objects.iter().map(|c| c.id.as_str()).collect();
     let mut ok = unique_ids(ctx, &list, raw.iter().map(|c| c.id.as_str()))
         & distinct_from_imported(
             ctx,
@@ -33,6 +38,13 @@ pub(super) fn crosswalks(
             raw.iter().map(|c| c.id.as_str()),
             &crossing_ids,
             "a crossing of `traces.net`",
+        )
+        & distinct_from_imported(
+            ctx,
+            &list,
+            raw.iter().map(|c| c.id.as_str()),
+            &object_ids,
+            "an object of `map`",
         );
     for (i, crosswalk) in raw.iter().enumerate() {
         let path = list.index(i);
@@ -56,15 +68,17 @@ pub(super) fn crosswalks(
                 width: c.width,
             })
             .chain(crossings.iter().cloned())
+            .chain(objects.iter().cloned())
             .collect()
     })
 }
 
-/// The declared interaction areas, then the junctions of `traces.net`.
+/// The declared interaction areas, then the junctions of `traces.net` and `map`.
 pub(super) fn interaction_areas(
     ctx: &mut Context<'_>,
     raw: &[RawInteractionArea],
     imported: Option<&Imported>,
+    mapped: Option<&Mapped>,
 ) -> Option<Vec<InteractionArea>> {
     let list = Path::root().key("interaction_areas");
     let junctions = imported.map_or(&[][..], |i| &i.areas);
@@ -77,9 +91,19 @@ pub(super) fn interaction_areas(
             &junction_ids,
             "a junction of `traces.net` (`traces.junction_areas`)",
         );
+    let map_junctions = mapped.map_or(&[][..], |m| &m.areas);
+    let map_ids: HashSet<&str> = map_junctions.iter().map(|a| a.id.as_str()).collect();
+    ok &= distinct_from_imported(
+        ctx,
+        &list,
+        raw.iter().map(|a| a.id.as_str()),
+        &map_ids,
+        "a junction of `map` (`map.junction_areas`)",
+    );
     let (mut areas, shapes_ok) = named_areas(ctx, &list, raw);
     ok &= shapes_ok;
     areas.extend_from_slice(junctions);
+    areas.extend_from_slice(map_junctions);
     ok.then_some(areas)
 }
 
