@@ -8,7 +8,7 @@ use std::path::Path as FsPath;
 use crate::compile::Loader;
 use crate::compile::context::Context;
 use crate::error::{Error, ErrorKind, Location, utf8_text};
-use crate::import::Problem;
+use crate::import::xml::XmlError;
 use crate::model::{Import, ImportKind};
 use crate::path::Path;
 
@@ -36,13 +36,13 @@ impl Reader<'_, '_, '_> {
     /// Reads the file at `path` and parses it; a failure to read is an error
     /// where it is named, a malformed file an error in it. `by_scenario`: the
     /// scenario names it itself (so `falsify` rewrites its path).
-    pub(crate) fn read<T, E: Problem>(
+    pub(crate) fn read<T>(
         &mut self,
         named: &Named,
         path: &FsPath,
         kind: ImportKind,
         by_scenario: bool,
-        parse: impl Fn(&str) -> Result<T, E>,
+        parse: impl Fn(&str) -> Result<T, XmlError>,
     ) -> Result<T, Failed> {
         let file = path.display().to_string();
         let bytes = match self.loader.map(|loader| loader.load(path)) {
@@ -66,7 +66,7 @@ impl Reader<'_, '_, '_> {
             }
         };
         let parsed = match utf8_text(&bytes) {
-            Ok(text) => parse(text).map_err(|e| (e.location(), e.message().to_owned())),
+            Ok(text) => parse(text).map_err(|e| (e.location, e.message)),
             Err(location) => Err((location, "the file is not UTF-8 text".into())),
         };
         match parsed {

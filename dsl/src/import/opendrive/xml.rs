@@ -1,11 +1,16 @@
-//! Reading OpenDRIVE's XML: the located [`OpenDriveError`], parsing within the
-//! size limits, typed attribute access that names the offending element, and
-//! the check of an element's children against those OpenDRIVE allows there.
+//! Reading OpenDRIVE's XML: parsing within the size limits, OpenDRIVE's
+//! number and choice types, and the check of an element's children against
+//! those OpenDRIVE allows there; the located error and typed attribute access
+//! come from [`crate::import::xml`].
 
-use roxmltree::{Attribute, Document, Node, ParsingOptions};
+use roxmltree::{Document, Node, ParsingOptions};
 
 use crate::Location;
 use crate::de::closest;
+use crate::import::xml::{XmlError, malformed};
+pub(crate) use crate::import::xml::{
+    attribute, children, element_error, number, number_or, optional_number, string, tag, value_error,
+};
 
 /// The most bytes an OpenDRIVE file may hold: about 25 times a dense 1 km²
 /// city network, and what the parsed tree of such a file keeps within a few
@@ -17,18 +22,7 @@ pub const MAX_BYTES: usize = 64 << 20;
 pub const MAX_NODES: u32 = 2_000_000;
 
 /// A problem in an OpenDRIVE file, located by line and column.
-///
-/// Displays as `line:col: message`; the caller prefixes the file name.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("{location}: {message}")]
-pub struct OpenDriveError {
-    /// Where in the file: an element's `<`, an attribute value's first
-    /// character, or the parser's position in malformed XML.
-    pub location: Location,
-    /// What is wrong, a lowercase fragment such as
-    /// ``attribute `length` of <geometry> is not a number: "ten"``.
-    pub message: String,
-}
+pub type OpenDriveError = XmlError;
 
 /// Parses `text` as XML within [`MAX_BYTES`] and [`MAX_NODES`]; a malformed
 /// file is an error at the parser's position.
@@ -48,32 +42,13 @@ pub(crate) fn parse(text: &str) -> Result<Document<'_>, OpenDriveError> {
         nodes_limit: MAX_NODES,
         ..ParsingOptions::default()
     };
-    Document::parse_with_options(text, options).map_err(|error| {
-        let pos = error.pos();
-        let location = match error {
-            // These carry no position (roxmltree says 1:1): the text ends too early.
-            roxmltree::Error::UnexpectedEndOfStream | roxmltree::Error::UnclosedRootNode => end_of(text),
-            _ => Location::new(pos.row as usize, pos.col as usize),
-        };
-        let message = match error {
-            roxmltree::Error::NodesLimitReached => {
-                format!("the file holds more than {MAX_NODES} XML nodes, the limit for an OpenDRIVE map")
-            }
-            _ => {
-                // roxmltree appends " at row:col"; the location says it already.
-                let message = error.to_string();
-                let message = message.strip_suffix(&format!(" at {pos}")).unwrap_or(&message);
-                format!("malformed xml: {message}")
-            }
-        };
-        OpenDriveError { location, message }
+    Document::parse_with_options(text, options).map_err(|error| match error {
+        roxmltree::Error::NodesLimitReached => OpenDriveError {
+            location: Location::new(error.pos().row as usize, error.pos().col as usize),
+            message: format!("the file holds more than {MAX_NODES} XML nodes, the limit for an OpenDRIVE map"),
+        },
+        _ => malformed(text, &error),
     })
-}
-
-/// Where `text` ends.
-fn end_of(text: &str) -> Location {
-    let last_line = text.rsplit('\n').next().unwrap_or_default();
-    Location::new(text.matches('\n').count() + 1, last_line.chars().count() + 1)
 }
 
 /// Locates elements by line and column in one pass over the text: roxmltree's
@@ -101,39 +76,6 @@ impl Locator {
         let column = node.document().input_text()[start..pos].chars().count() + 1;
         Location::new(line, column)
     }
-}
-
-/// Where element `node` starts (its `<`), for an error: counted from the start.
-fn location(node: Node) -> Location {
-    let pos = node.document().text_pos_at(node.range().start);
-    Location::new(pos.row as usize, pos.col as usize)
-}
-
-/// An error at the start of element `node`.
-pub(crate) fn element_error(node: Node, message: String) -> OpenDriveError {
-    OpenDriveError {
-        location: location(node),
-        message,
-    }
-}
-
-/// An error at the first character of `attribute`'s value.
-pub(crate) fn value_error(node: Node, attribute: &Attribute, message: String) -> OpenDriveError {
-    let pos = node.document().text_pos_at(attribute.range_value().start);
-    OpenDriveError {
-        location: Location::new(pos.row as usize, pos.col as usize),
-        message,
-    }
-}
-
-/// The element's name, as `<name>`, for messages.
-pub(crate) fn tag(node: Node) -> String {
-    format!("<{}>", node.tag_name().name())
-}
-
-/// The element children of `node` named `name`, in file order.
-pub(crate) fn children<'a, 'i>(node: Node<'a, 'i>, name: &'static str) -> impl Iterator<Item = Node<'a, 'i>> {
-    node.children().filter(move |child| child.has_tag_name(name))
 }
 
 /// The first element child of `node` named `name`.
@@ -175,40 +117,11 @@ pub(crate) fn allowed_children(node: Node, read: &[&str], ignored: &[&str]) -> R
     Ok(())
 }
 
-/// A required attribute.
-pub(crate) fn attribute<'a, 'i>(node: Node<'a, 'i>, name: &str) -> Result<Attribute<'a, 'i>, OpenDriveError> {
-    node.attribute_node(name)
-        .ok_or_else(|| element_error(node, format!("missing attribute `{name}` on {}", tag(node))))
-}
-
-/// A required string attribute.
-pub(crate) fn string<'a>(node: Node<'a, '_>, name: &str) -> Result<&'a str, OpenDriveError> {
-    Ok(attribute(node, name)?.value())
-}
-
-/// A required finite number.
-pub(crate) fn number(node: Node, name: &str) -> Result<f64, OpenDriveError> {
-    finite(node, &attribute(node, name)?)
-}
-
-/// An optional finite number, `default` when absent.
-pub(crate) fn number_or(node: Node, name: &str, default: f64) -> Result<f64, OpenDriveError> {
-    match node.attribute_node(name) {
-        Some(attribute) => finite(node, &attribute),
-        None => Ok(default),
-    }
-}
-
-/// An optional finite number.
-pub(crate) fn optional_number(node: Node, name: &str) -> Result<Option<f64>, OpenDriveError> {
-    node.attribute_node(name).map(|a| finite(node, &a)).transpose()
-}
-
 /// A required number ≥ 0 (OpenDRIVE's `t_grEqZero`).
 pub(crate) fn non_negative(node: Node, name: &str) -> Result<f64, OpenDriveError> {
-    let attribute = attribute(node, name)?;
-    let value = finite(node, &attribute)?;
+    let value = number(node, name)?;
     if value < 0.0 {
+        let attribute = attribute(node, name)?;
         let message = format!("attribute `{name}` of {} must be ≥ 0, found {value}", tag(node));
         return Err(value_error(node, &attribute, message));
     }
@@ -246,24 +159,6 @@ pub(crate) fn choice<'a>(node: Node<'a, '_>, name: &str, allowed: &[&str]) -> Re
         tag(node)
     );
     Err(value_error(node, &attribute, message))
-}
-
-/// The value of `attribute` as a finite number.
-fn finite(node: Node, attribute: &Attribute) -> Result<f64, OpenDriveError> {
-    let value = attribute.value();
-    let describe = |what: &str| {
-        let message = format!(
-            "attribute `{}` of {} is not {what}: {value:?}",
-            attribute.name(),
-            tag(node)
-        );
-        value_error(node, attribute, message)
-    };
-    match value.trim().parse::<f64>() {
-        Ok(number) if number.is_finite() => Ok(number),
-        Ok(_) => Err(describe("a finite number")),
-        Err(_) => Err(describe("a number")),
-    }
 }
 
 #[cfg(test)]

@@ -1,24 +1,18 @@
-//! What the three SUMO readers share: the located [`SumoError`], parsing with
-//! positions, and typed attribute access that names the offending element.
+//! What the three SUMO readers share: parsing within SUMO's limits, SUMO's
+//! shapes and indices, and (from [`crate::import::xml`]) the located error and
+//! typed attribute access that names the offending element.
 
-use roxmltree::{Attribute, Document, Node};
+use roxmltree::{Document, Node};
 
 use crate::Location;
 use crate::geometry::Xy;
+use crate::import::xml::{XmlError, malformed};
+pub(crate) use crate::import::xml::{
+    attribute, children, element_error, error_at_pos, location, number, number_or, string, tag, value_error,
+};
 
 /// A problem in a SUMO file, located by line and column.
-///
-/// Displays as `line:col: message`; the caller prefixes the file name.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("{location}: {message}")]
-pub struct SumoError {
-    /// Where in the file: an element's `<`, an attribute value's first character,
-    /// or the point of a shape that does not parse.
-    pub location: Location,
-    /// What is wrong, a lowercase fragment such as
-    /// ``attribute `x` of <vehicle> is not a number: "abc"``.
-    pub message: String,
-}
+pub type SumoError = XmlError;
 
 /// The most elements one SUMO file may hold: the parser keeps every element
 /// and attribute of a file at once, about 0.8 kB an element of FCD output with
@@ -34,21 +28,7 @@ pub const MAX_ATTRIBUTES: usize = 10_000_000;
 /// position.
 pub(crate) fn parse(text: &str) -> Result<Document<'_>, SumoError> {
     within_limits(text, MAX_ELEMENTS, MAX_ATTRIBUTES)?;
-    Document::parse(text).map_err(|error| {
-        let pos = error.pos();
-        // roxmltree appends " at row:col" to its messages; the location says it already.
-        let message = error.to_string();
-        let message = message.strip_suffix(&format!(" at {pos}")).unwrap_or(&message);
-        let location = match error {
-            // These carry no position (roxmltree says 1:1); the text ends too early.
-            roxmltree::Error::UnexpectedEndOfStream | roxmltree::Error::UnclosedRootNode => end_of(text),
-            _ => Location::new(pos.row as usize, pos.col as usize),
-        };
-        SumoError {
-            location,
-            message: format!("malformed xml: {message}"),
-        }
-    })
+    Document::parse(text).map_err(|error| malformed(text, &error))
 }
 
 /// Counts the elements (`<` not opening an end tag, a comment or a
@@ -80,12 +60,6 @@ fn within_limits(text: &str, max_elements: usize, max_attributes: usize) -> Resu
     Ok(())
 }
 
-/// Where `text` ends.
-fn end_of(text: &str) -> Location {
-    let last_line = text.rsplit('\n').next().unwrap_or_default();
-    Location::new(text.matches('\n').count() + 1, last_line.chars().count() + 1)
-}
-
 /// The root element, which must be named `name`.
 pub(crate) fn root<'a, 'i>(doc: &'a Document<'i>, name: &str) -> Result<Node<'a, 'i>, SumoError> {
     let root = doc.root_element();
@@ -96,66 +70,6 @@ pub(crate) fn root<'a, 'i>(doc: &'a Document<'i>, name: &str) -> Result<Node<'a,
             root,
             format!("expected <{name}> as the root element, found {}", tag(root)),
         ))
-    }
-}
-
-/// The element children of `node` named `name`, in file order.
-pub(crate) fn children<'a, 'i>(node: Node<'a, 'i>, name: &str) -> impl Iterator<Item = Node<'a, 'i>> {
-    node.children().filter(move |child| child.has_tag_name(name))
-}
-
-/// An error at byte `pos` of the document that holds `node`.
-pub(crate) fn error_at_pos(node: Node, pos: usize, message: String) -> SumoError {
-    let pos = node.document().text_pos_at(pos);
-    SumoError {
-        location: Location::new(pos.row as usize, pos.col as usize),
-        message,
-    }
-}
-
-/// Where element `node` starts (its `<`).
-pub(crate) fn location(node: Node) -> Location {
-    let pos = node.document().text_pos_at(node.range().start);
-    Location::new(pos.row as usize, pos.col as usize)
-}
-
-/// An error at the start (the `<`) of element `node`.
-pub(crate) fn element_error(node: Node, message: String) -> SumoError {
-    error_at_pos(node, node.range().start, message)
-}
-
-/// An error at the first character of `attribute`'s value.
-pub(crate) fn value_error(node: Node, attribute: &Attribute, message: String) -> SumoError {
-    error_at_pos(node, attribute.range_value().start, message)
-}
-
-/// The element's name, as `<name>`, for messages.
-pub(crate) fn tag(node: Node) -> String {
-    format!("<{}>", node.tag_name().name())
-}
-
-/// A required attribute.
-pub(crate) fn attribute<'a, 'i>(node: Node<'a, 'i>, name: &str) -> Result<Attribute<'a, 'i>, SumoError> {
-    node.attribute_node(name)
-        .ok_or_else(|| element_error(node, format!("missing attribute `{name}` on {}", tag(node))))
-}
-
-/// A required string attribute.
-pub(crate) fn string<'a>(node: Node<'a, '_>, name: &str) -> Result<&'a str, SumoError> {
-    Ok(attribute(node, name)?.value())
-}
-
-/// A required finite number.
-pub(crate) fn number(node: Node, name: &str) -> Result<f64, SumoError> {
-    let attribute = attribute(node, name)?;
-    finite(node, &attribute)
-}
-
-/// An optional finite number, `default` when absent.
-pub(crate) fn number_or(node: Node, name: &str, default: f64) -> Result<f64, SumoError> {
-    match node.attribute_node(name) {
-        Some(attribute) => finite(node, &attribute),
-        None => Ok(default),
     }
 }
 
@@ -170,24 +84,6 @@ pub(crate) fn index(node: Node, name: &str) -> Result<u32, SumoError> {
         );
         value_error(node, &attribute, message)
     })
-}
-
-/// The value of `attribute` as a finite number.
-fn finite(node: Node, attribute: &Attribute) -> Result<f64, SumoError> {
-    let value = attribute.value();
-    let describe = |what: &str| {
-        let message = format!(
-            "attribute `{}` of {} is not {what}: {value:?}",
-            attribute.name(),
-            tag(node)
-        );
-        value_error(node, attribute, message)
-    };
-    match value.parse::<f64>() {
-        Ok(number) if number.is_finite() => Ok(number),
-        Ok(_) => Err(describe("a finite number")),
-        Err(_) => Err(describe("a number")),
-    }
 }
 
 /// A required shape: points `x,y` (or `x,y,z`, the height dropped) separated by
@@ -264,37 +160,12 @@ mod tests {
     }
 
     #[test]
-    fn missing_attribute_points_at_the_element() {
-        let text = "<net>\n    <lane id=\"a\"/>\n</net>";
-        assert_eq!(
-            first_error(text, |n| number(n, "speed")),
-            "2:5: missing attribute `speed` on <lane>"
-        );
-    }
-
-    #[test]
-    fn bad_numbers_point_at_the_value() {
-        let text = "<net>\n  <lane speed=\"fast\" length=\"inf\" index=\"-1\"/>\n</net>";
-        assert_eq!(
-            first_error(text, |n| number(n, "speed")),
-            "2:16: attribute `speed` of <lane> is not a number: \"fast\""
-        );
-        assert_eq!(
-            first_error(text, |n| number(n, "length")),
-            "2:30: attribute `length` of <lane> is not a finite number: \"inf\""
-        );
+    fn indices_are_non_negative_integers() {
+        let text = "<net>\n  <lane index=\"-1\"/>\n</net>";
         assert_eq!(
             first_error(text, |n| index(n, "index")),
-            "2:42: attribute `index` of <lane> is not a non-negative integer: \"-1\""
+            "2:16: attribute `index` of <lane> is not a non-negative integer: \"-1\""
         );
-    }
-
-    #[test]
-    fn optional_numbers_default_only_when_absent() {
-        let doc = parse("<net><lane width=\"2.5\"/><lane/></net>").unwrap();
-        let lanes: Vec<_> = children(doc.root_element(), "lane").collect();
-        assert_eq!(number_or(lanes[0], "width", 3.2).unwrap(), 2.5);
-        assert_eq!(number_or(lanes[1], "width", 3.2).unwrap(), 3.2);
     }
 
     #[test]

@@ -1,0 +1,183 @@
+//! What the XML readers ([`sumo`](super::sumo), [`opendrive`](super::opendrive))
+//! share: the located [`XmlError`] and typed attribute access that names the
+//! offending element. Each format keeps its own size limits and its own
+//! vocabulary (shapes, lane ids, allowed children) in its `xml` module.
+
+use roxmltree::{Attribute, Node};
+
+use crate::Location;
+
+/// A problem in an XML file, located by line and column.
+///
+/// Displays as `line:col: message`; the caller prefixes the file name.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{location}: {message}")]
+pub struct XmlError {
+    /// Where in the file: an element's `<`, an attribute value's first
+    /// character, a point of a shape that does not parse, or the parser's
+    /// position in malformed XML.
+    pub location: Location,
+    /// What is wrong, a lowercase fragment such as
+    /// ``attribute `x` of <vehicle> is not a number: "abc"``.
+    pub message: String,
+}
+
+/// Where `text` ends.
+pub(crate) fn end_of(text: &str) -> Location {
+    let last_line = text.rsplit('\n').next().unwrap_or_default();
+    Location::new(text.matches('\n').count() + 1, last_line.chars().count() + 1)
+}
+
+/// The message of a roxmltree parse error as `malformed xml: …`, and where it
+/// is: roxmltree appends " at row:col" (dropped here, the location says it) and
+/// says 1:1 for a text that ends too early (located at its end instead).
+pub(crate) fn malformed(text: &str, error: &roxmltree::Error) -> XmlError {
+    let pos = error.pos();
+    let message = error.to_string();
+    let message = message.strip_suffix(&format!(" at {pos}")).unwrap_or(&message);
+    let location = match error {
+        roxmltree::Error::UnexpectedEndOfStream | roxmltree::Error::UnclosedRootNode => end_of(text),
+        _ => Location::new(pos.row as usize, pos.col as usize),
+    };
+    XmlError {
+        location,
+        message: format!("malformed xml: {message}"),
+    }
+}
+
+/// An error at byte `pos` of the document that holds `node`.
+pub(crate) fn error_at_pos(node: Node, pos: usize, message: String) -> XmlError {
+    let pos = node.document().text_pos_at(pos);
+    XmlError {
+        location: Location::new(pos.row as usize, pos.col as usize),
+        message,
+    }
+}
+
+/// Where element `node` starts (its `<`), counted from the text's start.
+pub(crate) fn location(node: Node) -> Location {
+    let pos = node.document().text_pos_at(node.range().start);
+    Location::new(pos.row as usize, pos.col as usize)
+}
+
+/// An error at the start (the `<`) of element `node`.
+pub(crate) fn element_error(node: Node, message: String) -> XmlError {
+    XmlError {
+        location: location(node),
+        message,
+    }
+}
+
+/// An error at the first character of `attribute`'s value.
+pub(crate) fn value_error(node: Node, attribute: &Attribute, message: String) -> XmlError {
+    error_at_pos(node, attribute.range_value().start, message)
+}
+
+/// The element's name, as `<name>`, for messages.
+pub(crate) fn tag(node: Node) -> String {
+    format!("<{}>", node.tag_name().name())
+}
+
+/// The element children of `node` named `name`, in file order.
+pub(crate) fn children<'a, 'i>(node: Node<'a, 'i>, name: &str) -> impl Iterator<Item = Node<'a, 'i>> {
+    node.children().filter(move |child| child.has_tag_name(name))
+}
+
+/// A required attribute.
+pub(crate) fn attribute<'a, 'i>(node: Node<'a, 'i>, name: &str) -> Result<Attribute<'a, 'i>, XmlError> {
+    node.attribute_node(name)
+        .ok_or_else(|| element_error(node, format!("missing attribute `{name}` on {}", tag(node))))
+}
+
+/// A required string attribute.
+pub(crate) fn string<'a>(node: Node<'a, '_>, name: &str) -> Result<&'a str, XmlError> {
+    Ok(attribute(node, name)?.value())
+}
+
+/// A required finite number.
+pub(crate) fn number(node: Node, name: &str) -> Result<f64, XmlError> {
+    finite(node, &attribute(node, name)?)
+}
+
+/// An optional finite number, `default` when absent.
+pub(crate) fn number_or(node: Node, name: &str, default: f64) -> Result<f64, XmlError> {
+    Ok(optional_number(node, name)?.unwrap_or(default))
+}
+
+/// An optional finite number.
+pub(crate) fn optional_number(node: Node, name: &str) -> Result<Option<f64>, XmlError> {
+    node.attribute_node(name).map(|a| finite(node, &a)).transpose()
+}
+
+/// The value of `attribute` as a finite number (surrounding white space, which
+/// XML schemas collapse in numbers, allowed).
+fn finite(node: Node, attribute: &Attribute) -> Result<f64, XmlError> {
+    let value = attribute.value();
+    let describe = |what: &str| {
+        let message = format!(
+            "attribute `{}` of {} is not {what}: {value:?}",
+            attribute.name(),
+            tag(node)
+        );
+        value_error(node, attribute, message)
+    };
+    match value.trim().parse::<f64>() {
+        Ok(number) if number.is_finite() => Ok(number),
+        Ok(_) => Err(describe("a finite number")),
+        Err(_) => Err(describe("a number")),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn first_child_error<T>(text: &str, read: impl Fn(Node) -> Result<T, XmlError>) -> String {
+        let doc = roxmltree::Document::parse(text).unwrap();
+        match read(doc.root_element().first_element_child().unwrap()) {
+            Ok(_) => panic!("expected an error"),
+            Err(error) => error.to_string(),
+        }
+    }
+
+    #[test]
+    fn malformed_xml_is_located_by_the_parser() {
+        let text = "<net>\n  <edge id=\"a\">\n</net>\n";
+        let error = malformed(text, &roxmltree::Document::parse(text).unwrap_err());
+        assert_eq!(error.to_string(), "3:1: malformed xml: expected 'edge' tag, not 'net'");
+        let text = "<net>\n  <edge";
+        let error = malformed(text, &roxmltree::Document::parse(text).unwrap_err());
+        assert_eq!(error.location, Location::new(2, 8));
+    }
+
+    #[test]
+    fn a_missing_attribute_points_at_the_element() {
+        let text = "<net>\n    <lane id=\"a\"/>\n</net>";
+        assert_eq!(
+            first_child_error(text, |n| number(n, "speed")),
+            "2:5: missing attribute `speed` on <lane>"
+        );
+    }
+
+    #[test]
+    fn bad_numbers_point_at_the_value() {
+        let text = "<net>\n  <lane speed=\"fast\" length=\"inf\"/>\n</net>";
+        assert_eq!(
+            first_child_error(text, |n| number(n, "speed")),
+            "2:16: attribute `speed` of <lane> is not a number: \"fast\""
+        );
+        assert_eq!(
+            first_child_error(text, |n| number(n, "length")),
+            "2:30: attribute `length` of <lane> is not a finite number: \"inf\""
+        );
+    }
+
+    #[test]
+    fn optional_numbers_default_only_when_absent() {
+        let doc = roxmltree::Document::parse("<net><lane width=\" 2.5\"/><lane/></net>").unwrap();
+        let lanes: Vec<_> = children(doc.root_element(), "lane").collect();
+        assert_eq!(number_or(lanes[0], "width", 3.2).unwrap(), 2.5);
+        assert_eq!(number_or(lanes[1], "width", 3.2).unwrap(), 3.2);
+        assert_eq!(optional_number(lanes[1], "width").unwrap(), None);
+    }
+}
