@@ -136,11 +136,19 @@ pub enum Metric {
     BaselineObjectAnticipationMedian,
     /// Semantic: `object_anticipation_p95` over the ETSI baseline's messages.
     BaselineObjectAnticipationP95,
+    /// Joint world: `packet_delivery_ratio` of collective perception, the
+    /// share of the cooperating agents' messages to the ego that arrive (0–1),
+    /// where a world has both radios and `packet_delivery_ratio` would not say
+    /// which.
+    GridPacketDeliveryRatio,
+    /// Joint world: `packet_delivery_ratio` of the semantic pipeline, the
+    /// share of the RSUs' messages to the ego that arrive (0–1).
+    SemanticPacketDeliveryRatio,
 }
 
 impl Metric {
     /// Every metric, in documentation order.
-    pub const ALL: [Metric; 44] = [
+    pub const ALL: [Metric; 46] = [
         Self::Accuracy,
         Self::BelowThreshold,
         Self::BelowThresholdFraction,
@@ -185,6 +193,8 @@ impl Metric {
         Self::BaselineAnticipationP95,
         Self::BaselineObjectAnticipationMedian,
         Self::BaselineObjectAnticipationP95,
+        Self::GridPacketDeliveryRatio,
+        Self::SemanticPacketDeliveryRatio,
     ];
 
     /// The name as written in scenario files.
@@ -234,6 +244,8 @@ impl Metric {
             Self::BaselineAnticipationP95 => "baseline_anticipation_p95",
             Self::BaselineObjectAnticipationMedian => "baseline_object_anticipation_median",
             Self::BaselineObjectAnticipationP95 => "baseline_object_anticipation_p95",
+            Self::GridPacketDeliveryRatio => "grid_packet_delivery_ratio",
+            Self::SemanticPacketDeliveryRatio => "semantic_packet_delivery_ratio",
         }
     }
 
@@ -253,6 +265,7 @@ impl Metric {
     /// Whether the field experiment measures it.
     pub fn in_field(self) -> bool {
         !self.in_semantic()
+            && !self.joint_only()
             && !matches!(
                 self,
                 Self::FovGain
@@ -273,6 +286,7 @@ impl Metric {
     /// over the radio: [`Metric::needs_radio`]).
     pub fn in_world(self) -> bool {
         (!self.in_semantic() || self == Self::PacketDeliveryRatio)
+            && !self.joint_only()
             && !matches!(
                 self,
                 Self::Accuracy
@@ -313,12 +327,47 @@ impl Metric {
         )
     }
 
+    /// Whether worlds that run collective perception and the semantic
+    /// pipeline together (joint worlds) measure it: every metric of either,
+    /// but `packet_delivery_ratio`, which each defines over its own radio and
+    /// a joint world splits in two (`grid_packet_delivery_ratio`,
+    /// `semantic_packet_delivery_ratio`).
+    pub fn in_joint(self) -> bool {
+        match self {
+            Self::PacketDeliveryRatio => false,
+            _ => self.joint_only() || self.in_world() || self.in_semantic(),
+        }
+    }
+
+    /// Whether only joint worlds measure it: the two halves of
+    /// `packet_delivery_ratio`.
+    pub fn joint_only(self) -> bool {
+        matches!(self, Self::GridPacketDeliveryRatio | Self::SemanticPacketDeliveryRatio)
+    }
+
+    /// In a joint world, which of its two models measures it, and as which
+    /// of that model's own metrics (each half of `packet_delivery_ratio` is
+    /// its model's `packet_delivery_ratio`). Meaningful where
+    /// [`Metric::in_joint`] holds.
+    pub fn joint_part(self) -> (JointPart, Metric) {
+        match self {
+            Self::GridPacketDeliveryRatio => (JointPart::Grid, Self::PacketDeliveryRatio),
+            Self::SemanticPacketDeliveryRatio => (JointPart::Semantic, Self::PacketDeliveryRatio),
+            metric if metric.in_semantic() => (JointPart::Semantic, metric),
+            metric => (JointPart::Grid, metric),
+        }
+    }
+
     /// Whether a collective-perception world measures it only over the radio
     /// (when it declares `v2x`).
     pub fn needs_radio(self) -> bool {
         matches!(
             self,
-            Self::PacketDeliveryRatio | Self::MessageAgeMean | Self::MessageAgeP95 | Self::BytesPerSecondPerAgent
+            Self::PacketDeliveryRatio
+                | Self::GridPacketDeliveryRatio
+                | Self::MessageAgeMean
+                | Self::MessageAgeP95
+                | Self::BytesPerSecondPerAgent
         )
     }
 
@@ -352,6 +401,8 @@ impl Metric {
             Self::ChannelLoad | Self::BaselineChannelLoad => "steps with the ego",
             Self::TransmittedShare | Self::LabelledShare => "object-cycles the RSUs perceive",
             Self::PacketDeliveryRatio => "messages to the ego",
+            Self::GridPacketDeliveryRatio => "cooperating agents' messages to the ego",
+            Self::SemanticPacketDeliveryRatio => "RSU messages to the ego",
             Self::MissedCriticals => "close approaches",
             Self::ObjectAnticipationMedian | Self::ObjectAnticipationP95 => {
                 "relevant objects named by V2X before the ego saw them"
@@ -412,7 +463,9 @@ impl Metric {
             | Self::MeanVisibleFraction
             | Self::TransmittedShare
             | Self::LabelledShare
-            | Self::PacketDeliveryRatio => ValueDomain::Fraction,
+            | Self::PacketDeliveryRatio
+            | Self::GridPacketDeliveryRatio
+            | Self::SemanticPacketDeliveryRatio => ValueDomain::Fraction,
             Self::BelowThreshold
             | Self::FalseAlarms
             | Self::MissedDetections
@@ -480,6 +533,15 @@ impl Metric {
             _ => Unit::One,
         }
     }
+}
+
+/// The two models a joint world runs, each measuring its own metrics.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum JointPart {
+    /// Collective perception: the ego's fused grid.
+    Grid,
+    /// The roadside units' semantic pipeline.
+    Semantic,
 }
 
 /// The unit of a measured quantity, one source of truth for the evidence

@@ -15,7 +15,7 @@ pub use field::{ErrorModel, Field, Layout, Masses, Truth};
 pub use fusion::{
     Decision, Fusion, FusionMethod, Rule, SourceCombination, Switch, SwitchMeasure, WeightScaling, Weighting,
 };
-pub use metric::{Metric, Unit, ValueDomain};
+pub use metric::{JointPart, Metric, Unit, ValueDomain};
 pub use requirement::{
     Bound, Check, Comparison, Invariant, ObjectProperty, ObjectSelection, OverSeeds, RateBound, Reference, Requirement,
     Signal, Statistic, Temporal,

@@ -333,16 +333,28 @@ pub enum ObjectProperty {
     /// Each relevant road user: its closest approach to the ego, metres
     /// between centres.
     ClosestDistance,
+    /// Joint world, each relevant road user: seconds from when a cell of its
+    /// footprint was first decided occupied in the ego's fused grid to its
+    /// closest approach, negative when that came after (one never in the grid
+    /// has none, and fails).
+    GridLead,
+    /// Joint world, each relevant road user: seconds from the earlier of its
+    /// first time in the ego's fused grid and its first warning (an RSU
+    /// message flagging a conflict with it) to its closest approach (one with
+    /// neither has none, and fails).
+    GridOrWarningLead,
 }
 
 impl ObjectProperty {
     /// Every property in documentation order.
-    pub const ALL: [ObjectProperty; 5] = [
+    pub const ALL: [ObjectProperty; 7] = [
         Self::WarningTime,
         Self::WarningLead,
         Self::KnowledgeLead,
         Self::Anticipation,
         Self::ClosestDistance,
+        Self::GridLead,
+        Self::GridOrWarningLead,
     ];
 
     /// The name as written in scenario files.
@@ -353,7 +365,15 @@ impl ObjectProperty {
             Self::KnowledgeLead => "knowledge_lead",
             Self::Anticipation => "anticipation",
             Self::ClosestDistance => "closest_distance",
+            Self::GridLead => "grid_lead",
+            Self::GridOrWarningLead => "grid_or_warning_lead",
         }
+    }
+
+    /// Whether it reads the ego's fused grid, which only a joint world (one
+    /// with `perception` and `semantic`) has.
+    pub fn needs_grid(self) -> bool {
+        matches!(self, Self::GridLead | Self::GridOrWarningLead)
     }
 
     /// Whether it is read from the per-object record of every relevant road
@@ -376,7 +396,7 @@ impl ObjectProperty {
     pub fn domain(self) -> ValueDomain {
         match self {
             Self::WarningTime | Self::Anticipation | Self::ClosestDistance => ValueDomain::NonNegative,
-            Self::WarningLead | Self::KnowledgeLead => ValueDomain::Real,
+            Self::WarningLead | Self::KnowledgeLead | Self::GridLead | Self::GridOrWarningLead => ValueDomain::Real,
         }
     }
 

@@ -34,4 +34,5 @@ pub use {
 };
 
 pub(crate) use rsu::rsu_sight_idealisations;
-pub(crate) use simulate::idealisations;
+pub(crate) use simulate::{Ground, Layer, idealisations};
+pub(crate) use traffic::scene;

@@ -74,7 +74,7 @@ pub(super) fn point_body(p: &PointResult) -> (String, Vec<TableView>) {
                     .collect(),
             }],
         ),
-        Detail::World { counts: c } => {
+        Detail::World { counts: c, semantic } => {
             let s = &c.sightings;
             let rows = [
                 ("steps with the ego in the scene", c.steps as f64),
@@ -144,7 +144,23 @@ pub(super) fn point_body(p: &PointResult) -> (String, Vec<TableView>) {
                     })
                     .collect(),
             };
-            (format!("{} steps", c.steps), vec![counts_table(rows), by_distance])
+            let mut tables = vec![counts_table(rows), by_distance];
+            let summary = match semantic {
+                // A joint world: the pipeline's tables after the grid's.
+                Some(s) => {
+                    tables.extend(semantic_tables(&s.counts, &s.contribution_by_density));
+                    tables.extend(object_tables(&s.objects));
+                    format!(
+                        "{} steps; the semantic pipeline on the same scene: {} generated road users, {} anticipated \
+                         objects",
+                        c.steps,
+                        s.counts.generated,
+                        s.counts.anticipation.len()
+                    )
+                }
+                None => format!("{} steps", c.steps),
+            };
+            (summary, tables)
         }
         Detail::Semantic {
             counts: c,
@@ -320,6 +336,24 @@ fn object_tables(objects: &ObjectList) -> [TableView; 2] {
         .flat_map(|&category| objects.records.iter().filter(move |o| o.category == category))
         .take(REPORT_OBJECT_ROWS)
         .collect();
+    // A joint world's records say when each road user came into the grid.
+    let joint = objects.records.iter().any(|o| o.first_in_grid.is_some());
+    let mut head: Vec<String> = [
+        "run",
+        "id",
+        "class",
+        "category",
+        "relevant (s)",
+        "seen (s)",
+        "V2X (s)",
+        "warned (s)",
+    ]
+    .map(String::from)
+    .to_vec();
+    if joint {
+        head.push("in grid (s)".into());
+    }
+    head.extend(["closest at (s)", "closest (m)", "least TTC (s)", "anticipation (s)"].map(String::from));
     let records = TableView {
         caption: format!(
             "Relevant road users: {} of {} ({} in results.json), never known first, then warned and never seen, \
@@ -329,26 +363,11 @@ fn object_tables(objects: &ObjectList) -> [TableView; 2] {
             objects.records.len()
         ),
         text_columns: 4,
-        head: [
-            "run",
-            "id",
-            "class",
-            "category",
-            "relevant (s)",
-            "seen (s)",
-            "V2X (s)",
-            "warned (s)",
-            "closest at (s)",
-            "closest (m)",
-            "least TTC (s)",
-            "anticipation (s)",
-        ]
-        .map(String::from)
-        .to_vec(),
+        head,
         rows: shown
             .iter()
             .map(|o| {
-                vec![
+                let mut row = vec![
                     o.run.to_string(),
                     o.id.clone(),
                     o.class.to_string(),
@@ -357,11 +376,17 @@ fn object_tables(objects: &ObjectList) -> [TableView; 2] {
                     or_dash(o.first_seen),
                     or_dash(o.first_v2x),
                     or_dash(o.first_warning),
+                ];
+                if joint {
+                    row.push(or_dash(o.first_in_grid.flatten()));
+                }
+                row.extend([
                     or_dash(o.closest.map(|c| c.time)),
                     or_dash(o.closest.map(|c| c.distance)),
                     or_dash(o.min_ttc),
                     or_dash(o.anticipation),
-                ]
+                ]);
+                row
             })
             .collect(),
     };
