@@ -79,6 +79,11 @@ mod viewers;
 #[path = "e2e/objects.rs"]
 mod objects;
 
+// One world: collective perception and the semantic pipeline together, judged
+// road user by road user; the bundled joint junction; its shards.
+#[path = "e2e/joint.rs"]
+mod joint;
+
 // The findings pages quote the bundled runs.
 #[path = "e2e/findings.rs"]
 mod findings;

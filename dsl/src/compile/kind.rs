@@ -313,7 +313,9 @@ impl Unused<'_> {
             if by_cooperator {
                 if !by_rsu {
                     self.check(at.key("velocity_noise"), || {
-                        "no roadside unit carries this model, and an occupancy grid holds no speeds".into()
+                        "no roadside unit of the pipeline carries this model, the ego's own sight in the pipeline \
+                         is exact, and an occupancy grid holds no speeds"
+                            .into()
                     });
                 }
                 continue;

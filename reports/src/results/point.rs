@@ -67,7 +67,8 @@ pub enum Detail {
         /// In a joint world (collective perception and the semantic pipeline
         /// on one scene), what the pipeline measured, its road users' records
         /// with when each first came into this point's fused grid; absent in
-        /// a perception world. Boxed: a detail of every kind stays small.
+        /// a perception world.
+        // Boxed: a detail of every kind stays small.
         #[serde(skip_serializing_if = "Option::is_none")]
         semantic: Option<Box<SemanticDetail>>,
     },
@@ -83,7 +84,7 @@ pub enum Detail {
 }
 
 /// What the semantic pipeline of a joint world measured (a semantic point
-/// writes the same at its top level, [`Detail::Semantic`]).
+/// writes the same beside its `experiment`).
 #[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
 #[schemars(deny_unknown_fields)]
 pub struct SemanticDetail {
