@@ -1,7 +1,8 @@
 //! One world (issue 17, part 4): collective perception and the semantic
 //! pipeline run together, end to end. A hand-built scene judged road user by
 //! road user (pass, fail, not exercised), the bundled junction with both
-//! models (its evidence, its recording with both models' steps), the same
+//! models (its evidence, its recording with both models' steps, its
+//! pedestrian requirement failing without the shared grids), the same
 //! evidence from shards and at any thread count.
 // See: issue 17, "One world".
 
@@ -156,6 +157,60 @@ fn the_bundled_joint_junction_runs_both_models_in_one_world() {
         Some(summed("semantic", "messages")),
         point["semantic"]["counts"]["messages"].as_u64()
     );
+}
+
+/// The pedestrian requirement of the bundled junction can fail, and the
+/// RSU's and the cooperating car's grids are what hold it: with the ego's
+/// sensor cut to 12 m, the Bayesian grid knows each pedestrian before the ego
+/// sees it (their shared grids) and the requirement holds at that point; with
+/// the radio dead (a receiver no packet reaches), each pedestrian comes into
+/// the grid when the ego sees it, too late, and the requirement fails.
+#[test]
+fn the_pedestrian_requirement_fails_without_the_shared_grids() {
+    let tmp = temp_dir();
+    let bundled = read(Path::new(JUNCTION));
+    let short_sighted = bundled.replacen("    range: 80\n    fov_deg: 70", "    range: 12\n    fov_deg: 70", 1);
+    let dead = short_sighted.replacen("sensitivity_dbm: -90", "sensitivity_dbm: 0", 1);
+    assert!(
+        short_sighted != bundled && dead != short_sighted,
+        "the variants change the scenario"
+    );
+    let run = |name: &str, text: &str| {
+        let (file, out) = (tmp.path().join(format!("{name}.yaml")), tmp.path().join(name));
+        std::fs::write(&file, text).unwrap();
+        sightline(["run", arg(&file), "--out", arg(&out)]).assert_exit(1);
+        read_json(&out.join("results.json"))
+    };
+    let (radio, no_radio) = (run("radio", &short_sighted), run("dead", &dead));
+    let bayes = |results: &serde_json::Value| {
+        let point = requirement(results, "JNT-PED-01")["points"][0].clone();
+        assert_eq!(point["label"], "fusion.method=bayes");
+        assert_eq!(point["n"], 2, "both declared pedestrians are judged");
+        (
+            point["verdict"].as_str().unwrap().to_string(),
+            point["value"].as_f64().unwrap(),
+        )
+    };
+    let ((with, lead_with), (without, lead_without)) = (bayes(&radio), bayes(&no_radio));
+    assert_eq!((with.as_str(), without.as_str()), ("pass", "fail"));
+    assert!(lead_without < lead_with, "{lead_without} < {lead_with}");
+    assert_eq!(requirement(&no_radio, "JNT-PED-01")["verdict"], "fail");
+    assert_eq!(requirement(&no_radio, "JNT-GPDR-01")["value"], 0.0, "no grid arrives");
+    // Road user by road user: in the grid before the ego's own first sight
+    // with the radio, at it without.
+    let times = |results: &serde_json::Value| -> Vec<(f64, f64)> {
+        results["sweep"][0]["semantic"]["objects"]["records"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|o| o["id"] == "ped_south" || o["id"] == "ped_north")
+            .map(|o| (o["first_in_grid"].as_f64().unwrap(), o["first_seen"].as_f64().unwrap()))
+            .collect()
+    };
+    let (shared, own) = (times(&radio), times(&no_radio));
+    assert_eq!((shared.len(), own.len()), (2, 2));
+    assert!(shared.iter().all(|(grid, seen)| grid < seen), "{shared:?}");
+    assert!(own.iter().all(|(grid, seen)| (grid - seen).abs() < 1e-9), "{own:?}");
 }
 
 /// Shards of a joint world (its two points share one simulation) merge into
