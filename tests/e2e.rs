@@ -83,6 +83,10 @@ mod objects;
 // commonroad-crime on two-road-user scenes where the definitions match.
 #[path = "e2e/criticality.rs"]
 mod criticality;
+// One world: collective perception and the semantic pipeline together, judged
+// road user by road user; the bundled joint junction; its shards.
+#[path = "e2e/joint.rs"]
+mod joint;
 
 // The findings pages quote the bundled runs.
 #[path = "e2e/findings.rs"]

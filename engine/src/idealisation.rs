@@ -129,11 +129,19 @@ pub fn idealisations(scenario: &Scenario) -> Vec<Idealisation> {
 fn of_setup(setup: &Setup) -> Vec<Idealisation> {
     let mut listed = match &setup.experiment {
         Experiment::Field(_) => field::IDEALISATIONS.to_vec(),
-        Experiment::World(w) => match (&w.perception, &w.semantic) {
-            (Some(perception), _) => world::idealisations(w, perception),
-            (None, Some(s)) => semantic::idealisations(w, s),
-            (None, None) => Vec::new(),
-        },
+        // A joint world runs both models: the grid's, then the pipeline's.
+        Experiment::World(w) => {
+            let mut listed = w
+                .perception
+                .as_ref()
+                .map_or_else(Vec::new, |perception| world::idealisations(w, perception));
+            for idealisation in w.semantic.iter().flat_map(|s| semantic::idealisations(w, s)) {
+                if !listed.contains(&idealisation) {
+                    listed.push(idealisation);
+                }
+            }
+            listed
+        }
     };
     for option in options(setup) {
         listed.extend_from_slice(option.idealisations());

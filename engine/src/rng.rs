@@ -68,6 +68,9 @@ pub(crate) enum Derived {
     Run,
     /// A replicate of a point for a check over seeds.
     Replicate,
+    /// The semantic pipeline's streams in a joint world, apart from the grid's
+    /// (a roadside unit that does both draws for each on its own).
+    Pipeline,
 }
 
 /// Seed `index` of family `derived` for a scenario seeded `seed`: index 0 is
@@ -79,6 +82,7 @@ pub(crate) fn derived_seed(seed: u64, derived: Derived, index: u32) -> u64 {
     let salt = match derived {
         Derived::Run => 0xA24B_AED4_963E_E407,
         Derived::Replicate => 0x9FB2_1C65_1E98_DF25,
+        Derived::Pipeline => 0xD6E8_FEB8_6659_FD93,
     };
     let mut state = seed ^ u64::from(index).wrapping_mul(salt);
     splitmix64(&mut state)
@@ -112,7 +116,7 @@ mod tests {
     fn derived_seeds_start_at_the_scenario_seed_and_differ() {
         assert_eq!(derived_seed(7, Derived::Run, 0), 7);
         assert_eq!(derived_seed(7, Derived::Replicate, 0), 7);
-        let mut seeds: Vec<u64> = [Derived::Run, Derived::Replicate]
+        let mut seeds: Vec<u64> = [Derived::Run, Derived::Replicate, Derived::Pipeline]
             .iter()
             .flat_map(|&d| (1..100).map(move |i| derived_seed(7, d, i)))
             .collect();

@@ -5,7 +5,8 @@ use std::collections::HashMap;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use sightline_dsl::{
-    Agent, Check, Decision, Experiment, Fusion, Metric, ObjectProperty, ObjectSelection, Scenario, Setup, Signal,
+    Agent, Check, Decision, Experiment, Fusion, JointPart, Metric, ObjectProperty, ObjectSelection, Scenario, Setup,
+    Signal, World,
 };
 
 use crate::field;
@@ -32,7 +33,8 @@ pub struct Job<'a> {
 pub enum Outcome {
     /// The field experiment.
     Field(FieldOutcome),
-    /// A world's collective perception.
+    /// A world's collective perception, with its semantic pipeline's
+    /// measurements in a joint world ([`WorldOutcome::semantic`]).
     World(WorldOutcome),
     /// A world's semantic pipeline.
     Semantic(SemanticMetrics),
@@ -43,7 +45,12 @@ impl Outcome {
     pub fn value(&self, metric: Metric) -> Option<f64> {
         match self {
             Self::Field(o) => o.metrics.value(metric),
-            Self::World(o) => o.metrics.value(metric),
+            Self::World(o) => match o.joint_part(metric) {
+                Some((JointPart::Semantic, s, metric)) => s.value(metric),
+                Some((JointPart::Grid, _, metric)) => o.metrics.value(metric),
+                None if o.semantic.is_some() => None,
+                None => o.metrics.value(metric),
+            },
             Self::Semantic(m) => m.value(metric),
         }
     }
@@ -61,7 +68,12 @@ impl Outcome {
     pub fn sample(&self, metric: Metric) -> Option<Sample> {
         let n = match self {
             Self::Field(o) => o.metrics.sample_size(metric),
-            Self::World(o) => o.metrics.sample_size(metric, o.audit.cells),
+            Self::World(o) => match o.joint_part(metric) {
+                Some((JointPart::Semantic, s, metric)) => s.sample_size(metric),
+                Some((JointPart::Grid, _, metric)) => o.metrics.sample_size(metric, o.audit.cells),
+                None if o.semantic.is_some() => None,
+                None => o.metrics.sample_size(metric, o.audit.cells),
+            },
             Self::Semantic(m) => m.sample_size(metric),
         }?;
         Some(Sample {
@@ -82,23 +94,29 @@ impl Outcome {
     /// `signal` over each run of this point (one series for a world, one per
     /// pooled run for a semantic point); `None` where it is not measured.
     pub fn series(&self, signal: Signal) -> Option<Vec<Series>> {
-        match self {
-            Self::Field(_) => None,
-            Self::World(o) => o.series(signal).map(|series| vec![series]),
-            Self::Semantic(m) => match signal {
-                Signal::RsuOnlyObjects => Some(m.rsu_only.clone()),
-                Signal::TimeToConflict => Some(m.time_to_conflict.clone()),
-                Signal::OccupiedRecall | Signal::BlindRecall | Signal::OccupiedPrecision => None,
-            },
+        if let Self::World(o) = self
+            && signal.in_world()
+        {
+            return o.series(signal).map(|series| vec![series]);
+        }
+        let m = self.semantic()?;
+        match signal {
+            Signal::RsuOnlyObjects => Some(m.rsu_only.clone()),
+            Signal::TimeToConflict => Some(m.time_to_conflict.clone()),
+            Signal::OccupiedRecall | Signal::BlindRecall | Signal::OccupiedPrecision => None,
         }
     }
 
     /// `property` of every road user `selection` keeps, in order (`None` for
     /// one without the property): of every object that came within d_min of
     /// the ego for `warning_time` (which selects nothing), of every relevant
-    /// road user's record for the others; `None` where it is not measured.
+    /// road user's record for the others; `None` where it is not measured
+    /// (a property of the fused grid outside a joint world).
     pub fn per_object(&self, property: ObjectProperty, selection: &ObjectSelection) -> Option<Vec<Option<f64>>> {
-        let Self::Semantic(m) = self else { return None };
+        let m = self.semantic()?;
+        if property.needs_grid() && !matches!(self, Self::World(_)) {
+            return None;
+        }
         Some(if property.of_record() {
             m.objects
                 .iter()
@@ -110,6 +128,16 @@ impl Outcome {
         })
     }
 
+    /// What the semantic pipeline measured: a semantic point's metrics, a
+    /// joint world's pipeline's; `None` where it does not run.
+    pub fn semantic(&self) -> Option<&SemanticMetrics> {
+        match self {
+            Self::Semantic(m) => Some(m),
+            Self::World(o) => o.semantic.as_deref(),
+            Self::Field(_) => None,
+        }
+    }
+
     /// The mass-function audit of every fused cell; `None` where nothing is fused.
     pub fn audit(&self) -> Option<&MassAudit> {
         match self {
@@ -117,6 +145,20 @@ impl Outcome {
             Self::World(o) => Some(&o.audit),
             Self::Semantic(_) => None,
         }
+    }
+}
+
+impl WorldOutcome {
+    /// In a joint world, which model measures `metric`, that model's
+    /// metrics (the pipeline's, for [`JointPart::Semantic`]) and the metric
+    /// it measures it as; `None` outside a joint world, and for a metric a
+    /// joint world does not measure.
+    fn joint_part(&self, metric: Metric) -> Option<(JointPart, &SemanticMetrics, Metric)> {
+        let semantic = self.semantic.as_deref()?;
+        metric.in_joint().then(|| {
+            let (part, as_metric) = metric.joint_part();
+            (part, semantic, as_metric)
+        })
     }
 }
 
@@ -327,7 +369,7 @@ pub fn assemble(
 fn measures(experiment: &Experiment, outcome: &Outcome) -> bool {
     match (experiment, outcome) {
         (Experiment::Field(_), Outcome::Field(_)) => true,
-        (Experiment::World(w), Outcome::World(_)) => w.perception.is_some(),
+        (Experiment::World(w), Outcome::World(o)) => w.perception.is_some() && w.is_joint() == o.semantic.is_some(),
         (Experiment::World(w), Outcome::Semantic(_)) => w.perception.is_none(),
         _ => false,
     }
@@ -424,16 +466,48 @@ fn simulate_group(scenario: &Scenario, group: &[usize], seed: u64, sink: &mut im
             .map(Outcome::Field)
             .collect(),
         (Experiment::World(w), occupancy) => match (&w.perception, &w.semantic, occupancy) {
-            (Some(perception), _, Some(occupancy)) => world::run(seed, &occupancy.grid, w, perception, &jobs, sink)
-                .into_iter()
-                .map(Outcome::World)
-                .collect(),
+            (Some(perception), None, Some(occupancy)) => {
+                world::run(seed, &occupancy.grid, (w, &w.agents), perception, &jobs, &mut (), sink)
+                    .into_iter()
+                    .map(Outcome::World)
+                    .collect()
+            }
+            (Some(perception), Some(s), Some(occupancy)) => {
+                joint(seed, (w, perception, s), &occupancy.grid, &jobs, sink)
+            }
             // The points of a semantic group are the same configuration: one run serves all.
             (None, Some(s), None) => vec![Outcome::Semantic(semantic::run(seed, w, s, sink)); group.len()],
             _ => unreachable!("the compiler gives collective perception a grid, and the semantic pipeline none"),
         },
         (Experiment::Field(_), None) => unreachable!("the compiler gives the field experiment a grid"),
     }
+}
+
+/// A joint world's group at `seed`: collective perception with every job on
+/// the scene of the world's agents and its generated traffic, the semantic
+/// pipeline running on it; one outcome per job, each with the pipeline's
+/// measurements and its road users' times in that job's grid.
+fn joint(
+    seed: u64,
+    (w, perception, s): (&World, &sightline_dsl::Perception, &sightline_dsl::Semantic),
+    grid: &sightline_dsl::Grid,
+    jobs: &[Job<'_>],
+    sink: &mut impl TraceSink,
+) -> Vec<Outcome> {
+    let agents = semantic::scene(seed, w);
+    let ground = semantic::Ground::new(w, s);
+    let mut layer = semantic::Layer::joint(seed, (w, s), &agents, &ground, jobs.len());
+    let outcomes = world::run(seed, grid, (w, &agents), perception, jobs, &mut layer, sink);
+    outcomes
+        .into_iter()
+        .zip(layer.finish(0))
+        .map(|(outcome, metrics)| {
+            Outcome::World(WorldOutcome {
+                semantic: Some(Box::new(metrics)),
+                ..outcome
+            })
+        })
+        .collect()
 }
 
 /// Point indices grouped by identical sampled data (seed, grid, experiment), in

@@ -11,8 +11,9 @@ use crate::trace::{SemanticStep, WorldStep};
 ///
 /// Every method has a default that does nothing; implement the ones you need.
 /// A perception world calls [`Self::world_step`], a semantic world
-/// [`Self::semantic_step`], each at every step in order; the field experiment has
-/// no steps and calls nothing. A sink only observes: recording never changes a
+/// [`Self::semantic_step`], each at every step in order; a joint world (both
+/// models on one scene) calls both at every step, the grid's first; the field
+/// experiment has no steps and calls nothing. A sink only observes: recording never changes a
 /// run's outcome.
 ///
 /// ```

@@ -21,6 +21,8 @@
 //!   with their labelled items, direct status messages) delivered or dropped, the
 //!   messages that reached the ego, and the objects that came within d_min of the
 //!   ego with whether a conflict with them had been flagged to it.
+//! - A joint world (both on one scene) reports both at every step, the
+//!   [`WorldStep`] first.
 //! - The field experiment (seed 001) has no steps and reports nothing.
 //!
 //! Summed over a run, the step records give the run's metrics: a world's cell

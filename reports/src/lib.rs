@@ -145,7 +145,13 @@ pub fn render(
                 contribution_by_density,
                 objects: _,
             } => chart::semantic_charts(counts, contribution_by_density),
-            Detail::World { counts } => Ok(chart::reliability_chart(&counts.calibration)?.into_iter().collect()),
+            Detail::World { counts, semantic } => {
+                let mut charts: Vec<Chart> = chart::reliability_chart(&counts.calibration)?.into_iter().collect();
+                if let Some(s) = semantic {
+                    charts.extend(chart::semantic_charts(&s.counts, &s.contribution_by_density)?);
+                }
+                Ok(charts)
+            }
             Detail::Field { .. } => Ok(Vec::new()),
         })
         .collect::<Result<Vec<Vec<Chart>>, ChartError>>()?;

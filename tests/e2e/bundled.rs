@@ -37,7 +37,7 @@ pub struct Bundled {
 
 /// Runs a bundled scenario with `--record` (it must exit `code`: 0 when every
 /// requirement holds, 1 when one fails) and keeps its evidence.
-fn run_bundled(scenario: &'static str, code: i32) -> Bundled {
+pub(crate) fn run_bundled(scenario: &'static str, code: i32) -> Bundled {
     let tmp = temp_dir();
     let out = tmp.path().join("out");
     let run = sightline(["run", scenario, "--out", arg(&out), "--record"]);
@@ -345,9 +345,10 @@ pub fn falsify_input_run() -> &'static Bundled {
 }
 
 /// A run of every bundled scenario, in file-name order.
-pub fn every_run() -> [&'static Bundled; 7] {
+pub fn every_run() -> [&'static Bundled; 8] {
     [
         field(),
+        crate::joint::junction_run(),
         opendrive_crossroads_run(),
         roundabout_run(),
         sumo_grid_run(),

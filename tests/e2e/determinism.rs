@@ -79,6 +79,19 @@ fn thread_count_does_not_change_semantic_evidence() {
     }
 }
 
+/// A joint world (generated traffic, the grid's fusion in parallel chunks,
+/// the owners of its cells merged in chunk order, both radios) is as
+/// deterministic.
+// See: issue 17, "One world".
+#[test]
+fn thread_count_does_not_change_joint_evidence() {
+    let tmp = temp_dir();
+    let (one, two) = (tmp.path().join("one"), tmp.path().join("two"));
+    run_into("scenarios/junction-joint.yaml", &one, &["--jobs", "1"], 0);
+    run_into("scenarios/junction-joint.yaml", &two, &["--jobs", "2"], 0);
+    assert_same_evidence(&one, &two);
+}
+
 /// Noisy odometry draws from one stream per agent, a block per step: swept
 /// over its noise, a perception world's evidence is the same at any thread
 /// count.

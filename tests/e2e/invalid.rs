@@ -176,6 +176,11 @@ invalid_inputs! {
     radio_parameters_out_of_physical_range_are_refused => "radio-out-of-range",
     radio_the_step_cannot_serve_and_two_counts_of_cooperators_are_refused => "radio-limits-of-the-step",
     a_radio_metric_without_a_radio_is_refused => "radio-metric-without-v2x",
+    // See: issue 17, part 4 (one world).
+    a_joint_world_refuses_what_would_be_ambiguous => "joint-ambiguous-settings",
+    a_joint_world_refuses_the_ambiguous_delivery_ratio => "joint-packet-delivery-ratio",
+    what_only_a_joint_world_measures_is_refused_elsewhere => "grid-properties-outside-joint",
+    joint_keys_their_settings_leave_without_effect_are_refused => "joint-keys-without-effect",
     // See: issue 18 (the recording's clock).
     time_start_without_its_offset_is_refused => "time-start-not-a-date",
     time_start_before_1970_is_out_of_range => "time-start-out-of-range",

@@ -1,10 +1,13 @@
 //! No silent assumptions (issue 13): every key of the language, in each kind of
 //! scenario (the field experiment, a world measuring collective perception, a
-//! world running the semantic pipeline), either changes what is simulated or
-//! measured, or `check` refuses it at `file:line:col` with a reason.
+//! world running the semantic pipeline, a joint world running both), either
+//! changes what is simulated or measured, or `check` refuses it at
+//! `file:line:col` with a reason.
 //!
 //! The keys are the leaves of the JSON Schema (`sightline schema`). [`KEYS`]
-//! classifies each in each kind: how to change it (its effect is shown by
+//! classifies each in each kind (a joint world as a semantic one, on a base
+//! that is the semantic one's with a grid and cooperating agents, unless
+//! [`JOINT`] says otherwise): how to change it (its effect is shown by
 //! comparing outcomes, results.json, the recording's settings and the space
 //! falsify searches), how to write it so that `check` refuses it, or that it
 //! only labels. A key added to the schema without an entry fails the test.
@@ -31,9 +34,10 @@ enum Kind {
     Field,
     Perception,
     Semantic,
+    Joint,
 }
 
-const KINDS: [Kind; 3] = [Kind::Field, Kind::Perception, Kind::Semantic];
+const KINDS: [Kind; 4] = [Kind::Field, Kind::Perception, Kind::Semantic, Kind::Joint];
 
 /// The small scenario of each kind that every change starts from.
 fn base(kind: Kind) -> Value {
@@ -41,6 +45,7 @@ fn base(kind: Kind) -> Value {
         Kind::Field => FIELD,
         Kind::Perception => PERCEPTION,
         Kind::Semantic => SEMANTIC,
+        Kind::Joint => JOINT,
     };
     serde_json::from_str(text).expect("a base scenario is JSON")
 }
@@ -108,6 +113,44 @@ const SEMANTIC: &str = r#"{
   "requirements": [ { "id": "R1", "text": "Delivered.", "check": { "metric": "packet_delivery_ratio", "at_least": 0.5 } } ]
 }"#;
 
+/// The semantic base run together with collective perception: its agents in
+/// the same order (the roadside unit now shares its grid), a cooperating car
+/// after them, a grid, and its radio without `penetration`, which a joint
+/// world refuses.
+const JOINT: &str = r#"{
+  "sightline": 1, "name": "keys: joint world", "seed": 5,
+  "time": { "duration": 6, "step": 0.1 },
+  "grid": { "origin": [-40, -40], "size": [80, 80], "cell": 1 },
+  "roads": [
+    { "id": "ns", "polyline": [[-1.75, 80], [-1.75, -80]], "speed_limit": 10 },
+    { "id": "sn", "polyline": [[1.75, -80], [1.75, 80]], "speed_limit": 10 },
+    { "id": "we", "polyline": [[-80, -1.75], [80, -1.75]], "speed_limit": 10 },
+    { "id": "ew", "polyline": [[80, 1.75], [-80, 1.75]], "speed_limit": 10 }
+  ],
+  "occluders": [ { "id": "block", "polygon": [[6, 6], [40, 6], [40, 40], [6, 40]] } ],
+  "crosswalks": [ { "id": "cw", "from": [-6, -9], "to": [6, -9] } ],
+  "interaction_areas": [ { "id": "junction", "polygon": [[-12, -12], [12, -12], [12, 12], [-12, 12]] } ],
+  "sensor_models": { "front": { "range": 50, "fov_deg": 90 }, "ring": { "range": 60, "position_noise": { "base": 0.1 } } },
+  "agents": [
+    { "id": "ego", "kind": "car", "route": ["sn"], "start": { "offset": 45 }, "speed": { "target": 8 }, "connected": true, "sensors": ["front"] },
+    { "id": "rsu", "kind": "rsu", "position": [-8, -8], "connected": true, "sensors": ["ring"] },
+    { "id": "car", "kind": "car", "route": ["ew"], "start": { "offset": 45 }, "speed": { "target": 9 } },
+    { "id": "ped", "kind": "pedestrian", "path": [[-6, -9], [6, -9]], "speed": { "target": 1.4 } },
+    { "id": "cav", "kind": "car", "route": ["we"], "start": { "offset": 50 }, "speed": { "target": 8 }, "connected": true, "sensors": ["front"] }
+  ],
+  "traffic": {
+    "vehicles": { "density_per_km": 30, "routes": [["we"], ["ew"], ["ns"]], "non_compliant": 0.5 },
+    "pedestrians": { "per_minute": 20 }
+  },
+  "localization": { "position_sigma": 0.1, "heading_sigma_deg": 0.5 },
+  "perception": { "ego": "ego" },
+  "fusion": { "method": "bayes" },
+  "decision": { "threshold": 0 },
+  "v2x": { "latency": 0.01 },
+  "semantic": { "ego": "ego" },
+  "requirements": [ { "id": "R1", "text": "Delivered.", "check": { "metric": "semantic_packet_delivery_ratio", "at_least": 0.5 } } ]
+}"#;
+
 /// A setting: a dotted path (a number is a list index) and its value as JSON.
 type Set = (&'static str, &'static str);
 
@@ -128,6 +171,10 @@ enum Class {
     },
     /// Refused as part of its top-level section, written whole ([`SECTIONS`]).
     Section,
+    /// Its section is the other model's: writing it makes a perception or a
+    /// semantic world a joint one ([`joining`]), whose outcome differs; what
+    /// the key itself does is checked in the joint world.
+    MakesJoint,
     /// It only labels (an id, a name, a text, a source).
     Descriptive,
 }
@@ -148,7 +195,7 @@ const fn refused_at(set: &'static [Set], at: &'static str) -> Class {
     Class::Refused { set, at: Some(at) }
 }
 
-use Class::{Descriptive, Section};
+use Class::{Descriptive, MakesJoint, Section};
 
 /// A key of the schema and what it does in the field experiment, in
 /// collective perception and in the semantic pipeline.
@@ -165,7 +212,28 @@ impl Key {
             Kind::Field => self.field,
             Kind::Perception => self.perception,
             Kind::Semantic => self.semantic,
+            Kind::Joint => JOINT_KEYS
+                .iter()
+                .find(|(path, _)| *path == self.path)
+                .map_or(self.semantic, |&(_, class)| class),
         }
+    }
+}
+
+/// What writing the other model's section takes to make a world of `kind`
+/// a joint one: a semantic world also needs a grid, and drops its
+/// `v2x.penetration` and its requirement's `packet_delivery_ratio`, which a
+/// joint world refuses.
+fn joining(kind: Kind) -> &'static [Set] {
+    match kind {
+        Kind::Perception => &[("semantic", r#"{ "ego": "ego" }"#)],
+        Kind::Semantic => &[
+            ("perception", r#"{ "ego": "ego" }"#),
+            ("grid", r#"{ "origin": [-40, -40], "size": [80, 80], "cell": 1 }"#),
+            ("v2x.penetration", "null"),
+            ("requirements.0.check.metric", r#""semantic_packet_delivery_ratio""#),
+        ],
+        Kind::Field | Kind::Joint => panic!("only a perception or a semantic world becomes a joint one"),
     }
 }
 
@@ -280,12 +348,10 @@ const SECTIONS: &[(&str, &str)] = &[
 
 /// Where `kind` reports a refused `section` when not at the section: a
 /// `field` turns a world into the field experiment, whose refusals are at the
-/// world's sections (`time` first); `perception` turns a semantic world into a
-/// collective-perception one, which refuses `semantic`.
+/// world's sections (`time` first).
 fn section_refused_at(kind: Kind, section: &str) -> &'static str {
     match (kind, section) {
-        (Kind::Perception | Kind::Semantic, "field") => "time",
-        (Kind::Semantic, "perception") => "semantic",
+        (Kind::Perception | Kind::Semantic | Kind::Joint, "field") => "time",
         _ => SECTIONS
             .iter()
             .find(|(name, _)| *name == section)
@@ -744,22 +810,22 @@ const KEYS: &[Key] = &[
     Key { path: "localization.odometry.speed_bias", field: Section, perception: change(&[("localization.odometry.speed_bias", "0.08")]), semantic: Section },
     Key { path: "localization.odometry.yaw_rate_sigma_deg", field: Section, perception: change(&[("localization.odometry.yaw_rate_sigma_deg", "3")]), semantic: Section },
     Key { path: "localization.odometry.yaw_rate_bias_deg", field: Section, perception: change(&[("localization.odometry.yaw_rate_bias_deg", "4")]), semantic: Section },
-    Key { path: "perception.ego", field: Section, perception: change(&[("perception.ego", r#""cav""#)]), semantic: Section },
-    Key { path: "perception.cooperating", field: Section, perception: change(&[("perception.cooperating", "2")]), semantic: Section },
-    Key { path: "perception.inverse_model.occupied", field: Section, perception: change(&[("perception.inverse_model", r#"{ "occupied": 0.9 }"#)]), semantic: Section },
-    Key { path: "perception.inverse_model.free", field: Section, perception: change(&[("perception.inverse_model", r#"{ "free": 0.1 }"#)]), semantic: Section },
-    Key { path: "perception.snapshot", field: Section, perception: change(&[("perception.snapshot", "0.2")]), semantic: Section },
+    Key { path: "perception.ego", field: Section, perception: change(&[("perception.ego", r#""cav""#)]), semantic: MakesJoint },
+    Key { path: "perception.cooperating", field: Section, perception: change(&[("perception.cooperating", "2")]), semantic: MakesJoint },
+    Key { path: "perception.inverse_model.occupied", field: Section, perception: change(&[("perception.inverse_model", r#"{ "occupied": 0.9 }"#)]), semantic: MakesJoint },
+    Key { path: "perception.inverse_model.free", field: Section, perception: change(&[("perception.inverse_model", r#"{ "free": 0.1 }"#)]), semantic: MakesJoint },
+    Key { path: "perception.snapshot", field: Section, perception: change(&[("perception.snapshot", "0.2")]), semantic: MakesJoint },
     Key {
         path: "perception.region.center",
         field: Section,
         perception: with(&[("perception.region", r#"{ "center": [0, 0], "radius": 15 }"#)], &[("perception.region.center", "[5, 0]")]),
-        semantic: Section,
+        semantic: MakesJoint,
     },
     Key {
         path: "perception.region.radius",
         field: Section,
         perception: with(&[("perception.region", r#"{ "center": [0, 0], "radius": 15 }"#)], &[("perception.region.radius", "10")]),
-        semantic: Section,
+        semantic: MakesJoint,
     },
     // The semantic pipeline's world.
     Key { path: "traffic.vehicles.density_per_km", field: Section, perception: Section, semantic: change(&[("traffic.vehicles.density_per_km", "10")]) },
@@ -849,50 +915,50 @@ const KEYS: &[Key] = &[
     Key {
         path: "semantic.ego",
         field: Section,
-        perception: Section,
+        perception: MakesJoint,
         semantic: with(&[("agents.2.connected", "true")], &[("agents.2.sensors", r#"["front"]"#), ("agents.0.sensors", "[]"), ("semantic.ego", r#""car""#)]),
     },
     Key {
         path: "semantic.rsus",
         field: Section,
-        perception: Section,
+        perception: MakesJoint,
         semantic: with(&[("agents.4", r#"{ "id": "rsu2", "kind": "rsu", "position": [20, -20], "sensors": ["ring"] }"#), ("sweep", r#"{ "semantic.rsus": [["rsu", "rsu2"], ["rsu2"]] }"#)], &[("sweep", r#"{ "semantic.rsus": [["rsu", "rsu2"], ["rsu"]] }"#)]),
     },
-    Key { path: "semantic.proximity", field: Section, perception: Section, semantic: change(&[("semantic.proximity", "15")]) },
-    Key { path: "semantic.horizon", field: Section, perception: Section, semantic: change(&[("semantic.horizon", "1")]) },
-    Key { path: "semantic.d_min", field: Section, perception: Section, semantic: change(&[("semantic.d_min", "6")]) },
-    Key { path: "semantic.overspeed.window", field: Section, perception: Section, semantic: with(NOISY_SPEEDS, &[("semantic.overspeed.window", "1")]) },
-    Key { path: "semantic.overspeed.threshold", field: Section, perception: Section, semantic: with(NOISY_SPEEDS, &[("semantic.overspeed.threshold", "0.5")]) },
-    Key { path: "semantic.hypotheses", field: Section, perception: Section, semantic: change(&[("semantic.hypotheses", "[1.5]")]) },
-    Key { path: "semantic.rate", field: Section, perception: Section, semantic: change(&[("semantic.rate", "5")]) },
-    Key { path: "semantic.risk_for", field: Section, perception: Section, semantic: change(&[("semantic.risk_for", r#""all""#)]) },
-    Key { path: "semantic.rsu_sight", field: Section, perception: Section, semantic: change(&[("semantic.rsu_sight", r#""line_of_sight""#)]) },
+    Key { path: "semantic.proximity", field: Section, perception: MakesJoint, semantic: change(&[("semantic.proximity", "15")]) },
+    Key { path: "semantic.horizon", field: Section, perception: MakesJoint, semantic: change(&[("semantic.horizon", "1")]) },
+    Key { path: "semantic.d_min", field: Section, perception: MakesJoint, semantic: change(&[("semantic.d_min", "6")]) },
+    Key { path: "semantic.overspeed.window", field: Section, perception: MakesJoint, semantic: with(NOISY_SPEEDS, &[("semantic.overspeed.window", "1")]) },
+    Key { path: "semantic.overspeed.threshold", field: Section, perception: MakesJoint, semantic: with(NOISY_SPEEDS, &[("semantic.overspeed.threshold", "0.5")]) },
+    Key { path: "semantic.hypotheses", field: Section, perception: MakesJoint, semantic: change(&[("semantic.hypotheses", "[1.5]")]) },
+    Key { path: "semantic.rate", field: Section, perception: MakesJoint, semantic: change(&[("semantic.rate", "5")]) },
+    Key { path: "semantic.risk_for", field: Section, perception: MakesJoint, semantic: change(&[("semantic.risk_for", r#""all""#)]) },
+    Key { path: "semantic.rsu_sight", field: Section, perception: MakesJoint, semantic: change(&[("semantic.rsu_sight", r#""line_of_sight""#)]) },
     Key {
         path: "semantic.history",
         field: Section,
-        perception: Section,
+        perception: MakesJoint,
         semantic: with(&[("semantic.overspeed", r#"{ "window": 0.3 }"#), ("semantic.history", "0.3"), ("sensor_models.ring.position_noise.base", "1")], &[("semantic.history", "1")]),
     },
     Key {
         path: "semantic.caution.headway",
         field: Section,
-        perception: Section,
+        perception: MakesJoint,
         semantic: with(&[("driving.following", r#""idm""#), ("semantic.risk_for", r#""all""#), ("traffic.vehicles.routes.+", r#"["sn"]"#)], &[("semantic.caution", r#"{ "headway": 6 }"#)]),
     },
-    Key { path: "semantic.caution.speed_factor", field: Section, perception: Section, semantic: with(&[("semantic.risk_for", r#""all""#)], &[("semantic.caution", r#"{ "speed_factor": 0.2 }"#)]) },
-    Key { path: "semantic.caution.hold", field: Section, perception: Section, semantic: with(&[("semantic.risk_for", r#""all""#)], &[("semantic.caution", r#"{ "hold": 0 }"#)]) },
-    Key { path: "semantic.baseline.distance", field: Section, perception: Section, semantic: change(&[("semantic.baseline", r#"{ "distance": 0.5 }"#)]) },
-    Key { path: "semantic.baseline.speed", field: Section, perception: Section, semantic: with(NOISY_SPEEDS, &[("semantic.baseline", r#"{ "speed": 3 }"#)]) },
+    Key { path: "semantic.caution.speed_factor", field: Section, perception: MakesJoint, semantic: with(&[("semantic.risk_for", r#""all""#)], &[("semantic.caution", r#"{ "speed_factor": 0.2 }"#)]) },
+    Key { path: "semantic.caution.hold", field: Section, perception: MakesJoint, semantic: with(&[("semantic.risk_for", r#""all""#)], &[("semantic.caution", r#"{ "hold": 0 }"#)]) },
+    Key { path: "semantic.baseline.distance", field: Section, perception: MakesJoint, semantic: change(&[("semantic.baseline", r#"{ "distance": 0.5 }"#)]) },
+    Key { path: "semantic.baseline.speed", field: Section, perception: MakesJoint, semantic: with(NOISY_SPEEDS, &[("semantic.baseline", r#"{ "speed": 3 }"#)]) },
     Key {
         path: "semantic.baseline.heading_deg",
         field: Section,
-        perception: Section,
+        perception: MakesJoint,
         semantic: with(&[ARC_ROAD, ("agents.2.route", r#"["bend"]"#), ("agents.2.start.offset", "0"), ("semantic.baseline", r#"{ "distance": 100, "speed": 100, "interval": 100 }"#)], &[("semantic.baseline.heading_deg", "0.5")]),
     },
-    Key { path: "semantic.baseline.interval", field: Section, perception: Section, semantic: change(&[("semantic.baseline", r#"{ "interval": 0.1 }"#)]) },
-    Key { path: "semantic.shares_over", field: Section, perception: Section, semantic: with(&[("agents.0.start.offset", "0")], &[("semantic.shares_over", r#""all""#)]) },
-    Key { path: "semantic.contribution_over", field: Section, perception: Section, semantic: with(&[("agents.0.start.offset", "0")], &[("semantic.contribution_over", r#""all""#)]) },
-    Key { path: "semantic.runs", field: Section, perception: Section, semantic: change(&[("semantic.runs", "2")]) },
+    Key { path: "semantic.baseline.interval", field: Section, perception: MakesJoint, semantic: change(&[("semantic.baseline", r#"{ "interval": 0.1 }"#)]) },
+    Key { path: "semantic.shares_over", field: Section, perception: MakesJoint, semantic: with(&[("agents.0.start.offset", "0")], &[("semantic.shares_over", r#""all""#)]) },
+    Key { path: "semantic.contribution_over", field: Section, perception: MakesJoint, semantic: with(&[("agents.0.start.offset", "0")], &[("semantic.contribution_over", r#""all""#)]) },
+    Key { path: "semantic.runs", field: Section, perception: MakesJoint, semantic: change(&[("semantic.runs", "2")]) },
     // Requirements and published figures: what is judged and shown.
     Key { path: "requirements[].id", field: Descriptive, perception: Descriptive, semantic: Descriptive },
     Key { path: "requirements[].text", field: Descriptive, perception: Descriptive, semantic: Descriptive },
@@ -1106,6 +1172,65 @@ const KEYS: &[Key] = &[
         perception: with(&[("record", "{}")], &[("record.agent_grids", "true")]),
         semantic: refused(&[("record", r#"{ "agent_grids": true }"#)]),
     },
+];
+
+/// The keys a joint world ([`JOINT`]) does not treat as a semantic world
+/// does: those of the grid, the fusion, self-localization and the messages
+/// that carry grids, which it reads; the egos, which it changes together;
+/// what it refuses (`v2x.penetration`, pooled runs); `rsu_sight`, whose
+/// default there is `line_of_sight`; and `packet_delivery_ratio`, which it
+/// splits in two. Every other key is checked in the joint world as the
+/// semantic column says.
+#[rustfmt::skip]
+const JOINT_KEYS: &[(&str, Class)] = &[
+    ("grid.origin", change(&[("grid.origin", "[-41, -40]")])),
+    ("grid.size", change(&[("grid.size", "[70, 80]")])),
+    ("grid.cell", change(&[("grid.cell", "0.5")])),
+    ("fusion.label", change(&[("fusion.label", r#""Baseline""#)])),
+    ("fusion.method", change(&[("fusion.method", r#""dempster""#)])),
+    ("fusion.weights", with(&[("fusion.method", r#""distance_weighted""#)], &[("fusion.weights", r#""mean_one""#)])),
+    ("fusion.sources", with(&[("fusion.method", r#""distance_weighted""#), ("fusion.weights", r#""mean_one""#)], &[("fusion.sources", r#""pairwise""#)])),
+    ("fusion.switch.measure", with(&[("fusion.method", r#""hybrid""#), ("fusion.switch", r#"{ "measure": "difference", "threshold": 2 }"#)], &[("fusion.switch.measure", r#""ratio""#)])),
+    ("fusion.switch.threshold", with(&[("fusion.method", r#""hybrid""#), ("fusion.switch", r#"{ "threshold": 2 }"#)], &[("fusion.switch.threshold", "20")])),
+    ("decision.threshold", change(&[("decision.threshold", "0.5")])),
+    ("sensor_models.<id>.ray_spacing_deg", change(&[("sensor_models.front.ray_spacing_deg", "3")])),
+    ("localization.position_sigma", change(&[("localization.position_sigma", "0.5")])),
+    ("localization.heading_sigma_deg", change(&[("localization.heading_sigma_deg", "3")])),
+    ("localization.filter", change(&[("localization.filter", r#""none""#)])),
+    ("localization.process_position_sigma", change(&[("localization.process_position_sigma", "1")])),
+    ("localization.process_heading_sigma_deg", change(&[("localization.process_heading_sigma_deg", "5")])),
+    ("localization.odometry.model", change(&[("localization.odometry.model", r#""exact""#)])),
+    ("localization.odometry.speed_sigma", change(&[("localization.odometry.speed_sigma", "1")])),
+    ("localization.odometry.speed_bias", change(&[("localization.odometry.speed_bias", "0.08")])),
+    ("localization.odometry.yaw_rate_sigma_deg", change(&[("localization.odometry.yaw_rate_sigma_deg", "3")])),
+    ("localization.odometry.yaw_rate_bias_deg", change(&[("localization.odometry.yaw_rate_bias_deg", "4")])),
+    // One ego for both models: the two keys change together (apart, `check`
+    // refuses them: tests/fixtures/invalid/joint-ambiguous-settings.yaml).
+    ("perception.ego", change(&[("perception.ego", r#""cav""#), ("semantic.ego", r#""cav""#)])),
+    ("semantic.ego", change(&[("semantic.ego", r#""cav""#), ("perception.ego", r#""cav""#)])),
+    ("perception.cooperating", change(&[("perception.cooperating", "2")])),
+    ("perception.inverse_model.occupied", change(&[("perception.inverse_model", r#"{ "occupied": 0.9 }"#)])),
+    ("perception.inverse_model.free", change(&[("perception.inverse_model", r#"{ "free": 0.1 }"#)])),
+    ("perception.snapshot", change(&[("perception.snapshot", "0.2")])),
+    ("perception.region.center", with(&[("perception.region", r#"{ "center": [0, 0], "radius": 15 }"#)], &[("perception.region.center", "[5, 0]")])),
+    ("perception.region.radius", with(&[("perception.region", r#"{ "center": [0, 0], "radius": 15 }"#)], &[("perception.region.radius", "10")])),
+    ("semantic.rsus", with(&[("agents.5", r#"{ "id": "rsu2", "kind": "rsu", "position": [20, -20], "sensors": ["ring"] }"#), ("sweep", r#"{ "semantic.rsus": [["rsu", "rsu2"], ["rsu2"]] }"#)], &[("sweep", r#"{ "semantic.rsus": [["rsu", "rsu2"], ["rsu"]] }"#)])),
+    ("semantic.rsu_sight", change(&[("semantic.rsu_sight", r#""range""#)])),
+    ("semantic.runs", refused(&[("semantic.runs", "2")])),
+    ("v2x.penetration", refused(&[("v2x.penetration", "0.5")])),
+    ("v2x.messages.rate_hz", change(&[("v2x.messages.rate_hz", "2")])),
+    ("v2x.messages.max_bytes", change(&[("v2x.messages.max_bytes", "300")])),
+    ("v2x.messages.oversize", with(&[("v2x.messages.max_bytes", "300")], &[("v2x.messages.oversize", r#""select""#)])),
+    ("v2x.messages.max_age", change(&[("v2x.messages.max_age", "0.1")])),
+    ("v2x.messages.decay", change(&[("v2x.messages.decay", "0.2")])),
+    ("record.grid_rate", with(&[("record", "{}")], &[("record.grid_rate", "5")])),
+    ("record.agent_grids", with(&[("record", "{}")], &[("record.agent_grids", "true")])),
+    ("requirements[].check.invariant", change(&[("requirements.0.check", r#"{ "invariant": "mass_function" }"#)])),
+    ("requirements[].check.tolerance", with(&[("requirements.0.check", r#"{ "invariant": "mass_function" }"#)], &[("requirements.0.check.tolerance", "0.5")])),
+    ("requirements[].check.at_most", change(&[("requirements.0.check", r#"{ "metric": "semantic_packet_delivery_ratio", "at_most": 0.5 }"#)])),
+    ("references[].metric", with(&[("references", r#"[ { "source": "S", "metric": "semantic_packet_delivery_ratio", "value": 0.9 } ]"#)], &[("references.0.metric", r#""occupied_recall""#)])),
+    ("references[].value", with(&[("references", r#"[ { "source": "S", "metric": "occupied_recall", "value": 0.9 } ]"#)], &[("references.0.value", "0.8")])),
+    ("references[].where", with(&[RATE_SWEEP, ("references", r#"[ { "source": "S", "metric": "occupied_recall", "value": 0.9 } ]"#)], &[("references.0.where", r#"{ "semantic.rate": 5 }"#)])),
 ];
 
 /// A road with an arc in either world (the third of a perception world, the
@@ -1437,6 +1562,18 @@ fn check(
     };
     match key.class(kind) {
         Descriptive => Ok(()),
+        MakesJoint => {
+            let (before, after) = (base(kind), document(kind, &[joining(kind)]));
+            let show = |(_, errors): (String, Vec<Error>)| {
+                errors.iter().map(ToString::to_string).collect::<Vec<_>>().join("; ")
+            };
+            let a = evaluate(&before).map_err(|e| format!("the base is refused: {}", show(e)))?;
+            let b = evaluate(&after).map_err(|e| format!("the joint world is refused: {}", show(e)))?;
+            if a == b {
+                return Err("the joint world measures what the base measures".into());
+            }
+            Ok(())
+        }
         Class::Effective { with, change } => {
             let before = document(kind, &[with]);
             let after = document(kind, &[with, change]);
@@ -1526,10 +1663,14 @@ fn every_key_is_effective_or_refused_in_every_kind_of_scenario() {
         "keys of the schema without an entry in KEYS (say how to change each in each kind of scenario, or that \
          `check` refuses it): {unclassified:?}"
     );
-    let stale: Vec<&&str> = table.keys().filter(|path| !leaves.contains(**path)).collect();
+    let stale: Vec<&&str> = table
+        .keys()
+        .chain(JOINT_KEYS.iter().map(|(path, _)| path))
+        .filter(|path| !leaves.contains(**path))
+        .collect();
     assert!(
         stale.is_empty(),
-        "entries of KEYS that are not keys of the schema: {stale:?}"
+        "entries of KEYS or JOINT_KEYS that are not keys of the schema: {stale:?}"
     );
     let mut cache = HashMap::new();
     let mut failures = Vec::new();

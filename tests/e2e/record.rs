@@ -19,15 +19,15 @@ const SIZE_LIMIT: usize = 20 * 1024 * 1024;
 
 /// A channel as the MCAP library reads it: its schema's name and its messages.
 #[derive(Debug, Clone, PartialEq, Eq)]
-struct Channel {
-    schema: String,
-    count: u64,
+pub(crate) struct Channel {
+    pub(crate) schema: String,
+    pub(crate) count: u64,
 }
 
 /// Every channel of a recording by topic, read from its summary by the MCAP
 /// library (not by sightline's reader).
 #[track_caller]
-fn channels(recording: &[u8]) -> BTreeMap<String, Channel> {
+pub(crate) fn channels(recording: &[u8]) -> BTreeMap<String, Channel> {
     let summary = mcap::Summary::read(recording)
         .expect("the recording has a valid summary")
         .expect("the recording has a summary");
@@ -55,7 +55,7 @@ fn channels(recording: &[u8]) -> BTreeMap<String, Channel> {
 }
 
 /// Every message on `topic`, decoded as JSON, in the order written.
-fn messages(recording: &[u8], topic: &str) -> Vec<serde_json::Value> {
+pub(crate) fn messages(recording: &[u8], topic: &str) -> Vec<serde_json::Value> {
     mcap::MessageStream::new(recording)
         .expect("the recording starts with the MCAP magic")
         .map(|m| m.expect("every message reads"))

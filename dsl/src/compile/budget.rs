@@ -32,6 +32,12 @@ pub const MAX_RAYS_PER_STEP: f64 = 1.0e6;
 /// step × cells per ray × steps).
 pub const MAX_RAY_CELLS: f64 = 1.0e10;
 
+/// The most rays the cooperating agents' sensors may cast at objects over a
+/// run, to see how much of each is in view (agents × sensors × the rays a fan
+/// casts × steps). In a joint world the agents include the generated traffic,
+/// which every cooperating sensor in range looks at.
+pub const MAX_SIGHTING_RAYS: f64 = 1.0e9;
+
 /// The most grid cells held at once: the grid's cells × (the cooperating
 /// agents' observations + one for the truth and the fused grid + over the
 /// radio, the ego's copy of what each other cooperating agent sent).
@@ -150,26 +156,33 @@ fn world_budget(ctx: &mut Context<'_>, world: &World, grid: Option<&Grid>) -> bo
             "grid cells held (cells × (cooperating agents + 1, + the grids received over the radio))",
             "use larger cells, a smaller grid or fewer cooperating agents",
         );
-        ok &= rays_budget(ctx, world, grid);
+        ok &= rays_budget(ctx, world, grid, (agents, &agents_at));
     }
     ok
 }
 
 /// The rays the cooperating agents cast per step, and the cells they cross
-/// over the run, charged to the sensor model that casts the most.
-fn rays_budget(ctx: &mut Context<'_>, world: &World, grid: &Grid) -> bool {
+/// over the run, charged to the sensor model that casts the most; the rays
+/// their fans cast at the `agents` of the run (charged where the agents are),
+/// at most one fan per sensor and agent a step.
+fn rays_budget(ctx: &mut Context<'_>, world: &World, grid: &Grid, (agents, agents_at): (f64, &Path)) -> bool {
     let Some(perception) = &world.perception else {
         return true;
     };
     let diagonal = (grid.cols as f64).hypot(grid.rows as f64) * grid.cell;
     let mut rays = 0.0;
     let mut cells = 0.0;
+    let mut fans = 0.0;
     let mut busiest: Option<(&str, f64)> = None;
     for sensor in perception.cooperating.iter().flat_map(|&a| &world.agents[a].sensors) {
         let cast = (sensor.fov / sensor.ray_spacing).ceil().max(1.0);
         rays += cast;
         // A ray crosses about one cell per cell side along it, in both axes.
         cells += cast * 2.0 * sensor.range.min(diagonal) / grid.cell;
+        // A fan spans an object's extent, less than a half turn.
+        fans += (std::f64::consts::PI.min(sensor.fov) / sensor.ray_spacing)
+            .ceil()
+            .clamp(FAN_RAYS.0, FAN_RAYS.1);
         if busiest.is_none_or(|(_, most)| cast > most) {
             busiest = Some((&sensor.model, cast));
         }
@@ -192,8 +205,19 @@ fn rays_budget(ctx: &mut Context<'_>, world: &World, grid: &Grid) -> bool {
         MAX_RAY_CELLS,
         "grid cells crossed by rays over the run (rays per step × cells per ray × steps)",
         "use a coarser `ray_spacing_deg`, larger cells, a shorter range or fewer steps",
+    ) && limit(
+        ctx,
+        agents_at,
+        fans * agents * world.steps as f64,
+        MAX_SIGHTING_RAYS,
+        "rays cast at objects over the run (per cooperating sensor, its fan's rays × agents × steps)",
+        "lower the traffic, shorten the run, use a coarser `ray_spacing_deg` or fewer cooperating agents",
     )
 }
+
+/// The fewest and the most rays a fan casts at an object (the engine's
+/// `world::fan`).
+const FAN_RAYS: (f64, f64) = (10.0, 360.0);
 
 /// The vehicles and pedestrians the traffic is expected to generate over a
 /// run, and the path points they hold: on each route its initial population

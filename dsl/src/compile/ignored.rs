@@ -3,7 +3,7 @@
 //! are written: [`ignored_keys`] for the setup pass, [`ignored`] for a sweep or
 //! `vary` axis that sets one.
 
-use super::kind::Kind::{self, Field, Perception, Semantic};
+use super::kind::Kind::{self, Field, Joint, Perception, Semantic};
 use crate::path::{Path, Segment};
 use crate::yaml::{Node, Value};
 
@@ -15,7 +15,7 @@ struct Ignored {
     why: &'static str,
 }
 
-const WORLDS: &[Kind] = &[Perception, Semantic];
+const WORLDS: &[Kind] = &[Perception, Semantic, Joint];
 
 const NOT_A_WORLD: &str = "it belongs to a world, and the scenario simulates the field experiment (`field`); \
                            a scenario simulates one or the other";
@@ -118,17 +118,13 @@ const IGNORED: &[Ignored] = &[
         pattern: "record.agent_grids",
         why: NO_WORLD_RECORDING,
     },
-    // Collective perception: no generated traffic, no semantic pipeline.
-    Ignored {
-        kinds: &[Perception],
-        pattern: "semantic",
-        why: "a world measures `perception` or `semantic`, not both: split it into two scenarios",
-    },
+    // Collective perception: no generated traffic, no semantic pipeline (with
+    // `semantic`, the scenario is a joint world, which reads them).
     Ignored {
         kinds: &[Perception],
         pattern: "traffic",
-        why: "background traffic is generated in semantic worlds only; a collective-perception world moves \
-              the agents it declares",
+        why: "background traffic is generated where the semantic pipeline runs (`semantic`); a \
+              collective-perception world moves the agents it declares",
     },
     Ignored {
         kinds: &[Perception],

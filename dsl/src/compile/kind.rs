@@ -1,9 +1,10 @@
 //! What each kind of scenario reads: the kind itself, and the keys `check`
 //! refuses because the settings around them leave them without effect.
 //!
-//! A scenario is one of three kinds, by the section it gives: the field
+//! A scenario is one of four kinds, by the sections it gives: the field
 //! experiment (`field`), a world measuring collective perception
-//! (`perception`), or a world running the semantic pipeline (`semantic`). Two
+//! (`perception`), a world running the semantic pipeline (`semantic`), or a
+//! joint world running both on one scene (`perception` and `semantic`). Two
 //! passes refuse what a scenario writes without effect: the keys its kind never
 //! reads ([`super::ignored`]), and [`unused`]: keys the settings around them
 //! leave without effect in one configuration (a weight scaling for a rule that
@@ -33,27 +34,36 @@ pub(super) enum Kind {
     Perception,
     /// A world running the roadside units' semantic pipeline (`semantic`).
     Semantic,
+    /// A world running collective perception and the semantic pipeline
+    /// together, on one scene (`perception` and `semantic`).
+    Joint,
 }
 
 impl Kind {
-    /// The kind of the scenario `tree`, by the first of `field`, `perception`,
-    /// `semantic` it gives; `None` when it gives none (the setup pass says why).
+    /// The kind of the scenario `tree`: the field experiment if it gives
+    /// `field`, else a world by which of `perception` and `semantic` it gives;
+    /// `None` when it gives none (the setup pass says why).
     pub(super) fn of(tree: &Node) -> Option<Self> {
-        [
-            ("field", Self::Field),
-            ("perception", Self::Perception),
-            ("semantic", Self::Semantic),
-        ]
-        .into_iter()
-        .find_map(|(section, kind)| tree.get(section).map(|_| kind))
+        if tree.get("field").is_some() {
+            return Some(Self::Field);
+        }
+        match (tree.get("perception").is_some(), tree.get("semantic").is_some()) {
+            (true, true) => Some(Self::Joint),
+            (true, false) => Some(Self::Perception),
+            (false, true) => Some(Self::Semantic),
+            (false, false) => None,
+        }
     }
 
     /// The kind of a compiled configuration.
     pub(super) fn of_setup(setup: &Setup) -> Self {
         match &setup.experiment {
             Experiment::Field(_) => Self::Field,
-            Experiment::World(world) if world.perception.is_some() => Self::Perception,
-            Experiment::World(_) => Self::Semantic,
+            Experiment::World(world) => match (&world.perception, &world.semantic) {
+                (Some(_), Some(_)) => Self::Joint,
+                (Some(_), None) => Self::Perception,
+                (None, _) => Self::Semantic,
+            },
         }
     }
 }
@@ -98,22 +108,26 @@ fn idle_roadside_unit(world: &World, i: usize) -> Option<String> {
         return None;
     }
     let id = &agent.id;
-    if let Some(perception) = &world.perception {
-        let shares = agent.connected && !agent.sensors.is_empty();
-        return (perception.ego != i && !shares).then(|| {
-            format!(
-                "roadside unit `{id}` is not part of the ground truth, and shares nothing unless it is \
-                 `connected: true` with sensors"
-            )
-        });
-    }
-    let semantic = world.semantic.as_ref()?;
-    (!semantic.rsus.contains(&i)).then(|| {
-        format!(
+    let shares = world
+        .perception
+        .as_ref()
+        .map(|p| p.ego == i || (agent.connected && !agent.sensors.is_empty()));
+    let assists = world.semantic.as_ref().map(|s| s.rsus.contains(&i));
+    match (shares, assists) {
+        (Some(false), None) => Some(format!(
+            "roadside unit `{id}` is not part of the ground truth, and shares nothing unless it is \
+             `connected: true` with sensors"
+        )),
+        (None, Some(false)) => Some(format!(
             "roadside unit `{id}` is not in `semantic.rsus`, so it does not assist the ego, and it is not part of \
              the ground truth"
-        )
-    })
+        )),
+        (Some(false), Some(false)) => Some(format!(
+            "roadside unit `{id}` is not part of the ground truth, shares no grid (it is not `connected: true` \
+             with sensors) and does not assist the ego (it is not in `semantic.rsus`)"
+        )),
+        _ => None,
+    }
 }
 
 /// What [`unused`] collects.
@@ -179,17 +193,16 @@ impl Unused<'_> {
         }
         self.agents(world);
         self.sensor_models(world);
-        if let Some(semantic) = &world.semantic {
-            if matches!(world.agents[semantic.ego].motion, Motion::Trace { .. }) {
-                for key in ["headway", "speed_factor"] {
-                    self.check(root.key("semantic").key("caution").key(key), || {
-                        "the ego replays its trace, so caution cannot slow it down".into()
-                    });
-                }
+        if let Some(semantic) = &world.semantic
+            && matches!(world.agents[semantic.ego].motion, Motion::Trace { .. })
+        {
+            for key in ["headway", "speed_factor"] {
+                self.check(root.key("semantic").key("caution").key(key), || {
+                    "the ego replays its trace, so caution cannot slow it down".into()
+                });
             }
-            self.v2x(world);
         }
-        if world.perception.as_ref().is_some_and(|p| p.messages.is_some()) {
+        if world.semantic.is_some() || world.perception.as_ref().is_some_and(|p| p.messages.is_some()) {
             self.v2x(world);
         }
     }
@@ -222,19 +235,35 @@ impl Unused<'_> {
                     "a pedestrian's path has no speed limit".into()
                 });
             }
+            // A roadside unit in `semantic.rsus` perceives for the pipeline.
+            let assists = world.semantic.as_ref().is_some_and(|s| s.rsus.contains(&i));
             if world.perception.as_ref().is_some_and(|p| p.ego != i) {
-                if !agent.connected && !agent.sensors.is_empty() {
+                if !agent.connected && !agent.sensors.is_empty() && !assists {
                     self.check(at.key("sensors"), || {
                         format!("`{id}` is not `connected: true`: only the ego and agents that share see for the ego")
                     });
                 }
-                if agent.connected && agent.sensors.is_empty() {
+                // A connected road user of a joint world sends the ego its own
+                // state (the semantic pipeline's radio), sensors or not.
+                let sends = world.is_joint() && agent.kind != AgentKind::Rsu;
+                if agent.connected && agent.sensors.is_empty() && !sends {
                     self.check(at.key("connected"), || {
                         format!("`{id}` has no sensors, and a connected agent shares what it perceives")
                     });
                 }
             }
-            if let Some(semantic) = &world.semantic {
+            let cooperates = world.perception.as_ref().is_some_and(|p| p.cooperating.contains(&i));
+            if world.is_joint() && agent.kind == AgentKind::Rsu && !cooperates {
+                self.check(at.key("size"), || {
+                    format!(
+                        "roadside unit `{id}` is not part of the ground truth, and shares no grid in which to \
+                         report a footprint of its own"
+                    )
+                });
+            }
+            // In a joint world, collective perception's rules above say which
+            // agents' sensors and connections count.
+            if let Some(semantic) = world.semantic.as_ref().filter(|_| !world.is_joint()) {
                 if agent.kind == AgentKind::Rsu {
                     self.check(at.key("connected"), || {
                         "a roadside unit reaches the ego through the semantic pipeline; `connected` applies to road \
@@ -278,6 +307,26 @@ impl Unused<'_> {
             let Some(semantic) = &world.semantic else { continue };
             let by_ego = carriers.contains(&semantic.ego);
             let by_rsu = carriers.iter().any(|i| semantic.rsus.contains(i));
+            // In a joint world, the cooperating agents' grids read a model too.
+            let by_cooperator = world
+                .perception
+                .as_ref()
+                .is_some_and(|p| carriers.iter().any(|i| p.cooperating.contains(i)));
+            if by_cooperator {
+                if !by_rsu {
+                    self.check(at.key("velocity_noise"), || {
+                        "no roadside unit of the pipeline carries this model, the ego's own sight in the pipeline \
+                         is exact, and an occupancy grid holds no speeds"
+                            .into()
+                    });
+                }
+                continue;
+            }
+            if world.perception.is_some() {
+                self.check(at.key("ray_spacing_deg"), || {
+                    "no cooperating agent carries this model, so it carves no free space in a grid".into()
+                });
+            }
             if !by_rsu {
                 for key in [
                     "detection_probability",
@@ -303,6 +352,8 @@ impl Unused<'_> {
         }
     }
 
+    /// The radio's keys; in a joint world the semantic pipeline's radio
+    /// reads every one `v2x.penetration` aside, which `joint` refuses.
     fn v2x(&mut self, world: &World) {
         let v2x = Path::root().key("v2x");
         let channel = v2x.key("channel");
@@ -339,6 +390,9 @@ impl Unused<'_> {
                 }
             }
             PathLossModel::Tr36885Urban => {}
+        }
+        if world.is_joint() {
+            return;
         }
         if let Some(perception) = &world.perception {
             if !perception

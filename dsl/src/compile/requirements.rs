@@ -115,6 +115,18 @@ pub(super) fn requirements(
                             format!("signal `{}` is measured in {kind} worlds only", signal.name()),
                         )
                     }),
+                Check::PerObject { property, .. } if property.needs_grid() => {
+                    selected.iter().find(|&&i| !(semantic_at(i) && world_at(i))).map(|_| {
+                        (
+                            "per_object",
+                            format!(
+                                "`{}` reads the ego's fused grid, which only a joint world (`perception` and \
+                                 `semantic`) has",
+                                property.name()
+                            ),
+                        )
+                    })
+                }
                 Check::PerObject { property, .. } => selected.iter().find(|&&i| !semantic_at(i)).map(|_| {
                     (
                         "per_object",
@@ -131,14 +143,12 @@ pub(super) fn requirements(
                 continue;
             }
             if let Check::Invariant { invariant, .. } = check
-                && selected
-                    .iter()
-                    .any(|&i| matches!(&points[i].setup.experiment, Experiment::World(w) if w.semantic.is_some()))
+                && selected.iter().any(|&i| semantic_at(i) && !world_at(i))
             {
                 ctx.error(
                     &path.key("check").key("invariant"),
                     ErrorKind::Invalid(format!(
-                        "invariant `{}` checks fused grid cells, and a world with a semantic pipeline fuses none",
+                        "invariant `{}` checks fused grid cells, and a semantic world fuses none",
                         invariant.name()
                     )),
                 );
@@ -411,16 +421,27 @@ fn defined_everywhere(
         let point = &points[i];
         let (measured, kind) = match &point.setup.experiment {
             Experiment::Field(_) => (metric.in_field(), "the field experiment"),
+            Experiment::World(world) if world.is_joint() => (metric.in_joint(), "a joint world"),
             Experiment::World(world) if world.semantic.is_some() => {
                 (metric.in_semantic(), "a world with a semantic pipeline")
             }
             Experiment::World(_) => (metric.in_world(), "a world scenario"),
         };
         if !measured {
-            ctx.error(
-                path,
-                ErrorKind::Invalid(format!("metric `{}` is not measured in {kind}", metric.name())),
-            );
+            let name = metric.name();
+            let message = match metric {
+                Metric::PacketDeliveryRatio => format!(
+                    "metric `{name}` would not say which radio in a joint world, which has two: name \
+                     `grid_packet_delivery_ratio` (the cooperating agents' messages to the ego) or \
+                     `semantic_packet_delivery_ratio` (the roadside units' messages to the ego)"
+                ),
+                _ if metric.joint_only() => format!(
+                    "metric `{name}` names one of the two radios of a joint world (`perception` and \
+                     `semantic`), and {kind} has one: its `packet_delivery_ratio`"
+                ),
+                _ => format!("metric `{name}` is not measured in {kind}"),
+            };
+            ctx.error(path, ErrorKind::Invalid(message));
             return false;
         }
         let radio = match &point.setup.experiment {

@@ -7,6 +7,7 @@ use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use super::ObjectProperty;
+use super::unit::{Unit, ValueDomain};
 
 /// Metrics. Counts are numbers of cells. Some exist only in the field experiment,
 /// some only in worlds (see [`Metric::in_field`], [`Metric::in_world`],
@@ -150,11 +151,19 @@ pub enum Metric {
     /// needed for any relevant road user (the greatest of the records'
     /// `max_drac`), m/s², over the road users it closed on.
     MaxDrac,
+    /// Joint world: `packet_delivery_ratio` of collective perception, the
+    /// share of the cooperating agents' messages to the ego that arrive (0–1),
+    /// where a world has both radios and `packet_delivery_ratio` would not say
+    /// which.
+    GridPacketDeliveryRatio,
+    /// Joint world: `packet_delivery_ratio` of the semantic pipeline, the
+    /// share of the RSUs' messages to the ego that arrive (0–1).
+    SemanticPacketDeliveryRatio,
 }
 
 impl Metric {
     /// Every metric, in documentation order.
-    pub const ALL: [Metric; 47] = [
+    pub const ALL: [Metric; 49] = [
         Self::Accuracy,
         Self::BelowThreshold,
         Self::BelowThresholdFraction,
@@ -202,6 +211,8 @@ impl Metric {
         Self::MinTtc,
         Self::MinPet,
         Self::MaxDrac,
+        Self::GridPacketDeliveryRatio,
+        Self::SemanticPacketDeliveryRatio,
     ];
 
     /// The name as written in scenario files.
@@ -254,6 +265,8 @@ impl Metric {
             Self::MinTtc => "min_ttc",
             Self::MinPet => "min_pet",
             Self::MaxDrac => "max_drac",
+            Self::GridPacketDeliveryRatio => "grid_packet_delivery_ratio",
+            Self::SemanticPacketDeliveryRatio => "semantic_packet_delivery_ratio",
         }
     }
 
@@ -273,6 +286,7 @@ impl Metric {
     /// Whether the field experiment measures it.
     pub fn in_field(self) -> bool {
         !self.in_semantic()
+            && !self.joint_only()
             && !matches!(
                 self,
                 Self::FovGain
@@ -293,6 +307,7 @@ impl Metric {
     /// over the radio: [`Metric::needs_radio`]).
     pub fn in_world(self) -> bool {
         (!self.in_semantic() || self == Self::PacketDeliveryRatio)
+            && !self.joint_only()
             && !matches!(
                 self,
                 Self::Accuracy
@@ -336,12 +351,47 @@ impl Metric {
         )
     }
 
+    /// Whether worlds that run collective perception and the semantic
+    /// pipeline together (joint worlds) measure it: every metric of either,
+    /// but `packet_delivery_ratio`, which each defines over its own radio and
+    /// a joint world splits in two (`grid_packet_delivery_ratio`,
+    /// `semantic_packet_delivery_ratio`).
+    pub fn in_joint(self) -> bool {
+        match self {
+            Self::PacketDeliveryRatio => false,
+            _ => self.joint_only() || self.in_world() || self.in_semantic(),
+        }
+    }
+
+    /// Whether only joint worlds measure it: the two halves of
+    /// `packet_delivery_ratio`.
+    pub fn joint_only(self) -> bool {
+        matches!(self, Self::GridPacketDeliveryRatio | Self::SemanticPacketDeliveryRatio)
+    }
+
+    /// In a joint world, which of its two models measures it, and as which
+    /// of that model's own metrics (each half of `packet_delivery_ratio` is
+    /// its model's `packet_delivery_ratio`). Meaningful where
+    /// [`Metric::in_joint`] holds.
+    pub fn joint_part(self) -> (JointPart, Metric) {
+        match self {
+            Self::GridPacketDeliveryRatio => (JointPart::Grid, Self::PacketDeliveryRatio),
+            Self::SemanticPacketDeliveryRatio => (JointPart::Semantic, Self::PacketDeliveryRatio),
+            metric if metric.in_semantic() => (JointPart::Semantic, metric),
+            metric => (JointPart::Grid, metric),
+        }
+    }
+
     /// Whether a collective-perception world measures it only over the radio
     /// (when it declares `v2x`).
     pub fn needs_radio(self) -> bool {
         matches!(
             self,
-            Self::PacketDeliveryRatio | Self::MessageAgeMean | Self::MessageAgeP95 | Self::BytesPerSecondPerAgent
+            Self::PacketDeliveryRatio
+                | Self::GridPacketDeliveryRatio
+                | Self::MessageAgeMean
+                | Self::MessageAgeP95
+                | Self::BytesPerSecondPerAgent
         )
     }
 
@@ -375,6 +425,8 @@ impl Metric {
             Self::ChannelLoad | Self::BaselineChannelLoad => "steps with the ego",
             Self::TransmittedShare | Self::LabelledShare => "object-cycles the RSUs perceive",
             Self::PacketDeliveryRatio => "messages to the ego",
+            Self::GridPacketDeliveryRatio => "cooperating agents' messages to the ego",
+            Self::SemanticPacketDeliveryRatio => "RSU messages to the ego",
             Self::MissedCriticals => "close approaches",
             Self::ObjectAnticipationMedian | Self::ObjectAnticipationP95 => {
                 "relevant objects named by V2X before the ego saw them"
@@ -438,7 +490,9 @@ impl Metric {
             | Self::MeanVisibleFraction
             | Self::TransmittedShare
             | Self::LabelledShare
-            | Self::PacketDeliveryRatio => ValueDomain::Fraction,
+            | Self::PacketDeliveryRatio
+            | Self::GridPacketDeliveryRatio
+            | Self::SemanticPacketDeliveryRatio => ValueDomain::Fraction,
             Self::BelowThreshold
             | Self::FalseAlarms
             | Self::MissedDetections
@@ -496,7 +550,10 @@ impl Metric {
             | Self::BaselineAnticipationMedian
             | Self::BaselineAnticipationP95
             | Self::BaselineObjectAnticipationMedian
-            | Self::BaselineObjectAnticipationP95 => Unit::Seconds,
+            | Self::BaselineObjectAnticipationP95
+            | Self::MinTtc
+            | Self::MinPet => Unit::Seconds,
+            Self::MaxDrac => Unit::MetresPerSecondSquared,
             Self::BytesPerSecondPerAgent | Self::ChannelLoad | Self::BaselineChannelLoad => Unit::BytesPerSecond,
             Self::InfrastructureContribution => Unit::Objects,
             Self::MissedCriticals
@@ -511,85 +568,11 @@ impl Metric {
     }
 }
 
-/// The unit of a measured quantity, one source of truth for the evidence
-/// (results.json's `check.unit`, the report's columns and values, JUnit).
+/// The two models a joint world runs, each measuring its own metrics.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Unit {
-    /// Dimensionless: a share, a rate, a probability, a ratio or a gain (ISO
-    /// 80000-1 writes its unit as 1).
-    One,
-    /// Grid cells.
-    Cells,
-    /// Seconds.
-    Seconds,
-    /// Metres.
-    Metres,
-    /// Bytes per second.
-    BytesPerSecond,
-    /// Road users (a mean over steps is not a whole number).
-    Objects,
-    /// Road users per run (the mean over a point's pooled runs).
-    ObjectsPerRun,
-}
-
-impl Unit {
-    /// The symbol written after a value: `1` for a dimensionless quantity,
-    /// which the report leaves off values and writes in column heads.
-    pub fn symbol(self) -> &'static str {
-        match self {
-            Self::One => "1",
-            Self::Cells => "cells",
-            Self::Seconds => "s",
-            Self::Metres => "m",
-            Self::BytesPerSecond => "B/s",
-            Self::Objects => "objects",
-            Self::ObjectsPerRun => "objects/run",
-        }
-    }
-
-    /// `value` followed by the symbol (none for a dimensionless value).
-    pub fn with(self, value: &str) -> String {
-        match self {
-            Self::One => value.to_string(),
-            other => format!("{value} {}", other.symbol()),
-        }
-    }
-}
-
-/// The values a measured quantity can take; every one of them is finite. (A
-/// quantity that is not defined for a run is absent, not a value.)
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum ValueDomain {
-    /// A share, a rate or a probability: [0, 1].
-    Fraction,
-    /// A number of things: a whole number ≥ 0.
-    Count,
-    /// Seconds, bytes per second, a mean count or a gain: ≥ 0.
-    NonNegative,
-    /// A signed quantity (a lead time that may be late): any finite value.
-    Real,
-}
-
-impl ValueDomain {
-    /// Whether `value` lies in the domain (a NaN or an infinity never does).
-    pub fn contains(self, value: f64) -> bool {
-        value.is_finite()
-            && match self {
-                Self::Fraction => (0.0..=1.0).contains(&value),
-                Self::Count => value >= 0.0 && value.fract() == 0.0,
-                Self::NonNegative => value >= 0.0,
-                Self::Real => true,
-            }
-    }
-}
-
-impl std::fmt::Display for ValueDomain {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(match self {
-            Self::Fraction => "[0, 1]",
-            Self::Count => "whole numbers ≥ 0",
-            Self::NonNegative => "finite numbers ≥ 0",
-            Self::Real => "finite numbers",
-        })
-    }
+pub enum JointPart {
+    /// Collective perception: the ego's fused grid.
+    Grid,
+    /// The roadside units' semantic pipeline.
+    Semantic,
 }

@@ -7,6 +7,7 @@ mod metric;
 mod requirement;
 mod scenario;
 mod semantic;
+mod unit;
 mod v2x;
 mod vary;
 mod world;
@@ -15,7 +16,7 @@ pub use field::{ErrorModel, Field, Layout, Masses, Truth};
 pub use fusion::{
     Decision, Fusion, FusionMethod, Rule, SourceCombination, Switch, SwitchMeasure, WeightScaling, Weighting,
 };
-pub use metric::{Metric, Unit, ValueDomain};
+pub use metric::{JointPart, Metric};
 pub use requirement::{
     Bound, Check, Comparison, Invariant, ObjectProperty, ObjectSelection, OverSeeds, RateBound, Reference, Requirement,
     Signal, Statistic, Temporal,
@@ -29,6 +30,7 @@ pub use semantic::{
     Area, Baseline, Caution, Crosswalk, Driving, Following, InteractionArea, PedestrianTraffic, RiskScope, RsuSight,
     Semantic, ShareCycles, Traffic, TrafficRoute, VehicleTraffic,
 };
+pub use unit::{Unit, ValueDomain};
 pub use v2x::{
     Channel, MESSAGE_HEADER_BYTES, Messages, Oversize, PathLossModel, SENSOR_INFORMATION_BYTES, SMALLEST_PAYLOAD_BYTES,
     V2x,

@@ -346,11 +346,21 @@ pub enum ObjectProperty {
     /// greatest deceleration rate to avoid the crash the ego needed, m/s².
     /// One it never closed on has none and is not judged.
     MaxDrac,
+    /// Joint world, each relevant road user: seconds from when a cell of its
+    /// footprint was first decided occupied in the ego's fused grid to its
+    /// closest approach, negative when that came after (one never in the grid
+    /// has none, and fails).
+    GridLead,
+    /// Joint world, each relevant road user: seconds from the earlier of its
+    /// first time in the ego's fused grid and its first warning (an RSU
+    /// message flagging a conflict with it) to its closest approach (one with
+    /// neither has none, and fails).
+    GridOrWarningLead,
 }
 
 impl ObjectProperty {
     /// Every property in documentation order.
-    pub const ALL: [ObjectProperty; 8] = [
+    pub const ALL: [ObjectProperty; 10] = [
         Self::WarningTime,
         Self::WarningLead,
         Self::KnowledgeLead,
@@ -359,6 +369,8 @@ impl ObjectProperty {
         Self::MinTtc,
         Self::Pet,
         Self::MaxDrac,
+        Self::GridLead,
+        Self::GridOrWarningLead,
     ];
 
     /// The name as written in scenario files.
@@ -372,7 +384,15 @@ impl ObjectProperty {
             Self::MinTtc => "min_ttc",
             Self::Pet => "pet",
             Self::MaxDrac => "max_drac",
+            Self::GridLead => "grid_lead",
+            Self::GridOrWarningLead => "grid_or_warning_lead",
         }
+    }
+
+    /// Whether it reads the ego's fused grid, which only a joint world (one
+    /// with `perception` and `semantic`) has.
+    pub fn needs_grid(self) -> bool {
+        matches!(self, Self::GridLead | Self::GridOrWarningLead)
     }
 
     /// Whether it is read from the per-object record of every relevant road
@@ -398,9 +418,12 @@ impl ObjectProperty {
             Self::MinTtc => "relevant road users on a collision course with the ego",
             Self::Pet => "relevant road users that covered a spot the ego covered",
             Self::MaxDrac => "relevant road users the ego closed on, on a collision course",
-            Self::WarningLead | Self::KnowledgeLead | Self::Anticipation | Self::ClosestDistance => {
-                "relevant road users"
-            }
+            Self::WarningLead
+            | Self::KnowledgeLead
+            | Self::Anticipation
+            | Self::ClosestDistance
+            | Self::GridLead
+            | Self::GridOrWarningLead => "relevant road users",
         }
     }
 
@@ -413,7 +436,7 @@ impl ObjectProperty {
             | Self::MinTtc
             | Self::Pet
             | Self::MaxDrac => ValueDomain::NonNegative,
-            Self::WarningLead | Self::KnowledgeLead => ValueDomain::Real,
+            Self::WarningLead | Self::KnowledgeLead | Self::GridLead | Self::GridOrWarningLead => ValueDomain::Real,
         }
     }
 
@@ -421,6 +444,7 @@ impl ObjectProperty {
     pub fn unit(self) -> Unit {
         match self {
             Self::ClosestDistance => Unit::Metres,
+            Self::MaxDrac => Unit::MetresPerSecondSquared,
             _ => Unit::Seconds,
         }
     }

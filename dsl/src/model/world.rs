@@ -56,6 +56,14 @@ pub struct World {
     pub uncovered: Option<String>,
 }
 
+impl World {
+    /// Whether it runs collective perception and the semantic pipeline
+    /// together, on one scene (a joint world).
+    pub fn is_joint(&self) -> bool {
+        self.perception.is_some() && self.semantic.is_some()
+    }
+}
+
 /// A road's lanes.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Road {

@@ -137,10 +137,18 @@ impl Measures {
     }
 
     /// The run's metrics, with what the `ego` came to know of the `agents` over
-    /// it, its road users' records labelled with pooled run `run`.
-    pub(super) fn finish(self, ego: &Ego, agents: &[Agent], run: u32) -> SemanticMetrics {
+    /// it, its road users' records labelled with pooled run `run`: one per
+    /// fused grid of `in_grid` (per agent, when it first came into the grid),
+    /// each record holding its time in that grid, or one without any grid
+    /// when `in_grid` is empty.
+    pub(super) fn finish(
+        self,
+        ego: &Ego,
+        agents: &[Agent],
+        run: u32,
+        in_grid: &[Vec<Option<f64>>],
+    ) -> Vec<SemanticMetrics> {
         let mut metrics = self.metrics;
-        metrics.objects = self.encounters.records(run, agents, ego.knowledge());
         for known in ego.knowledge() {
             if let Some((received, false)) = known.first_received {
                 match known.first_seen {
@@ -156,7 +164,18 @@ impl Measures {
         metrics.baseline_anticipation.sort_by(f64::total_cmp);
         metrics.rsu_only = vec![self.rsu_only];
         metrics.time_to_conflict = vec![self.time_to_conflict];
-        metrics
+        let records = |grid: Option<&[Option<f64>]>| self.encounters.records(run, agents, ego.knowledge(), grid);
+        if in_grid.is_empty() {
+            metrics.objects = records(None);
+            return vec![metrics];
+        }
+        in_grid
+            .iter()
+            .map(|grid| SemanticMetrics {
+                objects: records(Some(grid)),
+                ..metrics.clone()
+            })
+            .collect()
     }
 }
 

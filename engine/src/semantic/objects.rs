@@ -21,6 +21,11 @@
 //!   where the road user was then (so that it can be placed in an area).
 //! - **areas**: the crosswalks, interaction areas and declared `areas` its centre
 //!   was inside at some step with the ego in the scene, in declaration order.
+//! - **first in the grid** (a joint world): the first step at which a counted
+//!   cell of its footprint (a cell the ground truth marks for it) is decided
+//!   occupied in the ego's fused grid, for each fusion job's grid; a
+//!   cooperating agent's own footprint, which it reports, counts as its own
+//!   V2X message counts for first V2X knowledge.
 //! - **criticality** ([`super::criticality`]), over the steps at which it is
 //!   within `semantic.proximity` of the ego, on the oriented boxes of both:
 //!   its least time to collision (TTC), its greatest deceleration rate to avoid
@@ -115,6 +120,9 @@ pub struct ObjectRecord {
     pub first_v2x: Option<f64>,
     /// When the first message flagging a conflict with it reached the ego.
     pub first_warning: Option<f64>,
+    /// In a joint world, when a cell of its footprint was first decided
+    /// occupied in the ego's fused grid; always `None` in a semantic world.
+    pub first_in_grid: Option<f64>,
     /// Its closest approach to the ego (`None` only for a road user never in
     /// the scene together with the ego).
     pub closest: Option<Closest>,
@@ -243,9 +251,17 @@ impl Encounters {
     }
 
     /// The record of every relevant road user among `agents`, with what the
-    /// ego knew of each (`knowledge`, by agent index), in order of becoming
-    /// relevant (then of agent index), labelled with pooled run `run`.
-    pub(super) fn records(&self, run: u32, agents: &[Agent], knowledge: &[Knowledge]) -> Vec<ObjectRecord> {
+    /// ego knew of each (`knowledge`, by agent index) and, in a joint world,
+    /// when each first came into the ego's fused grid (`in_grid`, by agent
+    /// index), in order of becoming relevant (then of agent index), labelled
+    /// with pooled run `run`.
+    pub(super) fn records(
+        &self,
+        run: u32,
+        agents: &[Agent],
+        knowledge: &[Knowledge],
+        in_grid: Option<&[Option<f64>]>,
+    ) -> Vec<ObjectRecord> {
         let mut records: Vec<(usize, ObjectRecord)> = self
             .by_agent
             .iter()
@@ -272,6 +288,7 @@ impl Encounters {
                     first_seen: known.first_seen,
                     first_v2x,
                     first_warning: known.flagged,
+                    first_in_grid: in_grid.and_then(|grid| grid[agent]),
                     closest: encounter.closest,
                     min_ttc: critical.min_ttc,
                     max_drac: critical.max_drac,
@@ -369,6 +386,7 @@ mod tests {
             first_seen,
             first_v2x,
             first_warning: None,
+            first_in_grid: None,
             closest: Some(Closest {
                 time: closest,
                 distance: 1.0,

@@ -44,6 +44,14 @@ impl ObjectRecord {
             ObjectProperty::MinTtc => self.min_ttc,
             ObjectProperty::Pet => self.pet,
             ObjectProperty::MaxDrac => self.max_drac,
+            ObjectProperty::GridLead => Some(closest? - self.first_in_grid?),
+            ObjectProperty::GridOrWarningLead => {
+                let first = match (self.first_in_grid, self.first_warning) {
+                    (Some(grid), Some(warned)) => grid.min(warned),
+                    (grid, warned) => grid.or(warned)?,
+                };
+                Some(closest? - first)
+            }
         }
     }
 }
@@ -68,6 +76,7 @@ mod tests {
             first_seen: Some(4.0),
             first_v2x: Some(1.5),
             first_warning: Some(2.0),
+            first_in_grid: None,
             closest: Some(Closest {
                 time: 6.0,
                 distance: 3.0,
@@ -111,6 +120,32 @@ mod tests {
         };
         assert_eq!(unknown.property(ObjectProperty::KnowledgeLead), None);
         assert_eq!(unknown.property(ObjectProperty::Anticipation), None);
+    }
+
+    /// Closest at 6 s, warned at 2 s: in the grid at 3 s, the grid lead is 3 s
+    /// and the earlier warning decides the other (4 s); in the grid at 1 s, the
+    /// grid decides (5 s); with neither, neither lead exists, and one in the
+    /// grid only after its closest approach has a negative lead.
+    #[test]
+    fn grid_leads_by_hand() {
+        let in_grid = |at: Option<f64>, warned: Option<f64>| ObjectRecord {
+            first_in_grid: at,
+            first_warning: warned,
+            ..pedestrian()
+        };
+        let p = in_grid(Some(3.0), Some(2.0));
+        assert_eq!(p.property(ObjectProperty::GridLead), Some(3.0));
+        assert_eq!(p.property(ObjectProperty::GridOrWarningLead), Some(4.0));
+        let p = in_grid(Some(1.0), Some(2.0));
+        assert_eq!(p.property(ObjectProperty::GridOrWarningLead), Some(5.0));
+        let p = in_grid(None, Some(2.0));
+        assert_eq!(p.property(ObjectProperty::GridLead), None);
+        assert_eq!(p.property(ObjectProperty::GridOrWarningLead), Some(4.0));
+        let p = in_grid(Some(7.5), None);
+        assert_eq!(p.property(ObjectProperty::GridLead), Some(-1.5));
+        assert_eq!(p.property(ObjectProperty::GridOrWarningLead), Some(-1.5));
+        let p = in_grid(None, None);
+        assert_eq!(p.property(ObjectProperty::GridOrWarningLead), None);
     }
 
     #[test]

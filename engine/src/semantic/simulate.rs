@@ -1,19 +1,29 @@
-//! The step loop of a semantic world, as a sequence of phases: **move** (agents,
-//! generated traffic among them, advance), **communicate** (the semantic
-//! messages that reached the ego by now), **sense** (the ego's own sight and
-//! what it was told; each RSU's perception into its LDM at its cycle),
-//! **measure** (the ego's step), then at each V2X cycle, RSU by RSU,
-//! **communicate** (the ego's plan up) → **fuse** (the pipeline over the LDM) →
-//! **communicate** (the message down), and connected road users' own messages,
-//! and last **measure** (the step's record to the sink). State carried from step
-//! to step lives in the [`Kinematics`], the [`Ego`], the [`Rsu`]s, the [`Radio`]
-//! and the [`Measures`].
+//! The step loop of a semantic world: **move** (agents, generated traffic
+//! among them, advance), then the pipeline's [`Layer`] of phases:
+//! **communicate** (the semantic messages that reached the ego by now),
+//! **sense** (the ego's own sight and what it was told; each RSU's perception
+//! into its LDM at its cycle), **measure** (the ego's step), then at each V2X
+//! cycle, RSU by RSU, **communicate** (the ego's plan up) → **fuse** (the
+//! pipeline over the LDM) → **communicate** (the message down), and connected
+//! road users' own messages, and last **measure** (the step's record to the
+//! sink). State carried from step to step lives in the [`Kinematics`] and the
+//! layer: the [`Ego`], the [`Rsu`]s, the [`Radio`] and the [`Measures`].
+//!
+//! A joint world runs the same layer on the perception world's scene
+//! ([`world::StepLayer`]): one move for both models, the ego's caution
+//! restraining the ego there, and each fusion job's grid telling the layer
+//! which road users it decided occupied, the first time of which each road
+//! user's record keeps (`first_in_grid`). The layer then draws from random
+//! streams of its own ([`Derived::Pipeline`]), so that a roadside unit that
+//! also cooperates in the grid draws its pipeline's detections and packet
+//! losses apart from its grid's.
 //!
 //! Our choices where seed 002 is silent:
 //! - An RSU perceives every object in its sensors' range (or, with
-//!   `rsu_sight: line_of_sight`, in view and line of sight), each with its sensor's
-//!   detection probability; each measurement adds Gaussian noise with
-//!   σ(d) = base + per_m · d to x, y, speed, length and width (eq. 1).
+//!   `rsu_sight: line_of_sight`, the default of a joint world, in view and line
+//!   of sight past the map's occluders and the road users' bodies), each with
+//!   its sensor's detection probability; each measurement adds Gaussian noise
+//!   with σ(d) = base + per_m · d to x, y, speed, length and width (eq. 1).
 //! - Each cycle the ego sends its state and plan (uplink); the RSU plans with the
 //!   last one it received. An RSU sends a message only when it selects an object.
 //! - The ego knows an object through an RSU for `KNOWN_FOR` seconds after a
@@ -45,7 +55,7 @@
 //!   it would have been cautious.
 
 use rayon::prelude::*;
-use sightline_dsl::{AgentKind, Semantic, ShareCycles, World};
+use sightline_dsl::{Agent, AgentKind, Semantic, ShareCycles, World};
 
 use super::criticality;
 use super::ego::{self, Ego};
@@ -57,13 +67,14 @@ use super::metrics::SemanticMetrics;
 use super::pipeline::Pipeline;
 use super::radio::{self, Radio};
 use super::relevance::Areas;
+use super::risk::RouteMap;
 use super::rsu::{self, Rsu};
 use super::traffic;
 use crate::idealisation::Idealisation;
 use crate::rng::{Derived, derived_seed};
 use crate::sink::{NoTrace, TraceSink};
 use crate::v2x;
-use crate::world::{self, AgentState, Bodies, Kinematics, Occluders};
+use crate::world::{self, AgentState, Bodies, Kinematics, Occluders, StepLayer};
 
 /// Nobody localizes.
 pub(crate) const EXACT_POSES: Idealisation = Idealisation {
@@ -72,15 +83,36 @@ pub(crate) const EXACT_POSES: Idealisation = Idealisation {
            self-localization.",
 };
 
-/// The idealisations of a world running the semantic pipeline, besides those
-/// of its options (RSU sight, path-loss model, car following).
+/// The pipeline of a joint world uses true poses.
+pub(crate) const PIPELINE_EXACT_POSES: Idealisation = Idealisation {
+    id: "joint.pipeline-exact-poses",
+    text: "In the semantic pipeline the ego and the roadside units know their own poses exactly (the ego's \
+           plan and sight, the roadside units' measurements); only the grid's cooperating agents localize.",
+};
+
+/// Each model of a joint world senses on its own.
+pub(crate) const TWO_SENSOR_MODELS: Idealisation = Idealisation {
+    id: "joint.two-sensor-models",
+    text: "In a joint world a sensor feeds each model as that model sees it: a cooperating agent's grid (a fan \
+           of rays per object, free space carved) and the semantic pipeline's object sightings (the ego's and \
+           the roadside units', one ray to an object's centre) draw their detections independently, so a \
+           roadside unit may detect an object in its grid and miss it in its object list at the same step.",
+};
+
+/// The idealisations of a world running the semantic pipeline (alone or in a
+/// joint world), besides those of its options (RSU sight, path-loss model,
+/// car following).
 pub(crate) fn idealisations(world: &World, semantic: &Semantic) -> Vec<Idealisation> {
     let mut listed = vec![world::PLANAR, world::ON_THEIR_WAY];
     if world.traffic.is_some() {
         listed.push(traffic::GENERATED);
     }
     listed.extend([
-        EXACT_POSES,
+        if world.is_joint() {
+            PIPELINE_EXACT_POSES
+        } else {
+            EXACT_POSES
+        },
         world::ONE_RAY,
         world::OUTLINES,
         ego::EGO_SIGHT,
@@ -102,6 +134,9 @@ pub(crate) fn idealisations(world: &World, semantic: &Semantic) -> Vec<Idealisat
     if world.v2x.penetration > 0.0 || road_users.clone().any(|(_, a)| a.connected) {
         listed.push(radio::DIRECT_STATES);
     }
+    if world.is_joint() {
+        listed.push(TWO_SENSOR_MODELS);
+    }
     listed
 }
 
@@ -122,94 +157,199 @@ pub fn run(seed: u64, world: &World, semantic: &Semantic, sink: &mut impl TraceS
 }
 
 /// Pooled run `run` of a world's semantic pipeline, with its `seed`, reporting
-/// each step to `sink`.
+/// each step to `sink`: the move, then the layer.
 fn run_once((seed, run): (u64, u32), world: &World, semantic: &Semantic, sink: &mut impl TraceSink) -> SemanticMetrics {
     let agents = traffic::scene(seed, world);
-    let dt = world.step;
-    let occluders = Occluders::new(&world.occluders);
-    let map = route_map(world, semantic);
-    let ego_route = agents[semantic.ego]
-        .motion
-        .path()
-        .expect("the compiler checks that the ego follows a route or a moving trace");
-    let pipeline = Pipeline {
-        semantic,
-        areas: Areas::of(world),
-        occluders: &occluders,
-        map: &map,
-        ego_route,
-        dt,
-    };
-    let mut rsus: Vec<Rsu> = semantic
-        .rsus
-        .iter()
-        .map(|&agent| Rsu::new(seed, agent, &agents, semantic))
-        .collect();
-    let mut radio = Radio::new(seed, &world.v2x, semantic.ego, agents.len());
-    let mut kinematics = Kinematics::new(&agents, dt, world.driving);
-    let mut ego = Ego::new(semantic.ego, agents.len());
-    let mut measures = Measures::new(world, semantic, agents.len());
+    let ground = Ground::new(world, semantic);
+    let mut layer = Layer::new(seed, (world, semantic), &agents, &ground, 0);
+    let mut kinematics = Kinematics::new(&agents, world.step, world.driving);
     let mut states = Vec::new();
     sink.start(&agents);
-
     for k in 0..world.steps {
-        let time = k as f64 * dt;
-        // RSUs run their cycle, and connected road users send, at the V2X rate.
-        let cycle = k % semantic.period_steps == 0;
-        // Move.
         kinematics.advance(k, &mut states);
         let bodies = Bodies::of_scene(&agents, &states);
+        layer.step(k, &states, &bodies, &mut kinematics);
+        layer.record(k, &states, sink);
+    }
+    let mut metrics = layer.finish(run);
+    metrics.pop().expect("a run without grids measures once")
+}
+
+/// What stays fixed over a run of the pipeline: the map's occluders and the
+/// ways the RSUs predict vehicles along.
+pub(crate) struct Ground {
+    occluders: Occluders,
+    map: RouteMap,
+}
+
+impl Ground {
+    /// The ground of `world` for `semantic`'s RSUs.
+    pub(crate) fn new(world: &World, semantic: &Semantic) -> Self {
+        Self {
+            occluders: Occluders::new(&world.occluders),
+            map: route_map(world, semantic),
+        }
+    }
+}
+
+/// The semantic pipeline over a run, step by step: the ego, the RSUs, the
+/// radio between them and what is measured, on a scene another loop moves.
+pub(crate) struct Layer<'a> {
+    semantic: &'a Semantic,
+    agents: &'a [Agent],
+    occluders: &'a Occluders,
+    pipeline: Pipeline<'a>,
+    rsus: Vec<Rsu>,
+    radio: Radio<'a>,
+    ego: Ego,
+    measures: Measures,
+    /// Per fused grid (fusion job) of a joint world, per agent: when a cell of
+    /// its footprint was first decided occupied.
+    in_grid: Vec<Vec<Option<f64>>>,
+}
+
+impl<'a> Layer<'a> {
+    /// The pipeline of `semantic` in `world` before the first step, on the
+    /// scene of `agents` over `ground`, drawing from the streams of `seed`;
+    /// `grids`: the fused grids whose road users it follows (0 outside a
+    /// joint world).
+    pub(crate) fn new(
+        seed: u64,
+        (world, semantic): (&'a World, &'a Semantic),
+        agents: &'a [Agent],
+        ground: &'a Ground,
+        grids: usize,
+    ) -> Self {
+        let ego_route = agents[semantic.ego]
+            .motion
+            .path()
+            .expect("the compiler checks that the ego follows a route or a moving trace");
+        Self {
+            semantic,
+            agents,
+            occluders: &ground.occluders,
+            pipeline: Pipeline {
+                semantic,
+                areas: Areas::of(world),
+                occluders: &ground.occluders,
+                map: &ground.map,
+                ego_route,
+                dt: world.step,
+            },
+            rsus: semantic
+                .rsus
+                .iter()
+                .map(|&agent| Rsu::new(seed, agent, agents, semantic))
+                .collect(),
+            radio: Radio::new(seed, &world.v2x, semantic.ego, agents.len()),
+            ego: Ego::new(semantic.ego, agents.len()),
+            measures: Measures::new(world, semantic, agents.len()),
+            in_grid: vec![vec![None; agents.len()]; grids],
+        }
+    }
+
+    /// The pipeline in a joint world at `seed`: its random streams are those
+    /// of a seed derived from the point's, apart from the grid's.
+    pub(crate) fn joint(
+        seed: u64,
+        (world, semantic): (&'a World, &'a Semantic),
+        agents: &'a [Agent],
+        ground: &'a Ground,
+        grids: usize,
+    ) -> Self {
+        Self::new(
+            derived_seed(seed, Derived::Pipeline, 1),
+            (world, semantic),
+            agents,
+            ground,
+            grids,
+        )
+    }
+
+    /// The run's metrics, its road users' records labelled with pooled run
+    /// `run`: one per fused grid it followed, each record holding when the
+    /// road user first came into that grid, or one when it followed none.
+    pub(crate) fn finish(self, run: u32) -> Vec<SemanticMetrics> {
+        self.measures.finish(&self.ego, self.agents, run, &self.in_grid)
+    }
+}
+
+impl StepLayer for Layer<'_> {
+    fn step(&mut self, k: usize, states: &[Option<AgentState>], bodies: &Bodies, kinematics: &mut Kinematics<'_>) {
+        let semantic = self.semantic;
+        let dt = self.pipeline.dt;
+        let time = k as f64 * dt;
+        // RSUs run their cycle, and connected road users send, at the V2X rate.
+        let cycle = k.is_multiple_of(semantic.period_steps);
         let ego_state = states[semantic.ego];
         // Communicate: the semantic messages that reached the ego by now.
-        let arrivals = radio.arrivals(time);
-        ego.receive(&arrivals, semantic.caution.hold);
-        measures.arrivals(arrivals);
-        ego.receive_baseline(&radio.baseline_arrivals(time));
+        let arrivals = self.radio.arrivals(time);
+        self.ego.receive(&arrivals, semantic.caution.hold);
+        self.measures.arrivals(arrivals);
+        self.ego.receive_baseline(&self.radio.baseline_arrivals(time));
         // Sense: the ego's view of the scene, measured, and the caution it
         // drives with from the next step on; the RSUs' perception.
         if let Some(ego_now) = ego_state {
-            let view = ego.sense(
+            let view = self.ego.sense(
                 time,
-                &agents[semantic.ego],
+                &self.agents[semantic.ego],
                 ego_now.pose,
-                &occluders,
-                &bodies,
+                self.occluders,
+                bodies,
                 semantic.d_min,
             );
-            kinematics.restrain(semantic.ego, ego.restraint(time, semantic));
-            let served = rsus.iter().any(|rsu| {
+            kinematics.restrain(semantic.ego, self.ego.restraint(time, semantic));
+            let served = self.rsus.iter().any(|rsu| {
                 states[rsu.agent].is_some_and(|s| (s.position() - ego_now.position()).length() <= rsu.range)
             });
             let counted = match semantic.contribution_over {
                 ShareCycles::All => true,
                 ShareCycles::EgoInRange => served,
             };
-            measures.ego_step((time, dt), ego_now, &states, (ego.cautious(time), counted), view);
+            let cautious = self.ego.cautious(time);
+            self.measures
+                .ego_step((time, dt), ego_now, states, (cautious, counted), view);
         }
-        for rsu in rsus.iter_mut().filter(|_| cycle) {
-            rsu.perceive(&agents, &states, &occluders, &bodies, semantic, time);
+        for rsu in self.rsus.iter_mut().filter(|_| cycle) {
+            rsu.perceive(self.agents, states, self.occluders, bodies, semantic, time);
         }
         // Communicate and fuse, RSU by RSU; connected road users' own messages.
         if let Some(ego_state) = ego_state.filter(|_| cycle) {
             let cycle = Cycle {
                 semantic,
-                pipeline: &pipeline,
-                occluders: &occluders,
-                states: &states,
+                pipeline: &self.pipeline,
+                occluders: self.occluders,
+                states,
                 ego: ego_state,
                 time,
             };
-            for rsu in &mut rsus {
-                cycle.exchange(rsu, &mut radio, &mut measures);
+            for rsu in &mut self.rsus {
+                cycle.exchange(rsu, &mut self.radio, &mut self.measures);
             }
-            for packet in radio.direct(&agents, &states, ego_state, &occluders, time, &mut ego) {
-                measures.packet(packet);
+            let direct = self
+                .radio
+                .direct(self.agents, states, ego_state, self.occluders, time, &mut self.ego);
+            for packet in direct {
+                self.measures.packet(packet);
             }
         }
-        // Measure: the step's record.
-        measures.record(k, time, &states, sink);
     }
-    measures.finish(&ego, &agents, run)
+
+    fn reads_grid(&self) -> bool {
+        !self.in_grid.is_empty()
+    }
+
+    fn in_grid(&mut self, job: usize, time: f64, owners: &[usize]) {
+        let first = &mut self.in_grid[job];
+        for &agent in owners {
+            first[agent].get_or_insert(time);
+        }
+    }
+
+    fn record(&mut self, k: usize, states: &[Option<AgentState>], sink: &mut impl TraceSink) {
+        let time = k as f64 * self.pipeline.dt;
+        self.measures.record(k, time, states, sink);
+    }
 }
 
 /// A V2X cycle with the ego in the scene: what the RSUs and the ego exchange.

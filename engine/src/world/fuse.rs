@@ -189,14 +189,15 @@ impl<'a, 'j> Fusion<'a, 'j> {
 
     /// Fuse: every job's grid over the counted cells (those `counted` admits)
     /// that `received` covers, the ego's observation first, tallied against
-    /// `truth`; with `picture`, also the fused values of those cells.
+    /// `truth`; with `picture`, also the fused values of those cells; with
+    /// `owners`, also whose footprint each cell decided Occupy is.
     pub(super) fn fuse(
         &mut self,
         received: &[&dyn Evidence],
         senders: &[Point],
         truth: &Truth,
         counted: impl Fn(usize) -> bool,
-        picture: bool,
+        (picture, owners): (bool, bool),
     ) -> Fused<'_> {
         self.coverage.cover(received, counted);
         let mut chunks = Vec::with_capacity(self.jobs.len());
@@ -211,6 +212,7 @@ impl<'a, 'j> Fusion<'a, 'j> {
                 },
                 threshold: job.decision.threshold,
                 truth: truth.cells(),
+                owners: owners.then(|| truth.owners()),
                 senders,
             };
             let fused: Vec<(WorldTally, CellValues)> = self
@@ -244,6 +246,9 @@ struct Tallier<'a> {
     fusion: CellFusion<'a>,
     threshold: f64,
     truth: &'a [u8],
+    /// Per cell, whose footprint it is, when the owners of the cells decided
+    /// Occupy are collected.
+    owners: Option<&'a [u32]>,
     /// The true positions of the cooperating agents other than the ego in the
     /// scene, for recall by distance to the nearest.
     senders: &'a [Point],
@@ -270,6 +275,11 @@ impl Tallier<'_> {
             }
             let decision = decide(estimate.decision_mass(), self.threshold);
             let decided = decision == Some(State::Occupied);
+            if let Some(owners) = self.owners.filter(|_| decided)
+                && matches!(self.truth[cell], OCCUPIED | SELF_REPORT)
+            {
+                tally.owners.push(owners[cell] as usize);
+            }
             let counts = &mut tally.cells;
             match self.truth[cell] {
                 OCCUPIED => {

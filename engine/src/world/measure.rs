@@ -183,6 +183,7 @@ impl Measures {
                     audit,
                     snapshot: measured.snapshot,
                     by_step: measured.by_step,
+                    semantic: None,
                 }
             })
             .collect()

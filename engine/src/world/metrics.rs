@@ -30,6 +30,7 @@ use crate::math::Point;
 use crate::metrics::Series;
 use crate::metrics::quantile;
 use crate::metrics::{ConflictMetrics, EstimateTally, MassAudit};
+use crate::semantic::SemanticMetrics;
 
 /// Everything measured at one sweep point of a world.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -42,6 +43,12 @@ pub struct WorldOutcome {
     pub snapshot: Option<Snapshot>,
     /// Each measured step's time and cell tallies, for temporal checks.
     pub by_step: Vec<(f64, CellTally)>,
+    /// In a joint world, what the semantic pipeline measured on the same
+    /// scene, its road users' records holding when each first came into this
+    /// job's fused grid; `None` in a perception world. Boxed: an outcome of
+    /// every kind stays small.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub semantic: Option<Box<SemanticMetrics>>,
 }
 
 impl WorldOutcome {
@@ -319,6 +326,9 @@ pub(crate) struct WorldTally {
     pub(crate) estimates: EstimateTally,
     pub(crate) calibration: Calibration,
     pub(crate) by_distance: RecallByDistance,
+    /// The agents whose footprint holds a cell of the chunk decided Occupy,
+    /// once per such cell, in cell order; collected only when asked for.
+    pub(crate) owners: Vec<usize>,
 }
 
 #[cfg(test)]

@@ -7,6 +7,7 @@ mod evidence;
 mod fan;
 mod following;
 mod fuse;
+mod layer;
 mod localization;
 mod measure;
 mod message;
@@ -23,6 +24,7 @@ mod traced;
 mod truth;
 
 pub use calibration::{Calibration, RELIABILITY_BINS, ReliabilityBin};
+pub(crate) use layer::StepLayer;
 pub use metrics::{
     CellTally, DISTANCE_BIN, DISTANCE_BINS, DistanceBin, FusedCell, RecallByDistance, Snapshot, WorldMetrics,
     WorldOutcome,

@@ -8,6 +8,11 @@
 //! State carried from step to step lives in [`Scene`], the [`Cooperator`]s, the
 //! [`Truth`], the [`Fusion`] buffers and the [`Measures`].
 //!
+//! A joint world runs the semantic pipeline on the same scene as a
+//! [`StepLayer`]: after the move, its own phases (with the ego's caution
+//! restraining the ego from the next step on); after the fuse, which road
+//! users each job's grid decided occupied; after the measure, its record.
+//!
 //! Observations run in parallel across agents (each draws from its own random
 //! streams); fusion runs in parallel over fixed-size chunks of the observed cells,
 //! merged in chunk order. Results do not depend on the thread count.
@@ -19,6 +24,7 @@ use sightline_dsl::{Agent, AgentKind, Grid, Motion, Perception, World};
 use super::evidence::Evidence;
 use super::fan;
 use super::fuse::{self, Fusion};
+use super::layer::StepLayer;
 use super::localization::{self, PoseEstimator};
 use super::measure::{MeasuredStep, Measures, unmeasured};
 use super::metrics::WorldOutcome;
@@ -113,13 +119,15 @@ pub(crate) fn idealisations(world: &World, perception: &Perception) -> Vec<Ideal
 struct Setting<'a> {
     grid: &'a Grid,
     world: &'a World,
+    /// Every agent of the scene: the world's, then any generated traffic.
+    agents: &'a [Agent],
     occluders: Occluders,
     /// Per cell: whether it lies in the region of interest.
     in_region: Vec<bool>,
 }
 
 impl<'a> Setting<'a> {
-    fn new(grid: &'a Grid, world: &'a World, perception: &'a Perception) -> Self {
+    fn new(grid: &'a Grid, (world, agents): (&'a World, &'a [Agent]), perception: &'a Perception) -> Self {
         let cells = grid.cells();
         let in_region = match perception.region {
             None => vec![true; cells],
@@ -130,6 +138,7 @@ impl<'a> Setting<'a> {
         Self {
             grid,
             world,
+            agents,
             occluders: Occluders::new(&world.occluders),
             in_region,
         }
@@ -152,10 +161,10 @@ struct Scene<'a> {
 }
 
 impl<'a> Scene<'a> {
-    /// The scene before the first step.
-    fn new(grid: &Grid, world: &'a World) -> Self {
+    /// The scene of `agents` before the first step.
+    fn new(grid: &Grid, world: &World, agents: &'a [Agent]) -> Self {
         Self {
-            kinematics: Kinematics::new(&world.agents, world.step, world.driving),
+            kinematics: Kinematics::new(agents, world.step, world.driving),
             states: Vec::new(),
             bodies: Bodies::new(Vec::new()),
             raster: Raster::new(*grid, &world.occluders),
@@ -200,18 +209,21 @@ impl Cooperator {
     }
 }
 
-/// Runs a world's collective perception once and evaluates every job on the same
-/// observations, reporting each step to `sink`.
+/// Runs a world's collective perception once on the scene of `agents` (the
+/// world's, then any generated traffic) and evaluates every job on the same
+/// observations, with `layer` running on the same scene, reporting each step
+/// to `sink`.
 pub fn run(
     seed: u64,
     grid: &Grid,
-    world: &World,
+    (world, agents): (&World, &[Agent]),
     perception: &Perception,
     jobs: &[Job<'_>],
+    layer: &mut impl StepLayer,
     sink: &mut impl TraceSink,
 ) -> Vec<WorldOutcome> {
-    let setting = Setting::new(grid, world, perception);
-    let mut scene = Scene::new(grid, world);
+    let setting = Setting::new(grid, (world, agents), perception);
+    let mut scene = Scene::new(grid, world, agents);
     let mut cooperators: Vec<Cooperator> = perception
         .cooperating
         .iter()
@@ -224,18 +236,20 @@ pub fn run(
     let mut truth = Truth::new(grid.cells());
     let mut fusion = Fusion::new(grid, perception, jobs);
     let mut measures = Measures::new(jobs.len());
-    sink.start(&world.agents);
+    sink.start(agents);
 
     for k in 0..world.steps {
         let time = k as f64 * world.step;
-        scene.advance(k, &world.agents);
+        scene.advance(k, agents);
+        layer.step(k, &scene.states, &scene.bodies, &mut scene.kinematics);
         let sensed = sense(&setting, k, &scene, &mut cooperators);
         if scene.states[perception.ego].is_none() {
             unmeasured(k, time, &scene.states, &sensed, sink);
+            layer.record(k, &scene.states, sink);
             continue;
         }
         if let Some(radio) = &mut radio {
-            radio.communicate(time, &sensed, (&world.agents, &scene.states), &setting.occluders);
+            radio.communicate(time, &sensed, (agents, &scene.states), &setting.occluders);
         }
         let (received, reporting) = communicate(&sensed, radio.as_ref());
         let senders: Vec<Point> = sensed[1..]
@@ -257,8 +271,15 @@ pub fn run(
             &senders,
             &truth,
             |cell| setting.counted(&scene.raster, &truth, cell),
-            snapshot || grids,
+            (snapshot || grids, layer.reads_grid()),
         );
+        if layer.reads_grid() {
+            for (job, chunks) in fused.chunks.iter().enumerate() {
+                for chunk in chunks {
+                    layer.in_grid(job, time, &chunk.owners);
+                }
+            }
+        }
         let step = MeasuredStep {
             step: k,
             time,
@@ -273,6 +294,7 @@ pub fn run(
             grids,
         };
         measures.measure(step, sink);
+        layer.record(k, &scene.states, sink);
     }
     measures.finish(jobs, radio.map(Radio::finish))
 }
@@ -288,6 +310,7 @@ fn sense<'c>(
     cooperators: &'c mut [Cooperator],
 ) -> Vec<CooperatorStep<'c>> {
     let world = setting.world;
+    let agents = setting.agents;
     let step_scene = StepScene {
         grid: setting.grid,
         occluders: &setting.occluders,
@@ -297,7 +320,7 @@ fn sense<'c>(
     cooperators.par_iter_mut().for_each(|c| {
         c.present = false;
         let Some(state) = scene.states[c.agent] else { return };
-        let agent = &world.agents[c.agent];
+        let agent = &agents[c.agent];
         let estimate = match agent.motion {
             // A roadside unit's position is surveyed.
             Motion::Fixed { .. } => state.pose,

@@ -1,6 +1,7 @@
-//! The ground truth of a step: which counted cells road users occupy, and which
-//! of them a cooperating agent's own body covers (self-report), against which
-//! the fused grids are tallied and the snapshot is drawn.
+//! The ground truth of a step: which counted cells road users occupy, which
+//! of them a cooperating agent's own body covers (self-report), and whose
+//! footprint each occupied cell is, against which the fused grids are tallied
+//! and the snapshot is drawn.
 
 use sightline_dsl::Grid;
 
@@ -23,6 +24,8 @@ pub(super) const SELF_REPORT: u8 = 3;
 #[derive(Debug, Clone)]
 pub(super) struct Truth {
     cells: Vec<u8>,
+    /// Per cell, the agent whose footprint marked it (meaningful where marked).
+    owners: Vec<u32>,
     /// The cells not free, in marking order.
     marked: Vec<usize>,
 }
@@ -32,6 +35,7 @@ impl Truth {
     pub(super) fn new(cells: usize) -> Self {
         Self {
             cells: vec![FREE; cells],
+            owners: vec![0; cells],
             marked: Vec::new(),
         }
     }
@@ -40,7 +44,8 @@ impl Truth {
     /// region of interest, not an occluder of `raster`): the ego's own as
     /// excluded, first, so that no other body claims its cells; then those of
     /// the agents that report themselves (`reporting`: the cooperating agents
-    /// in the scene) as self-report, then every other body's as occupied.
+    /// in the scene) as self-report, then every other body's as occupied. A
+    /// cell two footprints cover is the first one's.
     pub(super) fn mark(
         &mut self,
         grid: &Grid,
@@ -70,6 +75,8 @@ impl Truth {
             for cell in box_cells(grid, body) {
                 if in_region[cell] && !raster.is_occluder(cell) && self.cells[cell] == FREE {
                     self.cells[cell] = truth;
+                    // Agent indices are bounded far below 2³² (dsl budget: 10 000 agents).
+                    self.owners[cell] = body.agent as u32;
                     self.marked.push(cell);
                 }
             }
@@ -79,6 +86,12 @@ impl Truth {
     /// The truth of every cell.
     pub(super) fn cells(&self) -> &[u8] {
         &self.cells
+    }
+
+    /// Per cell, the agent whose footprint marked it; meaningful only for
+    /// the cells not free.
+    pub(super) fn owners(&self) -> &[u32] {
+        &self.owners
     }
 
     /// The cells not free, in marking order.

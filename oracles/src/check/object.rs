@@ -50,6 +50,8 @@ pub(crate) fn evaluate(
     if missing > 0 {
         let why = match property {
             ObjectProperty::WarningTime | ObjectProperty::WarningLead => "never flagged",
+            ObjectProperty::GridLead => "never in the ego's fused grid",
+            ObjectProperty::GridOrWarningLead => "never in the ego's fused grid, never flagged",
             _ => "never known to the ego",
         };
         return Evaluation::failed(

@@ -32,9 +32,11 @@ pub(crate) struct Motions {
 }
 
 impl Motions {
+    /// The agents at `time`; once per time (a joint world reports each step
+    /// twice, the grid's part and the pipeline's).
     fn step(&mut self, time: f64, agents: &[Option<AgentState>]) {
         for (samples, state) in self.samples.iter_mut().zip(agents) {
-            if let Some(state) = state {
+            if let Some(state) = state.filter(|_| samples.last().is_none_or(|last| last.time != time)) {
                 samples.push(Sample {
                     time,
                     position: [state.pose.translation.x, state.pose.translation.y],

@@ -74,7 +74,7 @@ pub(super) fn point_body(p: &PointResult) -> (String, Vec<TableView>) {
                     .collect(),
             }],
         ),
-        Detail::World { counts: c } => {
+        Detail::World { counts: c, semantic } => {
             let s = &c.sightings;
             let rows = [
                 ("steps with the ego in the scene", c.steps as f64),
@@ -144,7 +144,23 @@ pub(super) fn point_body(p: &PointResult) -> (String, Vec<TableView>) {
                     })
                     .collect(),
             };
-            (format!("{} steps", c.steps), vec![counts_table(rows), by_distance])
+            let mut tables = vec![counts_table(rows), by_distance];
+            let summary = match semantic {
+                // A joint world: the pipeline's tables after the grid's.
+                Some(s) => {
+                    tables.extend(semantic_tables(&s.counts, &s.contribution_by_density));
+                    tables.extend(object_tables(&s.objects));
+                    format!(
+                        "{} steps; the semantic pipeline on the same scene: {} generated road users, {} anticipated \
+                         objects",
+                        c.steps,
+                        s.counts.generated,
+                        s.counts.anticipation.len()
+                    )
+                }
+                None => format!("{} steps", c.steps),
+            };
+            (summary, tables)
         }
         Detail::Semantic {
             counts: c,
@@ -321,7 +337,8 @@ fn object_tables(objects: &ObjectList) -> [TableView; 3] {
         .take(REPORT_OBJECT_ROWS)
         .collect();
     // Two tables of the same road users, in the same order, so that each
-    // prints on A4: when the ego came to know them, and how close and how
+    // prints on A4: when the ego came to know them (in a joint world also
+    // when each came into the ego's fused grid), and how close and how
     // critical their encounter was.
     let listed = format!(
         "{} of {} ({} in results.json), never known first, then warned and never seen, warned before seen, seen \
@@ -330,23 +347,28 @@ fn object_tables(objects: &ObjectList) -> [TableView; 3] {
         objects.relevant,
         objects.records.len()
     );
+    let joint = objects.records.iter().any(|o| o.first_in_grid.is_some());
     let identity = |o: &ObjectResult| vec![o.run.to_string(), o.id.clone(), o.class.to_string()];
+    let mut head: Vec<String> = [
+        "run",
+        "id",
+        "class",
+        "category",
+        "relevant (s)",
+        "seen (s)",
+        "V2X (s)",
+        "warned (s)",
+    ]
+    .map(String::from)
+    .to_vec();
+    if joint {
+        head.push("in grid (s)".into());
+    }
+    head.push("anticipation (s)".into());
     let knowledge = TableView {
         caption: format!("Relevant road users, when the ego knew them: {listed}"),
         text_columns: 4,
-        head: [
-            "run",
-            "id",
-            "class",
-            "category",
-            "relevant (s)",
-            "seen (s)",
-            "V2X (s)",
-            "warned (s)",
-            "anticipation (s)",
-        ]
-        .map(String::from)
-        .to_vec(),
+        head,
         rows: shown
             .iter()
             .map(|o| {
@@ -357,8 +379,11 @@ fn object_tables(objects: &ObjectList) -> [TableView; 3] {
                     or_dash(o.first_seen),
                     or_dash(o.first_v2x),
                     or_dash(o.first_warning),
-                    or_dash(o.anticipation),
                 ]);
+                if joint {
+                    row.push(or_dash(o.first_in_grid.flatten()));
+                }
+                row.push(or_dash(o.anticipation));
                 row
             })
             .collect(),

@@ -536,6 +536,10 @@ pub struct RoadUserRecord {
     /// When the first message flagging a conflict with it reached the ego.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub first_warning: Option<f64>,
+    /// In a joint world, when a cell of its footprint was first decided
+    /// occupied in the ego's fused grid.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub first_in_grid: Option<f64>,
     /// When it came closest to the ego.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub closest_time: Option<f64>,

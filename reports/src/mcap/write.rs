@@ -10,13 +10,15 @@
 //! recording starts, and the running values of the requirements its steps
 //! signal. Its children write the rest: the channels and their schemas
 //! ([`channel`]), the scene ([`scene`]), a perception world's steps ([`world`]),
-//! a semantic world's ([`semantic`]) and the end ([`outcomes`]).
+//! a semantic world's ([`semantic`]) and the end ([`outcomes`]). A joint
+//! world's step is both: the grid's part, then the pipeline's, in one step's
+//! scene and signals.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::io::{Seek, Write};
 
 use mcap::{Attachment, Compression, WriteOptions, Writer};
-use sightline_dsl::{Agent, Check, Experiment, Grid as CellGrid, Metric, Record, Scenario};
+use sightline_dsl::{Agent, Check, Experiment, Grid as CellGrid, JointPart, Metric, Record, Scenario};
 use sightline_engine::TraceSink;
 use sightline_engine::outcome::{SemanticMetrics, WorldMetrics};
 use sightline_engine::trace::{Pose, SemanticStep, Vector, WorldStep, mount_pose};
@@ -24,7 +26,7 @@ use sightline_engine::trace::{Pose, SemanticStep, Vector, WorldStep, mount_pose}
 use super::counts::WORLD_STEP_METRICS;
 use super::foxglove::{LineType, SceneUpdate};
 use super::topic;
-use super::wire::{ImportRecord, RECORDING_FORMAT, RequirementSignal, RequirementSignals, ScenarioRecord};
+use super::wire::{CellSignals, ImportRecord, RECORDING_FORMAT, RequirementSignal, RequirementSignals, ScenarioRecord};
 use crate::{Tool, sha256_hex};
 use channel::{REQUIREMENTS, SCENARIO, SCENE};
 use scene::{field_of_view, map_entities};
@@ -64,11 +66,45 @@ pub struct Source<'a> {
 /// The metrics the steps of a semantic world's recorded run give.
 const SEMANTIC_STEP_METRICS: [Metric; 2] = [Metric::PacketDeliveryRatio, Metric::MissedCriticals];
 
-/// What the steps have summed so far, for `/sightline/requirements`.
-enum Running {
-    World(WorldMetrics),
-    Semantic(SemanticMetrics),
-    Nothing,
+/// What the steps have summed so far, for `/sightline/requirements`: a
+/// perception world's cell counts, a semantic world's message and approach
+/// counts, a joint world's both.
+struct Running {
+    world: Option<WorldMetrics>,
+    semantic: Option<SemanticMetrics>,
+}
+
+impl Running {
+    /// `metric` over the steps so far; `None` where they do not give it.
+    fn value(&self, metric: Metric) -> Option<f64> {
+        match (&self.world, &self.semantic) {
+            (Some(world), Some(semantic)) => match metric.joint_part() {
+                _ if !metric.in_joint() => None,
+                (JointPart::Grid, metric) => world.value(metric),
+                (JointPart::Semantic, metric) => semantic.value(metric),
+            },
+            (Some(world), None) => world.value(metric),
+            (None, Some(semantic)) => semantic.value(metric),
+            (None, None) => None,
+        }
+    }
+
+    /// Whether the steps give `metric`.
+    fn gives(&self, metric: Metric) -> bool {
+        let (world, semantic) = (self.world.is_some(), self.semantic.is_some());
+        match (world, semantic) {
+            (true, true) => {
+                metric.in_joint()
+                    && match metric.joint_part() {
+                        (JointPart::Grid, metric) => WORLD_STEP_METRICS.contains(&metric),
+                        (JointPart::Semantic, metric) => SEMANTIC_STEP_METRICS.contains(&metric),
+                    }
+            }
+            (true, false) => WORLD_STEP_METRICS.contains(&metric),
+            (false, true) => SEMANTIC_STEP_METRICS.contains(&metric),
+            (false, false) => false,
+        }
+    }
 }
 
 /// Streams a run's record into an MCAP file (see `docs/recording.md` for the
@@ -105,6 +141,9 @@ pub struct Recorder<'s, W: Write + Seek> {
     /// Requirements at the recorded point whose metric the steps give.
     signalled: Vec<(String, Metric, sightline_dsl::Bound)>,
     running: Running,
+    /// In a joint world, the grid's signals of the step being recorded,
+    /// published with the pipeline's.
+    pending_cells: Option<CellSignals>,
 }
 
 impl<'s, W: Write + Seek> Recorder<'s, W> {
@@ -120,10 +159,14 @@ impl<'s, W: Write + Seek> Recorder<'s, W> {
             Experiment::World(world) => Some(world.as_ref()),
             Experiment::Field(_) => None,
         };
-        let requirement_metrics: &[Metric] = match world {
-            Some(w) if w.semantic.is_some() => &SEMANTIC_STEP_METRICS,
-            Some(_) => &WORLD_STEP_METRICS,
-            None => &[],
+        let running = Running {
+            world: world
+                .filter(|w| w.perception.is_some())
+                .map(|_| WorldMetrics::default()),
+            semantic: world.filter(|w| w.semantic.is_some()).map(|_| SemanticMetrics {
+                runs: 1,
+                ..SemanticMetrics::default()
+            }),
         };
         let signalled = scenario
             .requirements
@@ -135,18 +178,10 @@ impl<'s, W: Write + Seek> Recorder<'s, W> {
                     metric,
                     bound,
                     over_seeds: None,
-                } if requirement_metrics.contains(&metric) => Some((r.id.clone(), metric, bound)),
+                } if running.gives(metric) => Some((r.id.clone(), metric, bound)),
                 _ => None,
             })
             .collect();
-        let running = match world {
-            Some(w) if w.semantic.is_some() => Running::Semantic(SemanticMetrics {
-                runs: 1,
-                ..SemanticMetrics::default()
-            }),
-            Some(_) => Running::World(WorldMetrics::default()),
-            None => Running::Nothing,
-        };
         let mut recorder = Self {
             out: options.create(out)?,
             scenario,
@@ -172,6 +207,7 @@ impl<'s, W: Write + Seek> Recorder<'s, W> {
             shown: BTreeSet::new(),
             signalled,
             running,
+            pending_cells: None,
         };
         recorder.publish(
             topic::SCENARIO,
@@ -215,6 +251,12 @@ impl<'s, W: Write + Seek> Recorder<'s, W> {
         Ok(recorder)
     }
 
+    /// Whether the recorded point is a joint world, whose steps each model
+    /// reports in turn.
+    fn joint(&self) -> bool {
+        self.running.world.is_some() && self.running.semantic.is_some()
+    }
+
     fn take_failure(&mut self) -> Result<(), WriteError> {
         self.failure.take().map_or(Ok(()), Err)
     }
@@ -228,11 +270,7 @@ impl<'s, W: Write + Seek> Recorder<'s, W> {
             .signalled
             .iter()
             .map(|(id, metric, bound)| {
-                let value = match &self.running {
-                    Running::World(m) => m.value(*metric),
-                    Running::Semantic(m) => m.value(*metric),
-                    Running::Nothing => None,
-                };
+                let value = self.running.value(*metric);
                 RequirementSignal {
                     id: id.clone(),
                     metric: *metric,

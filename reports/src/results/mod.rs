@@ -38,7 +38,7 @@ pub use document::{FORMAT, InputInfo, Results, ScenarioInfo, Summary, WarningInf
 pub(crate) use from_run::object_result;
 pub use metrics::{Measured, MetricEntry, Ordered, Table};
 pub use objects::{CategoryCounts, ClosestApproach, MAX_OBJECT_RECORDS, ObjectCategory, ObjectList, ObjectResult};
-pub use point::{Detail, LabelResult, PointResult};
+pub use point::{Detail, LabelResult, PointResult, SemanticDetail};
 pub use provenance::{Provenance, RecordingInfo, Tool};
 pub use reference::{Assumption, ReferencePoint, ReferenceResult};
 pub use requirement::{

@@ -1,7 +1,8 @@
-//! The per-object record of a semantic point in results.json: every road user
-//! relevant to the ego with its times, closest approach and category (the
-//! engine's `semantic::objects` defines each), the counts by category, and the
-//! bound that keeps the document small.
+//! The per-object record of a semantic point (or of a joint world's
+//! pipeline) in results.json: every road user relevant to the ego with its
+//! times, closest approach and category (the engine's `semantic::objects`
+//! defines each), the counts by category, and the bound that keeps the
+//! document small.
 
 use serde::Serialize;
 
@@ -91,6 +92,10 @@ pub struct ObjectResult {
     pub first_v2x: Option<f64>,
     /// When the first RSU message flagging a conflict with it reached the ego.
     pub first_warning: Option<f64>,
+    /// In a joint world, when a cell of its footprint was first decided
+    /// occupied in the ego's fused grid (`null`: never); absent elsewhere.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub first_in_grid: Option<Option<f64>>,
     /// Its closest approach to the ego (`null` only if never in the scene with it).
     pub closest: Option<ClosestApproach>,
     /// Its least time to collision with the ego, seconds: over the steps it

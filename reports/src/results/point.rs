@@ -64,6 +64,13 @@ pub enum Detail {
     World {
         /// The counts behind the metrics.
         counts: WorldCounts,
+        /// In a joint world (collective perception and the semantic pipeline
+        /// on one scene), what the pipeline measured, its road users' records
+        /// with when each first came into this point's fused grid; absent in
+        /// a perception world.
+        // Boxed: a detail of every kind stays small.
+        #[serde(skip_serializing_if = "Option::is_none")]
+        semantic: Option<Box<SemanticDetail>>,
     },
     /// A world's semantic pipeline.
     Semantic {
@@ -74,4 +81,18 @@ pub enum Detail {
         /// Every road user relevant to the ego, with its category.
         objects: ObjectList,
     },
+}
+
+/// What the semantic pipeline of a joint world measured (a semantic point
+/// writes the same beside its `experiment`).
+#[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
+#[schemars(deny_unknown_fields)]
+pub struct SemanticDetail {
+    /// The counts and samples behind the metrics.
+    pub counts: SemanticCounts,
+    /// Objects known to the ego only through an RSU, by traffic density.
+    pub contribution_by_density: Vec<DensityRow>,
+    /// Every road user relevant to the ego, with its category and when it
+    /// first came into the ego's fused grid.
+    pub objects: ObjectList,
 }

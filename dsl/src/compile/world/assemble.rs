@@ -2,6 +2,7 @@
 //! they depend on each other, and the run's number of steps.
 
 use super::agents::{Scene, agents};
+use super::joint::joint;
 use super::occluders::occluders;
 use super::perception::perception_of;
 use super::roads::roads;
@@ -63,9 +64,11 @@ pub(crate) fn world(
         Some(v2x) => own_antennas(ctx, v2x, agents),
         None => true,
     });
+    // A joint world gives both; its `v2x.penetration` is refused below.
+    let is_joint = raw.perception.is_some() && raw.semantic.is_some();
     let perception = match (&raw.perception, &agents, steps) {
         (Some(perception), Some((agents, _)), Some(steps)) => {
-            perception_of(ctx, perception, raw.v2x.as_ref(), agents, time.step, steps).map(Some)
+            perception_of(ctx, perception, (raw.v2x.as_ref(), is_joint), agents, time.step, steps).map(Some)
         }
         (None, _, _) => Some(None),
         _ => None,
@@ -80,12 +83,22 @@ pub(crate) fn world(
         .traffic
         .as_ref()
         .map(|t| traffic(ctx, t, &roads, crosswalks.as_deref()));
-    // A world measuring collective perception refuses `semantic` (see `kind`).
     let semantic = match (&raw.semantic, &agents) {
-        (Some(_), _) if raw.perception.is_some() => Some(None),
-        (Some(semantic), Some((agents, _))) => semantic_of(ctx, semantic, agents, time.step).map(Some),
+        (Some(semantic), Some((agents, _))) => semantic_of(ctx, semantic, agents, time.step, is_joint).map(Some),
         (None, _) => Some(None),
         _ => None,
+    };
+    let joint_ok = match (is_joint, &agents) {
+        (true, Some((agents, _))) => joint(
+            ctx,
+            raw,
+            agents,
+            (
+                perception.as_ref().and_then(Option::as_ref),
+                semantic.as_ref().and_then(Option::as_ref),
+            ),
+        ),
+        _ => true,
     };
     if raw.perception.is_none() && raw.semantic.is_none() {
         ctx.error(
@@ -99,6 +112,9 @@ pub(crate) fn world(
         return None;
     }
     let connections = connections(raw, &roads);
+    if !joint_ok {
+        return None;
+    }
     Some(World {
         step: time.step,
         steps: steps?,

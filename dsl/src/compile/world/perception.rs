@@ -15,7 +15,7 @@ use crate::raw::{RawMessages, RawPerception, RawV2x};
 pub(super) fn perception_of(
     ctx: &mut Context<'_>,
     raw: &RawPerception,
-    v2x: Option<&RawV2x>,
+    (v2x, joint): (Option<&RawV2x>, bool),
     agents: &[Agent],
     step: f64,
     steps: usize,
@@ -55,7 +55,8 @@ pub(super) fn perception_of(
         )
         .map(Some),
     };
-    let penetration = v2x.and_then(|v| v.penetration);
+    // In a joint world `penetration` is refused as ambiguous (`joint`).
+    let penetration = v2x.and_then(|v| v.penetration).filter(|_| !joint);
     if let (Some(_), Some(_)) = (penetration, raw.cooperating) {
         ctx.error(
             &Path::root().key("v2x").key("penetration"),

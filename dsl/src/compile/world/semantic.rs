@@ -12,7 +12,7 @@ use crate::error::ErrorKind;
 use crate::geometry::counter_clockwise;
 use crate::model::{
     Agent, AgentKind, Area, Baseline, Caution, Channel, Crosswalk, Driving, InteractionArea, PathLossModel,
-    PedestrianTraffic, Road, Semantic, Traffic, TrafficRoute, V2x, VehicleTraffic,
+    PedestrianTraffic, Road, RsuSight, Semantic, Traffic, TrafficRoute, V2x, VehicleTraffic,
 };
 use crate::path::Path;
 use crate::raw::range;
@@ -366,8 +366,22 @@ pub(super) fn v2x(ctx: &mut Context<'_>, raw: &RawV2x) -> Option<V2x> {
     })
 }
 
-pub(super) fn semantic_of(ctx: &mut Context<'_>, raw: &RawSemantic, agents: &[Agent], step: f64) -> Option<Semantic> {
+/// The semantic pipeline, in a joint world (`joint`) or a semantic one.
+pub(super) fn semantic_of(
+    ctx: &mut Context<'_>,
+    raw: &RawSemantic,
+    agents: &[Agent],
+    step: f64,
+    joint: bool,
+) -> Option<Semantic> {
     let path = Path::root().key("semantic");
+    // In a joint world the roadside units perceive through their modelled
+    // sensors and the map's occluders unless the file says otherwise.
+    let rsu_sight = if joint && !ctx.has(&path.key("rsu_sight")) {
+        RsuSight::LineOfSight
+    } else {
+        raw.rsu_sight
+    };
     let find = |ctx: &mut Context<'_>, id: &str, at: &Path| {
         let found = agents.iter().position(|a| a.id == id);
         if found.is_none() {
@@ -525,7 +539,7 @@ pub(super) fn semantic_of(ctx: &mut Context<'_>, raw: &RawSemantic, agents: &[Ag
         hypotheses: raw.hypotheses.clone(),
         period_steps: period_steps? as usize,
         risk_for: raw.risk_for,
-        rsu_sight: raw.rsu_sight,
+        rsu_sight,
         history: raw.history,
         caution: Caution {
             headway: raw.caution.headway,

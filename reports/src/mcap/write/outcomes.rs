@@ -94,9 +94,12 @@ impl<W: Write + Seek> Recorder<'_, W> {
                     .collect(),
             };
             self.publish(topic::OUTCOME, OUTCOME, end, &record);
-            if let Outcome::Semantic(metrics) = outcome {
+            if let Some(metrics) = outcome.semantic() {
+                // A joint world's records say when each road user came into the grid.
+                let in_grid = matches!(outcome, Outcome::World(_));
                 for object in metrics.objects.iter().take(MAX_OBJECT_RECORDS) {
-                    self.publish(topic::OBJECTS, OBJECT, end, &road_user_record(point.index, object));
+                    let record = road_user_record(point.index, object, in_grid);
+                    self.publish(topic::OBJECTS, OBJECT, end, &record);
                 }
             }
         }
@@ -127,9 +130,10 @@ impl<W: Write + Seek> Recorder<'_, W> {
     }
 }
 
-/// A relevant road user, flat, as results.json lists it.
-fn road_user_record(point: usize, object: &sightline_engine::outcome::ObjectRecord) -> RoadUserRecord {
-    let listed = object_result(object);
+/// A relevant road user, flat, as results.json lists it (`in_grid`: with
+/// its time in a joint world's fused grid).
+fn road_user_record(point: usize, object: &sightline_engine::outcome::ObjectRecord, in_grid: bool) -> RoadUserRecord {
+    let listed = object_result(object, in_grid);
     let closest = listed.closest;
     RoadUserRecord {
         point,
@@ -142,6 +146,7 @@ fn road_user_record(point: usize, object: &sightline_engine::outcome::ObjectReco
         first_seen: listed.first_seen,
         first_v2x: listed.first_v2x,
         first_warning: listed.first_warning,
+        first_in_grid: listed.first_in_grid.flatten(),
         closest_time: closest.map(|c| c.time),
         closest_distance: closest.map(|c| c.distance),
         closest_x: closest.map(|c| c.position[0]),

@@ -6,8 +6,8 @@ use std::io::{Seek, Write};
 
 use sightline_engine::trace::{Item, PacketKind, SemanticStep, Visibility};
 
+use super::Recorder;
 use super::channel::{APPROACH, ARRIVAL, MESSAGE, PACKET, SIGNALS};
-use super::{Recorder, Running};
 use crate::mcap::topic;
 use crate::mcap::wire::{
     ApproachRecord, ArrivalRecord, ConflictRecord, ItemRecord, MessageRecord, PacketRecord, SemanticSignals,
@@ -18,6 +18,8 @@ impl<W: Write + Seek> Recorder<'_, W> {
     /// Everything a semantic world's step shows: the messages reaching the
     /// ego, the agents, every packet and semantic message sent, the close
     /// approaches, and the step's signals, its counts added to the running sums.
+    /// In a joint world the grid's part of the step has shown the agents, and
+    /// its signals join these.
     pub(super) fn publish_semantic_step(&mut self, step: &SemanticStep<'_>) {
         let time = self.at(step.time);
         self.last = time;
@@ -28,7 +30,9 @@ impl<W: Write + Seek> Recorder<'_, W> {
             };
             self.publish(topic::ARRIVALS, ARRIVAL, self.at(arrival.at), &record);
         }
-        self.publish_agents(time, step.agents);
+        if !self.joint() {
+            self.publish_agents(time, step.agents);
+        }
         let mut signals = SemanticSignals {
             packets: 0,
             received: 0,
@@ -81,7 +85,7 @@ impl<W: Write + Seek> Recorder<'_, W> {
             };
             self.publish(topic::APPROACHES, APPROACH, time, &record);
         }
-        if let Running::Semantic(running) = &mut self.running {
+        if let Some(running) = &mut self.running.semantic {
             running.messages += signals.messages;
             running.delivered += signals.messages_received;
             running.close_approaches += signals.approaches;
@@ -89,7 +93,7 @@ impl<W: Write + Seek> Recorder<'_, W> {
         }
         let record = SignalsRecord {
             step: step.step,
-            cells: None,
+            cells: self.pending_cells.take(),
             semantic: Some(signals),
         };
         self.publish(topic::SIGNALS, SIGNALS, time, &record);

@@ -8,8 +8,8 @@ use sightline_dsl::{Grid as CellGrid, Metric};
 use sightline_engine::outcome::{CellTally, WorldMetrics};
 use sightline_engine::trace::{CooperatorStep, FusedGrid, Measured, Observed, WorldStep};
 
+use super::Recorder;
 use super::channel::{GRID, SIGNALS};
-use super::{Recorder, Running};
 use crate::mcap::foxglove::{Grid, Numeric, Time};
 use crate::mcap::topic;
 use crate::mcap::wire::{CellSignals, SignalsRecord};
@@ -17,7 +17,8 @@ use crate::mcap::wire::{CellSignals, SignalsRecord};
 impl<W: Write + Seek> Recorder<'_, W> {
     /// Everything a perception world's step shows: the agents, each
     /// cooperating agent's detections, the fused grid and the agents' own grids
-    /// (at the grid rate), and the step's signals.
+    /// (at the grid rate), and the step's signals (in a joint world, kept to
+    /// be published with the pipeline's).
     pub(super) fn publish_world_step(&mut self, step: &WorldStep<'_>) {
         let time = self.at(step.time);
         self.last = time;
@@ -32,6 +33,10 @@ impl<W: Write + Seek> Recorder<'_, W> {
         });
         if self.record.agent_grids && self.record.grids_at(step.step) {
             self.publish_agent_grids(time, step.cooperators);
+        }
+        if self.joint() {
+            self.pending_cells = cells;
+            return;
         }
         let signals = SignalsRecord {
             step: step.step,
@@ -87,7 +92,7 @@ impl<W: Write + Seek> Recorder<'_, W> {
     fn cell_signals(&mut self, measured: &Measured<'_>, cells: &CellTally) -> CellSignals {
         let mut step = WorldMetrics::default();
         step.add_step(measured.ego_observed, measured.joint_observed, cells);
-        if let Running::World(running) = &mut self.running {
+        if let Some(running) = &mut self.running.world {
             running.add_step(measured.ego_observed, measured.joint_observed, cells);
         }
         CellSignals {

@@ -1,11 +1,14 @@
-//! A semantic point's per-object records, mapped to results.json: counted by
-//! category, and listed up to [`MAX_OBJECT_RECORDS`].
+//! A semantic point's (or a joint world's pipeline's) per-object records,
+//! mapped to results.json: counted by category, and listed up to
+//! [`MAX_OBJECT_RECORDS`].
 
 use sightline_engine::outcome as engine;
 
 use crate::results::{CategoryCounts, ClosestApproach, MAX_OBJECT_RECORDS, ObjectCategory, ObjectList, ObjectResult};
 
-pub(super) fn object_list(records: &[engine::ObjectRecord]) -> ObjectList {
+/// The records of a point; `in_grid`: the point fuses a grid (a joint
+/// world), whose times each record gives.
+pub(super) fn object_list(records: &[engine::ObjectRecord], in_grid: bool) -> ObjectList {
     let count = |category| records.iter().filter(|r| r.category == category).count() as u64;
     ObjectList {
         relevant: records.len() as u64,
@@ -15,13 +18,18 @@ pub(super) fn object_list(records: &[engine::ObjectRecord]) -> ObjectList {
             seen_first: count(engine::Category::SeenFirst),
             never_known: count(engine::Category::NeverKnown),
         },
-        records: records.iter().take(MAX_OBJECT_RECORDS).map(object_result).collect(),
+        records: records
+            .iter()
+            .take(MAX_OBJECT_RECORDS)
+            .map(|record| object_result(record, in_grid))
+            .collect(),
         omitted: records.len().saturating_sub(MAX_OBJECT_RECORDS) as u64,
     }
 }
 
-/// One record; also what the recording and the report show of it.
-pub(crate) fn object_result(record: &engine::ObjectRecord) -> ObjectResult {
+/// One record, with its time in the grid where the point fuses one
+/// (`in_grid`); also what the recording and the report show of it.
+pub(crate) fn object_result(record: &engine::ObjectRecord, in_grid: bool) -> ObjectResult {
     let engine::ObjectRecord {
         run,
         ref id,
@@ -32,6 +40,7 @@ pub(crate) fn object_result(record: &engine::ObjectRecord) -> ObjectResult {
         first_seen,
         first_v2x,
         first_warning,
+        first_in_grid,
         closest,
         min_ttc,
         max_drac,
@@ -50,6 +59,7 @@ pub(crate) fn object_result(record: &engine::ObjectRecord) -> ObjectResult {
         first_seen,
         first_v2x,
         first_warning,
+        first_in_grid: in_grid.then_some(first_in_grid),
         closest: closest.map(
             |engine::Closest {
                  time,

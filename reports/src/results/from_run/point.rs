@@ -8,7 +8,8 @@ use sightline_engine::{Outcome, outcome as engine};
 use super::objects::object_list;
 use crate::results::{
     AgeCount, Band, Calibration, Conflict, Coverage, DeliveryBin, DensityRow, Detail, DistanceRow, LabelCounts,
-    LabelResult, MassAudit, Ordered, PointResult, Radio, ReliabilityBin, SemanticCounts, Sightings, WorldCounts,
+    LabelResult, MassAudit, Ordered, PointResult, Radio, ReliabilityBin, SemanticCounts, SemanticDetail, Sightings,
+    WorldCounts,
 };
 
 pub(super) fn point_result((point, outcome): (&Point, &Outcome)) -> PointResult {
@@ -55,13 +56,31 @@ pub(super) fn point_result((point, outcome): (&Point, &Outcome)) -> PointResult 
             },
             Outcome::World(o) => Detail::World {
                 counts: world_counts(&o.metrics),
+                semantic: o.semantic.as_deref().map(|m| Box::new(semantic_detail(m, true))),
             },
-            Outcome::Semantic(m) => Detail::Semantic {
-                counts: semantic_counts(m),
-                contribution_by_density: m.contribution_by_density().into_iter().map(density_row).collect(),
-                objects: object_list(&m.objects),
-            },
+            Outcome::Semantic(m) => {
+                let SemanticDetail {
+                    counts,
+                    contribution_by_density,
+                    objects,
+                } = semantic_detail(m, false);
+                Detail::Semantic {
+                    counts,
+                    contribution_by_density,
+                    objects,
+                }
+            }
         },
+    }
+}
+
+/// What the semantic pipeline measured; `in_grid`: a joint world's, whose
+/// records say when each road user came into the fused grid.
+fn semantic_detail(m: &engine::SemanticMetrics, in_grid: bool) -> SemanticDetail {
+    SemanticDetail {
+        counts: semantic_counts(m),
+        contribution_by_density: m.contribution_by_density().into_iter().map(density_row).collect(),
+        objects: object_list(&m.objects, in_grid),
     }
 }
 
