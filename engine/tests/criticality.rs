@@ -7,13 +7,17 @@
 //! −2.5 + 10 t, one metre further each step.
 
 use approx::assert_relative_eq;
-use sightline_dsl::{Metric, ObjectProperty, ObjectSelection, Scenario, compile};
-use sightline_engine::outcome::{ObjectRecord, SemanticMetrics};
+use sightline_dsl::{Metric, ObjectProperty, ObjectSelection, Scenario};
+use sightline_engine::outcome::SemanticMetrics;
 use sightline_engine::{Outcome, simulate};
+
+mod common;
+
+use common::by_id;
 
 fn scene() -> Scenario {
     let text = include_str!("../../tests/fixtures/valid/criticality.yaml");
-    compile("criticality.yaml", text, &Default::default()).unwrap_or_else(|e| panic!("{e}"))
+    common::fixture("criticality.yaml", text)
 }
 
 fn outcome() -> Outcome {
@@ -25,14 +29,6 @@ fn metrics(outcome: &Outcome) -> &SemanticMetrics {
         Outcome::Semantic(metrics) => metrics,
         other => panic!("a semantic world, not {other:?}"),
     }
-}
-
-fn by_id<'a>(metrics: &'a SemanticMetrics, id: &str) -> &'a ObjectRecord {
-    metrics
-        .objects
-        .iter()
-        .find(|o| o.id == id)
-        .unwrap_or_else(|| panic!("{id} is relevant"))
 }
 
 #[test]

@@ -10,15 +10,17 @@
 //! P(occupied) = 0.7, the mass (0, 0.4, 0.6) on (Empty, Occupy, Unknown).
 
 use approx::assert_relative_eq;
-use sightline_dsl::{Metric, ObjectProperty, ObjectSelection, Scenario, compile};
-use sightline_engine::outcome::{ObjectRecord, SemanticMetrics, WorldOutcome};
+use sightline_dsl::{Metric, ObjectProperty, ObjectSelection, Scenario};
+use sightline_engine::outcome::{SemanticMetrics, WorldOutcome};
 use sightline_engine::{Outcome, simulate, simulate_point};
 
 mod common;
 
+use common::by_id;
+
 fn scene() -> Scenario {
     let text = include_str!("../../tests/fixtures/valid/joint-two-walkers.yaml");
-    compile("joint-two-walkers.yaml", text, &Default::default()).unwrap_or_else(|e| panic!("{e}"))
+    common::fixture("joint-two-walkers.yaml", text)
 }
 
 /// The world outcome of each point: Bayes, then Dempster.
@@ -38,14 +40,6 @@ fn pipeline(outcome: &WorldOutcome) -> &SemanticMetrics {
         .semantic
         .as_deref()
         .expect("a joint world measures its pipeline")
-}
-
-fn by_id<'a>(metrics: &'a SemanticMetrics, id: &str) -> &'a ObjectRecord {
-    metrics
-        .objects
-        .iter()
-        .find(|o| o.id == id)
-        .unwrap_or_else(|| panic!("{id} is relevant"))
 }
 
 /// walker_a steps out at (15, 26.1) at 1.2 s. The unit, 12.2 m away with

@@ -9,13 +9,17 @@
 //! of light (under 1 µs here).
 
 use approx::assert_relative_eq;
-use sightline_dsl::{AgentKind, Metric, Scenario, compile};
-use sightline_engine::outcome::{Category, ObjectRecord, SemanticMetrics};
+use sightline_dsl::{AgentKind, Metric, Scenario};
+use sightline_engine::outcome::{Category, SemanticMetrics};
 use sightline_engine::{Outcome, simulate};
+
+mod common;
+
+use common::by_id;
 
 fn scene() -> Scenario {
     let text = include_str!("../../tests/fixtures/valid/four-road-users.yaml");
-    compile("four-road-users.yaml", text, &Default::default()).unwrap_or_else(|e| panic!("{e}"))
+    common::fixture("four-road-users.yaml", text)
 }
 
 fn metrics() -> SemanticMetrics {
@@ -24,14 +28,6 @@ fn metrics() -> SemanticMetrics {
         Outcome::Semantic(metrics) => metrics.clone(),
         other => panic!("a semantic world, not {other:?}"),
     }
-}
-
-fn by_id<'a>(metrics: &'a SemanticMetrics, id: &str) -> &'a ObjectRecord {
-    metrics
-        .objects
-        .iter()
-        .find(|o| o.id == id)
-        .unwrap_or_else(|| panic!("{id} is relevant"))
 }
 
 /// Each message's arrival: its cycle plus the latency, within the light time.

@@ -1,4 +1,9 @@
-//! Helpers shared by the engine's integration tests.
+//! Helpers shared by the engine's integration tests (each test binary uses
+//! some of them).
+#![allow(dead_code)]
+
+use sightline_dsl::{Scenario, compile};
+use sightline_engine::outcome::{ObjectRecord, SemanticMetrics};
 
 /// Runs `f` on a rayon pool of `threads` threads.
 pub fn in_pool<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
@@ -7,4 +12,18 @@ pub fn in_pool<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
         .build()
         .unwrap()
         .install(f)
+}
+
+/// A scenario of `tests/fixtures/valid`, compiled from its `text`.
+pub fn fixture(name: &str, text: &str) -> Scenario {
+    compile(name, text, &Default::default()).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// The record of the relevant road user `id`.
+pub fn by_id<'a>(metrics: &'a SemanticMetrics, id: &str) -> &'a ObjectRecord {
+    metrics
+        .objects
+        .iter()
+        .find(|o| o.id == id)
+        .unwrap_or_else(|| panic!("{id} is relevant"))
 }
