@@ -1,6 +1,6 @@
 //! What every chart shares: its size and type sizes, the plotting frame
-//! (white, framed, axes named, tick labels without spurious digits), the
-//! legend below the plot, and the SVG as a `data:` URI.
+//! (white, axes named, tick labels without spurious digits), and the SVG as a
+//! `data:` URI.
 
 use base64::Engine;
 use base64::engine::general_purpose::STANDARD;
@@ -10,8 +10,6 @@ use plotters::coord::Shift;
 use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use serde::Serialize;
-
-use super::legend::{self, Entry};
 
 /// Width of a chart, pixels: the page shows it at most 1 200 px wide, and A4
 /// prints it 186 mm wide, where the type sizes below come out at 8.5 to 9 pt.
@@ -54,37 +52,12 @@ pub(super) struct Axes<'a> {
 /// A chart's plotting area.
 pub(super) type Plot<'a, 'b> = ChartContext<'a, SVGBackend<'b>, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
 
-/// Draws a chart as SVG: the plot over `axes`, framed, with `draw` drawing
-/// its content, and `legend` in a box of its own below the plot (never over
-/// the data).
-pub(super) fn figure(
-    axes: &Axes<'_>,
-    legend: &[Entry],
-    draw: impl FnOnce(&mut Plot<'_, '_>) -> Result<(), ChartError>,
-) -> Result<String, ChartError> {
-    let layout = legend::layout(legend);
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, (WIDTH, PLOT_HEIGHT + layout.height)).into_drawing_area();
-        root.fill(&WHITE).map_err(error)?;
-        let (top, bottom) = root.split_vertically(PLOT_HEIGHT);
-        let mut chart = framed(&top, axes)?;
-        draw(&mut chart)?;
-        let (xs, ys) = chart.plotting_area().get_pixel_range();
-        root.draw(&Rectangle::new(
-            [(xs.start, ys.start), (xs.end - 1, ys.end - 1)],
-            FRAME.stroke_width(1),
-        ))
-        .map_err(error)?;
-        legend::draw(&bottom, legend, &layout)?;
-        root.present().map_err(error)?;
-    }
-    Ok(svg)
-}
-
 /// The plotting area of `area`, filled white, over the axes' ranges with
 /// their descriptions and a light mesh.
-fn framed<'a, 'b>(area: &'a DrawingArea<SVGBackend<'b>, Shift>, axes: &Axes<'_>) -> Result<Plot<'a, 'b>, ChartError> {
+pub(super) fn framed<'a, 'b>(
+    area: &'a DrawingArea<SVGBackend<'b>, Shift>,
+    axes: &Axes<'_>,
+) -> Result<Plot<'a, 'b>, ChartError> {
     let mut chart = ChartBuilder::on(area)
         .margin_top(20)
         .margin_right(36)

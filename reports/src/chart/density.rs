@@ -3,7 +3,8 @@
 
 use plotters::prelude::*;
 
-use super::canvas::{Axes, Chart, ChartError, data_uri, error, figure};
+use super::canvas::{Axes, Chart, ChartError, data_uri, error};
+use super::figure::figure;
 use super::legend::{Entry, Swatch};
 use super::style::{Dash, LINE_WIDTH, PALETTE, stroke};
 

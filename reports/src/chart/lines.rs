@@ -9,7 +9,8 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use plotters::coord::types::RangedCoordf64;
 
-use super::canvas::{Axes, Chart, ChartError, FONT, data_uri, error, figure};
+use super::canvas::{Axes, Chart, ChartError, FONT, data_uri, error};
+use super::figure::figure;
 use super::legend::{Entry, Swatch, text_width};
 use super::style::{DISTINCT, Dash, INK, LINE_WIDTH, Marker, mark, series, stroke};
 

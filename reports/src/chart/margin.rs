@@ -4,7 +4,8 @@
 use plotters::prelude::*;
 use sightline_oracles::{Case, Phase};
 
-use super::canvas::{Axes, Chart, ChartError, data_uri, figure};
+use super::canvas::{Axes, Chart, ChartError, data_uri};
+use super::figure::figure;
 use super::legend::{Entry, Swatch};
 use super::style::{Dash, INK, LINE_WIDTH, Marker, PALETTE, mark, stroke};
 

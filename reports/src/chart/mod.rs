@@ -4,6 +4,7 @@
 //! plot.
 //!
 //! - `canvas`: a chart's size and type, the plotting frame, the `data:` URI;
+//! - `figure`: a chart drawn: the plot, framed, and the legend below it;
 //! - `style`: the palette, line styles and markers that tell series apart;
 //! - `legend`: the legend below the plot;
 //! - `density`: the distribution of anticipation times (a kernel density
@@ -24,6 +25,7 @@ pub(crate) use sweep::sweep_charts;
 
 mod canvas;
 mod density;
+mod figure;
 mod legend;
 mod lines;
 mod margin;

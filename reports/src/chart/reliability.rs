@@ -4,7 +4,8 @@
 
 use plotters::prelude::*;
 
-use super::canvas::{Axes, Chart, ChartError, FONT, data_uri, error, figure};
+use super::canvas::{Axes, Chart, ChartError, FONT, data_uri, error};
+use super::figure::figure;
 use super::legend::{Entry, Swatch};
 use super::style::{Dash, INK, LINE_WIDTH, Marker, PALETTE, mark, stroke};
 use crate::results::Calibration;
