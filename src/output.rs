@@ -5,6 +5,7 @@ use std::ffi::OsString;
 use std::fmt::Display;
 use std::io::{ErrorKind, Write};
 use std::path::{Component, Path, PathBuf};
+use std::time::Instant;
 
 use crate::input::STDIN;
 
@@ -58,9 +59,56 @@ pub fn progress(len: usize, name: &str) -> indicatif::ProgressBar {
     bar
 }
 
+/// The wall-clock time each sweep point takes, from the engine's reports of
+/// the points it has simulated: the time since the previous report is shared
+/// among the points just reported (a group that shares its data, with its
+/// replicates). What junit.xml's case times are made of.
+pub struct PointClock {
+    last: Instant,
+    seconds: Vec<f64>,
+}
+
+impl PointClock {
+    /// A clock over `points` sweep points, started now.
+    pub fn new(points: usize) -> Self {
+        Self {
+            last: Instant::now(),
+            seconds: vec![0.0; points],
+        }
+    }
+
+    /// `points` are simulated: the time since the last report is theirs.
+    pub fn done(&mut self, points: &[usize]) {
+        let now = Instant::now();
+        let share = now.duration_since(self.last).as_secs_f64() / points.len().max(1) as f64;
+        for &point in points {
+            if let Some(seconds) = self.seconds.get_mut(point) {
+                *seconds += share;
+            }
+        }
+        self.last = now;
+    }
+
+    /// Seconds per point.
+    pub fn seconds(self) -> Vec<f64> {
+        self.seconds
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_group_shares_its_time_and_every_point_is_timed() {
+        let mut clock = PointClock::new(3);
+        std::thread::sleep(std::time::Duration::from_millis(20));
+        clock.done(&[0, 2]);
+        clock.done(&[1]);
+        let seconds = clock.seconds();
+        assert_eq!(seconds[0], seconds[2]);
+        assert!(seconds[0] >= 0.01 && seconds[1] < seconds[0], "{seconds:?}");
+    }
 
     #[test]
     fn relative_paths_climb_to_the_common_directory() {

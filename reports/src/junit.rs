@@ -6,7 +6,8 @@
 //! What a CI server shows: a case's `classname` is the scenario's name as a
 //! dotted identifier (`sightline.roundabout_six_cooperating_vehicles`), its
 //! `file` and `line` the requirement's place in the scenario file, its `time`
-//! a share of the run's wall-clock time. No published JUnit schema allows
+//! the time simulating its point took, shared among the point's cases (a
+//! share of the run's wall-clock time when the points were not timed). No published JUnit schema allows
 //! `<properties>` in a `<testcase>` (Jenkins' junit-10.xsd, Ant's, JUnit 5's),
 //! so each case's measured value, threshold, margin and n are `name: value`
 //! lines of its `<system-out>`, which CI servers show beside the case, passing
@@ -32,8 +33,8 @@ pub fn junit(results: &Results) -> Report {
         "tool",
         format!("{} {} ({})", tool.name, tool.version, tool.git).as_str(),
     ));
-    let cases: usize = results.requirements.iter().map(|r| r.points.len()).sum();
     let duration = Duration::from_secs_f64(results.execution.duration_seconds.max(0.0));
+    let time = case_times(results);
     for requirement in &results.requirements {
         let check = format!("{}:{}", requirement.check.kind, requirement.check.name);
         let unit = requirement.check.unit;
@@ -79,7 +80,7 @@ pub fn junit(results: &Results) -> Report {
                     ));
             }
             let mut case = new_case(name, status, &scenario.name, &scenario.path, requirement.line);
-            case.set_time(duration / cases.max(1) as u32);
+            case.set_time(time(point.point));
             case.set_system_out(lines(&[
                 ("requirement", requirement.id.as_str()),
                 ("text", requirement.text.as_str()),
@@ -102,6 +103,27 @@ pub fn junit(results: &Results) -> Report {
         .insert("timestamp".into(), results.execution.started.as_str().into());
     report.add_test_suite(suite);
     report
+}
+
+/// The time of a case at each point: the seconds simulating the point took,
+/// shared among the point's cases, when the run measured each point's
+/// (`execution.points`); else the run's wall-clock time shared among all
+/// cases (a merged campaign measured none).
+fn case_times(results: &Results) -> impl Fn(usize) -> Duration + '_ {
+    let mut at_point = vec![0u32; results.sweep.len()];
+    for point in results.requirements.iter().flat_map(|r| &r.points) {
+        if let Some(count) = at_point.get_mut(point.point) {
+            *count += 1;
+        }
+    }
+    let cases: u32 = at_point.iter().sum();
+    let execution = &results.execution;
+    let measured = execution.points.len() == results.sweep.len();
+    let whole = Duration::from_secs_f64(execution.duration_seconds.max(0.0));
+    move |point| match (measured, execution.points.get(point), at_point.get(point)) {
+        (true, Some(&seconds), Some(&count)) => Duration::from_secs_f64(seconds.max(0.0)) / count.max(1),
+        _ => whole / cases.max(1),
+    }
 }
 
 /// The text of a JUnit report. quick-junit writes a `skipped` count on the

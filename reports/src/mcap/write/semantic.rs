@@ -23,6 +23,7 @@ impl<W: Write + Seek> Recorder<'_, W> {
         self.last = time;
         for arrival in step.arrivals {
             let record = ArrivalRecord {
+                point: self.record.point,
                 at: arrival.at,
                 items: self.items(&arrival.items),
             };
@@ -49,6 +50,7 @@ impl<W: Write + Seek> Recorder<'_, W> {
                 PacketKind::Direct => ("direct", None),
             };
             let record = PacketRecord {
+                point: self.record.point,
                 step: step.step,
                 from: self.agent_id(packet.from),
                 to: self.agent_id(packet.to),
@@ -64,6 +66,7 @@ impl<W: Write + Seek> Recorder<'_, W> {
                 signals.messages += 1;
                 signals.messages_received += u64::from(received);
                 let record = MessageRecord {
+                    point: self.record.point,
                     step: step.step,
                     from: self.agent_id(packet.from),
                     received,
@@ -75,6 +78,7 @@ impl<W: Write + Seek> Recorder<'_, W> {
         }
         for approach in step.approaches {
             let record = ApproachRecord {
+                point: self.record.point,
                 step: step.step,
                 agent: self.agent_id(approach.agent),
                 flagged: approach.flagged,
@@ -88,6 +92,7 @@ impl<W: Write + Seek> Recorder<'_, W> {
             running.missed_criticals += signals.missed;
         }
         let record = SignalsRecord {
+            point: self.record.point,
             step: step.step,
             cells: None,
             semantic: Some(signals),

@@ -34,6 +34,7 @@ impl<W: Write + Seek> Recorder<'_, W> {
             self.publish_agent_grids(time, step.cooperators);
         }
         let signals = SignalsRecord {
+            point: self.record.point,
             step: step.step,
             cells,
             semantic: None,
