@@ -59,7 +59,7 @@ const ONE_POINT_SPAN: f64 = 0.05;
 
 impl LinesChart {
     /// The chart: one, or several on the same axes when there are more lines
-    /// than [`DISTINCT`] looks (each part's caption says which); none when
+    /// than `style::DISTINCT` looks (each part's caption says which); none when
     /// there is nothing to draw.
     pub fn draw(&self) -> Result<Vec<Chart>, ChartError> {
         let Some((x, y)) = self.ranges() else {
