@@ -19,6 +19,7 @@ use std::time::Duration;
 
 use quick_junit::{NonSuccessKind, Report, TestCase, TestCaseStatus, TestSuite};
 
+use crate::Execution;
 use crate::results::{Results, Status};
 
 /// The JUnit report of one scenario's results.
@@ -34,7 +35,11 @@ pub fn junit(results: &Results) -> Report {
         format!("{} {} ({})", tool.name, tool.version, tool.git).as_str(),
     ));
     let duration = Duration::from_secs_f64(results.execution.duration_seconds.max(0.0));
-    let time = case_times(results);
+    let cases = results
+        .requirements
+        .iter()
+        .flat_map(|r| r.points.iter().map(|p| p.point));
+    let time = case_times(results.sweep.len(), cases, &results.execution);
     for requirement in &results.requirements {
         let check = format!("{}:{}", requirement.check.kind, requirement.check.name);
         let unit = requirement.check.unit;
@@ -105,20 +110,24 @@ pub fn junit(results: &Results) -> Report {
     report
 }
 
-/// The time of a case at each point: the seconds simulating the point took,
-/// shared among the point's cases, when the run measured each point's
-/// (`execution.points`); else the run's wall-clock time shared among all
-/// cases (a merged campaign measured none).
-fn case_times(results: &Results) -> impl Fn(usize) -> Duration + '_ {
-    let mut at_point = vec![0u32; results.sweep.len()];
-    for point in results.requirements.iter().flat_map(|r| &r.points) {
-        if let Some(count) = at_point.get_mut(point.point) {
+/// The time of a case at each of `points` sweep points, given the point of
+/// every case: the seconds simulating the point took, shared among the
+/// point's cases, when the run measured each point's (`execution.points`);
+/// else the run's wall-clock time shared among all cases (a merged campaign
+/// measured none).
+fn case_times(
+    points: usize,
+    cases: impl Iterator<Item = usize>,
+    execution: &Execution,
+) -> impl Fn(usize) -> Duration + '_ {
+    let mut at_point = vec![0u32; points];
+    for point in cases {
+        if let Some(count) = at_point.get_mut(point) {
             *count += 1;
         }
     }
     let cases: u32 = at_point.iter().sum();
-    let execution = &results.execution;
-    let measured = execution.points.len() == results.sweep.len();
+    let measured = execution.points.len() == points;
     let whole = Duration::from_secs_f64(execution.duration_seconds.max(0.0));
     move |point| match (measured, execution.points.get(point), at_point.get(point)) {
         (true, Some(&seconds), Some(&count)) => Duration::from_secs_f64(seconds.max(0.0)) / count.max(1),
@@ -207,5 +216,28 @@ mod tests {
         assert_eq!(classname("3 vans"), "sightline._3_vans");
         assert_eq!(classname(" <> "), "sightline.scenario");
         assert_eq!(classname("Straße"), "sightline.straße");
+    }
+
+    /// Two points timed 2 s and 4 s, with two cases at point 0 and one at
+    /// point 1: 1 s, 1 s and 4 s. Without the points' times (a merged
+    /// campaign), the run's 6 s shared among the three cases: 2 s each.
+    #[test]
+    fn a_case_takes_a_share_of_its_points_time() {
+        let execution = Execution {
+            os: "linux".into(),
+            arch: "x86_64".into(),
+            threads: 1,
+            started: "2026-01-01T00:00:00Z".into(),
+            duration_seconds: 6.0,
+            points: vec![2.0, 4.0],
+        };
+        let time = case_times(2, [0, 1, 0].into_iter(), &execution);
+        assert_eq!([time(0), time(1)], [Duration::from_secs(1), Duration::from_secs(4)]);
+        let merged = Execution {
+            points: Vec::new(),
+            ..execution.clone()
+        };
+        let time = case_times(2, [0, 1, 0].into_iter(), &merged);
+        assert_eq!([time(0), time(1)], [Duration::from_secs(2); 2]);
     }
 }
