@@ -7,7 +7,7 @@ use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
 use anyhow::Context;
-use sightline_dsl::{Record, Scenario};
+use sightline_dsl::{Record, RecordedPoints, Scenario};
 use sightline_engine::Run;
 use sightline_oracles::{Status, Verdict};
 use sightline_reports::mcap::{Recorder, Source};
@@ -124,7 +124,7 @@ pub fn write_evidence(
 /// requirement of a run judged `verdicts`, or of the first point when none
 /// fails.
 pub fn recorded_point(scenario: &Scenario, record: Record, verdicts: &[Verdict]) -> Record {
-    if record.named {
+    if record.named || record.points == RecordedPoints::All {
         return record;
     }
     let worst = verdicts
@@ -134,19 +134,24 @@ pub fn recorded_point(scenario: &Scenario, record: Record, verdicts: &[Verdict])
     record.at_point(&scenario.points, worst.unwrap_or(record.point))
 }
 
-/// Simulates point `point` of `input`'s scenario again, reporting its steps to
-/// `recorder`, and returns `run` (which holds it) once the point's outcome is
-/// found the same.
+/// Simulates the points `record` records of `input`'s scenario again,
+/// reporting their steps to `recorder`, and returns `run` (which holds them)
+/// once their outcomes are found the same.
 pub fn resimulated(
     input: &Input,
-    point: usize,
+    record: Record,
     run: Run,
     recorder: &mut Recorder<'_, BufWriter<&std::fs::File>>,
 ) -> anyhow::Result<Run> {
-    let outcome = sightline_engine::simulate_point(&input.scenario, point, recorder);
-    if outcome != run.points[point] {
+    let same = match record.points {
+        RecordedPoints::One => {
+            sightline_engine::simulate_point(&input.scenario, record.point, recorder) == run.points[record.point]
+        }
+        RecordedPoints::All => sightline_engine::simulate_traced_all(&input.scenario, recorder, &mut |_| {}) == run,
+    };
+    if !same {
         anyhow::bail!(
-            "{}: the recorded point, simulated again, differs from the run's outcome: \
+            "{}: the recorded points, simulated again, differ from the run's outcomes: \
              sightline is not deterministic here; please report it with the scenario",
             input.name
         );
@@ -154,7 +159,7 @@ pub fn resimulated(
     Ok(run)
 }
 
-/// Records point `record.point` of `input`'s scenario into `staging` while
+/// Records the points `record` names of `input`'s scenario into `staging` while
 /// `simulate` runs the scenario with the recorder as its sink, then checks the
 /// run and finishes the recording with its outcomes and verdicts.
 pub fn recorded(
@@ -190,6 +195,7 @@ pub fn recorded(
         sha256: sha256_hex(&bytes),
         point: record.point,
         label: scenario.points[record.point].label(),
+        every_point: record.points == RecordedPoints::All,
     };
     Ok((run, verdicts, Some(info)))
 }

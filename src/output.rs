@@ -5,6 +5,7 @@ use std::ffi::OsString;
 use std::fmt::Display;
 use std::io::{ErrorKind, Write};
 use std::path::{Component, Path, PathBuf};
+use std::time::Instant;
 
 use crate::input::STDIN;
 
@@ -58,9 +59,60 @@ pub fn progress(len: usize, name: &str) -> indicatif::ProgressBar {
     bar
 }
 
+/// The wall-clock time each sweep point takes, from the engine's reports of
+/// the points it has simulated: the time since the previous report is shared
+/// among the points just reported (a group that shares its data, with its
+/// replicates). What junit.xml's case times are made of.
+pub struct PointClock {
+    last: Instant,
+    seconds: Vec<f64>,
+}
+
+impl PointClock {
+    /// A clock over `points` sweep points, started now.
+    pub fn new(points: usize) -> Self {
+        Self {
+            last: Instant::now(),
+            seconds: vec![0.0; points],
+        }
+    }
+
+    /// `points` are simulated: the time since the last report is theirs.
+    pub fn done(&mut self, points: &[usize]) {
+        self.done_at(points, Instant::now());
+    }
+
+    /// `points` were simulated by `now`.
+    fn done_at(&mut self, points: &[usize], now: Instant) {
+        let share = now.duration_since(self.last).as_secs_f64() / points.len().max(1) as f64;
+        for &point in points {
+            if let Some(seconds) = self.seconds.get_mut(point) {
+                *seconds += share;
+            }
+        }
+        self.last = now;
+    }
+
+    /// Seconds per point.
+    pub fn seconds(self) -> Vec<f64> {
+        self.seconds
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_group_shares_its_time_and_every_point_is_timed() {
+        let mut clock = PointClock::new(3);
+        let start = clock.last;
+        let at = |ms: u64| start + std::time::Duration::from_millis(ms);
+        clock.done_at(&[0, 2], at(40));
+        clock.done_at(&[1], at(50));
+        clock.done_at(&[], at(60));
+        assert_eq!(clock.seconds(), [0.02, 0.01, 0.02]);
+    }
 
     #[test]
     fn relative_paths_climb_to_the_common_directory() {

@@ -33,7 +33,7 @@
 pub use compile::{Loader, Options, compile, instantiate};
 pub use error::{Error, ErrorKind, Errors, Location, Warning, utf8_text};
 pub use model::*;
-pub use schema::{reference_markdown, schema};
+pub use schema::{reference_markdown, schema, setting_unit};
 
 mod compile;
 mod de;

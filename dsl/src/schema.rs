@@ -64,6 +64,20 @@ pub(crate) fn check_setting(segments: &[&str]) -> Result<Value, NoSetting> {
         .clone())
 }
 
+/// The unit of the setting a dotted path names (`v2x.latency` → `s`,
+/// `agents.<id>.start.offset` → `m`), as the schema writes it on the number
+/// (`unit`, from the quantity's range); `None` for a setting without one (a
+/// name, a count, a quantity whose unit its context sets) or a path that names
+/// no setting.
+pub fn setting_unit(dotted: &str) -> Option<String> {
+    let segments: Vec<&str> = dotted.split('.').collect();
+    let node = check_setting(&segments).ok()?;
+    let unit = node
+        .get("unit")
+        .or_else(|| node.get("items").and_then(|items| items.get("unit")));
+    unit.and_then(Value::as_str).map(str::to_string)
+}
+
 /// The field-by-field reference of the language as Markdown, generated from
 /// [`schema`]: one table per mapping (named by its YAML path), then the allowed
 /// values of every enumeration.
@@ -73,7 +87,7 @@ pub fn reference_markdown() -> String {
     let mut out = String::from(
         "# Scenario language reference\n\n\
          Generated from the JSON Schema by `sightline schema --markdown`; do not edit by hand.\n\
-         Units are SI (metres, seconds) unless a field says otherwise.\n",
+         Units are SI (metres, seconds) unless a field says otherwise; a number's unit follows its range.\n",
     );
     let mut enums = Vec::new();
     let mut queue = vec![("(top level)".to_string(), schema.clone())];
@@ -213,7 +227,11 @@ fn range_text(property: &Value) -> Option<String> {
         (None, Some(max)) => (max, ")"),
         _ => return None,
     };
-    Some(format!("{open_low}{low}, {high}{open_high}"))
+    let unit = match node.get("unit").and_then(Value::as_str) {
+        Some(unit) if unit != "1" => format!(" {unit}"),
+        _ => String::new(),
+    };
+    Some(format!("{open_low}{low}, {high}{open_high}{unit}"))
 }
 
 /// The definition name a property points at, through `$ref`, `allOf` or a nullable `anyOf`.
@@ -260,6 +278,30 @@ mod tests {
         ] {
             assert!(markdown.contains(section), "missing {section}");
         }
-        assert!(markdown.contains("| `gamma` | number in [0, 100) | required |"));
+        assert!(markdown.contains("| `gamma` | number in [0, 100) % | required |"));
+        assert!(markdown.contains("| `latency` | number in [0, 60] s |"), "{markdown}");
+    }
+
+    /// A swept setting's unit, as the report writes it beside the values.
+    #[test]
+    fn settings_have_the_unit_of_their_range() {
+        for (path, unit) in [
+            ("v2x.latency", Some("s")),
+            ("localization.position_sigma", Some("m")),
+            ("localization.odometry.speed_sigma", Some("m/s")),
+            ("localization.odometry.yaw_rate_sigma_deg", Some("°/s")),
+            ("traffic.vehicles.density_per_km", Some("veh/km")),
+            ("agents.ego.start.offset", Some("m")),
+            ("sensor_models.lidar.range", Some("m")),
+            ("grid.origin", Some("m")),
+            ("v2x.penetration", Some("1")),
+            // A count, a name, a σ whose unit its context sets, no setting.
+            ("perception.cooperating", None),
+            ("fusion.method", None),
+            ("sensor_models.lidar.position_noise.base", None),
+            ("v2x.no_such_key", None),
+        ] {
+            assert_eq!(setting_unit(path).as_deref(), unit, "{path}");
+        }
     }
 }

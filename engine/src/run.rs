@@ -197,9 +197,10 @@ pub fn simulate(scenario: &Scenario) -> Run {
     simulate_all(scenario, None, &mut NoTrace, &mut |_| {})
 }
 
-/// [`simulate`], calling `done(n)` each time another n points (with their
-/// replicates) are simulated, for a progress display. The run is the same.
-pub fn simulate_reporting(scenario: &Scenario, done: &mut dyn FnMut(usize)) -> Run {
+/// [`simulate`], calling `done(points)` each time the `points` (with their
+/// replicates) are simulated, for a progress display and the time each point
+/// takes. The run is the same.
+pub fn simulate_reporting(scenario: &Scenario, done: &mut dyn FnMut(&[usize])) -> Run {
     simulate_all(scenario, None, &mut NoTrace, done)
 }
 
@@ -217,7 +218,7 @@ pub fn simulate_traced(
     scenario: &Scenario,
     point: usize,
     sink: &mut impl TraceSink,
-    done: &mut dyn FnMut(usize),
+    done: &mut dyn FnMut(&[usize]),
 ) -> Run {
     assert!(
         point < scenario.points.len(),
@@ -226,13 +227,52 @@ pub fn simulate_traced(
     simulate_all(scenario, Some(point), sink, done)
 }
 
+/// Simulates every point of `scenario`, reporting the steps of each to `sink`,
+/// point after point in order ([`TraceSink::point`] before each): what
+/// `sightline run` records with `record.points: all`. The run is the one
+/// [`simulate`] gives, bit for bit: each point is simulated alone, as
+/// [`simulate_point`] does (so points that share their sampled data are
+/// simulated once each rather than once together), then the replicates of
+/// checks over seeds, in parallel, unrecorded. `done(&[point])` after each
+/// point; its replicates' time counts toward the last point's.
+pub fn simulate_traced_all(scenario: &Scenario, sink: &mut impl TraceSink, done: &mut dyn FnMut(&[usize])) -> Run {
+    let mut own: Vec<Option<Outcome>> = Vec::with_capacity(scenario.points.len());
+    for point in 0..scenario.points.len() {
+        sink.point(point);
+        own.push(Some(simulate_point(scenario, point, sink)));
+        if point + 1 < scenario.points.len() {
+            done(&[point]);
+        }
+    }
+    let (groups, replicates): (Vec<Unit>, Vec<Unit>) = units(scenario).into_iter().partition(|u| u.replicate == 0);
+    let mut pieces: Vec<(Unit, Vec<Outcome>)> = groups
+        .into_iter()
+        .map(|unit| {
+            let outcomes = unit
+                .group
+                .iter()
+                .map(|&i| own[i].take().expect("each point belongs to one group"))
+                .collect();
+            (unit, outcomes)
+        })
+        .collect();
+    pieces.par_extend(replicates.into_par_iter().map(|unit| {
+        let outcomes = simulate_unit(scenario, &unit);
+        (unit, outcomes)
+    }));
+    if let Some(last) = scenario.points.len().checked_sub(1) {
+        done(&[last]);
+    }
+    assemble(scenario, pieces).expect("the pieces of every group, each once")
+}
+
 /// Every point, group by group, with the replicates checks over seeds need; the
 /// group holding point `traced` reports to `sink`; `done` after each group.
 fn simulate_all(
     scenario: &Scenario,
     traced: Option<usize>,
     sink: &mut impl TraceSink,
-    done: &mut dyn FnMut(usize),
+    done: &mut dyn FnMut(&[usize]),
 ) -> Run {
     let mut pieces = Vec::new();
     for (group, seeds) in groups(scenario) {
@@ -256,7 +296,7 @@ fn simulate_all(
             let outcomes = simulate_unit(scenario, &unit);
             (unit, outcomes)
         }));
-        done(group.len());
+        done(&group);
     }
     assemble(scenario, pieces).expect("the pieces of every group, each once")
 }
@@ -412,6 +452,10 @@ struct OneJob<'s, S> {
 }
 
 impl<S: TraceSink> TraceSink for OneJob<'_, S> {
+    fn point(&mut self, point: usize) {
+        self.sink.point(point);
+    }
+
     fn start(&mut self, agents: &[Agent]) {
         self.sink.start(agents);
     }

@@ -43,6 +43,11 @@ use crate::trace::{SemanticStep, WorldStep};
 /// assert_eq!(messages.0 as u64, metrics.messages);
 /// ```
 pub trait TraceSink {
+    /// Called before the steps of sweep point `point` when a run reports the
+    /// steps of every point ([`simulate_traced_all`](crate::simulate_traced_all)),
+    /// point after point in order.
+    fn point(&mut self, _point: usize) {}
+
     /// Called once before the first step with every agent of the run by index:
     /// the scenario's agents, then any generated traffic. Agent indices in the
     /// step records refer to this list.

@@ -56,6 +56,8 @@ const NOT_OPTIONS: &[(&str, &str)] = &[
         "Oversize",
         "how a sender fits its grid into messages: behaviour the radio models, neither way idealised",
     ),
+    ("Paper", "the paper the report is laid out for"),
+    ("RecordedPoints", "which sweep points the recording holds step by step"),
 ];
 
 /// The option values that add no idealisation to their model's own, each

@@ -15,7 +15,7 @@ use sightline_engine::trace::Visibility::{Los, NlosDynamic, NlosStatic};
 use sightline_engine::trace::{
     AgentState, Approach, Arrival, Item, Packet, PacketKind, Pose, SemanticStep, Sighting, WorldStep, mount_pose,
 };
-use sightline_engine::{Outcome, TraceSink, simulate, simulate_point, simulate_traced};
+use sightline_engine::{Outcome, TraceSink, simulate, simulate_point, simulate_traced, simulate_traced_all};
 
 /// The bundled roundabout, 14 s long (the snapshot stays at 12 s), all six
 /// vehicles cooperating, fused by Bayes (point 0) and Dempster (point 1): one
@@ -235,6 +235,59 @@ fn tracing_one_point_of_a_run_gives_the_run_and_that_points_record() {
             "point {point}"
         );
         assert!(traced == alone, "the record of point {point} differs within the run");
+    }
+}
+
+/// Each point's own record, as a run that records every point hands them over.
+#[derive(Default)]
+struct EveryPoint(Vec<(usize, Recorder)>);
+
+impl EveryPoint {
+    fn current(&mut self) -> &mut Recorder {
+        &mut self.0.last_mut().expect("`point` comes before the steps").1
+    }
+}
+
+impl TraceSink for EveryPoint {
+    fn point(&mut self, point: usize) {
+        self.0.push((point, Recorder::asking_grids_at(&[40])));
+    }
+
+    fn start(&mut self, agents: &[Agent]) {
+        self.current().start(agents);
+    }
+
+    fn wants_grids(&self, step: usize) -> bool {
+        self.0.last().is_some_and(|(_, r)| r.wants_grids(step))
+    }
+
+    fn world_step(&mut self, step: &WorldStep<'_>) {
+        self.current().world_step(step);
+    }
+
+    fn semantic_step(&mut self, step: &SemanticStep<'_>) {
+        self.current().semantic_step(step);
+    }
+}
+
+/// Recording every point (`record.points: all`, issue 18) gives `simulate`'s
+/// run, and point after point in order each point's own record, also for two
+/// points that share their data.
+#[test]
+fn tracing_every_point_gives_the_run_and_each_points_record() {
+    let scenario = roundabout();
+    let mut every = EveryPoint::default();
+    let mut done = 0;
+    assert_eq!(
+        simulate_traced_all(&scenario, &mut every, &mut |points| done += points.len()),
+        simulate(&scenario)
+    );
+    assert_eq!(done, 2);
+    assert_eq!(every.0.iter().map(|(p, _)| *p).collect::<Vec<_>>(), [0, 1]);
+    for (point, record) in &every.0 {
+        let mut alone = Recorder::asking_grids_at(&[40]);
+        simulate_point(&scenario, *point, &mut alone);
+        assert!(*record == alone, "the record of point {point} differs");
     }
 }
 

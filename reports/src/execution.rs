@@ -25,6 +25,14 @@ pub struct Execution {
     pub started: String,
     /// Wall-clock duration of the work, seconds, to the millisecond.
     pub duration_seconds: f64,
+    /// Per sweep point, the wall-clock seconds spent simulating it (a group of
+    /// points that share their data shares its time equally, its replicates
+    /// included), when the work measured them; empty otherwise (a merged
+    /// campaign). junit.xml's case times come from them. Not written: they
+    /// differ from run to run, and the duration says how long the work took.
+    #[serde(skip)]
+    #[schemars(skip)]
+    pub points: Vec<f64>,
 }
 
 impl Execution {
@@ -37,7 +45,14 @@ impl Execution {
             threads,
             started: rfc3339(started),
             duration_seconds: (duration.as_secs_f64() * 1000.0).round() / 1000.0,
+            points: Vec::new(),
         }
+    }
+
+    /// The same work, with the seconds each sweep point took (see
+    /// [`points`](Self::points)).
+    pub fn with_points(self, points: Vec<f64>) -> Self {
+        Self { points, ..self }
     }
 
     /// A sharded campaign's: the shards' platforms (each distinct OS and
@@ -70,6 +85,7 @@ impl Execution {
                 .min()
                 .expect("a campaign has shards"),
             duration_seconds: (duration * 1000.0).round() / 1000.0,
+            points: Vec::new(),
         }
     }
 
@@ -152,6 +168,7 @@ mod tests {
             threads,
             started: started.into(),
             duration_seconds,
+            points: Vec::new(),
         };
         let shards = [
             shard("linux", 8, "2026-11-22T10:05:00Z", 10.5),

@@ -9,7 +9,7 @@ use sightline_oracles::{Case, Phase};
 use crate::Error;
 use crate::chart::{Chart, margin_chart};
 use crate::falsify::{Falsification, document};
-use crate::html::{number, or_dash};
+use crate::html::{DocumentView, content_id, control, number, or_dash};
 use crate::template::Templates;
 
 /// Renders the falsification report of `falsification` with `templates` (a
@@ -21,6 +21,7 @@ pub fn falsify_html(falsification: &Falsification<'_>, templates: &Templates) ->
 
 #[derive(Serialize)]
 struct View<'a> {
+    document: DocumentView,
     name: &'a str,
     provenance: Vec<(&'static str, String)>,
     settings: Vec<(&'static str, String)>,
@@ -107,6 +108,7 @@ impl<'a> View<'a> {
             })
             .filter(|_| counterexample.is_none());
         Ok(View {
+            document: document_control(f),
             name: &f.scenario.name,
             provenance: provenance(f),
             settings: settings(f, tried),
@@ -142,6 +144,21 @@ impl<'a> View<'a> {
             closest,
         })
     }
+}
+
+/// The falsification report's document control: its id is [`content_id`] of
+/// falsify.json with the tool and the scenario's hash, so that another tool or
+/// scenario gives another id.
+fn document_control(f: &Falsification<'_>) -> DocumentView {
+    let mut content = serde_json::to_value(document(f)).expect("falsify.json serializes");
+    if let Some(object) = content.as_object_mut() {
+        object.insert(
+            "tool".into(),
+            serde_json::to_value(f.tool).expect("the tool serializes"),
+        );
+        object.insert("scenario_sha256".into(), f.scenario_sha256.into());
+    }
+    control(content_id(content), &f.execution.started, &f.scenario.document)
 }
 
 fn phase_name(phase: Phase) -> &'static str {

@@ -6,7 +6,8 @@
 //! What a CI server shows: a case's `classname` is the scenario's name as a
 //! dotted identifier (`sightline.roundabout_six_cooperating_vehicles`), its
 //! `file` and `line` the requirement's place in the scenario file, its `time`
-//! a share of the run's wall-clock time. No published JUnit schema allows
+//! the time simulating its point took, shared among the point's cases (a
+//! share of the run's wall-clock time when the points were not timed). No published JUnit schema allows
 //! `<properties>` in a `<testcase>` (Jenkins' junit-10.xsd, Ant's, JUnit 5's),
 //! so each case's measured value, threshold, margin and n are `name: value`
 //! lines of its `<system-out>`, which CI servers show beside the case, passing
@@ -18,6 +19,7 @@ use std::time::Duration;
 
 use quick_junit::{NonSuccessKind, Report, TestCase, TestCaseStatus, TestSuite};
 
+use crate::Execution;
 use crate::results::{Results, Status};
 
 /// The JUnit report of one scenario's results.
@@ -32,8 +34,12 @@ pub fn junit(results: &Results) -> Report {
         "tool",
         format!("{} {} ({})", tool.name, tool.version, tool.git).as_str(),
     ));
-    let cases: usize = results.requirements.iter().map(|r| r.points.len()).sum();
     let duration = Duration::from_secs_f64(results.execution.duration_seconds.max(0.0));
+    let cases = results
+        .requirements
+        .iter()
+        .flat_map(|r| r.points.iter().map(|p| p.point));
+    let time = case_times(results.sweep.len(), cases, &results.execution);
     for requirement in &results.requirements {
         let check = format!("{}:{}", requirement.check.kind, requirement.check.name);
         let unit = requirement.check.unit;
@@ -79,7 +85,7 @@ pub fn junit(results: &Results) -> Report {
                     ));
             }
             let mut case = new_case(name, status, &scenario.name, &scenario.path, requirement.line);
-            case.set_time(duration / cases.max(1) as u32);
+            case.set_time(time(point.point));
             case.set_system_out(lines(&[
                 ("requirement", requirement.id.as_str()),
                 ("text", requirement.text.as_str()),
@@ -102,6 +108,31 @@ pub fn junit(results: &Results) -> Report {
         .insert("timestamp".into(), results.execution.started.as_str().into());
     report.add_test_suite(suite);
     report
+}
+
+/// The time of a case at each of `points` sweep points, given the point of
+/// every case: the seconds simulating the point took, shared among the
+/// point's cases, when the run measured each point's (`execution.points`);
+/// else the run's wall-clock time shared among all cases (a merged campaign
+/// measured none).
+fn case_times(
+    points: usize,
+    cases: impl Iterator<Item = usize>,
+    execution: &Execution,
+) -> impl Fn(usize) -> Duration + '_ {
+    let mut at_point = vec![0u32; points];
+    for point in cases {
+        if let Some(count) = at_point.get_mut(point) {
+            *count += 1;
+        }
+    }
+    let cases: u32 = at_point.iter().sum();
+    let measured = execution.points.len() == points;
+    let whole = Duration::from_secs_f64(execution.duration_seconds.max(0.0));
+    move |point| match (measured, execution.points.get(point), at_point.get(point)) {
+        (true, Some(&seconds), Some(&count)) => Duration::from_secs_f64(seconds.max(0.0)) / count.max(1),
+        _ => whole / cases.max(1),
+    }
 }
 
 /// The text of a JUnit report. quick-junit writes a `skipped` count on the
@@ -185,5 +216,28 @@ mod tests {
         assert_eq!(classname("3 vans"), "sightline._3_vans");
         assert_eq!(classname(" <> "), "sightline.scenario");
         assert_eq!(classname("Straße"), "sightline.straße");
+    }
+
+    /// Two points timed 2 s and 4 s, with two cases at point 0 and one at
+    /// point 1: 1 s, 1 s and 4 s. Without the points' times (a merged
+    /// campaign), the run's 6 s shared among the three cases: 2 s each.
+    #[test]
+    fn a_case_takes_a_share_of_its_points_time() {
+        let execution = Execution {
+            os: "linux".into(),
+            arch: "x86_64".into(),
+            threads: 1,
+            started: "2026-01-01T00:00:00Z".into(),
+            duration_seconds: 6.0,
+            points: vec![2.0, 4.0],
+        };
+        let time = case_times(2, [0, 1, 0].into_iter(), &execution);
+        assert_eq!([time(0), time(1)], [Duration::from_secs(1), Duration::from_secs(4)]);
+        let merged = Execution {
+            points: Vec::new(),
+            ..execution.clone()
+        };
+        let time = case_times(2, [0, 1, 0].into_iter(), &merged);
+        assert_eq!([time(0), time(1)], [Duration::from_secs(2); 2]);
     }
 }

@@ -28,7 +28,7 @@
 //! for `sightline replay`.
 #![warn(missing_docs)]
 
-pub use chart::{Chart, ChartError, Line, anticipation, kde, lines_chart, silverman_bandwidth};
+pub use chart::{Chart, ChartError, Line, LinesChart, Threshold, anticipation, kde, silverman_bandwidth};
 pub use execution::{Execution, rfc3339};
 pub use export::{Export, ExportError, ExportRequest, OPENDRIVE_VERSION, OPENSCENARIO_VERSION, export};
 pub use falsify::{Falsification, falsify_json, falsify_junit};

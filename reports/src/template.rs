@@ -2,8 +2,9 @@
 //!
 //! The pages are minijinja templates. The bundled ones are embedded under
 //! stable names: `sightline/page.html` (the layout: `head` with `title` and
-//! `style`, then `header`, `content` and `footer`), the provenance table both
-//! pages include (`sightline/provenance.html`), the macros they import
+//! `style`, then `header`, `content` and `footer`), the document-control and
+//! provenance tables both pages include (`sightline/control.html`,
+//! `sightline/provenance.html`), the macros they import
 //! (`sightline/macros.html`), and the two pages that extend
 //! it, `sightline/report.html` (`sightline run`) and
 //! `sightline/falsify.html` (`sightline falsify`). A custom set is a directory
@@ -38,8 +39,9 @@ mod check;
 mod error;
 
 /// The bundled templates, by their stable names.
-const BUNDLED: [(&str, &str); 5] = [
+const BUNDLED: [(&str, &str); 6] = [
     ("sightline/page.html", include_str!("../templates/page.html")),
+    ("sightline/control.html", include_str!("../templates/control.html")),
     (
         "sightline/provenance.html",
         include_str!("../templates/provenance.html"),
@@ -95,7 +97,14 @@ impl Page {
                 "selftest",
                 "appendix",
             ],
-            Self::Falsify => &["banner", "provenance", "settings", "cases", "counterexample"],
+            Self::Falsify => &[
+                "document_control",
+                "banner",
+                "provenance",
+                "settings",
+                "cases",
+                "counterexample",
+            ],
         }
     }
 
@@ -291,7 +300,15 @@ mod tests {
             "sweeps",
             "traceability",
         ];
-        let falsify = ["banner", "cases", "chart", "counterexample", "provenance", "settings"];
+        let falsify = [
+            "banner",
+            "cases",
+            "chart",
+            "counterexample",
+            "document_control",
+            "provenance",
+            "settings",
+        ];
         let sorted = |page: &[&str]| {
             let mut all: Vec<String> = layout.iter().chain(page).map(|b| b.to_string()).collect();
             all.sort();
@@ -328,7 +345,7 @@ mod tests {
             Page::Falsify,
             &[(
                 "falsify.html",
-                "{% block banner %}{% endblock %}{% block provenance %}{% endblock %}\
+                "{% block document_control %}{% endblock %}{% block banner %}{% endblock %}{% block provenance %}{% endblock %}\
                  {% for c in report.cases %}{% block cases %}{{ c }}{% endblock %}{% endfor %}\
                  {% if report.counterexample %}{% block counterexample %}{% endblock %}{% endif %}\
                  {% block settings %}{% endblock %}",
@@ -481,7 +498,7 @@ mod tests {
             Page::Falsify,
             &[(
                 "falsify.html",
-                "{% block banner %}{% include \"name.txt\" %}{% endblock %}{% block provenance %}{% endblock %}\
+                "{% block document_control %}{% endblock %}{% block banner %}{% include \"name.txt\" %}{% endblock %}{% block provenance %}{% endblock %}\
                  {% block settings %}{% endblock %}{% block cases %}{% endblock %}{% block counterexample %}{% endblock %}",
             ), ("name.txt", "{{ report.name }}")],
         )
@@ -518,7 +535,7 @@ mod tests {
             Page::Falsify,
             &[(
                 "falsify.html",
-                "{% block banner %}{% endblock %}{% block provenance %}{% endblock %}{% block settings %}{% endblock %}\
+                "{% block document_control %}{% endblock %}{% block banner %}{% endblock %}{% block provenance %}{% endblock %}{% block settings %}{% endblock %}\
                  {% block cases %}{% endblock %}\n{% block counterexample %}{{ report.nmae }}{% endblock %}",
             )],
         )

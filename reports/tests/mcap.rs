@@ -5,8 +5,8 @@ mod common;
 
 use std::io::Cursor;
 
-use sightline_dsl::{Metric, Options, Scenario, compile};
-use sightline_engine::{Run, simulate_traced};
+use sightline_dsl::{Metric, Options, RecordedPoints, Scenario, compile};
+use sightline_engine::{Run, simulate_traced, simulate_traced_all};
 use sightline_oracles::{Measurements, check};
 use sightline_reports::Tool;
 use sightline_reports::mcap::{ReadError, Recorder, Recording, Source, read, topic};
@@ -15,6 +15,12 @@ use common::WORLD;
 
 fn scenario() -> Scenario {
     compile("t.yaml", WORLD, &Options::default()).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// The scenario recording every point.
+fn every_point() -> Scenario {
+    let text = WORLD.replace("record: { point: 1,", "record: { points: all,");
+    compile("t.yaml", &text, &Options::default()).unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// Runs the scenario, recording into memory; returns the run and the bytes.
@@ -33,7 +39,10 @@ fn recorded(scenario: &Scenario) -> (Run, Vec<u8>) {
         record_flag: false,
     };
     let mut recorder = Recorder::new(Cursor::new(Vec::new()), scenario, record, &source).unwrap();
-    let run = simulate_traced(scenario, record.point, &mut recorder, &mut |_| {});
+    let run = match record.points {
+        RecordedPoints::One => simulate_traced(scenario, record.point, &mut recorder, &mut |_| {}),
+        RecordedPoints::All => simulate_traced_all(scenario, &mut recorder, &mut |_| {}),
+    };
     let verdicts = check(scenario, &run);
     let bytes = recorder.finish(&run, &verdicts).unwrap().into_inner();
     (run, bytes)
@@ -45,10 +54,13 @@ fn a_recording_reads_back_to_the_runs_measurements_and_verdicts() {
     let (run, bytes) = recorded(&scenario);
     let recording: Recording = read(&bytes).unwrap();
     assert_eq!(recording.scenario.text, WORLD);
-    assert_eq!(
-        (recording.scenario.point, recording.scenario.label.as_str()),
-        (1, "fusion={method=dempster}")
-    );
+    let recorded: Vec<(usize, &str, f64)> = recording
+        .scenario
+        .points
+        .iter()
+        .map(|p| (p.point, p.label.as_str(), p.offset))
+        .collect();
+    assert_eq!(recorded, [(1, "fusion={method=dempster}", 0.0)]);
     let measurements = recording.measurements(scenario.points.len()).unwrap();
     for point in 0..scenario.points.len() {
         for metric in Metric::ALL {
@@ -74,9 +86,60 @@ fn a_recording_reads_back_to_the_runs_measurements_and_verdicts() {
     assert_eq!(counts[topic::OUTCOME], 2);
     let steps = recording
         .step_counts
-        .as_ref()
+        .get(&1)
         .expect("a perception world's steps carry cells");
     assert_eq!(steps.steps, 60);
+    assert_eq!(recording.step_counts.len(), 1);
+}
+
+/// Every point (`record.points: all`, issue 18): each in its own minute, its
+/// steps marked with it and adding up to its own outcome; replay's
+/// measurements and verdicts are the run's.
+#[test]
+fn every_point_is_recorded_in_its_own_span_of_time() {
+    let scenario = every_point();
+    let (run, bytes) = recorded(&scenario);
+    let recording = read(&bytes).unwrap();
+    let recorded: Vec<(usize, f64)> = recording.scenario.points.iter().map(|p| (p.point, p.offset)).collect();
+    // 6 s and a second, rounded up to a minute.
+    assert_eq!(recorded, [(0, 0.0), (1, 60.0)]);
+    assert_eq!(recording.counts[topic::SIGNALS], 120);
+    assert_eq!(recording.counts[topic::FUSED_GRID], 24);
+    assert_eq!(recording.step_counts.len(), 2);
+    for (point, steps) in &recording.step_counts {
+        assert_eq!(steps.steps, 60, "point {point}");
+    }
+    let measurements = recording.measurements(scenario.points.len()).unwrap();
+    assert_eq!(check(&scenario, &run), check(&scenario, &measurements));
+    // Point 1's steps lie a minute after point 0's: its first signal is at the
+    // epoch plus 60 s, every signal of point 0 before it.
+    let times = signal_times(&bytes);
+    let epoch = sightline_dsl::DEFAULT_START;
+    let first_of = |point: u64| times.iter().find(|t| t.0 == point).map(|t| t.1);
+    assert_eq!(first_of(0), Some(epoch));
+    assert_eq!(first_of(1), Some(epoch + 60_000_000_000));
+    assert!(times.windows(2).all(|w| w[0].1 <= w[1].1));
+    assert!(times.iter().filter(|t| t.0 == 0).all(|t| t.1 < epoch + 6_000_000_000));
+}
+
+/// The point and log time of every `/sightline/signals` message, in file order.
+fn signal_times(bytes: &[u8]) -> Vec<(u64, u64)> {
+    let summary = mcap::Summary::read(bytes).unwrap().expect("a summary");
+    let channel = summary
+        .channels
+        .values()
+        .find(|c| c.topic == topic::SIGNALS)
+        .expect("the signals channel")
+        .id;
+    mcap::MessageStream::new(bytes)
+        .unwrap()
+        .map(|m| m.unwrap())
+        .filter(|m| m.channel.id == channel)
+        .map(|m| {
+            let json: serde_json::Value = serde_json::from_slice(&m.data).unwrap();
+            (json["point"].as_u64().unwrap(), m.log_time)
+        })
+        .collect()
 }
 
 #[test]

@@ -85,7 +85,7 @@ pub fn merge(args: &MergeArgs) -> anyhow::Result<Exit> {
             Some(record) => {
                 let record = recorded_point(scenario, record, &sightline_oracles::check(scenario, &run));
                 recorded(&input, &reporting, &mut staging, record, |recorder| {
-                    resimulated(&input, record.point, run, recorder)
+                    resimulated(&input, record, run, recorder)
                 })?
             }
         };

@@ -3,6 +3,7 @@
 use std::time::{Instant, SystemTime};
 
 use anyhow::Context;
+use sightline_dsl::RecordedPoints;
 use sightline_reports::{Execution, Page};
 
 use crate::cli::RunArgs;
@@ -11,7 +12,7 @@ use crate::evidence::{
 };
 use crate::exit::Exit;
 use crate::input::load_all;
-use crate::output::progress;
+use crate::output::{PointClock, progress};
 use crate::staging::Staging;
 use crate::summary::refuse_out_of_domain;
 use crate::template::templates;
@@ -53,14 +54,24 @@ pub fn run(args: &RunArgs) -> anyhow::Result<Exit> {
         let scenario = &input.scenario;
         // Opened before the simulation: an unwritable directory is found at once.
         let mut staging = Staging::open(dir, EVIDENCE_SET)?;
-        let (started, clock) = (SystemTime::now(), Instant::now());
+        let (started, elapsed) = (SystemTime::now(), Instant::now());
         let bar = progress(scenario.points.len(), &input.name);
-        let mut done = |n: usize| bar.inc(n as u64);
+        let mut clock = PointClock::new(scenario.points.len());
+        let mut done = |points: &[usize]| {
+            bar.inc(points.len() as u64);
+            clock.done(points);
+        };
         let simulated = match scenario.record {
             None => {
                 let run = pool.install(|| sightline_engine::simulate_reporting(scenario, &mut done));
                 let verdicts = sightline_oracles::check(scenario, &run);
                 (run, verdicts, None)
+            }
+            // Every point, each recorded as it runs.
+            Some(record) if record.points == RecordedPoints::All => {
+                recorded(input, &reporting, &mut staging, record, |recorder| {
+                    Ok(pool.install(|| sightline_engine::simulate_traced_all(scenario, recorder, &mut done)))
+                })?
             }
             // The point to record is known before the run: recorded as it runs.
             Some(record) if record.named || scenario.points.len() == 1 => {
@@ -74,7 +85,7 @@ pub fn run(args: &RunArgs) -> anyhow::Result<Exit> {
                 let run = pool.install(|| sightline_engine::simulate_reporting(scenario, &mut done));
                 let record = recorded_point(scenario, record, &sightline_oracles::check(scenario, &run));
                 recorded(input, &reporting, &mut staging, record, |recorder| {
-                    pool.install(|| resimulated(input, record.point, run, recorder))
+                    pool.install(|| resimulated(input, record, run, recorder))
                 })?
             }
         };
@@ -84,7 +95,8 @@ pub fn run(args: &RunArgs) -> anyhow::Result<Exit> {
         if let Some(exit) = refuse_out_of_domain(&input.name, scenario, &simulated.0, why) {
             return Ok(exit);
         }
-        let execution = Execution::on_this_machine(pool.current_num_threads(), started, clock.elapsed());
+        let execution = Execution::on_this_machine(pool.current_num_threads(), started, elapsed.elapsed())
+            .with_points(clock.seconds());
         exit = exit.max(write_evidence(input, &reporting, staging, simulated, execution)?);
     }
     Ok(exit)

@@ -48,12 +48,18 @@ fn page_dir(scenario: &str) -> PathBuf {
 /// to `dir/report.pdf` and returns what the page showed; panics with the
 /// checker's reasons when it fails.
 fn open(python: &OsString, dir: &Path) -> serde_json::Value {
+    open_page(python, dir, &[])
+}
+
+/// [`open`] with the checker's extra arguments (`--falsify`).
+fn open_page(python: &OsString, dir: &Path, extra: &[&str]) -> serde_json::Value {
     let output = Command::new(python)
         .arg(root().join("tests/python/check_report.py"))
         .arg(dir.join("report.html"))
         .arg(dir.join("screenshot.png"))
         .arg("--pdf")
         .arg(dir.join("report.pdf"))
+        .args(extra)
         .output()
         .unwrap_or_else(|e| panic!("failed to start {}: {e}", Path::new(python).display()));
     let stderr = String::from_utf8_lossy(&output.stderr);
@@ -209,4 +215,34 @@ fn markup_in_the_scenario_text_is_shown_as_text() {
     );
     let html = read(&page_dir(HOSTILE).join("report.html"));
     assert!(!html.contains("<script>"), "the report holds a script element");
+}
+
+/// The report of `sightline falsify` (#18): it opens offline, carries its
+/// document control (an id of its own, the scenario's `document` fields) and
+/// its verdict, and prints on A4 with every column of its tables.
+#[test]
+fn the_falsify_report_prints_on_a4_with_its_document_control() {
+    let Some(python) = python() else { return };
+    let scenario = "scenarios/urban-falsify.yaml";
+    let dir = page_dir("urban-falsify-search");
+    let search = sightline(["falsify", scenario, "--cases", "4", "--out", arg(&dir)]);
+    search.assert_exit(1);
+    let page = open_page(&python, &dir, &["--falsify"]);
+    assert_eq!(page["verdict"], "fail");
+    assert_eq!(page["pdf"]["paper"], "A4");
+    eprintln!("{scenario} (falsify): {} pages on A4", page["pdf"]["pages"]);
+    let control = page["control"].as_array().unwrap();
+    let row = |name: &str| {
+        control
+            .iter()
+            .find(|r| r[0] == name)
+            .and_then(|r| r[1].as_str())
+            .unwrap_or_else(|| panic!("no {name} row: {control:?}"))
+            .to_string()
+    };
+    assert!(
+        row("Document id").starts_with("SL-") && row("Document id").len() == 19,
+        "{control:?}"
+    );
+    assert_eq!(row("Paper"), "A4");
 }

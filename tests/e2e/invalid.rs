@@ -158,6 +158,9 @@ invalid_inputs! {
     record_grid_rate_above_the_step_rate_is_refused => "record-grid-rate-above-step-rate",
     record_unknown_key_lists_the_keys => "record-unknown-key",
     record_where_matching_no_point_and_a_negative_rate_are_reported => "record-where-matches-no-point",
+    record_every_point_or_one_not_both => "record-all-points-and-point",
+    record_every_point_of_a_field_is_refused => "record-all-points-of-a-field",
+    record_over_its_size_budget_is_refused => "record-too-large",
     // See: issue 13, case 1 ("no silent assumptions").
     grid_fusion_and_localization_in_a_semantic_world_are_refused => "semantic-fusion-keys",
     world_sections_in_the_field_experiment_are_refused => "field-with-world-sections",

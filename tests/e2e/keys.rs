@@ -1161,6 +1161,12 @@ const KEYS: &[Key] = &[
         semantic: with(&[RATE_SWEEP, ("record", "{}")], &[("record.where", r#"{ "semantic.rate": 5 }"#)]),
     },
     Key {
+        path: "record.points",
+        field: refused(&[("record", r#"{ "points": "all" }"#)]),
+        perception: with(&[COOPERATING_SWEEP, ("record", "{}")], &[("record.points", r#""all""#)]),
+        semantic: with(&[RATE_SWEEP, ("record", "{}")], &[("record.points", r#""all""#)]),
+    },
+    Key {
         path: "record.grid_rate",
         field: refused(&[("record", r#"{ "grid_rate": 2 }"#)]),
         perception: with(&[("record", "{}")], &[("record.grid_rate", "5")]),
@@ -1351,6 +1357,7 @@ fn evidence(text: &str) -> Result<String, Vec<Error>> {
             threads: 1,
             started: "2026-01-01T00:00:00Z".into(),
             duration_seconds: 0.0,
+            points: Vec::new(),
         },
     };
     let results =

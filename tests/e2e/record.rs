@@ -471,6 +471,30 @@ fn replay_of_a_value_outside_its_domain_is_an_internal_error() {
     );
 }
 
+/// Steps of a point the recording does not list as recorded are refused, in
+/// an intact container: the bundled roundabout's steps, said to be of a point
+/// it did not record (issue 18).
+#[test]
+fn replay_refuses_steps_of_a_point_it_did_not_record() {
+    let run = roundabout_run();
+    let recorded = run.results["recording"]["point"].as_u64().unwrap();
+    let other = (recorded + 1) % 17;
+    let forged = rewritten(&run.recording, "/sightline/signals", |signals| {
+        signals["point"] = other.into();
+    });
+    let tmp = temp_dir();
+    let alone = tmp.path().join("alone.mcap");
+    std::fs::write(&alone, &forged).unwrap();
+    let replay = sightline(["replay", arg(&alone)]);
+    replay.assert_exit(2);
+    assert!(
+        replay.stderr.contains(&format!(
+            "it holds steps of point {other}, which it does not list as recorded"
+        )),
+        "{replay}"
+    );
+}
+
 /// Usage errors: a missing file, and a file that is not MCAP.
 #[test]
 fn replay_refuses_what_is_not_a_recording() {

@@ -118,13 +118,104 @@ fn extra_recordings() -> &'static [(&'static str, Vec<u8>)] {
     })
 }
 
-/// Every recording these tests read: the bundled scenarios' and the extra ones.
+/// A run of the bundled roundabout, 3 s long, recording every point
+/// (`record.points: all`): what it printed, its exit code and its recording.
+struct EveryPoint {
+    stdout: String,
+    code: i32,
+    recording: Vec<u8>,
+}
+
+fn every_point() -> &'static EveryPoint {
+    static RUN: OnceLock<EveryPoint> = OnceLock::new();
+    RUN.get_or_init(|| {
+        let text = read(&root().join("scenarios/roundabout-six-agents.yaml"))
+            .replace("duration: 30, step: 0.1", "duration: 3, step: 0.1")
+            .replace("snapshot: 12", "snapshot: 2")
+            + "record: { points: all }\n";
+        let tmp = temp_dir();
+        let scenario = tmp.path().join("every-point.yaml");
+        std::fs::write(&scenario, text).unwrap();
+        let out = tmp.path().join("out");
+        let run = sightline(["run", arg(&scenario), "--out", arg(&out)]);
+        let code = run.code.expect("an exit code");
+        assert!(matches!(code, 0 | 1), "{run}");
+        EveryPoint {
+            stdout: run.stdout.clone(),
+            code,
+            recording: std::fs::read(out.join(RECORDING)).unwrap(),
+        }
+    })
+}
+
+/// Every recording these tests read: the bundled scenarios', the extra ones
+/// and the one of every point.
 fn recordings() -> Vec<(&'static str, &'static [u8])> {
     let bundled = every_run()
         .into_iter()
         .map(|run| (run.scenario, run.recording.as_slice()));
     let extra = extra_recordings().iter().map(|(name, bytes)| (*name, bytes.as_slice()));
-    bundled.chain(extra).collect()
+    let every = std::iter::once(("short roundabout, every point", every_point().recording.as_slice()));
+    bundled.chain(extra).chain(every).collect()
+}
+
+/// Every point of the roundabout's 17 (`record.points: all`, issue 18), each
+/// in its own minute: the scenario message lists them with their offsets, each
+/// step's signals carry their point and lie within its minute, and a point's
+/// agents are cleared a second after its last step.
+#[test]
+fn every_point_is_recorded_a_minute_after_the_last() {
+    let recording = &every_point().recording;
+    let epoch = sightline_dsl::DEFAULT_START;
+    let messages: Vec<mcap::Message> = mcap::MessageStream::new(recording)
+        .unwrap()
+        .map(|m| m.unwrap())
+        .collect();
+    let json = |m: &mcap::Message| -> serde_json::Value { serde_json::from_slice(&m.data).unwrap() };
+    let on = |topic: &'static str| messages.iter().filter(move |m| m.channel.topic == topic);
+    let scenario = json(on("/sightline/scenario").next().unwrap());
+    let points = scenario["points"].as_array().unwrap();
+    assert_eq!(points.len(), 17);
+    for (k, point) in points.iter().enumerate() {
+        assert_eq!(point["point"], k);
+        assert_eq!(point["offset"], 60.0 * k as f64);
+    }
+    let minute = 60_000_000_000_u64;
+    let mut steps = [0_u64; 17];
+    for m in on("/sightline/signals") {
+        let k = json(m)["point"].as_u64().unwrap();
+        steps[k as usize] += 1;
+        let start = epoch + k * minute;
+        assert!(
+            m.log_time >= start && m.log_time < start + 3_000_000_000,
+            "point {k} at {}",
+            m.log_time
+        );
+    }
+    assert_eq!(steps, [30; 17]);
+    // The last step of each point but the last is at 2.9 s; its agents go at 3.9 s.
+    let cleared: Vec<u64> = on("/scene/agents")
+        .filter(|m| json(m)["entities"].as_array().unwrap().is_empty())
+        .map(|m| m.log_time)
+        .collect();
+    let expected: Vec<u64> = (0..16).map(|k| epoch + k * minute + 3_900_000_000).collect();
+    assert_eq!(cleared, expected);
+    assert_eq!(on("/scene/map").count(), 17);
+}
+
+/// `sightline replay` re-checks a recording of every point: the run's verdicts,
+/// line for line, and its exit code, each point's steps added up against its
+/// outcome.
+#[test]
+fn a_recording_of_every_point_replays_as_the_run() {
+    let run = every_point();
+    let tmp = temp_dir();
+    let path = tmp.path().join(RECORDING);
+    std::fs::write(&path, &run.recording).unwrap();
+    let replay = sightline(["replay", arg(&path)]);
+    replay.assert_exit(run.code);
+    let lines = |stdout: &str| -> Vec<String> { stdout.lines().skip(1).map(str::to_string).collect() };
+    assert_eq!(lines(&replay.stdout), lines(&run.stdout), "{replay}");
 }
 
 /// `time.start` places the recording at its date: the first step, the map and

@@ -2,16 +2,18 @@
 would, checks that it works offline, saves a full-page screenshot and prints
 what the end-to-end test compares with results.json, as JSON.
 
-Usage: python check_report.py REPORT.html SCREENSHOT.png [--pdf REPORT.pdf] [--chromium PATH]
+Usage: python check_report.py REPORT.html SCREENSHOT.png [--pdf REPORT.pdf] [--falsify] [--chromium PATH]
 
 It fails (exit 1, one line per reason on stderr) when the page does not load,
 logs a console error or warning, throws, requests anything but itself and
-data: URIs, or lacks the verdict banner (#verdict) or the traceability table
-(#traceability). Otherwise it prints (exit 0): the document title, the
-heading, the banner's verdict and text, the traceability table's rows as cell
-texts, the number of script elements and of elements with an inline event
-handler, and the globals the page defines beyond a blank page's (a script that
-ran would leave some). Chromium is Debian's, driven by Playwright, started
+data: URIs, or lacks the document-control table (#document-control), the
+verdict banner (#verdict) or, but for the report of `sightline falsify`
+(--falsify), the traceability table (#traceability). Otherwise it prints
+(exit 0): the document title, the heading, the document-control rows, the
+banner's verdict and text, the traceability table's rows as cell texts, the
+number of script elements and of elements with an inline event handler, and
+the globals the page defines beyond a blank page's (a script that ran would
+leave some). Chromium is Debian's, driven by Playwright, started
 without a sandbox and without its own background traffic; nothing is
 downloaded.
 
@@ -50,10 +52,14 @@ CHROMIUM_ARGS = [
 READ_PAGE = """() => {
   const banner = document.getElementById("verdict");
   const table = document.getElementById("traceability");
+  const control = document.getElementById("document-control");
   const text = (element) => element.innerText.trim();
   return {
     title: document.title,
     heading: document.querySelector("h1")?.innerText.trim() ?? null,
+    control: control && control.checkVisibility()
+      ? Array.from(control.rows, (row) => Array.from(row.cells, text))
+      : null,
     verdict: banner && banner.dataset.verdict,
     banner: banner && banner.checkVisibility() ? text(banner) : null,
     traceability: table && table.checkVisibility()
@@ -115,7 +121,7 @@ def allowed(url, page_url):
     return url == page_url or url.startswith("data:")
 
 
-def check(report, screenshot, chromium, pdf=None):
+def check(report, screenshot, chromium, pdf=None, falsify=False):
     """Opens `report`, saves `screenshot`; returns (what the page shows, problems)."""
     page_url = report.resolve().as_uri()
     problems = []
@@ -152,9 +158,13 @@ def check(report, screenshot, chromium, pdf=None):
             shown["pdf"], printed = print_pdf(page, pdf)
             problems.extend(printed)
         browser.close()
+    if shown["control"] is None:
+        problems.append("no visible document-control table (#document-control)")
     if shown["banner"] is None:
         problems.append("no visible verdict banner (#verdict)")
-    if shown["traceability"] is None:
+    if falsify:
+        pass
+    elif shown["traceability"] is None:
         problems.append("no visible traceability table (#traceability)")
     elif not shown["traceability"]:
         problems.append("the traceability table has no rows")
@@ -166,11 +176,12 @@ def main():
     parser.add_argument("report", type=pathlib.Path, help="the report.html to open")
     parser.add_argument("screenshot", type=pathlib.Path, help="where to save a full-page PNG")
     parser.add_argument("--pdf", type=pathlib.Path, help="also print the page to this PDF and check it")
+    parser.add_argument("--falsify", action="store_true", help="the report of `sightline falsify` (no traceability)")
     parser.add_argument("--chromium", default="/usr/bin/chromium", help="the Chromium to drive")
     options = parser.parse_args()
     if not options.report.is_file():
         parser.error(f"{options.report}: no such file")
-    shown, problems = check(options.report, options.screenshot, options.chromium, options.pdf)
+    shown, problems = check(options.report, options.screenshot, options.chromium, options.pdf, options.falsify)
     if problems:
         for problem in problems:
             print(f"{options.report}: error: {problem}", file=sys.stderr)

@@ -7,7 +7,7 @@
 
 use super::context::Context;
 use crate::error::ErrorKind;
-use crate::model::{Experiment, Field, Grid, Layout, Setup, Traffic, World};
+use crate::model::{Experiment, Field, Grid, Layout, Point, Setup, Traffic, World, grid_every};
 use crate::path::Path;
 
 /// The most agents in one run: declared, imported and the traffic expected to
@@ -49,6 +49,83 @@ pub const MAX_FIELD_DRAWS: f64 = 1.0e9;
 
 /// The most samples of one predicted trajectory (`semantic.horizon` / `time.step`).
 pub const MAX_PREDICTION_SAMPLES: f64 = 10_000.0;
+
+/// The most agent-steps a recording holds: agents × steps, summed over the
+/// recorded points (agents as the run counts them: declared, imported and the
+/// traffic expected, so more than are in the scene at once). Each agent in the
+/// scene is a frame and a box with its fields of view (`/tf`,
+/// `/scene/agents`) at every step: some 80 bytes of the file each, measured at
+/// the bundled junction (docs/recording.md), so at most about 0.8 GB.
+pub const MAX_RECORDED_AGENT_STEPS: f64 = 1.0e7;
+
+/// The most grid cells a recording holds: the grid's cells × the grids
+/// recorded (the fused grid, and each cooperating agent's with
+/// `agent_grids`), summed over the recorded points. Each grid is cropped to
+/// the cells it holds, 8 bytes a cell before compression at most, so at most
+/// 8 GB before compression; the bundled roundabout's every point holds 1.8e8.
+pub const MAX_RECORDED_GRID_CELLS: f64 = 1.0e9;
+
+/// Checks the size of a recording of `points` (every one of them with `all`,
+/// else the largest, which the run may choose) at `grid_rate` grids a second;
+/// returns whether it is within the limits.
+pub(super) fn recording_budget(
+    ctx: &mut Context<'_>,
+    path: &Path,
+    points: &[&Point],
+    all: bool,
+    grid_rate: f64,
+    agent_grids: bool,
+) -> bool {
+    let sizes = points.iter().filter_map(|point| {
+        let Experiment::World(world) = &point.setup.experiment else {
+            return None;
+        };
+        let duration = world.step * world.steps as f64;
+        let (vehicles, pedestrians, _) = world
+            .traffic
+            .as_ref()
+            .map(|t| expected_traffic(t, world, duration))
+            .unwrap_or_default();
+        let agent_steps = (world.agents.len() as f64 + vehicles + pedestrians) * world.steps as f64;
+        let grids = match (&point.setup.occupancy, &world.perception, grid_every(point, grid_rate)) {
+            (Some(occupancy), Some(perception), Some(every)) => {
+                let per_grid = if agent_grids {
+                    1.0 + perception.cooperating.len() as f64
+                } else {
+                    1.0
+                };
+                occupancy.grid.cells() as f64 * (world.steps.div_ceil(every) as f64) * per_grid
+            }
+            _ => 0.0,
+        };
+        Some((agent_steps, grids))
+    });
+    let (agent_steps, cells) = if all {
+        sizes.fold((0.0, 0.0), |(a, c), (x, y)| (a + x, c + y))
+    } else {
+        sizes.fold((0.0_f64, 0.0_f64), |(a, c), (x, y)| (a.max(x), c.max(y)))
+    };
+    let which = if all {
+        "over the recorded points"
+    } else {
+        "at the recorded point"
+    };
+    limit(
+        ctx,
+        path,
+        agent_steps,
+        MAX_RECORDED_AGENT_STEPS,
+        &format!("agent-steps recorded {which} (agents × steps)"),
+        "record one point, a shorter run or less traffic",
+    ) && limit(
+        ctx,
+        path,
+        cells,
+        MAX_RECORDED_GRID_CELLS,
+        &format!("grid cells recorded {which} (cells × grids recorded)"),
+        "record fewer grids (`grid_rate`, `agent_grids`), one point, or use larger cells",
+    )
+}
 
 /// Checks every product of the resource model of one point's setup; returns
 /// whether all are within their limits.

@@ -1,13 +1,14 @@
 //! The `record` section: which point `run.mcap` records, and how often it
 //! records grids; and the recording's clock, `time.start`.
 
+use super::budget::recording_budget;
 use super::context::Context;
 use super::requirements::select;
 use crate::error::ErrorKind;
-use crate::model::{DEFAULT_START, Experiment, Point, Record, grid_every};
+use crate::model::{DEFAULT_START, Experiment, Point, Record, RecordedPoints, grid_every};
 use crate::path::Path;
 use crate::raw::range;
-use crate::raw::{RawRecord, RawTime};
+use crate::raw::{RawRecord, RawRecordedPoints, RawTime};
 
 /// Fused grids recorded per simulated second when the file does not say.
 const DEFAULT_GRID_RATE: f64 = 1.0;
@@ -78,7 +79,32 @@ pub(super) fn record(
         );
         return None;
     }
+    let all = raw.points == Some(RawRecordedPoints::All);
+    if all && (raw.point.is_some() || !raw.filter.is_empty()) {
+        ctx.error(
+            &path.key("points"),
+            ErrorKind::Invalid(
+                "`points: all` records every point; `point` and `where` choose one: give one or the other".into(),
+            ),
+        );
+        return None;
+    }
     let points = points?;
+    if all
+        && points
+            .iter()
+            .all(|p| matches!(p.setup.experiment, Experiment::Field(_)))
+    {
+        ctx.error(
+            &path.key("points"),
+            ErrorKind::Invalid(
+                "the field experiment has no steps to record: a recording holds every point's outcome already; \
+                 leave out `points`"
+                    .into(),
+            ),
+        );
+        return None;
+    }
     let point = match raw.point {
         Some(index) => match usize::try_from(index).ok().filter(|&i| i < points.len()) {
             Some(index) => index,
@@ -105,11 +131,22 @@ pub(super) fn record(
         return None;
     }
     let grid_rate = raw.grid_rate.unwrap_or(DEFAULT_GRID_RATE);
+    let recorded: Vec<&Point> = if all {
+        points.iter().collect()
+    } else {
+        vec![&points[point]]
+    };
     // A rate written in the file must be one the steps can give; the default is
     // clamped to every step instead.
-    if let (Experiment::World(world), Some(rate)) = (&points[point].setup.experiment, raw.grid_rate) {
-        let step_rate = 1.0 / world.step;
-        if rate > step_rate * (1.0 + 1e-9) {
+    if let Some(rate) = raw.grid_rate {
+        let fastest = recorded
+            .iter()
+            .filter_map(|p| match &p.setup.experiment {
+                Experiment::World(world) => Some(1.0 / world.step),
+                Experiment::Field(_) => None,
+            })
+            .reduce(f64::min);
+        if let Some(step_rate) = fastest.filter(|&step_rate| rate > step_rate * (1.0 + 1e-9)) {
             ctx.error(
                 &path.key("grid_rate"),
                 ErrorKind::OutOfRange {
@@ -120,6 +157,15 @@ pub(super) fn record(
             return None;
         }
     }
+    // Without a named point, any point may turn out to be the one recorded.
+    let sized: Vec<&Point> = if all || raw.point.is_some() || !raw.filter.is_empty() {
+        recorded
+    } else {
+        points.iter().collect()
+    };
+    if !recording_budget(ctx, &path, &sized, all, grid_rate, raw.agent_grids) {
+        return None;
+    }
     Some(Record {
         point,
         named: raw.point.is_some() || !raw.filter.is_empty(),
@@ -127,5 +173,24 @@ pub(super) fn record(
         grid_every: grid_every(&points[point], grid_rate),
         agent_grids: raw.agent_grids,
         start: start?,
+        points: if all { RecordedPoints::All } else { RecordedPoints::One },
+        slot: if all { slot(points) } else { 0 },
     })
+}
+
+/// The time from one recorded point's step 0 to the next's, nanoseconds: the
+/// longest point's duration and a second, rounded up to a whole minute (so
+/// each point starts on a whole minute of the recording's clock, with at least
+/// a second of nothing between two).
+fn slot(points: &[Point]) -> u64 {
+    let longest = points
+        .iter()
+        .map(|p| match &p.setup.experiment {
+            Experiment::World(world) => world.step * world.steps as f64,
+            Experiment::Field(_) => 0.0,
+        })
+        .fold(0.0, f64::max);
+    let minutes = ((longest + 1.0) / 60.0).ceil().max(1.0);
+    // At most a day's run (the duration's range): some 1 441 minutes.
+    (minutes as u64).saturating_mul(60_000_000_000)
 }

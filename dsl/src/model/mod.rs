@@ -24,7 +24,7 @@ pub use requirement::{
 pub(crate) use scenario::grid_every;
 pub use scenario::{
     Assignment, Axis, DEFAULT_START, Document, Experiment, Grid, Import, ImportKind, Label, Occupancy, Paper, Point,
-    Record, Scenario, Settings, Setup, Sweep, display_value,
+    Record, RecordedPoints, Scenario, Settings, Setup, Sweep, display_value,
 };
 pub use semantic::{
     Area, Baseline, Caution, Crosswalk, Driving, Following, InteractionArea, PedestrianTraffic, RiskScope, RsuSight,

@@ -103,6 +103,24 @@ pub struct Record {
     /// 1970-01-01T00:00:00Z: the recording's clock. [`DEFAULT_START`] when the
     /// file does not say.
     pub start: u64,
+    /// Which points are recorded step by step (`record.points`).
+    pub points: RecordedPoints,
+    /// With every point recorded: the time from one point's step 0 to the
+    /// next's, nanoseconds (the longest point's duration and a second, rounded
+    /// up to a whole minute); 0 with one point recorded.
+    pub slot: u64,
+}
+
+/// Which sweep points a recording holds step by step (`record.points`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RecordedPoints {
+    /// One: the point `point` or `where` names, or the worst point of the
+    /// first failing requirement (the first point when none fails).
+    #[default]
+    One,
+    /// Every sweep point, one after another on the recording's clock.
+    All,
 }
 
 /// The recording's clock when a scenario gives no `time.start`:
@@ -123,6 +141,25 @@ impl Record {
             point,
             grid_every: grid_every(&points[point], self.grid_rate),
             ..*self
+        }
+    }
+
+    /// The points recorded step by step, in the order recorded, of a
+    /// scenario of `count` points.
+    pub fn recorded(&self, count: usize) -> std::ops::Range<usize> {
+        match self.points {
+            RecordedPoints::One => self.point..self.point + 1,
+            RecordedPoints::All => 0..count,
+        }
+    }
+
+    /// When step 0 of point `point` is on the recording's clock, nanoseconds
+    /// since 1970: `start` for the one recorded point, `start + point · slot`
+    /// with every point recorded.
+    pub fn start_of(&self, point: usize) -> u64 {
+        match self.points {
+            RecordedPoints::One => self.start,
+            RecordedPoints::All => self.start.saturating_add(self.slot.saturating_mul(point as u64)),
         }
     }
 

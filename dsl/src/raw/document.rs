@@ -32,6 +32,7 @@ pub(crate) struct RawDocument {
 /// A paper size.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
+#[schemars(rename = "Paper")]
 pub(crate) enum RawPaper {
     /// ISO A4, 210 × 297 mm.
     A4,

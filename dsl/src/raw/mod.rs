@@ -32,7 +32,7 @@ pub(crate) use field::{RawField, RawLayout, RawMasses, RawTruth};
 pub(crate) use fusion::{RawDecision, RawFusion, RawGrid};
 pub(crate) use map::RawMap;
 pub(crate) use perception::RawPerception;
-pub(crate) use record::RawRecord;
+pub(crate) use record::{RawRecord, RawRecordedPoints};
 pub(crate) use requirements::{RawCheck, RawObjectSelection, RawReference, RawRequirement};
 pub(crate) use scenario::RawScenario;
 pub(crate) use semantic::{RawInteractionArea, RawSemantic};

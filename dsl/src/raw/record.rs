@@ -9,9 +9,9 @@ use super::range;
 
 /// What `sightline run` records into `run.mcap`: one sweep point, step by
 /// step (the scene, detections, fused grids, V2X packets, semantic messages),
-/// and every point's metrics and verdicts. Give `point` or `where`, not both;
-/// neither records the worst point of the first failing requirement (the first
-/// point when none fails).
+/// or every point (`points: all`), and every point's metrics and verdicts.
+/// Give `point` or `where`, not both; neither records the worst point of the
+/// first failing requirement (the first point when none fails).
 #[derive(Debug, Clone, Default, Serialize, Deserialize, JsonSchema)]
 #[serde(default, deny_unknown_fields, expecting = "a record mapping")]
 #[schemars(rename = "Record")]
@@ -32,4 +32,20 @@ pub(crate) struct RawRecord {
     pub grid_rate: Option<f64>,
     /// Also record each cooperating agent's own grid, at `grid_rate`.
     pub agent_grids: bool,
+    /// `one` (the default): the point `point` or `where` names, or the worst
+    /// point of the first failing requirement; `all`: every sweep point, one
+    /// after another on the recording's clock (docs/recording.md).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub points: Option<RawRecordedPoints>,
+}
+
+/// Which points a recording holds step by step.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+#[schemars(rename = "RecordedPoints")]
+pub(crate) enum RawRecordedPoints {
+    /// One point.
+    One,
+    /// Every sweep point.
+    All,
 }

@@ -90,7 +90,7 @@ pub(crate) struct RawNoise {
 #[schemars(rename = "Localization")]
 pub(crate) struct RawLocalization {
     /// σ of each self-reported x and y measurement, metres.
-    #[schemars(transform = range::SIGMA.schema())]
+    #[schemars(transform = range::POSITION_SIGMA.schema())]
     pub position_sigma: f64,
     /// σ of each self-reported heading measurement, degrees.
     #[schemars(transform = range::ANGLE_SIGMA.schema())]
@@ -131,14 +131,14 @@ pub(crate) struct RawOdometry {
     /// the noise and bias below.
     pub model: OdometryModel,
     /// σ of each step's speed reading, m/s.
-    #[schemars(transform = range::SIGMA.schema())]
+    #[schemars(transform = range::SPEED_SIGMA.schema())]
     pub speed_sigma: f64,
     /// Scale error of the speed reading, a fraction of the true speed
     /// (0.01: 1 % fast), from −0.1 to 0.1.
     #[schemars(transform = range::SPEED_SCALE_ERROR.schema())]
     pub speed_bias: f64,
     /// σ of each step's yaw-rate reading, degrees per second.
-    #[schemars(transform = range::ANGLE_SIGMA.schema())]
+    #[schemars(transform = range::TURN_RATE_SIGMA.schema())]
     pub yaw_rate_sigma_deg: f64,
     /// Offset of the yaw-rate reading, degrees per second, from −5 to 5.
     #[schemars(transform = range::YAW_RATE_OFFSET.schema())]

@@ -3,7 +3,15 @@
 
 use plotters::prelude::*;
 
-use super::canvas::{Chart, ChartError, SIZE, data_uri, error, frame};
+use super::canvas::{Axes, Chart, ChartError, data_uri, error};
+use super::figure::figure;
+use super::legend::{Entry, Swatch};
+use super::style::{Dash, LINE_WIDTH, PALETTE, stroke};
+
+/// The histogram's bars: the palette's sky blue.
+const BARS: RGBColor = PALETTE[4];
+/// The density estimate: the palette's vermillion.
+const CURVE: RGBColor = PALETTE[5];
 
 /// Points at which a density estimate is drawn.
 const CURVE_POINTS: usize = 200;
@@ -82,28 +90,39 @@ pub fn anticipation(sorted: &[f64]) -> Result<Option<Chart>, ChartError> {
         .fold(0.0, f64::max)
         * 1.1;
 
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
-        let mut chart = frame(
-            &root,
-            x0..x1,
-            0.0..top.max(1e-9),
-            ("anticipation time (s)", "density (1/s)"),
-        )?;
+    let mut legend = vec![Entry {
+        label: "histogram, as a density".into(),
+        swatch: Swatch::Bar(BARS),
+    }];
+    if !curve.is_empty() {
+        legend.push(Entry {
+            label: "kernel density estimate".into(),
+            swatch: Swatch::Line {
+                colour: CURVE,
+                dash: Dash::Solid,
+                marker: None,
+            },
+        });
+    }
+    let axes = Axes {
+        x: x0..x1,
+        y: 0.0..top.max(1e-9),
+        x_desc: "anticipation time (s)",
+        y_desc: "density (1/s)",
+        x_labels: None,
+    };
+    let svg = figure(&axes, &legend, |chart| {
         chart
             .draw_series(
                 bars.iter()
-                    .map(|&(a, b, h)| Rectangle::new([(a, 0.0), (b, h)], RGBColor(150, 170, 200).filled())),
+                    .map(|&(a, b, h)| Rectangle::new([(a, 0.0), (b, h)], BARS.filled())),
             )
             .map_err(error)?;
         if !curve.is_empty() {
-            chart
-                .draw_series(LineSeries::new(curve, RGBColor(180, 30, 30).stroke_width(2)))
-                .map_err(error)?;
+            stroke(chart.plotting_area(), curve, CURVE, Dash::Solid, LINE_WIDTH)?;
         }
-        root.present().map_err(error)?;
-    }
+        Ok(())
+    })?;
     let src = data_uri(&svg);
     let caption = match bandwidth {
         Some(h) => format!(

@@ -4,7 +4,16 @@
 use plotters::prelude::*;
 use sightline_oracles::{Case, Phase};
 
-use super::canvas::{Chart, ChartError, PALETTE, SIZE, data_uri, error, framed};
+use super::canvas::{Axes, Chart, ChartError, data_uri};
+use super::figure::figure;
+use super::legend::{Entry, Swatch};
+use super::style::{Dash, INK, LINE_WIDTH, Marker, PALETTE, mark, stroke};
+
+/// A phase's name, colour and cases (x, margin).
+type Phased<'a> = (&'a str, RGBColor, Vec<(f64, f64)>);
+
+/// The smallest margin so far.
+const GREY: RGBColor = RGBColor(120, 120, 120);
 
 /// The smallest margin of every case of a falsification in the order tried:
 /// a colour per phase (in the legend when it has cases), the smallest margin
@@ -25,8 +34,7 @@ pub(crate) fn margin_chart(cases: &[Case], counterexample: Option<usize>) -> Res
         .iter()
         .fold((0.0_f64, 0.0_f64), |(lo, hi), &(_, m, _)| (lo.min(m), hi.max(m)));
     let span = (hi - lo).max(1e-9);
-    // Room above the points for the legend in the upper right.
-    let (y0, y1) = (lo - 0.08 * span, hi + 0.7 * span);
+    let (y0, y1) = (lo - 0.08 * span, hi + 0.08 * span);
     let (x0, x1) = (0.5, cases.len() as f64 + 0.5);
     let mut lowest = f64::INFINITY;
     let so_far: Vec<(f64, f64)> = points
@@ -36,77 +44,88 @@ pub(crate) fn margin_chart(cases: &[Case], counterexample: Option<usize>) -> Res
             (x, lowest)
         })
         .collect();
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
-        // Cases are counted: whole numbers only on the x axis.
-        let whole = |x: &f64| {
-            if x.fract() == 0.0 {
-                format!("{x:.0}")
-            } else {
-                String::new()
-            }
-        };
-        let mut chart = framed(
-            &root,
-            x0..x1,
-            y0..y1,
-            ("case, in the order tried", "smallest margin"),
-            Some(&whole),
-        )?;
-        chart
-            .draw_series(DashedLineSeries::new(
-                [(x0, 0.0), (x1, 0.0)],
-                6,
-                4,
-                BLACK.stroke_width(1),
-            ))
-            .map_err(error)?
-            .label("0: below it a requirement breaks")
-            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], BLACK.stroke_width(1)));
-        let grey = RGBColor(150, 150, 150);
-        chart
-            .draw_series(LineSeries::new(so_far, grey.stroke_width(2)))
-            .map_err(error)?
-            .label("smallest so far")
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], grey.stroke_width(2)));
-        for (i, phase) in [Phase::Random, Phase::Guided, Phase::Shrink].into_iter().enumerate() {
-            let colour = PALETTE[i];
+    let phases: Vec<Phased<'_>> = [Phase::Random, Phase::Guided, Phase::Shrink]
+        .into_iter()
+        .zip(PALETTE)
+        .map(|(phase, colour)| {
             let name = match phase {
                 Phase::Random => "random case",
                 Phase::Guided => "guided step",
                 Phase::Shrink => "shrinking",
             };
-            let of_phase: Vec<(f64, f64)> = points
+            let of_phase = points
                 .iter()
                 .filter(|p| p.2 == phase)
                 .map(|&(x, m, _)| (x, m))
                 .collect();
-            if of_phase.is_empty() {
-                continue;
-            }
-            chart
-                .draw_series(of_phase.into_iter().map(|p| Circle::new(p, 3, colour.filled())))
-                .map_err(error)?
-                .label(name)
-                .legend(move |(x, y)| Circle::new((x + 8, y), 3, colour.filled()));
-        }
-        if let Some(&(x, m, _)) = counterexample.and_then(|i| points.iter().find(|p| p.0 == (i + 1) as f64)) {
-            chart
-                .draw_series([Circle::new((x, m), 7, BLACK.stroke_width(2))])
-                .map_err(error)?
-                .label("counterexample")
-                .legend(|(x, y)| Circle::new((x + 8, y), 5, BLACK.stroke_width(2)));
-        }
-        chart
-            .configure_series_labels()
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK.mix(0.3))
-            .position(SeriesLabelPosition::UpperRight)
-            .draw()
-            .map_err(error)?;
-        root.present().map_err(error)?;
+            (name, colour, of_phase)
+        })
+        .filter(|(_, _, of_phase): &(_, _, Vec<_>)| !of_phase.is_empty())
+        .collect();
+    let ringed = counterexample.and_then(|i| points.iter().find(|p| p.0 == (i + 1) as f64));
+    let mut legend = vec![
+        Entry {
+            label: "0: below it a requirement breaks".into(),
+            swatch: Swatch::Line {
+                colour: INK,
+                dash: Dash::Threshold,
+                marker: None,
+            },
+        },
+        Entry {
+            label: "smallest so far".into(),
+            swatch: Swatch::Line {
+                colour: GREY,
+                dash: Dash::Solid,
+                marker: None,
+            },
+        },
+    ];
+    legend.extend(phases.iter().map(|&(name, colour, _)| Entry {
+        label: name.into(),
+        swatch: Swatch::Mark {
+            colour,
+            marker: Marker::Dot,
+        },
+    }));
+    if ringed.is_some() {
+        legend.push(Entry {
+            label: "counterexample".into(),
+            swatch: Swatch::Mark {
+                colour: INK,
+                marker: Marker::Ring,
+            },
+        });
     }
+    // Cases are counted: whole numbers only on the x axis.
+    let whole = |x: &f64| {
+        if x.fract() == 0.0 {
+            format!("{x:.0}")
+        } else {
+            String::new()
+        }
+    };
+    let axes = Axes {
+        x: x0..x1,
+        y: y0..y1,
+        x_desc: "case, in the order tried",
+        y_desc: "smallest margin (its requirement's unit)",
+        x_labels: Some(&whole),
+    };
+    let svg = figure(&axes, &legend, |chart| {
+        let area = chart.plotting_area();
+        stroke(area, vec![(x0, 0.0), (x1, 0.0)], INK, Dash::Threshold, 2)?;
+        stroke(area, so_far, GREY, Dash::Solid, LINE_WIDTH)?;
+        for (_, colour, of_phase) in &phases {
+            for &p in of_phase {
+                mark(area, p, Marker::Dot, *colour)?;
+            }
+        }
+        if let Some(&(x, m, _)) = ringed {
+            mark(area, (x, m), Marker::Ring, INK)?;
+        }
+        Ok(())
+    })?;
     let unchecked = cases.len() - points.len();
     let mut caption = format!(
         "The smallest margin of each of the {} cases, in the order tried; a requirement breaks below 0.",

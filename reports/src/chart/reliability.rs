@@ -4,7 +4,10 @@
 
 use plotters::prelude::*;
 
-use super::canvas::{Chart, ChartError, PALETTE, SIZE, data_uri, error, frame};
+use super::canvas::{Axes, Chart, ChartError, FONT, data_uri, error};
+use super::figure::figure;
+use super::legend::{Entry, Swatch};
+use super::style::{Dash, INK, LINE_WIDTH, Marker, PALETTE, mark, stroke};
 use crate::results::Calibration;
 
 /// The reliability diagram of `calibration`: each bin with cell-steps as a
@@ -19,50 +22,51 @@ pub(crate) fn reliability_chart(calibration: &Calibration) -> Result<Option<Char
     let Some(brier) = calibration.brier_score.filter(|_| !points.is_empty()) else {
         return Ok(None);
     };
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
-        let mut chart = frame(
-            &root,
-            0.0..1.0,
-            0.0..1.05,
-            ("mean fused probability of the bin", "observed frequency of occupied"),
+    let colour = PALETTE[0];
+    let legend = [
+        Entry {
+            label: "calibrated (the diagonal)".into(),
+            swatch: Swatch::Line {
+                colour: INK,
+                dash: Dash::Long,
+                marker: None,
+            },
+        },
+        Entry {
+            label: "fused grid, each bin labelled with its cell-steps".into(),
+            swatch: Swatch::Line {
+                colour,
+                dash: Dash::Solid,
+                marker: Some(Marker::Dot),
+            },
+        },
+    ];
+    let axes = Axes {
+        x: 0.0..1.0,
+        y: 0.0..1.05,
+        x_desc: "mean fused probability of the bin (1)",
+        y_desc: "observed frequency of occupied (1)",
+        x_labels: None,
+    };
+    let svg = figure(&axes, &legend, |chart| {
+        let area = chart.plotting_area();
+        stroke(area, vec![(0.0, 0.0), (1.0, 1.0)], INK, Dash::Long, 2)?;
+        stroke(
+            area,
+            points.iter().map(|&(p, o, _)| (p, o)).collect(),
+            colour,
+            Dash::Solid,
+            LINE_WIDTH,
         )?;
-        chart
-            .draw_series(DashedLineSeries::new(
-                [(0.0, 0.0), (1.0, 1.0)],
-                6,
-                4,
-                BLACK.stroke_width(1),
-            ))
-            .map_err(error)?
-            .label("calibrated")
-            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], BLACK.stroke_width(1)));
-        let colour = PALETTE[0];
-        chart
-            .draw_series(LineSeries::new(
-                points.iter().map(|&(p, o, _)| (p, o)),
-                colour.stroke_width(2),
-            ))
-            .map_err(error)?
-            .label("fused grid")
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], colour.stroke_width(2)));
-        chart
-            .draw_series(points.iter().map(|&(p, o, n)| {
-                EmptyElement::at((p, o))
-                    + Circle::new((0, 0), 3, colour.filled())
-                    + Text::new(format!("n={n}"), (4, -14), ("sans-serif", 11).into_font())
-            }))
+        for &(p, o, n) in &points {
+            mark(area, (p, o), Marker::Dot, colour)?;
+            area.draw(
+                &(EmptyElement::at((p, o)) + Text::new(format!("n={n}"), (8, -30), ("sans-serif", FONT).into_font())),
+            )
             .map_err(error)?;
-        chart
-            .configure_series_labels()
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK.mix(0.3))
-            .position(SeriesLabelPosition::UpperLeft)
-            .draw()
-            .map_err(error)?;
-        root.present().map_err(error)?;
-    }
+        }
+        Ok(())
+    })?;
     let caption = format!(
         "Reliability of the fused occupancy probabilities (pignistic for evidential methods): {} equal bins, \
          empty ones left out, each labelled with its cell-steps. Brier score {brier:.4}, n = {} cell-steps \

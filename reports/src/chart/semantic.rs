@@ -6,7 +6,7 @@ use sightline_engine::outcome::{DELIVERY_BIN, DENSITY_BIN};
 
 use super::canvas::{Chart, ChartError};
 use super::density::anticipation;
-use super::lines::{Line, lines_chart};
+use super::lines::{Line, LinesChart};
 use crate::results::{DensityRow, SemanticCounts};
 
 /// A semantic point's charts: its anticipation times, the objects the ego knows
@@ -34,23 +34,26 @@ pub(crate) fn semantic_charts(m: &SemanticCounts, rows: &[DensityRow]) -> Result
             .map(|(i, b)| ((i as f64 + 0.5) * DELIVERY_BIN, b.received as f64 / b.sent as f64))
             .collect(),
     }];
-    let charts = [
-        anticipation(&m.anticipation)?,
-        lines_chart(
-            format!(
-                "Objects the ego knows only through an RSU, by the scene's density ({} objects/km bins, at their centres).",
-                DENSITY_BIN
-            ),
-            ("objects per km", "objects known only through an RSU"),
-            &by_density,
-            &[],
-        )?,
-        lines_chart(
-            format!("Share of the RSU's messages that reach the ego, by distance ({DELIVERY_BIN} m bins)."),
-            ("RSU–ego distance (m)", "delivery ratio"),
-            &delivery,
-            &[],
-        )?,
-    ];
-    Ok(charts.into_iter().flatten().collect())
+    let by_density = LinesChart {
+        caption: format!(
+            "Objects the ego knows only through an RSU, by the scene's density ({DENSITY_BIN} objects/km bins, at their centres)."
+        ),
+        x_desc: "scene density (objects/km)".into(),
+        y_desc: "objects known only through an RSU (objects)".into(),
+        lines: by_density.to_vec(),
+        published: Vec::new(),
+        thresholds: Vec::new(),
+    };
+    let delivery = LinesChart {
+        caption: format!("Share of the RSU's messages that reach the ego, by distance ({DELIVERY_BIN} m bins)."),
+        x_desc: "RSU–ego distance (m)".into(),
+        y_desc: "delivery ratio (1)".into(),
+        lines: delivery.to_vec(),
+        published: Vec::new(),
+        thresholds: Vec::new(),
+    };
+    let mut charts: Vec<Chart> = anticipation(&m.anticipation)?.into_iter().collect();
+    charts.extend(by_density.draw()?);
+    charts.extend(delivery.draw()?);
+    Ok(charts)
 }

@@ -4,7 +4,7 @@
 //! tool's self-test run in this process, and the scenario file verbatim.
 
 use serde::Serialize;
-use sightline_dsl::{Experiment, Scenario, Setup};
+use sightline_dsl::{Document, Experiment, Scenario, Setup};
 
 use super::format::number;
 use crate::results::Results;
@@ -12,36 +12,46 @@ use crate::sha256_hex;
 
 /// The document-control table and the paper the page is laid out for.
 #[derive(Serialize)]
-pub(super) struct DocumentView {
+pub(crate) struct DocumentView {
     /// (name, value) rows.
-    pub(super) control: Vec<(&'static str, String)>,
+    pub(crate) control: Vec<(&'static str, String)>,
     /// The CSS `@page` size: `A4` or `letter`.
-    pub(super) paper: &'static str,
+    pub(crate) paper: &'static str,
 }
 
-/// The document id: the first 16 hex digits of the SHA-256 of results.json as
-/// written without `execution`, so that the same run gives the same id on any
-/// machine and any change to what it found, to the scenario or to the tool
-/// gives another.
-pub(super) fn document_id(results: &Results) -> String {
-    let mut value = serde_json::to_value(results).expect("results serialize to JSON");
-    if let Some(object) = value.as_object_mut() {
+/// A document id: `SL-` and the first 16 hex digits of the SHA-256 of
+/// `content` as JSON without its `execution`, so that the same run gives the
+/// same id on any machine and any change to what it found, to the scenario or
+/// to the tool gives another.
+pub(crate) fn content_id(mut content: serde_json::Value) -> String {
+    if let Some(object) = content.as_object_mut() {
         object.remove("execution");
     }
-    let text = serde_json::to_string(&value).expect("a JSON value serializes");
+    let text = serde_json::to_string(&content).expect("a JSON value serializes");
     format!("SL-{}", &sha256_hex(text.as_bytes())[..16])
 }
 
+/// The document id of a run's report: [`content_id`] of its results.json.
+pub(super) fn document_id(results: &Results) -> String {
+    content_id(serde_json::to_value(results).expect("results serialize to JSON"))
+}
+
+/// A run's document control.
 pub(super) fn document(results: &Results, scenario: &Scenario) -> DocumentView {
-    let d = &scenario.document;
+    control(document_id(results), &results.execution.started, &scenario.document)
+}
+
+/// The document-control table of a page with id `id`, dated the day of
+/// `started` (RFC 3339), with the scenario's `document` section.
+pub(crate) fn control(id: String, started: &str, d: &Document) -> DocumentView {
     let given = |v: &Option<String>| {
         v.clone()
             .unwrap_or_else(|| "— (not given: `document` in the scenario)".into())
     };
-    let date = results.execution.started.get(..10).unwrap_or_default().to_string();
+    let date = started.get(..10).unwrap_or_default().to_string();
     DocumentView {
         control: vec![
-            ("Document id", document_id(results)),
+            ("Document id", id),
             ("Version", given(&d.version)),
             ("Date", date),
             ("Author", given(&d.author)),

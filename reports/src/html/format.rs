@@ -5,6 +5,8 @@
 
 use serde::Serialize;
 
+pub(crate) use crate::results::metric_unit;
+
 #[derive(Serialize)]
 pub(super) struct TableView {
     /// What the table shows; empty for none.
@@ -52,14 +54,6 @@ pub(crate) fn with_unit(value: Option<f64>, unit: &str) -> String {
         Some(v) if unit != "1" => format!("{} {unit}", number(v)),
         _ => or_dash(value),
     }
-}
-
-/// The unit of a metric by name (`1` for a name that is not a metric).
-pub(crate) fn metric_unit(name: &str) -> &'static str {
-    sightline_dsl::Metric::ALL
-        .iter()
-        .find(|m| m.name() == name)
-        .map_or("1", |m| m.unit().symbol())
 }
 
 /// A column head for a quantity in `unit`: `name (unit)`.

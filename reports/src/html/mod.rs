@@ -11,6 +11,7 @@
 //! - `point`: each point's sample sizes and counts;
 //! - `format`: numbers for people, and the tables every section lays out.
 
+pub(crate) use document::{DocumentView, content_id, control};
 pub(crate) use format::{number, or_dash};
 pub use page::{RunPage, html};
 

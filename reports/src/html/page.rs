@@ -177,7 +177,9 @@ fn provenance(results: &Results, reproduce: &str) -> Vec<(&'static str, String)>
         )
     }));
     rows.extend(results.recording.iter().map(|recording| {
-        let point = if recording.label.is_empty() {
+        let point = if recording.every_point {
+            format!("every point, {} of them, one after another", results.sweep.len())
+        } else if recording.label.is_empty() {
             format!("point {}", recording.point)
         } else {
             format!("point {}: {}", recording.point, recording.label)

@@ -8,7 +8,7 @@ use sightline_dsl::display_value;
 
 use super::format::{TableView, head, metric_unit, number, or_dash, with_unit};
 use crate::chart::Chart;
-use crate::results::{PointResult, Results};
+use crate::results::{Axis, PointResult, Results};
 
 /// Metrics every sweep table shows; metrics that requirements or references use
 /// are added after them.
@@ -109,7 +109,7 @@ pub(super) fn sweep_tables(results: &Results) -> Vec<SweepView> {
                 .collect();
             sweep_view(
                 format!("Results over {}", paths.join(" × ")),
-                sweep_table(results, &paths, &rows),
+                sweep_table(results, &sweep.axes, &rows),
             )
         })
         .collect()
@@ -118,7 +118,7 @@ pub(super) fn sweep_tables(results: &Results) -> Vec<SweepView> {
 /// One row per combination: the axis values, then [`TABLE_METRICS`] and every
 /// metric a requirement or reference uses, each followed by its published value
 /// if any.
-fn sweep_table(results: &Results, axes: &[&str], rows: &[Row<'_>]) -> TableView {
+fn sweep_table(results: &Results, axes: &[Axis], rows: &[Row<'_>]) -> TableView {
     let mut metrics: Vec<&str> = TABLE_METRICS.to_vec();
     for name in results.cited_metrics() {
         if !metrics.contains(&name) {
@@ -128,7 +128,13 @@ fn sweep_table(results: &Results, axes: &[&str], rows: &[Row<'_>]) -> TableView 
     metrics.retain(|m| rows.iter().any(|(p, _)| p.metrics.0.iter().any(|(k, _)| k == m)));
     let has_published = |metric: &str| results.references.iter().any(|r| r.metric == metric);
 
-    let mut heads: Vec<String> = axes.iter().map(|a| (*a).to_string()).collect();
+    let mut heads: Vec<String> = axes
+        .iter()
+        .map(|a| match &a.unit {
+            Some(unit) => head(&a.path, unit),
+            None => a.path.clone(),
+        })
+        .collect();
     for metric in &metrics {
         heads.push(head(metric, metric_unit(metric)));
         if has_published(metric) {

@@ -329,14 +329,6 @@ pub(crate) struct SceneUpdate {
 }
 
 impl SceneUpdate {
-    /// Adds `entities` to what the topic shows.
-    pub(crate) fn add(entities: Vec<Entity>) -> Self {
-        Self {
-            deletions: Vec::new(),
-            entities,
-        }
-    }
-
     /// Replaces everything the topic showed before `timestamp` by `entities`.
     pub(crate) fn replace(timestamp: Time, entities: Vec<Entity>) -> Self {
         Self {

@@ -1,7 +1,7 @@
 //! Reading a recording back for `sightline replay`: the whole file checked
 //! (magic at both ends, every chunk's, attachment's and section's CRC), then
 //! what replay needs kept: the scenario, the imported files, every point's
-//! outcome, the verdicts, and the recorded point's cell counts summed over its
+//! outcome, the verdicts, and each recorded point's cell counts summed over its
 //! steps. Messages on other channels are checked and dropped, so memory stays
 //! bounded by one chunk.
 
@@ -66,9 +66,9 @@ pub struct Recording {
     pub verdicts: Vec<VerdictRecord>,
     /// Messages per topic.
     pub counts: BTreeMap<String, u64>,
-    /// A perception world's recorded point: its cell counts summed over its
-    /// measured steps (`None` when no step carried cells).
-    pub step_counts: Option<WorldMetrics>,
+    /// Each recorded point of a perception world that has measured steps: its
+    /// cell counts summed over them, by point.
+    pub step_counts: BTreeMap<usize, WorldMetrics>,
 }
 
 /// Reads and checks a whole recording.
@@ -87,7 +87,7 @@ pub fn read(bytes: &[u8]) -> Result<Recording, ReadError> {
     let mut verdicts: Vec<VerdictRecord> = Vec::new();
     let mut counts: BTreeMap<String, u64> = BTreeMap::new();
     let mut attachments: BTreeMap<String, Vec<u8>> = BTreeMap::new();
-    let mut step_counts: Option<WorldMetrics> = None;
+    let mut step_counts: BTreeMap<usize, WorldMetrics> = BTreeMap::new();
     let mut malformed: Option<ReadError> = None;
     let mut offset = 0;
     while let Some(event) = reader.next_event() {
@@ -140,7 +140,7 @@ pub fn read(bytes: &[u8]) -> Result<Recording, ReadError> {
                                         self_report_detected: cells.self_report_detected,
                                         self_report_only: cells.self_report_only,
                                     };
-                                    step_counts.get_or_insert_with(WorldMetrics::default).add_step(
+                                    step_counts.entry(signals.point).or_default().add_step(
                                         cells.ego_observed,
                                         cells.joint_observed,
                                         &tally,
@@ -195,6 +195,14 @@ pub fn read(bytes: &[u8]) -> Result<Recording, ReadError> {
             )));
         }
         imports.insert(import.path.clone(), bytes);
+    }
+    if let Some(point) = step_counts
+        .keys()
+        .find(|&&point| !scenario.points.iter().any(|p| p.point == point))
+    {
+        return Err(ReadError::Inconsistent(format!(
+            "it holds steps of point {point}, which it does not list as recorded"
+        )));
     }
     outcomes.sort_by_key(|o| o.point);
     if let Some((i, outcome)) = outcomes.iter().enumerate().find(|(i, o)| o.point != *i) {
@@ -276,8 +284,8 @@ impl Measurements for RecordedRun {
 impl Recording {
     /// The recorded measurements of a scenario of `points` sweep points, once
     /// the recording is checked against itself: one outcome per point, and, for
-    /// a perception world, the recorded point's steps adding up to the metrics its
-    /// outcome holds.
+    /// a perception world, each recorded point's steps adding up to the metrics
+    /// its outcome holds.
     pub fn measurements(&self, points: usize) -> Result<RecordedRun, ReadError> {
         if self.outcomes.len() != points {
             return Err(ReadError::Inconsistent(format!(
@@ -332,8 +340,7 @@ impl Recording {
                 })
                 .collect(),
         };
-        if let Some(steps) = &self.step_counts {
-            let point = self.scenario.point;
+        for (&point, steps) in &self.step_counts {
             for metric in WORLD_STEP_METRICS {
                 let (summed, recorded) = (steps.value(metric), run.sample(point, 0, metric).and_then(|s| s.value));
                 if summed.map(f64::to_bits) != recorded.map(f64::to_bits) {

@@ -20,7 +20,7 @@ use crate::Tool;
 
 /// The format of sightline's recordings, written in `/sightline/scenario`;
 /// replay reads this version only.
-pub const RECORDING_FORMAT: &str = "sightline-recording/3";
+pub const RECORDING_FORMAT: &str = "sightline-recording/4";
 
 /// A number that survives JSON exactly: finite values as JSON numbers (read back
 /// bit for bit). JSON has no number for NaN and the infinities, and the viewers'
@@ -105,13 +105,26 @@ pub struct ScenarioRecord {
     pub seed: Option<u64>,
     /// Whether `--record` asked for the recording (the file may have no `record`).
     pub record_flag: bool,
-    /// The recorded point: its index in results.json's `sweep`.
-    pub point: usize,
-    /// Its sweep label (empty without a sweep).
-    pub label: String,
+    /// The points recorded step by step, in the order recorded: one, or every
+    /// sweep point (`record.points: all`), each in its own span of time.
+    pub points: Vec<RecordedPointRecord>,
     /// The files the scenario imports; each is attached to the recording
     /// (attachment name: the path).
     pub imports: Vec<ImportRecord>,
+}
+
+/// A point recorded step by step.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct RecordedPointRecord {
+    /// Its index in results.json's `sweep`.
+    pub point: usize,
+    /// Its sweep label (empty without a sweep).
+    pub label: String,
+    /// When its step 0 is, seconds after the scenario's epoch (`time.start`):
+    /// 0 for the one recorded point; with every point recorded, point k's is
+    /// k times the slot (the longest point's duration and a second, rounded up
+    /// to a whole minute).
+    pub offset: f64,
 }
 
 /// A file the scenario imports.
@@ -308,6 +321,8 @@ pub struct PointVerdictRecord {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[schemars(title = "sightline.Signals")]
 pub struct SignalsRecord {
+    /// The sweep point: its index in results.json's `sweep`.
+    pub point: usize,
     /// The step; step k is at time k · `time.step`.
     pub step: usize,
     /// A perception world's fused grid at this step (left out in a semantic world,
@@ -388,6 +403,8 @@ pub struct SemanticSignals {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[schemars(title = "sightline.RequirementSignals")]
 pub struct RequirementSignals {
+    /// The sweep point: its index in results.json's `sweep`.
+    pub point: usize,
     /// The step.
     pub step: usize,
     /// One entry per requirement, in file order.
@@ -416,6 +433,8 @@ pub struct RequirementSignal {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[schemars(title = "sightline.Packet")]
 pub struct PacketRecord {
+    /// The sweep point: its index in results.json's `sweep`.
+    pub point: usize,
     /// The step.
     pub step: usize,
     /// The sending agent's id.
@@ -444,6 +463,8 @@ pub struct PacketRecord {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[schemars(title = "sightline.SemanticMessage")]
 pub struct MessageRecord {
+    /// The sweep point: its index in results.json's `sweep`.
+    pub point: usize,
     /// The step.
     pub step: usize,
     /// The sending RSU's id.
@@ -461,6 +482,8 @@ pub struct MessageRecord {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[schemars(title = "sightline.Arrival")]
 pub struct ArrivalRecord {
+    /// The sweep point: its index in results.json's `sweep`.
+    pub point: usize,
     /// When it arrived, seconds.
     pub at: f64,
     /// The objects it names, with their labels.
@@ -498,6 +521,8 @@ pub struct ConflictRecord {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[schemars(title = "sightline.Approach")]
 pub struct ApproachRecord {
+    /// The sweep point: its index in results.json's `sweep`.
+    pub point: usize,
     /// The step.
     pub step: usize,
     /// The object's agent id.

@@ -18,15 +18,18 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::io::{Seek, Write};
 
 use mcap::{Attachment, Compression, WriteOptions, Writer};
-use sightline_dsl::{Agent, Check, Experiment, Grid as CellGrid, JointPart, Metric, Record, Scenario};
+use sightline_dsl::{Agent, Check, Experiment, Grid as CellGrid, JointPart, Metric, Record, RecordedPoints, Scenario};
 use sightline_engine::TraceSink;
 use sightline_engine::outcome::{SemanticMetrics, WorldMetrics};
 use sightline_engine::trace::{Pose, SemanticStep, Vector, WorldStep, mount_pose};
 
 use super::counts::WORLD_STEP_METRICS;
-use super::foxglove::{LineType, SceneUpdate};
+use super::foxglove::{LineType, SceneUpdate, Time};
 use super::topic;
-use super::wire::{CellSignals, ImportRecord, RECORDING_FORMAT, RequirementSignal, RequirementSignals, ScenarioRecord};
+use super::wire::{
+    CellSignals, ImportRecord, RECORDING_FORMAT, RecordedPointRecord, RequirementSignal, RequirementSignals,
+    ScenarioRecord,
+};
 use crate::{Tool, sha256_hex};
 use channel::{REQUIREMENTS, SCENARIO, SCENE};
 use scene::{field_of_view, map_entities};
@@ -62,6 +65,11 @@ pub struct Source<'a> {
     /// Whether `--record` was given.
     pub record_flag: bool,
 }
+
+/// How long after a point's last step its agents and detections are cleared
+/// when another point follows, nanoseconds (points are at least a second
+/// apart).
+const CLEARED_AFTER: u64 = 1_000_000_000;
 
 /// The metrics the steps of a semantic world's recorded run give.
 const SEMANTIC_STEP_METRICS: [Metric; 2] = [Metric::PacketDeliveryRatio, Metric::MissedCriticals];
@@ -131,6 +139,10 @@ pub struct Recorder<'s, W: Write + Seek> {
     /// Log time of the latest step, nanoseconds since 1970 (the recording's
     /// clock starts at `record.start`).
     last: u64,
+    /// When the recorded point's step 0 is, nanoseconds since 1970.
+    base: u64,
+    /// Whether a point's steps are being recorded (a next point clears its scene).
+    open: bool,
     agents: Vec<Agent>,
     /// Per agent, its sensors' field-of-view outlines in the sensor frame.
     fields_of_view: Vec<Vec<(Pose, LineType, Vec<Vector>)>>,
@@ -147,68 +159,47 @@ pub struct Recorder<'s, W: Write + Seek> {
 }
 
 impl<'s, W: Write + Seek> Recorder<'s, W> {
-    /// Starts the recording of point `record.point` of `scenario` into `out`:
-    /// the MCAP header, `/sightline/scenario`, the imported files as attachments
-    /// and the static scene.
+    /// Starts the recording of `scenario` into `out`: the MCAP header,
+    /// `/sightline/scenario`, the imported files as attachments, and (one point
+    /// recorded) point `record.point`'s static scene. With every point recorded
+    /// (`record.points: all`), each point starts when the run calls
+    /// [`TraceSink::point`].
     pub fn new(out: W, scenario: &'s Scenario, record: Record, source: &Source<'_>) -> Result<Self, WriteError> {
         let options = WriteOptions::new()
             .compression(Some(Compression::Lz4))
             .library("sightline");
-        let point = &scenario.points[record.point];
-        let world = match &point.setup.experiment {
-            Experiment::World(world) => Some(world.as_ref()),
-            Experiment::Field(_) => None,
-        };
-        let running = Running {
-            world: world
-                .filter(|w| w.perception.is_some())
-                .map(|_| WorldMetrics::default()),
-            semantic: world.filter(|w| w.semantic.is_some()).map(|_| SemanticMetrics {
-                runs: 1,
-                ..SemanticMetrics::default()
-            }),
-        };
-        let signalled = scenario
-            .requirements
-            .iter()
-            .filter(|r| r.points.contains(&record.point))
-            .filter_map(|r| match r.check {
-                // A metric checked on the run itself: its running value over the steps.
-                Check::Metric {
-                    metric,
-                    bound,
-                    over_seeds: None,
-                } if running.gives(metric) => Some((r.id.clone(), metric, bound)),
-                _ => None,
-            })
-            .collect();
         let mut recorder = Self {
             out: options.create(out)?,
             scenario,
             record,
-            grid: point.setup.occupancy.as_ref().map(|o| o.grid),
+            grid: None,
             channels: BTreeMap::new(),
             schemas: BTreeMap::new(),
             sequence: 0,
             failure: None,
             last: record.start,
+            base: record.start,
+            open: false,
             agents: Vec::new(),
             fields_of_view: Vec::new(),
-            ego: world.and_then(|w| {
-                w.semantic
-                    .as_ref()
-                    .map(|s| s.ego)
-                    .or_else(|| w.perception.as_ref().map(|p| p.ego))
-            }),
-            cooperating: world
-                .and_then(|w| w.perception.as_ref())
-                .map(|p| p.cooperating.iter().copied().collect())
-                .unwrap_or_default(),
+            ego: None,
+            cooperating: BTreeSet::new(),
             shown: BTreeSet::new(),
-            signalled,
-            running,
+            signalled: Vec::new(),
+            running: Running {
+                world: None,
+                semantic: None,
+            },
             pending_cells: None,
         };
+        let points = record
+            .recorded(scenario.points.len())
+            .map(|point| RecordedPointRecord {
+                point,
+                label: scenario.points[point].label(),
+                offset: (record.start_of(point) - record.start) as f64 / 1e9,
+            })
+            .collect();
         recorder.publish(
             topic::SCENARIO,
             SCENARIO,
@@ -221,8 +212,7 @@ impl<'s, W: Write + Seek> Recorder<'s, W> {
                 sha256: sha256_hex(source.text.as_bytes()),
                 seed: source.seed,
                 record_flag: source.record_flag,
-                point: record.point,
-                label: point.label(),
+                points,
                 imports: scenario
                     .imports
                     .iter()
@@ -243,9 +233,8 @@ impl<'s, W: Write + Seek> Recorder<'s, W> {
                 data: std::borrow::Cow::Borrowed(&import.bytes),
             })?;
         }
-        if let Some(world) = world {
-            let map = map_entities(world, recorder.grid.as_ref(), record.start);
-            recorder.publish(topic::MAP, SCENE, record.start, &SceneUpdate::add(map));
+        if record.points == RecordedPoints::One {
+            recorder.begin(record.point);
         }
         recorder.take_failure()?;
         Ok(recorder)
@@ -255,6 +244,69 @@ impl<'s, W: Write + Seek> Recorder<'s, W> {
     /// reports in turn.
     fn joint(&self) -> bool {
         self.running.world.is_some() && self.running.semantic.is_some()
+    }
+
+    /// Starts recording point `point` at its place on the clock: what its
+    /// steps show and signal, and its map (`/scene/map`, replacing the previous
+    /// point's); the previous point's agents and detections are cleared a
+    /// second after its last step.
+    fn begin(&mut self, point: usize) {
+        if std::mem::replace(&mut self.open, true) {
+            self.clear_scene(self.last.saturating_add(CLEARED_AFTER));
+        }
+        let scenario = self.scenario;
+        self.record = self.record.at_point(&scenario.points, point);
+        self.base = self.record.start_of(point);
+        self.last = self.base;
+        let setup = &scenario.points[point].setup;
+        let world = match &setup.experiment {
+            Experiment::World(world) => Some(world.as_ref()),
+            Experiment::Field(_) => None,
+        };
+        self.running = Running {
+            world: world
+                .filter(|w| w.perception.is_some())
+                .map(|_| WorldMetrics::default()),
+            semantic: world.filter(|w| w.semantic.is_some()).map(|_| SemanticMetrics {
+                runs: 1,
+                ..SemanticMetrics::default()
+            }),
+        };
+        self.pending_cells = None;
+        let running = &self.running;
+        self.signalled = scenario
+            .requirements
+            .iter()
+            .filter(|r| r.points.contains(&point))
+            .filter_map(|r| match r.check {
+                // A metric checked on the run itself: its running value over the steps.
+                Check::Metric {
+                    metric,
+                    bound,
+                    over_seeds: None,
+                } if running.gives(metric) => Some((r.id.clone(), metric, bound)),
+                _ => None,
+            })
+            .collect();
+        self.grid = setup.occupancy.as_ref().map(|o| o.grid);
+        self.ego = world.and_then(|w| {
+            w.semantic
+                .as_ref()
+                .map(|s| s.ego)
+                .or_else(|| w.perception.as_ref().map(|p| p.ego))
+        });
+        self.cooperating = world
+            .and_then(|w| w.perception.as_ref())
+            .map(|p| p.cooperating.iter().copied().collect())
+            .unwrap_or_default();
+        self.shown.clear();
+        self.agents.clear();
+        self.fields_of_view.clear();
+        if let Some(world) = world {
+            let map = map_entities(world, self.grid.as_ref(), self.base);
+            let stamp = Time::from_nanos(self.base);
+            self.publish(topic::MAP, SCENE, self.base, &SceneUpdate::replace(stamp, map));
+        }
     }
 
     fn take_failure(&mut self) -> Result<(), WriteError> {
@@ -280,14 +332,18 @@ impl<'s, W: Write + Seek> Recorder<'s, W> {
                 }
             })
             .collect();
-        let message = RequirementSignals { step, requirements };
+        let message = RequirementSignals {
+            point: self.record.point,
+            step,
+            requirements,
+        };
         self.publish(topic::REQUIREMENTS, REQUIREMENTS, time, &message);
     }
 
-    /// The recording's time `seconds` of simulated time after step 0, nanoseconds
-    /// since 1970.
+    /// The recording's time `seconds` of simulated time after the recorded
+    /// point's step 0, nanoseconds since 1970.
     fn at(&self, seconds: f64) -> u64 {
-        self.record.start.saturating_add(nanos(seconds))
+        self.base.saturating_add(nanos(seconds))
     }
 
     fn agent_id(&self, index: usize) -> String {
@@ -298,6 +354,10 @@ impl<'s, W: Write + Seek> Recorder<'s, W> {
 }
 
 impl<W: Write + Seek> TraceSink for Recorder<'_, W> {
+    fn point(&mut self, point: usize) {
+        self.begin(point);
+    }
+
     fn start(&mut self, agents: &[Agent]) {
         self.agents = agents.to_vec();
         self.fields_of_view = agents

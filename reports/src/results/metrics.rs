@@ -74,3 +74,11 @@ impl<T: JsonSchema> JsonSchema for Ordered<T> {
         })
     }
 }
+
+/// The unit of a metric by name (`1` for a name that is not a metric).
+pub(crate) fn metric_unit(name: &str) -> &'static str {
+    sightline_dsl::Metric::ALL
+        .iter()
+        .find(|m| m.name() == name)
+        .map_or("1", |m| m.unit().symbol())
+}

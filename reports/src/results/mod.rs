@@ -36,6 +36,7 @@ pub use counts::{
 };
 pub use document::{FORMAT, InputInfo, Results, ScenarioInfo, Summary, WarningInfo};
 pub(crate) use from_run::object_result;
+pub(crate) use metrics::metric_unit;
 pub use metrics::{Measured, MetricEntry, Ordered, Table};
 pub use objects::{CategoryCounts, ClosestApproach, MAX_OBJECT_RECORDS, ObjectCategory, ObjectList, ObjectResult};
 pub use point::{Detail, LabelResult, PointResult, SemanticDetail};

@@ -33,10 +33,14 @@ pub struct RecordingInfo {
     /// SHA-256 of its bytes, lowercase hex: `sightline replay` refuses a
     /// recording that does not match it.
     pub sha256: String,
-    /// The recorded sweep point's index.
+    /// The recorded sweep point's index (with every point recorded, the first).
     pub point: usize,
     /// Its sweep label (empty without a sweep).
     pub label: String,
+    /// Whether every sweep point is recorded (`record.points: all`), one
+    /// after another on the recording's clock; left out when one is.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub every_point: bool,
 }
 
 /// The tool and its build. Its schema is also the recording's (see

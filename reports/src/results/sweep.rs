@@ -26,6 +26,11 @@ pub struct Axis {
     pub path: String,
     /// The values, as written.
     pub values: Vec<serde_json::Value>,
+    /// The unit of the values, as the language's schema gives the setting
+    /// (`s`, `m`, `1` for a pure number); left out for a setting without one
+    /// (a name, a count).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub unit: Option<String>,
 }
 
 /// A row of a sweep: the point that simulates it and each axis's value there.

@@ -72,7 +72,7 @@ fn sensor(ctx: &mut Context<'_>, name: &str, raw: &RawSensorModel, path: &Path) 
 pub(super) fn localization(ctx: &mut Context<'_>, raw: &RawScenario) -> Option<Localization> {
     let path = Path::root().key("localization");
     let l = &raw.localization;
-    let ok = ctx.within(&path.key("position_sigma"), l.position_sigma, range::SIGMA)
+    let ok = ctx.within(&path.key("position_sigma"), l.position_sigma, range::POSITION_SIGMA)
         & ctx.within(&path.key("heading_sigma_deg"), l.heading_sigma_deg, range::ANGLE_SIGMA)
         & ctx.within(
             &path.key("process_position_sigma"),
@@ -97,12 +97,12 @@ pub(super) fn localization(ctx: &mut Context<'_>, raw: &RawScenario) -> Option<L
 }
 
 fn odometry(ctx: &mut Context<'_>, raw: &RawOdometry, path: &Path) -> Option<Odometry> {
-    let ok = ctx.within(&path.key("speed_sigma"), raw.speed_sigma, range::SIGMA)
+    let ok = ctx.within(&path.key("speed_sigma"), raw.speed_sigma, range::SPEED_SIGMA)
         & ctx.within(&path.key("speed_bias"), raw.speed_bias, range::SPEED_SCALE_ERROR)
         & ctx.within(
             &path.key("yaw_rate_sigma_deg"),
             raw.yaw_rate_sigma_deg,
-            range::ANGLE_SIGMA,
+            range::TURN_RATE_SIGMA,
         )
         & ctx.within(
             &path.key("yaw_rate_bias_deg"),

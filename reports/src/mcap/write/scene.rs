@@ -162,6 +162,17 @@ impl<W: Write + Seek> Recorder<'_, W> {
         }
         self.shown = now;
     }
+
+    /// Clears the agents (`/scene/agents`) and every cooperating agent's
+    /// detections at `time`: the end of a point when another follows.
+    pub(super) fn clear_scene(&mut self, time: u64) {
+        let stamp = Time::from_nanos(time);
+        self.publish(topic::AGENTS, SCENE, time, &SceneUpdate::replace(stamp, Vec::new()));
+        for gone in std::mem::take(&mut self.shown) {
+            let topic = topic::detections(&self.agent_id(gone));
+            self.publish(&topic, SCENE, time, &SceneUpdate::replace(stamp, Vec::new()));
+        }
+    }
 }
 
 /// A sensor's field of view in its own frame: a circle of its range when it

@@ -25,6 +25,7 @@ impl<W: Write + Seek> Recorder<'_, W> {
         self.last = time;
         for arrival in step.arrivals {
             let record = ArrivalRecord {
+                point: self.record.point,
                 at: arrival.at,
                 items: self.items(&arrival.items),
             };
@@ -53,6 +54,7 @@ impl<W: Write + Seek> Recorder<'_, W> {
                 PacketKind::Direct => ("direct", None),
             };
             let record = PacketRecord {
+                point: self.record.point,
                 step: step.step,
                 from: self.agent_id(packet.from),
                 to: self.agent_id(packet.to),
@@ -68,6 +70,7 @@ impl<W: Write + Seek> Recorder<'_, W> {
                 signals.messages += 1;
                 signals.messages_received += u64::from(received);
                 let record = MessageRecord {
+                    point: self.record.point,
                     step: step.step,
                     from: self.agent_id(packet.from),
                     received,
@@ -79,6 +82,7 @@ impl<W: Write + Seek> Recorder<'_, W> {
         }
         for approach in step.approaches {
             let record = ApproachRecord {
+                point: self.record.point,
                 step: step.step,
                 agent: self.agent_id(approach.agent),
                 flagged: approach.flagged,
@@ -92,6 +96,7 @@ impl<W: Write + Seek> Recorder<'_, W> {
             running.missed_criticals += signals.missed;
         }
         let record = SignalsRecord {
+            point: self.record.point,
             step: step.step,
             cells: self.pending_cells.take(),
             semantic: Some(signals),

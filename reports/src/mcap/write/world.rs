@@ -39,6 +39,7 @@ impl<W: Write + Seek> Recorder<'_, W> {
             return;
         }
         let signals = SignalsRecord {
+            point: self.record.point,
             step: step.step,
             cells,
             semantic: None,

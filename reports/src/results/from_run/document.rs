@@ -119,6 +119,7 @@ fn sweep(sweep: &sightline_dsl::Sweep) -> Sweep {
             .map(|axis| Axis {
                 path: axis.path.clone(),
                 values: axis.values.clone(),
+                unit: sightline_dsl::setting_unit(&axis.path),
             })
             .collect(),
         points: sweep.points.clone(),
