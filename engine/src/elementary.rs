@@ -35,17 +35,37 @@ pub(crate) fn pow(x: f64, w: f64) -> f64 {
     if exact { power } else { x.powf(w) }
 }
 
-/// powers[i] = xs[i]^ws[i], the same values as [`pow`] one by one: the kernel
-/// runs over the whole slice without a branch (so that the compiler can
-/// overlap the iterations), and only the rare inputs outside its domain go
-/// to `powf` afterwards.
+/// powers[i] = xs[i]^ws[i], the same values as [`pow`] one by one: the
+/// kernels run over the slice four at a time without a branch (so that the
+/// compiler vectorises them), and only the rare inputs outside their domain
+/// go to `powf` afterwards.
 pub(crate) fn pow_many(xs: &[f64], ws: &[f64], powers: &mut [f64]) {
+    const LANES: usize = 4;
     debug_assert!(xs.len() == ws.len() && xs.len() == powers.len());
+    let whole = xs.len() / LANES * LANES;
     let mut all_exact = true;
-    for ((power, &x), &w) in powers.iter_mut().zip(xs).zip(ws) {
+    for ((power, x), w) in powers[..whole]
+        .chunks_exact_mut(LANES)
+        .zip(xs.chunks_exact(LANES))
+        .zip(ws.chunks_exact(LANES))
+    {
+        // Lane by lane in separate loops, as the compiler vectorises them.
+        let mut y = [0.0; LANES];
+        let mut exact = [false; LANES];
+        for lane in 0..LANES {
+            y[lane] = w[lane] * ln_normal(x[lane]);
+            exact[lane] = in_domain(x[lane], y[lane]);
+        }
+        for lane in 0..LANES {
+            // NaN marks the inputs left to the library: the kernel never returns it.
+            let value = exp_normal(if exact[lane] { y[lane] } else { 0.0 });
+            power[lane] = if exact[lane] { value } else { f64::NAN };
+            all_exact &= exact[lane];
+        }
+    }
+    for ((power, &x), &w) in powers[whole..].iter_mut().zip(&xs[whole..]).zip(&ws[whole..]) {
         let (value, exact) = pow_kernel(x, w);
         all_exact &= exact;
-        // NaN marks the inputs left to the library: the kernel never returns it.
         *power = if exact { value } else { f64::NAN };
     }
     if !all_exact {
@@ -57,12 +77,19 @@ pub(crate) fn pow_many(xs: &[f64], ws: &[f64], powers: &mut [f64]) {
     }
 }
 
+/// Whether the kernels give x^w for y = w ln x (computed by [`ln_normal`]):
+/// x positive and normal, y in [−708, 709] (a normal result).
+#[inline]
+fn in_domain(x: f64, y: f64) -> bool {
+    is_positive_normal(x) & (y >= -708.0) & (y <= 709.0)
+}
+
 /// x^w by the kernels, and whether they apply: x positive and normal, w ln x
 /// in [−708, 709] (a normal result). Branch-free.
 #[inline]
 fn pow_kernel(x: f64, w: f64) -> (f64, bool) {
     let y = w * ln_normal(x);
-    let exact = is_positive_normal(x) & (y >= -708.0) & (y <= 709.0);
+    let exact = in_domain(x, y);
     // Outside the domain, exp's kernel still runs on a harmless argument.
     (exp_normal(if exact { y } else { 0.0 }), exact)
 }
@@ -124,6 +151,9 @@ fn ln_normal(x: f64) -> f64 {
     // The mantissa's top 7 bits, rounded to 6: the nearest centre.
     let j = ((((bits & MANTISSA) >> (51 - STEPS.trailing_zeros())) + 1) >> 1) as usize;
     let m = f64::from_bits((bits & MANTISSA) | (1023 << 52));
+    // j ≤ 64 always; the `min` spares a bounds check, which would keep the
+    // compiler from vectorising `pow_many`.
+    let j = j.min(STEPS);
     let r = m * INVERSE_CENTRES[j] - 1.0;
     let r2 = r * r;
     // r − r²/2 + r³/3 − … + r⁷/7, in pairs (Estrin) to shorten the chain.
@@ -146,7 +176,7 @@ fn exp_normal(y: f64) -> f64 {
     let r2 = r * r;
     let series = 1.0 + (r + r2 * ((0.5 + r * (1.0 / 6.0)) + r2 * ((1.0 / 24.0) + r * (1.0 / 120.0))));
     let n = k >> STEPS.trailing_zeros();
-    let j = (k & (STEPS as i32 - 1)) as usize;
+    let j = (k & (STEPS as i32 - 1)) as usize % STEPS;
     // 2ⁿ is normal for n in [−1022, 1023], which y's range keeps.
     POWERS_OF_TWO[j] * series * f64::from_bits(u64::from((n + 1023) as u32) << 52)
 }

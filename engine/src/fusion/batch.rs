@@ -112,7 +112,7 @@ pub fn fuse_cells(
             let mass = match is_weighted {
                 false => source.mass,
                 true => match transforms.next().expect("a transform per source of a weighted cell") {
-                    Some((largest, at)) => largest.transformed([powers[*at], powers[*at + 1]]),
+                    Some((largest, at)) => largest.terms([powers[*at], powers[*at + 1]]),
                     None => source.mass,
                 },
             };

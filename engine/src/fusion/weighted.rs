@@ -32,8 +32,22 @@ pub fn discount(mass: Mass, weight: f64) -> Mass {
     if weight == 1.0 {
         return mass;
     }
+    let terms = transform_terms(mass, weight);
+    let total = terms.total();
+    Mass::new(terms.empty / total, terms.occupied / total, terms.unknown / total)
+}
+
+/// The power transform before its normalisation: terms proportional to
+/// [`discount`]'s masses, the largest 1. Dempster's rule does not depend on
+/// the scale of a source (the [`Combiner`] divides once, by the scale of the
+/// whole combination), so the weighted rule combines these as they are.
+#[inline]
+pub(super) fn transform_terms(mass: Mass, weight: f64) -> Mass {
+    if weight == 1.0 {
+        return mass;
+    }
     let (largest, ratios) = Ratios::of(mass);
-    largest.transformed(ratios.map(|ratio| pow(ratio, weight)))
+    largest.terms(ratios.map(|ratio| pow(ratio, weight)))
 }
 
 /// Which state holds the largest mass: the power transform leaves its term
@@ -60,14 +74,14 @@ impl Ratios {
         (Self(largest), [ratio(a), ratio(b)])
     }
 
-    /// The normalised transform from the two ratios raised to the weight.
+    /// The transform's terms from the two ratios raised to the weight: the
+    /// largest state's is 1.
     #[inline]
-    pub(super) fn transformed(self, powers: [f64; 2]) -> Mass {
+    pub(super) fn terms(self, powers: [f64; 2]) -> Mass {
         let mut terms = [1.0; 3];
         let [a, b] = Self::others(self.0);
         (terms[a], terms[b]) = (powers[0], powers[1]);
-        let total = terms[0] + terms[1] + terms[2];
-        Mass::new(terms[0] / total, terms[1] / total, terms[2] / total)
+        Mass::new(terms[0], terms[1], terms[2])
     }
 
     /// The two states other than `largest`, in state order.
@@ -148,7 +162,7 @@ pub fn combine_all_at(
         SourceCombination::AllAtOnce => {
             let mut combiner = Combiner::new();
             for (mass, distance) in sources {
-                combiner.add(discount(mass, distances.weight(distance, weighting.scaling)));
+                combiner.add(transform_terms(mass, distances.weight(distance, weighting.scaling)));
             }
             combiner.finish()
         }
