@@ -150,6 +150,7 @@ fn run_once((seed, run): (u64, u32), world: &World, semantic: &Semantic, sink: &
     let mut ego = Ego::new(semantic.ego, agents.len());
     let mut measures = Measures::new(world, semantic, agents.len());
     let mut states = Vec::new();
+    let mut bodies = Bodies::empty();
     sink.start(&agents);
 
     for k in 0..world.steps {
@@ -158,7 +159,7 @@ fn run_once((seed, run): (u64, u32), world: &World, semantic: &Semantic, sink: &
         let cycle = k % semantic.period_steps == 0;
         // Move.
         kinematics.advance(k, &mut states);
-        let bodies = Bodies::of_scene(&agents, &states);
+        bodies.update(&agents, &states);
         let ego_state = states[semantic.ego];
         // Communicate: the semantic messages that reached the ego by now.
         let arrivals = radio.arrivals(time);
