@@ -51,6 +51,7 @@ const NOT_OPTIONS: &[(&str, &str)] = &[
         "what an agent is (its footprint and role), not how it is modelled",
     ),
     ("Direction", "a roundabout's geometry"),
+    ("RawPaper", "the printed report's paper size"),
     (
         "Oversize",
         "how a sender fits its grid into messages: behaviour the radio models, neither way idealised",
