@@ -11,7 +11,9 @@ temporary folder.
 
     cargo build --release
     python3 -m venv target/bench-python && target/bench-python/bin/pip install -r bench/requirements.txt
-    target/bench-python/bin/python bench/targets.py [--repeat 5] [--only s1,table,roundabout,urban,falsify]
+    python3 bench/targets.py [--repeat 5] [--only s1,table,roundabout,urban,falsify]
+
+(numpy runs in target/bench-python when it exists, else in this Python.)
 
 The targets (docs/performance.md): S1 one gamma <= 0.12 s wall on 2 cores, the
 5-gamma table <= 0.5 s, CPU <= 1/4 of numpy's, <= 50 MB; the roundabout >= 100x
@@ -82,9 +84,13 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeat", type=int, default=5)
     parser.add_argument("--only", default="s1,table,roundabout,urban,falsify")
-    parser.add_argument("--python", default=sys.executable, help="a Python with numpy (bench/requirements.txt)")
+    venv = ROOT / "target" / "bench-python" / "bin" / "python"
+    parser.add_argument("--python", default=str(venv) if venv.exists() else sys.executable,
+                        help="a Python with numpy (bench/requirements.txt); target/bench-python's if it exists")
     args = parser.parse_args()
     only = set(args.only.split(","))
+    if not SIGHTLINE.exists():
+        sys.exit(f"{SIGHTLINE} is missing: cargo build --release")
     rows = []
     load_before = os.getloadavg()
     with tempfile.TemporaryDirectory() as tmp:
