@@ -63,7 +63,7 @@ fn criticality_is_judged_listed_and_replayed() {
     let assumptions = results["assumptions"].to_string();
     assert!(assumptions.contains("criticality.boxes"), "{assumptions}");
     let report = unescape_html(&read(&out.join("report.html")));
-    assert!(report.contains(">PET<") && report.contains(">max DRAC, m/s²<"));
+    assert!(report.contains(">PET (s)<") && report.contains(">max DRAC (m/s²)<"));
 
     let replay = sightline(["replay", arg(&out.join(RECORDING))]);
     replay.assert_exit(0);
