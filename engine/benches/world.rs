@@ -68,7 +68,8 @@ fn step(c: &mut Criterion) {
     for k in 0..=120 {
         kinematics.advance(k, &mut states);
     }
-    let bodies = Bodies::of_scene(agents, &states);
+    let mut bodies = Bodies::empty();
+    bodies.update(agents, &states);
     let occluders = Occluders::new(&world.occluders);
     let mut raster = Raster::new(grid, &world.occluders);
     raster.set_bodies(bodies.all());

@@ -44,6 +44,7 @@ pub use sink::{NoTrace, TraceSink};
 pub mod outcome;
 pub mod trace;
 
+mod elementary;
 mod field;
 mod fusion;
 mod idealisation;

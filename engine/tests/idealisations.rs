@@ -51,7 +51,6 @@ const NOT_OPTIONS: &[(&str, &str)] = &[
         "what an agent is (its footprint and role), not how it is modelled",
     ),
     ("Direction", "a roundabout's geometry"),
-    ("RawPaper", "the paper the report is printed on"),
     (
         "Oversize",
         "how a sender fits its grid into messages: behaviour the radio models, neither way idealised",

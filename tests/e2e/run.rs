@@ -251,8 +251,8 @@ fn failing_requirement_exits_1_and_junit_carries_value_and_threshold() {
     );
     assert!(
         outcome.stdout.contains(
-            "\n  fail NOISE-ACC-01 at [field.masses.gamma=30]: measured 0.988125 (value over n = 1600 cells), \
-             threshold 0.995, margin -0.0068749999999999645, n = 1600: "
+            "\n  fail NOISE-ACC-01 at [field.masses.gamma=30]: measured 0.98125 (value over n = 1600 cells), \
+             threshold 0.995, margin -0.01375000000000004, n = 1600: "
         ),
         "{outcome}"
     );

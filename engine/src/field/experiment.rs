@@ -10,13 +10,13 @@ use rayon::prelude::*;
 use sightline_dsl::{Field, Grid};
 
 use super::layout::{self, positions};
-use super::sensor::{self, SensorModel};
+use super::sensor::{self, Dirichlet, Draw, SensorModel};
 use super::truth::{self, GroundTruth};
-use crate::fusion::{Source, fuse};
+use crate::fusion::{BatchScratch, Mass, Source, fuse_cells};
 use crate::idealisation::Idealisation;
 use crate::math::Point;
 use crate::metrics::{Coverage, FieldOutcome, Tally};
-use crate::rng::{Purpose, stream};
+use crate::rng::mass_stream;
 use crate::run::Job;
 
 /// The idealisations of the field experiment, besides those of its options
@@ -104,7 +104,15 @@ pub fn run(seed: u64, grid: &Grid, field: &Field, jobs: &[Job<'_>]) -> Vec<Field
 #[derive(Default)]
 struct Scratch {
     candidates: Vec<Candidate>,
+    /// The row's draws, cell by cell, and where each cell's end.
+    draws: Vec<Draw>,
+    ends: Vec<usize>,
+    /// Per cell of the row: its distance band and truth.
+    cells: Vec<(usize, bool)>,
+    dirichlets: Vec<Dirichlet>,
+    masses: Vec<Mass>,
     sources: Vec<Source>,
+    fusion: BatchScratch,
 }
 
 /// Everything a row needs, shared by all rows of a pass.
@@ -121,6 +129,8 @@ struct Pass<'a> {
 }
 
 impl Pass<'_> {
+    /// Samples the row's masses, then fuses the whole row with each job (see
+    /// [`fuse_cells`]) and tallies it.
     fn row(&self, row: usize, scratch: &mut Scratch) -> (Vec<Tally>, RowCoverage) {
         let grid = self.grid;
         let bands = &self.field.distance_bands;
@@ -128,17 +138,19 @@ impl Pass<'_> {
         let y = grid.cell_center(0, row)[1];
         self.candidates(y, &mut scratch.candidates);
 
-        let mut rng = stream(self.seed, Purpose::Masses, row as u64);
-        let mut tallies: Vec<Tally> = self.jobs.iter().map(|_| Tally::new(bands.len() + 1)).collect();
+        let mut rng = mass_stream(self.seed, row as u64);
         let mut coverage = RowCoverage {
             min: usize::MAX,
             max: 0,
             sum: 0,
         };
+        scratch.draws.clear();
+        scratch.ends.clear();
+        scratch.cells.clear();
         for col in 0..grid.cols {
             let x = grid.cell_center(col, row)[0];
             let occupied = self.truth.is_occupied(col, row);
-            scratch.sources.clear();
+            let first = scratch.draws.len();
             let mut nearest_squared = f64::INFINITY;
             for candidate in &scratch.candidates {
                 if col < candidate.first_col || col > candidate.last_col {
@@ -148,23 +160,48 @@ impl Pass<'_> {
                 let distance_squared = dx * dx + candidate.dy_squared;
                 nearest_squared = nearest_squared.min(distance_squared);
                 if distance_squared <= range_squared {
-                    let distance = distance_squared.sqrt();
-                    scratch.sources.push(Source {
-                        mass: self.model.sample(occupied, distance, &mut rng),
-                        distance: distance.max(self.min_distance),
+                    scratch.draws.push(Draw {
+                        distance: distance_squared.sqrt(),
+                        occupied,
                     });
                 }
             }
             let band = bands.partition_point(|&edge| edge <= nearest_squared.sqrt());
-            let count = scratch.sources.len();
+            let count = scratch.draws.len() - first;
             coverage.min = coverage.min.min(count);
             coverage.max = coverage.max.max(count);
             coverage.sum += count as u64;
-            for (job, tally) in self.jobs.iter().zip(&mut tallies) {
-                let estimate = (count > 0).then(|| fuse(&job.fusion.rule, &scratch.sources));
-                tally.record(band, occupied, estimate.as_ref(), job.decision.threshold);
-            }
+            scratch.ends.push(scratch.draws.len());
+            scratch.cells.push((band, occupied));
         }
+        self.model
+            .sample_many(&scratch.draws, &mut rng, &mut scratch.dirichlets, &mut scratch.masses);
+        scratch.sources.clear();
+        scratch
+            .sources
+            .extend(scratch.draws.iter().zip(&scratch.masses).map(|(draw, &mass)| Source {
+                mass,
+                distance: draw.distance.max(self.min_distance),
+            }));
+        let tallies = self
+            .jobs
+            .iter()
+            .map(|job| {
+                let mut tally = Tally::new(bands.len() + 1);
+                let cells = &scratch.cells;
+                fuse_cells(
+                    &job.fusion.rule,
+                    &scratch.sources,
+                    &scratch.ends,
+                    &mut scratch.fusion,
+                    |col, estimate| {
+                        let (band, occupied) = cells[col];
+                        tally.record(band, occupied, estimate.as_ref(), job.decision.threshold);
+                    },
+                );
+                tally
+            })
+            .collect();
         (tallies, coverage)
     }
 

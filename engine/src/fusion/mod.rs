@@ -1,5 +1,6 @@
 //! Fusion of per-sensor evidence into one estimate per cell.
 
+mod batch;
 mod bayes;
 mod decision;
 mod dempster;
@@ -10,6 +11,7 @@ mod weighted;
 #[cfg(test)]
 mod properties;
 
+pub use batch::{BatchScratch, fuse_cells};
 pub use bayes::pignistic;
 pub use decision::decide;
 pub use dempster::combine;

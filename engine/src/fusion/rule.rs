@@ -77,7 +77,7 @@ pub fn fuse(rule: &Rule, sources: &[Source]) -> Estimate {
             };
             if sources.len() > 1 && spread > switch.threshold {
                 Estimate::Evidential {
-                    combination: weighted::combine_all(pairs, *weighting),
+                    combination: weighted::combine_all_at(&distances, pairs, *weighting),
                     weighted: true,
                 }
             } else {

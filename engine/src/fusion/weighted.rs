@@ -20,6 +20,7 @@ use sightline_dsl::{SourceCombination, WeightScaling, Weighting};
 
 use super::dempster::{Combination, Combiner, combine};
 use super::mass::Mass;
+use crate::elementary::pow;
 
 /// The power transform m'ₛ = mₛ^w / Σₜ mₜ^w of a mass vector by weight `w` > 0.
 ///
@@ -31,11 +32,67 @@ pub fn discount(mass: Mass, weight: f64) -> Mass {
     if weight == 1.0 {
         return mass;
     }
-    let max = mass.empty.max(mass.occupied).max(mass.unknown);
-    let power = |m: f64| if m == max { 1.0 } else { (m / max).powf(weight) };
-    let (empty, occupied, unknown) = (power(mass.empty), power(mass.occupied), power(mass.unknown));
-    let total = empty + occupied + unknown;
-    Mass::new(empty / total, occupied / total, unknown / total)
+    let terms = transform_terms(mass, weight);
+    let total = terms.total();
+    Mass::new(terms.empty / total, terms.occupied / total, terms.unknown / total)
+}
+
+/// The power transform before its normalisation: terms proportional to
+/// [`discount`]'s masses, the largest 1. Dempster's rule does not depend on
+/// the scale of a source (the [`Combiner`] divides once, by the scale of the
+/// whole combination), so the weighted rule combines these as they are.
+#[inline]
+pub(super) fn transform_terms(mass: Mass, weight: f64) -> Mass {
+    if weight == 1.0 {
+        return mass;
+    }
+    let (largest, ratios) = Ratios::of(mass);
+    largest.terms(ratios.map(|ratio| pow(ratio, weight)))
+}
+
+/// Which state holds the largest mass: the power transform leaves its term
+/// at 1 and raises the other two ratios, in state order.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) struct Ratios(usize);
+
+impl Ratios {
+    /// The largest state of `mass` and the other two masses over it (1 for
+    /// a tie, so that tied states stay equal).
+    #[inline]
+    pub(super) fn of(mass: Mass) -> (Self, [f64; 2]) {
+        let m = mass.to_array();
+        let largest = if m[0] >= m[1] && m[0] >= m[2] {
+            0
+        } else if m[1] >= m[2] {
+            1
+        } else {
+            2
+        };
+        let max = m[largest];
+        let ratio = |other: usize| if m[other] == max { 1.0 } else { m[other] / max };
+        let [a, b] = Self::others(largest);
+        (Self(largest), [ratio(a), ratio(b)])
+    }
+
+    /// The transform's terms from the two ratios raised to the weight: the
+    /// largest state's is 1.
+    #[inline]
+    pub(super) fn terms(self, powers: [f64; 2]) -> Mass {
+        let mut terms = [1.0; 3];
+        let [a, b] = Self::others(self.0);
+        (terms[a], terms[b]) = (powers[0], powers[1]);
+        Mass::new(terms[0], terms[1], terms[2])
+    }
+
+    /// The two states other than `largest`, in state order.
+    #[inline]
+    fn others(largest: usize) -> [usize; 2] {
+        match largest {
+            0 => [1, 2],
+            1 => [0, 2],
+            _ => [0, 1],
+        }
+    }
 }
 
 /// What the weights of one cell's sources depend on.
@@ -92,12 +149,20 @@ pub fn combine_two(a: Mass, distance_a: f64, b: Mass, distance_b: f64, scaling: 
 
 /// Combines a cell's sources (mass, distance) with the weighted rule.
 pub fn combine_all(sources: impl Iterator<Item = (Mass, f64)> + Clone, weighting: Weighting) -> Combination {
+    combine_all_at(&Distances::of(sources.clone().map(|(_, d)| d)), sources, weighting)
+}
+
+/// [`combine_all`] when the caller already has the sources' [`Distances`].
+pub fn combine_all_at(
+    distances: &Distances,
+    sources: impl Iterator<Item = (Mass, f64)>,
+    weighting: Weighting,
+) -> Combination {
     match weighting.sources {
         SourceCombination::AllAtOnce => {
-            let distances = Distances::of(sources.clone().map(|(_, d)| d));
             let mut combiner = Combiner::new();
             for (mass, distance) in sources {
-                combiner.add(discount(mass, distances.weight(distance, weighting.scaling)));
+                combiner.add(transform_terms(mass, distances.weight(distance, weighting.scaling)));
             }
             combiner.finish()
         }

@@ -164,10 +164,11 @@ fn run_once((seed, run): (u64, u32), world: &World, semantic: &Semantic, sink: &
     let mut layer = Layer::new(seed, (world, semantic), &agents, &ground, 0);
     let mut kinematics = Kinematics::new(&agents, world.step, world.driving);
     let mut states = Vec::new();
+    let mut bodies = Bodies::empty();
     sink.start(&agents);
     for k in 0..world.steps {
         kinematics.advance(k, &mut states);
-        let bodies = Bodies::of_scene(&agents, &states);
+        bodies.update(&agents, &states);
         layer.step(k, &states, &bodies, &mut kinematics);
         layer.record(k, &states, sink);
     }

@@ -76,7 +76,16 @@ pub(crate) fn runs(observation: &Observation, grid: &Grid) -> Vec<Run> {
     let Some(&first) = touched.first() else {
         return Vec::new();
     };
-    let span = |cell: usize| (cell / grid.cols, cell % grid.cols);
+    // Rows and columns by a multiplication, not a division per cell: on a
+    // grid within the language's limit (25 M cells), (cell + ½)/cols lies at
+    // least ½/cols ≥ 2·10⁻⁸ from an integer, and the product's rounding is
+    // below 6·10⁻⁹.
+    let inverse_cols = 1.0 / grid.cols as f64;
+    let span = |cell: usize| {
+        let row = ((cell as f64 + 0.5) * inverse_cols) as usize;
+        (row, cell - row * grid.cols)
+    };
+    debug_assert!(touched.iter().all(|&c| span(c) == (c / grid.cols, c % grid.cols)));
     let (mut rows, mut cols) = ((span(first).0, span(first).0), (span(first).1, span(first).1));
     for &cell in touched {
         let (row, col) = span(cell);
@@ -85,22 +94,25 @@ pub(crate) fn runs(observation: &Observation, grid: &Grid) -> Vec<Run> {
     }
     let mut runs: Vec<Run> = Vec::new();
     for row in rows.0..=rows.1 {
-        let mut open: Option<Run> = None;
-        for cell in row * grid.cols + cols.0..=row * grid.cols + cols.1 {
-            let state = observation.get(cell);
-            match &mut open {
-                Some(run) if run.state == state && run.len < MAX_RUN => run.len += 1,
-                _ => {
-                    runs.extend(open.take().filter(|r| r.state != Observed::Unknown));
-                    open = Some(Run {
-                        start: cell,
-                        len: 1,
-                        state,
-                    });
-                }
+        let start = row * grid.cols + cols.0;
+        let cells = observation.cells(start..row * grid.cols + cols.1 + 1);
+        let mut i = 0;
+        while i < cells.len() {
+            let state = cells[i];
+            let limit = cells.len().min(i + MAX_RUN as usize);
+            let mut end = i + 1;
+            while end < limit && cells[end] == state {
+                end += 1;
             }
+            if state != Observed::Unknown {
+                runs.push(Run {
+                    start: start + i,
+                    len: (end - i) as u32,
+                    state,
+                });
+            }
+            i = end;
         }
-        runs.extend(open.filter(|r| r.state != Observed::Unknown));
     }
     runs
 }

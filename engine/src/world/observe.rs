@@ -192,6 +192,11 @@ impl Observation {
         self.cells[cell]
     }
 
+    /// What the agent knows of the cells `range`, in order.
+    pub(super) fn cells(&self, range: std::ops::Range<usize>) -> &[Observed] {
+        &self.cells[range]
+    }
+
     /// The cells observed this step (free or occupied), each once.
     pub fn touched(&self) -> &[usize] {
         &self.touched

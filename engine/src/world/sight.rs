@@ -12,7 +12,7 @@
 //! also are), NLoS-dynamic when only agents are.
 
 use parry2d_f64::bounding_volume::Aabb;
-use parry2d_f64::partitioning::{Bvh, BvhBuildStrategy};
+use parry2d_f64::partitioning::{Bvh, BvhBuildStrategy, BvhWorkspace};
 use parry2d_f64::query::{Ray, RayCast};
 use parry2d_f64::shape::{Ball, Cuboid, Polyline};
 use serde::Serialize;
@@ -127,6 +127,11 @@ pub struct Body {
 }
 
 impl Body {
+    /// The box around the footprint (the box of a circle's square holds the circle).
+    fn aabb(&self) -> Aabb {
+        Cuboid::new(self.half_extents).aabb(&self.pose)
+    }
+
     /// The footprint of agent `index` (described by `agent`) at `pose`: a
     /// pedestrian's a circle of diameter its larger size, any other's a rectangle.
     pub fn of(index: usize, agent: &Agent, pose: Pose) -> Self {
@@ -193,34 +198,65 @@ impl Body {
 pub struct Bodies {
     bodies: Vec<Body>,
     bvh: Bvh,
+    /// Per leaf of the BVH: its body's position in `bodies` (`NO_BODY`: none).
+    leaf_body: Vec<u32>,
+    workspace: BvhWorkspace,
 }
 
+/// A leaf of [`Bodies`]'s BVH that holds no body.
+const NO_BODY: u32 = u32::MAX;
+
 impl Bodies {
-    /// The footprints of a step.
+    /// The footprints `bodies`, leaf `i` of the BVH for the `i`-th.
     pub fn new(bodies: Vec<Body>) -> Self {
-        // The box of a circle's square holds the circle.
-        let aabbs: Vec<Aabb> = bodies
-            .iter()
-            .map(|b| Cuboid::new(b.half_extents).aabb(&b.pose))
-            .collect();
+        let aabbs: Vec<Aabb> = bodies.iter().map(Body::aabb).collect();
         Self {
             bvh: Bvh::from_leaves(BvhBuildStrategy::default(), &aabbs),
+            leaf_body: (0..bodies.len() as u32).collect(),
             bodies,
+            workspace: BvhWorkspace::default(),
         }
     }
 
+    /// No footprints: a scene before its first step, to [`update`](Self::update).
+    pub fn empty() -> Self {
+        Self::new(Vec::new())
+    }
+
     /// The footprints of every agent in the scene at a step except roadside
-    /// units, in agent order: `states[i]` is agent `i`'s state, `None` when absent.
-    pub fn of_scene(agents: &[Agent], states: &[Option<AgentState>]) -> Self {
-        Self::new(
+    /// units, in agent order (`states[i]` is agent `i`'s state, `None` when
+    /// absent), in place of the last step's. The BVH is kept from step to
+    /// step, one leaf per agent (its index): the leaves of the agents that left
+    /// are removed, the others moved or inserted, and the tree refitted.
+    /// Rebuilding it every step was a sixth of the urban junction's time (issue
+    /// 20); what a ray hits does not depend on the tree's shape. Only for
+    /// footprints made by [`empty`](Self::empty) and `update`.
+    pub fn update(&mut self, agents: &[Agent], states: &[Option<AgentState>]) {
+        debug_assert!(
+            self.bodies.iter().all(|b| self.leaf_body.get(b.agent).is_some()),
+            "leaves keyed by agent"
+        );
+        self.bodies.clear();
+        self.bodies.extend(
             agents
                 .iter()
                 .zip(states)
                 .enumerate()
                 .filter(|(_, (agent, _))| agent.kind != AgentKind::Rsu)
-                .filter_map(|(i, (agent, state))| state.map(|s| Body::of(i, agent, s.pose)))
-                .collect(),
-        )
+                .filter_map(|(i, (agent, state))| state.map(|s| Body::of(i, agent, s.pose))),
+        );
+        self.leaf_body.resize(agents.len().max(self.leaf_body.len()), NO_BODY);
+        for (agent, slot) in self.leaf_body.iter_mut().enumerate() {
+            if *slot != NO_BODY && states.get(agent).is_none_or(Option::is_none) {
+                self.bvh.remove(agent as u32);
+                *slot = NO_BODY;
+            }
+        }
+        for (position, body) in self.bodies.iter().enumerate() {
+            self.bvh.insert_or_update_partially(body.aabb(), body.agent as u32, 0.0);
+            self.leaf_body[body.agent] = position as u32;
+        }
+        self.bvh.refit(&mut self.workspace);
     }
 
     /// The footprints, in the order given.
@@ -236,7 +272,7 @@ impl Bodies {
         };
         self.bvh
             .cast_ray(&ray, length, |leaf, best| {
-                let body = &self.bodies[leaf as usize];
+                let body = &self.bodies[self.leaf_body[leaf as usize] as usize];
                 if skip.contains(&body.agent) {
                     return None;
                 }

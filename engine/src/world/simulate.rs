@@ -166,7 +166,7 @@ impl<'a> Scene<'a> {
         Self {
             kinematics: Kinematics::new(agents, world.step, world.driving),
             states: Vec::new(),
-            bodies: Bodies::new(Vec::new()),
+            bodies: Bodies::empty(),
             raster: Raster::new(*grid, &world.occluders),
         }
     }
@@ -175,7 +175,7 @@ impl<'a> Scene<'a> {
     /// scene are drawn on the raster.
     fn advance(&mut self, k: usize, agents: &[Agent]) {
         self.kinematics.advance(k, &mut self.states);
-        self.bodies = Bodies::of_scene(agents, &self.states);
+        self.bodies.update(agents, &self.states);
         self.raster.set_bodies(self.bodies.all());
     }
 }
