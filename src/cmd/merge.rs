@@ -209,6 +209,7 @@ fn assemble_all(shards: Vec<(PathBuf, Shard)>) -> Result<Vec<Merged>, String> {
     let request = Request {
         seed: first.seed,
         record: first.record,
+        osi: false,
     };
     let mut loaded = Vec::new();
     for file in &first.files {

@@ -1,8 +1,9 @@
-//! `sightline run FILE… [--out DIR] [--seed N] [--jobs N] [--record] [--template DIR] [--shard K/N]`
+//! `sightline run FILE… [--out DIR] [--seed N] [--jobs N] [--record] [--osi] [--template DIR] [--shard K/N]`
 
 use std::time::{Instant, SystemTime};
 
 use anyhow::Context;
+use sightline_dsl::{Experiment, Scenario};
 use sightline_reports::{Execution, Page};
 
 use crate::cli::RunArgs;
@@ -22,7 +23,8 @@ use crate::template::templates;
 pub fn run(args: &RunArgs) -> anyhow::Result<Exit> {
     let request = Request {
         seed: args.seed,
-        record: args.record,
+        record: args.record || args.osi,
+        osi: args.osi,
     };
     let inputs = load_all(&args.files, request.seed, request.record);
     let templates = templates(args.template.as_deref(), Page::Run);
@@ -32,6 +34,13 @@ pub fn run(args: &RunArgs) -> anyhow::Result<Exit> {
     let Some(dirs) = evidence_dirs(args.out.as_deref(), &inputs) else {
         return Ok(Exit::Invalid);
     };
+    if let Some(input) = inputs.iter().find(|i| args.osi && !has_road_users(&i.scenario)) {
+        eprintln!(
+            "{}: error: --osi traces road users, and a field experiment has none: only a world (agents) has an OSI trace",
+            input.name
+        );
+        return Ok(Exit::Invalid);
+    }
     if let Some(input) = inputs.iter().find(|i| i.is_stdin() && args.shard.is_some()) {
         eprintln!(
             "{}: error: a shard's scenario must be a file: `sightline merge` reads it again",
@@ -88,6 +97,15 @@ pub fn run(args: &RunArgs) -> anyhow::Result<Exit> {
         exit = exit.max(write_evidence(input, &reporting, staging, simulated, execution)?);
     }
     Ok(exit)
+}
+
+/// Whether every point of `scenario` is a world, whose road users an OSI
+/// trace holds (a field experiment has none, and an OSI trace needs a channel).
+fn has_road_users(scenario: &Scenario) -> bool {
+    scenario
+        .points
+        .iter()
+        .all(|point| matches!(point.setup.experiment, Experiment::World(_)))
 }
 
 /// The worker threads: `jobs` of them, or one per core.
