@@ -12,7 +12,7 @@ writes), dependencies first, as `protoc --include_imports
     target/osi-python/bin/python osi/proto/extract.py > osi/proto/osi3.fds
 
 with the venv of ci/tools.sh (osi-python pinned there). The test
-`osi_descriptors_are_the_official_ones` (tests/e2e/osi.rs) runs it and
+`the_descriptors_are_the_official_bindings` (tests/e2e/osi.rs) runs it and
 compares its output with the vendored file.
 """
 
