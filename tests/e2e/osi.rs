@@ -274,6 +274,43 @@ fn a_roadside_unit_is_a_stationary_object_without_a_host_vehicle() {
     assert_eq!(view.host_vehicle_id.unwrap().value, Some(2));
 }
 
+/// A semantic world reports no sightings: its trace is the ground truth of
+/// each of its 80 steps (8 s of 0.1 s), and a road user that leaves the scene
+/// leaves it (tests/fixtures/valid/criticality.yaml: ego, rsu, lead, crossing,
+/// walker; `lead` leaves its road, which ends at x = 50.3, at 4.05 s).
+#[test]
+fn a_semantic_world_traces_its_ground_truth() {
+    let tmp = temp_dir();
+    let out = tmp.path().join("evidence");
+    sightline([
+        "run",
+        "tests/fixtures/valid/criticality.yaml",
+        "--out",
+        arg(&out),
+        "--osi",
+    ])
+    .assert_exit(0);
+    let trace = std::fs::read(out.join(TRACE)).unwrap();
+    let summary = mcap::Summary::read(&trace).unwrap().unwrap();
+    let topics: Vec<&str> = summary.channels.values().map(|c| &*c.topic).collect();
+    assert_eq!(topics, ["GroundTruth"]);
+    let steps = messages(&trace, "GroundTruth");
+    assert_eq!(steps.len(), 80);
+    let ids_at = |step: usize| -> (Vec<u64>, Vec<u64>) {
+        let truth = osi3::GroundTruth::decode(steps[step].2.as_slice()).unwrap();
+        assert_eq!(nanos(truth.timestamp), step as u64 * 100_000_000);
+        assert_eq!(truth.host_vehicle_id.unwrap().value, Some(1));
+        let ids = |ids: Vec<Option<osi3::Identifier>>| ids.into_iter().map(|id| id.unwrap().value.unwrap()).collect();
+        (
+            ids(truth.moving_object.iter().map(|o| o.id).collect()),
+            ids(truth.stationary_object.iter().map(|o| o.id).collect()),
+        )
+    };
+    assert_eq!(ids_at(40), (vec![1, 3, 4, 5], vec![2]), "at 4.0 s");
+    assert_eq!(ids_at(41), (vec![1, 4, 5], vec![2]), "at 4.1 s, lead has left");
+    assert_eq!(ids_at(79), (vec![1, 4, 5], vec![2]));
+}
+
 /// A field experiment has no road users to trace: refused before anything
 /// runs, nothing written.
 #[test]
