@@ -26,7 +26,7 @@ pub fn run(args: &RunArgs) -> anyhow::Result<Exit> {
         record: args.record || args.osi,
         osi: args.osi,
     };
-    let inputs = load_all(&args.files, request.seed, request.record);
+    let inputs = load_all(&args.files, request.seed, request.record, request.osi);
     let templates = templates(args.template.as_deref(), Page::Run);
     let (Some(inputs), Some(templates)) = (inputs, templates) else {
         return Ok(Exit::Invalid);

@@ -311,6 +311,56 @@ fn a_semantic_world_traces_its_ground_truth() {
     assert_eq!(ids_at(79), (vec![1, 4, 5], vec![2]));
 }
 
+/// A world of 100 cooperating cars, one sensor each, for 20 000 steps: each
+/// of the 101 views of a step repeats the 100 cars, 2.02e8 objects (printed
+/// to one decimal, 2e8), over the resource model's limit of 1e8 for an OSI
+/// trace. Valid without `--osi`;
+/// with it, refused at the agents before anything runs.
+#[test]
+fn a_trace_over_the_resource_model_is_refused_before_the_run() {
+    let cars: String = (1..100)
+        .map(|i| {
+            format!(
+                "  - {{ id: c{i}, kind: car, route: [we], start: {{ offset: {} }}, speed: {{ target: 0 }}, connected: true, sensors: [lidar] }}\n",
+                10 * i
+            )
+        })
+        .collect();
+    let scenario = format!(
+        "sightline: 1
+name: Many cooperating cars
+seed: 1
+time: {{ duration: 2000, step: 0.1 }}
+grid: {{ origin: [-10, -10], size: [1020, 20], cell: 1 }}
+roads:
+  - {{ id: we, polyline: [[0, 0], [1000, 0]], speed_limit: 10 }}
+sensor_models: {{ lidar: {{ range: 5, fov_deg: 10 }} }}
+agents:
+  - {{ id: ego, kind: car, route: [we], speed: {{ target: 0 }}, connected: true, sensors: [lidar] }}
+{cars}perception: {{ ego: ego }}
+fusion: {{ method: bayes }}
+requirements:
+  - {{ id: REC, text: Recall., check: {{ metric: occupied_recall, at_least: 0.5 }} }}
+"
+    );
+    let tmp = temp_dir();
+    let (file, out) = (tmp.path().join("many.yaml"), tmp.path().join("evidence"));
+    std::fs::write(&file, scenario).unwrap();
+    sightline(["check", arg(&file)]).assert_exit(0);
+    let run = sightline(["run", arg(&file), "--out", arg(&out), "--osi"]);
+    run.assert_exit(2);
+    assert_eq!(
+        run.stderr,
+        format!(
+            "{}:10:3: error: agents: 2e8 objects in the OSI trace of a point (agents × steps × (1 + the \
+             cooperating agents' sensors)) exceed the limit of 1e8; run without --osi, or use fewer agents or \
+             cooperating sensors, or a shorter run\n",
+            file.display()
+        )
+    );
+    assert!(!out.exists());
+}
+
 /// A field experiment has no road users to trace: refused before anything
 /// runs, nothing written.
 #[test]
