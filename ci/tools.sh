@@ -57,6 +57,20 @@ export SIGHTLINE_SUMO_PYTHON="$PWD/$venv/bin/python"
 export SIGHTLINE_CRIME_PYTHON="$PWD/$venv/bin/python"
 export SIGHTLINE_JUNIT_PYTHON="$PWD/$venv/bin/python"
 
+# ASAM OSI's Python tools, for the tests of `sightline run --osi`
+# (tests/e2e/osi.rs, through tests/python/read_osi.py): the official bindings
+# (osi-python, OSI 3.8.0) and ASAM's trace file reader (asam-osi-utilities),
+# with what they pull in pinned by a constraints file, in a venv of their own
+# (they need a protobuf runtime of their own; about 5 s the first time).
+# osi/proto/extract.py takes the vendored descriptors from the same bindings.
+OSI_PYTHON_VERSION=3.8.0
+OSI_UTILITIES_VERSION=0.4.0
+osi_venv=target/osi-python
+python3 -m venv "$osi_venv"
+"$osi_venv/bin/python" -m pip install --quiet --disable-pip-version-check \
+  -c tests/python/osi-constraints.txt "osi-python==$OSI_PYTHON_VERSION" "asam-osi-utilities==$OSI_UTILITIES_VERSION"
+export SIGHTLINE_OSI_PYTHON="$PWD/$osi_venv/bin/python"
+
 # The JUnit schema: Jenkins' xunit-plugin junit-10.xsd at revision 14c6e39c
 # (https://github.com/jenkinsci/xunit-plugin, MIT licence), the published
 # revision that allows `file` and `line` on test cases. It is taken from the

@@ -79,6 +79,11 @@ pub struct RunArgs {
     /// (with that section's defaults: the first sweep point, a grid a second).
     #[arg(long)]
     pub record: bool,
+    /// Also write DIR/osi.mcap, an ASAM OSI trace (osi3.GroundTruth and, per
+    /// sensor of each cooperating agent, osi3.SensorView with sightline's
+    /// visibility) of the recorded point; implies --record. See docs/osi.md.
+    #[arg(long, conflicts_with = "shard")]
+    pub osi: bool,
     /// Render report.html with the template set in DIR: its report.html (which
     /// may extend `sightline/report.html`) and what that includes or extends.
     /// Checked before anything runs; see docs/report-templates.md.

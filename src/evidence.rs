@@ -9,8 +9,11 @@ use std::path::{Path, PathBuf};
 use anyhow::Context;
 use sightline_dsl::{Record, RecordedPoints, Scenario};
 use sightline_engine::Run;
+use sightline_engine::TraceSink;
+use sightline_engine::trace::{SemanticStep, WorldStep};
 use sightline_oracles::{Status, Verdict};
 use sightline_reports::mcap::{Recorder, Source};
+use sightline_reports::osi::{OSI_TRACE, OsiTrace};
 use sightline_reports::{Execution, Provenance, RecordingInfo, Templates, Tool, render, sha256_hex};
 
 use crate::exit::Exit;
@@ -31,6 +34,7 @@ pub const EVIDENCE_SET: &[&str] = &[
     "junit.xml",
     "report.html",
     RECORDING,
+    OSI_TRACE,
     "falsify.json",
     "counterexample.yaml",
 ];
@@ -40,8 +44,10 @@ pub const EVIDENCE_SET: &[&str] = &[
 pub struct Request {
     /// `--seed`.
     pub seed: Option<u64>,
-    /// `--record`.
+    /// `--record` (or `--osi`, which implies it).
     pub record: bool,
+    /// `--osi`.
+    pub osi: bool,
 }
 
 /// What the evidence of every scenario of a command shares.
@@ -93,7 +99,9 @@ pub fn write_evidence(
         seeds if seeds.len() == 1 => format!("sightline run {given} --seed {}", scenario.points[0].setup.seed),
         _ => format!("sightline run {given}"),
     };
-    if reporting.request.record {
+    if reporting.request.osi {
+        reproduce.push_str(" --osi");
+    } else if reporting.request.record {
         reproduce.push_str(" --record");
     }
     let templates = reporting.templates;
@@ -137,12 +145,7 @@ pub fn recorded_point(scenario: &Scenario, record: Record, verdicts: &[Verdict])
 /// Simulates the points `record` records of `input`'s scenario again,
 /// reporting their steps to `recorder`, and returns `run` (which holds them)
 /// once their outcomes are found the same.
-pub fn resimulated(
-    input: &Input,
-    record: Record,
-    run: Run,
-    recorder: &mut Recorder<'_, BufWriter<&std::fs::File>>,
-) -> anyhow::Result<Run> {
+pub fn resimulated(input: &Input, record: Record, run: Run, recorder: &mut impl TraceSink) -> anyhow::Result<Run> {
     let same = match record.points {
         RecordedPoints::One => {
             sightline_engine::simulate_point(&input.scenario, record.point, recorder) == run.points[record.point]
@@ -159,19 +162,63 @@ pub fn resimulated(
     Ok(run)
 }
 
-/// Records the points `record` names of `input`'s scenario into `staging` while
-/// `simulate` runs the scenario with the recorder as its sink, then checks the
-/// run and finishes the recording with its outcomes and verdicts.
+/// What a recorded point's steps are written to: the recording, and the OSI
+/// trace with `--osi`.
+pub struct Sinks<'s, 'f> {
+    recorder: Recorder<'s, BufWriter<&'f std::fs::File>>,
+    osi: Option<OsiTrace<BufWriter<&'f std::fs::File>>>,
+}
+
+impl TraceSink for Sinks<'_, '_> {
+    fn point(&mut self, point: usize) {
+        // `--osi` with every point recorded is refused before the run.
+        self.recorder.point(point);
+    }
+
+    fn start(&mut self, agents: &[sightline_dsl::Agent]) {
+        self.recorder.start(agents);
+        if let Some(osi) = &mut self.osi {
+            osi.start(agents);
+        }
+    }
+
+    fn wants_grids(&self, step: usize) -> bool {
+        self.recorder.wants_grids(step)
+    }
+
+    fn world_step(&mut self, step: &WorldStep<'_>) {
+        self.recorder.world_step(step);
+        if let Some(osi) = &mut self.osi {
+            osi.world_step(step);
+        }
+    }
+
+    fn semantic_step(&mut self, step: &SemanticStep<'_>) {
+        self.recorder.semantic_step(step);
+        if let Some(osi) = &mut self.osi {
+            osi.semantic_step(step);
+        }
+    }
+}
+
+/// Records the points `record` names of `input`'s scenario into `staging`
+/// (and, with `--osi`, the one point's OSI trace) while `simulate` runs the scenario with them
+/// as its sink, then checks the run and finishes the recording with its
+/// outcomes and verdicts.
 pub fn recorded(
     input: &Input,
     reporting: &Reporting<'_>,
     staging: &mut Staging,
     record: Record,
-    simulate: impl FnOnce(&mut Recorder<'_, BufWriter<&std::fs::File>>) -> anyhow::Result<Run>,
+    simulate: impl FnOnce(&mut Sinks<'_, '_>) -> anyhow::Result<Run>,
 ) -> anyhow::Result<Simulated> {
     let scenario = &input.scenario;
     let file = staging.create(RECORDING)?;
-    let failed = || format!("failed to write {}", staging.dir().join(RECORDING).display());
+    let osi_file = match reporting.request.osi {
+        true => Some(staging.create(OSI_TRACE)?),
+        false => None,
+    };
+    let failed = |name: &str| format!("failed to write {}", staging.dir().join(name).display());
     let text = std::str::from_utf8(&input.bytes).context("the scenario file is not UTF-8 text")?;
     let source = Source {
         tool: &reporting.tool,
@@ -180,16 +227,32 @@ pub fn recorded(
         seed: reporting.request.seed,
         record_flag: reporting.request.record,
     };
-    let mut recorder = Recorder::new(BufWriter::new(&file), scenario, record, &source).with_context(failed)?;
-    let run = simulate(&mut recorder)?;
+    let recorder =
+        Recorder::new(BufWriter::new(&file), scenario, record, &source).with_context(|| failed(RECORDING))?;
+    let osi = match &osi_file {
+        Some(osi_file) => Some(
+            OsiTrace::new(BufWriter::new(osi_file), scenario, record, &input.name)
+                .with_context(|| failed(OSI_TRACE))?,
+        ),
+        None => None,
+    };
+    let mut sinks = Sinks { recorder, osi };
+    let run = simulate(&mut sinks)?;
     let verdicts = sightline_oracles::check(scenario, &run);
+    let Sinks { recorder, osi } = sinks;
     recorder
         .finish(&run, &verdicts)
-        .with_context(failed)?
+        .with_context(|| failed(RECORDING))?
         .flush()
-        .with_context(failed)?;
+        .with_context(|| failed(RECORDING))?;
+    if let Some(osi) = osi {
+        osi.finish()
+            .with_context(|| failed(OSI_TRACE))?
+            .flush()
+            .with_context(|| failed(OSI_TRACE))?;
+    }
     // The hash is of the bytes on disk: the MCAP writer seeks back as it writes.
-    let bytes = std::fs::read(staging.path(RECORDING)).with_context(failed)?;
+    let bytes = std::fs::read(staging.path(RECORDING)).with_context(|| failed(RECORDING))?;
     let info = RecordingInfo {
         file: RECORDING.into(),
         sha256: sha256_hex(&bytes),

@@ -34,16 +34,18 @@ impl Input {
 }
 
 /// Reads and compiles every file (`seed` overriding each one's, `record`
-/// recording each one as `--record` does), the files it imports read from disk
+/// recording each one as `--record` does, `osi` bounding its OSI trace as
+/// `--osi` does), the files it imports read from disk
 /// too. Prints every error (as `file:line:col: error: …`) and returns `None` if
 /// any file is invalid; prints the warnings of each valid file (as
 /// `file:line:col: warning: …`).
-pub fn load_all(paths: &[PathBuf], seed: Option<u64>, record: bool) -> Option<Vec<Input>> {
+pub fn load_all(paths: &[PathBuf], seed: Option<u64>, record: bool, osi: bool) -> Option<Vec<Input>> {
     let disk = |path: &Path| read_regular(path, DATA_LIMIT);
     let options = Options {
         seed,
         loader: Some(&disk),
         record,
+        osi,
     };
     let mut inputs = Vec::new();
     let mut valid = true;

@@ -70,6 +70,10 @@ mod bundled;
 #[path = "e2e/record.rs"]
 mod record;
 
+// `run --osi`: osi.mcap as ASAM's OSI trace convention asks, read by ASAM's tools.
+#[path = "e2e/osi.rs"]
+mod osi;
+
 // The recordings against the viewers' own artefacts: Foxglove's published
 // schemas, their parsers' subset, every message valid (node, ci/viewers/).
 #[path = "e2e/viewers.rs"]

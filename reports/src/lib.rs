@@ -54,6 +54,7 @@ mod falsify_html;
 mod html;
 mod junit;
 pub mod mcap;
+pub mod osi;
 mod picture;
 mod results;
 mod shard;

@@ -25,8 +25,8 @@ const EXPORT_SET: &[&str] = &[SCENARIO_FILE, MAP_FILE];
 /// Exports the requested point of the scenario; [`Exit::Invalid`] (nothing
 /// written) when it cannot be exported.
 pub fn export(args: &ExportArgs) -> anyhow::Result<Exit> {
-    let Some(input) =
-        load_all(std::slice::from_ref(&args.file), args.seed, false).and_then(|inputs| inputs.into_iter().next())
+    let Some(input) = load_all(std::slice::from_ref(&args.file), args.seed, false, false)
+        .and_then(|inputs| inputs.into_iter().next())
     else {
         return Ok(Exit::Invalid);
     };

@@ -209,6 +209,7 @@ fn assemble_all(shards: Vec<(PathBuf, Shard)>) -> Result<Vec<Merged>, String> {
     let request = Request {
         seed: first.seed,
         record: first.record,
+        osi: false,
     };
     let mut loaded = Vec::new();
     for file in &first.files {
@@ -216,7 +217,7 @@ fn assemble_all(shards: Vec<(PathBuf, Shard)>) -> Result<Vec<Merged>, String> {
         if let Some(missing) = (1..=first.count).find(|k| !parts.contains_key(k)) {
             return Err(format!("{file}: error: shard {missing}/{} is missing", first.count));
         }
-        let mut inputs = load_all(&[PathBuf::from(file)], request.seed, request.record)
+        let mut inputs = load_all(&[PathBuf::from(file)], request.seed, request.record, false)
             .ok_or_else(|| format!("{file}: error: the scenario no longer compiles (see above)"))?;
         let input = inputs.pop().expect("one input per file");
         let now = inputs_of(&input);

@@ -49,6 +49,7 @@ pub fn replay(file: &Path) -> Exit {
         seed: recording.scenario.seed,
         loader: Some(&loader),
         record: recording.scenario.record_flag,
+        osi: false,
     };
     let scenario = match sightline_dsl::compile(&recording.scenario.file, &recording.scenario.text, &options) {
         Ok(scenario) => scenario,

@@ -1,9 +1,9 @@
-//! `sightline run FILE… [--out DIR] [--seed N] [--jobs N] [--record] [--template DIR] [--shard K/N]`
+//! `sightline run FILE… [--out DIR] [--seed N] [--jobs N] [--record] [--osi] [--template DIR] [--shard K/N]`
 
 use std::time::{Instant, SystemTime};
 
 use anyhow::Context;
-use sightline_dsl::RecordedPoints;
+use sightline_dsl::{Experiment, RecordedPoints, Scenario};
 use sightline_reports::{Execution, Page};
 
 use crate::cli::RunArgs;
@@ -23,9 +23,10 @@ use crate::template::templates;
 pub fn run(args: &RunArgs) -> anyhow::Result<Exit> {
     let request = Request {
         seed: args.seed,
-        record: args.record,
+        record: args.record || args.osi,
+        osi: args.osi,
     };
-    let inputs = load_all(&args.files, request.seed, request.record);
+    let inputs = load_all(&args.files, request.seed, request.record, request.osi);
     let templates = templates(args.template.as_deref(), Page::Run);
     let (Some(inputs), Some(templates)) = (inputs, templates) else {
         return Ok(Exit::Invalid);
@@ -33,6 +34,22 @@ pub fn run(args: &RunArgs) -> anyhow::Result<Exit> {
     let Some(dirs) = evidence_dirs(args.out.as_deref(), &inputs) else {
         return Ok(Exit::Invalid);
     };
+    if let Some(input) = inputs.iter().find(|i| args.osi && !has_road_users(&i.scenario)) {
+        eprintln!(
+            "{}: error: --osi traces road users, and a field experiment has none: only a world (agents) has an OSI trace",
+            input.name
+        );
+        return Ok(Exit::Invalid);
+    }
+    let every_point = |scenario: &Scenario| scenario.record.is_some_and(|r| r.points == RecordedPoints::All);
+    if let Some(input) = inputs.iter().find(|i| args.osi && every_point(&i.scenario)) {
+        eprintln!(
+            "{}: error: --osi traces one sweep point, and `record.points: all` records every point: \
+             name the point to trace (`record: {{ point: N }}`) or leave --osi out",
+            input.name
+        );
+        return Ok(Exit::Invalid);
+    }
     if let Some(input) = inputs.iter().find(|i| i.is_stdin() && args.shard.is_some()) {
         eprintln!(
             "{}: error: a shard's scenario must be a file: `sightline merge` reads it again",
@@ -100,6 +117,15 @@ pub fn run(args: &RunArgs) -> anyhow::Result<Exit> {
         exit = exit.max(write_evidence(input, &reporting, staging, simulated, execution)?);
     }
     Ok(exit)
+}
+
+/// Whether every point of `scenario` is a world, whose road users an OSI
+/// trace holds (a field experiment has none, and an OSI trace needs a channel).
+fn has_road_users(scenario: &Scenario) -> bool {
+    scenario
+        .points
+        .iter()
+        .all(|point| matches!(point.setup.experiment, Experiment::World(_)))
 }
 
 /// The worker threads: `jobs` of them, or one per core.

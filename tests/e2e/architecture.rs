@@ -8,11 +8,12 @@ use std::path::{Path, PathBuf};
 use crate::support::root;
 
 /// Each crate's name and its source root.
-const CRATES: [(&str, &str); 5] = [
+const CRATES: [(&str, &str); 6] = [
     ("dsl", "dsl/src"),
     ("engine", "engine/src"),
     ("oracles", "oracles/src"),
     ("reports", "reports/src"),
+    ("osi", "osi/src"),
     ("sightline", "src"),
 ];
 

@@ -18,6 +18,11 @@ pub const MAX_AGENTS: f64 = 10_000.0;
 /// sensing and predicting every agent at every step.
 pub const MAX_AGENT_STEPS: f64 = 1.0e8;
 
+/// The most objects an OSI trace of a point holds (`--osi`): agents × steps ×
+/// (1 + the cooperating agents' sensors), since each sensor's view repeats the
+/// whole ground truth.
+pub const MAX_OSI_OBJECTS: f64 = 1.0e8;
+
 /// The most polyline points the roads' lanes and the agents' ways hold (each
 /// generated vehicle keeps its route).
 pub const MAX_PATH_POINTS: f64 = 1.0e7;
@@ -208,6 +213,20 @@ fn world_budget(ctx: &mut Context<'_>, world: &World, grid: Option<&Grid>) -> bo
             "points on the lanes and the agents' ways",
             "use fewer lanes, larger arcs or less traffic",
         );
+    if ctx.osi {
+        let views = world.perception.as_ref().map_or(0, |perception| {
+            let sensors = |&agent: &usize| world.agents.get(agent).map_or(0, |a| a.sensors.len());
+            perception.cooperating.iter().map(sensors).sum::<usize>()
+        });
+        ok &= limit(
+            ctx,
+            &agents_at,
+            agents * world.steps as f64 * (1.0 + views as f64),
+            MAX_OSI_OBJECTS,
+            "objects in the OSI trace of a point (agents × steps × (1 + the cooperating agents' sensors))",
+            "run without --osi, or use fewer agents or cooperating sensors, or a shorter run",
+        );
+    }
     if let Some(semantic) = &world.semantic {
         ok &= limit(
             ctx,

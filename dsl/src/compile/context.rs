@@ -14,6 +14,9 @@ pub(super) struct Context<'a> {
     pub(super) file: &'a str,
     pub(super) tree: &'a Node,
     pub(super) errors: Vec<Error>,
+    /// Whether the run writes an OSI trace (`Options::osi`), which the
+    /// resource model then bounds.
+    pub(super) osi: bool,
     /// Declarations whose own errors are recorded: known, but not compiled.
     failed: HashSet<(Declaration, String)>,
 }
@@ -33,6 +36,7 @@ impl<'a> Context<'a> {
             file,
             tree,
             errors: Vec::new(),
+            osi: false,
             failed: HashSet::new(),
         }
     }

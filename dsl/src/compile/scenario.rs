@@ -38,6 +38,9 @@ pub struct Options<'a> {
     /// Record a point into `run.mcap` even when the file has no `record`
     /// section (the CLI's `--record`), with that section's defaults.
     pub record: bool,
+    /// The recorded point is also written as an OSI trace (the CLI's
+    /// `--osi`): the resource model then bounds the trace's objects too.
+    pub osi: bool,
 }
 
 impl fmt::Debug for Options<'_> {
@@ -46,6 +49,7 @@ impl fmt::Debug for Options<'_> {
             .field("seed", &self.seed)
             .field("loader", &self.loader.map(|_| "…"))
             .field("record", &self.record)
+            .field("osi", &self.osi)
             .finish()
     }
 }
@@ -309,6 +313,7 @@ fn points(
     let mut errors = Vec::new();
     for (group, axes, choice, point_tree) in combinations(tree, sweeps) {
         let mut ctx = Context::new(file, &point_tree);
+        ctx.osi = options.osi;
         let compiled = match from_node::<RawScenario>(&point_tree, &Path::root()) {
             Ok(raw) => setup(&mut ctx, &raw, imported, mapped).map(|setup| (raw, setup)),
             Err(e) => {
