@@ -230,26 +230,14 @@ const fn fdlibm_exp(y: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use proptest::prelude::*;
-    use proptest::test_runner::{RngAlgorithm, RngSeed, TestRunner, noop_result_cache};
+    use proptest::test_runner::TestRunner;
 
     use super::*;
 
     /// 20 000 cases from a fixed seed, whatever the `PROPTEST_*` variables say
-    /// (see `super::super::properties`).
+    /// (`crate::pinned`).
     fn runner() -> TestRunner {
-        TestRunner::new(ProptestConfig {
-            cases: 20_000,
-            failure_persistence: None,
-            source_file: None,
-            test_name: None,
-            max_shrink_time: 0,
-            max_shrink_iters: 10_000,
-            result_cache: noop_result_cache,
-            verbose: 0,
-            rng_algorithm: RngAlgorithm::ChaCha,
-            rng_seed: RngSeed::Fixed(0x5167_4711_0020),
-            ..ProptestConfig::default()
-        })
+        crate::pinned::runner(20_000, 0x5167_4711_0020)
     }
 
     /// Relative difference of a and b.

@@ -51,6 +51,8 @@ mod idealisation;
 mod known;
 mod math;
 mod metrics;
+#[cfg(test)]
+mod pinned;
 mod rng;
 mod run;
 mod semantic;

@@ -136,7 +136,6 @@ pub fn fuse_cells(
 mod tests {
     use proptest::collection::vec;
     use proptest::prelude::*;
-    use proptest::test_runner::{RngAlgorithm, RngSeed, TestRunner, noop_result_cache};
     use sightline_dsl::{Switch, WeightScaling};
 
     use super::*;
@@ -189,19 +188,7 @@ mod tests {
     /// Every rule fuses a batch as `fuse` fuses each of its cells, to the bit.
     #[test]
     fn a_batch_is_fused_as_each_cell_alone() {
-        let mut runner = TestRunner::new(ProptestConfig {
-            cases: 256,
-            failure_persistence: None,
-            source_file: None,
-            test_name: None,
-            max_shrink_time: 0,
-            max_shrink_iters: 10_000,
-            result_cache: noop_result_cache,
-            verbose: 0,
-            rng_algorithm: RngAlgorithm::ChaCha,
-            rng_seed: RngSeed::Fixed(0x5167_4711_0021),
-            ..ProptestConfig::default()
-        });
+        let mut runner = crate::pinned::runner(256, 0x5167_4711_0021);
         let scratch = std::cell::RefCell::new(BatchScratch::default());
         runner
             .run(&cells(), |cells| {

@@ -10,12 +10,8 @@
 //!
 //! # Determinism
 //!
-//! The properties run through [`TestRunner::new`] with [`pinned_config`], not through the
-//! `proptest!` macro. The macro passes its `#![proptest_config(..)]` through
-//! `contextualize_config`, which re-reads `PROPTEST_CASES`, `PROPTEST_RNG_SEED`,
-//! `PROPTEST_RNG_ALGORITHM` and the other `PROPTEST_*` variables and lets them override
-//! the fields set in the test (proptest 1.12, `src/sugar.rs`), so the cases a run checks
-//! would depend on the environment. `TestRunner::new` uses the config as given.
+//! The properties run through the pinned runner (`crate::pinned`), not through the
+//! `proptest!` macro, whose cases would depend on the `PROPTEST_*` variables.
 //!
 //! # Tolerances
 //!
@@ -28,7 +24,7 @@ use super::weighted::{combine_all, combine_two, discount};
 use approx::relative_eq;
 use proptest::collection::vec;
 use proptest::prelude::*;
-use proptest::test_runner::{RngAlgorithm, RngSeed, TestCaseResult, TestRunner, noop_result_cache};
+use proptest::test_runner::TestCaseResult;
 use sightline_dsl::{SourceCombination, WeightScaling, Weighting};
 
 // ---------------------------------------------------------------------------------------
@@ -64,35 +60,10 @@ const DIFFERENT: f64 = 1e-3;
 /// document (rounding to six digits moves a value in [0, 1] by at most 5e-7).
 const QUOTED: f64 = 1e-6;
 
-/// The proptest configuration, with every field that could change which cases run or
-/// whether a run passes set here, so that results do not depend on `PROPTEST_*` variables
-/// or on earlier runs. (`fork` and `timeout` exist only with proptest features this
-/// workspace does not enable; `..default()` fills the hidden `_non_exhaustive` field.)
-fn pinned_config() -> ProptestConfig {
-    ProptestConfig {
-        cases: 512,
-        // The strategies never reject, so these limits are never approached.
-        max_local_rejects: 65_536,
-        max_global_rejects: 1_024,
-        max_flat_map_regens: 1_000_000,
-        failure_persistence: None,
-        source_file: None,
-        test_name: None,
-        max_shrink_time: 0,
-        max_shrink_iters: 10_000,
-        max_default_size_range: 100,
-        result_cache: noop_result_cache,
-        verbose: 0,
-        rng_algorithm: RngAlgorithm::ChaCha,
-        rng_seed: RngSeed::Fixed(0x5167_4711_0001),
-        ..ProptestConfig::default()
-    }
-}
-
-/// Runs `property` on `strategy` with [`pinned_config`] and panics with the shrunk
+/// Runs `property` on `strategy` with the pinned runner and panics with the shrunk
 /// counterexample if it fails.
 fn check<S: Strategy>(strategy: S, property: impl Fn(S::Value) -> TestCaseResult) {
-    let mut runner = TestRunner::new(pinned_config());
+    let mut runner = crate::pinned::runner(512, 0x5167_4711_0001);
     if let Err(failure) = runner.run(&strategy, property) {
         panic!("{failure}");
     }

@@ -254,7 +254,6 @@ fn b1_corner_db(first: f64, second: f64, carrier_ghz: f64, heights: (f64, f64)) 
 mod tests {
     use approx::assert_abs_diff_eq;
     use proptest::prelude::*;
-    use proptest::test_runner::{RngAlgorithm, RngSeed, TestRunner, noop_result_cache};
     use rand::SeedableRng;
     use rand::rngs::ChaCha8Rng;
 
@@ -550,24 +549,6 @@ mod tests {
         );
     }
 
-    /// Fixed proptest configuration, as in `fusion/properties.rs`: no
-    /// `PROPTEST_*` variable changes which cases run.
-    fn pinned_config() -> ProptestConfig {
-        ProptestConfig {
-            cases: 512,
-            failure_persistence: None,
-            source_file: None,
-            test_name: None,
-            max_shrink_time: 0,
-            max_shrink_iters: 10_000,
-            result_cache: noop_result_cache,
-            verbose: 0,
-            rng_algorithm: RngAlgorithm::ChaCha,
-            rng_seed: RngSeed::Fixed(0x5167_4711_0002),
-            ..ProptestConfig::default()
-        }
-    }
-
     #[test]
     fn proptest_delivery_never_rises_with_distance() {
         let model = prop_oneof![Just(PathLossModel::Tr36885Urban), Just(PathLossModel::Tr36885Highway)];
@@ -579,7 +560,7 @@ mod tests {
             0.0..3_000.0_f64,
             0.0..3_000.0_f64,
         );
-        let mut runner = TestRunner::new(pinned_config());
+        let mut runner = crate::pinned::runner(512, 0x5167_4711_0002);
         let result = runner.run(&strategy, |(model, los, h_tx, h_rx, a, b)| {
             let channel = channel(model);
             let link = |distance_m| Link {
