@@ -130,6 +130,7 @@ invalid_inputs! {
     metric_undefined_at_one_sweep_point_is_refused => "metric-undefined-at-sweep-point",
     hybrid_without_switch_is_refused => "hybrid-without-switch",
     sweep_over_an_unsweepable_section_is_refused => "sweep-unsweepable-section",
+    sweep_over_the_recordings_clock_is_refused => "sweep-time-start",
     sweep_key_with_an_empty_segment_is_refused => "sweep-empty-segment",
     sweep_key_naming_no_setting_is_refused => "sweep-unknown-key",
     out_of_range_sweep_value_is_located_in_the_sweep => "sweep-value-out-of-range",

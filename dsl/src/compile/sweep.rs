@@ -191,6 +191,17 @@ pub(super) fn setting(
         );
         return None;
     }
+    if key.name == "time.start" {
+        ctx.error_at(
+            key.location,
+            here,
+            ErrorKind::Invalid(format!(
+                "cannot {verb} `time.start`: it sets the recording's clock once for the whole run, not a \
+                 simulation setting of a point"
+            )),
+        );
+        return None;
+    }
     let names: Vec<&str> = key.name.split('.').collect();
     match check_setting(&names) {
         Ok(schema) => match Kind::of(ctx.tree).and_then(|kind| ignored(kind, &path)) {
