@@ -34,9 +34,14 @@ pub(super) fn selection(
             return None;
         }
         Some(property) if !property.of_record() => {
+            // The grid's properties are offered only where a joint world has a grid.
+            let joint = selected.iter().any(|&i| match &points[i].setup.experiment {
+                Experiment::World(world) => world.is_joint(),
+                Experiment::Field(_) => false,
+            });
             let of_record: Vec<String> = ObjectProperty::ALL
                 .iter()
-                .filter(|p| p.of_record())
+                .filter(|p| p.of_record() && (joint || !p.needs_grid()))
                 .map(|p| format!("`{}`", p.name()))
                 .collect();
             ctx.error(
