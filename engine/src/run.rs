@@ -540,7 +540,10 @@ fn joint(
 ) -> Vec<Outcome> {
     let agents = semantic::scene(seed, w);
     let ground = semantic::Ground::new(w, s);
-    let mut layer = semantic::Layer::joint(seed, (w, s), &agents, &ground, jobs.len());
+    // The pipeline's random streams are those of a seed derived from the
+    // point's, apart from the grid's.
+    let pipeline_seed = derived_seed(seed, Derived::Pipeline, 1);
+    let mut layer = semantic::Layer::new(pipeline_seed, (w, s), &agents, &ground, jobs.len());
     let outcomes = world::run(seed, grid, (w, &agents), perception, jobs, &mut layer, sink);
     outcomes
         .into_iter()

@@ -249,24 +249,6 @@ impl<'a> Layer<'a> {
         }
     }
 
-    /// The pipeline in a joint world at `seed`: its random streams are those
-    /// of a seed derived from the point's, apart from the grid's.
-    pub(crate) fn joint(
-        seed: u64,
-        (world, semantic): (&'a World, &'a Semantic),
-        agents: &'a [Agent],
-        ground: &'a Ground,
-        grids: usize,
-    ) -> Self {
-        Self::new(
-            derived_seed(seed, Derived::Pipeline, 1),
-            (world, semantic),
-            agents,
-            ground,
-            grids,
-        )
-    }
-
     /// The run's metrics, its road users' records labelled with pooled run
     /// `run`: one per fused grid it followed, each record holding when the
     /// road user first came into that grid, or one when it followed none.
