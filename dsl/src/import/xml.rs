@@ -128,16 +128,22 @@ fn finite(node: Node, attribute: &Attribute) -> Result<f64, XmlError> {
     }
 }
 
+/// The error `read` gives on the first child of `doc`'s root, displayed
+/// (the importers' tests: a reader that succeeds there fails the test).
+#[cfg(test)]
+pub(crate) fn error_of_first_child<T>(doc: &roxmltree::Document, read: impl Fn(Node) -> Result<T, XmlError>) -> String {
+    match read(doc.root_element().first_element_child().unwrap()) {
+        Ok(_) => panic!("expected an error"),
+        Err(error) => error.to_string(),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
     fn first_child_error<T>(text: &str, read: impl Fn(Node) -> Result<T, XmlError>) -> String {
-        let doc = roxmltree::Document::parse(text).unwrap();
-        match read(doc.root_element().first_element_child().unwrap()) {
-            Ok(_) => panic!("expected an error"),
-            Err(error) => error.to_string(),
-        }
+        error_of_first_child(&roxmltree::Document::parse(text).unwrap(), read)
     }
 
     #[test]

@@ -145,11 +145,7 @@ mod tests {
     use super::*;
 
     fn first_error<T>(text: &str, read: impl Fn(Node) -> Result<T, SumoError>) -> String {
-        let doc = parse(text).unwrap();
-        match read(doc.root_element().first_element_child().unwrap()) {
-            Ok(_) => panic!("expected an error"),
-            Err(error) => error.to_string(),
-        }
+        crate::import::xml::error_of_first_child(&parse(text).unwrap(), read)
     }
 
     #[test]
