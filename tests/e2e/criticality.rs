@@ -11,7 +11,7 @@ use std::process::Command;
 
 use serde_json::{Value, json};
 
-use crate::support::{RECORDING, arg, read, read_json, requirement, root, sightline, temp_dir, unescape_html};
+use crate::support::{RECORDING, arg, read, read_json, requirement, root, sightline, temp_dir, unescape_html, verdict};
 
 const SCENE: &str = "tests/fixtures/valid/criticality.yaml";
 
@@ -29,21 +29,13 @@ fn criticality_is_judged_listed_and_replayed() {
     let run = sightline(["run", SCENE, "--out", arg(&out), "--record"]);
     run.assert_exit(0);
     let results = read_json(&out.join("results.json"));
-    let verdict = |id: &str| {
-        let r = requirement(&results, id);
-        (
-            r["verdict"].as_str().unwrap().to_string(),
-            r["value"].as_f64(),
-            r["n"].as_u64(),
-        )
-    };
     for (id, value, n) in [
         ("CRIT-TTC-01", 1.16, 1),
         ("CRIT-PET-01", 1.2, 2),
         ("CRIT-DRAC-01", 5.0 / 2.32, 1),
         ("CRIT-MIN-01", 1.16, 1),
     ] {
-        let (status, measured, count) = verdict(id);
+        let (status, measured, count) = verdict(&results, id);
         assert_eq!((status.as_str(), count), ("pass", Some(n)), "{id}");
         assert!((measured.unwrap() - value).abs() < 1e-9, "{id}: {measured:?}");
     }

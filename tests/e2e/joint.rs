@@ -13,7 +13,7 @@ use crate::bundled::{Bundled, run_bundled};
 use crate::record::{channels, messages};
 use crate::support::{
     arg, files_under, normalise_execution, normalise_junit_times, read, read_json, requirement, sightline, temp_dir,
-    unescape_html,
+    unescape_html, verdict,
 };
 
 /// Two walkers, one in the Bayesian grid from 1.2 s, one never
@@ -40,23 +40,18 @@ fn a_joint_world_judges_each_road_user_by_the_grid_and_the_warnings() {
     let run = sightline(["run", WALKERS, "--out", arg(&out)]);
     run.assert_exit(1);
     let results = read_json(&out.join("results.json"));
-    let verdict = |id: &str| {
-        let r = requirement(&results, id);
-        (
-            r["verdict"].as_str().unwrap().to_string(),
-            r["value"].as_f64(),
-            r["n"].as_u64(),
-        )
-    };
-    let (status, lead, n) = verdict("JOINT-A-01");
+    let (status, lead, n) = verdict(&results, "JOINT-A-01");
     assert_eq!((status.as_str(), n), ("pass", Some(1)));
     assert!((lead.unwrap() - 8.7).abs() < 1e-9, "{lead:?}");
-    assert_eq!(verdict("JOINT-B-01"), ("fail".into(), None, Some(1)));
+    assert_eq!(verdict(&results, "JOINT-B-01"), ("fail".into(), None, Some(1)));
     assert!(
         run.stdout.contains("had no grid_lead (never in the ego's fused grid)"),
         "{run}"
     );
-    assert_eq!(verdict("JOINT-NEAR-01"), ("not_exercised".into(), None, Some(0)));
+    assert_eq!(
+        verdict(&results, "JOINT-NEAR-01"),
+        ("not_exercised".into(), None, Some(0))
+    );
     // The points share one simulation: their pipelines differ only in the
     // grid's times, null where a road user never came into the grid.
     let in_grid = |point: usize| -> Vec<(String, serde_json::Value)> {

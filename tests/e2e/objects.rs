@@ -5,7 +5,7 @@
 // See: issue 17, "A per-object record".
 
 use crate::bundled::{urban, urban_run};
-use crate::support::{arg, read, read_json, requirement, sightline, temp_dir, unescape_html};
+use crate::support::{arg, read, read_json, requirement, sightline, temp_dir, unescape_html, verdict};
 
 const FOUR: &str = "tests/fixtures/valid/four-road-users.yaml";
 
@@ -68,24 +68,16 @@ fn selected_road_users_are_judged_by_hand() {
     let out = tmp.path().join("out");
     sightline(["run", FOUR, "--out", arg(&out)]).assert_exit(1);
     let results = read_json(&out.join("results.json"));
-    let verdict = |id: &str| {
-        let r = requirement(&results, id);
-        (
-            r["verdict"].as_str().unwrap().to_string(),
-            r["value"].as_f64(),
-            r["n"].as_u64().unwrap(),
-        )
-    };
     // car_b: named by the 2.1 cycle's message (2.12 s), closest at 10.1 s.
-    let (status, lead, n) = verdict("OBJ-CAR-01");
-    assert_eq!((status.as_str(), n), ("pass", 1));
+    let (status, lead, n) = verdict(&results, "OBJ-CAR-01");
+    assert_eq!((status.as_str(), n), ("pass", Some(1)));
     assert!((lead.unwrap() - 7.98).abs() < 1e-6, "{lead:?}");
     // West of the lane: walker_c (seen at 3.1, closest at 9.1) and walker_d
     // (never known), which has no lead and fails the check.
-    assert_eq!(verdict("OBJ-WEST-01"), ("fail".into(), None, 2));
+    assert_eq!(verdict(&results, "OBJ-WEST-01"), ("fail".into(), None, Some(2)));
     // Within 20 m: walker_a (15 m; told at 3.82, seen at 11.5: 7.68 s) and
     // walker_c (1.5 m, seen first: 0 s); the least decides.
-    assert_eq!(verdict("OBJ-NEAR-01"), ("fail".into(), Some(0.0), 2));
+    assert_eq!(verdict(&results, "OBJ-NEAR-01"), ("fail".into(), Some(0.0), Some(2)));
     let early = requirement(&results, "OBJ-EARLY-01");
     assert_eq!((&early["verdict"], &early["n"]), (&"not_exercised".into(), &0.into()));
     assert_eq!(early["fails_run"], false, "accepted");

@@ -367,6 +367,16 @@ pub fn requirement<'a>(results: &'a serde_json::Value, id: &str) -> &'a serde_js
         .unwrap_or_else(|| panic!("no requirement {id}"))
 }
 
+/// Requirement `id`'s verdict in `results`: its status, measured value and n.
+pub fn verdict(results: &serde_json::Value, id: &str) -> (String, Option<f64>, Option<u64>) {
+    let r = requirement(results, id);
+    (
+        r["verdict"].as_str().unwrap().to_string(),
+        r["value"].as_f64(),
+        r["n"].as_u64(),
+    )
+}
+
 /// Reads and parses a JUnit XML file.
 #[track_caller]
 /// The `name: value` lines of a JUnit case's `<system-out>`, as a map.
