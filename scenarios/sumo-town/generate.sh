@@ -11,14 +11,8 @@
 set -euo pipefail
 
 HERE=$(cd "$(dirname "$0")" && pwd)
-VENV=${SUMO_VENV:-/tmp/sumo-venv}
-if [ ! -x "$VENV/bin/sumo" ]; then
-    python3 -m venv "$VENV"
-    "$VENV/bin/pip" install eclipse-sumo==1.28.0
-fi
-export PATH="$VENV/bin:$PATH"
-version=$(sumo --version)
-[[ $version == *"sumo 1.28.0"* ]] || { echo "expected SUMO 1.28.0, found: ${version%%$'\n'*}" >&2; exit 1; }
+# shellcheck source=../sumo-venv.sh
+source "$HERE/../sumo-venv.sh"
 
 WORK=$(mktemp -d)
 trap 'rm -rf "$WORK"' EXIT
