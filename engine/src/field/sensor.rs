@@ -82,24 +82,33 @@ impl SensorModel {
     }
 
     /// The mass vectors of `draws`, in order, into `masses`: what [`Self::sample`]
-    /// draws one by one. The Dirichlet parameters of every draw are computed
-    /// first, in a loop without a branch: their square roots and divisions
-    /// would otherwise queue behind the sampler's branches.
+    /// draws one by one, in three passes. The Dirichlet parameters of every
+    /// draw are computed first, and the Gamma draws are normalised last, each
+    /// in a loop without a branch: their square roots and divisions would
+    /// otherwise queue behind the sampler's branches.
     pub fn sample_many(&self, draws: &[Draw], rng: &mut MassRng, scratch: &mut Vec<Dirichlet>, masses: &mut Vec<Mass>) {
         scratch.clear();
-        scratch.extend(draws.iter().map(|draw| self.dirichlet(draw.distance)));
+        match self.masses.error_model {
+            ErrorModel::DirichletMean => scratch.extend(
+                draws
+                    .iter()
+                    .map(|draw| Dirichlet::new(self.masses.concentration, self.epsilon(draw.distance))),
+            ),
+            ErrorModel::WrongLabel => scratch.resize(draws.len(), self.label_dirichlet),
+        }
         masses.clear();
         masses.extend(
             draws
                 .iter()
                 .zip(scratch.iter())
-                .map(|(draw, dirichlet)| self.draw(dirichlet, draw.occupied, draw.distance, rng)),
+                .map(|(draw, dirichlet)| self.draw_unnormalised(dirichlet, draw.occupied, draw.distance, rng)),
         );
+        masses.iter_mut().for_each(|mass| *mass = normalised(*mass));
     }
 
     /// The Dirichlet of a sensor at `distance` under `dirichlet_mean` (the
     /// label's, which does not vary, under `wrong_label`).
-    #[inline]
+    #[cfg(test)]
     fn dirichlet(&self, distance: f64) -> Dirichlet {
         match self.masses.error_model {
             ErrorModel::DirichletMean => Dirichlet::new(self.masses.concentration, self.epsilon(distance)),
@@ -114,11 +123,17 @@ impl SensorModel {
     }
 
     /// One draw from `dirichlet`, the sensor's Dirichlet at `distance`.
-    #[inline(always)]
+    #[cfg(test)]
     fn draw(&self, dirichlet: &Dirichlet, occupied: bool, distance: f64, rng: &mut MassRng) -> Mass {
+        normalised(self.draw_unnormalised(dirichlet, occupied, distance, rng))
+    }
+
+    /// [`Self::draw`] before its normalisation (see [`Dirichlet::sample_unnormalised`]).
+    #[inline(always)]
+    fn draw_unnormalised(&self, dirichlet: &Dirichlet, occupied: bool, distance: f64, rng: &mut MassRng) -> Mass {
         let truth = if occupied { State::Occupied } else { State::Empty };
         match self.masses.error_model {
-            ErrorModel::DirichletMean => dirichlet.sample(truth, rng),
+            ErrorModel::DirichletMean => dirichlet.sample_unnormalised(truth, rng),
             ErrorModel::WrongLabel => {
                 let epsilon = self.epsilon(distance);
                 let u = rng.random::<f64>();
@@ -128,10 +143,17 @@ impl SensorModel {
                     State::Occupied if u < epsilon => State::Empty,
                     _ => truth,
                 };
-                dirichlet.sample(label, rng)
+                dirichlet.sample_unnormalised(label, rng)
             }
         }
     }
+}
+
+/// The mass function proportional to `terms` (positive sum).
+#[inline(always)]
+fn normalised(terms: Mass) -> Mass {
+    let total = terms.total();
+    Mass::new(terms.empty / total, terms.occupied / total, terms.unknown / total)
 }
 
 /// A mass vector to draw: a sensor `distance` metres from a cell that is
@@ -165,8 +187,15 @@ impl Dirichlet {
 
     /// A draw with the major parameter on `favoured`, by normalising independent
     /// Gamma draws (Empty, Occupy, Unknown in that order).
-    #[inline]
+    #[cfg(test)]
     fn sample<R: Rng + ?Sized>(&self, favoured: State, rng: &mut R) -> Mass {
+        normalised(self.sample_unnormalised(favoured, rng))
+    }
+
+    /// [`Self::sample`] before its normalisation: the three Gamma draws, or the
+    /// vertex (which sums to 1) when all three underflow.
+    #[inline(always)]
+    fn sample_unnormalised<R: Rng + ?Sized>(&self, favoured: State, rng: &mut R) -> Mass {
         let mut draw = |state| {
             if state == favoured {
                 self.major.sample(rng)
@@ -174,10 +203,9 @@ impl Dirichlet {
                 self.minor.sample(rng)
             }
         };
-        let (empty, occupied, unknown) = (draw(State::Empty), draw(State::Occupied), draw(State::Unknown));
-        let total = empty + occupied + unknown;
-        if total > 0.0 {
-            return Mass::new(empty / total, occupied / total, unknown / total);
+        let gammas = Mass::new(draw(State::Empty), draw(State::Occupied), draw(State::Unknown));
+        if gammas.total() > 0.0 {
+            return gammas;
         }
         self.vertex(favoured, rng)
     }

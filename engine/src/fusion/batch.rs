@@ -19,9 +19,10 @@ use crate::elementary::pow_many;
 pub struct BatchScratch {
     /// Per cell: whether the weighted rule fuses it.
     weighted: Vec<bool>,
-    /// Per source of a weighted cell: its largest state, and where its two
-    /// ratios are in `ratios` (`None`: its weight is 1, it is used as it is).
-    transforms: Vec<Option<(Ratios, usize)>>,
+    /// Per source of a weighted cell, in order: its largest state, whose two
+    /// ratios are the next pair in `ratios` (`None`: its weight is 1, it is
+    /// used as it is).
+    transforms: Vec<Option<Ratios>>,
     ratios: Vec<f64>,
     weights: Vec<f64>,
     powers: Vec<f64>,
@@ -91,7 +92,7 @@ pub fn fuse_cells(
                 continue;
             }
             let (largest, pair) = Ratios::of(source.mass);
-            transforms.push(Some((largest, ratios.len())));
+            transforms.push(Some(largest));
             ratios.extend(pair);
             weights.extend([weight; 2]);
         }
@@ -102,21 +103,25 @@ pub fn fuse_cells(
 
     // Each cell combined in order, as `fuse` does.
     let mut transforms = transforms.iter();
+    let mut powers = powers.chunks_exact(2);
     for ((cell, sources), &is_weighted) in cells().enumerate().zip(weighted.iter()) {
         if sources.is_empty() {
             each(cell, None);
             continue;
         }
         let mut combiner = Combiner::new();
-        for source in sources {
-            let mass = match is_weighted {
-                false => source.mass,
-                true => match transforms.next().expect("a transform per source of a weighted cell") {
-                    Some((largest, at)) => largest.terms([powers[*at], powers[*at + 1]]),
+        if is_weighted {
+            for (source, transform) in sources.iter().zip(transforms.by_ref()) {
+                combiner.add(match transform {
+                    Some(largest) => {
+                        let pair = powers.next().expect("two powers per transformed source");
+                        largest.terms([pair[0], pair[1]])
+                    }
                     None => source.mass,
-                },
-            };
-            combiner.add(mass);
+                });
+            }
+        } else {
+            sources.iter().for_each(|source| combiner.add(source.mass));
         }
         let weighted = match switch {
             None => sources.len() > 1,

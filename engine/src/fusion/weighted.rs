@@ -53,7 +53,7 @@ pub(super) fn transform_terms(mass: Mass, weight: f64) -> Mass {
 /// Which state holds the largest mass: the power transform leaves its term
 /// at 1 and raises the other two ratios, in state order.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(super) struct Ratios(usize);
+pub(super) struct Ratios(u8);
 
 impl Ratios {
     /// The largest state of `mass` and the other two masses over it (1 for
@@ -71,7 +71,7 @@ impl Ratios {
         let max = m[largest];
         let ratio = |other: usize| if m[other] == max { 1.0 } else { m[other] / max };
         let [a, b] = Self::others(largest);
-        (Self(largest), [ratio(a), ratio(b)])
+        (Self(largest as u8), [ratio(a), ratio(b)])
     }
 
     /// The transform's terms from the two ratios raised to the weight: the
@@ -79,7 +79,7 @@ impl Ratios {
     #[inline]
     pub(super) fn terms(self, powers: [f64; 2]) -> Mass {
         let mut terms = [1.0; 3];
-        let [a, b] = Self::others(self.0);
+        let [a, b] = Self::others(usize::from(self.0));
         (terms[a], terms[b]) = (powers[0], powers[1]);
         Mass::new(terms[0], terms[1], terms[2])
     }
