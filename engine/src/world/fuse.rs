@@ -125,7 +125,7 @@ impl Coverage {
         self.cells.clear();
         for observation in received {
             for &cell in observation.touched() {
-                if counted(cell) && !self.covered[cell] {
+                if !self.covered[cell] && counted(cell) {
                     self.covered[cell] = true;
                     self.cells.push(cell);
                 }
