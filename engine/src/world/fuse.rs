@@ -77,6 +77,13 @@ impl CellFusion<'_> {
         fuse(self.rule, sources)
     }
 
+    /// The memo of this rule's fused cells judged at `threshold`, when the
+    /// rule reads only masses.
+    pub(super) fn memo(&self, threshold: f64) -> Option<Memo> {
+        let fresh = [Observed::Free, Observed::Occupied].map(|state| self.source(state, 1.0, 0.0));
+        Memo::new(self.rule, fresh, threshold)
+    }
+
     /// The source an observation of `state` (free or occupied) with `weight`
     /// from sensors `distance` away makes.
     pub(super) fn source(&self, state: Observed, weight: f64, distance: f64) -> Source {
@@ -197,7 +204,7 @@ impl<'a, 'j> Fusion<'a, 'j> {
                     occupied: perception.occupied,
                     free: perception.free,
                 };
-                Memo::new(&fusion, job.decision.threshold)
+                fusion.memo(job.decision.threshold)
             })
             .collect();
         Self {

@@ -6,16 +6,15 @@
 //! source order: the inverse sensor model gives each state one mass. A
 //! [`Memo`] holds the judged cell of every such sequence up to
 //! [`MEMO_SOURCES`] long, computed once a run by the very code that fuses an
-//! uncached cell ([`CellFusion::estimate`] then [`judge`]), so that a lookup
-//! returns the same bits; the roundabout's 56 000 fused cells a step then need
+//! uncached cell (the same sources, [`fuse`], then [`judge`]), so that a
+//! lookup returns the same bits; the roundabout's 56 000 fused cells a step then need
 //! no logarithm or exponential each.
 
 use sightline_dsl::Rule;
 
 use super::evidence::Evidence;
-use super::fuse::CellFusion;
 use super::observe::Observed;
-use crate::fusion::{Estimate, State, decide, fuse, pignistic};
+use crate::fusion::{Estimate, Source, State, decide, fuse, pignistic};
 
 /// The longest sequence of sources a memo holds: 2¹¹ − 2 judged cells.
 pub(super) const MEMO_SOURCES: u32 = 10;
@@ -54,10 +53,11 @@ pub(super) struct Memo {
 }
 
 impl Memo {
-    /// The memo of `fusion`'s rule and inverse sensor model at `threshold`, or
+    /// The memo of `rule` at `threshold`, where a fresh observation of a
+    /// cell free makes the source `free` and one of it occupied `occupied`;
     /// `None` when the rule reads more than the masses (distances).
-    pub(super) fn new(fusion: &CellFusion<'_>, threshold: f64) -> Option<Self> {
-        if !matches!(fusion.rule, Rule::Bayes | Rule::Dempster) {
+    pub(super) fn new(rule: &Rule, [free, occupied]: [Source; 2], threshold: f64) -> Option<Self> {
+        if !matches!(rule, Rule::Bayes | Rule::Dempster) {
             return None;
         }
         let mut sources = Vec::with_capacity(MEMO_SOURCES as usize);
@@ -65,15 +65,12 @@ impl Memo {
             .map(|key| {
                 let length = usize::BITS - 1 - key.leading_zeros();
                 sources.clear();
-                sources.extend((0..length).rev().map(|bit| {
-                    let state = if key >> bit & 1 == 1 {
-                        Observed::Occupied
-                    } else {
-                        Observed::Free
-                    };
-                    fusion.source(state, 1.0, 0.0)
-                }));
-                judge(fuse(fusion.rule, &sources), threshold)
+                sources.extend(
+                    (0..length)
+                        .rev()
+                        .map(|bit| if key >> bit & 1 == 1 { occupied } else { free }),
+                );
+                judge(fuse(rule, &sources), threshold)
             })
             .collect();
         Some(Self { table })
@@ -103,6 +100,7 @@ impl Memo {
 mod tests {
     use sightline_dsl::{Grid, SourceCombination, WeightScaling, Weighting};
 
+    use super::super::fuse::CellFusion;
     use super::*;
     use crate::math::Point;
 
@@ -154,7 +152,7 @@ mod tests {
                     occupied: 0.7,
                     free: 0.3,
                 };
-                let memo = Memo::new(&fusion, threshold).expect("the rule reads masses only");
+                let memo = fusion.memo(threshold).expect("the rule reads masses only");
                 let mut sources = Vec::new();
                 for cell in 1..256 {
                     let computed = judge(fusion.estimate(cell, &mut sources), threshold);
@@ -178,22 +176,14 @@ mod tests {
             occupied: 0.7,
             free: 0.3,
         };
-        let memo = Memo::new(&fusion, 0.0).expect("Bayes reads masses only");
+        let memo = fusion.memo(0.0).expect("Bayes reads masses only");
         assert_eq!(memo.get(&present, 0), None);
         assert!(memo.get(&present[1..], 0).is_some());
         let weighted = Rule::DistanceWeighted(Weighting {
             scaling: WeightScaling::default(),
             sources: SourceCombination::default(),
         });
-        assert!(
-            Memo::new(
-                &CellFusion {
-                    rule: &weighted,
-                    ..fusion
-                },
-                0.0
-            )
-            .is_none()
-        );
+        let free = fusion.source(Observed::Free, 1.0, 0.0);
+        assert!(Memo::new(&weighted, [free, free], 0.0).is_none());
     }
 }
