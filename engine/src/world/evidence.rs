@@ -19,6 +19,9 @@ pub trait Evidence: Sync {
 
     /// The estimated positions of the sensors that observed `cell`.
     fn sensors(&self, cell: usize) -> &[Point];
+
+    /// Whether every cell it says something of weighs 1 (none has aged).
+    fn fresh(&self) -> bool;
 }
 
 impl Evidence for Observation {
@@ -36,5 +39,9 @@ impl Evidence for Observation {
 
     fn sensors(&self, _cell: usize) -> &[Point] {
         &self.sensor_positions
+    }
+
+    fn fresh(&self) -> bool {
+        true
     }
 }

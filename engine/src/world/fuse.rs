@@ -11,11 +11,12 @@ use rayon::prelude::*;
 use sightline_dsl::{Grid, Perception, Rule};
 
 use super::evidence::Evidence;
+use super::memo::{Memo, judge};
 use super::metrics::WorldTally;
 use super::observe::Observed;
 use super::raster::cell_center;
 use super::truth::{OCCUPIED, SELF_REPORT, Truth};
-use crate::fusion::{Estimate, Mass, Source, State, decide, fuse, pignistic};
+use crate::fusion::{Estimate, Mass, Source, State, fuse};
 use crate::idealisation::Idealisation;
 use crate::math::Point;
 use crate::run::Job;
@@ -58,15 +59,10 @@ impl CellFusion<'_> {
         let distances = matches!(self.rule, Rule::DistanceWeighted(_) | Rule::Hybrid { .. });
         let center = cell_center(self.grid, cell);
         for observation in self.observations {
-            let mass = match observation.get(cell) {
-                Observed::Unknown => continue,
-                Observed::Free => Mass::new(1.0 - 2.0 * self.free, 0.0, 2.0 * self.free),
-                Observed::Occupied | Observed::Own => {
-                    Mass::new(0.0, 2.0 * self.occupied - 1.0, 2.0 - 2.0 * self.occupied)
-                }
-            };
-            let weight = observation.weight(cell);
-            let mass = if weight < 1.0 { mass.discounted(weight) } else { mass };
+            let state = observation.get(cell);
+            if state == Observed::Unknown {
+                continue;
+            }
             let distance = if distances {
                 observation
                     .sensors(cell)
@@ -76,12 +72,29 @@ impl CellFusion<'_> {
             } else {
                 0.0
             };
-            sources.push(Source {
-                mass,
-                distance: distance.max(self.grid.cell / 2.0),
-            });
+            sources.push(self.source(state, observation.weight(cell), distance));
         }
         fuse(self.rule, sources)
+    }
+
+    /// The memo of this rule's fused cells judged at `threshold`, when the
+    /// rule reads only masses.
+    pub(super) fn memo(&self, threshold: f64) -> Option<Memo> {
+        let fresh = [Observed::Free, Observed::Occupied].map(|state| self.source(state, 1.0, 0.0));
+        Memo::new(self.rule, fresh, threshold)
+    }
+
+    /// The source an observation of `state` (free or occupied) with `weight`
+    /// from sensors `distance` away makes.
+    pub(super) fn source(&self, state: Observed, weight: f64, distance: f64) -> Source {
+        let mass = match state {
+            Observed::Free => Mass::new(1.0 - 2.0 * self.free, 0.0, 2.0 * self.free),
+            _ => Mass::new(0.0, 2.0 * self.occupied - 1.0, 2.0 - 2.0 * self.occupied),
+        };
+        Source {
+            mass: if weight < 1.0 { mass.discounted(weight) } else { mass },
+            distance: distance.max(self.grid.cell / 2.0),
+        }
     }
 }
 
@@ -119,7 +132,7 @@ impl Coverage {
         self.cells.clear();
         for observation in received {
             for &cell in observation.touched() {
-                if counted(cell) && !self.covered[cell] {
+                if !self.covered[cell] && counted(cell) {
                     self.covered[cell] = true;
                     self.cells.push(cell);
                 }
@@ -161,6 +174,9 @@ pub(super) struct Fusion<'a, 'j> {
     coverage: Coverage,
     /// Per job: the fused values of the last pictured step.
     values: Vec<CellValues>,
+    /// Per job: its fused cells by their sources' states, when its rule reads
+    /// only masses.
+    memos: Vec<Option<Memo>>,
 }
 
 /// What the fuse phase hands the measure phase: each job's fused grid of the
@@ -178,12 +194,26 @@ pub(super) struct Fused<'a> {
 impl<'a, 'j> Fusion<'a, 'j> {
     /// Ready to fuse `jobs` on `grid` with `perception`'s inverse sensor model.
     pub(super) fn new(grid: &'a Grid, perception: &'a Perception, jobs: &'a [Job<'j>]) -> Self {
+        let memos = jobs
+            .iter()
+            .map(|job| {
+                let fusion = CellFusion {
+                    grid,
+                    rule: &job.fusion.rule,
+                    observations: &[],
+                    occupied: perception.occupied,
+                    free: perception.free,
+                };
+                fusion.memo(job.decision.threshold)
+            })
+            .collect();
         Self {
             grid,
             perception,
             jobs,
             coverage: Coverage::new(grid.cells()),
             values: vec![CellValues::default(); jobs.len()],
+            memos,
         }
     }
 
@@ -200,8 +230,9 @@ impl<'a, 'j> Fusion<'a, 'j> {
         (picture, owners): (bool, bool),
     ) -> Fused<'_> {
         self.coverage.cover(received, counted);
+        let fresh = received.iter().all(|o| o.fresh());
         let mut chunks = Vec::with_capacity(self.jobs.len());
-        for (job, values) in self.jobs.iter().zip(&mut self.values) {
+        for ((job, values), memo) in self.jobs.iter().zip(&mut self.values).zip(&self.memos) {
             let tallier = Tallier {
                 fusion: CellFusion {
                     grid: self.grid,
@@ -214,6 +245,7 @@ impl<'a, 'j> Fusion<'a, 'j> {
                 truth: truth.cells(),
                 owners: owners.then(|| truth.owners()),
                 senders,
+                memo: memo.as_ref().filter(|_| fresh),
             };
             let fused: Vec<(WorldTally, CellValues)> = self
                 .coverage
@@ -252,6 +284,8 @@ struct Tallier<'a> {
     /// The true positions of the cooperating agents other than the ego in the
     /// scene, for recall by distance to the nearest.
     senders: &'a [Point],
+    /// The job's memo, when every observation is fresh.
+    memo: Option<&'a Memo>,
 }
 
 impl Tallier<'_> {
@@ -263,17 +297,17 @@ impl Tallier<'_> {
         let mut sources = Vec::with_capacity(self.fusion.observations.len());
         let ego = self.fusion.observations[0];
         for &cell in cells {
-            let estimate = self.fusion.estimate(cell, &mut sources);
-            tally.estimates.record(&estimate);
-            let probability = match estimate {
-                Estimate::Occupancy(o) => o.probability,
-                Estimate::Evidential { combination, .. } => pignistic(combination.mass),
+            let memoised = self.memo.and_then(|memo| memo.get(self.fusion.observations, cell));
+            let judged = match memoised {
+                Some(&judged) => judged,
+                None => judge(self.fusion.estimate(cell, &mut sources), self.threshold),
             };
+            let (estimate, probability, decision) = (judged.estimate, judged.probability, judged.decision);
+            tally.estimates.record(&estimate);
             // Self-report is left out, as recall leaves it out: no sensor had to find it.
             if self.truth[cell] != SELF_REPORT {
                 tally.calibration.record(probability, self.truth[cell] == OCCUPIED);
             }
-            let decision = decide(estimate.decision_mass(), self.threshold);
             let decided = decision == Some(State::Occupied);
             if let Some(owners) = self.owners.filter(|_| decided)
                 && matches!(self.truth[cell], OCCUPIED | SELF_REPORT)

@@ -10,6 +10,7 @@ mod fuse;
 mod layer;
 mod localization;
 mod measure;
+mod memo;
 mod message;
 mod metrics;
 mod motion;

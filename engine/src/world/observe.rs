@@ -266,10 +266,11 @@ impl Observation {
             let length = scene
                 .raster
                 .free_length(truth.translation, true_heading + bearing, sensor.range, index);
+            let angle = estimated_heading + bearing;
             traverse(
                 scene.grid,
                 estimate.translation,
-                estimated_heading + bearing,
+                Vector::new(angle.cos(), angle.sin()),
                 length,
                 |cell, _| {
                     self.mark(cell, Observed::Free);

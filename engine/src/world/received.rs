@@ -42,6 +42,8 @@ pub(super) struct Held {
     /// Whether a generation left its slot since the held cells were last
     /// checked: some may still name it.
     stale: bool,
+    /// Whether evidence keeps its weight as it ages (no `decay`).
+    fresh: bool,
 }
 
 impl Held {
@@ -55,6 +57,7 @@ impl Held {
             touched: Vec::new(),
             slots: vec![None; live],
             stale: false,
+            fresh: messages.decay.is_none(),
         }
     }
 
@@ -140,6 +143,10 @@ impl Evidence for Held {
 
     fn sensors(&self, cell: usize) -> &[Point] {
         &self.generation(cell).sensors
+    }
+
+    fn fresh(&self) -> bool {
+        self.fresh
     }
 }
 
