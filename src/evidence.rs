@@ -14,7 +14,7 @@ use sightline_engine::trace::{SemanticStep, WorldStep};
 use sightline_oracles::{Status, Verdict};
 use sightline_reports::mcap::{Recorder, Source};
 use sightline_reports::osi::{OSI_TRACE, OsiTrace};
-use sightline_reports::{Execution, Provenance, RecordingInfo, Templates, Tool, render, sha256_hex};
+use sightline_reports::{Execution, OsiTraceInfo, Provenance, RecordingInfo, Templates, Tool, render, sha256_hex};
 
 use crate::exit::Exit;
 use crate::input::Input;
@@ -245,22 +245,34 @@ pub fn recorded(
         .with_context(|| failed(RECORDING))?
         .flush()
         .with_context(|| failed(RECORDING))?;
-    if let Some(osi) = osi {
-        osi.finish()
-            .with_context(|| failed(OSI_TRACE))?
-            .flush()
-            .with_context(|| failed(OSI_TRACE))?;
-    }
-    // The hash is of the bytes on disk: the MCAP writer seeks back as it writes.
-    let bytes = std::fs::read(staging.path(RECORDING)).with_context(|| failed(RECORDING))?;
+    let osi_trace = match osi {
+        Some(osi) => {
+            osi.finish()
+                .with_context(|| failed(OSI_TRACE))?
+                .flush()
+                .with_context(|| failed(OSI_TRACE))?;
+            Some(OsiTraceInfo {
+                file: OSI_TRACE.into(),
+                sha256: staged_sha256(staging, OSI_TRACE).with_context(|| failed(OSI_TRACE))?,
+            })
+        }
+        None => None,
+    };
     let info = RecordingInfo {
         file: RECORDING.into(),
-        sha256: sha256_hex(&bytes),
+        sha256: staged_sha256(staging, RECORDING).with_context(|| failed(RECORDING))?,
         point: record.point,
         label: scenario.points[record.point].label(),
         every_point: record.points == RecordedPoints::All,
+        osi_trace,
     };
     Ok((run, verdicts, Some(info)))
+}
+
+/// SHA-256 of the staged file `name` as it is on disk (MCAP writers seek back
+/// as they write), lowercase hex.
+fn staged_sha256(staging: &Staging, name: &str) -> std::io::Result<String> {
+    std::fs::read(staging.path(name)).map(|bytes| sha256_hex(&bytes))
 }
 
 /// Where each scenario's evidence goes (`out` with one scenario, `out/STEM/`
