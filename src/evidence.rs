@@ -142,14 +142,17 @@ pub fn recorded_point(scenario: &Scenario, record: Record, verdicts: &[Verdict])
     record.at_point(&scenario.points, worst.unwrap_or(record.point))
 }
 
-/// Simulates the points `record` records of `input`'s scenario again,
-/// reporting their steps to `recorder`, and returns `run` (which holds them)
-/// once their outcomes are found the same.
+/// Simulates what `record` records of `input`'s scenario again (one point, or
+/// only its first run where it pools several runs of the semantic pipeline;
+/// every point), reporting its steps to `recorder`, and returns `run` once
+/// what it holds of them is found the same, bit for bit.
 pub fn resimulated(input: &Input, record: Record, run: Run, recorder: &mut impl TraceSink) -> anyhow::Result<Run> {
     let same = match record.points {
-        RecordedPoints::One => {
-            sightline_engine::simulate_point(&input.scenario, record.point, recorder) == run.points[record.point]
-        }
+        RecordedPoints::One => run.points[record.point].holds_recorded(&sightline_engine::simulate_recorded(
+            &input.scenario,
+            record.point,
+            recorder,
+        )),
         RecordedPoints::All => sightline_engine::simulate_traced_all(&input.scenario, recorder, &mut |_| {}) == run,
     };
     if !same {

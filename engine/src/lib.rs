@@ -36,8 +36,8 @@
 pub use idealisation::{Idealisation, ModelOption, idealisations};
 pub use known::{KnownAnswer, known_answers};
 pub use run::{
-    AssembleError, Job, Outcome, Run, Sample, Unit, assemble, simulate, simulate_point, simulate_reporting,
-    simulate_traced, simulate_traced_all, simulate_unit, units,
+    AssembleError, Job, Outcome, Run, Sample, Unit, assemble, simulate, simulate_point, simulate_recorded,
+    simulate_reporting, simulate_traced, simulate_traced_all, simulate_unit, units,
 };
 pub use sink::{NoTrace, TraceSink};
 
