@@ -14,7 +14,7 @@ use sightline_engine::trace::{SemanticStep, WorldStep};
 use sightline_oracles::{Status, Verdict};
 use sightline_reports::mcap::{Recorder, Source};
 use sightline_reports::osi::{OSI_TRACE, OsiTrace};
-use sightline_reports::{Execution, Provenance, RecordingInfo, Templates, Tool, render, sha256_hex};
+use sightline_reports::{Execution, OsiTraceInfo, Provenance, RecordingInfo, Templates, Tool, render, sha256_hex};
 
 use crate::exit::Exit;
 use crate::input::Input;
@@ -142,14 +142,17 @@ pub fn recorded_point(scenario: &Scenario, record: Record, verdicts: &[Verdict])
     record.at_point(&scenario.points, worst.unwrap_or(record.point))
 }
 
-/// Simulates the points `record` records of `input`'s scenario again,
-/// reporting their steps to `recorder`, and returns `run` (which holds them)
-/// once their outcomes are found the same.
+/// Simulates what `record` records of `input`'s scenario again (one point, or
+/// only its first run where it pools several runs of the semantic pipeline;
+/// every point), reporting its steps to `recorder`, and returns `run` once
+/// what it holds of them is found the same, bit for bit.
 pub fn resimulated(input: &Input, record: Record, run: Run, recorder: &mut impl TraceSink) -> anyhow::Result<Run> {
     let same = match record.points {
-        RecordedPoints::One => {
-            sightline_engine::simulate_point(&input.scenario, record.point, recorder) == run.points[record.point]
-        }
+        RecordedPoints::One => run.points[record.point].holds_recorded(&sightline_engine::simulate_recorded(
+            &input.scenario,
+            record.point,
+            recorder,
+        )),
         RecordedPoints::All => sightline_engine::simulate_traced_all(&input.scenario, recorder, &mut |_| {}) == run,
     };
     if !same {
@@ -245,22 +248,34 @@ pub fn recorded(
         .with_context(|| failed(RECORDING))?
         .flush()
         .with_context(|| failed(RECORDING))?;
-    if let Some(osi) = osi {
-        osi.finish()
-            .with_context(|| failed(OSI_TRACE))?
-            .flush()
-            .with_context(|| failed(OSI_TRACE))?;
-    }
-    // The hash is of the bytes on disk: the MCAP writer seeks back as it writes.
-    let bytes = std::fs::read(staging.path(RECORDING)).with_context(|| failed(RECORDING))?;
+    let osi_trace = match osi {
+        Some(osi) => {
+            osi.finish()
+                .with_context(|| failed(OSI_TRACE))?
+                .flush()
+                .with_context(|| failed(OSI_TRACE))?;
+            Some(OsiTraceInfo {
+                file: OSI_TRACE.into(),
+                sha256: staged_sha256(staging, OSI_TRACE).with_context(|| failed(OSI_TRACE))?,
+            })
+        }
+        None => None,
+    };
     let info = RecordingInfo {
         file: RECORDING.into(),
-        sha256: sha256_hex(&bytes),
+        sha256: staged_sha256(staging, RECORDING).with_context(|| failed(RECORDING))?,
         point: record.point,
         label: scenario.points[record.point].label(),
         every_point: record.points == RecordedPoints::All,
+        osi_trace,
     };
     Ok((run, verdicts, Some(info)))
+}
+
+/// SHA-256 of the staged file `name` as it is on disk (MCAP writers seek back
+/// as they write), lowercase hex.
+fn staged_sha256(staging: &Staging, name: &str) -> std::io::Result<String> {
+    std::fs::read(staging.path(name)).map(|bytes| sha256_hex(&bytes))
 }
 
 /// Where each scenario's evidence goes (`out` with one scenario, `out/STEM/`

@@ -35,6 +35,7 @@
 
 pub use idealisation::{Idealisation, ModelOption, idealisations};
 pub use known::{KnownAnswer, known_answers};
+pub use recorded::simulate_recorded;
 pub use run::{
     AssembleError, Job, Outcome, Run, Sample, Unit, assemble, simulate, simulate_point, simulate_reporting,
     simulate_traced, simulate_traced_all, simulate_unit, units,
@@ -53,6 +54,7 @@ mod math;
 mod metrics;
 #[cfg(test)]
 mod pinned;
+mod recorded;
 mod rng;
 mod run;
 mod semantic;

@@ -19,12 +19,15 @@ use sightline_oracles::{Verdict, check};
 use sightline_reports::{Evidence, Execution, Page, Provenance, Templates, Tool, render, sha256_hex};
 
 /// The bundled scenarios, by their paths from the workspace's root.
-const BUNDLED: [&str; 5] = [
+const BUNDLED: [&str; 8] = [
     "scenarios/evidential-field.yaml",
     "scenarios/roundabout-six-agents.yaml",
     "scenarios/urban-rsu-semantic.yaml",
     "scenarios/sumo-grid-semantic.yaml",
     "scenarios/urban-falsify.yaml",
+    "scenarios/junction-joint.yaml",
+    "scenarios/opendrive-crossroads-semantic.yaml",
+    "scenarios/sumo-town-semantic.yaml",
 ];
 
 /// A bundled scenario, simulated and checked.

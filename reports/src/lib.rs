@@ -38,10 +38,10 @@ pub use junit::{junit, junit_xml};
 pub use picture::{Legend, Picture, Pictures, Scale, Swatch, pictures};
 pub use results::{
     Assumption, Axis, Band, CheckInfo, Conflict, Coverage, DeliveryBin, DensityRow, Detail, FORMAT, InputInfo,
-    LabelCounts, LabelResult, MassAudit, Measured, MetricEntry, Ordered, OverSeeds, PointResult, PointVerdict,
-    Provenance, RateBound, RecordingInfo, ReferencePoint, ReferenceResult, RequirementResult, Results, ScenarioInfo,
-    SeedStatistics, SemanticCounts, Sightings, Statistic, Status, Summary, Sweep, SweepRow, Table, Tool, WorldCounts,
-    results_schema,
+    LabelCounts, LabelResult, MassAudit, Measured, MetricEntry, Ordered, OsiTraceInfo, OverSeeds, PointResult,
+    PointVerdict, Provenance, RateBound, RecordingInfo, ReferencePoint, ReferenceResult, RequirementResult, Results,
+    ScenarioInfo, SeedStatistics, SemanticCounts, Sightings, Statistic, Status, Summary, Sweep, SweepRow, Table, Tool,
+    WorldCounts, results_schema,
 };
 pub use shard::{SHARD_FORMAT, Shard, ShardError, ShardInput, campaign_id, read_shard, shard_bytes};
 pub use template::{Loader, Location, Page, TemplateError, TemplateErrorKind, Templates};

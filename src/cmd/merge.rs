@@ -7,8 +7,9 @@
 //! this build of sightline, and its input files are unchanged; the units then
 //! make up the run ([`sightline_engine::assemble`]), and every measured value
 //! lies in its domain ([`sightline_oracles::out_of_domain`]; outside, exit 3).
-//! The recording, when the scenario asks for one, is made here: its point is
-//! simulated again, and must give the outcome its shard gave.
+//! The recording, when the scenario asks for one, is made here: its point (a
+//! pooled semantic point's first run) is simulated again, and must give the
+//! outcome its shard gave.
 
 use std::collections::{BTreeMap, HashMap};
 use std::path::{Path, PathBuf};

@@ -64,7 +64,20 @@ fn scene_trace(dir: &Path) -> Vec<u8> {
         report.contains(" --seed 1 --osi</"),
         "the report's command to reproduce the run asks for the trace"
     );
-    std::fs::read(out.join(TRACE)).expect("osi.mcap is written")
+    let trace = std::fs::read(out.join(TRACE)).expect("osi.mcap is written");
+    // results.json and the report name the trace by its hash, as the recording.
+    let results: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("results.json")).unwrap()).unwrap();
+    let sha = crate::support::sha256_hex(&trace);
+    assert_eq!(
+        results["recording"]["osi_trace"],
+        json!({ "file": TRACE, "sha256": sha })
+    );
+    assert!(
+        report.contains(&format!("{TRACE} (the same point), SHA-256 {sha}")),
+        "the report lacks the trace's hash"
+    );
+    trace
 }
 
 /// Every message of `topic`, in the order written: its publish and log
@@ -408,6 +421,8 @@ fn a_later_run_without_osi_leaves_no_stale_trace() {
     sightline(["run", arg(&file), "--out", arg(&out), "--record"]).assert_exit(0);
     assert!(out.join("run.mcap").is_file());
     assert!(!out.join(TRACE).exists(), "osi.mcap of the earlier run is left");
+    let results = std::fs::read_to_string(out.join("results.json")).unwrap();
+    assert!(!results.contains("osi_trace"), "results.json names a trace not written");
 }
 
 /// What tests/python/read_osi.py, run by `python`, reads of the trace at `path`.

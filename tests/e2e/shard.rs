@@ -1,8 +1,9 @@
 //! `run --shard K/N` and `merge` (issue 5 §3): the merged evidence is the
 //! unsharded run's, byte for byte but for where, when and how long it ran; a
 //! campaign that does not add up, a damaged shard or a file given twice is
-//! refused with exit 2 (issue 13), a measured value outside its domain with
-//! exit 3, and nothing is written.
+//! refused with exit 2 (issue 13), a measured value outside its domain or a
+//! recorded run that differs from its shard's with exit 3, and nothing is
+//! written.
 
 use std::path::{Path, PathBuf};
 
@@ -372,4 +373,57 @@ fn a_shard_outside_one_to_n_is_a_usage_error() {
         run.assert_exit(2);
         assert!(run.stderr.contains("expected K/N with 1 ≤ K ≤ N"), "{run}");
     }
+}
+
+/// The urban junction cut to 70 s (the ego is served from about 50 s on),
+/// pooling two runs at two densities; its recording, of a point chosen once
+/// the run is judged, is made by the merge.
+fn pooled_junction(dir: &Path) -> PathBuf {
+    let text = read(Path::new("scenarios/urban-rsu-semantic.yaml"));
+    let head = &text[..text.find("\nsweeps:").expect("the junction has sweeps")];
+    let text = head
+        .replace("duration: 120", "duration: 70")
+        .replace("runs: 5 ", "runs: 2 ")
+        + "\nsweep: { traffic.vehicles.density_per_km: [5, 15] }\nrequirements:\n  \
+           - { id: PDR, text: Delivered., check: { metric: packet_delivery_ratio, at_least: 0.5 } }\n";
+    let file = dir.join("pooled.yaml");
+    std::fs::write(&file, text).unwrap();
+    file
+}
+
+/// The merge records a pooled point by simulating its first run again, and
+/// checks it against the first run its shard kept: one count off there (the
+/// pooled measurements untouched) is an internal error, exit 3, nothing written.
+#[test]
+fn a_recorded_first_run_that_differs_from_its_shards_is_refused() {
+    let tmp = temp_dir();
+    let file = pooled_junction(tmp.path());
+    let part = tmp.path().join("s1");
+    sightline(["run", "--shard", "1/1", "--record", "--out", arg(&part), arg(&file)]).assert_exit(0);
+    let merged = tmp.path().join("merged");
+    sightline(["merge", "--out", arg(&merged), arg(&part)]).assert_exit(0);
+    assert!(merged.join("run.mcap").is_file(), "the merge records");
+    reseal(&part.join("shard-1-of-1.cbor"), |shard| {
+        for (_, outcomes) in &mut shard.units {
+            for outcome in outcomes {
+                let Outcome::Semantic(metrics) = outcome else {
+                    panic!("a semantic outcome")
+                };
+                metrics
+                    .first_run
+                    .as_mut()
+                    .expect("a pooled point keeps its first run")
+                    .bytes += 1;
+            }
+        }
+    });
+    let merge = sightline(["merge", "--out", arg(&tmp.path().join("forged")), arg(&part)]);
+    merge.assert_exit(3);
+    assert!(
+        merge
+            .stderr
+            .contains("the recorded points, simulated again, differ from the run's outcomes"),
+        "{merge}"
+    );
+    assert!(!tmp.path().join("forged").exists(), "nothing is written");
 }

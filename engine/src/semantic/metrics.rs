@@ -81,6 +81,13 @@ pub struct SemanticMetrics {
     /// Every road user relevant to the ego, run by run (in pooled order), each
     /// run's in order of becoming relevant.
     pub objects: Vec<ObjectRecord>,
+    /// Where several runs are pooled (`semantic.runs`), the first run's own
+    /// measurements: the run a recording of the point records, which
+    /// [`simulate_recorded`](crate::simulate_recorded) simulates again to be
+    /// checked against these. `None` for one run (these are its own), and in
+    /// the runs being pooled.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub first_run: Option<Box<SemanticMetrics>>,
 }
 
 /// Sent object-cycles by label.
@@ -151,6 +158,7 @@ impl SemanticMetrics {
             rsu_only,
             time_to_conflict,
             objects,
+            first_run: _,
         } = other;
         self.runs += runs;
         self.steps += steps;

@@ -23,7 +23,7 @@ pub use message::{Item, Labels};
 pub use metrics::{DELIVERY_BIN, DENSITY_BIN, DeliveryBin, DensityRow, LabelCounts, SemanticMetrics};
 pub use objects::{Category, Closest, ObjectRecord};
 pub use risk::Conflict;
-pub use simulate::run;
+pub use simulate::{first_run, run};
 
 /// The pipeline's pieces, for the engine's benches (feature `internals`).
 #[cfg(feature = "internals")]

@@ -141,19 +141,32 @@ pub(crate) fn idealisations(world: &World, semantic: &Semantic) -> Vec<Idealisat
 }
 
 /// Runs a world's semantic pipeline `semantic.runs` times, each run with its own
-/// seed (run 0 with `seed` itself), and pools the measurements in run order.
+/// seed (run 0 with `seed` itself), and pools the measurements in run order,
+/// keeping run 0's own as [`SemanticMetrics::first_run`] when there are several.
 /// Run 0 reports each step to `sink`; the others run in parallel afterwards and
 /// report nothing. The result does not depend on the thread count.
 pub fn run(seed: u64, world: &World, semantic: &Semantic, sink: &mut impl TraceSink) -> SemanticMetrics {
-    let mut pooled = run_once((seed, 0), world, semantic, sink);
+    let first = first_run(seed, world, semantic, sink);
+    if semantic.runs <= 1 {
+        return first;
+    }
     let others: Vec<SemanticMetrics> = (1..semantic.runs)
         .into_par_iter()
         .map(|r| run_once((derived_seed(seed, Derived::Run, r), r), world, semantic, &mut NoTrace))
         .collect();
+    let mut pooled = first.clone();
     for metrics in others {
         pooled.pool(metrics);
     }
+    pooled.first_run = Some(Box::new(first));
     pooled
+}
+
+/// Run 0 of [`run`] alone, reporting each step to `sink`: what a recording of
+/// a semantic point records, its measurements [`run`]'s
+/// [`first_run`](SemanticMetrics::first_run) (or, with one run, [`run`]'s own).
+pub fn first_run(seed: u64, world: &World, semantic: &Semantic, sink: &mut impl TraceSink) -> SemanticMetrics {
+    run_once((seed, 0), world, semantic, sink)
 }
 
 /// Pooled run `run` of a world's semantic pipeline, with its `seed`, reporting

@@ -189,6 +189,18 @@ fn provenance(results: &Results, reproduce: &str) -> Vec<(&'static str, String)>
             format!("{} ({point}), SHA-256 {}", recording.file, recording.sha256),
         )
     }));
+    rows.extend(
+        results
+            .recording
+            .iter()
+            .filter_map(|recording| recording.osi_trace.as_ref())
+            .map(|osi| {
+                (
+                    "OSI trace",
+                    format!("{} (the same point), SHA-256 {}", osi.file, osi.sha256),
+                )
+            }),
+    );
     rows.extend([
         (
             "Seed",

@@ -40,7 +40,7 @@ pub(crate) use metrics::metric_unit;
 pub use metrics::{Measured, MetricEntry, Ordered, Table};
 pub use objects::{CategoryCounts, ClosestApproach, MAX_OBJECT_RECORDS, ObjectCategory, ObjectList, ObjectResult};
 pub use point::{Detail, LabelResult, PointResult, SemanticDetail};
-pub use provenance::{Provenance, RecordingInfo, Tool};
+pub use provenance::{OsiTraceInfo, Provenance, RecordingInfo, Tool};
 pub use reference::{Assumption, ReferencePoint, ReferenceResult};
 pub use requirement::{
     CheckInfo, OverSeeds, PointVerdict, RateBound, RequirementResult, SeedStatistics, Statistic, Status,

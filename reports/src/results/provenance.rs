@@ -41,6 +41,20 @@ pub struct RecordingInfo {
     /// after another on the recording's clock; left out when one is.
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub every_point: bool,
+    /// The ASAM OSI trace of the same point written beside it (`sightline run
+    /// --osi`); left out without one.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub osi_trace: Option<OsiTraceInfo>,
+}
+
+/// The OSI trace (`osi.mcap`) written beside the recording.
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+#[schemars(deny_unknown_fields)]
+pub struct OsiTraceInfo {
+    /// Its file name in the evidence directory.
+    pub file: String,
+    /// SHA-256 of its bytes, lowercase hex.
+    pub sha256: String,
 }
 
 /// The tool and its build. Its schema is also the recording's (see

@@ -293,6 +293,7 @@ fn semantic_counts(metrics: &engine::SemanticMetrics) -> SemanticCounts {
         rsu_only: _,
         time_to_conflict: _,
         objects: _,
+        first_run: _,
     } = *metrics;
     let engine::LabelCounts {
         nlos_static,

@@ -1,0 +1,56 @@
+"""Where `sightline run --record`'s CPU time goes, from a perf profile.
+
+Record a profile with call stacks, then classify its samples:
+
+    perf record -F 4000 --call-graph dwarf,16384 -o run.perf \
+        target/release/sightline run scenarios/sumo-grid-semantic.yaml --record --out /tmp/e
+    python3 bench/recording_profile.py run.perf
+
+Each sample counts once, toward the first of the classes below whose frame
+is on its stack (so compression inside a message's writing counts as
+compression, and the recorder's encoding inside a simulated step counts as
+encoding). docs/performance.md quotes the shares.
+"""
+
+import collections
+import subprocess
+import sys
+
+# (class, substrings of a frame's symbol), in order of precedence.
+CLASSES = [
+    ("lz4 compression (with its frame checksum)", ["LZ4", "XXH32"]),
+    ("crc32 of chunks and attachments", ["crc32fast"]),
+    ("sha256 (imports, the recording's hash)", ["sha2::"]),
+    ("recorder: start (scenario record, attachments, map)", ["mcap::write::{impl#1}::new", "Recorder<W>::new", "Recorder<W>>::new"]),
+    ("recorder: agents and frames (/scene/agents, /tf)", ["mcap::write::scene::"]),
+    ("recorder: semantic steps (packets, messages, signals)", ["mcap::write::semantic::"]),
+    ("recorder: grids and detections", ["mcap::write::world::"]),
+    ("recorder: outcomes, objects and verdicts", ["mcap::write::outcomes", "Recorder<W>>::finish"]),
+    ("recorder: other", ["sightline_reports::mcap"]),
+    ("rendering results.json, junit.xml, report.html", ["sightline_reports::"]),
+    ("simulation of the recorded run (again, or as it runs)", ["resimulated<", "first_run<", "OneJob<sightline::evidence::Sinks"]),
+    ("simulation, unrecorded", ["sightline_engine::"]),
+    ("reading and compiling the scenario", ["sightline_dsl::"]),
+]
+
+
+def main(profile):
+    script = subprocess.run(
+        ["perf", "script", "-i", profile, "-F", "ip,sym"], capture_output=True, text=True, check=True
+    ).stdout
+    counts = collections.Counter()
+    total = 0
+    for sample in script.split("\n\n"):
+        stack = sample.strip()
+        if not stack:
+            continue
+        total += 1
+        name = next((name for name, marks in CLASSES if any(m in stack for m in marks)), "other")
+        counts[name] += 1
+    for name, count in counts.most_common():
+        print(f"{100 * count / total:5.1f} %  {count:6d}  {name}")
+    print(f"{total} samples")
+
+
+if __name__ == "__main__":
+    main(sys.argv[1])
