@@ -1,13 +1,15 @@
 """A simple tracker under test: it tracks every road user its sensors have at
-least partly in sight (sightline's `sightline.visibility` annotation) and
-coasts a track for up to 0.3 s after it was last seen, predicting it at
-constant velocity. It runs with sightline's protocol (osi_sut.py)."""
+least partly in sight (sightline's `sightline.visibility` annotation), coasts
+a track for up to 0.3 s after it was last seen, predicting it at constant
+velocity, and reports positions on its 0.5 m map cells (the centre of the
+cell a track is in). It runs with sightline's protocol (osi_sut.py)."""
 
 import math
 
 from osi_sut import serve
 
 COAST = 0.3
+CELL = 0.5
 
 
 def host_pose(view):
@@ -58,7 +60,8 @@ class Tracker:
                 continue
             px, py = x + vx * age - hx, y + vy * age - hy
             existence = 0.95 if age == 0 else 0.7
-            detections.append((cos * px + sin * py, -sin * px + cos * py, existence, kind))
+            qx, qy = (math.floor(v / CELL) * CELL + CELL / 2 for v in (px, py))
+            detections.append((cos * qx + sin * qy, -sin * qx + cos * qy, existence, kind))
         return detections
 
 
