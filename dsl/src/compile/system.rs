@@ -213,14 +213,15 @@ fn served(
 /// in a scenario that declares none.
 fn refuse_system_metrics(ctx: &mut Context<'_>, requirements: &[Requirement]) {
     for (i, requirement) in requirements.iter().enumerate() {
-        let metrics: Vec<Metric> = match &requirement.check {
-            Check::Metric { metric, .. } => vec![*metric],
-            Check::Compare { metric, other, .. } => vec![*metric, *other],
-            _ => Vec::new(),
+        let check = Path::root().key("requirements").index(i).key("check");
+        let (metrics, at) = match &requirement.check {
+            Check::Metric { metric, .. } => (vec![*metric], check.key("metric")),
+            Check::Compare { metric, other, .. } => (vec![*metric, *other], check),
+            _ => continue,
         };
         if let Some(metric) = metrics.iter().find(|m| m.of_system()) {
             ctx.error(
-                &Path::root().key("requirements").index(i).key("check"),
+                &at,
                 ErrorKind::Invalid(format!(
                     "metric `{}` judges a system under test, and the scenario declares no `system_under_test`",
                     metric.name()
