@@ -122,6 +122,9 @@ pub fn idealisations(scenario: &Scenario) -> Vec<Idealisation> {
     {
         listed.extend(OPENDRIVE_MAP);
     }
+    if scenario.system_under_test.is_some() {
+        listed.extend(crate::system::IDEALISATIONS);
+    }
     listed
 }
 

@@ -180,10 +180,16 @@ fn a_system_that_fails_after_the_last_step_is_an_error() {
     );
 }
 
-/// Whether a process whose command line holds `marker` runs.
+/// Whether a process whose command line holds `marker` runs (read from
+/// `/proc`, as `pgrep -f` does).
 fn running(marker: &str) -> bool {
-    let found = Command::new("pgrep").args(["-f", marker]).output().expect("pgrep runs");
-    found.status.success()
+    let processes = std::fs::read_dir("/proc").expect("/proc lists the processes");
+    processes.flatten().any(|entry| {
+        std::fs::read(entry.path().join("cmdline")).is_ok_and(|line| {
+            let line: Vec<u8> = line.iter().map(|&b| if b == 0 { b' ' } else { b }).collect();
+            String::from_utf8_lossy(&line).contains(marker)
+        })
+    })
 }
 
 #[test]

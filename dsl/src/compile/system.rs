@@ -5,7 +5,7 @@
 
 use super::context::Context;
 use crate::error::ErrorKind;
-use crate::model::{Check, Experiment, Metric, Point, Requirement, SystemUnderTest};
+use crate::model::{Check, Experiment, Point, Requirement, SystemUnderTest};
 use crate::path::Path;
 use crate::raw::range;
 use crate::raw::{RawScenario, RawSystemUnderTest};
