@@ -199,3 +199,133 @@ impl SystemJudge {
         self.metrics
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use approx::assert_relative_eq;
+    use sightline_dsl::Motion;
+
+    use super::*;
+    use crate::math::{Pose, Vector};
+    use crate::trace::CooperatorStep;
+    use crate::world::{AgentState, Observation, Sighting, Visibility};
+
+    fn agent(id: &str, kind: AgentKind) -> Agent {
+        Agent {
+            id: id.into(),
+            kind,
+            length: 4.0,
+            width: 2.0,
+            motion: Motion::Fixed {
+                position: [0.0, 0.0],
+                heading: 0.0,
+            },
+            connected: false,
+            sensors: Vec::new(),
+            antenna_m: None,
+        }
+    }
+
+    fn at(x: f64, y: f64, heading: f64) -> Option<AgentState> {
+        Some(AgentState {
+            pose: Pose::new(Vector::new(x, y), heading),
+            speed: 0.0,
+            offset: 0.0,
+            limit: f64::INFINITY,
+        })
+    }
+
+    fn sighting(sensor: usize, target: usize, visible_fraction: f64) -> Sighting {
+        Sighting {
+            sensor,
+            target,
+            visibility: Visibility::Los,
+            visible_fraction,
+            detected: None,
+        }
+    }
+
+    /// Judges `detections` (host frame) against `sighted` at step `step`.
+    fn judge_step(judge: &mut SystemJudge, step: usize, sighted: Vec<Sighting>, detections: &[(f64, f64)]) {
+        // The host `h` at (10, 0) facing north; road users `a` at (10, 10) (10 m
+        // ahead) and `b` at (5, 0) (5 m to its left); a roadside unit at (20, 20).
+        let agents = [
+            at(10.0, 0.0, std::f64::consts::FRAC_PI_2),
+            at(10.0, 10.0, 0.0),
+            at(5.0, 0.0, 0.0),
+            at(20.0, 20.0, 0.0),
+        ];
+        let observation = Observation::with_sighted(sighted);
+        let cooperators = [CooperatorStep {
+            agent: 0,
+            estimate: agents[0].unwrap().pose,
+            observation: &observation,
+        }];
+        let world = WorldStep {
+            step,
+            time: step as f64 * 0.1,
+            agents: &agents,
+            cooperators: &cooperators,
+            measured: None,
+        };
+        let detections: Vec<Detection> = detections.iter().map(|&(x, y)| Detection { x, y }).collect();
+        judge.step(&world, &detections);
+    }
+
+    /// Two steps counted by hand: at step 0, `a` is in the served sensor's
+    /// sight but undetected, `b` is detected exactly but in sight of an
+    /// unserved sensor only (and hidden from the served one), and two
+    /// detections are ghosts (one beside the roadside unit, no road user); at
+    /// step 1, two detections 0.3 m and 0.5 m from `a`: the nearer matches,
+    /// the other is a ghost.
+    #[test]
+    fn matching_is_one_to_one_nearest_first_within_the_gate() {
+        let mut judge = SystemJudge::new(0, vec![0], 2.0);
+        judge.start(&[
+            agent("h", AgentKind::Car),
+            agent("a", AgentKind::Car),
+            agent("b", AgentKind::Pedestrian),
+            agent("rsu", AgentKind::Rsu),
+        ]);
+        let step0 = vec![sighting(0, 1, 0.5), sighting(1, 2, 1.0), sighting(0, 2, 0.0)];
+        judge_step(&mut judge, 0, step0, &[(0.0, 5.0), (0.0, -30.0), (20.0, -10.0)]);
+        judge_step(&mut judge, 1, vec![sighting(0, 1, 1.0)], &[(10.0, 0.5), (10.0, 0.3)]);
+        let metrics = judge.finish();
+        assert_eq!((metrics.steps, metrics.in_sight, metrics.in_sight_matched), (2, 2, 1));
+        assert_eq!((metrics.detections, metrics.matched), (5, 2));
+        assert_relative_eq!(metrics.value(Metric::SutRecall).unwrap(), 0.5);
+        assert_relative_eq!(metrics.value(Metric::SutPrecision).unwrap(), 0.4);
+        assert_relative_eq!(metrics.value(Metric::SutGhosts).unwrap(), 3.0);
+        assert_relative_eq!(metrics.value(Metric::SutPositionError).unwrap(), 0.15, epsilon = 1e-12);
+        // `a`: in sight at 0, matched at 0.1; `b` was never in the served sight.
+        assert_eq!(metrics.sample_size(Metric::SutLatency), Some(1));
+        assert_relative_eq!(metrics.value(Metric::SutLatency).unwrap(), 0.1, epsilon = 1e-12);
+    }
+
+    #[test]
+    fn nothing_judged_is_no_value() {
+        let metrics = SystemMetrics::default();
+        for metric in [
+            Metric::SutRecall,
+            Metric::SutPrecision,
+            Metric::SutPositionError,
+            Metric::SutLatency,
+        ] {
+            assert_eq!((metrics.value(metric), metrics.sample_size(metric)), (None, Some(0)));
+        }
+        assert_eq!(metrics.sample_size(Metric::SutGhosts), Some(0));
+        assert_eq!(metrics.value(Metric::Accuracy), None);
+    }
+
+    #[test]
+    fn a_step_without_the_host_cooperating_judges_nothing() {
+        let mut judge = SystemJudge::new(3, vec![0], 2.0);
+        judge.start(&[
+            agent("h", AgentKind::Car),
+            agent("a", AgentKind::Car),
+            agent("b", AgentKind::Car),
+        ]);
+        judge_step(&mut judge, 0, vec![sighting(0, 1, 1.0)], &[(0.0, 0.0)]);
+        assert_eq!(judge.finish(), SystemMetrics::default());
+    }
+}
