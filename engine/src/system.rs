@@ -16,29 +16,7 @@
 use serde::{Deserialize, Serialize};
 use sightline_dsl::{Agent, AgentKind, Metric};
 
-use crate::idealisation::Idealisation;
 use crate::trace::WorldStep;
-
-/// What driving a system under test over the protocol takes as given.
-pub(crate) const IDEALISATIONS: [Idealisation; 3] = [
-    Idealisation {
-        id: "system.synchronous",
-        text: "The system under test is stepped synchronously: the simulated world waits for its answer, so the \
-               time it takes to compute counts in no latency; `sut_latency` counts simulated steps only, and a \
-               system too slow for real time passes as long as it answers within `step_timeout`.",
-    },
-    Idealisation {
-        id: "system.lossless",
-        text: "Its input is what the served sensors have in view, as exact ground truth with sightline's \
-               visibility (osi3.SensorView), delivered whole and on time at every step: no sensor noise, no \
-               dropped or late frames, and no V2X link in between.",
-    },
-    Idealisation {
-        id: "system.centre-match",
-        text: "Its detections are judged by their centres alone, matched one to one within the gate, nearest \
-               first (not an optimal assignment): size, heading, velocity and class are not judged.",
-    },
-];
 
 /// One detection of the system, in the host agent's frame: metres forward of
 /// its centre (`x`) and to its left (`y`).
