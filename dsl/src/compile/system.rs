@@ -171,6 +171,9 @@ fn served(
         Some(list) => {
             let mut sensors = Vec::with_capacity(list.len().min(count));
             for (i, &index) in list.iter().enumerate() {
+                if !ctx.within(&path.key("sensors").index(i), index as f64, range::SENSOR_INDEX) {
+                    return None;
+                }
                 match usize::try_from(index).ok().filter(|&s| s < count) {
                     Some(s) if !sensors.contains(&s) => sensors.push(s),
                     Some(s) => {

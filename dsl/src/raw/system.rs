@@ -25,6 +25,7 @@ pub(crate) struct RawSystemUnderTest {
     /// The agent's sensors it serves, by index on the agent (0: its first);
     /// default every one.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(transform = range::SENSOR_INDEX.schema())]
     pub sensors: Option<Vec<u64>>,
     /// Wall-clock seconds the system may take to answer one step (and to
     /// announce its protocol, and to exit after the last step). Default 5.
