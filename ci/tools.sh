@@ -58,7 +58,9 @@ export SIGHTLINE_CRIME_PYTHON="$PWD/$venv/bin/python"
 export SIGHTLINE_JUNIT_PYTHON="$PWD/$venv/bin/python"
 
 # ASAM OSI's Python tools, for the tests of `sightline run --osi`
-# (tests/e2e/osi.rs, through tests/python/read_osi.py): the official bindings
+# (tests/e2e/osi.rs, through tests/python/read_osi.py) and the example systems
+# under test of examples/osi-sut (tests/e2e/system.rs puts this venv's bin
+# first on their PATH, for their `python3`): the official bindings
 # (osi-python, OSI 3.8.0) and ASAM's trace file reader (asam-osi-utilities),
 # with what they pull in pinned by a constraints file, in a venv of their own
 # (they need a protobuf runtime of their own; about 5 s the first time).

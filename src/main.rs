@@ -15,6 +15,7 @@ mod output;
 mod signals;
 mod staging;
 mod summary;
+mod system;
 mod template;
 
 fn main() -> ExitCode {

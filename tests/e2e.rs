@@ -32,6 +32,10 @@ mod radio;
 #[path = "e2e/visibility.rs"]
 mod visibility;
 
+// The user's own system under test driven over ASAM OSI: failures are errors, examples judged.
+#[path = "e2e/system.rs"]
+mod system;
+
 // Every key of the language changes the result or is refused, per kind of scenario.
 #[path = "e2e/keys.rs"]
 mod keys;

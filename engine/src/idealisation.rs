@@ -80,6 +80,28 @@ impl ModelOption {
     }
 }
 
+/// What driving a system under test over its protocol takes as given (the
+/// CLI drives it; the engine's `system` judges it).
+const SYSTEM_UNDER_TEST: [Idealisation; 3] = [
+    Idealisation {
+        id: "system.synchronous",
+        text: "The system under test is stepped synchronously: the simulated world waits for its answer, so the \
+               time it takes to compute counts in no latency; `sut_latency` counts simulated steps only, and a \
+               system too slow for real time passes as long as it answers within `step_timeout`.",
+    },
+    Idealisation {
+        id: "system.lossless",
+        text: "Its input is what the served sensors have in view, as exact ground truth with sightline's \
+               visibility (osi3.SensorView), delivered whole and on time at every step: no sensor noise, no \
+               dropped or late frames, and no V2X link in between.",
+    },
+    Idealisation {
+        id: "system.centre-match",
+        text: "Its detections are judged by their centres alone, matched one to one within the gate, nearest \
+               first (not an optimal assignment): size, heading, velocity and class are not judged.",
+    },
+];
+
 /// What reading a world's map from an OpenDRIVE file (`map`; the reader is
 /// `sightline_dsl::import::opendrive`) takes as given.
 const OPENDRIVE_MAP: [Idealisation; 3] = [
@@ -121,6 +143,9 @@ pub fn idealisations(scenario: &Scenario) -> Vec<Idealisation> {
         .any(|import| import.kind == ImportKind::OpenDrive)
     {
         listed.extend(OPENDRIVE_MAP);
+    }
+    if scenario.system_under_test.is_some() {
+        listed.extend(SYSTEM_UNDER_TEST);
     }
     listed
 }

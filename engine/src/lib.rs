@@ -59,6 +59,7 @@ mod rng;
 mod run;
 mod semantic;
 mod sink;
+mod system;
 mod v2x;
 mod world;
 

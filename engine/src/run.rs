@@ -45,6 +45,7 @@ impl Outcome {
     pub fn value(&self, metric: Metric) -> Option<f64> {
         match self {
             Self::Field(o) => o.metrics.value(metric),
+            Self::World(o) if metric.of_system() => o.system.as_ref()?.value(metric),
             Self::World(o) => match o.joint_part(metric) {
                 Some((JointPart::Semantic, s, metric)) => s.value(metric),
                 Some((JointPart::Grid, _, metric)) => o.metrics.value(metric),
@@ -68,6 +69,7 @@ impl Outcome {
     pub fn sample(&self, metric: Metric) -> Option<Sample> {
         let n = match self {
             Self::Field(o) => o.metrics.sample_size(metric),
+            Self::World(o) if metric.of_system() => o.system.as_ref()?.sample_size(metric),
             Self::World(o) => match o.joint_part(metric) {
                 Some((JointPart::Semantic, s, metric)) => s.sample_size(metric),
                 Some((JointPart::Grid, _, metric)) => o.metrics.sample_size(metric, o.audit.cells),

@@ -50,6 +50,18 @@ pub fn run(args: &RunArgs) -> anyhow::Result<Exit> {
         );
         return Ok(Exit::Invalid);
     }
+    let driven = |i: &&crate::input::Input| i.scenario.system_under_test.is_some();
+    if let Some(input) = inputs
+        .iter()
+        .find(|i| driven(i) && (args.record || args.osi || args.shard.is_some()))
+    {
+        eprintln!(
+            "{}: error: a run with a system under test is neither recorded nor sharded: leave out --record, --osi \
+             and --shard",
+            input.name
+        );
+        return Ok(Exit::Invalid);
+    }
     if let Some(input) = inputs.iter().find(|i| i.is_stdin() && args.shard.is_some()) {
         eprintln!(
             "{}: error: a shard's scenario must be a file: `sightline merge` reads it again",
@@ -78,27 +90,41 @@ pub fn run(args: &RunArgs) -> anyhow::Result<Exit> {
             bar.inc(points.len() as u64);
             clock.done(points);
         };
-        let simulated = match scenario.record {
-            None => {
+        let simulated = match (&scenario.system_under_test, scenario.record) {
+            // The system is run on the scenario's one point, and judged.
+            (Some(system), _) => match crate::system::run(scenario, system, &pool) {
+                Ok(run) => {
+                    done(&[0]);
+                    let verdicts = sightline_oracles::check(scenario, &run);
+                    (run, verdicts, None)
+                }
+                // Its failure is the run's: no verdict but `error`, nothing written.
+                Err(error) => {
+                    bar.finish_and_clear();
+                    eprintln!("{}: error: {error}; no requirement is judged", input.name);
+                    return Ok(Exit::Internal);
+                }
+            },
+            (None, None) => {
                 let run = pool.install(|| sightline_engine::simulate_reporting(scenario, &mut done));
                 let verdicts = sightline_oracles::check(scenario, &run);
                 (run, verdicts, None)
             }
             // Every point, each recorded as it runs.
-            Some(record) if record.points == RecordedPoints::All => {
+            (None, Some(record)) if record.points == RecordedPoints::All => {
                 recorded(input, &reporting, &mut staging, record, |recorder| {
                     Ok(pool.install(|| sightline_engine::simulate_traced_all(scenario, recorder, &mut done)))
                 })?
             }
             // The point to record is known before the run: recorded as it runs.
-            Some(record) if record.named || scenario.points.len() == 1 => {
+            (None, Some(record)) if record.named || scenario.points.len() == 1 => {
                 recorded(input, &reporting, &mut staging, record, |recorder| {
                     Ok(pool.install(|| sightline_engine::simulate_traced(scenario, record.point, recorder, &mut done)))
                 })?
             }
             // The worst point of the first failing requirement: known once the
             // run is judged, then simulated again as it is recorded.
-            Some(record) => {
+            (None, Some(record)) => {
                 let run = pool.install(|| sightline_engine::simulate_reporting(scenario, &mut done));
                 let record = recorded_point(scenario, record, &sightline_oracles::check(scenario, &run));
                 recorded(input, &reporting, &mut staging, record, |recorder| {

@@ -94,6 +94,10 @@ macro_rules! invalid_inputs {
 }
 
 invalid_inputs! {
+    system_under_test_is_validated => "system-under-test-errors",
+    system_under_test_sensors_are_on_its_agent => "system-under-test-sensors",
+    system_under_test_runs_once => "system-under-test-run-once",
+    system_metrics_need_a_system => "system-metric-without-system",
     semantic_ego_must_be_connected => "semantic-ego-not-connected",
     semantic_rate_must_fit_the_step => "semantic-rate-off-step",
     semantic_runs_must_be_at_least_one => "semantic-runs-zero",

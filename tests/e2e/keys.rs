@@ -177,6 +177,10 @@ enum Class {
     MakesJoint,
     /// It only labels (an id, a name, a text, a source).
     Descriptive,
+    /// It is the system under test's: nothing simulated in process runs the
+    /// system, so its effect is shown by the named test of
+    /// `tests/e2e/system.rs`, which has the CLI drive one (the test must exist).
+    Driven(&'static str),
 }
 
 const fn change(change: &'static [Set]) -> Class {
@@ -195,7 +199,7 @@ const fn refused_at(set: &'static [Set], at: &'static str) -> Class {
     Class::Refused { set, at: Some(at) }
 }
 
-use Class::{Descriptive, MakesJoint, Section};
+use Class::{Descriptive, Driven, MakesJoint, Section};
 
 /// A key of the schema and what it does in the field experiment, in
 /// collective perception and in the semantic pipeline.
@@ -344,6 +348,10 @@ const SECTIONS: &[(&str, &str)] = &[
              "switch": { "measure": "ratio", "threshold": 2 } }"#,
     ),
     ("decision", r#"{ "threshold": 0.5 }"#),
+    (
+        "system_under_test",
+        r#"{ "command": ["true"], "agent": "ego", "sensors": [0], "step_timeout": 1, "gate": 2, "min_existence": 0.5 }"#,
+    ),
 ];
 
 /// Where `kind` reports a refused `section` when not at the section: a
@@ -1178,6 +1186,14 @@ const KEYS: &[Key] = &[
         perception: with(&[("record", "{}")], &[("record.agent_grids", "true")]),
         semantic: refused(&[("record", r#"{ "agent_grids": true }"#)]),
     },
+    // A system under test runs in a perception world only; what each key does
+    // shows when the CLI drives a system (tests/e2e/system.rs).
+    Key { path: "system_under_test.command", field: Section, perception: Driven("each_key_of_system_under_test_changes_the_judgement"), semantic: Section },
+    Key { path: "system_under_test.agent", field: Section, perception: Driven("each_key_of_system_under_test_changes_the_judgement"), semantic: Section },
+    Key { path: "system_under_test.sensors", field: Section, perception: Driven("each_key_of_system_under_test_changes_the_judgement"), semantic: Section },
+    Key { path: "system_under_test.gate", field: Section, perception: Driven("each_key_of_system_under_test_changes_the_judgement"), semantic: Section },
+    Key { path: "system_under_test.min_existence", field: Section, perception: Driven("each_key_of_system_under_test_changes_the_judgement"), semantic: Section },
+    Key { path: "system_under_test.step_timeout", field: Section, perception: Driven("step_timeout_bounds_a_slow_system"), semantic: Section },
 ];
 
 /// The keys a joint world ([`JOINT`]) does not treat as a semantic world
@@ -1569,6 +1585,14 @@ fn check(
     };
     match key.class(kind) {
         Descriptive => Ok(()),
+        Class::Driven(test) => {
+            let tests = include_str!("system.rs");
+            if tests.contains(&format!("fn {test}() {{")) {
+                Ok(())
+            } else {
+                Err(format!("tests/e2e/system.rs has no test `{test}` to show its effect"))
+            }
+        }
         MakesJoint => {
             let (before, after) = (base(kind), document(kind, &[joining(kind)]));
             let show = |(_, errors): (String, Vec<Error>)| {

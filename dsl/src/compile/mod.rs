@@ -6,7 +6,8 @@
 //! scenario's kind ignores, see `kind`) → `sweep` (one tree per combination, one
 //! point per distinct configuration; the keys a combination leaves without
 //! effect) → `vary` (the space falsify searches) → `requirements` (ids, checks,
-//! `where` filters) → `record` (the recorded point and grid rate) → `Scenario`.
+//! `where` filters) → `record` (the recorded point and grid rate) → `system` (the system under
+//! test, and what a scenario with one may not ask for) → `Scenario`.
 //! `context` collects the located errors of every pass (and the declarations
 //! that failed, so what names them is not reported as missing), `checks` holds
 //! the checks the sections share (unique ids, points within the world, whole
@@ -27,6 +28,7 @@ mod requirements;
 mod scenario;
 mod setup;
 mod sweep;
+mod system;
 mod traces;
 mod vary;
 mod world;

@@ -13,6 +13,7 @@ use super::record::{record, start};
 use super::requirements::{references, requirements};
 use super::setup::setup;
 use super::sweep::{self, AxisNodes, Configurations, MAX_SETTINGS_BYTES};
+use super::system::system_under_test;
 use super::traces::{self, Imported};
 use super::vary;
 use crate::de::from_node;
@@ -146,6 +147,7 @@ fn compile_inner(file: &str, source: &str, options: &Options<'_>) -> Result<Scen
     let references = references(&mut ctx, &raw.references, points);
     let start = start(&mut ctx, raw.time.as_ref());
     let record = record(&mut ctx, raw.record.as_ref(), options.record, points, start);
+    let system_under_test = system_under_test(&mut ctx, &raw, points, &requirements);
     let warnings = imported.as_ref().map_or_else(Vec::new, |imported| {
         let mut warnings = imported.warnings.clone();
         warnings.extend(
@@ -185,6 +187,7 @@ fn compile_inner(file: &str, source: &str, options: &Options<'_>) -> Result<Scen
                 .collect(),
             vary,
             record,
+            system_under_test,
             document: document(raw.document),
             warnings,
         }
@@ -240,13 +243,14 @@ fn check_version(ctx: &mut Context<'_>) {
 /// Top-level sections read once for the whole scenario, not per sweep
 /// combination: a combination is compiled from the file without them, so that a
 /// long sweep axis is not copied and read again at every point.
-const READ_ONCE: [&str; 7] = [
+const READ_ONCE: [&str; 8] = [
     "sweep",
     "sweeps",
     "vary",
     "requirements",
     "references",
     "record",
+    "system_under_test",
     "document",
 ];
 

@@ -1,13 +1,12 @@
 //! The metrics a requirement checks: their names, which kinds of scenario
 //! measure them, what their sample size n counts, and the values they take
-//! ([`ValueDomain`], shared with signals and object properties) and their
-//! units ([`Unit`]).
+//! ([`ValueDomain`](super::ValueDomain), shared with signals and object
+//! properties) and their units ([`Unit`](super::Unit)), in `metric_values`.
 
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use super::ObjectProperty;
-use super::unit::{Unit, ValueDomain};
 
 /// Metrics. Counts are numbers of cells. Some exist only in the field experiment,
 /// some only in worlds (see [`Metric::in_field`], [`Metric::in_world`],
@@ -159,11 +158,28 @@ pub enum Metric {
     /// Joint world: `packet_delivery_ratio` of the semantic pipeline, the
     /// share of the RSUs' messages to the ego that arrive (0–1).
     SemanticPacketDeliveryRatio,
+    /// System under test: share of the object-steps a served sensor has at
+    /// least partly in sight (visible fraction above 0) that a detection of
+    /// the system matches (0–1; docs/osi-sut.md gives the matching rule).
+    SutRecall,
+    /// System under test: share of its judged detections that match a road
+    /// user (0–1).
+    SutPrecision,
+    /// System under test: mean distance, metres, from a matched detection to
+    /// the centre of the road user it matches.
+    SutPositionError,
+    /// System under test: mean latency, seconds, over the road users it
+    /// detected after a served sensor first had them in sight: first matched
+    /// − first in sight, at least 0.
+    SutLatency,
+    /// System under test: judged detections that match no road user within
+    /// the gate (ghost objects), summed over the steps.
+    SutGhosts,
 }
 
 impl Metric {
     /// Every metric, in documentation order.
-    pub const ALL: [Metric; 49] = [
+    pub const ALL: [Metric; 54] = [
         Self::Accuracy,
         Self::BelowThreshold,
         Self::BelowThresholdFraction,
@@ -213,6 +229,11 @@ impl Metric {
         Self::MaxDrac,
         Self::GridPacketDeliveryRatio,
         Self::SemanticPacketDeliveryRatio,
+        Self::SutRecall,
+        Self::SutPrecision,
+        Self::SutPositionError,
+        Self::SutLatency,
+        Self::SutGhosts,
     ];
 
     /// The name as written in scenario files.
@@ -267,6 +288,11 @@ impl Metric {
             Self::MaxDrac => "max_drac",
             Self::GridPacketDeliveryRatio => "grid_packet_delivery_ratio",
             Self::SemanticPacketDeliveryRatio => "semantic_packet_delivery_ratio",
+            Self::SutRecall => "sut_recall",
+            Self::SutPrecision => "sut_precision",
+            Self::SutPositionError => "sut_position_error",
+            Self::SutLatency => "sut_latency",
+            Self::SutGhosts => "sut_ghosts",
         }
     }
 
@@ -301,6 +327,7 @@ impl Metric {
                     | Self::MessageAgeP95
                     | Self::BytesPerSecondPerAgent
             )
+            && !self.of_system()
     }
 
     /// Whether worlds that measure collective perception measure it (some only
@@ -361,6 +388,15 @@ impl Metric {
             Self::PacketDeliveryRatio => false,
             _ => self.joint_only() || self.in_world() || self.in_semantic(),
         }
+    }
+
+    /// Whether it judges a system under test (`system_under_test`): measured
+    /// in a perception world that declares one, and only there.
+    pub fn of_system(self) -> bool {
+        matches!(
+            self,
+            Self::SutRecall | Self::SutPrecision | Self::SutPositionError | Self::SutLatency | Self::SutGhosts
+        )
     }
 
     /// Whether only joint worlds measure it: the two halves of
@@ -438,6 +474,10 @@ impl Metric {
             Self::MinTtc => ObjectProperty::MinTtc.population(),
             Self::MinPet => ObjectProperty::Pet.population(),
             Self::MaxDrac => ObjectProperty::MaxDrac.population(),
+            Self::SutRecall => "object-steps in sight of a served sensor",
+            Self::SutPrecision | Self::SutGhosts => "judged detections",
+            Self::SutPositionError => "matched detections",
+            Self::SutLatency => "road users detected after first in sight",
             _ => "cells",
         }
     }
@@ -469,102 +509,6 @@ impl Metric {
             self,
             Self::MeanConflict | Self::MaxConflict | Self::TotalConflictCells | Self::WeightedCells
         )
-    }
-
-    /// The values it can take, as its documentation states them. A measured
-    /// value outside is a defect (or damage), never something to judge.
-    pub fn domain(self) -> ValueDomain {
-        match self {
-            Self::Accuracy
-            | Self::BelowThresholdFraction
-            | Self::ConfidentErrorRate
-            | Self::MeanUncertainty
-            | Self::MeanConflict
-            | Self::MaxConflict
-            | Self::OccupiedRecall
-            | Self::OccupiedPrecision
-            | Self::BlindRecall
-            | Self::OccupiedRecallWithSelfReport
-            | Self::SelfReportShare
-            | Self::BrierScore
-            | Self::MeanVisibleFraction
-            | Self::TransmittedShare
-            | Self::LabelledShare
-            | Self::PacketDeliveryRatio
-            | Self::GridPacketDeliveryRatio
-            | Self::SemanticPacketDeliveryRatio => ValueDomain::Fraction,
-            Self::BelowThreshold
-            | Self::FalseAlarms
-            | Self::MissedDetections
-            | Self::ConfidentErrors
-            | Self::DecidedUnknown
-            | Self::Unobserved
-            | Self::TotalConflictCells
-            | Self::WeightedCells => ValueDomain::Count,
-            // fov_gain: the joint field of view contains the ego's, so the gain
-            // is never negative. Means over steps or runs (contribution, missed
-            // criticals, objects per category) are not whole numbers.
-            Self::FovGain
-            | Self::MessageAgeMean
-            | Self::MessageAgeP95
-            | Self::BytesPerSecondPerAgent
-            | Self::AnticipationMedian
-            | Self::AnticipationP95
-            | Self::InfrastructureContribution
-            | Self::ChannelLoad
-            | Self::BaselineChannelLoad
-            | Self::MissedCriticals
-            | Self::ObjectAnticipationMedian
-            | Self::ObjectAnticipationP95
-            | Self::ObjectsWarnedBeforeSeen
-            | Self::ObjectsWarnedNeverSeen
-            | Self::ObjectsSeenFirst
-            | Self::ObjectsNeverKnown
-            | Self::BaselineAnticipationMedian
-            | Self::BaselineAnticipationP95
-            | Self::BaselineObjectAnticipationMedian
-            | Self::BaselineObjectAnticipationP95
-            | Self::MinTtc
-            | Self::MinPet
-            | Self::MaxDrac => ValueDomain::NonNegative,
-        }
-    }
-
-    /// The unit its values are in (the report writes it beside every value).
-    pub fn unit(self) -> Unit {
-        match self {
-            Self::BelowThreshold
-            | Self::FalseAlarms
-            | Self::MissedDetections
-            | Self::ConfidentErrors
-            | Self::DecidedUnknown
-            | Self::Unobserved
-            | Self::TotalConflictCells
-            | Self::WeightedCells => Unit::Cells,
-            Self::MessageAgeMean
-            | Self::MessageAgeP95
-            | Self::AnticipationMedian
-            | Self::AnticipationP95
-            | Self::ObjectAnticipationMedian
-            | Self::ObjectAnticipationP95
-            | Self::BaselineAnticipationMedian
-            | Self::BaselineAnticipationP95
-            | Self::BaselineObjectAnticipationMedian
-            | Self::BaselineObjectAnticipationP95
-            | Self::MinTtc
-            | Self::MinPet => Unit::Seconds,
-            Self::MaxDrac => Unit::MetresPerSecondSquared,
-            Self::BytesPerSecondPerAgent | Self::ChannelLoad | Self::BaselineChannelLoad => Unit::BytesPerSecond,
-            Self::InfrastructureContribution => Unit::Objects,
-            Self::MissedCriticals
-            | Self::ObjectsWarnedBeforeSeen
-            | Self::ObjectsWarnedNeverSeen
-            | Self::ObjectsSeenFirst
-            | Self::ObjectsNeverKnown => Unit::ObjectsPerRun,
-            // Shares, rates, probabilities, a relative gain, a mean mass or
-            // entropy bounded by 1, a Brier score.
-            _ => Unit::One,
-        }
     }
 }
 

@@ -4,9 +4,11 @@
 mod field;
 mod fusion;
 mod metric;
+mod metric_values;
 mod requirement;
 mod scenario;
 mod semantic;
+mod system;
 mod unit;
 mod v2x;
 mod vary;
@@ -30,6 +32,7 @@ pub use semantic::{
     Area, Baseline, Caution, Crosswalk, Driving, Following, InteractionArea, PedestrianTraffic, RiskScope, RsuSight,
     Semantic, ShareCycles, Traffic, TrafficRoute, VehicleTraffic,
 };
+pub use system::SystemUnderTest;
 pub use unit::{Unit, ValueDomain};
 pub use v2x::{
     Channel, MESSAGE_HEADER_BYTES, Messages, Oversize, PathLossModel, SENSOR_INFORMATION_BYTES, SMALLEST_PAYLOAD_BYTES,

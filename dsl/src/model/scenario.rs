@@ -35,6 +35,9 @@ pub struct Scenario {
     pub vary: Vec<super::Vary>,
     /// What `sightline run` records into `run.mcap`; `None`: no recording.
     pub record: Option<Record>,
+    /// The user's own system judged on what it detects; `None`: the scenario
+    /// judges sightline's models only.
+    pub system_under_test: Option<super::SystemUnderTest>,
     /// What the run leaves out or cannot vouch for though it runs (elements of
     /// imported files dropped, types read by their names, a trace that does
     /// not cover the run), in the order found.

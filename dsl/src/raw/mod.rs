@@ -22,6 +22,7 @@ mod requirements;
 mod scenario;
 mod semantic;
 mod sensors;
+mod system;
 mod traffic;
 mod v2x;
 mod world;
@@ -37,6 +38,7 @@ pub(crate) use requirements::{RawCheck, RawObjectSelection, RawReference, RawReq
 pub(crate) use scenario::RawScenario;
 pub(crate) use semantic::{RawInteractionArea, RawSemantic};
 pub(crate) use sensors::{RawNoise, RawOdometry, RawSensorModel};
+pub(crate) use system::RawSystemUnderTest;
 pub(crate) use traffic::{RawCrosswalk, RawDriving, RawTraffic};
 pub(crate) use v2x::{RawMessages, RawV2x};
 pub(crate) use world::{RawOccluder, RawPoiRsus, RawRoad, RawTime, RawTraces};

@@ -316,6 +316,13 @@ pub(crate) const CARRIER: Range = Range::left_open(0.0, 100.0).unit("GHz");
 /// An antenna height, metres.
 pub(crate) const ANTENNA: Range = Range::left_open(0.0, 1000.0).unit("m");
 
+/// Wall-clock time a system under test may take to answer one step.
+pub(crate) const SUT_TIMEOUT: Range = Range::closed(0.001, 3600.0).unit("s");
+/// A sensor's index on its agent (a system under test's `sensors`).
+pub(crate) const SENSOR_INDEX: Range = Range::right_open(0.0, 1000.0).unit("1");
+/// The distance within which a system under test's detection matches a road user.
+pub(crate) const SUT_GATE: Range = Range::left_open(0.0, 100.0).unit("m");
+
 // Counts.
 
 /// Sensors in a field's regular layout or drawn at random (also a row or a column).

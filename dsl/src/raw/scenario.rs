@@ -15,6 +15,7 @@ use super::record::RawRecord;
 use super::requirements::{RawReference, RawRequirement};
 use super::semantic::{RawInteractionArea, RawSemantic};
 use super::sensors::{RawLocalization, RawSensorModel};
+use super::system::RawSystemUnderTest;
 use super::traffic::{RawCrosswalk, RawDriving, RawTraffic};
 use super::v2x::RawV2x;
 use super::world::{RawOccluder, RawRoad, RawTime, RawTraces};
@@ -141,6 +142,10 @@ pub(crate) struct RawScenario {
     /// with the defaults when this is absent.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub record: Option<RawRecord>,
+    /// The user's own perception or fusion program, judged by the
+    /// requirements on what it detects (docs/osi-sut.md).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub system_under_test: Option<RawSystemUnderTest>,
 }
 
 /// The schema of `vary`: a range or a list of choices per dotted path.

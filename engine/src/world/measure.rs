@@ -184,6 +184,7 @@ impl Measures {
                     snapshot: measured.snapshot,
                     by_step: measured.by_step,
                     semantic: None,
+                    system: None,
                 }
             })
             .collect()

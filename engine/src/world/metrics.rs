@@ -49,6 +49,10 @@ pub struct WorldOutcome {
     /// every kind stays small.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub semantic: Option<Box<SemanticMetrics>>,
+    /// What the scenario's system under test achieved, once it is judged
+    /// (the CLI drives the system and fills this in); `None` without one.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub system: Option<crate::system::SystemMetrics>,
 }
 
 impl WorldOutcome {

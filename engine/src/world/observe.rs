@@ -376,6 +376,17 @@ impl Observation {
     }
 }
 
+/// An observation holding only `sighted`, for the tests of what reads it.
+#[cfg(test)]
+impl Observation {
+    pub(crate) fn with_sighted(sighted: Vec<Sighting>) -> Self {
+        Self {
+            sighted,
+            ..Self::new(0)
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

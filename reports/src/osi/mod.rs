@@ -9,10 +9,14 @@
 //!   those messages into an OSI multi-channel trace file (MCAP, as ASAM's trace
 //!   file convention specifies), `sightline run --osi`'s `osi.mcap`.
 //!
+//! - `system`: the protocol that drives a system under test with those
+//!   views and reads back its `osi3.SensorData` (docs/osi-sut.md).
+//!
 //! The messages are [`sightline_osi::osi3`]'s, compiled from ASAM's descriptors.
 
 pub use trace::{OSI_TRACE, OsiTrace, TraceError};
 pub use views::{AGENT_REFERENCE, VISIBILITY_REFERENCE};
 
+pub mod system;
 mod trace;
 mod views;

@@ -195,7 +195,7 @@ fn mounting(sensor: &Sensor) -> osi3::MountingPosition {
 /// ground truth `truth`: the ground truth with `host` its host vehicle (none
 /// when `host` is a roadside unit, `vehicle` false) and the sensor's
 /// `sightings` of the step annotated on the road users they name.
-fn sensor_view(
+pub(super) fn sensor_view(
     truth: &osi3::GroundTruth,
     (host, vehicle): (usize, bool),
     (index, sensor): (usize, &Sensor),

@@ -1,0 +1,309 @@
+//! The judgement of a system under test (`system_under_test`, issue 21): what
+//! it detected at each step, matched against the road users in the scene, and
+//! summed into [`SystemMetrics`].
+//!
+//! The rule, sightline's choice (docs/osi-sut.md): at each step the system
+//! answers, its judged detections (existence probability at least the
+//! scenario's `min_existence`, given in the host agent's frame and placed in
+//! the world with the host's true pose) are matched one to one with the road
+//! users in the scene other than the host (roadside units are no road users):
+//! every pair within the gate, nearest first (ties by detection, then road
+//! user, in order), each detection and road user taken once. A detection
+//! left without a road user is a ghost. A road user is *in sight* at a step
+//! when a served sensor has it in range and field of view with a visible
+//! fraction above 0 (the sightings the step's `SensorView`s carry).
+
+use serde::{Deserialize, Serialize};
+use sightline_dsl::{Agent, AgentKind, Metric};
+
+use crate::trace::WorldStep;
+
+/// One detection of the system, in the host agent's frame: metres forward of
+/// its centre (`x`) and to its left (`y`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Detection {
+    /// Forward of the host's centre, metres.
+    pub x: f64,
+    /// Left of the host's centre, metres.
+    pub y: f64,
+}
+
+/// What a system under test achieved over a run, each metric with its n.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct SystemMetrics {
+    /// Steps the system answered.
+    pub steps: u64,
+    /// Object-steps in sight of a served sensor (`sut_recall`'s n).
+    pub in_sight: u64,
+    /// Of those, the ones a detection matched.
+    pub in_sight_matched: u64,
+    /// Judged detections (`sut_precision`'s and `sut_ghosts`' n).
+    pub detections: u64,
+    /// Judged detections that matched a road user.
+    pub matched: u64,
+    /// Σ distance from a matched detection to its road user's centre, metres.
+    pub position_error_sum: f64,
+    /// Road users matched after first in sight (`sut_latency`'s n).
+    pub latencies: u64,
+    /// Σ of their latencies, seconds.
+    pub latency_sum: f64,
+}
+
+impl SystemMetrics {
+    /// The value of `metric`; `None` for another metric, or where its
+    /// population is empty.
+    pub fn value(&self, metric: Metric) -> Option<f64> {
+        let ratio = |num: f64, den: u64| (den > 0).then(|| num / den as f64);
+        match metric {
+            Metric::SutRecall => ratio(self.in_sight_matched as f64, self.in_sight),
+            Metric::SutPrecision => ratio(self.matched as f64, self.detections),
+            Metric::SutPositionError => ratio(self.position_error_sum, self.matched),
+            Metric::SutLatency => ratio(self.latency_sum, self.latencies),
+            Metric::SutGhosts => Some((self.detections - self.matched) as f64),
+            _ => None,
+        }
+    }
+
+    /// The sample size of `metric`; `None` for another metric.
+    pub fn sample_size(&self, metric: Metric) -> Option<u64> {
+        match metric {
+            Metric::SutRecall => Some(self.in_sight),
+            Metric::SutPrecision | Metric::SutGhosts => Some(self.detections),
+            Metric::SutPositionError => Some(self.matched),
+            Metric::SutLatency => Some(self.latencies),
+            _ => None,
+        }
+    }
+}
+
+/// Matches a system's detections step by step and sums what it achieved.
+#[derive(Debug, Clone)]
+pub struct SystemJudge {
+    host: usize,
+    sensors: Vec<usize>,
+    gate: f64,
+    road_user: Vec<bool>,
+    first_in_sight: Vec<Option<f64>>,
+    first_matched: Vec<Option<f64>>,
+    metrics: SystemMetrics,
+}
+
+impl SystemJudge {
+    /// A judge of a system serving `sensors` (indices on the agent) of agent
+    /// `host`, matching within `gate` metres.
+    pub fn new(host: usize, sensors: Vec<usize>, gate: f64) -> Self {
+        Self {
+            host,
+            sensors,
+            gate,
+            road_user: Vec::new(),
+            first_in_sight: Vec::new(),
+            first_matched: Vec::new(),
+            metrics: SystemMetrics::default(),
+        }
+    }
+
+    /// Every agent of the run, by index (a sink's `start`).
+    pub fn start(&mut self, agents: &[Agent]) {
+        self.road_user = agents.iter().map(|a| a.kind != AgentKind::Rsu).collect();
+        self.first_in_sight = vec![None; agents.len()];
+        self.first_matched = vec![None; agents.len()];
+    }
+
+    /// Judges the system's `detections` at `step`; a step without the host in
+    /// the scene or among the cooperating agents has nothing to judge.
+    pub fn step(&mut self, step: &WorldStep<'_>, detections: &[Detection]) {
+        let Some(host) = step.agents.get(self.host).copied().flatten() else {
+            return;
+        };
+        let Some(cooperator) = step.cooperators.iter().find(|c| c.agent == self.host) else {
+            return;
+        };
+        self.metrics.steps += 1;
+        let (sin, cos) = host.heading().sin_cos();
+        let origin = host.position();
+        let placed: Vec<(f64, f64)> = detections
+            .iter()
+            .map(|d| (origin.x + cos * d.x - sin * d.y, origin.y + sin * d.x + cos * d.y))
+            .collect();
+        let mut pairs = Vec::new();
+        for (agent, state) in step.agents.iter().enumerate() {
+            let Some(state) = state.filter(|_| agent != self.host && self.road_user.get(agent) == Some(&true)) else {
+                continue;
+            };
+            let centre = state.position();
+            for (detection, &(x, y)) in placed.iter().enumerate() {
+                let distance = (x - centre.x).hypot(y - centre.y);
+                if distance <= self.gate {
+                    pairs.push((distance, detection, agent));
+                }
+            }
+        }
+        pairs.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)).then(a.2.cmp(&b.2)));
+        let mut detection_taken = vec![false; placed.len()];
+        let mut matched = vec![false; step.agents.len()];
+        for (distance, detection, agent) in pairs {
+            if detection_taken[detection] || matched[agent] {
+                continue;
+            }
+            detection_taken[detection] = true;
+            matched[agent] = true;
+            self.metrics.matched += 1;
+            self.metrics.position_error_sum += distance;
+            self.first_matched[agent].get_or_insert(step.time);
+        }
+        self.metrics.detections += placed.len() as u64;
+        let mut in_sight = vec![false; step.agents.len()];
+        for sighting in cooperator.observation.sighted() {
+            if self.sensors.contains(&sighting.sensor) && sighting.visible_fraction > 0.0 {
+                in_sight[sighting.target] = true;
+            }
+        }
+        for (agent, _) in in_sight.iter().enumerate().filter(|(_, s)| **s) {
+            self.metrics.in_sight += 1;
+            self.metrics.in_sight_matched += u64::from(matched[agent]);
+            self.first_in_sight[agent].get_or_insert(step.time);
+        }
+    }
+
+    /// What the system achieved over the run.
+    pub fn finish(mut self) -> SystemMetrics {
+        for (sight, matched) in self.first_in_sight.iter().zip(&self.first_matched) {
+            if let (Some(sight), Some(matched)) = (sight, matched) {
+                self.metrics.latencies += 1;
+                self.metrics.latency_sum += (matched - sight).max(0.0);
+            }
+        }
+        self.metrics
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use approx::assert_relative_eq;
+    use sightline_dsl::Motion;
+
+    use super::*;
+    use crate::math::{Pose, Vector};
+    use crate::trace::CooperatorStep;
+    use crate::world::{AgentState, Observation, Sighting, Visibility};
+
+    fn agent(id: &str, kind: AgentKind) -> Agent {
+        Agent {
+            id: id.into(),
+            kind,
+            length: 4.0,
+            width: 2.0,
+            motion: Motion::Fixed {
+                position: [0.0, 0.0],
+                heading: 0.0,
+            },
+            connected: false,
+            sensors: Vec::new(),
+            antenna_m: None,
+        }
+    }
+
+    fn at(x: f64, y: f64, heading: f64) -> Option<AgentState> {
+        Some(AgentState {
+            pose: Pose::new(Vector::new(x, y), heading),
+            speed: 0.0,
+            offset: 0.0,
+            limit: f64::INFINITY,
+        })
+    }
+
+    fn sighting(sensor: usize, target: usize, visible_fraction: f64) -> Sighting {
+        Sighting {
+            sensor,
+            target,
+            visibility: Visibility::Los,
+            visible_fraction,
+            detected: None,
+        }
+    }
+
+    /// Judges `detections` (host frame) against `sighted` at step `step`.
+    fn judge_step(judge: &mut SystemJudge, step: usize, sighted: Vec<Sighting>, detections: &[(f64, f64)]) {
+        // The host `h` at (10, 0) facing north; road users `a` at (10, 10) (10 m
+        // ahead) and `b` at (5, 0) (5 m to its left); a roadside unit at (20, 20).
+        let agents = [
+            at(10.0, 0.0, std::f64::consts::FRAC_PI_2),
+            at(10.0, 10.0, 0.0),
+            at(5.0, 0.0, 0.0),
+            at(20.0, 20.0, 0.0),
+        ];
+        let observation = Observation::with_sighted(sighted);
+        let cooperators = [CooperatorStep {
+            agent: 0,
+            estimate: agents[0].unwrap().pose,
+            observation: &observation,
+        }];
+        let world = WorldStep {
+            step,
+            time: step as f64 * 0.1,
+            agents: &agents,
+            cooperators: &cooperators,
+            measured: None,
+        };
+        let detections: Vec<Detection> = detections.iter().map(|&(x, y)| Detection { x, y }).collect();
+        judge.step(&world, &detections);
+    }
+
+    /// Two steps counted by hand: at step 0, `a` is in the served sensor's
+    /// sight but undetected, `b` is detected exactly but in sight of an
+    /// unserved sensor only (and hidden from the served one), and two
+    /// detections are ghosts (one beside the roadside unit, no road user); at
+    /// step 1, two detections 0.3 m and 0.5 m from `a`: the nearer matches,
+    /// the other is a ghost.
+    #[test]
+    fn matching_is_one_to_one_nearest_first_within_the_gate() {
+        let mut judge = SystemJudge::new(0, vec![0], 2.0);
+        judge.start(&[
+            agent("h", AgentKind::Car),
+            agent("a", AgentKind::Car),
+            agent("b", AgentKind::Pedestrian),
+            agent("rsu", AgentKind::Rsu),
+        ]);
+        let step0 = vec![sighting(0, 1, 0.5), sighting(1, 2, 1.0), sighting(0, 2, 0.0)];
+        judge_step(&mut judge, 0, step0, &[(0.0, 5.0), (0.0, -30.0), (20.0, -10.0)]);
+        judge_step(&mut judge, 1, vec![sighting(0, 1, 1.0)], &[(10.0, 0.5), (10.0, 0.3)]);
+        let metrics = judge.finish();
+        assert_eq!((metrics.steps, metrics.in_sight, metrics.in_sight_matched), (2, 2, 1));
+        assert_eq!((metrics.detections, metrics.matched), (5, 2));
+        assert_relative_eq!(metrics.value(Metric::SutRecall).unwrap(), 0.5);
+        assert_relative_eq!(metrics.value(Metric::SutPrecision).unwrap(), 0.4);
+        assert_relative_eq!(metrics.value(Metric::SutGhosts).unwrap(), 3.0);
+        assert_relative_eq!(metrics.value(Metric::SutPositionError).unwrap(), 0.15, epsilon = 1e-12);
+        // `a`: in sight at 0, matched at 0.1; `b` was never in the served sight.
+        assert_eq!(metrics.sample_size(Metric::SutLatency), Some(1));
+        assert_relative_eq!(metrics.value(Metric::SutLatency).unwrap(), 0.1, epsilon = 1e-12);
+    }
+
+    #[test]
+    fn nothing_judged_is_no_value() {
+        let metrics = SystemMetrics::default();
+        for metric in [
+            Metric::SutRecall,
+            Metric::SutPrecision,
+            Metric::SutPositionError,
+            Metric::SutLatency,
+        ] {
+            assert_eq!((metrics.value(metric), metrics.sample_size(metric)), (None, Some(0)));
+        }
+        assert_eq!(metrics.sample_size(Metric::SutGhosts), Some(0));
+        assert_eq!(metrics.value(Metric::Accuracy), None);
+    }
+
+    #[test]
+    fn a_step_without_the_host_cooperating_judges_nothing() {
+        let mut judge = SystemJudge::new(3, vec![0], 2.0);
+        judge.start(&[
+            agent("h", AgentKind::Car),
+            agent("a", AgentKind::Car),
+            agent("b", AgentKind::Car),
+        ]);
+        judge_step(&mut judge, 0, vec![sighting(0, 1, 1.0)], &[(0.0, 0.0)]);
+        assert_eq!(judge.finish(), SystemMetrics::default());
+    }
+}

@@ -1,0 +1,416 @@
+//! The user's own system under test (issue 21): `system_under_test` driven over
+//! ASAM OSI and judged. Tiny shell systems speak the protocol's framing by hand
+//! (a 4-byte little-endian length, then the message) to break it in every way
+//! a system can: each failure is the run's `error` (exit 3), named by the
+//! system and the step, with nothing written and nothing left running. With
+//! `SIGHTLINE_OSI_PYTHON` naming a Python with osi-python (ci/tools.sh; with
+//! `CI` set the tests fail rather than skip without it), the example systems
+//! of `examples/osi-sut` run through their scenarios: the tracker passes, the
+//! one that drops partly occluded road users fails on recall, and each key of
+//! `system_under_test` shows its effect.
+// See: issue 21, "Test the user's own system".
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+use super::support::{Outcome, arg, read_json, redact_results_json, root, temp_dir, verdict};
+
+const PYTHON_VAR: &str = "SIGHTLINE_OSI_PYTHON";
+
+/// One step (t = 0) of a small perception world: the ego's all-round lidar
+/// has a car in sight. `{system}` is the `system_under_test` section.
+const ONE_STEP: &str = r#"sightline: 1
+name: one step of a system under test
+seed: 1
+time: { duration: 0.1, step: 0.1 }
+grid: { origin: [-30, -30], size: [60, 60], cell: 1 }
+roads:
+  - { id: ns, polyline: [[0, -30], [0, 30]], speed_limit: 10 }
+  - { id: we, polyline: [[-30, 20], [30, 20]], speed_limit: 10 }
+sensor_models: { lidar: { range: 40 } }
+agents:
+  - { id: ego, kind: car, route: [ns], start: { offset: 20 }, speed: { target: 0 }, connected: true, sensors: [lidar] }
+  - { id: car, kind: car, route: [we], start: { offset: 30 }, speed: { target: 0 } }
+localization: { position_sigma: 0 }
+perception: { ego: ego }
+fusion: { method: bayes }
+system_under_test: {system}
+requirements:
+  - { id: SUT-REC, text: The system detects what is in sight., check: { metric: sut_recall, at_least: 0.9 } }
+  - { id: SUT-GHOST, text: No ghost., check: { metric: sut_ghosts, at_most: 0 } }
+"#;
+
+/// The version announcement, framed, as `printf` writes it.
+const HELLO: &str = r"printf '\023\000\000\000sightline-osi-sut/1'";
+
+/// An `osi3.SensorData` answering step 0 with nothing detected: its timestamp
+/// (field 2) of 0 s and 0 ns, framed.
+const EMPTY_ANSWER: &str = r"printf '\006\000\000\000\022\004\010\000\020\000'";
+
+/// Writes ONE_STEP with `system` into a fresh folder and runs it there.
+fn run_system(system: &str) -> (Outcome, tempfile::TempDir, Duration) {
+    let dir = temp_dir();
+    let file = dir.path().join("sut.yaml");
+    std::fs::write(&file, ONE_STEP.replace("{system}", system)).unwrap();
+    let started = Instant::now();
+    let outcome = super::support::sightline(["run", arg(&file), "--out", arg(&dir.path().join("out"))]);
+    (outcome, dir, started.elapsed())
+}
+
+/// A shell one-liner as a system serving the ego.
+fn shell(script: &str, step_timeout: f64) -> String {
+    let script = script.replace('\\', r"\\").replace('"', r#"\""#);
+    format!(r#"{{ command: [sh, -c, "{script}"], agent: ego, step_timeout: {step_timeout} }}"#)
+}
+
+/// Asserts that the run ended in `error` naming the system and `when`, with
+/// `what` in the message, and wrote nothing.
+#[track_caller]
+fn assert_error(outcome: &Outcome, dir: &Path, when: &str, what: &str) {
+    outcome.assert_exit(3);
+    let line = outcome
+        .stderr
+        .lines()
+        .find(|l| l.contains("error: system `"))
+        .unwrap_or_else(|| {
+            panic!("no error naming the system\n{outcome}");
+        });
+    assert!(
+        line.contains(when) && line.contains(what),
+        "expected `{when}` and `{what}` in\n{outcome}"
+    );
+    assert!(line.ends_with("no requirement is judged"), "{line}");
+    assert!(
+        !dir.join("out").join("results.json").exists(),
+        "evidence written\n{outcome}"
+    );
+}
+
+#[test]
+fn a_missing_executable_is_an_error_before_step_0() {
+    let (outcome, dir, _) = run_system("{ command: [./no-such-system, --fast], agent: ego }");
+    assert_error(
+        &outcome,
+        dir.path(),
+        "system `./no-such-system --fast` before step 0",
+        "failed to start it",
+    );
+}
+
+#[test]
+fn a_system_that_prints_garbage_is_an_error() {
+    // "garb" read as a length is far above the limit: refused before any allocation.
+    let (outcome, dir, _) = run_system(&shell("printf garbage; exec cat >/dev/null", 5.0));
+    assert_error(
+        &outcome,
+        dir.path(),
+        "before step 0",
+        "above the protocol's limit of 16777216 bytes",
+    );
+    // After a correct announcement, bytes that are no SensorData.
+    let script = format!(r"{HELLO}; printf '\004\000\000\000\377\377\377\377'; exec cat >/dev/null");
+    let (outcome, dir, _) = run_system(&shell(&script, 5.0));
+    assert_error(
+        &outcome,
+        dir.path(),
+        "at step 0 (t = 0 s)",
+        "its message is not an osi3.SensorData",
+    );
+}
+
+#[test]
+fn a_length_over_the_limit_is_an_error_at_its_step() {
+    let script = format!(r"{HELLO}; printf '\001\000\000\001'; exec cat >/dev/null");
+    let (outcome, dir, _) = run_system(&shell(&script, 5.0));
+    assert_error(
+        &outcome,
+        dir.path(),
+        "at step 0",
+        "a message of 16777217 bytes announced",
+    );
+}
+
+#[test]
+fn another_protocol_version_is_refused_by_name() {
+    let script = r"printf '\023\000\000\000sightline-osi-sut/9'; exec cat >/dev/null";
+    let (outcome, dir, _) = run_system(&shell(script, 5.0));
+    assert_error(
+        &outcome,
+        dir.path(),
+        "before step 0",
+        "it announced `sightline-osi-sut/9`, and sightline speaks `sightline-osi-sut/1`",
+    );
+}
+
+#[test]
+fn an_answer_out_of_protocol_is_an_error() {
+    // An empty SensorData: no timestamp, so it answers no step.
+    let script = format!(r"{HELLO}; printf '\000\000\000\000'; exec cat >/dev/null");
+    let (outcome, dir, _) = run_system(&shell(&script, 5.0));
+    assert_error(
+        &outcome,
+        dir.path(),
+        "at step 0",
+        "has the timestamp none, and answers the step at 0.000000000 s",
+    );
+}
+
+#[test]
+fn a_system_that_exits_or_closes_its_output_mid_run_is_an_error() {
+    let (outcome, dir, _) = run_system(&shell(&format!("{HELLO}; exit 4"), 5.0));
+    assert_error(
+        &outcome,
+        dir.path(),
+        "at step 0",
+        "its output ended (it exited with status 4)",
+    );
+    let (outcome, dir, _) = run_system(&shell(&format!("{HELLO}; exec 1>&-; exec cat >/dev/null"), 5.0));
+    assert_error(&outcome, dir.path(), "at step 0", "its output ended");
+}
+
+#[test]
+fn a_system_that_fails_after_the_last_step_is_an_error() {
+    let (outcome, dir, _) = run_system(&shell(&format!("{HELLO}; {EMPTY_ANSWER}; cat >/dev/null; exit 5"), 5.0));
+    assert_error(
+        &outcome,
+        dir.path(),
+        "after the last step",
+        "it exited with status 5 after the last step",
+    );
+}
+
+/// Whether a process whose command line holds `marker` runs (read from
+/// `/proc`, as `pgrep -f` does).
+fn running(marker: &str) -> bool {
+    let processes = std::fs::read_dir("/proc").expect("/proc lists the processes");
+    processes.flatten().any(|entry| {
+        std::fs::read(entry.path().join("cmdline")).is_ok_and(|line| {
+            let line: Vec<u8> = line.iter().map(|&b| if b == 0 { b' ' } else { b }).collect();
+            String::from_utf8_lossy(&line).contains(marker)
+        })
+    })
+}
+
+#[test]
+fn a_system_past_its_step_timeout_is_an_error_and_is_killed() {
+    // A sleep no other test starts, to find it.
+    let marker = "sleep 31.25";
+    let (outcome, dir, elapsed) = run_system(&shell(&format!("{HELLO}; exec {marker}"), 0.5));
+    assert_error(
+        &outcome,
+        dir.path(),
+        "at step 0",
+        "it did not answer within 0.5 s (its step_timeout)",
+    );
+    assert!(elapsed < Duration::from_secs(20), "took {elapsed:?}");
+    assert!(!running(marker), "the system was left running");
+}
+
+#[test]
+fn an_interrupted_run_reaps_its_system() {
+    let marker = "sleep 32.75";
+    let dir = temp_dir();
+    let file = dir.path().join("sut.yaml");
+    let system = shell(&format!("{HELLO}; exec {marker}"), 60.0);
+    std::fs::write(&file, ONE_STEP.replace("{system}", &system)).unwrap();
+    let mut child = Command::new(env!("CARGO_BIN_EXE_sightline"))
+        .args(["run", arg(&file), "--out", arg(&dir.path().join("out"))])
+        .current_dir(root())
+        .stdin(Stdio::null())
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let deadline = Instant::now() + Duration::from_secs(20);
+    while !running(marker) {
+        assert!(Instant::now() < deadline, "the system never started");
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    let sent = Command::new("kill")
+        .args(["-s", "INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(sent.success());
+    let status = child.wait().unwrap();
+    assert_eq!(status.code(), Some(130), "{status}");
+    assert!(!running(marker), "the system was left running");
+    assert!(!dir.path().join("out").join("results.json").exists());
+}
+
+#[test]
+fn a_system_that_detects_nothing_is_judged_and_fails_on_recall() {
+    let (outcome, dir, _) = run_system(&shell(&format!("{HELLO}; {EMPTY_ANSWER}; exec cat >/dev/null"), 5.0));
+    outcome.assert_exit(1);
+    let results = read_json(&dir.path().join("out").join("results.json"));
+    // The car is in the lidar's sight at the one step, and nothing matched it.
+    assert_eq!(verdict(&results, "SUT-REC"), ("fail".into(), Some(0.0), Some(1)));
+    // No detection: nothing to judge a ghost on.
+    assert_eq!(verdict(&results, "SUT-GHOST").0, "not_exercised");
+}
+
+#[test]
+fn a_scenario_with_a_system_is_neither_recorded_nor_sharded() {
+    let dir = temp_dir();
+    let file = dir.path().join("sut.yaml");
+    std::fs::write(&file, ONE_STEP.replace("{system}", &shell("exit 0", 1.0))).unwrap();
+    let out = dir.path().join("out");
+    for flag in [["--record", ""], ["--osi", ""], ["--shard", "1/2"]] {
+        let mut args = vec!["run", arg(&file), "--out", arg(&out), flag[0]];
+        args.extend(Some(flag[1]).filter(|f| !f.is_empty()));
+        let outcome = super::support::sightline(&args);
+        outcome.assert_exit(2);
+        assert!(outcome.stderr.contains("neither recorded nor sharded"), "{outcome}");
+    }
+}
+
+/// The Python with osi-python, `None` (after saying why) when none is named
+/// outside CI.
+fn python() -> Option<PathBuf> {
+    match std::env::var_os(PYTHON_VAR) {
+        Some(python) => Some(PathBuf::from(python)),
+        None if std::env::var_os("CI").is_some() => panic!("{PYTHON_VAR} is not set in CI; ci/tools.sh sets it"),
+        None => {
+            eprintln!("skipped the example systems: {PYTHON_VAR} is not set; set it to a Python with osi-python");
+            None
+        }
+    }
+}
+
+/// Runs scenario `text` (an example's, changed) with the example systems'
+/// Python first on PATH, `jobs` threads; its exit code and results.json.
+fn run_example(python: &Path, text: &str, jobs: &str) -> (Option<i32>, serde_json::Value) {
+    let dir = temp_dir();
+    let file = dir.path().join("example.yaml");
+    std::fs::write(&file, text).unwrap();
+    run_file(python, &file, &dir.path().join("out"), jobs)
+}
+
+/// Runs scenario `file` into `out` with the example systems' Python first on
+/// PATH, `jobs` threads; its exit code and results.json.
+fn run_file(python: &Path, file: &Path, out: &Path, jobs: &str) -> (Option<i32>, serde_json::Value) {
+    let bin = python.parent().expect("the Python is in a folder");
+    let path = std::env::join_paths(
+        std::iter::once(bin.to_path_buf()).chain(std::env::split_paths(&std::env::var_os("PATH").unwrap_or_default())),
+    )
+    .unwrap();
+    let output = Command::new(env!("CARGO_BIN_EXE_sightline"))
+        .args(["run", arg(file), "--out", arg(out), "--jobs", jobs])
+        .current_dir(root())
+        .env("PATH", path)
+        .stdin(Stdio::null())
+        .output()
+        .unwrap();
+    let results = out.join("results.json");
+    assert!(
+        results.exists(),
+        "no evidence\n{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    (output.status.code(), read_json(&results))
+}
+
+fn example(name: &str) -> String {
+    std::fs::read_to_string(root().join("examples/osi-sut").join(name)).unwrap()
+}
+
+/// `metric`'s value and n in results.json.
+fn metric(results: &serde_json::Value, metric: &str) -> (Option<f64>, u64) {
+    let entry = &results["metrics"][metric];
+    (entry["value"].as_f64(), entry["n"].as_u64().expect("an n"))
+}
+
+#[test]
+fn the_example_tracker_passes_and_the_flawed_one_fails_on_recall() {
+    let Some(python) = python() else { return };
+    let (code, results) = run_example(&python, &example("tracker.yaml"), "2");
+    assert_eq!(code, Some(0), "{results:#}");
+    let (code, flawed) = run_example(&python, &example("flawed_tracker.yaml"), "2");
+    assert_eq!(code, Some(1));
+    let failing: Vec<&str> = flawed["requirements"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|r| r["verdict"] == "fail")
+        .map(|r| r["id"].as_str().unwrap())
+        .collect();
+    assert_eq!(failing, ["SUT-REC-01"]);
+    // The same road users in sight: the flaw is in what it reports of them.
+    assert_eq!(
+        metric(&results, "sut_recall"),
+        (Some(1.0), metric(&flawed, "sut_recall").1)
+    );
+    let (recall, n) = metric(&flawed, "sut_recall");
+    assert!(recall.unwrap() < 0.95 && n > 50, "{recall:?} over {n}");
+}
+
+#[test]
+fn a_deterministic_system_gives_the_same_results_whatever_the_thread_count() {
+    let Some(python) = python() else { return };
+    let (file, dir) = (Path::new("examples/osi-sut/tracker.yaml"), temp_dir());
+    let (_, one) = run_file(&python, file, &dir.path().join("one"), "1");
+    let (_, three) = run_file(&python, file, &dir.path().join("three"), "3");
+    let redact = |results: &serde_json::Value| redact_results_json(&serde_json::to_string_pretty(results).unwrap());
+    assert_eq!(redact(&one), redact(&three));
+}
+
+#[test]
+fn each_key_of_system_under_test_changes_the_judgement() {
+    let Some(python) = python() else { return };
+    let base = example("tracker.yaml");
+    let (_, before) = run_example(&python, &base, "2");
+    let judged = |text: String| run_example(&python, &text, "2").1;
+    // gate: below the tracker's 0.5 m cells, most detections match nothing.
+    let tight = judged(base.replace("gate: 2", "gate: 0.05"));
+    assert!(
+        metric(&tight, "sut_ghosts").0 > Some(0.0),
+        "{:?}",
+        metric(&tight, "sut_ghosts")
+    );
+    // min_existence: coasting tracks (0.7) are no longer judged.
+    let strict = judged(base.replace("gate: 2", "gate: 2\n  min_existence: 0.8"));
+    assert!(metric(&strict, "sut_precision").1 < metric(&before, "sut_precision").1);
+    // command: the flawed tracker detects less.
+    let flawed = judged(base.replace("tracker.py]", "flawed_tracker.py]"));
+    assert!(metric(&flawed, "sut_recall").0 < metric(&before, "sut_recall").0);
+    // sensors and agent: a second, forward-only sensor on the ego, and a
+    // connected car, each sees other road users.
+    let two = base.replace("sensors: [lidar] }", "sensors: [lidar, front] }").replace(
+        "lidar: { range: 40, fov_deg: 360 }",
+        "lidar: { range: 40, fov_deg: 360 }\n  front: { range: 15, fov_deg: 30 }",
+    );
+    let (_, all) = run_example(&python, &two, "2");
+    let front = judged(two.replace("agent: ego", "agent: ego\n  sensors: [1]"));
+    assert!(metric(&front, "sut_recall").1 < metric(&all, "sut_recall").1);
+    let cooperating = base.replace(
+        "speed: { target: 9 } }",
+        "speed: { target: 9 }, connected: true, sensors: [lidar] }",
+    );
+    let (_, ego) = run_example(&python, &cooperating, "2");
+    let car = judged(cooperating.replace("agent: ego", "agent: car_east"));
+    assert_ne!(metric(&car, "sut_recall").1, metric(&ego, "sut_recall").1);
+}
+
+#[test]
+fn step_timeout_bounds_a_slow_system() {
+    let Some(python) = python() else { return };
+    // The tracker takes some milliseconds a step: a microsecond is too short.
+    let dir = temp_dir();
+    let file = dir.path().join("slow.yaml");
+    std::fs::write(
+        &file,
+        example("tracker.yaml").replace("step_timeout: 5", "step_timeout: 0.001"),
+    )
+    .unwrap();
+    let bin = python.parent().unwrap();
+    let path = format!("{}:{}", bin.display(), std::env::var("PATH").unwrap_or_default());
+    let output = Command::new(env!("CARGO_BIN_EXE_sightline"))
+        .args(["run", arg(&file), "--out", arg(&dir.path().join("out"))])
+        .current_dir(root())
+        .env("PATH", path)
+        .output()
+        .unwrap();
+    assert_eq!(output.status.code(), Some(3));
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(stderr.contains("did not answer within 0.001 s"), "{stderr}");
+}
