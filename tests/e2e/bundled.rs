@@ -426,13 +426,7 @@ fn urban_semantic_scenario_runs_end_to_end() {
         (&results["verdict"], &results["gate"]),
         (&"fail".into(), &"fail".into())
     );
-    let failing: Vec<&str> = results["requirements"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .filter(|r| r["verdict"] == "fail")
-        .map(|r| r["id"].as_str().unwrap())
-        .collect();
+    let failing = crate::support::failing(results);
     assert_eq!(
         failing,
         ["URB-SHARE-01", "URB-PED-01", "URB-MOTO-01", "URB-LOAD-02", "URB-ANT-02"]

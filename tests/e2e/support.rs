@@ -377,8 +377,17 @@ pub fn verdict(results: &serde_json::Value, id: &str) -> (String, Option<f64>, O
     )
 }
 
-/// Reads and parses a JUnit XML file.
-#[track_caller]
+/// The ids of the requirements that fail in `results`, in file order.
+pub fn failing(results: &serde_json::Value) -> Vec<&str> {
+    results["requirements"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|r| r["verdict"] == "fail")
+        .map(|r| r["id"].as_str().unwrap())
+        .collect()
+}
+
 /// The `name: value` lines of a JUnit case's `<system-out>`, as a map.
 pub fn case_output(case: &quick_junit::TestCase) -> BTreeMap<String, String> {
     let out = case.system_out.as_ref().map_or("", |o| o.as_str());
@@ -388,6 +397,8 @@ pub fn case_output(case: &quick_junit::TestCase) -> BTreeMap<String, String> {
         .collect()
 }
 
+/// Reads and parses a JUnit XML file.
+#[track_caller]
 pub fn read_junit(path: &Path) -> quick_junit::Report {
     quick_junit::Report::deserialize_from_str(&read(path))
         .unwrap_or_else(|e| panic!("{} is not JUnit XML: {e}", path.display()))

@@ -327,13 +327,7 @@ fn the_example_tracker_passes_and_the_flawed_one_fails_on_recall() {
     assert_eq!(code, Some(0), "{results:#}");
     let (code, flawed) = run_example(&python, &example("flawed_tracker.yaml"), "2");
     assert_eq!(code, Some(1));
-    let failing: Vec<&str> = flawed["requirements"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .filter(|r| r["verdict"] == "fail")
-        .map(|r| r["id"].as_str().unwrap())
-        .collect();
+    let failing = crate::support::failing(&flawed);
     assert_eq!(failing, ["SUT-REC-01"]);
     // The same road users in sight: the flaw is in what it reports of them.
     assert_eq!(
