@@ -15,8 +15,9 @@ use sightline_engine::internals::{
 };
 use sightline_engine::simulate;
 
-/// The bundled scenario reduced to its point with six cooperating vehicles and
-/// nominal localization, without requirements.
+/// The bundled scenario reduced to its nominal point (every connected vehicle
+/// cooperating: six with the ego; nominal localization and radio), without
+/// requirements.
 fn six_agents() -> Scenario {
     let text = include_str!("../../scenarios/roundabout-six-agents.yaml");
     let mut scenario = sightline_dsl::compile("roundabout-six-agents.yaml", text, &Default::default())
@@ -24,8 +25,8 @@ fn six_agents() -> Scenario {
     let point = scenario
         .points
         .iter()
-        .find(|p| p.label().starts_with("perception.cooperating=6"))
-        .expect("the scenario sweeps cooperating vehicles")
+        .find(|p| p.label().starts_with("v2x.penetration=1 |"))
+        .expect("the scenario sweeps the penetration, its nominal point among the studies")
         .clone();
     scenario.points = vec![sightline_dsl::Point {
         index: 0,
