@@ -7,7 +7,7 @@ mod child;
 mod driver;
 
 use anyhow::anyhow;
-use sightline_dsl::{Check, Experiment, Metric, ObjectSelection, Scenario, SystemUnderTest};
+use sightline_dsl::{Check, Experiment, ObjectSelection, Scenario, SystemUnderTest};
 use sightline_engine::outcome::SystemJudge;
 use sightline_engine::{Outcome, Run};
 use sightline_reports::osi::system::{PROTOCOL, PROTOCOL_ENV, VIEWS_ENV};
@@ -46,13 +46,7 @@ pub fn run(scenario: &Scenario, system: &SystemUnderTest, pool: &rayon::ThreadPo
 fn selections(scenario: &Scenario) -> Vec<ObjectSelection> {
     let mut selections: Vec<ObjectSelection> = Vec::new();
     for requirement in &scenario.requirements {
-        let by_road_user = matches!(
-            requirement.check,
-            Check::Metric {
-                metric: Metric::SutRecall | Metric::SutLatency,
-                ..
-            }
-        );
+        let by_road_user = matches!(requirement.check, Check::Metric { metric, .. } if metric.selects_objects());
         if by_road_user && !requirement.objects.is_all() && !selections.contains(&requirement.objects) {
             selections.push(requirement.objects.clone());
         }
