@@ -84,6 +84,14 @@ impl Outcome {
         })
     }
 
+    /// [`Outcome::sample`] of a system's `metric` over the object-steps
+    /// `selection` keeps; `None` where it is not measured over it.
+    pub fn selected_sample(&self, metric: Metric, selection: &ObjectSelection) -> Option<Sample> {
+        let Self::World(o) = self else { return None };
+        let (value, n) = o.system.as_ref()?.selected_sample(metric, selection)?;
+        Some(Sample { value, n })
+    }
+
     /// [`Outcome::sample`] of every metric this kind of run measures, in
     /// documentation order.
     pub fn samples(&self) -> Vec<(Metric, Sample)> {

@@ -12,10 +12,17 @@
 //! left without a road user is a ghost. A road user is *in sight* at a step
 //! when a served sensor has it in range and field of view with a visible
 //! fraction above 0 (the sightings the step's `SensorView`s carry).
+//!
+//! Recall and latency are also summed over the object-steps an `objects`
+//! selection keeps ([`SelectedMetrics`]): a road user's step is kept when its
+//! id and class are among the selection's (where it names any) and its centre
+//! lies in one of the selection's areas at that step (boundary included).
 
 use serde::{Deserialize, Serialize};
-use sightline_dsl::{Agent, AgentKind, Metric};
+use sightline_dsl::{Agent, AgentKind, Area, Metric, ObjectSelection, World};
 
+use crate::math::Point;
+use crate::semantic::{contains, regions};
 use crate::trace::WorldStep;
 
 /// One detection of the system, in the host agent's frame: metres forward of
@@ -47,6 +54,38 @@ pub struct SystemMetrics {
     pub latencies: u64,
     /// Σ of their latencies, seconds.
     pub latency_sum: f64,
+    /// Recall and latency over each selection the judge was given.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub selected: Vec<SelectedMetrics>,
+}
+
+/// Recall and latency over the object-steps an `objects` selection keeps.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SelectedMetrics {
+    /// The selection.
+    pub selection: ObjectSelection,
+    /// Kept object-steps in sight (`sut_recall`'s n).
+    pub in_sight: u64,
+    /// Of those, the ones a detection matched.
+    pub in_sight_matched: u64,
+    /// Road users matched at a kept step after first in sight at one
+    /// (`sut_latency`'s n).
+    pub latencies: u64,
+    /// Σ of their latencies, seconds.
+    pub latency_sum: f64,
+}
+
+impl SelectedMetrics {
+    /// The value and n of `metric` over the kept object-steps; `None` for a
+    /// metric a selection does not apply to.
+    pub fn sample(&self, metric: Metric) -> Option<(Option<f64>, u64)> {
+        let ratio = |num: f64, den: u64| (den > 0).then(|| num / den as f64);
+        match metric {
+            Metric::SutRecall => Some((ratio(self.in_sight_matched as f64, self.in_sight), self.in_sight)),
+            Metric::SutLatency => Some((ratio(self.latency_sum, self.latencies), self.latencies)),
+            _ => None,
+        }
+    }
 }
 
 impl SystemMetrics {
@@ -74,6 +113,22 @@ impl SystemMetrics {
             _ => None,
         }
     }
+
+    /// The value and n of `metric` over the object-steps `selection` keeps;
+    /// `None` where the judge was not given the selection or it does not
+    /// apply to the metric.
+    pub fn selected_sample(&self, metric: Metric, selection: &ObjectSelection) -> Option<(Option<f64>, u64)> {
+        self.selected.iter().find(|s| s.selection == *selection)?.sample(metric)
+    }
+}
+
+/// A selection being summed: its metrics and, by agent, the first kept step
+/// in sight and the first kept step matched.
+#[derive(Debug, Clone)]
+struct Selecting {
+    metrics: SelectedMetrics,
+    first_in_sight: Vec<Option<f64>>,
+    first_matched: Vec<Option<f64>>,
 }
 
 /// Matches a system's detections step by step and sums what it achieved.
@@ -86,6 +141,9 @@ pub struct SystemJudge {
     first_in_sight: Vec<Option<f64>>,
     first_matched: Vec<Option<f64>>,
     metrics: SystemMetrics,
+    regions: Vec<(String, Area)>,
+    agents: Vec<(String, AgentKind)>,
+    selecting: Vec<Selecting>,
 }
 
 impl SystemJudge {
@@ -100,7 +158,37 @@ impl SystemJudge {
             first_in_sight: Vec::new(),
             first_matched: Vec::new(),
             metrics: SystemMetrics::default(),
+            regions: Vec::new(),
+            agents: Vec::new(),
+            selecting: Vec::new(),
         }
+    }
+
+    /// The judge, also summing recall and latency over each of `selections`,
+    /// whose areas are regions of `world`. Only ids, classes and areas select;
+    /// the language refuses the rest of a selection on these metrics.
+    pub fn selecting(self, world: &World, selections: Vec<ObjectSelection>) -> Self {
+        self.select(regions(world), selections)
+    }
+
+    /// [`SystemJudge::selecting`] among `regions`, each with its id.
+    fn select(mut self, regions: Vec<(String, Area)>, selections: Vec<ObjectSelection>) -> Self {
+        self.regions = regions;
+        self.selecting = selections
+            .into_iter()
+            .map(|selection| Selecting {
+                metrics: SelectedMetrics {
+                    selection,
+                    in_sight: 0,
+                    in_sight_matched: 0,
+                    latencies: 0,
+                    latency_sum: 0.0,
+                },
+                first_in_sight: Vec::new(),
+                first_matched: Vec::new(),
+            })
+            .collect();
+        self
     }
 
     /// Every agent of the run, by index (a sink's `start`).
@@ -108,6 +196,23 @@ impl SystemJudge {
         self.road_user = agents.iter().map(|a| a.kind != AgentKind::Rsu).collect();
         self.first_in_sight = vec![None; agents.len()];
         self.first_matched = vec![None; agents.len()];
+        self.agents = agents.iter().map(|a| (a.id.clone(), a.kind)).collect();
+        for selecting in &mut self.selecting {
+            selecting.first_in_sight = vec![None; agents.len()];
+            selecting.first_matched = vec![None; agents.len()];
+        }
+    }
+
+    /// Whether `selection` keeps agent `agent` with its centre at `centre`.
+    fn keeps(&self, selection: &ObjectSelection, agent: usize, centre: Point) -> bool {
+        let (id, kind) = &self.agents[agent];
+        (selection.ids.is_empty() || selection.ids.contains(id))
+            && (selection.classes.is_empty() || selection.classes.contains(kind))
+            && (selection.areas.is_empty()
+                || self
+                    .regions
+                    .iter()
+                    .any(|(region, area)| selection.areas.contains(region) && contains(area, centre)))
     }
 
     /// Judges the system's `detections` at `step`; a step without the host in
@@ -164,18 +269,56 @@ impl SystemJudge {
             self.metrics.in_sight_matched += u64::from(matched[agent]);
             self.first_in_sight[agent].get_or_insert(step.time);
         }
+        self.step_selections(step, &in_sight, &matched);
+    }
+
+    /// Sums the step's kept object-steps into each selection.
+    fn step_selections(&mut self, step: &WorldStep<'_>, in_sight: &[bool], matched: &[bool]) {
+        let mut selecting = std::mem::take(&mut self.selecting);
+        for (agent, state) in step.agents.iter().enumerate() {
+            let Some(state) = state.filter(|_| in_sight[agent] || matched[agent]) else {
+                continue;
+            };
+            for s in &mut selecting {
+                if !self.keeps(&s.metrics.selection, agent, state.position()) {
+                    continue;
+                }
+                if in_sight[agent] {
+                    s.metrics.in_sight += 1;
+                    s.metrics.in_sight_matched += u64::from(matched[agent]);
+                    s.first_in_sight[agent].get_or_insert(step.time);
+                }
+                if matched[agent] {
+                    s.first_matched[agent].get_or_insert(step.time);
+                }
+            }
+        }
+        self.selecting = selecting;
     }
 
     /// What the system achieved over the run.
     pub fn finish(mut self) -> SystemMetrics {
-        for (sight, matched) in self.first_in_sight.iter().zip(&self.first_matched) {
-            if let (Some(sight), Some(matched)) = (sight, matched) {
-                self.metrics.latencies += 1;
-                self.metrics.latency_sum += (matched - sight).max(0.0);
-            }
+        (self.metrics.latencies, self.metrics.latency_sum) = latencies(&self.first_in_sight, &self.first_matched);
+        for mut s in self.selecting {
+            (s.metrics.latencies, s.metrics.latency_sum) = latencies(&s.first_in_sight, &s.first_matched);
+            self.metrics.selected.push(s.metrics);
         }
         self.metrics
     }
+}
+
+/// The number of road users both first in sight and first matched, and the
+/// sum of first matched − first in sight over them (at least 0 each).
+fn latencies(first_in_sight: &[Option<f64>], first_matched: &[Option<f64>]) -> (u64, f64) {
+    let mut n = 0;
+    let mut sum = 0.0;
+    for (sight, matched) in first_in_sight.iter().zip(first_matched) {
+        if let (Some(sight), Some(matched)) = (sight, matched) {
+            n += 1;
+            sum += (matched - sight).max(0.0);
+        }
+    }
+    (n, sum)
 }
 
 #[cfg(test)]
@@ -278,6 +421,63 @@ mod tests {
         // `a`: in sight at 0, matched at 0.1; `b` was never in the served sight.
         assert_eq!(metrics.sample_size(Metric::SutLatency), Some(1));
         assert_relative_eq!(metrics.value(Metric::SutLatency).unwrap(), 0.1, epsilon = 1e-12);
+    }
+
+    /// The steps of the test above, judged over selections, counted by hand:
+    /// the cars are `a` (in sight at both steps, matched at step 1); the
+    /// pedestrians `b` (never in the served sight); the circle `near_a`
+    /// (radius 1 about `a`) keeps `a`'s two steps; the circle `away` keeps
+    /// nothing; `ids: [b]` keeps `b`, never in sight.
+    #[test]
+    fn selections_keep_object_steps_by_id_class_and_area() {
+        let select = |classes: Vec<AgentKind>, ids: Vec<&str>, areas: Vec<&str>| ObjectSelection {
+            classes,
+            ids: ids.into_iter().map(String::from).collect(),
+            areas: areas.into_iter().map(String::from).collect(),
+            ..ObjectSelection::default()
+        };
+        let circle = |x: f64, y: f64| Area::Circle {
+            center: [x, y],
+            radius: 1.0,
+        };
+        let selections = vec![
+            select(vec![AgentKind::Car], vec![], vec![]),
+            select(vec![AgentKind::Pedestrian], vec![], vec![]),
+            select(vec![], vec![], vec!["near_a"]),
+            select(vec![], vec![], vec!["away"]),
+            select(vec![], vec!["b"], vec![]),
+        ];
+        let regions = vec![
+            ("near_a".into(), circle(10.0, 10.0)),
+            ("away".into(), circle(50.0, 50.0)),
+        ];
+        let mut judge = SystemJudge::new(0, vec![0], 2.0).select(regions, selections.clone());
+        judge.start(&[
+            agent("h", AgentKind::Car),
+            agent("a", AgentKind::Car),
+            agent("b", AgentKind::Pedestrian),
+            agent("rsu", AgentKind::Rsu),
+        ]);
+        let step0 = vec![sighting(0, 1, 0.5), sighting(1, 2, 1.0), sighting(0, 2, 0.0)];
+        judge_step(&mut judge, 0, step0, &[(0.0, 5.0), (0.0, -30.0), (20.0, -10.0)]);
+        judge_step(&mut judge, 1, vec![sighting(0, 1, 1.0)], &[(10.0, 0.5), (10.0, 0.3)]);
+        let metrics = judge.finish();
+        let sample = |i: usize, metric| metrics.selected_sample(metric, &selections[i]).unwrap();
+        for cars in [0, 2] {
+            assert_eq!(sample(cars, Metric::SutRecall), (Some(0.5), 2));
+            let (latency, n) = sample(cars, Metric::SutLatency);
+            assert_eq!(n, 1);
+            assert_relative_eq!(latency.unwrap(), 0.1, epsilon = 1e-12);
+        }
+        for nothing in [1, 3, 4] {
+            assert_eq!(sample(nothing, Metric::SutRecall), (None, 0));
+            assert_eq!(sample(nothing, Metric::SutLatency), (None, 0));
+        }
+        assert_eq!(metrics.selected_sample(Metric::SutPrecision, &selections[0]), None);
+        assert_eq!(
+            metrics.selected_sample(Metric::SutRecall, &ObjectSelection::default()),
+            None
+        );
     }
 
     #[test]

@@ -16,6 +16,12 @@ pub trait Measurements {
     /// checks over seeds); `None` where it is not measured.
     fn sample(&self, point: usize, replicate: usize, metric: Metric) -> Option<Sample>;
 
+    /// The value of a system's `metric` and its sample size over the
+    /// object-steps `selection` keeps at point `point` (see
+    /// [`Outcome::selected_sample`](sightline_engine::Outcome::selected_sample));
+    /// `None` where it is not measured over it.
+    fn selected_sample(&self, point: usize, metric: Metric, selection: &ObjectSelection) -> Option<Sample>;
+
     /// The mass-function audit of point `point`; `None` where nothing is fused.
     fn audit(&self, point: usize) -> Option<MassAudit>;
 
@@ -39,6 +45,10 @@ impl Measurements for Run {
             0 => self.points[point].sample(metric),
             r => self.replicates[point].get(r - 1)?.sample(metric),
         }
+    }
+
+    fn selected_sample(&self, point: usize, metric: Metric, selection: &ObjectSelection) -> Option<Sample> {
+        self.points[point].selected_sample(metric, selection)
     }
 
     fn audit(&self, point: usize) -> Option<MassAudit> {

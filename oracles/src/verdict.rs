@@ -173,7 +173,15 @@ fn verdict(scenario: &Scenario, requirement: &Requirement, measurements: &(impl 
                     metric: m,
                     bound,
                     over_seeds: None,
-                } => metric::evaluate(m, bound, measurements.sample(point, 0, m), min),
+                } => {
+                    let selection = &requirement.objects;
+                    let sample = if selection.is_all() {
+                        measurements.sample(point, 0, m)
+                    } else {
+                        measurements.selected_sample(point, m, selection)
+                    };
+                    metric::evaluate((m, selection), bound, sample, min)
+                }
                 Check::Metric {
                     metric: m,
                     bound,

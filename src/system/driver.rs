@@ -51,8 +51,8 @@ pub struct Driver<'s> {
 }
 
 impl<'s> Driver<'s> {
-    /// Starts `system` and checks its protocol's version.
-    pub fn start(system: &'s SystemUnderTest, env: &[(&str, String)]) -> Result<Self, Failure> {
+    /// Starts `system`, to be judged by `judge`, and checks its protocol's version.
+    pub fn start(system: &'s SystemUnderTest, judge: SystemJudge, env: &[(&str, String)]) -> Result<Self, Failure> {
         let fail = |error| Failure {
             when: When::Start,
             error,
@@ -64,7 +64,7 @@ impl<'s> Driver<'s> {
             system,
             child: Some(child),
             agents: Vec::new(),
-            judge: SystemJudge::new(system.agent, system.sensors.clone(), system.gate),
+            judge,
             failure: None,
         })
     }

@@ -7,7 +7,8 @@ mod child;
 mod driver;
 
 use anyhow::anyhow;
-use sightline_dsl::{Scenario, SystemUnderTest};
+use sightline_dsl::{Check, Experiment, ObjectSelection, Scenario, SystemUnderTest};
+use sightline_engine::outcome::SystemJudge;
 use sightline_engine::{Outcome, Run};
 use sightline_reports::osi::system::{PROTOCOL, PROTOCOL_ENV, VIEWS_ENV};
 
@@ -22,7 +23,12 @@ pub fn run(scenario: &Scenario, system: &SystemUnderTest, pool: &rayon::ThreadPo
         (PROTOCOL_ENV, PROTOCOL.to_string()),
         (VIEWS_ENV, system.sensors.len().to_string()),
     ];
-    let mut driver = Driver::start(system, &env).map_err(failed)?;
+    let Experiment::World(world) = &scenario.points[0].setup.experiment else {
+        return Err(anyhow!("a system under test runs in a perception world only"));
+    };
+    let judge =
+        SystemJudge::new(system.agent, system.sensors.clone(), system.gate).selecting(world, selections(scenario));
+    let mut driver = Driver::start(system, judge, &env).map_err(failed)?;
     let mut outcome = pool.install(|| sightline_engine::simulate_point(scenario, 0, &mut driver));
     let metrics = driver.finish().map_err(failed)?;
     match &mut outcome {
@@ -33,4 +39,17 @@ pub fn run(scenario: &Scenario, system: &SystemUnderTest, pool: &rayon::ThreadPo
         points: vec![outcome],
         replicates: vec![Vec::new()],
     })
+}
+
+/// The selections of `scenario`'s checks on the system's road-user metrics
+/// (`sut_recall`, `sut_latency`), each once.
+fn selections(scenario: &Scenario) -> Vec<ObjectSelection> {
+    let mut selections: Vec<ObjectSelection> = Vec::new();
+    for requirement in &scenario.requirements {
+        let by_road_user = matches!(requirement.check, Check::Metric { metric, .. } if metric.selects_objects());
+        if by_road_user && !requirement.objects.is_all() && !selections.contains(&requirement.objects) {
+            selections.push(requirement.objects.clone());
+        }
+    }
+    selections
 }

@@ -14,7 +14,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-use super::support::{Outcome, arg, read_json, redact_results_json, root, temp_dir, verdict};
+use super::support::{Outcome, arg, read_json, redact_results_json, requirement, root, temp_dir, verdict};
 
 const PYTHON_VAR: &str = "SIGHTLINE_OSI_PYTHON";
 
@@ -328,7 +328,7 @@ fn the_example_tracker_passes_and_the_flawed_one_fails_on_recall() {
     let (code, flawed) = run_example(&python, &example("flawed_tracker.yaml"), "2");
     assert_eq!(code, Some(1));
     let failing = crate::support::failing(&flawed);
-    assert_eq!(failing, ["SUT-REC-01"]);
+    assert_eq!(failing, ["SUT-REC-01", "SUT-REC-PED"]);
     // The same road users in sight: the flaw is in what it reports of them.
     assert_eq!(
         metric(&results, "sut_recall"),
@@ -336,6 +336,55 @@ fn the_example_tracker_passes_and_the_flawed_one_fails_on_recall() {
     );
     let (recall, n) = metric(&flawed, "sut_recall");
     assert!(recall.unwrap() < 0.95 && n > 50, "{recall:?} over {n}");
+}
+
+/// `objects` on `sut_recall` and `sut_latency`, on the examples' scene. The
+/// figures are counted independently of the judge, from the same scene's OSI
+/// trace (`run --osi` without the system): the lidar has the cars in sight at
+/// 101 object-steps and the pedestrians at 11, fully in sight (what the
+/// flawed tracker keeps, coasting 0.3 s) at 89 and 6 of them. The tracker
+/// matches all; the `walkway` strip holds the pedestrians' paths and neither
+/// road; the circle `far` is out of the lidar's range.
+#[test]
+fn objects_select_a_systems_object_steps_by_id_class_and_area() {
+    let Some(python) = python() else { return };
+    let selections = r#"areas:
+  - { id: walkway, polygon: [[-30, -2], [30, -2], [30, 2], [-30, 2]] }
+  - { id: far, circle: { center: [45, -45], radius: 3 } }
+system_under_test:"#;
+    let extra = r#"
+  - { id: CARS, text: c, check: { metric: sut_recall, at_least: 0.9, objects: { classes: [car] } } }
+  - { id: CAR-IDS, text: c, check: { metric: sut_recall, at_least: 0.9, objects: { ids: [car_east, car_west] } } }
+  - { id: WALKWAY, text: w, check: { metric: sut_recall, at_least: 0.9, objects: { areas: [walkway] } } }
+  - { id: FAR, text: f, check: { metric: sut_latency, at_most: 1, objects: { areas: [far] } } }
+  - { id: CAR-LAT, text: l, check: { metric: sut_latency, at_most: 1, objects: { classes: [car] } } }
+"#;
+    let scenario = |name: &str| example(name).replacen("system_under_test:", selections, 1) + extra;
+    let (_, good) = run_example(&python, &scenario("tracker.yaml"), "2");
+    let (_, flawed) = run_example(&python, &scenario("flawed_tracker.yaml"), "2");
+    let recall = |verdict: &str, matched: f64, n: u64| (verdict.to_string(), Some(matched / n as f64), Some(n));
+    for id in ["CARS", "CAR-IDS"] {
+        assert_eq!(verdict(&good, id), recall("pass", 101.0, 101));
+        assert_eq!(verdict(&flawed, id), recall("fail", 89.0, 101));
+    }
+    for id in ["SUT-REC-PED", "WALKWAY"] {
+        assert_eq!(verdict(&good, id), recall("pass", 11.0, 11));
+        assert_eq!(verdict(&flawed, id), recall("fail", 6.0, 11));
+    }
+    // The classes partition the whole: 101 + 11 object-steps, 89 + 6 matched.
+    assert_eq!(metric(&flawed, "sut_recall"), (Some(95.0 / 112.0), 112));
+    // Each class's latency is over its own road users: the two cars.
+    for results in [&good, &flawed] {
+        assert_eq!(verdict(results, "CAR-LAT").2, Some(2));
+        let objects = &requirement(results, "CAR-LAT")["check"]["objects"];
+        assert_eq!(objects, &serde_json::json!({ "classes": ["car"] }));
+    }
+    // Nothing in the selection: not exercised, naming what it looked for.
+    assert_eq!(verdict(&good, "FAR"), ("not_exercised".to_string(), None, Some(0)));
+    assert_eq!(
+        requirement(&good, "FAR")["message"],
+        "nothing to judge: no road users detected after first in sight (in far) to measure sut_latency on"
+    );
 }
 
 #[test]

@@ -17,6 +17,9 @@ pub(super) struct Context<'a> {
     /// Whether the run writes an OSI trace (`Options::osi`), which the
     /// resource model then bounds.
     pub(super) osi: bool,
+    /// Whether the scenario declares a `system_under_test` (a sweep point's
+    /// tree leaves the section out), whose checks read `areas`.
+    pub(super) driven: bool,
     /// Declarations whose own errors are recorded: known, but not compiled.
     failed: HashSet<(Declaration, String)>,
 }
@@ -37,6 +40,7 @@ impl<'a> Context<'a> {
             tree,
             errors: Vec::new(),
             osi: false,
+            driven: false,
             failed: HashSet::new(),
         }
     }

@@ -139,7 +139,8 @@ const IGNORED: &[Ignored] = &[
     Ignored {
         kinds: &[Perception],
         pattern: "areas",
-        why: "areas select road users of per-object checks, which judge the semantic pipeline's records",
+        why: "areas select road users of per-object checks, which judge the semantic pipeline's records, or the \
+              object-steps a system under test is judged on, and the scenario has neither",
     },
     Ignored {
         kinds: &[Perception],
@@ -228,10 +229,14 @@ pub(super) fn ignored(kind: Kind, path: &Path) -> Option<&'static str> {
 }
 
 /// Every key of `tree` that a scenario of `kind` never reads, with why; a key
-/// inside one already listed is not listed again.
-pub(super) fn ignored_keys(tree: &Node, kind: Kind) -> Vec<(Path, &'static str)> {
+/// inside one already listed is not listed again. A perception world `driven`
+/// by a system under test reads `areas`: its `sut_recall` and `sut_latency`
+/// select object-steps by them.
+pub(super) fn ignored_keys(tree: &Node, kind: Kind, driven: bool) -> Vec<(Path, &'static str)> {
+    let driven = driven && kind == Perception;
     let mut found: Vec<(Path, &'static str)> = Vec::new();
-    for rule in IGNORED.iter().filter(|rule| rule.kinds.contains(&kind)) {
+    let rules = IGNORED.iter().filter(|rule| !(driven && rule.pattern == "areas"));
+    for rule in rules.filter(|rule| rule.kinds.contains(&kind)) {
         let parts: Vec<&str> = rule.pattern.split('.').collect();
         for path in expand(tree, Path::root(), &parts) {
             if !found

@@ -1,39 +1,50 @@
-//! The road users a per-object check judges (`check.objects`): ids, classes and
-//! areas checked against what the scenario can produce at the requirement's
-//! points, the window against the run. A selection that can match nothing is
-//! an error here; one that matches nothing in a run is not exercised there.
+//! The road users a per-object check judges, or the object-steps a system's
+//! `sut_recall` or `sut_latency` is summed over (`check.objects`): ids, classes
+//! and areas checked against what the scenario can produce at the
+//! requirement's points, the window against the run. A selection that can
+//! match nothing is an error here; one that matches nothing in a run is not
+//! exercised there.
 
 use std::collections::BTreeSet;
 
 use super::checks::known_names;
 use super::context::Context;
 use crate::error::ErrorKind;
-use crate::model::{AgentKind, Experiment, ObjectProperty, ObjectSelection, Point, World};
+use crate::model::{AgentKind, Check, Experiment, Metric, ObjectProperty, ObjectSelection, Point, World};
 use crate::path::Path;
 use crate::raw::RawObjectSelection;
 use crate::raw::range;
 
-/// Compiles the selection of a check on `property` (when it is a per-object
-/// check) at the `selected` points; `None` after recording why.
+/// Compiles the selection of `check` at the `selected` points; `None` after
+/// recording why.
 pub(super) fn selection(
     ctx: &mut Context<'_>,
     raw: Option<&RawObjectSelection>,
-    property: Option<ObjectProperty>,
+    check: Check,
     (points, selected): (&[Point], &[usize]),
     path: &Path,
 ) -> Option<ObjectSelection> {
     let Some(raw) = raw else {
         return Some(ObjectSelection::default());
     };
-    match property {
-        None => {
+    match check {
+        Check::Metric { metric, over_seeds, .. } if metric.selects_objects() => {
+            if !of_system(ctx, raw, metric, over_seeds.is_some(), path) {
+                return None;
+            }
+        }
+        Check::Compare { metric, other, .. } if metric.selects_objects() || other.selects_objects() => {
             ctx.error(
                 path,
-                ErrorKind::Invalid("`objects` selects the road users of a `per_object` check".into()),
+                ErrorKind::Invalid(
+                    "`objects` does not select within a comparison (`relative_to`); check the selection's \
+                     `sut_recall` or `sut_latency` on its own"
+                        .into(),
+                ),
             );
             return None;
         }
-        Some(property) if !property.of_record() => {
+        Check::PerObject { property, .. } if !property.of_record() => {
             // The grid's properties are offered only where a joint world has a grid.
             let joint = selected.iter().any(|&i| match &points[i].setup.experiment {
                 Experiment::World(world) => world.is_joint(),
@@ -55,7 +66,18 @@ pub(super) fn selection(
             );
             return None;
         }
-        Some(_) => {}
+        Check::PerObject { .. } => {}
+        _ => {
+            ctx.error(
+                path,
+                ErrorKind::Invalid(
+                    "`objects` selects the road users of a `per_object` check, or the object-steps a system's \
+                     `sut_recall` or `sut_latency` is summed over"
+                        .into(),
+                ),
+            );
+            return None;
+        }
     }
     let worlds: Vec<&World> = selected
         .iter()
@@ -137,6 +159,39 @@ pub(super) fn selection(
         between: raw.between,
         closer_than: raw.closer_than,
     })
+}
+
+/// Errors where a selection of the object-steps of `metric`, a system's, asks
+/// for what the system's judge does not select by: a window or a distance to
+/// an ego (a semantic pipeline's), or a check over seeds.
+fn of_system(ctx: &mut Context<'_>, raw: &RawObjectSelection, metric: Metric, over_seeds: bool, path: &Path) -> bool {
+    let name = metric.name();
+    if over_seeds {
+        ctx.error(
+            path,
+            ErrorKind::Invalid(
+                "`objects` selects within the system's one run, and a check over `seeds` reads several: leave out \
+                 `seeds` or `objects`"
+                    .into(),
+            ),
+        );
+        return false;
+    }
+    let unselected = [
+        ("between", raw.between.is_some()),
+        ("closer_than", raw.closer_than.is_some()),
+    ];
+    if let Some((key, _)) = unselected.iter().find(|(_, given)| *given) {
+        ctx.error(
+            &path.key(key),
+            ErrorKind::Invalid(format!(
+                "`{key}` selects road users by their closest approach to a semantic pipeline's ego; `{name}` \
+                 selects its object-steps by `ids`, `classes` and `areas` only"
+            )),
+        );
+        return false;
+    }
+    true
 }
 
 /// The road users of `world` a record can be about: every agent but the ego

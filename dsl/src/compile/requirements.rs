@@ -157,7 +157,7 @@ pub(super) fn requirements(
             let objects = objects::selection(
                 ctx,
                 requirement.check.objects.as_ref(),
-                requirement.check.per_object,
+                check,
                 (points, &selected),
                 &path.key("check").key("objects"),
             );

@@ -99,6 +99,7 @@ fn compile_inner(file: &str, source: &str, options: &Options<'_>) -> Result<Scen
         }]
     })?;
     let mut ctx = Context::new(file, &tree);
+    ctx.driven = tree.get("system_under_test").is_some();
     check_version(&mut ctx);
     if !ctx.errors.is_empty() {
         return Err(ctx.errors);
@@ -128,7 +129,7 @@ fn compile_inner(file: &str, source: &str, options: &Options<'_>) -> Result<Scen
             file,
             &setup_tree,
             &sweeps,
-            options,
+            (options, ctx.driven),
             (imported.as_ref(), mapped.as_ref()),
         ) {
             Ok((compiled, unused)) => {
@@ -308,7 +309,7 @@ fn points(
     file: &str,
     tree: &Node,
     sweeps: &[Vec<AxisNodes<'_>>],
-    options: &Options<'_>,
+    (options, driven): (&Options<'_>, bool),
     (imported, mapped): (Option<&Imported>, Option<&Mapped>),
 ) -> Result<(Configurations, Unused), Vec<Error>> {
     let mut configurations = Configurations::new(sweeps.len());
@@ -318,6 +319,7 @@ fn points(
     for (group, axes, choice, point_tree) in combinations(tree, sweeps) {
         let mut ctx = Context::new(file, &point_tree);
         ctx.osi = options.osi;
+        ctx.driven = driven;
         let compiled = match from_node::<RawScenario>(&point_tree, &Path::root()) {
             Ok(raw) => setup(&mut ctx, &raw, imported, mapped).map(|setup| (raw, setup)),
             Err(e) => {

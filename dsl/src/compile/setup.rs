@@ -36,7 +36,7 @@ pub(super) fn setup(
     let root = Path::root();
     let kind = Kind::of(ctx.tree);
     if let Some(kind) = kind {
-        for (path, why) in ignored_keys(ctx.tree, kind) {
+        for (path, why) in ignored_keys(ctx.tree, kind, ctx.driven) {
             ctx.error_at_key(&path, ErrorKind::NoEffect(why.into()));
         }
     }

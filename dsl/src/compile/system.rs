@@ -43,7 +43,8 @@ pub(super) fn system_under_test(
         & ctx.within(&path.key("min_existence"), min_existence, range::PROBABILITY);
     let alone_ok = runs_once(ctx, raw, requirements);
     let (agent, sensors) = served(ctx, system, points?, &path)?;
-    (command_ok && limits_ok && alone_ok).then(|| SystemUnderTest {
+    let host_ok = host_unselected(ctx, raw, &system.agent);
+    (command_ok && limits_ok && alone_ok && host_ok).then(|| SystemUnderTest {
         command: system.command.clone(),
         agent,
         agent_id: system.agent.clone(),
@@ -210,6 +211,26 @@ fn served(
         return None;
     }
     Some((agent, sensors))
+}
+
+/// Errors where an `objects` selection names the agent the system serves,
+/// which is no road user it is judged on.
+fn host_unselected(ctx: &mut Context<'_>, raw: &RawScenario, host: &str) -> bool {
+    let mut ok = true;
+    for (i, requirement) in raw.requirements.iter().enumerate() {
+        let ids = requirement.check.objects.iter().flat_map(|o| &o.ids);
+        for (j, _) in ids.enumerate().filter(|(_, id)| *id == host) {
+            let at = Path::root().key("requirements").index(i).key("check");
+            ctx.error(
+                &at.key("objects").key("ids").index(j),
+                ErrorKind::Invalid(format!(
+                    "`{host}` is the agent the system under test serves, not a road user it is judged on"
+                )),
+            );
+            ok = false;
+        }
+    }
+    ok
 }
 
 /// Errors at each requirement that checks a metric of the system under test

@@ -399,6 +399,13 @@ impl Metric {
         )
     }
 
+    /// Whether a check on it takes an `objects` selection: the system's
+    /// metrics over road users (`sut_recall`, `sut_latency`), summed over
+    /// the object-steps the selection keeps.
+    pub fn selects_objects(self) -> bool {
+        matches!(self, Self::SutRecall | Self::SutLatency)
+    }
+
     /// Whether only joint worlds measure it: the two halves of
     /// `packet_delivery_ratio`.
     pub fn joint_only(self) -> bool {

@@ -30,8 +30,9 @@ pub struct Requirement {
     pub objects: ObjectSelection,
 }
 
-/// Which relevant road users a per-object check judges: those matching every
-/// criterion given (an empty list or no window matches all).
+/// Which relevant road users a per-object check judges, or which object-steps
+/// a system's `sut_recall` or `sut_latency` is summed over: those matching
+/// every criterion given (an empty list or no window matches all).
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct ObjectSelection {
     /// Agent ids.
@@ -41,7 +42,8 @@ pub struct ObjectSelection {
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub classes: Vec<AgentKind>,
     /// Ids of crosswalks, interaction areas or declared `areas`: the road
-    /// user's centre was inside one of them at some step with the ego in the scene.
+    /// user's centre was inside one of them at some step with the ego in the
+    /// scene (for a system's object-step: at that step).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub areas: Vec<String>,
     /// [from, to], seconds: its closest approach to the ego lies in it.

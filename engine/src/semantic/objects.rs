@@ -37,7 +37,7 @@ use sightline_dsl::{Agent, AgentKind, Area, Semantic, World};
 
 use super::criticality::{Criticality, OrientedBox, post_encroachment, velocity};
 use super::ego::Knowledge;
-use super::relevance::{contains, crosswalk_area};
+use super::relevance::{contains, regions};
 use crate::world::AgentState;
 
 /// How the ego came to know a road user: by V2X, by its own sight, in which
@@ -203,11 +203,7 @@ impl Encounters {
     /// Nothing seen yet of the `agents` agents of a scene of `world` run with
     /// `semantic`.
     pub(super) fn new(world: &World, semantic: &Semantic, agents: usize) -> Self {
-        let crosswalks = world.crosswalks.iter().map(|c| (c.id.clone(), crosswalk_area(c)));
-        let others = world.interaction_areas.iter().chain(&world.areas);
-        let regions: Vec<(String, Area)> = crosswalks
-            .chain(others.map(|a| (a.id.clone(), a.shape.clone())))
-            .collect();
+        let regions = regions(world);
         Self {
             ego: semantic.ego,
             proximity: semantic.proximity,

@@ -47,6 +47,16 @@ pub fn crosswalk_area(crosswalk: &Crosswalk) -> Area {
     Area::Polygon(vec![corner(a, -1.0), corner(b, -1.0), corner(b, 1.0), corner(a, 1.0)])
 }
 
+/// Every region of `world` an `objects` selection can name, with its id:
+/// crosswalks, interaction areas and declared `areas`, in that order.
+pub fn regions(world: &World) -> Vec<(String, Area)> {
+    let crosswalks = world.crosswalks.iter().map(|c| (c.id.clone(), crosswalk_area(c)));
+    let others = world.interaction_areas.iter().chain(&world.areas);
+    crosswalks
+        .chain(others.map(|a| (a.id.clone(), a.shape.clone())))
+        .collect()
+}
+
 /// Whether a path, given as its position at a time, enters `area` within `horizon`
 /// while starting outside it.
 pub fn approaches(area: &Area, horizon: f64, at: impl Fn(f64) -> Point) -> bool {

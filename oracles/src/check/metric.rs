@@ -1,26 +1,36 @@
 //! Metric thresholds.
 
-use sightline_dsl::{Bound, Comparison, Metric};
+use sightline_dsl::{Bound, Comparison, Metric, ObjectSelection};
 use sightline_engine::Sample;
 
 use super::short;
 use crate::Evaluation;
 
-/// Compares `metric`'s value with `bound`: passes when the margin is ≥ 0. A
+/// Compares `metric`'s value over `selection` (a system's object-steps; all
+/// where it selects nothing) with `bound`: passes when the margin is ≥ 0. A
 /// sample smaller than `min_samples` (an empty population included) is not
 /// exercised; a metric the measurements lack, or one undefined over a
 /// non-empty population, is an error.
-pub(crate) fn evaluate(metric: Metric, bound: Bound, sample: Option<Sample>, min_samples: u64) -> Evaluation {
+pub(crate) fn evaluate(
+    (metric, selection): (Metric, &ObjectSelection),
+    bound: Bound,
+    sample: Option<Sample>,
+    min_samples: u64,
+) -> Evaluation {
     let name = metric.name();
-    let Some(Sample { value, n }) = sample else {
-        return Evaluation::error(format!("{name} is not measured at this point"));
+    let (population, label) = match selection.describe() {
+        all if all.is_empty() => (metric.population().to_string(), name.to_string()),
+        some => (format!("{} ({some})", metric.population()), format!("{name} ({some})")),
     };
-    let measured = describe(metric, n);
+    let Some(Sample { value, n }) = sample else {
+        return Evaluation::error(format!("{label} is not measured at this point"));
+    };
+    let measured = describe(metric, n, &population);
     if n < min_samples {
-        return Evaluation::not_exercised(n, measured, too_few(name, n, min_samples, metric.population()));
+        return Evaluation::not_exercised(n, measured, too_few(name, n, min_samples, &population));
     }
     let Some(value) = value.filter(|v| !v.is_nan()) else {
-        return Evaluation::error(format!("{name} is undefined over n = {n} {}", metric.population()));
+        return Evaluation::error(format!("{name} is undefined over n = {n} {population}"));
     };
     let margin = bound.margin(value);
     let (relation, wanted) = match bound {
@@ -28,7 +38,7 @@ pub(crate) fn evaluate(metric: Metric, bound: Bound, sample: Option<Sample>, min
         Bound::AtMost(_) => (if margin >= 0.0 { "≤" } else { ">" }, "at most"),
     };
     let message = format!(
-        "{name} = {} {relation} {threshold} (required {wanted} {threshold}; margin {}; n = {n})",
+        "{label} = {} {relation} {threshold} (required {wanted} {threshold}; margin {}; n = {n})",
         short(value),
         short(margin),
         threshold = short(bound.threshold())
@@ -58,7 +68,7 @@ pub(crate) fn compare(
         if n < min_samples {
             return Evaluation::not_exercised(
                 n,
-                describe(*metric, n),
+                describe(*metric, n, metric.population()),
                 too_few(name, n, min_samples, metric.population()),
             );
         }
@@ -76,8 +86,8 @@ pub(crate) fn compare(
     let n = sizes[0].min(sizes[1]);
     let measured = format!(
         "{expression}: {} and {}",
-        describe(metric, sizes[0]),
-        describe(other, sizes[1])
+        describe(metric, sizes[0], metric.population()),
+        describe(other, sizes[1], other.population())
     );
     let Some(value) = by.of(values[0], values[1]) else {
         return Evaluation::not_exercised(
@@ -105,8 +115,9 @@ pub(crate) fn compare(
     Evaluation::judged(value, margin, n, measured, message)
 }
 
-/// What a metric's value is, with its n: `median of n = 12 anticipation times`.
-pub(crate) fn describe(metric: Metric, n: u64) -> String {
+/// What a metric's value is, with its n and its `population` (the metric's,
+/// or a selection of it): `median of n = 12 anticipation times`.
+pub(crate) fn describe(metric: Metric, n: u64, population: &str) -> String {
     let what = match metric {
         Metric::AnticipationMedian
         | Metric::ObjectAnticipationMedian
@@ -119,7 +130,7 @@ pub(crate) fn describe(metric: Metric, n: u64) -> String {
         | Metric::MessageAgeP95 => "95th percentile of",
         _ => "value over",
     };
-    format!("{what} n = {n} {}", metric.population())
+    format!("{what} n = {n} {population}")
 }
 
 /// The message of a check with too few samples.
@@ -133,9 +144,19 @@ pub(crate) fn too_few(name: &str, n: u64, min_samples: u64, population: &str) ->
 
 #[cfg(test)]
 mod tests {
+    use sightline_dsl::AgentKind;
     use sightline_engine::outcome::FieldMetrics;
 
     use super::*;
+
+    /// Every object-step: no selection.
+    const ALL: ObjectSelection = ObjectSelection {
+        ids: Vec::new(),
+        classes: Vec::new(),
+        areas: Vec::new(),
+        between: None,
+        closer_than: None,
+    };
     use crate::Status;
 
     fn metrics(false_alarms: u64) -> FieldMetrics {
@@ -162,13 +183,13 @@ mod tests {
     #[test]
     fn at_most_passes_on_the_boundary_and_fails_beyond() {
         let m = Metric::FalseAlarms;
-        let e = evaluate(m, Bound::AtMost(3.0), sample(&metrics(3), m), 1);
+        let e = evaluate((m, &ALL), Bound::AtMost(3.0), sample(&metrics(3), m), 1);
         assert_eq!(
             (e.status, e.value, e.margin, e.n),
             (Status::Pass, Some(3.0), Some(0.0), Some(100))
         );
         assert_eq!(e.measured, "value over n = 100 cells");
-        let e = evaluate(m, Bound::AtMost(3.0), sample(&metrics(4), m), 1);
+        let e = evaluate((m, &ALL), Bound::AtMost(3.0), sample(&metrics(4), m), 1);
         assert_eq!((e.status, e.margin), (Status::Fail, Some(-1.0)));
         assert_eq!(
             e.message,
@@ -179,7 +200,7 @@ mod tests {
     #[test]
     fn at_least_compares_accuracy() {
         let e = evaluate(
-            Metric::Accuracy,
+            (Metric::Accuracy, &ALL),
             Bound::AtLeast(0.95),
             sample(&metrics(1), Metric::Accuracy),
             1,
@@ -227,7 +248,7 @@ mod tests {
     fn an_empty_population_is_not_exercised_not_a_pass() {
         // The ratio is undefined over nothing; the check is not exercised.
         let empty = Some(Sample { value: None, n: 0 });
-        let e = evaluate(Metric::OccupiedRecall, Bound::AtLeast(0.9), empty, 1);
+        let e = evaluate((Metric::OccupiedRecall, &ALL), Bound::AtLeast(0.9), empty, 1);
         assert_eq!(
             (e.status, e.value, e.margin, e.n),
             (Status::NotExercised, None, None, Some(0))
@@ -238,26 +259,57 @@ mod tests {
         );
         // A count over nothing is 0 and would pass `at_most 0`: still not exercised.
         let none_close = Some(Sample { value: Some(0.0), n: 0 });
-        let e = evaluate(Metric::MissedCriticals, Bound::AtMost(0.0), none_close, 1);
+        let e = evaluate((Metric::MissedCriticals, &ALL), Bound::AtMost(0.0), none_close, 1);
         assert_eq!(e.status, Status::NotExercised);
+    }
+
+    /// A system's recall over its pedestrians: 6 of 11 object-steps matched.
+    #[test]
+    fn a_selection_names_its_population() {
+        let pedestrians = ObjectSelection {
+            classes: vec![AgentKind::Pedestrian],
+            ..ObjectSelection::default()
+        };
+        let six_of_eleven = Some(Sample {
+            value: Some(6.0 / 11.0),
+            n: 11,
+        });
+        let e = evaluate((Metric::SutRecall, &pedestrians), Bound::AtLeast(0.9), six_of_eleven, 1);
+        assert_eq!((e.status, e.n), (Status::Fail, Some(11)));
+        assert_eq!(
+            e.measured,
+            "value over n = 11 object-steps in sight of a served sensor (of class pedestrian)"
+        );
+        assert_eq!(
+            e.message,
+            "sut_recall (of class pedestrian) = 0.545455 < 0.9 (required at least 0.9; margin -0.354545; n = 11)"
+        );
+        let none = Some(Sample { value: None, n: 0 });
+        let e = evaluate((Metric::SutRecall, &pedestrians), Bound::AtLeast(0.9), none, 1);
+        assert_eq!(e.status, Status::NotExercised);
+        assert_eq!(
+            e.message,
+            "nothing to judge: no object-steps in sight of a served sensor (of class pedestrian) to measure \
+             sut_recall on"
+        );
     }
 
     #[test]
     fn a_quantile_of_too_few_samples_is_not_exercised() {
         let three = Some(Sample { value: Some(1.2), n: 3 });
         let m = Metric::AnticipationMedian;
-        let e = evaluate(m, Bound::AtLeast(1.0), three, m.default_min_samples());
+        let e = evaluate((m, &ALL), Bound::AtLeast(1.0), three, m.default_min_samples());
         assert_eq!((e.status, e.value, e.n), (Status::NotExercised, None, Some(3)));
         assert_eq!(e.measured, "median of n = 3 anticipation times");
         assert!(e.message.contains("fewer than the 6 the check needs"), "{}", e.message);
         // The requirement may lower the minimum; then the value is judged.
-        assert_eq!(evaluate(m, Bound::AtLeast(1.0), three, 3).status, Status::Pass);
+        assert_eq!(evaluate((m, &ALL), Bound::AtLeast(1.0), three, 3).status, Status::Pass);
     }
 
     #[test]
     fn unmeasured_or_undefined_over_samples_is_an_error() {
         let e = evaluate(
-            Metric::MeanConflict,
+            (Metric::MeanConflict, &ALL),
             Bound::AtMost(1.0),
             sample(&metrics(0), Metric::MeanConflict),
             1,
@@ -268,7 +320,7 @@ mod tests {
             n: 10,
         });
         assert_eq!(
-            evaluate(Metric::Accuracy, Bound::AtLeast(0.5), nan, 1).status,
+            evaluate((Metric::Accuracy, &ALL), Bound::AtLeast(0.5), nan, 1).status,
             Status::Error
         );
     }

@@ -164,6 +164,11 @@ fn describe_check(check: &CheckInfo) -> String {
                 (false, false) => format!("{users} {selected}: {relation}"),
             };
         }
+        "metric" if !check.objects.is_all() => {
+            // A system's metric over the object-steps it selects (never over seeds).
+            let sign = relation_sign(check.relation);
+            return format!("{name} ({}) {sign} {threshold}", check.objects.describe());
+        }
         "compare" => {
             let other = check.relative_to.unwrap_or_default();
             let (operator, sign) = (
@@ -192,5 +197,38 @@ fn describe_check(check: &CheckInfo) -> String {
                 RateBound::Wilson => "Wilson",
             }
         ),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use sightline_dsl::{AgentKind, ObjectSelection};
+
+    use super::*;
+
+    #[test]
+    fn a_systems_metric_over_a_selection_names_it() {
+        let check = |objects| CheckInfo {
+            kind: "metric",
+            name: "sut_recall",
+            relation: "at_least",
+            threshold: 0.9,
+            unit: "1",
+            over_seeds: None,
+            within: None,
+            relative_to: None,
+            by: None,
+            objects,
+        };
+        let pedestrians = ObjectSelection {
+            classes: vec![AgentKind::Pedestrian],
+            areas: vec!["walkway".into()],
+            ..ObjectSelection::default()
+        };
+        assert_eq!(describe_check(&check(ObjectSelection::default())), "sut_recall ≥ 0.9");
+        assert_eq!(
+            describe_check(&check(pedestrians)),
+            "sut_recall (of class pedestrian, in walkway) ≥ 0.9"
+        );
     }
 }

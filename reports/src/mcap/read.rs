@@ -253,6 +253,12 @@ impl Measurements for RecordedRun {
         metrics.iter().find(|(m, _)| *m == metric).map(|&(_, s)| s)
     }
 
+    /// Nothing: a run with a system under test, the only one whose metrics
+    /// select object-steps, is never recorded (`run` refuses `--record`).
+    fn selected_sample(&self, _: usize, _: Metric, _: &ObjectSelection) -> Option<Sample> {
+        None
+    }
+
     fn audit(&self, point: usize) -> Option<MassAudit> {
         self.points.get(point)?.audit
     }

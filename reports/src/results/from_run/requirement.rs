@@ -64,6 +64,7 @@ fn check_info(requirement: &Requirement) -> CheckInfo {
             over_seeds,
         } => CheckInfo {
             over_seeds: over_seeds.map(self::over_seeds),
+            objects: requirement.objects.clone(),
             ..plain("metric", metric.name(), bound)
         },
         Check::Compare {
