@@ -5,6 +5,8 @@
 //! equal. Foxglove and Lichtblick recognise them by schema name and draw them
 //! without plugins.
 
+use std::borrow::Cow;
+
 use base64::Engine;
 use serde::Serialize;
 
@@ -249,11 +251,13 @@ pub(crate) struct KeyValue {
     value: String,
 }
 
-/// `foxglove.SceneEntity` in the world frame, drawn until replaced or deleted.
+/// `foxglove.SceneEntity`, drawn until replaced or deleted: in the world frame
+/// where it was at `timestamp` ([`new`](Self::new)), or locked to a frame that
+/// moves ([`locked`](Self::locked)).
 #[derive(Debug, Clone, Serialize)]
 pub(crate) struct Entity {
     timestamp: Time,
-    frame_id: &'static str,
+    frame_id: Cow<'static, str>,
     id: String,
     lifetime: Forever,
     frame_locked: bool,
@@ -269,13 +273,24 @@ pub(crate) struct Entity {
 }
 
 impl Entity {
+    /// An entity in the world frame.
     pub(crate) fn new(timestamp: Time, id: impl Into<String>) -> Self {
+        Self::in_frame(timestamp, id, Cow::Borrowed(FRAME), false)
+    }
+
+    /// An entity in `frame` that follows it as the frame moves: the viewer
+    /// places it with the frame's latest transform (`/tf`) at the time shown.
+    pub(crate) fn locked(timestamp: Time, id: impl Into<String>, frame: String) -> Self {
+        Self::in_frame(timestamp, id, Cow::Owned(frame), true)
+    }
+
+    fn in_frame(timestamp: Time, id: impl Into<String>, frame_id: Cow<'static, str>, frame_locked: bool) -> Self {
         Self {
             timestamp,
-            frame_id: FRAME,
+            frame_id,
             id: id.into(),
             lifetime: FOREVER,
-            frame_locked: false,
+            frame_locked,
             metadata: Vec::new(),
             arrows: [],
             cubes: Vec::new(),

@@ -150,6 +150,8 @@ pub struct Recorder<'s, W: Write + Seek> {
     cooperating: BTreeSet<usize>,
     /// Cooperating agents whose detections were shown at the previous step.
     shown: BTreeSet<usize>,
+    /// Agents whose fields of view `/scene/fields_of_view` shows, in order.
+    fields_shown: Vec<usize>,
     /// Requirements at the recorded point whose metric the steps give.
     signalled: Vec<(String, Metric, sightline_dsl::Bound)>,
     running: Running,
@@ -185,6 +187,7 @@ impl<'s, W: Write + Seek> Recorder<'s, W> {
             ego: None,
             cooperating: BTreeSet::new(),
             shown: BTreeSet::new(),
+            fields_shown: Vec::new(),
             signalled: Vec::new(),
             running: Running {
                 world: None,
@@ -300,6 +303,7 @@ impl<'s, W: Write + Seek> Recorder<'s, W> {
             .map(|p| p.cooperating.iter().copied().collect())
             .unwrap_or_default();
         self.shown.clear();
+        self.fields_shown.clear();
         self.agents.clear();
         self.fields_of_view.clear();
         if let Some(world) = world {

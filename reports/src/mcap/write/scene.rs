@@ -1,7 +1,7 @@
 //! The scene a recording shows in Foxglove's 3D panel: the map (`/scene/map`),
 //! the frame tree (`/tf`: `map` → each agent → its sensors), the agents with
-//! their fields of view (`/scene/agents`) and what each cooperating agent
-//! detected (`/perception/<id>/detections`), with the shapes and colours they
+//! their ids (`/scene/agents`), their sensors' fields of view
+//! (`/scene/fields_of_view`) and what each cooperating agent detected (`/perception/<id>/detections`), with the shapes and colours they
 //! are drawn in.
 
 use std::collections::BTreeSet;
@@ -68,13 +68,14 @@ impl<W: Write + Seek> Recorder<'_, W> {
             })
             .collect();
         self.publish(topic::TRANSFORMS, TRANSFORMS, time, &FrameTransforms { transforms });
+        self.publish_fields_of_view(time, states);
         let entities = states
             .iter()
             .enumerate()
             .filter_map(|(i, state)| Some((i, (*state)?, self.agents.get(i)?)))
             .map(|(i, state, agent)| {
                 let height = agent.kind.height();
-                let mut entity = Entity::new(stamp, agent.id.clone())
+                Entity::new(stamp, agent.id.clone())
                     .meta("kind", agent.kind.name())
                     .meta("speed_mps", format!("{:.2}", state.speed))
                     .cube(Cube {
@@ -90,20 +91,55 @@ impl<W: Write + Seek> Recorder<'_, W> {
                         Pose3::planar(state.pose, height + 1.0),
                         agent.id.clone(),
                         LABEL,
-                    ));
-                for (mount, kind, outline) in self.fields_of_view.get(i).into_iter().flatten() {
-                    entity = entity.line(Line::new(
-                        *kind,
-                        Pose3::planar(state.pose * *mount, 0.05),
-                        outline.iter().copied(),
-                        0.1,
-                        FOV,
-                    ));
-                }
-                entity
+                    ))
             })
             .collect();
         self.publish(topic::AGENTS, SCENE, time, &SceneUpdate::replace(stamp, entities));
+    }
+
+    /// `/scene/fields_of_view`: each sensor's field of view of every agent in
+    /// the scene, locked to the sensor's frame (so the viewer moves it with the
+    /// agent's `/tf`); written only when the agents with sensors in the scene
+    /// change, each message the whole set (a viewer that seeks reads the
+    /// latest message of each topic, so none may depend on an earlier one).
+    fn publish_fields_of_view(&mut self, time: u64, states: &[Option<AgentState>]) {
+        let present: Vec<usize> = states
+            .iter()
+            .zip(&self.fields_of_view)
+            .enumerate()
+            .filter(|(_, (state, sensors))| state.is_some() && !sensors.is_empty())
+            .map(|(i, _)| i)
+            .collect();
+        if present == self.fields_shown {
+            return;
+        }
+        let stamp = Time::from_nanos(time);
+        let entities = present
+            .iter()
+            .flat_map(|&i| {
+                let agent = &self.agents[i];
+                self.fields_of_view[i]
+                    .iter()
+                    .enumerate()
+                    .map(move |(k, (_, kind, outline))| {
+                        let frame = sensor_frame(&agent.id, k);
+                        Entity::locked(stamp, frame.clone(), frame).line(Line::new(
+                            *kind,
+                            Pose3::at(0.0, 0.0, 0.05, 0.0),
+                            outline.iter().copied(),
+                            0.1,
+                            FOV,
+                        ))
+                    })
+            })
+            .collect();
+        self.publish(
+            topic::FIELDS_OF_VIEW,
+            SCENE,
+            time,
+            &SceneUpdate::replace(stamp, entities),
+        );
+        self.fields_shown = present;
     }
 
     fn color(&self, index: usize, agent: &Agent) -> Color {
@@ -168,6 +204,14 @@ impl<W: Write + Seek> Recorder<'_, W> {
     pub(super) fn clear_scene(&mut self, time: u64) {
         let stamp = Time::from_nanos(time);
         self.publish(topic::AGENTS, SCENE, time, &SceneUpdate::replace(stamp, Vec::new()));
+        if !std::mem::take(&mut self.fields_shown).is_empty() {
+            self.publish(
+                topic::FIELDS_OF_VIEW,
+                SCENE,
+                time,
+                &SceneUpdate::replace(stamp, Vec::new()),
+            );
+        }
         for gone in std::mem::take(&mut self.shown) {
             let topic = topic::detections(&self.agent_id(gone));
             self.publish(&topic, SCENE, time, &SceneUpdate::replace(stamp, Vec::new()));
