@@ -73,7 +73,9 @@ pub(crate) struct Pose3 {
     orientation: Quaternion,
 }
 
-/// `foxglove.FrameTransform`: where frame `child` lies in frame `parent`.
+/// `foxglove.FrameTransform`: where frame `child` lies in frame `parent` (the
+/// type `/tf`'s JSON, written directly by the recorder, is checked against).
+#[cfg(test)]
 #[derive(Debug, Clone, Serialize)]
 pub(crate) struct FrameTransform {
     timestamp: Time,
@@ -83,6 +85,7 @@ pub(crate) struct FrameTransform {
     rotation: Quaternion,
 }
 
+#[cfg(test)]
 impl FrameTransform {
     /// Frame `child` at `pose` in frame `parent`, at `timestamp`.
     pub(crate) fn new(timestamp: Time, parent: impl Into<String>, child: impl Into<String>, pose: Pose3) -> Self {
@@ -97,6 +100,7 @@ impl FrameTransform {
 }
 
 /// `foxglove.FrameTransforms`.
+#[cfg(test)]
 #[derive(Debug, Clone, Serialize)]
 pub(crate) struct FrameTransforms {
     pub(crate) transforms: Vec<FrameTransform>,
@@ -134,6 +138,52 @@ impl Pose3 {
     /// The world frame's origin.
     pub(crate) fn identity() -> Self {
         Self::at(0.0, 0.0, 0.0, 0.0)
+    }
+
+    /// Appends `{"position":…,"orientation":…}`, as serde_json writes the pose.
+    pub(crate) fn write_json(&self, out: &mut Vec<u8>) {
+        out.extend_from_slice(br#"{"position":"#);
+        self.write_translation(out);
+        out.extend_from_slice(br#","orientation":"#);
+        self.write_rotation(out);
+        out.push(b'}');
+    }
+
+    /// Appends the position as serde_json writes a [`Vector3`].
+    pub(crate) fn write_translation(&self, out: &mut Vec<u8>) {
+        let Vector3 { x, y, z } = self.position;
+        write_fields(out, &[(b"x", x), (b"y", y), (b"z", z)]);
+    }
+
+    /// Appends the orientation as serde_json writes a quaternion.
+    pub(crate) fn write_rotation(&self, out: &mut Vec<u8>) {
+        let Quaternion { x, y, z, w } = self.orientation;
+        write_fields(out, &[(b"x", x), (b"y", y), (b"z", z), (b"w", w)]);
+    }
+}
+
+/// Appends an object of number fields (plain keys, no escaping needed) as
+/// serde_json writes it: a finite number in its shortest round-trip form.
+fn write_fields(out: &mut Vec<u8>, fields: &[(&[u8], f64)]) {
+    out.push(b'{');
+    for (i, (key, value)) in fields.iter().enumerate() {
+        if i > 0 {
+            out.push(b',');
+        }
+        out.push(b'"');
+        out.extend_from_slice(key);
+        out.extend_from_slice(b"\":");
+        // Writing a number into a Vec does not fail.
+        let _ = serde_json::to_writer(&mut *out, value);
+    }
+    out.push(b'}');
+}
+
+impl Time {
+    /// Appends `{"sec":…,"nsec":…}`, as serde_json writes the time.
+    pub(crate) fn write_json(&self, out: &mut Vec<u8>) {
+        use std::io::Write as _;
+        let _ = write!(out, r#"{{"sec":{},"nsec":{}}}"#, self.sec, self.nsec);
     }
 }
 
@@ -321,6 +371,9 @@ impl Entity {
         self
     }
 
+    /// With a label (the recorder writes labelled agents directly; see
+    /// `write::agents`, checked against this).
+    #[cfg(test)]
     pub(crate) fn text(mut self, text: Text) -> Self {
         self.texts.push(text);
         self

@@ -12,15 +12,13 @@ use sightline_dsl::{Agent, AgentKind, Area, Grid as CellGrid, World};
 use sightline_engine::trace::{AgentState, Body, CooperatorStep, Vector};
 
 use super::Recorder;
+use super::agents::{AgentJson, write_agents, write_transforms};
 use super::channel::{SCENE, TRANSFORMS};
-use crate::mcap::foxglove::{
-    Color, Cube, Entity, FRAME, FrameTransform, FrameTransforms, Line, LineType, Pose3, SceneUpdate, Text, Time,
-    Vector3,
-};
+use crate::mcap::foxglove::{Color, Cube, Entity, Line, LineType, Pose3, SceneUpdate, Time, Vector3};
 use crate::mcap::topic;
 
 /// The frame of sensor `index` of agent `agent` (`<agent>/sensor<index>`).
-fn sensor_frame(agent: &str, index: usize) -> String {
+pub(super) fn sensor_frame(agent: &str, index: usize) -> String {
     format!("{agent}/sensor{index}")
 }
 
@@ -35,7 +33,7 @@ const CONNECTED: Color = Color::rgba(0.2, 0.45, 0.95, 0.9);
 const VEHICLE: Color = Color::rgba(0.55, 0.55, 0.6, 0.9);
 const PEDESTRIAN: Color = Color::rgba(0.95, 0.55, 0.1, 0.9);
 const RSU: Color = Color::rgba(0.6, 0.3, 0.85, 0.9);
-const LABEL: Color = Color::rgba(1.0, 1.0, 1.0, 1.0);
+pub(super) const LABEL: Color = Color::rgba(1.0, 1.0, 1.0, 1.0);
 const FOV: Color = Color::rgba(0.3, 0.8, 1.0, 0.35);
 const ROAD: Color = Color::rgba(0.7, 0.7, 0.7, 0.8);
 const OCCLUDER: Color = Color::rgba(0.85, 0.3, 0.25, 1.0);
@@ -46,55 +44,32 @@ const ESTIMATE: Color = Color::rgba(0.1, 0.9, 0.9, 0.9);
 
 impl<W: Write + Seek> Recorder<'_, W> {
     /// `/tf` and `/scene/agents`: every agent in the scene as a frame and as a
-    /// box with its id, and its sensors as frames and fields of view.
+    /// box with its id, and its sensors as frames and (when they change)
+    /// fields of view.
     pub(super) fn publish_agents(&mut self, time: u64, states: &[Option<AgentState>]) {
         let stamp = Time::from_nanos(time);
-        let transforms = states
-            .iter()
-            .zip(&self.agents)
-            .zip(&self.fields_of_view)
-            .filter_map(|((state, agent), sensors)| Some((state.as_ref()?, agent, sensors)))
-            .flat_map(|(state, agent, sensors)| {
-                let own = FrameTransform::new(stamp, FRAME, agent.id.clone(), Pose3::planar(state.pose, 0.0));
-                let mounts = sensors.iter().enumerate().map(|(i, (mount, _, _))| {
-                    FrameTransform::new(
-                        stamp,
-                        agent.id.clone(),
-                        sensor_frame(&agent.id, i),
-                        Pose3::planar(*mount, 0.0),
-                    )
-                });
-                std::iter::once(own).chain(mounts)
-            })
-            .collect();
-        self.publish(topic::TRANSFORMS, TRANSFORMS, time, &FrameTransforms { transforms });
+        let mut buffer = std::mem::take(&mut self.buffer);
+        write_transforms(&mut buffer, stamp, states, &self.agent_json);
+        self.publish_json(topic::TRANSFORMS, TRANSFORMS, time, &buffer);
         self.publish_fields_of_view(time, states);
-        let entities = states
+        write_agents(&mut buffer, stamp, states, &self.agents, &self.agent_json);
+        self.publish_json(topic::AGENTS, SCENE, time, &buffer);
+        self.buffer = buffer;
+    }
+
+    /// What [`publish_agents`](Self::publish_agents) writes of each agent at
+    /// every step and no step changes: rendered once the point's agents are
+    /// known.
+    pub(super) fn render_agents(&mut self) {
+        self.agent_json = self
+            .agents
             .iter()
             .enumerate()
-            .filter_map(|(i, state)| Some((i, (*state)?, self.agents.get(i)?)))
-            .map(|(i, state, agent)| {
-                let height = agent.kind.height();
-                Entity::new(stamp, agent.id.clone())
-                    .meta("kind", agent.kind.name())
-                    .meta("speed_mps", format!("{:.2}", state.speed))
-                    .cube(Cube {
-                        pose: Pose3::planar(state.pose, height / 2.0),
-                        size: Vector3 {
-                            x: agent.length,
-                            y: agent.width,
-                            z: height,
-                        },
-                        color: self.color(i, agent),
-                    })
-                    .text(Text::label(
-                        Pose3::planar(state.pose, height + 1.0),
-                        agent.id.clone(),
-                        LABEL,
-                    ))
+            .map(|(i, agent)| {
+                let mounts = self.fields_of_view[i].iter().map(|(mount, _, _)| *mount);
+                AgentJson::new(agent, self.color(i, agent), mounts)
             })
             .collect();
-        self.publish(topic::AGENTS, SCENE, time, &SceneUpdate::replace(stamp, entities));
     }
 
     /// `/scene/fields_of_view`: each sensor's field of view of every agent in
