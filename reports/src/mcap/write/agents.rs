@@ -12,6 +12,14 @@ use sightline_engine::trace::{AgentState, Pose};
 
 use crate::mcap::foxglove::{Color, FRAME, Pose3, Text, Time, Vector3};
 
+/// The colour of an agent's label.
+const LABEL: Color = Color::rgba(1.0, 1.0, 1.0, 1.0);
+
+/// The frame of sensor `index` of agent `agent` (`<agent>/sensor<index>`).
+pub(super) fn sensor_frame(agent: &str, index: usize) -> String {
+    format!("{agent}/sensor{index}")
+}
+
 /// What an agent's messages hold that no step changes, as JSON.
 pub(super) struct AgentJson {
     /// Its `/tf` transform after the timestamp, up to the translation.
@@ -37,7 +45,7 @@ impl AgentJson {
                 let pose = Pose3::planar(mount, 0.0);
                 let mut out = format!(
                     r#","parent_frame_id":{id},"child_frame_id":{},"translation":"#,
-                    json(&super::scene::sensor_frame(&agent.id, k))
+                    json(&sensor_frame(&agent.id, k))
                 )
                 .into_bytes();
                 pose.write_translation(&mut out);
@@ -53,7 +61,7 @@ impl AgentJson {
             y: agent.width,
             z: height,
         });
-        let label = json(&Text::label(Pose3::identity(), agent.id.clone(), super::scene::LABEL));
+        let label = json(&Text::label(Pose3::identity(), agent.id.clone(), LABEL));
         // The label's fields after its pose: `{"pose":{…},` cut off.
         let label_tail = &label[label.find(r#","billboard""#).expect("a label has billboard")..];
         Self {
@@ -172,7 +180,7 @@ mod tests {
             .text(Text::label(
                 Pose3::planar(state.pose, height + 1.0),
                 agent.id.clone(),
-                super::super::scene::LABEL,
+                LABEL,
             ))
     }
 
@@ -232,7 +240,7 @@ mod tests {
                     .flat_map(|(state, agent)| {
                         let own = FrameTransform::new(stamp, FRAME, agent.id.clone(), Pose3::planar(state.pose, 0.0));
                         let mounts = agent.sensors.iter().enumerate().map(move |(k, sensor)| {
-                            let frame = super::super::scene::sensor_frame(&agent.id, k);
+                            let frame = super::sensor_frame(&agent.id, k);
                             FrameTransform::new(stamp, agent.id.clone(), frame, Pose3::planar(mount_pose(sensor), 0.0))
                         });
                         std::iter::once(own).chain(mounts)

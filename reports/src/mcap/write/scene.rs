@@ -12,15 +12,10 @@ use sightline_dsl::{Agent, AgentKind, Area, Grid as CellGrid, World};
 use sightline_engine::trace::{AgentState, Body, CooperatorStep, Vector};
 
 use super::Recorder;
-use super::agents::{AgentJson, write_agents, write_transforms};
+use super::agents::{AgentJson, sensor_frame, write_agents, write_transforms};
 use super::channel::{SCENE, TRANSFORMS};
 use crate::mcap::foxglove::{Color, Cube, Entity, Line, LineType, Pose3, SceneUpdate, Time, Vector3};
 use crate::mcap::topic;
-
-/// The frame of sensor `index` of agent `agent` (`<agent>/sensor<index>`).
-pub(super) fn sensor_frame(agent: &str, index: usize) -> String {
-    format!("{agent}/sensor{index}")
-}
 
 /// Segments of a full circle (a 360° sensor's range, a region).
 const CIRCLE_SEGMENTS: usize = 72;
@@ -33,7 +28,6 @@ const CONNECTED: Color = Color::rgba(0.2, 0.45, 0.95, 0.9);
 const VEHICLE: Color = Color::rgba(0.55, 0.55, 0.6, 0.9);
 const PEDESTRIAN: Color = Color::rgba(0.95, 0.55, 0.1, 0.9);
 const RSU: Color = Color::rgba(0.6, 0.3, 0.85, 0.9);
-pub(super) const LABEL: Color = Color::rgba(1.0, 1.0, 1.0, 1.0);
 const FOV: Color = Color::rgba(0.3, 0.8, 1.0, 0.35);
 const ROAD: Color = Color::rgba(0.7, 0.7, 0.7, 0.8);
 const OCCLUDER: Color = Color::rgba(0.85, 0.3, 0.25, 1.0);
