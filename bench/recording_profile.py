@@ -22,7 +22,7 @@ CLASSES = [
     ("crc32 of chunks and attachments", ["crc32fast"]),
     ("sha256 (imports, the recording's hash)", ["sha2::"]),
     ("recorder: start (scenario record, attachments, map)", ["mcap::write::{impl#1}::new", "Recorder<W>::new", "Recorder<W>>::new"]),
-    ("recorder: agents and frames (/scene/agents, /tf)", ["mcap::write::scene::"]),
+    ("recorder: agents and frames (/scene/agents, /tf)", ["mcap::write::scene::", "mcap::write::agents::"]),
     ("recorder: semantic steps (packets, messages, signals)", ["mcap::write::semantic::"]),
     ("recorder: grids and detections", ["mcap::write::world::"]),
     ("recorder: outcomes, objects and verdicts", ["mcap::write::outcomes", "Recorder<W>>::finish"]),

@@ -133,6 +133,8 @@ fn bundled_roundabout_recording_has_foxglove_channels_and_the_steps() {
             ("/scene/map", "foxglove.SceneUpdate", 1),
             ("/tf", "foxglove.FrameTransforms", 300),
             ("/scene/agents", "foxglove.SceneUpdate", 300),
+            // At the first step, then each time a vehicle with sensors enters or leaves.
+            ("/scene/fields_of_view", "foxglove.SceneUpdate", 5),
             // Steps 0, 10, …, 290.
             ("/fusion/grid", "foxglove.Grid", 30),
             ("/sightline/signals", "sightline.Signals", 300),

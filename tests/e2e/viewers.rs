@@ -203,6 +203,67 @@ fn every_point_is_recorded_a_minute_after_the_last() {
     assert_eq!(on("/scene/map").count(), 17);
 }
 
+/// `/scene/fields_of_view` is written only when the agents with sensors in
+/// the scene change, and always shows what `/tf` places: at every step of every
+/// recording, the latest fields-of-view message up to that step holds exactly
+/// one entity per sensor frame of that step's `/tf`, locked to that frame and
+/// kept until replaced. A point's fields of view are cleared with its agents.
+#[test]
+fn fields_of_view_follow_the_sensor_frames_and_are_written_when_they_change() {
+    let mut written_less = false;
+    for (name, recording) in recordings() {
+        let (mut steps, mut writes) = (0, 0);
+        // The latest message's sensors, and the sensor frames of the step whose
+        // /tf was read last (a step writes /tf, then its fields of view if they
+        // change, then /scene/agents).
+        let (mut shown, mut placed) = (BTreeSet::new(), None);
+        for m in mcap::MessageStream::new(recording).unwrap().map(|m| m.unwrap()) {
+            let json: serde_json::Value = serde_json::from_slice(&m.data).unwrap();
+            match m.channel.topic.as_str() {
+                "/scene/fields_of_view" => {
+                    writes += 1;
+                    assert_eq!(json["deletions"][0]["type"], 1, "{name}: each message replaces all");
+                    let entities = json["entities"].as_array().unwrap();
+                    for entity in entities {
+                        assert_eq!(entity["frame_locked"], true, "{name}: {entity}");
+                        assert_eq!(entity["frame_id"], entity["id"], "{name}");
+                        assert_eq!(entity["lifetime"], serde_json::json!({ "sec": 0, "nsec": 0 }));
+                        assert_eq!(entity["lines"].as_array().unwrap().len(), 1, "{name}");
+                    }
+                    shown = entities.iter().map(|e| e["id"].as_str().unwrap().to_string()).collect();
+                }
+                "/tf" => {
+                    steps += 1;
+                    let transforms = json["transforms"].as_array().unwrap().iter();
+                    let frames = transforms.map(|t| t["child_frame_id"].as_str().unwrap().to_string());
+                    placed = Some(
+                        frames
+                            .filter(|frame| frame.contains("/sensor"))
+                            .collect::<BTreeSet<_>>(),
+                    );
+                }
+                "/scene/agents" => {
+                    let agents = json["entities"].as_array().unwrap();
+                    assert!(
+                        agents.iter().all(|a| a["lines"].as_array().unwrap().is_empty()),
+                        "{name}"
+                    );
+                    if let Some(placed) = placed.take() {
+                        assert_eq!(shown, placed, "{name} at {}", m.log_time);
+                    }
+                }
+                _ => {}
+            }
+        }
+        assert!(writes <= steps, "{name}: {writes} > {steps}");
+        written_less |= writes > 0 && writes < steps;
+    }
+    assert!(
+        written_less,
+        "some recording keeps its fields of view over several steps"
+    );
+}
+
 /// `sightline replay` re-checks a recording of every point: the run's verdicts,
 /// line for line, and its exit code, each point's steps added up against its
 /// outcome.

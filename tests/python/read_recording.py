@@ -27,8 +27,10 @@ def problems_of(schema_name, message):
             return ["a grid outside the map frame"]
     elif schema_name == "foxglove.SceneUpdate":
         for entity in message["entities"]:
-            if entity["frame_id"] != "map":
-                return ["an entity outside the map frame"]
+            # In the world frame, or (a field of view) locked to a sensor's frame.
+            locked = entity["frame_locked"] and "/sensor" in entity["frame_id"]
+            if entity["frame_id"] != "map" and not locked:
+                return ["an entity outside the map frame, not locked to a sensor's frame"]
     return []
 
 

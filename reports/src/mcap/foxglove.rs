@@ -5,6 +5,8 @@
 //! equal. Foxglove and Lichtblick recognise them by schema name and draw them
 //! without plugins.
 
+use std::borrow::Cow;
+
 use base64::Engine;
 use serde::Serialize;
 
@@ -71,7 +73,9 @@ pub(crate) struct Pose3 {
     orientation: Quaternion,
 }
 
-/// `foxglove.FrameTransform`: where frame `child` lies in frame `parent`.
+/// `foxglove.FrameTransform`: where frame `child` lies in frame `parent` (the
+/// type `/tf`'s JSON, written directly by the recorder, is checked against).
+#[cfg(test)]
 #[derive(Debug, Clone, Serialize)]
 pub(crate) struct FrameTransform {
     timestamp: Time,
@@ -81,6 +85,7 @@ pub(crate) struct FrameTransform {
     rotation: Quaternion,
 }
 
+#[cfg(test)]
 impl FrameTransform {
     /// Frame `child` at `pose` in frame `parent`, at `timestamp`.
     pub(crate) fn new(timestamp: Time, parent: impl Into<String>, child: impl Into<String>, pose: Pose3) -> Self {
@@ -95,6 +100,7 @@ impl FrameTransform {
 }
 
 /// `foxglove.FrameTransforms`.
+#[cfg(test)]
 #[derive(Debug, Clone, Serialize)]
 pub(crate) struct FrameTransforms {
     pub(crate) transforms: Vec<FrameTransform>,
@@ -132,6 +138,52 @@ impl Pose3 {
     /// The world frame's origin.
     pub(crate) fn identity() -> Self {
         Self::at(0.0, 0.0, 0.0, 0.0)
+    }
+
+    /// Appends `{"position":…,"orientation":…}`, as serde_json writes the pose.
+    pub(crate) fn write_json(&self, out: &mut Vec<u8>) {
+        out.extend_from_slice(br#"{"position":"#);
+        self.write_translation(out);
+        out.extend_from_slice(br#","orientation":"#);
+        self.write_rotation(out);
+        out.push(b'}');
+    }
+
+    /// Appends the position as serde_json writes a [`Vector3`].
+    pub(crate) fn write_translation(&self, out: &mut Vec<u8>) {
+        let Vector3 { x, y, z } = self.position;
+        write_fields(out, &[(b"x", x), (b"y", y), (b"z", z)]);
+    }
+
+    /// Appends the orientation as serde_json writes a quaternion.
+    pub(crate) fn write_rotation(&self, out: &mut Vec<u8>) {
+        let Quaternion { x, y, z, w } = self.orientation;
+        write_fields(out, &[(b"x", x), (b"y", y), (b"z", z), (b"w", w)]);
+    }
+}
+
+/// Appends an object of number fields (plain keys, no escaping needed) as
+/// serde_json writes it: a finite number in its shortest round-trip form.
+fn write_fields(out: &mut Vec<u8>, fields: &[(&[u8], f64)]) {
+    out.push(b'{');
+    for (i, (key, value)) in fields.iter().enumerate() {
+        if i > 0 {
+            out.push(b',');
+        }
+        out.push(b'"');
+        out.extend_from_slice(key);
+        out.extend_from_slice(b"\":");
+        // Writing a number into a Vec does not fail.
+        let _ = serde_json::to_writer(&mut *out, value);
+    }
+    out.push(b'}');
+}
+
+impl Time {
+    /// Appends `{"sec":…,"nsec":…}`, as serde_json writes the time.
+    pub(crate) fn write_json(&self, out: &mut Vec<u8>) {
+        use std::io::Write as _;
+        let _ = write!(out, r#"{{"sec":{},"nsec":{}}}"#, self.sec, self.nsec);
     }
 }
 
@@ -249,11 +301,13 @@ pub(crate) struct KeyValue {
     value: String,
 }
 
-/// `foxglove.SceneEntity` in the world frame, drawn until replaced or deleted.
+/// `foxglove.SceneEntity`, drawn until replaced or deleted: in the world frame
+/// where it was at `timestamp` ([`new`](Self::new)), or locked to a frame that
+/// moves ([`locked`](Self::locked)).
 #[derive(Debug, Clone, Serialize)]
 pub(crate) struct Entity {
     timestamp: Time,
-    frame_id: &'static str,
+    frame_id: Cow<'static, str>,
     id: String,
     lifetime: Forever,
     frame_locked: bool,
@@ -269,13 +323,24 @@ pub(crate) struct Entity {
 }
 
 impl Entity {
+    /// An entity in the world frame.
     pub(crate) fn new(timestamp: Time, id: impl Into<String>) -> Self {
+        Self::in_frame(timestamp, id, Cow::Borrowed(FRAME), false)
+    }
+
+    /// An entity in `frame` that follows it as the frame moves: the viewer
+    /// places it with the frame's latest transform (`/tf`) at the time shown.
+    pub(crate) fn locked(timestamp: Time, id: impl Into<String>, frame: String) -> Self {
+        Self::in_frame(timestamp, id, Cow::Owned(frame), true)
+    }
+
+    fn in_frame(timestamp: Time, id: impl Into<String>, frame_id: Cow<'static, str>, frame_locked: bool) -> Self {
         Self {
             timestamp,
-            frame_id: FRAME,
+            frame_id,
             id: id.into(),
             lifetime: FOREVER,
-            frame_locked: false,
+            frame_locked,
             metadata: Vec::new(),
             arrows: [],
             cubes: Vec::new(),
@@ -306,6 +371,9 @@ impl Entity {
         self
     }
 
+    /// With a label (the recorder writes labelled agents directly; see
+    /// `write::agents`, checked against this).
+    #[cfg(test)]
     pub(crate) fn text(mut self, text: Text) -> Self {
         self.texts.push(text);
         self

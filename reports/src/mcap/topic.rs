@@ -17,8 +17,11 @@ pub const MAP: &str = "/scene/map";
 /// `foxglove.FrameTransforms`, every step: the frame tree, `map` → each agent
 /// in the scene → its sensors.
 pub const TRANSFORMS: &str = "/tf";
-/// `foxglove.SceneUpdate`, every step: agents, their ids and fields of view.
+/// `foxglove.SceneUpdate`, every step: agents and their ids.
 pub const AGENTS: &str = "/scene/agents";
+/// `foxglove.SceneUpdate`, whenever the agents with sensors in the scene
+/// change: their sensors' fields of view, each locked to its sensor's frame.
+pub const FIELDS_OF_VIEW: &str = "/scene/fields_of_view";
 /// `foxglove.Grid`, at the grid rate: fused probability and uncertainty.
 pub const FUSED_GRID: &str = "/fusion/grid";
 /// `sightline.Packet`, one per V2X packet.

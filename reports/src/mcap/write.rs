@@ -34,6 +34,7 @@ use crate::{Tool, sha256_hex};
 use channel::{REQUIREMENTS, SCENARIO, SCENE};
 use scene::{field_of_view, map_entities};
 
+mod agents;
 mod channel;
 mod outcomes;
 mod scene;
@@ -150,6 +151,12 @@ pub struct Recorder<'s, W: Write + Seek> {
     cooperating: BTreeSet<usize>,
     /// Cooperating agents whose detections were shown at the previous step.
     shown: BTreeSet<usize>,
+    /// Agents whose fields of view `/scene/fields_of_view` shows, in order.
+    fields_shown: Vec<usize>,
+    /// Per agent, what its `/tf` and `/scene/agents` JSON holds at every step.
+    agent_json: Vec<agents::AgentJson>,
+    /// The JSON of the message being written, reused from message to message.
+    buffer: Vec<u8>,
     /// Requirements at the recorded point whose metric the steps give.
     signalled: Vec<(String, Metric, sightline_dsl::Bound)>,
     running: Running,
@@ -185,6 +192,9 @@ impl<'s, W: Write + Seek> Recorder<'s, W> {
             ego: None,
             cooperating: BTreeSet::new(),
             shown: BTreeSet::new(),
+            fields_shown: Vec::new(),
+            agent_json: Vec::new(),
+            buffer: Vec::new(),
             signalled: Vec::new(),
             running: Running {
                 world: None,
@@ -300,6 +310,8 @@ impl<'s, W: Write + Seek> Recorder<'s, W> {
             .map(|p| p.cooperating.iter().copied().collect())
             .unwrap_or_default();
         self.shown.clear();
+        self.fields_shown.clear();
+        self.agent_json.clear();
         self.agents.clear();
         self.fields_of_view.clear();
         if let Some(world) = world {
@@ -373,6 +385,7 @@ impl<W: Write + Seek> TraceSink for Recorder<'_, W> {
                     .collect()
             })
             .collect();
+        self.render_agents();
     }
 
     fn wants_grids(&self, step: usize) -> bool {

@@ -64,6 +64,16 @@ impl<W: Write + Seek> Recorder<'_, W> {
         }
     }
 
+    /// [`publish`](Self::publish) of a message already encoded, `json`.
+    pub(super) fn publish_json(&mut self, topic: &str, schema: SchemaSpec, log_time: u64, json: &[u8]) {
+        if self.failure.is_some() {
+            return;
+        }
+        if let Err(error) = self.try_write(topic, schema, log_time, json) {
+            self.failure = Some(error);
+        }
+    }
+
     fn try_publish(
         &mut self,
         topic: &str,
@@ -71,6 +81,11 @@ impl<W: Write + Seek> Recorder<'_, W> {
         log_time: u64,
         message: &impl Serialize,
     ) -> Result<(), WriteError> {
+        let data = serde_json::to_vec(message)?;
+        self.try_write(topic, schema, log_time, &data)
+    }
+
+    fn try_write(&mut self, topic: &str, schema: SchemaSpec, log_time: u64, data: &[u8]) -> Result<(), WriteError> {
         let (out, schemas) = (&mut self.out, &mut self.schemas);
         let channel_id = registered(&mut self.channels, topic, || {
             let schema_id = registered(schemas, schema.name, || {
@@ -78,7 +93,6 @@ impl<W: Write + Seek> Recorder<'_, W> {
             })?;
             out.add_channel(schema_id, topic, "json", &BTreeMap::new())
         })?;
-        let data = serde_json::to_vec(message)?;
         self.sequence += 1;
         self.out.write_to_known_channel(
             &MessageHeader {
@@ -87,7 +101,7 @@ impl<W: Write + Seek> Recorder<'_, W> {
                 log_time,
                 publish_time: log_time,
             },
-            &data,
+            data,
         )?;
         Ok(())
     }

@@ -1,7 +1,7 @@
 //! The scene a recording shows in Foxglove's 3D panel: the map (`/scene/map`),
 //! the frame tree (`/tf`: `map` → each agent → its sensors), the agents with
-//! their fields of view (`/scene/agents`) and what each cooperating agent
-//! detected (`/perception/<id>/detections`), with the shapes and colours they
+//! their ids (`/scene/agents`), their sensors' fields of view
+//! (`/scene/fields_of_view`) and what each cooperating agent detected (`/perception/<id>/detections`), with the shapes and colours they
 //! are drawn in.
 
 use std::collections::BTreeSet;
@@ -12,17 +12,10 @@ use sightline_dsl::{Agent, AgentKind, Area, Grid as CellGrid, World};
 use sightline_engine::trace::{AgentState, Body, CooperatorStep, Vector};
 
 use super::Recorder;
+use super::agents::{AgentJson, sensor_frame, write_agents, write_transforms};
 use super::channel::{SCENE, TRANSFORMS};
-use crate::mcap::foxglove::{
-    Color, Cube, Entity, FRAME, FrameTransform, FrameTransforms, Line, LineType, Pose3, SceneUpdate, Text, Time,
-    Vector3,
-};
+use crate::mcap::foxglove::{Color, Cube, Entity, Line, LineType, Pose3, SceneUpdate, Time, Vector3};
 use crate::mcap::topic;
-
-/// The frame of sensor `index` of agent `agent` (`<agent>/sensor<index>`).
-fn sensor_frame(agent: &str, index: usize) -> String {
-    format!("{agent}/sensor{index}")
-}
 
 /// Segments of a full circle (a 360° sensor's range, a region).
 const CIRCLE_SEGMENTS: usize = 72;
@@ -35,7 +28,6 @@ const CONNECTED: Color = Color::rgba(0.2, 0.45, 0.95, 0.9);
 const VEHICLE: Color = Color::rgba(0.55, 0.55, 0.6, 0.9);
 const PEDESTRIAN: Color = Color::rgba(0.95, 0.55, 0.1, 0.9);
 const RSU: Color = Color::rgba(0.6, 0.3, 0.85, 0.9);
-const LABEL: Color = Color::rgba(1.0, 1.0, 1.0, 1.0);
 const FOV: Color = Color::rgba(0.3, 0.8, 1.0, 0.35);
 const ROAD: Color = Color::rgba(0.7, 0.7, 0.7, 0.8);
 const OCCLUDER: Color = Color::rgba(0.85, 0.3, 0.25, 1.0);
@@ -46,64 +38,77 @@ const ESTIMATE: Color = Color::rgba(0.1, 0.9, 0.9, 0.9);
 
 impl<W: Write + Seek> Recorder<'_, W> {
     /// `/tf` and `/scene/agents`: every agent in the scene as a frame and as a
-    /// box with its id, and its sensors as frames and fields of view.
+    /// box with its id, and its sensors as frames and (when they change)
+    /// fields of view.
     pub(super) fn publish_agents(&mut self, time: u64, states: &[Option<AgentState>]) {
         let stamp = Time::from_nanos(time);
-        let transforms = states
-            .iter()
-            .zip(&self.agents)
-            .zip(&self.fields_of_view)
-            .filter_map(|((state, agent), sensors)| Some((state.as_ref()?, agent, sensors)))
-            .flat_map(|(state, agent, sensors)| {
-                let own = FrameTransform::new(stamp, FRAME, agent.id.clone(), Pose3::planar(state.pose, 0.0));
-                let mounts = sensors.iter().enumerate().map(|(i, (mount, _, _))| {
-                    FrameTransform::new(
-                        stamp,
-                        agent.id.clone(),
-                        sensor_frame(&agent.id, i),
-                        Pose3::planar(*mount, 0.0),
-                    )
-                });
-                std::iter::once(own).chain(mounts)
-            })
-            .collect();
-        self.publish(topic::TRANSFORMS, TRANSFORMS, time, &FrameTransforms { transforms });
-        let entities = states
+        let mut buffer = std::mem::take(&mut self.buffer);
+        write_transforms(&mut buffer, stamp, states, &self.agent_json);
+        self.publish_json(topic::TRANSFORMS, TRANSFORMS, time, &buffer);
+        self.publish_fields_of_view(time, states);
+        write_agents(&mut buffer, stamp, states, &self.agents, &self.agent_json);
+        self.publish_json(topic::AGENTS, SCENE, time, &buffer);
+        self.buffer = buffer;
+    }
+
+    /// What [`publish_agents`](Self::publish_agents) writes of each agent at
+    /// every step and no step changes: rendered once the point's agents are
+    /// known.
+    pub(super) fn render_agents(&mut self) {
+        self.agent_json = self
+            .agents
             .iter()
             .enumerate()
-            .filter_map(|(i, state)| Some((i, (*state)?, self.agents.get(i)?)))
-            .map(|(i, state, agent)| {
-                let height = agent.kind.height();
-                let mut entity = Entity::new(stamp, agent.id.clone())
-                    .meta("kind", agent.kind.name())
-                    .meta("speed_mps", format!("{:.2}", state.speed))
-                    .cube(Cube {
-                        pose: Pose3::planar(state.pose, height / 2.0),
-                        size: Vector3 {
-                            x: agent.length,
-                            y: agent.width,
-                            z: height,
-                        },
-                        color: self.color(i, agent),
-                    })
-                    .text(Text::label(
-                        Pose3::planar(state.pose, height + 1.0),
-                        agent.id.clone(),
-                        LABEL,
-                    ));
-                for (mount, kind, outline) in self.fields_of_view.get(i).into_iter().flatten() {
-                    entity = entity.line(Line::new(
-                        *kind,
-                        Pose3::planar(state.pose * *mount, 0.05),
-                        outline.iter().copied(),
-                        0.1,
-                        FOV,
-                    ));
-                }
-                entity
+            .map(|(i, agent)| {
+                let mounts = self.fields_of_view[i].iter().map(|(mount, _, _)| *mount);
+                AgentJson::new(agent, self.color(i, agent), mounts)
             })
             .collect();
-        self.publish(topic::AGENTS, SCENE, time, &SceneUpdate::replace(stamp, entities));
+    }
+
+    /// `/scene/fields_of_view`: each sensor's field of view of every agent in
+    /// the scene, locked to the sensor's frame (so the viewer moves it with the
+    /// agent's `/tf`); written only when the agents with sensors in the scene
+    /// change, each message the whole set (a viewer that seeks reads the
+    /// latest message of each topic, so none may depend on an earlier one).
+    fn publish_fields_of_view(&mut self, time: u64, states: &[Option<AgentState>]) {
+        let present: Vec<usize> = states
+            .iter()
+            .zip(&self.fields_of_view)
+            .enumerate()
+            .filter(|(_, (state, sensors))| state.is_some() && !sensors.is_empty())
+            .map(|(i, _)| i)
+            .collect();
+        if present == self.fields_shown {
+            return;
+        }
+        let stamp = Time::from_nanos(time);
+        let entities = present
+            .iter()
+            .flat_map(|&i| {
+                let agent = &self.agents[i];
+                self.fields_of_view[i]
+                    .iter()
+                    .enumerate()
+                    .map(move |(k, (_, kind, outline))| {
+                        let frame = sensor_frame(&agent.id, k);
+                        Entity::locked(stamp, frame.clone(), frame).line(Line::new(
+                            *kind,
+                            Pose3::at(0.0, 0.0, 0.05, 0.0),
+                            outline.iter().copied(),
+                            0.1,
+                            FOV,
+                        ))
+                    })
+            })
+            .collect();
+        self.publish(
+            topic::FIELDS_OF_VIEW,
+            SCENE,
+            time,
+            &SceneUpdate::replace(stamp, entities),
+        );
+        self.fields_shown = present;
     }
 
     fn color(&self, index: usize, agent: &Agent) -> Color {
@@ -168,6 +173,14 @@ impl<W: Write + Seek> Recorder<'_, W> {
     pub(super) fn clear_scene(&mut self, time: u64) {
         let stamp = Time::from_nanos(time);
         self.publish(topic::AGENTS, SCENE, time, &SceneUpdate::replace(stamp, Vec::new()));
+        if !std::mem::take(&mut self.fields_shown).is_empty() {
+            self.publish(
+                topic::FIELDS_OF_VIEW,
+                SCENE,
+                time,
+                &SceneUpdate::replace(stamp, Vec::new()),
+            );
+        }
         for gone in std::mem::take(&mut self.shown) {
             let topic = topic::detections(&self.agent_id(gone));
             self.publish(&topic, SCENE, time, &SceneUpdate::replace(stamp, Vec::new()));
