@@ -14,8 +14,9 @@
 //! fraction above 0 (the sightings the step's `SensorView`s carry).
 
 use serde::{Deserialize, Serialize};
-use sightline_dsl::{Agent, AgentKind, Metric};
+use sightline_dsl::{Agent, AgentKind, Metric, World};
 
+use crate::system_objects::{AroundEgo, SystemObject};
 use crate::trace::WorldStep;
 
 /// One detection of the system, in the host agent's frame: metres forward of
@@ -47,6 +48,9 @@ pub struct SystemMetrics {
     pub latencies: u64,
     /// Σ of their latencies, seconds.
     pub latency_sum: f64,
+    /// Every road user around the ego, with when the system first detected
+    /// it ([`SystemObject`]); empty where the judge kept no record.
+    pub objects: Vec<SystemObject>,
 }
 
 impl SystemMetrics {
@@ -85,6 +89,7 @@ pub struct SystemJudge {
     road_user: Vec<bool>,
     first_in_sight: Vec<Option<f64>>,
     first_matched: Vec<Option<f64>>,
+    around: Option<AroundEgo>,
     metrics: SystemMetrics,
 }
 
@@ -99,8 +104,16 @@ impl SystemJudge {
             road_user: Vec::new(),
             first_in_sight: Vec::new(),
             first_matched: Vec::new(),
+            around: None,
             metrics: SystemMetrics::default(),
         }
+    }
+
+    /// The same judge, also keeping the record of every road user around
+    /// `world`'s perception ego ([`SystemMetrics::objects`]).
+    pub fn recording(mut self, world: &World) -> Self {
+        self.around = Some(AroundEgo::new(world, self.host));
+        self
     }
 
     /// Every agent of the run, by index (a sink's `start`).
@@ -108,6 +121,17 @@ impl SystemJudge {
         self.road_user = agents.iter().map(|a| a.kind != AgentKind::Rsu).collect();
         self.first_in_sight = vec![None; agents.len()];
         self.first_matched = vec![None; agents.len()];
+        if let Some(around) = &mut self.around {
+            around.start(agents);
+        }
+    }
+
+    /// Follows the road users around the ego at `step`, whether or not the
+    /// system is asked then (for the record).
+    pub fn observe(&mut self, step: &WorldStep<'_>) {
+        if let Some(around) = &mut self.around {
+            around.step(step);
+        }
     }
 
     /// Judges the system's `detections` at `step`; a step without the host in
@@ -173,6 +197,9 @@ impl SystemJudge {
                 self.metrics.latencies += 1;
                 self.metrics.latency_sum += (matched - sight).max(0.0);
             }
+        }
+        if let Some(around) = &self.around {
+            self.metrics.objects = around.records((&self.first_in_sight, &self.first_matched));
         }
         self.metrics
     }

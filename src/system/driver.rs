@@ -3,7 +3,7 @@
 //! comes back and is judged. The first failure stops the exchange and is
 //! kept, named by the step; the run then has no verdict but `error`.
 
-use sightline_dsl::{Agent, SystemUnderTest};
+use sightline_dsl::{Agent, SystemUnderTest, World};
 use sightline_engine::TraceSink;
 use sightline_engine::outcome::{SystemJudge, SystemMetrics};
 use sightline_engine::trace::WorldStep;
@@ -51,8 +51,8 @@ pub struct Driver<'s> {
 }
 
 impl<'s> Driver<'s> {
-    /// Starts `system` and checks its protocol's version.
-    pub fn start(system: &'s SystemUnderTest, env: &[(&str, String)]) -> Result<Self, Failure> {
+    /// Starts `system`, run in `world`, and checks its protocol's version.
+    pub fn start(system: &'s SystemUnderTest, world: &World, env: &[(&str, String)]) -> Result<Self, Failure> {
         let fail = |error| Failure {
             when: When::Start,
             error,
@@ -64,7 +64,7 @@ impl<'s> Driver<'s> {
             system,
             child: Some(child),
             agents: Vec::new(),
-            judge: SystemJudge::new(system.agent, system.sensors.clone(), system.gate),
+            judge: SystemJudge::new(system.agent, system.sensors.clone(), system.gate).recording(world),
             failure: None,
         })
     }
@@ -109,6 +109,7 @@ impl TraceSink for Driver<'_> {
         if self.failure.is_some() {
             return;
         }
+        self.judge.observe(step);
         if let Err(error) = self.exchange(step) {
             self.failure = Some(Failure {
                 when: When::Step(step.step, step.time),

@@ -7,7 +7,7 @@ mod child;
 mod driver;
 
 use anyhow::anyhow;
-use sightline_dsl::{Scenario, SystemUnderTest};
+use sightline_dsl::{Experiment, Scenario, SystemUnderTest};
 use sightline_engine::{Outcome, Run};
 use sightline_reports::osi::system::{PROTOCOL, PROTOCOL_ENV, VIEWS_ENV};
 
@@ -22,7 +22,11 @@ pub fn run(scenario: &Scenario, system: &SystemUnderTest, pool: &rayon::ThreadPo
         (PROTOCOL_ENV, PROTOCOL.to_string()),
         (VIEWS_ENV, system.sensors.len().to_string()),
     ];
-    let mut driver = Driver::start(system, &env).map_err(failed)?;
+    let world = match scenario.points.first().map(|p| &p.setup.experiment) {
+        Some(Experiment::World(world)) => world,
+        _ => return Err(anyhow!("a system under test runs in a perception world only")),
+    };
+    let mut driver = Driver::start(system, world, &env).map_err(failed)?;
     let mut outcome = pool.install(|| sightline_engine::simulate_point(scenario, 0, &mut driver));
     let metrics = driver.finish().map_err(failed)?;
     match &mut outcome {

@@ -41,7 +41,7 @@ pub(super) fn selection(
             });
             let of_record: Vec<String> = ObjectProperty::ALL
                 .iter()
-                .filter(|p| p.of_record() && (joint || !p.needs_grid()))
+                .filter(|p| p.of_record() && !p.of_system() && (joint || !p.needs_grid()))
                 .map(|p| format!("`{}`", p.name()))
                 .collect();
             ctx.error(
@@ -140,9 +140,10 @@ pub(super) fn selection(
 }
 
 /// The road users of `world` a record can be about: every agent but the ego
-/// and the roadside units, with its index.
+/// (the semantic pipeline's, or in a perception world the perception's) and
+/// the roadside units, with its index.
 fn road_users(world: &World) -> impl Iterator<Item = (usize, &str)> {
-    let ego = world.semantic.as_ref().map(|s| s.ego);
+    let ego = (world.semantic.as_ref().map(|s| s.ego)).or(world.perception.as_ref().map(|p| p.ego));
     world
         .agents
         .iter()

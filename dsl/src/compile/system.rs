@@ -43,7 +43,8 @@ pub(super) fn system_under_test(
         & ctx.within(&path.key("min_existence"), min_existence, range::PROBABILITY);
     let alone_ok = runs_once(ctx, raw, requirements);
     let (agent, sensors) = served(ctx, system, points?, &path)?;
-    (command_ok && limits_ok && alone_ok).then(|| SystemUnderTest {
+    let host_ok = host_unselected(ctx, &system.agent, requirements);
+    (command_ok && limits_ok && alone_ok && host_ok).then(|| SystemUnderTest {
         command: system.command.clone(),
         agent,
         agent_id: system.agent.clone(),
@@ -212,6 +213,31 @@ fn served(
     Some((agent, sensors))
 }
 
+/// Errors where a check on the system's record selects its host agent by
+/// id: the record lists the road users around it, never the host itself.
+fn host_unselected(ctx: &mut Context<'_>, host: &str, requirements: &[Requirement]) -> bool {
+    let mut ok = true;
+    for (i, requirement) in requirements.iter().enumerate() {
+        let Check::PerObject { property, .. } = requirement.check else {
+            continue;
+        };
+        let Some(at) = requirement.objects.ids.iter().position(|id| id == host) else {
+            continue;
+        };
+        if property.of_system() {
+            let path = Path::root().key("requirements").index(i).key("check");
+            ctx.error(
+                &path.key("objects").key("ids").index(at),
+                ErrorKind::Invalid(format!(
+                    "`{host}` is the agent the system under test serves, which its record does not list"
+                )),
+            );
+            ok = false;
+        }
+    }
+    ok
+}
+
 /// Errors at each requirement that checks a metric of the system under test
 /// in a scenario that declares none.
 fn refuse_system_metrics(ctx: &mut Context<'_>, requirements: &[Requirement]) {
@@ -220,6 +246,16 @@ fn refuse_system_metrics(ctx: &mut Context<'_>, requirements: &[Requirement]) {
         let (metrics, at) = match &requirement.check {
             Check::Metric { metric, .. } => (vec![*metric], check.key("metric")),
             Check::Compare { metric, other, .. } => (vec![*metric, *other], check),
+            Check::PerObject { property, .. } if property.of_system() => {
+                ctx.error(
+                    &check.key("per_object"),
+                    ErrorKind::Invalid(format!(
+                        "`{}` judges a system under test, and the scenario declares no `system_under_test`",
+                        property.name()
+                    )),
+                );
+                continue;
+            }
             _ => continue,
         };
         if let Some(metric) = metrics.iter().find(|m| m.of_system()) {

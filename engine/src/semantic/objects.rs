@@ -203,11 +203,7 @@ impl Encounters {
     /// Nothing seen yet of the `agents` agents of a scene of `world` run with
     /// `semantic`.
     pub(super) fn new(world: &World, semantic: &Semantic, agents: usize) -> Self {
-        let crosswalks = world.crosswalks.iter().map(|c| (c.id.clone(), crosswalk_area(c)));
-        let others = world.interaction_areas.iter().chain(&world.areas);
-        let regions: Vec<(String, Area)> = crosswalks
-            .chain(others.map(|a| (a.id.clone(), a.shape.clone())))
-            .collect();
+        let regions = regions(world);
         Self {
             ego: semantic.ego,
             proximity: semantic.proximity,
@@ -334,6 +330,16 @@ impl Encounters {
         critical.pet = post_encroachment(&ego_boxes, &boxes);
         critical
     }
+}
+
+/// The regions of `world` a record names, with their ids: its crosswalks,
+/// interaction areas and declared `areas`, in declaration order.
+pub(crate) fn regions(world: &World) -> Vec<(String, Area)> {
+    let crosswalks = world.crosswalks.iter().map(|c| (c.id.clone(), crosswalk_area(c)));
+    let others = world.interaction_areas.iter().chain(&world.areas);
+    crosswalks
+        .chain(others.map(|a| (a.id.clone(), a.shape.clone())))
+        .collect()
 }
 
 /// A road user's criticality against the ego over a run.
