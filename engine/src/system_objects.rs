@@ -100,10 +100,17 @@ impl AroundEgo {
     /// Nothing seen yet around `world`'s perception ego, with the system
     /// serving agent `host`.
     pub(crate) fn new(world: &World, host: usize) -> Self {
+        let ego = world.perception.as_ref().map_or(host, |p| p.ego);
+        Self::with(ego, host, regions(world))
+    }
+
+    /// Nothing seen yet around agent `ego`, with the system serving agent
+    /// `host`, in `regions`.
+    fn with(ego: usize, host: usize, regions: Vec<(String, Area)>) -> Self {
         Self {
-            ego: world.perception.as_ref().map_or(host, |p| p.ego),
+            ego,
             host,
-            regions: regions(world),
+            regions,
             agents: Vec::new(),
             by_agent: Vec::new(),
             inside: Vec::new(),
@@ -185,9 +192,146 @@ impl AroundEgo {
 
 #[cfg(test)]
 mod tests {
+    use approx::assert_relative_eq;
+    use sightline_dsl::Motion;
     use sightline_dsl::ObjectProperty::{SutAnticipation, SutDelay, SutLead};
 
     use super::*;
+    use crate::math::{Pose, Vector};
+    use crate::trace::CooperatorStep;
+    use crate::world::{AgentState, Observation, Sighting, Visibility};
+
+    fn agent(id: &str, kind: AgentKind) -> Agent {
+        Agent {
+            id: id.into(),
+            kind,
+            length: 4.0,
+            width: 2.0,
+            motion: Motion::Fixed {
+                position: [0.0, 0.0],
+                heading: 0.0,
+            },
+            connected: false,
+            sensors: Vec::new(),
+            antenna_m: None,
+        }
+    }
+
+    fn at(x: f64, y: f64) -> Option<AgentState> {
+        Some(AgentState {
+            pose: Pose::new(Vector::new(x, y), 0.0),
+            speed: 0.0,
+            offset: 0.0,
+            limit: f64::INFINITY,
+        })
+    }
+
+    /// Step `step` (0.1 s each) with the agents at `agents` and the ego, when
+    /// in the scene, sighting `(target, visible fraction)`.
+    fn step(around: &mut AroundEgo, step: usize, agents: &[Option<AgentState>], sighted: &[(usize, f64)]) {
+        let sighted = sighted
+            .iter()
+            .map(|&(target, visible_fraction)| Sighting {
+                sensor: 0,
+                target,
+                visibility: Visibility::Los,
+                visible_fraction,
+                detected: None,
+            })
+            .collect();
+        let observation = Observation::with_sighted(sighted);
+        let cooperators: Vec<CooperatorStep<'_>> = (agents[0].iter())
+            .map(|ego| CooperatorStep {
+                agent: 0,
+                estimate: ego.pose,
+                observation: &observation,
+            })
+            .collect();
+        around.step(&WorldStep {
+            step,
+            time: step as f64 * 0.1,
+            agents,
+            cooperators: &cooperators,
+            measured: None,
+        });
+    }
+
+    /// Four steps by hand. The ego (0) at the origin, the host (1), a
+    /// pedestrian `a` (2) walking towards the ego through `zone` (a disc of
+    /// 3 m about (0, 10)), a roadside unit (3), a car `b` (4) never in the
+    /// scene and a car `c` (5) driving in. At step 2 the ego is out of the
+    /// scene: `a`, 1 m from where the ego was, does not count. At step 3 the
+    /// ego is at (0, 2): `a` 6 m off, `c` 22 m off, both closest then. The
+    /// ego sights `c` at step 0, and `a` at step 1 (at step 0 `a` is in range
+    /// but wholly hidden).
+    #[test]
+    fn the_record_by_hand() {
+        let zone = Area::Circle {
+            center: [0.0, 10.0],
+            radius: 3.0,
+        };
+        let mut around = AroundEgo::with(0, 1, vec![("zone".into(), zone)]);
+        around.start(&[
+            agent("ego", AgentKind::Car),
+            agent("host", AgentKind::Car),
+            agent("a", AgentKind::Pedestrian),
+            agent("rsu", AgentKind::Rsu),
+            agent("b", AgentKind::Car),
+            agent("c", AgentKind::Car),
+        ]);
+        let rsu = at(5.0, 5.0);
+        let host = at(10.0, 0.0);
+        step(
+            &mut around,
+            0,
+            &[at(0.0, 0.0), host, at(0.0, 20.0), rsu, None, at(30.0, 0.0)],
+            &[(5, 0.5), (2, 0.0)],
+        );
+        step(
+            &mut around,
+            1,
+            &[at(0.0, 0.0), host, at(0.0, 12.0), rsu, None, at(25.0, 0.0)],
+            &[(2, 0.3)],
+        );
+        step(
+            &mut around,
+            2,
+            &[None, host, at(0.0, 1.0), rsu, None, at(24.0, 0.0)],
+            &[],
+        );
+        step(
+            &mut around,
+            3,
+            &[at(0.0, 2.0), host, at(0.0, 8.0), rsu, None, at(22.0, 2.0)],
+            &[(2, 1.0)],
+        );
+        // The system's judge had `a` in sight at 0 s and detected it at
+        // 0.1 s, had `c` in sight at 0.1 s and never detected it.
+        let in_sight = [None, Some(0.0), Some(0.0), None, None, Some(0.1)];
+        let detected = [None, None, Some(0.1), None, None, None];
+        let records = around.records((&in_sight, &detected));
+        let ids: Vec<&str> = records.iter().map(|r| r.id.as_str()).collect();
+        assert_eq!(ids, ["a", "c"]);
+        let (a, c) = (&records[0], &records[1]);
+        assert_eq!(
+            (a.first_in_sight, a.first_detected, a.first_seen_by_ego),
+            (Some(0.0), Some(0.1), Some(0.1))
+        );
+        assert_relative_eq!(a.closest.time, 0.3, epsilon = 1e-12);
+        assert_relative_eq!(a.closest.distance, 6.0);
+        assert_eq!(
+            (a.closest.position, a.areas.as_slice()),
+            ([0.0, 8.0], ["zone".to_string()].as_slice())
+        );
+        assert_relative_eq!(a.property(SutLead).unwrap(), 0.2, epsilon = 1e-12);
+        assert_eq!(a.property(SutAnticipation), Some(0.0));
+        assert_relative_eq!(a.property(SutDelay).unwrap(), 0.1);
+        assert_eq!(
+            (c.first_seen_by_ego, c.first_detected, c.closest.distance),
+            (Some(0.0), None, 22.0)
+        );
+        assert!(c.areas.is_empty() && c.judged_on(SutDelay) && c.property(SutLead).is_none());
+    }
 
     fn object(in_sight: Option<f64>, detected: Option<f64>, seen_by_ego: Option<f64>) -> SystemObject {
         SystemObject {

@@ -43,7 +43,7 @@ pub(super) fn system_under_test(
         & ctx.within(&path.key("min_existence"), min_existence, range::PROBABILITY);
     let alone_ok = runs_once(ctx, raw, requirements);
     let (agent, sensors) = served(ctx, system, points?, &path)?;
-    let host_ok = host_unselected(ctx, &system.agent, requirements);
+    let host_ok = host_unselected(ctx, raw, &system.agent, requirements);
     (command_ok && limits_ok && alone_ok && host_ok).then(|| SystemUnderTest {
         command: system.command.clone(),
         agent,
@@ -215,15 +215,21 @@ fn served(
 
 /// Errors where a check on the system's record selects its host agent by
 /// id: the record lists the road users around it, never the host itself.
-fn host_unselected(ctx: &mut Context<'_>, host: &str, requirements: &[Requirement]) -> bool {
+fn host_unselected(ctx: &mut Context<'_>, raw: &RawScenario, host: &str, requirements: &[Requirement]) -> bool {
     let mut ok = true;
-    for (i, requirement) in requirements.iter().enumerate() {
+    for requirement in requirements {
         let Check::PerObject { property, .. } = requirement.check else {
             continue;
         };
         let Some(at) = requirement.objects.ids.iter().position(|id| id == host) else {
             continue;
         };
+        // Located in the file by its id: some requirements may not have compiled.
+        let i = raw
+            .requirements
+            .iter()
+            .position(|r| r.id == requirement.id)
+            .unwrap_or_default();
         if property.of_system() {
             let path = Path::root().key("requirements").index(i).key("check");
             ctx.error(
