@@ -59,3 +59,54 @@ pub(super) fn system_table(system: &SystemDetail) -> TableView {
             .collect(),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::results::{ClosestApproach, SystemObjectList};
+
+    fn object(id: &str, detected: Option<f64>) -> SystemObjectResult {
+        SystemObjectResult {
+            id: id.into(),
+            class: "car",
+            first_in_sight: Some(1.0),
+            first_detected: detected,
+            first_seen_by_ego: None,
+            closest: ClosestApproach {
+                time: 4.0,
+                distance: 12.5,
+                position: [0.0, 0.0],
+            },
+            lead: detected.map(|d| 4.0 - d),
+            anticipation: detected.map(|d| 4.0 - d),
+            delay: detected.map(|d| d - 1.0),
+            areas: Vec::new(),
+        }
+    }
+
+    /// The road user never detected comes first, and what never happened is
+    /// a dash.
+    #[test]
+    fn the_undetected_come_first() {
+        let table = system_table(&SystemDetail {
+            objects: SystemObjectList {
+                listed: 1002,
+                records: vec![object("a", Some(1.5)), object("b", None)],
+                omitted: 1000,
+            },
+        });
+        assert_eq!(
+            table.rows[0],
+            ["b", "car", "1", "—", "—", "4", "12.5", "—", "—", "—"].map(String::from)
+        );
+        assert_eq!(
+            table.rows[1],
+            ["a", "car", "1", "1.5", "—", "4", "12.5", "2.5", "2.5", "0.5"].map(String::from)
+        );
+        assert!(
+            table.caption.contains("2 of 1002 (2 in results.json)"),
+            "{}",
+            table.caption
+        );
+    }
+}
