@@ -60,6 +60,7 @@ mod run;
 mod semantic;
 mod sink;
 mod system;
+mod system_objects;
 mod v2x;
 mod world;
 

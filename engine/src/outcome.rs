@@ -12,7 +12,8 @@
 //!   went over the radio ([`RadioStats`]), and the grids of one step ([`Snapshot`] of [`FusedCell`]s with their decided
 //!   [`State`]).
 //! - A system under test in a perception world: its [`SystemMetrics`], summed
-//!   by a [`SystemJudge`] from its [`Detection`]s at each step.
+//!   by a [`SystemJudge`] from its [`Detection`]s at each step, with the
+//!   record of every road user around the ego ([`SystemObject`]).
 //! - A semantic world (seed 002): [`SemanticMetrics`] with its density rows
 //!   ([`DensityRow`]), delivery bins ([`DeliveryBin`]), label counts
 //!   ([`LabelCounts`]), per-step [`Series`], and the per-object
@@ -26,6 +27,7 @@ pub use crate::semantic::{
     Category, Closest, DELIVERY_BIN, DENSITY_BIN, DeliveryBin, DensityRow, LabelCounts, ObjectRecord, SemanticMetrics,
 };
 pub use crate::system::{Detection, SystemJudge, SystemMetrics};
+pub use crate::system_objects::SystemObject;
 pub use crate::world::{
     Calibration, CellTally, DISTANCE_BIN, DISTANCE_BINS, DistanceBin, FusedCell, RELIABILITY_BINS, RadioStats,
     RecallByDistance, ReliabilityBin, Sightings, Snapshot, WorldMetrics, WorldOutcome,

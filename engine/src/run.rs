@@ -120,9 +120,21 @@ impl Outcome {
     /// `property` of every road user `selection` keeps, in order (`None` for
     /// one without the property): of every object that came within d_min of
     /// the ego for `warning_time` (which selects nothing), of every relevant
-    /// road user's record for the others; `None` where it is not measured
-    /// (a property of the fused grid outside a joint world).
+    /// road user's record for the others, of the system under test's record
+    /// for its properties (`sut_delay`: of those that came into a served
+    /// sensor's sight); `None` where it is not measured (a property of the
+    /// fused grid outside a joint world, of a system without one).
     pub fn per_object(&self, property: ObjectProperty, selection: &ObjectSelection) -> Option<Vec<Option<f64>>> {
+        if property.of_system() {
+            let Self::World(o) = self else { return None };
+            let objects = &o.system.as_ref()?.objects;
+            return Some(
+                (objects.iter())
+                    .filter(|object| object.selected_by(selection) && object.judged_on(property))
+                    .map(|object| object.property(property))
+                    .collect(),
+            );
+        }
         let m = self.semantic()?;
         if property.needs_grid() && !matches!(self, Self::World(_)) {
             return None;

@@ -23,6 +23,7 @@ use sightline_dsl::{Agent, AgentKind, Area, Metric, ObjectSelection, World};
 
 use crate::math::Point;
 use crate::semantic::{contains, regions};
+use crate::system_objects::{AroundEgo, SystemObject};
 use crate::trace::WorldStep;
 
 /// One detection of the system, in the host agent's frame: metres forward of
@@ -54,6 +55,9 @@ pub struct SystemMetrics {
     pub latencies: u64,
     /// Σ of their latencies, seconds.
     pub latency_sum: f64,
+    /// Every road user around the ego, with when the system first detected
+    /// it ([`SystemObject`]); empty where the judge kept no record.
+    pub objects: Vec<SystemObject>,
     /// Recall and latency over each selection the judge was given.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub selected: Vec<SelectedMetrics>,
@@ -140,6 +144,7 @@ pub struct SystemJudge {
     road_user: Vec<bool>,
     first_in_sight: Vec<Option<f64>>,
     first_matched: Vec<Option<f64>>,
+    around: Option<AroundEgo>,
     metrics: SystemMetrics,
     regions: Vec<(String, Area)>,
     agents: Vec<(String, AgentKind)>,
@@ -157,6 +162,7 @@ impl SystemJudge {
             road_user: Vec::new(),
             first_in_sight: Vec::new(),
             first_matched: Vec::new(),
+            around: None,
             metrics: SystemMetrics::default(),
             regions: Vec::new(),
             agents: Vec::new(),
@@ -191,6 +197,13 @@ impl SystemJudge {
         self
     }
 
+    /// The same judge, also keeping the record of every road user around
+    /// `world`'s perception ego ([`SystemMetrics::objects`]).
+    pub fn recording(mut self, world: &World) -> Self {
+        self.around = Some(AroundEgo::new(world, self.host));
+        self
+    }
+
     /// Every agent of the run, by index (a sink's `start`).
     pub fn start(&mut self, agents: &[Agent]) {
         self.road_user = agents.iter().map(|a| a.kind != AgentKind::Rsu).collect();
@@ -200,6 +213,17 @@ impl SystemJudge {
         for selecting in &mut self.selecting {
             selecting.first_in_sight = vec![None; agents.len()];
             selecting.first_matched = vec![None; agents.len()];
+        }
+        if let Some(around) = &mut self.around {
+            around.start(agents);
+        }
+    }
+
+    /// Follows the road users around the ego at `step`, whether or not the
+    /// system is asked then (for the record).
+    pub fn observe(&mut self, step: &WorldStep<'_>) {
+        if let Some(around) = &mut self.around {
+            around.step(step);
         }
     }
 
@@ -302,6 +326,9 @@ impl SystemJudge {
         for mut s in self.selecting {
             (s.metrics.latencies, s.metrics.latency_sum) = latencies(&s.first_in_sight, &s.first_matched);
             self.metrics.selected.push(s.metrics);
+        }
+        if let Some(around) = &self.around {
+            self.metrics.objects = around.records((&self.first_in_sight, &self.first_matched));
         }
         self.metrics
     }

@@ -146,7 +146,7 @@ pub fn render(
                 contribution_by_density,
                 objects: _,
             } => chart::semantic_charts(counts, contribution_by_density),
-            Detail::World { counts, semantic } => {
+            Detail::World { counts, semantic, .. } => {
                 let mut charts: Vec<Chart> = chart::reliability_chart(&counts.calibration)?.into_iter().collect();
                 if let Some(s) = semantic {
                     charts.extend(chart::semantic_charts(&s.counts, &s.contribution_by_density)?);

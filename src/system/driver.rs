@@ -109,6 +109,7 @@ impl TraceSink for Driver<'_> {
         if self.failure.is_some() {
             return;
         }
+        self.judge.observe(step);
         if let Err(error) = self.exchange(step) {
             self.failure = Some(Failure {
                 when: When::Step(step.step, step.time),

@@ -99,6 +99,7 @@ invalid_inputs! {
     system_under_test_runs_once => "system-under-test-run-once",
     system_metrics_need_a_system => "system-metric-without-system",
     system_checks_select_by_id_class_and_area_only => "system-under-test-objects",
+    system_object_properties_are_validated => "system-object-properties",
     semantic_ego_must_be_connected => "semantic-ego-not-connected",
     semantic_rate_must_fit_the_step => "semantic-rate-off-step",
     semantic_runs_must_be_at_least_one => "semantic-runs-zero",

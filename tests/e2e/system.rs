@@ -328,7 +328,7 @@ fn the_example_tracker_passes_and_the_flawed_one_fails_on_recall() {
     let (code, flawed) = run_example(&python, &example("flawed_tracker.yaml"), "2");
     assert_eq!(code, Some(1));
     let failing = crate::support::failing(&flawed);
-    assert_eq!(failing, ["SUT-REC-01", "SUT-REC-PED"]);
+    assert_eq!(failing, ["SUT-REC-01", "SUT-REC-PED", "SUT-DELAY-01"]);
     // The same road users in sight: the flaw is in what it reports of them.
     assert_eq!(
         metric(&results, "sut_recall"),
@@ -336,6 +336,87 @@ fn the_example_tracker_passes_and_the_flawed_one_fails_on_recall() {
     );
     let (recall, n) = metric(&flawed, "sut_recall");
     assert!(recall.unwrap() < 0.95 && n > 50, "{recall:?} over {n}");
+    // Road user by road user: the good tracker detects each as it comes into
+    // sight; the flawed one detects the two partly hidden on their way in
+    // (car_east behind the building's corner, walker_b behind walker_a) later,
+    // so warns of them later, and walker_a, hidden all along, by neither.
+    let good = records(&results);
+    let bad = records(&flawed);
+    let ids = |records: &[serde_json::Value]| records.iter().map(|r| r["id"].clone()).collect::<Vec<_>>();
+    assert_eq!(ids(&good), ["car_east", "car_west", "walker_a", "walker_b"]);
+    assert_eq!(ids(&bad), ids(&good));
+    for (good, bad) in good.iter().zip(&bad) {
+        let id = &good["id"];
+        assert_eq!(good["first_in_sight"], bad["first_in_sight"], "{id}");
+        assert_eq!(good["first_detected"], good["first_in_sight"], "{id}");
+        assert_eq!(
+            good["delay"].as_f64(),
+            good["first_in_sight"].as_f64().map(|_| 0.0),
+            "{id}"
+        );
+        if let (Some(sight), Some(detected)) = (bad["first_in_sight"].as_f64(), bad["first_detected"].as_f64()) {
+            assert!(
+                (bad["delay"].as_f64().unwrap() - (detected - sight)).abs() < 1e-9,
+                "{id}"
+            );
+            let lead = |r: &serde_json::Value| r["lead"].as_f64().unwrap();
+            assert!((lead(good) - lead(bad) - (detected - sight)).abs() < 1e-9, "{id}");
+        }
+    }
+    let late: Vec<_> = bad
+        .iter()
+        .filter(|r| r["delay"].as_f64() > Some(0.0))
+        .map(|r| r["id"].clone())
+        .collect();
+    assert_eq!(late, ["car_east", "walker_b"]);
+    assert!(bad[2]["first_in_sight"].is_null() && bad[2]["lead"].is_null());
+}
+
+/// The records of the system's road users in results.json.
+fn records(results: &serde_json::Value) -> Vec<serde_json::Value> {
+    let list = &results["sweep"][0]["system"]["objects"];
+    assert_eq!(list["omitted"], 0);
+    list["records"].as_array().expect("a list of records").clone()
+}
+
+/// A system on another agent than the ego (a connected car north of the
+/// building) has the pedestrians in sight long before the ego does: its
+/// anticipation is first seen by the ego − first detected, or for walker_a,
+/// whom the ego never sees, closest approach − first detected; neither the
+/// ego nor the host is listed. Served by the ego's own lidar, the system
+/// anticipates nothing, and the same requirement fails.
+#[test]
+fn a_system_serving_another_agent_anticipates_what_the_ego_cannot_see() {
+    let Some(python) = python() else { return };
+    let requirement = "requirements:\n  - id: SUT-ANT-01\n    text: The system knows of each pedestrian 1 s before \
+                       the ego sees it.\n    check: { per_object: sut_anticipation, at_least: 1, objects: { classes: \
+                       [pedestrian] } }\n";
+    let base = example("tracker.yaml");
+    let base = format!("{}{requirement}", &base[..base.find("requirements:").unwrap()]);
+    let car_west = base
+        .replace(
+            "speed: { target: 8 } }",
+            "speed: { target: 8 }, connected: true, sensors: [lidar] }",
+        )
+        .replace("agent: ego", "agent: car_west");
+    let (code, results) = run_example(&python, &car_west, "2");
+    assert_eq!(code, Some(0), "{results:#}");
+    let records = records(&results);
+    let ids: Vec<_> = records.iter().map(|r| r["id"].as_str().unwrap()).collect();
+    assert_eq!(ids, ["car_east", "walker_a", "walker_b"]);
+    for record in &records[1..] {
+        let detected = record["first_detected"].as_f64().unwrap();
+        let ego_knows = record["first_seen_by_ego"]
+            .as_f64()
+            .unwrap_or(record["closest"]["time"].as_f64().unwrap());
+        let anticipation = record["anticipation"].as_f64().unwrap();
+        assert!((anticipation - (ego_knows - detected)).abs() < 1e-9, "{record}");
+        assert!(anticipation > 5.0, "{record}");
+    }
+    assert!(records[1]["first_seen_by_ego"].is_null());
+    assert_eq!(results["requirements"][0]["n"], 2, "{results:#}");
+    let (code, ego) = run_example(&python, &base, "2");
+    assert_eq!((code, crate::support::failing(&ego)), (Some(1), vec!["SUT-ANT-01"]));
 }
 
 /// `objects` on `sut_recall` and `sut_latency`, on the examples' scene. The

@@ -52,7 +52,7 @@ pub(super) fn selection(
             });
             let of_record: Vec<String> = ObjectProperty::ALL
                 .iter()
-                .filter(|p| p.of_record() && (joint || !p.needs_grid()))
+                .filter(|p| p.of_record() && !p.of_system() && (joint || !p.needs_grid()))
                 .map(|p| format!("`{}`", p.name()))
                 .collect();
             ctx.error(
@@ -195,9 +195,10 @@ fn of_system(ctx: &mut Context<'_>, raw: &RawObjectSelection, metric: Metric, ov
 }
 
 /// The road users of `world` a record can be about: every agent but the ego
-/// and the roadside units, with its index.
+/// (the semantic pipeline's, or in a perception world the perception's) and
+/// the roadside units, with its index.
 fn road_users(world: &World) -> impl Iterator<Item = (usize, &str)> {
-    let ego = world.semantic.as_ref().map(|s| s.ego);
+    let ego = (world.semantic.as_ref().map(|s| s.ego)).or(world.perception.as_ref().map(|p| p.ego));
     world
         .agents
         .iter()

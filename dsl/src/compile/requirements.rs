@@ -127,6 +127,18 @@ pub(super) fn requirements(
                         )
                     })
                 }
+                Check::PerObject { property, .. } if property.of_system() => {
+                    selected.iter().find(|&&i| semantic_at(i) || !world_at(i)).map(|_| {
+                        (
+                            "per_object",
+                            format!(
+                                "`{}` judges a system under test, which runs in a perception world (`perception`, \
+                                 no `semantic`) only",
+                                property.name()
+                            ),
+                        )
+                    })
+                }
                 Check::PerObject { property, .. } => selected.iter().find(|&&i| !semantic_at(i)).map(|_| {
                     (
                         "per_object",

@@ -3,7 +3,7 @@
 //! sweep points, `vary`, a recording, checks over seeds), since the system is
 //! run once, on one point, as sightline's own models are not.
 
-use super::context::Context;
+use super::context::{Context, locate};
 use crate::error::ErrorKind;
 use crate::model::{Check, Experiment, Point, Requirement, SystemUnderTest};
 use crate::path::Path;
@@ -30,7 +30,7 @@ pub(super) fn system_under_test(
     requirements: &[Requirement],
 ) -> Option<SystemUnderTest> {
     let Some(system) = raw.system_under_test.as_ref() else {
-        refuse_system_metrics(ctx, requirements);
+        refuse_system_metrics(ctx, &checks(ctx, raw, requirements));
         return None;
     };
     let path = Path::root().key("system_under_test");
@@ -41,7 +41,7 @@ pub(super) fn system_under_test(
     let limits_ok = ctx.within(&path.key("step_timeout"), step_timeout, range::SUT_TIMEOUT)
         & ctx.within(&path.key("gate"), gate, range::SUT_GATE)
         & ctx.within(&path.key("min_existence"), min_existence, range::PROBABILITY);
-    let alone_ok = runs_once(ctx, raw, requirements);
+    let alone_ok = runs_once(ctx, raw, &checks(ctx, raw, requirements));
     let (agent, sensors) = served(ctx, system, points?, &path)?;
     let host_ok = host_unselected(ctx, raw, &system.agent);
     (command_ok && limits_ok && alone_ok && host_ok).then(|| SystemUnderTest {
@@ -79,7 +79,7 @@ fn command(ctx: &mut Context<'_>, command: &[String], path: &Path) -> bool {
 
 /// Errors where the scenario asks the run to be repeated or searched, which a
 /// system under test is not.
-fn runs_once(ctx: &mut Context<'_>, raw: &RawScenario, requirements: &[Requirement]) -> bool {
+fn runs_once(ctx: &mut Context<'_>, raw: &RawScenario, requirements: &[(Path, &Requirement)]) -> bool {
     let mut ok = true;
     let mut refuse = |ctx: &mut Context<'_>, at: &Path, why: &str| {
         ctx.error(at, ErrorKind::Invalid(why.into()));
@@ -99,7 +99,7 @@ fn runs_once(ctx: &mut Context<'_>, raw: &RawScenario, requirements: &[Requireme
             "a run with a system under test is not recorded: leave out `record` or `system_under_test`",
         );
     }
-    for (i, requirement) in requirements.iter().enumerate() {
+    for (check, requirement) in requirements {
         if matches!(
             requirement.check,
             Check::Metric {
@@ -109,7 +109,7 @@ fn runs_once(ctx: &mut Context<'_>, raw: &RawScenario, requirements: &[Requireme
         ) {
             refuse(
                 ctx,
-                &Path::root().key("requirements").index(i).key("check").key("seeds"),
+                &check.key("seeds"),
                 "a system under test is run once, at the scenario's seed: a check over seeds needs it run at \
                  each, which sightline does not do",
             );
@@ -214,8 +214,12 @@ fn served(
 }
 
 /// Errors where an `objects` selection names the agent the system serves,
-/// which is no road user it is judged on.
+/// which is no road user it is judged on (a host that is the ego has its
+/// error where selections are compiled: the ego is no road user of a record).
 fn host_unselected(ctx: &mut Context<'_>, raw: &RawScenario, host: &str) -> bool {
+    if raw.perception.as_ref().is_some_and(|p| p.ego == host) {
+        return true;
+    }
     let mut ok = true;
     for (i, requirement) in raw.requirements.iter().enumerate() {
         let ids = requirement.check.objects.iter().flat_map(|o| &o.ids);
@@ -235,12 +239,21 @@ fn host_unselected(ctx: &mut Context<'_>, raw: &RawScenario, host: &str) -> bool
 
 /// Errors at each requirement that checks a metric of the system under test
 /// in a scenario that declares none.
-fn refuse_system_metrics(ctx: &mut Context<'_>, requirements: &[Requirement]) {
-    for (i, requirement) in requirements.iter().enumerate() {
-        let check = Path::root().key("requirements").index(i).key("check");
+fn refuse_system_metrics(ctx: &mut Context<'_>, requirements: &[(Path, &Requirement)]) {
+    for (check, requirement) in requirements {
         let (metrics, at) = match &requirement.check {
             Check::Metric { metric, .. } => (vec![*metric], check.key("metric")),
-            Check::Compare { metric, other, .. } => (vec![*metric, *other], check),
+            Check::Compare { metric, other, .. } => (vec![*metric, *other], check.clone()),
+            Check::PerObject { property, .. } if property.of_system() => {
+                ctx.error(
+                    &check.key("per_object"),
+                    ErrorKind::Invalid(format!(
+                        "`{}` judges a system under test, and the scenario declares no `system_under_test`",
+                        property.name()
+                    )),
+                );
+                continue;
+            }
             _ => continue,
         };
         if let Some(metric) = metrics.iter().find(|m| m.of_system()) {
@@ -253,4 +266,19 @@ fn refuse_system_metrics(ctx: &mut Context<'_>, requirements: &[Requirement]) {
             );
         }
     }
+}
+
+/// Each compiled requirement with the path of its check in the file. A
+/// requirement that did not compile leaves a gap in the compiled list, so
+/// each is found by where it starts.
+fn checks<'r>(ctx: &Context<'_>, raw: &RawScenario, requirements: &'r [Requirement]) -> Vec<(Path, &'r Requirement)> {
+    let list = Path::root().key("requirements");
+    let mut at = 0..raw.requirements.len();
+    requirements
+        .iter()
+        .filter_map(|requirement| {
+            let i = at.find(|&i| locate(ctx.tree, &list.index(i)) == requirement.location)?;
+            Some((list.index(i).key("check"), requirement))
+        })
+        .collect()
 }

@@ -310,8 +310,9 @@ impl Signal {
 }
 
 /// Properties of road users a per-object check bounds: of the close approaches
-/// (`warning_time`), or of the per-object record of every relevant road user
-/// (the others; [`ObjectProperty::of_record`]).
+/// (`warning_time`), of the per-object record of every relevant road user, or
+/// of a system under test's record of every road user in the scene with the
+/// ego (`sut_*`; [`ObjectProperty::of_record`], [`ObjectProperty::of_system`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum ObjectProperty {
@@ -358,11 +359,27 @@ pub enum ObjectProperty {
     /// message flagging a conflict with it) to its closest approach (one with
     /// neither has none, and fails).
     GridOrWarningLead,
+    /// System under test, each road user: seconds from when a judged
+    /// detection of the system first matched it to its closest approach to
+    /// the ego, negative when that came after (the system's warning; one
+    /// never detected has none, and fails).
+    SutLead,
+    /// System under test, each road user: seconds the system detected it
+    /// before the ego's own sensors had it in sight (first in the ego's
+    /// sight, or for one never in it its closest approach, minus first
+    /// detected, at least 0); 0 for one the ego saw no later; one never
+    /// detected has none, and fails.
+    SutAnticipation,
+    /// System under test, each road user that came into a served sensor's
+    /// sight: seconds from then to the system's first detection of it, at
+    /// least 0 (one never in sight is not judged; one in sight and never
+    /// detected has none, and fails).
+    SutDelay,
 }
 
 impl ObjectProperty {
     /// Every property in documentation order.
-    pub const ALL: [ObjectProperty; 10] = [
+    pub const ALL: [ObjectProperty; 13] = [
         Self::WarningTime,
         Self::WarningLead,
         Self::KnowledgeLead,
@@ -373,6 +390,9 @@ impl ObjectProperty {
         Self::MaxDrac,
         Self::GridLead,
         Self::GridOrWarningLead,
+        Self::SutLead,
+        Self::SutAnticipation,
+        Self::SutDelay,
     ];
 
     /// The name as written in scenario files.
@@ -388,6 +408,9 @@ impl ObjectProperty {
             Self::MaxDrac => "max_drac",
             Self::GridLead => "grid_lead",
             Self::GridOrWarningLead => "grid_or_warning_lead",
+            Self::SutLead => "sut_lead",
+            Self::SutAnticipation => "sut_anticipation",
+            Self::SutDelay => "sut_delay",
         }
     }
 
@@ -395,6 +418,13 @@ impl ObjectProperty {
     /// with `perception` and `semantic`) has.
     pub fn needs_grid(self) -> bool {
         matches!(self, Self::GridLead | Self::GridOrWarningLead)
+    }
+
+    /// Whether it judges a system under test (`system_under_test`): read
+    /// from the system's per-object record, in a perception world that
+    /// declares one, and only there.
+    pub fn of_system(self) -> bool {
+        matches!(self, Self::SutLead | Self::SutAnticipation | Self::SutDelay)
     }
 
     /// Whether it is read from the per-object record of every relevant road
@@ -426,6 +456,8 @@ impl ObjectProperty {
             | Self::ClosestDistance
             | Self::GridLead
             | Self::GridOrWarningLead => "relevant road users",
+            Self::SutLead | Self::SutAnticipation => "road users in the scene with the ego",
+            Self::SutDelay => "road users in a served sensor's sight",
         }
     }
 
@@ -437,8 +469,12 @@ impl ObjectProperty {
             | Self::ClosestDistance
             | Self::MinTtc
             | Self::Pet
-            | Self::MaxDrac => ValueDomain::NonNegative,
-            Self::WarningLead | Self::KnowledgeLead | Self::GridLead | Self::GridOrWarningLead => ValueDomain::Real,
+            | Self::MaxDrac
+            | Self::SutAnticipation
+            | Self::SutDelay => ValueDomain::NonNegative,
+            Self::WarningLead | Self::KnowledgeLead | Self::GridLead | Self::GridOrWarningLead | Self::SutLead => {
+                ValueDomain::Real
+            }
         }
     }
 

@@ -105,12 +105,13 @@ pub(crate) struct RawCheck {
     pub within: Option<f64>,
     /// A property every road user it judges must meet (`at_least` or
     /// `at_most`): `warning_time` of every object that came within d_min of
-    /// the ego, or a property of every relevant road user's record, optionally
-    /// selected with `objects`.
+    /// the ego, or a property of every relevant road user's record (with a
+    /// system under test, `sut_*`: of its record of every road user around
+    /// the ego), optionally selected with `objects`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub per_object: Option<ObjectProperty>,
-    /// Which relevant road users a `per_object` check judges (a record
-    /// property's only): those matching every criterion given. Default: all.
+    /// Which road users a `per_object` check judges (a record property's
+    /// only): those matching every criterion given. Default: all.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub objects: Option<RawObjectSelection>,
     /// The fewest samples a point needs for the check to judge it (≥ 1): the

@@ -1,33 +1,29 @@
 //! What a per-object check reads of the per-object records: which records a
 //! selection keeps, and each record's value of a property.
 
-use sightline_dsl::{ObjectProperty, ObjectSelection};
+use sightline_dsl::{AgentKind, ObjectProperty, ObjectSelection};
 
-use super::objects::{Category, ObjectRecord};
+use super::objects::{Category, Closest, ObjectRecord};
 
 impl ObjectRecord {
     /// Whether `selection` keeps it: every criterion given matches (an id, a
     /// class, an area it was in, its closest approach nearer than the distance
     /// and within the window).
     pub fn selected_by(&self, selection: &ObjectSelection) -> bool {
-        (selection.ids.is_empty() || selection.ids.contains(&self.id))
-            && (selection.classes.is_empty() || selection.classes.contains(&self.class))
-            && (selection.areas.is_empty() || selection.areas.iter().any(|area| self.areas.contains(area)))
-            && selection
-                .closer_than
-                .is_none_or(|distance| self.closest.is_some_and(|closest| closest.distance < distance))
-            && selection
-                .between
-                .is_none_or(|[from, to]| self.closest.is_some_and(|closest| (from..=to).contains(&closest.time)))
+        keeps(selection, (&self.id, self.class, &self.areas), self.closest)
     }
 
     /// Its value of a record property ([`ObjectProperty::of_record`]); `None`
-    /// where it has none (see each property), and for `warning_time`, which
-    /// close approaches carry.
+    /// where it has none (see each property), for `warning_time`, which
+    /// close approaches carry, and for a system's property, which the
+    /// system's record carries.
     pub fn property(&self, property: ObjectProperty) -> Option<f64> {
         let closest = self.closest.map(|c| c.time);
         match property {
-            ObjectProperty::WarningTime => None,
+            ObjectProperty::WarningTime
+            | ObjectProperty::SutLead
+            | ObjectProperty::SutAnticipation
+            | ObjectProperty::SutDelay => None,
             ObjectProperty::WarningLead => Some(closest? - self.first_warning?),
             ObjectProperty::KnowledgeLead => {
                 let known = match (self.first_seen, self.first_v2x) {
@@ -54,6 +50,26 @@ impl ObjectRecord {
             }
         }
     }
+}
+
+/// Whether `selection` keeps a road user with this id, class and regions
+/// (`areas`) and this closest approach: every criterion given matches (an id,
+/// a class, an area it was in, its closest approach nearer than the distance
+/// and within the window).
+pub(crate) fn keeps(
+    selection: &ObjectSelection,
+    (id, class, areas): (&String, AgentKind, &[String]),
+    closest: Option<Closest>,
+) -> bool {
+    (selection.ids.is_empty() || selection.ids.contains(id))
+        && (selection.classes.is_empty() || selection.classes.contains(&class))
+        && (selection.areas.is_empty() || selection.areas.iter().any(|area| areas.contains(area)))
+        && selection
+            .closer_than
+            .is_none_or(|distance| closest.is_some_and(|closest| closest.distance < distance))
+        && selection
+            .between
+            .is_none_or(|[from, to]| closest.is_some_and(|closest| (from..=to).contains(&closest.time)))
 }
 
 #[cfg(test)]

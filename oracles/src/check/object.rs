@@ -52,6 +52,9 @@ pub(crate) fn evaluate(
             ObjectProperty::WarningTime | ObjectProperty::WarningLead => "never flagged",
             ObjectProperty::GridLead => "never in the ego's fused grid",
             ObjectProperty::GridOrWarningLead => "never in the ego's fused grid, never flagged",
+            ObjectProperty::SutLead | ObjectProperty::SutAnticipation | ObjectProperty::SutDelay => {
+                "never detected by the system"
+            }
             _ => "never known to the ego",
         };
         return Evaluation::failed(

@@ -9,6 +9,7 @@
 //! - `requirement`: each requirement, its check in words and its points;
 //! - `sweep`: the results table of each sweep and the published comparisons;
 //! - `point`: each point's sample sizes and counts;
+//! - `system`: a system under test's road users, one by one;
 //! - `format`: numbers for people, and the tables every section lays out.
 
 pub(crate) use document::{DocumentView, content_id, control};
@@ -21,3 +22,4 @@ mod page;
 mod point;
 mod requirement;
 mod sweep;
+mod system;

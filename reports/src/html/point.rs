@@ -6,6 +6,7 @@ use sightline_dsl::Metric;
 use sightline_engine::outcome::{DELIVERY_BIN, DENSITY_BIN, quantile};
 
 use super::format::{TableView, metric_unit, number, or_dash};
+use super::system::system_table;
 use crate::results::{DensityRow, Detail, ObjectCategory, ObjectList, ObjectResult, PointResult, SemanticCounts};
 
 const BAND_COLUMNS: [&str; 7] = [
@@ -74,7 +75,11 @@ pub(super) fn point_body(p: &PointResult) -> (String, Vec<TableView>) {
                     .collect(),
             }],
         ),
-        Detail::World { counts: c, semantic } => {
+        Detail::World {
+            counts: c,
+            semantic,
+            system,
+        } => {
             let s = &c.sightings;
             let rows = [
                 ("steps with the ego in the scene", c.steps as f64),
@@ -145,6 +150,7 @@ pub(super) fn point_body(p: &PointResult) -> (String, Vec<TableView>) {
                     .collect(),
             };
             let mut tables = vec![counts_table(rows), by_distance];
+            tables.extend(system.as_deref().map(system_table));
             let summary = match semantic {
                 // A joint world: the pipeline's tables after the grid's.
                 Some(s) => {

@@ -149,13 +149,13 @@ fn describe_check(check: &CheckInfo) -> String {
         "per_object" if check.name == "warning_time" => return format!("every object within d_min: {relation}"),
         "per_object" => {
             // The criticality measures judge only the road users in conflict.
-            let conflicts = ObjectProperty::ALL
-                .into_iter()
-                .any(|p| p.name() == name && p.defined_only());
-            let users = if conflicts {
-                "every road user in conflict with the ego"
-            } else {
-                "every relevant road user"
+            let property = ObjectProperty::ALL.into_iter().find(|p| p.name() == name);
+            let conflicts = property.is_some_and(ObjectProperty::defined_only);
+            let users = match property {
+                _ if conflicts => "every road user in conflict with the ego",
+                Some(ObjectProperty::SutDelay) => "every road user in a served sensor's sight",
+                Some(p) if p.of_system() => "every road user in the scene with the ego",
+                _ => "every relevant road user",
             };
             let selected = check.objects.describe();
             return match (conflicts, selected.is_empty()) {

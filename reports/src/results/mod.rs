@@ -47,6 +47,7 @@ pub use requirement::{
 };
 pub use schema::results_schema;
 pub use sweep::{Axis, Sweep, SweepRow};
+pub use system::{SystemDetail, SystemObjectList, SystemObjectResult};
 
 mod counts;
 mod document;
@@ -59,3 +60,4 @@ mod reference;
 mod requirement;
 mod schema;
 mod sweep;
+mod system;

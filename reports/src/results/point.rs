@@ -4,7 +4,7 @@
 
 use serde::Serialize;
 
-use super::{Band, Coverage, DensityRow, MassAudit, ObjectList, Ordered, SemanticCounts, WorldCounts};
+use super::{Band, Coverage, DensityRow, MassAudit, ObjectList, Ordered, SemanticCounts, SystemDetail, WorldCounts};
 
 /// Everything measured at one point.
 #[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
@@ -71,6 +71,10 @@ pub enum Detail {
         // Boxed: a detail of every kind stays small.
         #[serde(skip_serializing_if = "Option::is_none")]
         semantic: Option<Box<SemanticDetail>>,
+        /// With a system under test, what it showed of each road user around
+        /// the ego; absent without one.
+        #[serde(skip_serializing_if = "Option::is_none")]
+        system: Option<Box<SystemDetail>>,
     },
     /// A world's semantic pipeline.
     Semantic {

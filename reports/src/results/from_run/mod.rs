@@ -16,3 +16,4 @@ mod point;
 
 pub(crate) use objects::object_result;
 mod requirement;
+mod system;

@@ -6,6 +6,7 @@ use sightline_dsl::Point;
 use sightline_engine::{Outcome, outcome as engine};
 
 use super::objects::object_list;
+use super::system::system_detail;
 use crate::results::{
     AgeCount, Band, Calibration, Conflict, Coverage, DeliveryBin, DensityRow, Detail, DistanceRow, LabelCounts,
     LabelResult, MassAudit, Ordered, PointResult, Radio, ReliabilityBin, SemanticCounts, SemanticDetail, Sightings,
@@ -57,6 +58,7 @@ pub(super) fn point_result((point, outcome): (&Point, &Outcome)) -> PointResult 
             Outcome::World(o) => Detail::World {
                 counts: world_counts(&o.metrics),
                 semantic: o.semantic.as_deref().map(|m| Box::new(semantic_detail(m, true))),
+                system: o.system.as_ref().map(|m| Box::new(system_detail(m))),
             },
             Outcome::Semantic(m) => {
                 let SemanticDetail {
