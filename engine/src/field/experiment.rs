@@ -1,13 +1,19 @@
-//! One pass over the grid: sample every sensor's mass for every cell in range once,
-//! and fuse and decide the same samples with every method of the pass.
+//! One pass over the grid: sample every sensor's mass for every cell in range
+//! once per sampling, and fuse and decide each sampling with its jobs.
 //!
 //! Rows are independent: each draws its masses from its own random stream
 //! (scenario seed, row), cells left to right, sensors in layout order. Rows run in
 //! parallel and their tallies merge in row order, so results are bit-identical
 //! whatever the thread count.
+//!
+//! Samplings of one pass differ only in their mass model (`field.masses`, such
+//! as γ): they share the grid, the truth, the sensors and so every row's
+//! candidate sensors, distances and distance bands, computed once per row.
+//! Each sampling draws from the row's stream from its start, so its draws are
+//! the ones it would draw alone.
 
 use rayon::prelude::*;
-use sightline_dsl::{Field, Grid};
+use sightline_dsl::{Field, Grid, Masses};
 
 use super::layout::{self, positions};
 use super::sensor::{self, Dirichlet, Draw, SensorModel};
@@ -29,6 +35,15 @@ pub(crate) const IDEALISATIONS: &[Idealisation] = &[
     sensor::INDEPENDENT_SAMPLES,
 ];
 
+/// One mass model of a pass and the methods that fuse what it draws.
+#[derive(Debug, Clone, Copy)]
+pub struct Sampling<'a> {
+    /// The mass model, in place of the field's own.
+    pub masses: Masses,
+    /// The methods, each fusing and deciding the same draws.
+    pub jobs: &'a [Job<'a>],
+}
+
 /// A sensor that may reach cells of the current row.
 #[derive(Debug, Clone, Copy)]
 struct Candidate {
@@ -46,15 +61,21 @@ struct RowCoverage {
     sum: u64,
 }
 
-/// Runs the field experiment once for `grid` and `field` and evaluates every job
-/// on the same sampled masses. Returns one outcome per job, in order.
+/// Runs the field experiment once for `grid` and `field` with each of
+/// `samplings`' mass models (the field's own `masses` is not read), and
+/// evaluates every job of a sampling on the masses it sampled. Returns, per
+/// sampling, one outcome per job, in order: each the outcome the sampling
+/// gives alone.
 ///
 /// Distances below half a cell count as half a cell in the fusion weights, so a
 /// sensor standing on a cell still gives that cell a finite weight.
-pub fn run(seed: u64, grid: &Grid, field: &Field, jobs: &[Job<'_>]) -> Vec<FieldOutcome> {
+pub fn run(seed: u64, grid: &Grid, field: &Field, samplings: &[Sampling<'_>]) -> Vec<Vec<FieldOutcome>> {
     let truth = GroundTruth::generate(grid, &field.truth, seed);
     let sensors = positions(&field.layout, grid, seed);
-    let model = SensorModel::new(field.masses, field.range);
+    let models: Vec<SensorModel> = samplings
+        .iter()
+        .map(|sampling| SensorModel::new(sampling.masses, field.range))
+        .collect();
     let bands = field.distance_bands.len() + 1;
     let pass = Pass {
         seed,
@@ -62,8 +83,8 @@ pub fn run(seed: u64, grid: &Grid, field: &Field, jobs: &[Job<'_>]) -> Vec<Field
         field,
         truth: &truth,
         sensors: &sensors,
-        model: &model,
-        jobs,
+        models: &models,
+        samplings,
         // Band membership needs the nearest sensor only up to the last band edge.
         reach: field.distance_bands.last().copied().unwrap_or(0.0).max(field.range),
         min_distance: grid.cell / 2.0,
@@ -73,7 +94,8 @@ pub fn run(seed: u64, grid: &Grid, field: &Field, jobs: &[Job<'_>]) -> Vec<Field
         .map_init(Scratch::default, |scratch, row| pass.row(row, scratch))
         .collect();
 
-    let mut tallies: Vec<Tally> = jobs.iter().map(|_| Tally::new(bands)).collect();
+    let jobs = || samplings.iter().flat_map(|sampling| sampling.jobs);
+    let mut tallies: Vec<Tally> = jobs().map(|_| Tally::new(bands)).collect();
     let mut coverage = RowCoverage {
         min: usize::MAX,
         max: 0,
@@ -93,10 +115,13 @@ pub fn run(seed: u64, grid: &Grid, field: &Field, jobs: &[Job<'_>]) -> Vec<Field
         max_sources: coverage.max,
         mean_sources: coverage.sum as f64 / grid.cells() as f64,
     };
-    tallies
+    let mut outcomes = tallies
         .iter()
-        .zip(jobs)
-        .map(|(tally, job)| tally.finish(&field.distance_bands, job.fusion.rule.is_evidential(), coverage))
+        .zip(jobs())
+        .map(|(tally, job)| tally.finish(&field.distance_bands, job.fusion.rule.is_evidential(), coverage));
+    samplings
+        .iter()
+        .map(|sampling| outcomes.by_ref().take(sampling.jobs.len()).collect())
         .collect()
 }
 
@@ -122,15 +147,17 @@ struct Pass<'a> {
     field: &'a Field,
     truth: &'a GroundTruth,
     sensors: &'a [Point],
-    model: &'a SensorModel,
-    jobs: &'a [Job<'a>],
+    models: &'a [SensorModel],
+    samplings: &'a [Sampling<'a>],
     reach: f64,
     min_distance: f64,
 }
 
 impl Pass<'_> {
-    /// Samples the row's masses, then fuses the whole row with each job (see
-    /// [`fuse_cells`]) and tallies it.
+    /// Finds the row's sources, then, sampling by sampling, samples their
+    /// masses, fuses the whole row with each of the sampling's jobs (see
+    /// [`fuse_cells`]) and tallies it: the tallies of every job, samplings in
+    /// order.
     fn row(&self, row: usize, scratch: &mut Scratch) -> (Vec<Tally>, RowCoverage) {
         let grid = self.grid;
         let bands = &self.field.distance_bands;
@@ -138,7 +165,8 @@ impl Pass<'_> {
         let y = grid.cell_center(0, row)[1];
         self.candidates(y, &mut scratch.candidates);
 
-        let mut rng = mass_stream(self.seed, row as u64);
+        // Every sampling draws from the row's stream from its start.
+        let rng = mass_stream(self.seed, row as u64);
         let mut coverage = RowCoverage {
             min: usize::MAX,
             max: 0,
@@ -174,19 +202,22 @@ impl Pass<'_> {
             scratch.ends.push(scratch.draws.len());
             scratch.cells.push((band, occupied));
         }
-        self.model
-            .sample_many(&scratch.draws, &mut rng, &mut scratch.dirichlets, &mut scratch.masses);
-        scratch.sources.clear();
-        scratch
-            .sources
-            .extend(scratch.draws.iter().zip(&scratch.masses).map(|(draw, &mass)| Source {
-                mass,
-                distance: draw.distance.max(self.min_distance),
-            }));
-        let tallies = self
-            .jobs
-            .iter()
-            .map(|job| {
+        let mut tallies = Vec::new();
+        for (sampling, model) in self.samplings.iter().zip(self.models) {
+            model.sample_many(
+                &scratch.draws,
+                &mut rng.clone(),
+                &mut scratch.dirichlets,
+                &mut scratch.masses,
+            );
+            scratch.sources.clear();
+            scratch
+                .sources
+                .extend(scratch.draws.iter().zip(&scratch.masses).map(|(draw, &mass)| Source {
+                    mass,
+                    distance: draw.distance.max(self.min_distance),
+                }));
+            tallies.extend(sampling.jobs.iter().map(|job| {
                 let mut tally = Tally::new(bands.len() + 1);
                 let cells = &scratch.cells;
                 fuse_cells(
@@ -200,8 +231,8 @@ impl Pass<'_> {
                     },
                 );
                 tally
-            })
-            .collect();
+            }));
+        }
         (tallies, coverage)
     }
 
