@@ -8,17 +8,18 @@
 //!
 //! Samplings of one pass differ only in their mass model (`field.masses`, such
 //! as γ): they share the grid, the truth, the sensors and so every row's
-//! candidate sensors, distances and distance bands, computed once per row.
+//! candidate sensors, distances, distance bands and each rule's weights
+//! ([`Weights`]), computed once per row.
 //! Each sampling draws from the row's stream from its start, so its draws are
 //! the ones it would draw alone.
 
 use rayon::prelude::*;
-use sightline_dsl::{Field, Grid, Masses};
+use sightline_dsl::{Field, Grid, Masses, Rule};
 
 use super::layout::{self, positions};
 use super::sensor::{self, Dirichlet, Draw, SensorModel};
 use super::truth::{self, GroundTruth};
-use crate::fusion::{BatchScratch, Mass, Source, fuse_cells};
+use crate::fusion::{BatchScratch, Mass, Source, Weights, fuse_cells};
 use crate::idealisation::Idealisation;
 use crate::math::Point;
 use crate::metrics::{Coverage, FieldOutcome, Tally};
@@ -77,6 +78,12 @@ pub fn run(seed: u64, grid: &Grid, field: &Field, samplings: &[Sampling<'_>]) ->
         .map(|sampling| SensorModel::new(sampling.masses, field.range))
         .collect();
     let bands = field.distance_bands.len() + 1;
+    let mut rules: Vec<Rule> = Vec::new();
+    for job in samplings.iter().flat_map(|sampling| sampling.jobs) {
+        if !rules.contains(&job.fusion.rule) {
+            rules.push(job.fusion.rule);
+        }
+    }
     let pass = Pass {
         seed,
         grid,
@@ -85,6 +92,7 @@ pub fn run(seed: u64, grid: &Grid, field: &Field, samplings: &[Sampling<'_>]) ->
         sensors: &sensors,
         models: &models,
         samplings,
+        rules: &rules,
         // Band membership needs the nearest sensor only up to the last band edge.
         reach: field.distance_bands.last().copied().unwrap_or(0.0).max(field.range),
         min_distance: grid.cell / 2.0,
@@ -137,6 +145,8 @@ struct Scratch {
     dirichlets: Vec<Dirichlet>,
     masses: Vec<Mass>,
     sources: Vec<Source>,
+    /// Per rule of the pass, in [`Pass::rules`] order: its weights for the row.
+    weights: Vec<Weights>,
     fusion: BatchScratch,
 }
 
@@ -149,15 +159,17 @@ struct Pass<'a> {
     sensors: &'a [Point],
     models: &'a [SensorModel],
     samplings: &'a [Sampling<'a>],
+    /// The distinct rules of the jobs: each weighs a row's sources once.
+    rules: &'a [Rule],
     reach: f64,
     min_distance: f64,
 }
 
 impl Pass<'_> {
-    /// Finds the row's sources, then, sampling by sampling, samples their
-    /// masses, fuses the whole row with each of the sampling's jobs (see
-    /// [`fuse_cells`]) and tallies it: the tallies of every job, samplings in
-    /// order.
+    /// Finds the row's sources and weighs them for each rule, then, sampling
+    /// by sampling, samples their masses, fuses the whole row with each of
+    /// the sampling's jobs (see [`fuse_cells`]) and tallies it: the tallies of
+    /// every job, samplings in order.
     fn row(&self, row: usize, scratch: &mut Scratch) -> (Vec<Tally>, RowCoverage) {
         let grid = self.grid;
         let bands = &self.field.distance_bands;
@@ -202,6 +214,16 @@ impl Pass<'_> {
             scratch.ends.push(scratch.draws.len());
             scratch.cells.push((band, occupied));
         }
+        // The sources' distances and each rule's weights, for every sampling.
+        scratch.sources.clear();
+        scratch.sources.extend(scratch.draws.iter().map(|draw| Source {
+            mass: Mass::new(0.0, 0.0, 1.0),
+            distance: draw.distance.max(self.min_distance),
+        }));
+        scratch.weights.resize_with(self.rules.len(), Weights::default);
+        for (rule, weights) in self.rules.iter().zip(&mut scratch.weights) {
+            weights.plan(rule, &scratch.sources, &scratch.ends);
+        }
         let mut tallies = Vec::new();
         for (sampling, model) in self.samplings.iter().zip(self.models) {
             model.sample_many(
@@ -210,18 +232,16 @@ impl Pass<'_> {
                 &mut scratch.dirichlets,
                 &mut scratch.masses,
             );
-            scratch.sources.clear();
-            scratch
-                .sources
-                .extend(scratch.draws.iter().zip(&scratch.masses).map(|(draw, &mass)| Source {
-                    mass,
-                    distance: draw.distance.max(self.min_distance),
-                }));
+            for (source, &mass) in scratch.sources.iter_mut().zip(&scratch.masses) {
+                source.mass = mass;
+            }
             tallies.extend(sampling.jobs.iter().map(|job| {
                 let mut tally = Tally::new(bands.len() + 1);
                 let cells = &scratch.cells;
+                let rule = self.rules.iter().position(|rule| *rule == job.fusion.rule);
                 fuse_cells(
                     &job.fusion.rule,
+                    &scratch.weights[rule.expect("every job's rule is a rule of the pass")],
                     &scratch.sources,
                     &scratch.ends,
                     &mut scratch.fusion,
