@@ -1,5 +1,7 @@
 //! Running a whole scenario: every sweep point, sharing sampled data where it can.
 
+mod passes;
+
 use std::collections::HashMap;
 
 use rayon::prelude::*;
@@ -9,7 +11,6 @@ use sightline_dsl::{
     Signal, World,
 };
 
-use crate::field;
 use crate::metrics::Series;
 use crate::metrics::{FieldOutcome, MassAudit};
 use crate::rng::{Derived, derived_seed};
@@ -210,7 +211,9 @@ pub struct Run {
 /// Points that differ only in fusion or decision settings share one simulation:
 /// the same ground truth and the same sampled observations, fused by each method.
 /// Comparisons between methods at a sweep point are therefore paired, not subject
-/// to sampling noise.
+/// to sampling noise. Field groups that differ only in their mass model share
+/// one pass over the grid (the rows' sensors and distances), each sampled as
+/// it would be alone.
 ///
 /// A point that a check over seeds (`seeds: n`) applies to is also simulated at
 /// n − 1 replicate seeds derived from its own, in parallel; replicates of points
@@ -288,8 +291,9 @@ pub fn simulate_traced_all(scenario: &Scenario, sink: &mut impl TraceSink, done:
     assemble(scenario, pieces).expect("the pieces of every group, each once")
 }
 
-/// Every point, group by group, with the replicates checks over seeds need; the
-/// group holding point `traced` reports to `sink`; `done` after each group.
+/// Every point, pass by pass (see [`passes`]), with the replicates checks over
+/// seeds need; the group holding point `traced` reports to `sink`; `done`
+/// after each pass.
 fn simulate_all(
     scenario: &Scenario,
     traced: Option<usize>,
@@ -297,28 +301,42 @@ fn simulate_all(
     done: &mut dyn FnMut(&[usize]),
 ) -> Run {
     let mut pieces = Vec::new();
-    for (group, seeds) in groups(scenario) {
-        let own = Unit {
-            group: group.clone(),
-            replicate: 0,
+    for pass in passes::passes(scenario, groups(scenario)) {
+        let unit = |group: &[usize], replicate| Unit {
+            group: group.to_vec(),
+            replicate,
         };
-        let seed = own.seed(scenario);
-        let outcomes = match traced.and_then(|point| group.iter().position(|&i| i == point)) {
-            Some(job) => simulate_group(scenario, &group, seed, &mut OneJob { sink: &mut *sink, job }),
-            None => simulate_group(scenario, &group, seed, &mut NoTrace),
-        };
-        pieces.push((own, outcomes));
-        let replicates: Vec<Unit> = (1..seeds)
-            .map(|replicate| Unit {
-                group: group.clone(),
-                replicate,
+        match &pass[..] {
+            [(group, _)] => {
+                let seed = unit(group, 0).seed(scenario);
+                let outcomes = match traced.and_then(|point| group.iter().position(|&i| i == point)) {
+                    Some(job) => simulate_group(scenario, group, seed, &mut OneJob { sink: &mut *sink, job }),
+                    None => simulate_group(scenario, group, seed, &mut NoTrace),
+                };
+                pieces.push((unit(group, 0), outcomes));
+            }
+            // Fields, which report nothing to a sink.
+            _ => {
+                let own: Vec<Unit> = pass.iter().map(|(group, _)| unit(group, 0)).collect();
+                let outcomes = passes::simulate_pass(scenario, &own);
+                pieces.extend(own.into_iter().zip(outcomes));
+            }
+        }
+        let most = pass.iter().map(|&(_, seeds)| seeds).max().unwrap_or(1);
+        let replicates: Vec<Vec<Unit>> = (1..most)
+            .map(|replicate| {
+                pass.iter()
+                    .filter(|&&(_, seeds)| replicate < seeds)
+                    .map(|(group, _)| unit(group, replicate))
+                    .collect()
             })
             .collect();
-        pieces.par_extend(replicates.into_par_iter().map(|unit| {
-            let outcomes = simulate_unit(scenario, &unit);
-            (unit, outcomes)
+        pieces.par_extend(replicates.into_par_iter().flat_map_iter(|units| {
+            let outcomes = passes::simulate_pass(scenario, &units);
+            units.into_iter().zip(outcomes)
         }));
-        done(&group);
+        let points: Vec<usize> = pass.iter().flat_map(|(group, _)| group.iter().copied()).collect();
+        done(&points);
     }
     assemble(scenario, pieces).expect("the pieces of every group, each once")
 }
@@ -527,10 +545,9 @@ fn simulate_group(scenario: &Scenario, group: &[usize], seed: u64, sink: &mut im
         .collect();
     match (&first.experiment, &first.occupancy) {
         // The field experiment has no steps: it reports nothing to the sink.
-        (Experiment::Field(f), Some(occupancy)) => field::run(seed, &occupancy.grid, f, &jobs)
-            .into_iter()
-            .map(Outcome::Field)
-            .collect(),
+        (Experiment::Field(_), Some(_)) => passes::simulate_fields(scenario, &[group], seed)
+            .pop()
+            .expect("one group's outcomes"),
         (Experiment::World(w), occupancy) => match (&w.perception, &w.semantic, occupancy) {
             (Some(perception), None, Some(occupancy)) => {
                 world::run(seed, &occupancy.grid, (w, &w.agents), perception, &jobs, &mut (), sink)

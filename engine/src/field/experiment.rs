@@ -1,18 +1,25 @@
-//! One pass over the grid: sample every sensor's mass for every cell in range once,
-//! and fuse and decide the same samples with every method of the pass.
+//! One pass over the grid: sample every sensor's mass for every cell in range
+//! once per sampling, and fuse and decide each sampling with its jobs.
 //!
 //! Rows are independent: each draws its masses from its own random stream
 //! (scenario seed, row), cells left to right, sensors in layout order. Rows run in
 //! parallel and their tallies merge in row order, so results are bit-identical
 //! whatever the thread count.
+//!
+//! Samplings of one pass differ only in their mass model (`field.masses`, such
+//! as γ): they share the grid, the truth, the sensors and so every row's
+//! candidate sensors, distances, distance bands and each rule's weights
+//! ([`Weights`]), computed once per row.
+//! Each sampling draws from the row's stream from its start, so its draws are
+//! the ones it would draw alone.
 
 use rayon::prelude::*;
-use sightline_dsl::{Field, Grid};
+use sightline_dsl::{Field, Grid, Masses, Rule};
 
 use super::layout::{self, positions};
 use super::sensor::{self, Dirichlet, Draw, SensorModel};
 use super::truth::{self, GroundTruth};
-use crate::fusion::{BatchScratch, Mass, Source, fuse_cells};
+use crate::fusion::{BatchScratch, Mass, Source, Weights, fuse_cells};
 use crate::idealisation::Idealisation;
 use crate::math::Point;
 use crate::metrics::{Coverage, FieldOutcome, Tally};
@@ -28,6 +35,15 @@ pub(crate) const IDEALISATIONS: &[Idealisation] = &[
     sensor::LINEAR_MISDETECTION,
     sensor::INDEPENDENT_SAMPLES,
 ];
+
+/// One mass model of a pass and the methods that fuse what it draws.
+#[derive(Debug, Clone, Copy)]
+pub struct Sampling<'a> {
+    /// The mass model, in place of the field's own.
+    pub masses: Masses,
+    /// The methods, each fusing and deciding the same draws.
+    pub jobs: &'a [Job<'a>],
+}
 
 /// A sensor that may reach cells of the current row.
 #[derive(Debug, Clone, Copy)]
@@ -46,24 +62,37 @@ struct RowCoverage {
     sum: u64,
 }
 
-/// Runs the field experiment once for `grid` and `field` and evaluates every job
-/// on the same sampled masses. Returns one outcome per job, in order.
+/// Runs the field experiment once for `grid` and `field` with each of
+/// `samplings`' mass models (the field's own `masses` is not read), and
+/// evaluates every job of a sampling on the masses it sampled. Returns, per
+/// sampling, one outcome per job, in order: each the outcome the sampling
+/// gives alone.
 ///
 /// Distances below half a cell count as half a cell in the fusion weights, so a
 /// sensor standing on a cell still gives that cell a finite weight.
-pub fn run(seed: u64, grid: &Grid, field: &Field, jobs: &[Job<'_>]) -> Vec<FieldOutcome> {
+pub fn run(seed: u64, grid: &Grid, field: &Field, samplings: &[Sampling<'_>]) -> Vec<Vec<FieldOutcome>> {
     let truth = GroundTruth::generate(grid, &field.truth, seed);
     let sensors = positions(&field.layout, grid, seed);
-    let model = SensorModel::new(field.masses, field.range);
+    let models: Vec<SensorModel> = samplings
+        .iter()
+        .map(|sampling| SensorModel::new(sampling.masses, field.range))
+        .collect();
     let bands = field.distance_bands.len() + 1;
+    let mut rules: Vec<Rule> = Vec::new();
+    for job in samplings.iter().flat_map(|sampling| sampling.jobs) {
+        if !rules.contains(&job.fusion.rule) {
+            rules.push(job.fusion.rule);
+        }
+    }
     let pass = Pass {
         seed,
         grid,
         field,
         truth: &truth,
         sensors: &sensors,
-        model: &model,
-        jobs,
+        models: &models,
+        samplings,
+        rules: &rules,
         // Band membership needs the nearest sensor only up to the last band edge.
         reach: field.distance_bands.last().copied().unwrap_or(0.0).max(field.range),
         min_distance: grid.cell / 2.0,
@@ -73,7 +102,8 @@ pub fn run(seed: u64, grid: &Grid, field: &Field, jobs: &[Job<'_>]) -> Vec<Field
         .map_init(Scratch::default, |scratch, row| pass.row(row, scratch))
         .collect();
 
-    let mut tallies: Vec<Tally> = jobs.iter().map(|_| Tally::new(bands)).collect();
+    let jobs = || samplings.iter().flat_map(|sampling| sampling.jobs);
+    let mut tallies: Vec<Tally> = jobs().map(|_| Tally::new(bands)).collect();
     let mut coverage = RowCoverage {
         min: usize::MAX,
         max: 0,
@@ -93,10 +123,13 @@ pub fn run(seed: u64, grid: &Grid, field: &Field, jobs: &[Job<'_>]) -> Vec<Field
         max_sources: coverage.max,
         mean_sources: coverage.sum as f64 / grid.cells() as f64,
     };
-    tallies
+    let mut outcomes = tallies
         .iter()
-        .zip(jobs)
-        .map(|(tally, job)| tally.finish(&field.distance_bands, job.fusion.rule.is_evidential(), coverage))
+        .zip(jobs())
+        .map(|(tally, job)| tally.finish(&field.distance_bands, job.fusion.rule.is_evidential(), coverage));
+    samplings
+        .iter()
+        .map(|sampling| outcomes.by_ref().take(sampling.jobs.len()).collect())
         .collect()
 }
 
@@ -112,6 +145,8 @@ struct Scratch {
     dirichlets: Vec<Dirichlet>,
     masses: Vec<Mass>,
     sources: Vec<Source>,
+    /// Per rule of the pass, in [`Pass::rules`] order: its weights for the row.
+    weights: Vec<Weights>,
     fusion: BatchScratch,
 }
 
@@ -122,15 +157,19 @@ struct Pass<'a> {
     field: &'a Field,
     truth: &'a GroundTruth,
     sensors: &'a [Point],
-    model: &'a SensorModel,
-    jobs: &'a [Job<'a>],
+    models: &'a [SensorModel],
+    samplings: &'a [Sampling<'a>],
+    /// The distinct rules of the jobs: each weighs a row's sources once.
+    rules: &'a [Rule],
     reach: f64,
     min_distance: f64,
 }
 
 impl Pass<'_> {
-    /// Samples the row's masses, then fuses the whole row with each job (see
-    /// [`fuse_cells`]) and tallies it.
+    /// Finds the row's sources and weighs them for each rule, then, sampling
+    /// by sampling, samples their masses, fuses the whole row with each of
+    /// the sampling's jobs (see [`fuse_cells`]) and tallies it: the tallies of
+    /// every job, samplings in order.
     fn row(&self, row: usize, scratch: &mut Scratch) -> (Vec<Tally>, RowCoverage) {
         let grid = self.grid;
         let bands = &self.field.distance_bands;
@@ -138,7 +177,8 @@ impl Pass<'_> {
         let y = grid.cell_center(0, row)[1];
         self.candidates(y, &mut scratch.candidates);
 
-        let mut rng = mass_stream(self.seed, row as u64);
+        // Every sampling draws from the row's stream from its start.
+        let rng = mass_stream(self.seed, row as u64);
         let mut coverage = RowCoverage {
             min: usize::MAX,
             max: 0,
@@ -174,23 +214,34 @@ impl Pass<'_> {
             scratch.ends.push(scratch.draws.len());
             scratch.cells.push((band, occupied));
         }
-        self.model
-            .sample_many(&scratch.draws, &mut rng, &mut scratch.dirichlets, &mut scratch.masses);
+        // The sources' distances and each rule's weights, for every sampling.
         scratch.sources.clear();
-        scratch
-            .sources
-            .extend(scratch.draws.iter().zip(&scratch.masses).map(|(draw, &mass)| Source {
-                mass,
-                distance: draw.distance.max(self.min_distance),
-            }));
-        let tallies = self
-            .jobs
-            .iter()
-            .map(|job| {
+        scratch.sources.extend(scratch.draws.iter().map(|draw| Source {
+            mass: Mass::new(0.0, 0.0, 1.0),
+            distance: draw.distance.max(self.min_distance),
+        }));
+        scratch.weights.resize_with(self.rules.len(), Weights::default);
+        for (rule, weights) in self.rules.iter().zip(&mut scratch.weights) {
+            weights.plan(rule, &scratch.sources, &scratch.ends);
+        }
+        let mut tallies = Vec::new();
+        for (sampling, model) in self.samplings.iter().zip(self.models) {
+            model.sample_many(
+                &scratch.draws,
+                &mut rng.clone(),
+                &mut scratch.dirichlets,
+                &mut scratch.masses,
+            );
+            for (source, &mass) in scratch.sources.iter_mut().zip(&scratch.masses) {
+                source.mass = mass;
+            }
+            tallies.extend(sampling.jobs.iter().map(|job| {
                 let mut tally = Tally::new(bands.len() + 1);
                 let cells = &scratch.cells;
+                let rule = self.rules.iter().position(|rule| *rule == job.fusion.rule);
                 fuse_cells(
                     &job.fusion.rule,
+                    &scratch.weights[rule.expect("every job's rule is a rule of the pass")],
                     &scratch.sources,
                     &scratch.ends,
                     &mut scratch.fusion,
@@ -200,8 +251,8 @@ impl Pass<'_> {
                     },
                 );
                 tally
-            })
-            .collect();
+            }));
+        }
         (tallies, coverage)
     }
 

@@ -6,7 +6,7 @@ mod layout;
 mod sensor;
 mod truth;
 
-pub use experiment::run;
+pub use experiment::{Sampling, run};
 
 pub(crate) use experiment::IDEALISATIONS;
 pub(crate) use sensor::error_model_idealisations;

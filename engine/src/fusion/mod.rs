@@ -11,7 +11,7 @@ mod weighted;
 #[cfg(test)]
 mod properties;
 
-pub use batch::{BatchScratch, fuse_cells};
+pub use batch::{BatchScratch, Weights, fuse_cells};
 pub use bayes::pignistic;
 pub use decision::decide;
 pub use dempster::combine;
