@@ -349,7 +349,7 @@ fn latencies(first_in_sight: &[Option<f64>], first_matched: &[Option<f64>]) -> (
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use approx::assert_relative_eq;
     use sightline_dsl::Motion;
 
@@ -358,7 +358,8 @@ mod tests {
     use crate::trace::CooperatorStep;
     use crate::world::{AgentState, Observation, Sighting, Visibility};
 
-    fn agent(id: &str, kind: AgentKind) -> Agent {
+    /// A fixed agent of `kind`, 4 × 2 m, without sensors.
+    pub(crate) fn agent(id: &str, kind: AgentKind) -> Agent {
         Agent {
             id: id.into(),
             kind,
@@ -420,15 +421,9 @@ mod tests {
         judge.step(&world, &detections);
     }
 
-    /// Two steps counted by hand: at step 0, `a` is in the served sensor's
-    /// sight but undetected, `b` is detected exactly but in sight of an
-    /// unserved sensor only (and hidden from the served one), and two
-    /// detections are ghosts (one beside the roadside unit, no road user); at
-    /// step 1, two detections 0.3 m and 0.5 m from `a`: the nearer matches,
-    /// the other is a ghost.
-    #[test]
-    fn matching_is_one_to_one_nearest_first_within_the_gate() {
-        let mut judge = SystemJudge::new(0, vec![0], 2.0);
+    /// The two steps the tests below judge, with host `h`, car `a`,
+    /// pedestrian `b` and a roadside unit; what `judge` made of them.
+    fn two_steps(mut judge: SystemJudge) -> SystemMetrics {
         judge.start(&[
             agent("h", AgentKind::Car),
             agent("a", AgentKind::Car),
@@ -438,7 +433,18 @@ mod tests {
         let step0 = vec![sighting(0, 1, 0.5), sighting(1, 2, 1.0), sighting(0, 2, 0.0)];
         judge_step(&mut judge, 0, step0, &[(0.0, 5.0), (0.0, -30.0), (20.0, -10.0)]);
         judge_step(&mut judge, 1, vec![sighting(0, 1, 1.0)], &[(10.0, 0.5), (10.0, 0.3)]);
-        let metrics = judge.finish();
+        judge.finish()
+    }
+
+    /// Two steps counted by hand: at step 0, `a` is in the served sensor's
+    /// sight but undetected, `b` is detected exactly but in sight of an
+    /// unserved sensor only (and hidden from the served one), and two
+    /// detections are ghosts (one beside the roadside unit, no road user); at
+    /// step 1, two detections 0.3 m and 0.5 m from `a`: the nearer matches,
+    /// the other is a ghost.
+    #[test]
+    fn matching_is_one_to_one_nearest_first_within_the_gate() {
+        let metrics = two_steps(SystemJudge::new(0, vec![0], 2.0));
         assert_eq!((metrics.steps, metrics.in_sight, metrics.in_sight_matched), (2, 2, 1));
         assert_eq!((metrics.detections, metrics.matched), (5, 2));
         assert_relative_eq!(metrics.value(Metric::SutRecall).unwrap(), 0.5);
@@ -478,17 +484,7 @@ mod tests {
             ("near_a".into(), circle(10.0, 10.0)),
             ("away".into(), circle(50.0, 50.0)),
         ];
-        let mut judge = SystemJudge::new(0, vec![0], 2.0).select(regions, selections.clone());
-        judge.start(&[
-            agent("h", AgentKind::Car),
-            agent("a", AgentKind::Car),
-            agent("b", AgentKind::Pedestrian),
-            agent("rsu", AgentKind::Rsu),
-        ]);
-        let step0 = vec![sighting(0, 1, 0.5), sighting(1, 2, 1.0), sighting(0, 2, 0.0)];
-        judge_step(&mut judge, 0, step0, &[(0.0, 5.0), (0.0, -30.0), (20.0, -10.0)]);
-        judge_step(&mut judge, 1, vec![sighting(0, 1, 1.0)], &[(10.0, 0.5), (10.0, 0.3)]);
-        let metrics = judge.finish();
+        let metrics = two_steps(SystemJudge::new(0, vec![0], 2.0).select(regions, selections.clone()));
         let sample = |i: usize, metric| metrics.selected_sample(metric, &selections[i]).unwrap();
         for cars in [0, 2] {
             assert_eq!(sample(cars, Metric::SutRecall), (Some(0.5), 2));

@@ -193,29 +193,13 @@ impl AroundEgo {
 #[cfg(test)]
 mod tests {
     use approx::assert_relative_eq;
-    use sightline_dsl::Motion;
     use sightline_dsl::ObjectProperty::{SutAnticipation, SutDelay, SutLead};
 
     use super::*;
     use crate::math::{Pose, Vector};
+    use crate::system::tests::agent;
     use crate::trace::CooperatorStep;
     use crate::world::{AgentState, Observation, Sighting, Visibility};
-
-    fn agent(id: &str, kind: AgentKind) -> Agent {
-        Agent {
-            id: id.into(),
-            kind,
-            length: 4.0,
-            width: 2.0,
-            motion: Motion::Fixed {
-                position: [0.0, 0.0],
-                heading: 0.0,
-            },
-            connected: false,
-            sensors: Vec::new(),
-            antenna_m: None,
-        }
-    }
 
     fn at(x: f64, y: f64) -> Option<AgentState> {
         Some(AgentState {

@@ -55,9 +55,18 @@ pub struct ObjectSelection {
 }
 
 impl ObjectSelection {
+    /// The selection of every road user (the default, as a constant).
+    pub const ALL: Self = Self {
+        ids: Vec::new(),
+        classes: Vec::new(),
+        areas: Vec::new(),
+        between: None,
+        closer_than: None,
+    };
+
     /// Whether it selects every road user.
     pub fn is_all(&self) -> bool {
-        *self == Self::default()
+        *self == Self::ALL
     }
 
     /// What it selects, in words (`pedestrians in cw_north`), for messages.

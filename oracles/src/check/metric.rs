@@ -149,14 +149,7 @@ mod tests {
 
     use super::*;
 
-    /// Every object-step: no selection.
-    const ALL: ObjectSelection = ObjectSelection {
-        ids: Vec::new(),
-        classes: Vec::new(),
-        areas: Vec::new(),
-        between: None,
-        closer_than: None,
-    };
+    const ALL: ObjectSelection = ObjectSelection::ALL;
     use crate::Status;
 
     fn metrics(false_alarms: u64) -> FieldMetrics {

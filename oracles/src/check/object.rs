@@ -85,13 +85,7 @@ mod tests {
     use crate::Status;
 
     const WARNING_TIME: (ObjectProperty, &ObjectSelection) = (ObjectProperty::WarningTime, &ALL);
-    const ALL: ObjectSelection = ObjectSelection {
-        ids: Vec::new(),
-        classes: Vec::new(),
-        areas: Vec::new(),
-        between: None,
-        closer_than: None,
-    };
+    const ALL: ObjectSelection = ObjectSelection::ALL;
 
     #[test]
     fn the_least_warned_object_decides() {
