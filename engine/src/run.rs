@@ -357,6 +357,10 @@ impl<S: TraceSink> TraceSink for OneJob<'_, S> {
         self.sink.world_step(&WorldStep { measured, ..*step });
     }
 
+    fn gave_up(&self) -> bool {
+        self.sink.gave_up()
+    }
+
     fn semantic_step(&mut self, step: &SemanticStep<'_>) {
         self.sink.semantic_step(step);
     }

@@ -64,6 +64,13 @@ pub trait TraceSink {
     /// One step of a perception world.
     fn world_step(&mut self, _step: &WorldStep<'_>) {}
 
+    /// Whether the sink has given up on the run (a system under test that
+    /// failed): a perception world then stops stepping, and its outcome is
+    /// partial, for a caller that discards it. Asked before each step.
+    fn gave_up(&self) -> bool {
+        false
+    }
+
     /// One step of a semantic world.
     fn semantic_step(&mut self, _step: &SemanticStep<'_>) {}
 }

@@ -8,7 +8,8 @@ use proptest::prelude::*;
 use proptest::test_runner::{Config, RngAlgorithm, RngSeed, TestRunner};
 use sightline_dsl::{Metric, Scenario, Signal, compile};
 use sightline_engine::outcome::WorldOutcome;
-use sightline_engine::{Outcome, simulate};
+use sightline_engine::trace::WorldStep;
+use sightline_engine::{Outcome, TraceSink, simulate, simulate_point};
 
 /// A crossroads of 80 m arms with four buildings in the corners; five connected cars
 /// and a non-connected truck, pedestrian and car. `{…}` fields are filled in.
@@ -97,6 +98,34 @@ fn world_results_do_not_depend_on_the_thread_count() {
     let one = in_pool(1, || simulate(&scenario));
     assert_eq!(one, in_pool(2, || simulate(&scenario)));
     assert_eq!(one, in_pool(4, || simulate(&scenario)));
+}
+
+/// Counts the world steps it is given and gives up after `limit` of them.
+struct GivingUp {
+    steps: usize,
+    limit: usize,
+}
+
+impl TraceSink for GivingUp {
+    fn world_step(&mut self, _step: &WorldStep<'_>) {
+        self.steps += 1;
+    }
+
+    fn gave_up(&self) -> bool {
+        self.steps >= self.limit
+    }
+}
+
+/// A sink that gives up (a failed system under test) ends the world's run at
+/// once: no step after it is simulated; one that never does sees all 30.
+#[test]
+fn a_world_stops_stepping_when_its_sink_gives_up() {
+    let scenario = nominal(0.0, "none").scenario();
+    for (limit, seen) in [(3, 3), (usize::MAX, 30)] {
+        let mut sink = GivingUp { steps: 0, limit };
+        simulate_point(&scenario, 0, &mut sink);
+        assert_eq!(sink.steps, seen);
+    }
 }
 
 /// With exact self-localization every agent's grid is drawn at its true pose,

@@ -119,4 +119,9 @@ impl TraceSink for Driver<'_> {
             self.child = None;
         }
     }
+
+    /// A failed system ends the run: nothing of it is judged.
+    fn gave_up(&self) -> bool {
+        self.failure.is_some()
+    }
 }

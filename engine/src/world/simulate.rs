@@ -239,6 +239,9 @@ pub fn run(
     sink.start(agents);
 
     for k in 0..world.steps {
+        if sink.gave_up() {
+            break;
+        }
         let time = k as f64 * world.step;
         scene.advance(k, agents);
         layer.step(k, &scene.states, &scene.bodies, &mut scene.kinematics);
