@@ -13,7 +13,8 @@
 //! - trace events: [`simulate_point`] hands a [`TraceSink`] a record of every step
 //!   as it goes ([`trace`]): agent states, detections, packets, signals, and fused
 //!   grids at the steps the sink asks for; [`simulate_traced`] runs every point
-//!   and records one of them that way. The engine keeps none of it, so memory
+//!   and records one of them that way, [`simulate_traced_each`] each to its own
+//!   sink. The engine keeps none of it, so memory
 //!   stays bounded; the MCAP writer and the temporal oracles are sinks;
 //! - the campaign split: [`units`] of work, [`simulate_unit`] and [`assemble`];
 //! - what a run takes as given ([`idealisations`]) and the engine's
@@ -37,8 +38,8 @@ pub use idealisation::{Idealisation, ModelOption, idealisations};
 pub use known::{KnownAnswer, known_answers};
 pub use recorded::simulate_recorded;
 pub use run::{
-    AssembleError, Job, Outcome, Run, Sample, Unit, assemble, simulate, simulate_point, simulate_reporting,
-    simulate_traced, simulate_traced_all, simulate_unit, units,
+    AssembleError, Job, Outcome, Run, Sample, Unit, assemble, shares_one_simulation, simulate, simulate_point,
+    simulate_reporting, simulate_traced, simulate_traced_all, simulate_traced_each, simulate_unit, units,
 };
 pub use sink::{NoTrace, TraceSink};
 

@@ -64,14 +64,14 @@ pub struct Run {
 /// n − 1 replicate seeds derived from its own, in parallel; replicates of points
 /// that share data share them too.
 pub fn simulate(scenario: &Scenario) -> Run {
-    simulate_all(scenario, None, &mut NoTrace, &mut |_| {})
+    simulate_all::<NoTrace>(scenario, &mut [], &mut |_| {})
 }
 
 /// [`simulate`], calling `done(points)` each time the `points` (with their
 /// replicates) are simulated, for a progress display and the time each point
 /// takes. The run is the same.
 pub fn simulate_reporting(scenario: &Scenario, done: &mut dyn FnMut(&[usize])) -> Run {
-    simulate_all(scenario, None, &mut NoTrace, done)
+    simulate_all::<NoTrace>(scenario, &mut [], done)
 }
 
 /// Simulates every point of `scenario` as [`simulate_reporting`] does, reporting
@@ -94,7 +94,32 @@ pub fn simulate_traced(
         point < scenario.points.len(),
         "point {point} is not a point of the scenario"
     );
-    simulate_all(scenario, Some(point), sink, done)
+    simulate_all(scenario, &mut [(point, sink)], done)
+}
+
+/// Simulates every point of `scenario` as [`simulate_reporting`] does, reporting
+/// the steps of each point to its own sink, `sinks[point]`, as
+/// [`simulate_traced`] reports one point's: points that share their sampled
+/// data are simulated together once, each sink seeing only its own point's
+/// fused grid. What `sightline run` records when the point to keep is known
+/// only once the run is judged and every point shares one simulation
+/// ([`shares_one_simulation`]). The run is the one [`simulate`] gives, bit for
+/// bit, and each record the one [`simulate_point`] gives its point.
+///
+/// # Panics
+///
+/// If `sinks` does not hold one sink per point of [`Scenario::points`].
+pub fn simulate_traced_each<S: TraceSink>(scenario: &Scenario, sinks: &mut [S], done: &mut dyn FnMut(&[usize])) -> Run {
+    assert_eq!(sinks.len(), scenario.points.len(), "one sink per point of the scenario");
+    let mut traced: Vec<(usize, &mut S)> = sinks.iter_mut().enumerate().collect();
+    simulate_all(scenario, &mut traced, done)
+}
+
+/// Whether every point of `scenario` shares one simulation: the points differ
+/// only in their fusion or decision settings, so that one pass simulates the
+/// sampled data of all (and replicates of checks over seeds).
+pub fn shares_one_simulation(scenario: &Scenario) -> bool {
+    shared_data_groups(scenario).len() == 1
 }
 
 /// Simulates every point of `scenario`, reporting the steps of each to `sink`,
@@ -137,12 +162,11 @@ pub fn simulate_traced_all(scenario: &Scenario, sink: &mut impl TraceSink, done:
 }
 
 /// Every point, pass by pass (see [`passes`]), with the replicates checks over
-/// seeds need; the group holding point `traced` reports to `sink`; `done`
-/// after each pass.
-fn simulate_all(
+/// seeds need; each `(point, sink)` of `traced` has the point's steps reported
+/// to the sink; `done` after each pass.
+fn simulate_all<S: TraceSink>(
     scenario: &Scenario,
-    traced: Option<usize>,
-    sink: &mut impl TraceSink,
+    traced: &mut [(usize, &mut S)],
     done: &mut dyn FnMut(&[usize]),
 ) -> Run {
     let mut pieces = Vec::new();
@@ -154,9 +178,16 @@ fn simulate_all(
         match &pass[..] {
             [(group, _)] => {
                 let seed = unit(group, 0).seed(scenario);
-                let outcomes = match traced.and_then(|point| group.iter().position(|&i| i == point)) {
-                    Some(job) => simulate_group(scenario, group, seed, &mut OneJob { sink: &mut *sink, job }),
-                    None => simulate_group(scenario, group, seed, &mut NoTrace),
+                let sinks: Vec<(usize, &mut S)> = traced
+                    .iter_mut()
+                    .filter_map(|(point, sink)| {
+                        let job = group.iter().position(|i| i == point)?;
+                        Some((job, &mut **sink))
+                    })
+                    .collect();
+                let outcomes = match sinks.is_empty() {
+                    true => simulate_group(scenario, group, seed, &mut NoTrace),
+                    false => simulate_group(scenario, group, seed, &mut JobSinks(sinks)),
                 };
                 pieces.push((unit(group, 0), outcomes));
             }
@@ -329,40 +360,46 @@ fn seeds_needed(scenario: &Scenario) -> Vec<u32> {
     seeds
 }
 
-/// Passes a group's record on to a sink that wants one job's: each step's fused
-/// grids cut down to that job's.
-struct OneJob<'s, S> {
-    sink: &'s mut S,
-    job: usize,
-}
+/// Passes a group's record on to sinks that each want one job's, `(job,
+/// sink)`: each step's fused grids cut down to that job's.
+struct JobSinks<'s, S>(Vec<(usize, &'s mut S)>);
 
-impl<S: TraceSink> TraceSink for OneJob<'_, S> {
+impl<S: TraceSink> TraceSink for JobSinks<'_, S> {
     fn point(&mut self, point: usize) {
-        self.sink.point(point);
+        for (_, sink) in &mut self.0 {
+            sink.point(point);
+        }
     }
 
     fn start(&mut self, agents: &[Agent]) {
-        self.sink.start(agents);
+        for (_, sink) in &mut self.0 {
+            sink.start(agents);
+        }
     }
 
     fn wants_grids(&self, step: usize) -> bool {
-        self.sink.wants_grids(step)
+        self.0.iter().any(|(_, sink)| sink.wants_grids(step))
     }
 
     fn world_step(&mut self, step: &WorldStep<'_>) {
-        let measured = step.measured.map(|m| Measured {
-            fused: &m.fused[self.job..=self.job],
-            ..m
-        });
-        self.sink.world_step(&WorldStep { measured, ..*step });
+        for (job, sink) in &mut self.0 {
+            let measured = step.measured.map(|m| Measured {
+                fused: &m.fused[*job..=*job],
+                ..m
+            });
+            sink.world_step(&WorldStep { measured, ..*step });
+        }
     }
 
+    /// Only once every sink has: the others want the rest of the run.
     fn gave_up(&self) -> bool {
-        self.sink.gave_up()
+        self.0.iter().all(|(_, sink)| sink.gave_up())
     }
 
     fn semantic_step(&mut self, step: &SemanticStep<'_>) {
-        self.sink.semantic_step(step);
+        for (_, sink) in &mut self.0 {
+            sink.semantic_step(step);
+        }
     }
 }
 

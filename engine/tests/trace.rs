@@ -15,7 +15,10 @@ use sightline_engine::trace::Visibility::{Los, NlosDynamic, NlosStatic};
 use sightline_engine::trace::{
     AgentState, Approach, Arrival, Item, Packet, PacketKind, Pose, SemanticStep, Sighting, WorldStep, mount_pose,
 };
-use sightline_engine::{Outcome, TraceSink, simulate, simulate_point, simulate_traced, simulate_traced_all};
+use sightline_engine::{
+    Outcome, TraceSink, shares_one_simulation, simulate, simulate_point, simulate_traced, simulate_traced_all,
+    simulate_traced_each,
+};
 
 /// The bundled roundabout, 14 s long (the snapshot stays at 12 s), all six
 /// vehicles cooperating, fused by Bayes (point 0) and Dempster (point 1): one
@@ -235,6 +238,42 @@ fn tracing_one_point_of_a_run_gives_the_run_and_that_points_record() {
             "point {point}"
         );
         assert!(traced == alone, "the record of point {point} differs within the run");
+    }
+}
+
+/// Recording each point of a run to its own sink (what `sightline run` records
+/// when every point shares one simulation, issue 18) gives `simulate`'s run,
+/// simulated once, and each sink its point's own record, at one thread and at
+/// three.
+#[test]
+fn tracing_each_point_of_a_shared_simulation_gives_the_run_and_each_points_record() {
+    let scenario = roundabout();
+    assert!(shares_one_simulation(&scenario));
+    assert!(!shares_one_simulation(&urban()));
+    let run = simulate(&scenario);
+    let alone: Vec<Recorder> = (0..2)
+        .map(|point| {
+            let mut alone = Recorder::asking_grids_at(&[40]);
+            simulate_point(&scenario, point, &mut alone);
+            alone
+        })
+        .collect();
+    assert!(alone[0] != alone[1], "the two fusion rules' grids differ");
+    for threads in [1, 3] {
+        let mut sinks = vec![Recorder::asking_grids_at(&[40]), Recorder::asking_grids_at(&[40])];
+        let mut passes = 0;
+        let traced = in_pool(threads, || {
+            simulate_traced_each(&scenario, &mut sinks, &mut |points| {
+                assert_eq!(points, [0, 1]);
+                passes += 1;
+            })
+        });
+        assert_eq!(traced, run, "{threads} threads");
+        assert_eq!(passes, 1, "one simulation for both points");
+        assert!(
+            sinks == alone,
+            "a point's record differs within the run, {threads} threads"
+        );
     }
 }
 
