@@ -3,6 +3,7 @@
 //! evidence set committed into its directory as a whole (see `staging`).
 
 use std::collections::HashSet;
+use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
@@ -166,13 +167,113 @@ pub fn resimulated(input: &Input, record: Record, run: Run, recorder: &mut impl 
 }
 
 /// What a recorded point's steps are written to: the recording, and the OSI
-/// trace with `--osi`.
-pub struct Sinks<'s, 'f> {
-    recorder: Recorder<'s, BufWriter<&'f std::fs::File>>,
-    osi: Option<OsiTrace<BufWriter<&'f std::fs::File>>>,
+/// trace with `--osi`, each a staged file of the evidence set.
+pub struct Sinks<'s> {
+    recorder: Recorder<'s, BufWriter<File>>,
+    /// The recording's staged name.
+    name: String,
+    /// The OSI trace and its staged name.
+    osi: Option<(OsiTrace<BufWriter<File>>, String)>,
 }
 
-impl TraceSink for Sinks<'_, '_> {
+impl<'s> Sinks<'s> {
+    /// Starts recording the points `record` names of `input`'s scenario (and,
+    /// with `--osi`, tracing its one point) into files staged as `run.mcap`
+    /// and `osi.mcap` behind `prefix`.
+    fn open(
+        input: &'s Input,
+        reporting: &Reporting<'_>,
+        staging: &mut Staging,
+        record: Record,
+        prefix: &str,
+    ) -> anyhow::Result<Self> {
+        let name = format!("{prefix}{RECORDING}");
+        let file = staging.create(&name)?;
+        let osi_file = match reporting.request.osi {
+            true => {
+                let name = format!("{prefix}{OSI_TRACE}");
+                Some((staging.create(&name)?, name))
+            }
+            false => None,
+        };
+        let text = std::str::from_utf8(&input.bytes).context("the scenario file is not UTF-8 text")?;
+        let source = Source {
+            tool: &reporting.tool,
+            file: &input.name,
+            text,
+            seed: reporting.request.seed,
+            record_flag: reporting.request.record,
+        };
+        let recorder = Recorder::new(BufWriter::new(file), &input.scenario, record, &source)
+            .with_context(|| failed(staging, RECORDING))?;
+        let osi = match osi_file {
+            Some((osi_file, name)) => Some((
+                OsiTrace::new(BufWriter::new(osi_file), &input.scenario, record, &input.name)
+                    .with_context(|| failed(staging, OSI_TRACE))?,
+                name,
+            )),
+            None => None,
+        };
+        Ok(Self { recorder, name, osi })
+    }
+
+    /// Ends the recording of `record`'s points with the `run` and its
+    /// `verdicts`, and the OSI trace, and stages them as `run.mcap` and
+    /// `osi.mcap`; what results.json says of them.
+    fn keep(
+        self,
+        staging: &mut Staging,
+        scenario: &Scenario,
+        record: Record,
+        (run, verdicts): (&Run, &[Verdict]),
+    ) -> anyhow::Result<RecordingInfo> {
+        let Self { recorder, name, osi } = self;
+        recorder
+            .finish(run, verdicts)
+            .with_context(|| failed(staging, RECORDING))?
+            .flush()
+            .with_context(|| failed(staging, RECORDING))?;
+        let osi_trace = match osi {
+            Some((osi, osi_name)) => {
+                osi.finish()
+                    .with_context(|| failed(staging, OSI_TRACE))?
+                    .flush()
+                    .with_context(|| failed(staging, OSI_TRACE))?;
+                stage_as(staging, &osi_name, OSI_TRACE)?;
+                Some(OsiTraceInfo {
+                    file: OSI_TRACE.into(),
+                    sha256: staged_sha256(staging, OSI_TRACE).with_context(|| failed(staging, OSI_TRACE))?,
+                })
+            }
+            None => None,
+        };
+        stage_as(staging, &name, RECORDING)?;
+        Ok(RecordingInfo {
+            file: RECORDING.into(),
+            sha256: staged_sha256(staging, RECORDING).with_context(|| failed(staging, RECORDING))?,
+            point: record.point,
+            label: scenario.points[record.point].label(),
+            every_point: record.points == RecordedPoints::All,
+            osi_trace,
+        })
+    }
+
+    /// Drops the recording and the OSI trace unfinished, and their files.
+    fn discard(self, staging: &mut Staging) -> anyhow::Result<()> {
+        let Self { recorder, name, osi } = self;
+        drop(recorder);
+        staging.remove(&name)?;
+        match osi {
+            Some((osi, name)) => {
+                drop(osi);
+                staging.remove(&name)
+            }
+            None => Ok(()),
+        }
+    }
+}
+
+impl TraceSink for Sinks<'_> {
     fn point(&mut self, point: usize) {
         // `--osi` with every point recorded is refused before the run.
         self.recorder.point(point);
@@ -180,7 +281,7 @@ impl TraceSink for Sinks<'_, '_> {
 
     fn start(&mut self, agents: &[sightline_dsl::Agent]) {
         self.recorder.start(agents);
-        if let Some(osi) = &mut self.osi {
+        if let Some((osi, _)) = &mut self.osi {
             osi.start(agents);
         }
     }
@@ -191,14 +292,14 @@ impl TraceSink for Sinks<'_, '_> {
 
     fn world_step(&mut self, step: &WorldStep<'_>) {
         self.recorder.world_step(step);
-        if let Some(osi) = &mut self.osi {
+        if let Some((osi, _)) = &mut self.osi {
             osi.world_step(step);
         }
     }
 
     fn semantic_step(&mut self, step: &SemanticStep<'_>) {
         self.recorder.semantic_step(step);
-        if let Some(osi) = &mut self.osi {
+        if let Some((osi, _)) = &mut self.osi {
             osi.semantic_step(step);
         }
     }
@@ -213,63 +314,61 @@ pub fn recorded(
     reporting: &Reporting<'_>,
     staging: &mut Staging,
     record: Record,
-    simulate: impl FnOnce(&mut Sinks<'_, '_>) -> anyhow::Result<Run>,
+    simulate: impl FnOnce(&mut Sinks<'_>) -> anyhow::Result<Run>,
+) -> anyhow::Result<Simulated> {
+    let mut sinks = Sinks::open(input, reporting, staging, record, "")?;
+    let run = simulate(&mut sinks)?;
+    let verdicts = sightline_oracles::check(&input.scenario, &run);
+    let info = sinks.keep(staging, &input.scenario, record, (&run, &verdicts))?;
+    Ok((run, verdicts, Some(info)))
+}
+
+/// Records every point of `input`'s scenario, each into files of its own
+/// (`point-N.run.mcap`, and `point-N.osi.mcap` with `--osi`), while
+/// `simulate` runs the scenario with them as its sinks, one per point; once
+/// the run is judged, keeps the recording of the point [`recorded_point`]
+/// picks, finished as [`recorded`] finishes it, and removes the others.
+pub fn recorded_each(
+    input: &Input,
+    reporting: &Reporting<'_>,
+    staging: &mut Staging,
+    record: Record,
+    simulate: impl FnOnce(&mut [Sinks<'_>]) -> anyhow::Result<Run>,
 ) -> anyhow::Result<Simulated> {
     let scenario = &input.scenario;
-    let file = staging.create(RECORDING)?;
-    let osi_file = match reporting.request.osi {
-        true => Some(staging.create(OSI_TRACE)?),
-        false => None,
-    };
-    let failed = |name: &str| format!("failed to write {}", staging.dir().join(name).display());
-    let text = std::str::from_utf8(&input.bytes).context("the scenario file is not UTF-8 text")?;
-    let source = Source {
-        tool: &reporting.tool,
-        file: &input.name,
-        text,
-        seed: reporting.request.seed,
-        record_flag: reporting.request.record,
-    };
-    let recorder =
-        Recorder::new(BufWriter::new(&file), scenario, record, &source).with_context(|| failed(RECORDING))?;
-    let osi = match &osi_file {
-        Some(osi_file) => Some(
-            OsiTrace::new(BufWriter::new(osi_file), scenario, record, &input.name)
-                .with_context(|| failed(OSI_TRACE))?,
-        ),
-        None => None,
-    };
-    let mut sinks = Sinks { recorder, osi };
+    let mut sinks = Vec::with_capacity(scenario.points.len());
+    for point in 0..scenario.points.len() {
+        let at_point = record.at_point(&scenario.points, point);
+        sinks.push(Sinks::open(
+            input,
+            reporting,
+            staging,
+            at_point,
+            &format!("point-{point}."),
+        )?);
+    }
     let run = simulate(&mut sinks)?;
     let verdicts = sightline_oracles::check(scenario, &run);
-    let Sinks { recorder, osi } = sinks;
-    recorder
-        .finish(&run, &verdicts)
-        .with_context(|| failed(RECORDING))?
-        .flush()
-        .with_context(|| failed(RECORDING))?;
-    let osi_trace = match osi {
-        Some(osi) => {
-            osi.finish()
-                .with_context(|| failed(OSI_TRACE))?
-                .flush()
-                .with_context(|| failed(OSI_TRACE))?;
-            Some(OsiTraceInfo {
-                file: OSI_TRACE.into(),
-                sha256: staged_sha256(staging, OSI_TRACE).with_context(|| failed(OSI_TRACE))?,
-            })
-        }
-        None => None,
-    };
-    let info = RecordingInfo {
-        file: RECORDING.into(),
-        sha256: staged_sha256(staging, RECORDING).with_context(|| failed(RECORDING))?,
-        point: record.point,
-        label: scenario.points[record.point].label(),
-        every_point: record.points == RecordedPoints::All,
-        osi_trace,
-    };
+    let record = recorded_point(scenario, record, &verdicts);
+    let kept = sinks.swap_remove(record.point);
+    for other in sinks {
+        other.discard(staging)?;
+    }
+    let info = kept.keep(staging, scenario, record, (&run, &verdicts))?;
     Ok((run, verdicts, Some(info)))
+}
+
+/// Stages the staged file `name` as `as_name`.
+fn stage_as(staging: &mut Staging, name: &str, as_name: &str) -> anyhow::Result<()> {
+    match name == as_name {
+        true => Ok(()),
+        false => staging.rename(name, as_name),
+    }
+}
+
+/// What a failure to write the evidence file `name` says.
+fn failed(staging: &Staging, name: &str) -> String {
+    format!("failed to write {}", staging.dir().join(name).display())
 }
 
 /// SHA-256 of the staged file `name` as it is on disk (MCAP writers seek back
@@ -310,4 +409,95 @@ pub fn evidence_dirs<'a>(out: Option<&Path>, inputs: impl IntoIterator<Item = &'
         }
     }
     Some(dirs)
+}
+
+#[cfg(test)]
+mod tests {
+    use sightline_reports::Page;
+
+    use super::*;
+
+    /// The bundled joint junction, 8 s long, with the blind recall asked of
+    /// Dempster's rule (point 1) rather than Bayes', at 0.99: it fails there
+    /// only, so the recording kept is point 1's.
+    fn junction() -> Input {
+        let text = include_str!("../scenarios/junction-joint.yaml")
+            .replace("duration: 20", "duration: 8")
+            .replace(
+                "where: { fusion.method: bayes }\n    check: { metric: blind_recall, at_least: 0.5 }",
+                "where: { fusion.method: dempster }\n    check: { metric: blind_recall, at_least: 0.99 }",
+            );
+        let options = sightline_dsl::Options {
+            record: true,
+            osi: true,
+            ..Default::default()
+        };
+        let scenario = sightline_dsl::compile("junction.yaml", &text, &options).unwrap_or_else(|e| panic!("{e}"));
+        Input {
+            path: "junction.yaml".into(),
+            name: "junction.yaml".into(),
+            bytes: text.into_bytes(),
+            scenario,
+        }
+    }
+
+    /// The staged files of the set: name and bytes, by name.
+    fn staged(staging: &Staging) -> Vec<(String, Vec<u8>)> {
+        let folder = staging.path(RECORDING).parent().unwrap().to_path_buf();
+        let mut files: Vec<(String, Vec<u8>)> = std::fs::read_dir(folder)
+            .unwrap()
+            .map(|entry| entry.unwrap())
+            .filter(|entry| entry.file_name() != "manifest")
+            .map(|entry| {
+                (
+                    entry.file_name().into_string().unwrap(),
+                    std::fs::read(entry.path()).unwrap(),
+                )
+            })
+            .collect();
+        files.sort();
+        files
+    }
+
+    /// Recording each point of a shared simulation in its first pass keeps the
+    /// judged point's recording and OSI trace byte for byte as simulating that
+    /// point again alone writes them, and stages nothing else.
+    #[test]
+    fn recording_each_point_keeps_what_simulating_the_kept_point_again_writes() {
+        let input = junction();
+        let scenario = &input.scenario;
+        assert!(sightline_engine::shares_one_simulation(scenario));
+        let templates = Templates::bundled(Page::Run);
+        let reporting = Reporting {
+            tool: tool(),
+            request: Request {
+                seed: None,
+                record: true,
+                osi: true,
+            },
+            templates: &templates,
+        };
+        let record = scenario.record.expect("--record");
+        let dir = tempfile::tempdir().unwrap();
+        let mut each = Staging::open(&dir.path().join("each"), EVIDENCE_SET).unwrap();
+        let (run, verdicts, info) = recorded_each(&input, &reporting, &mut each, record, |sinks| {
+            Ok(sightline_engine::simulate_traced_each(scenario, sinks, &mut |_| {}))
+        })
+        .unwrap();
+        let info = info.expect("a recording");
+        assert_eq!(info.point, 1, "the blind recall fails at Dempster's rule only");
+
+        let first = sightline_engine::simulate(scenario);
+        let again = recorded_point(scenario, record, &sightline_oracles::check(scenario, &first));
+        let mut alone = Staging::open(&dir.path().join("alone"), EVIDENCE_SET).unwrap();
+        let (run_alone, verdicts_alone, info_alone) = recorded(&input, &reporting, &mut alone, again, |sinks| {
+            resimulated(&input, again, first, sinks)
+        })
+        .unwrap();
+        assert_eq!((run, verdicts, Some(info)), (run_alone, verdicts_alone, info_alone));
+        let (each, alone) = (staged(&each), staged(&alone));
+        let names: Vec<&str> = each.iter().map(|(name, _)| name.as_str()).collect();
+        assert_eq!(names, [OSI_TRACE, RECORDING]);
+        assert!(each == alone, "the recordings differ");
+    }
 }

@@ -123,6 +123,39 @@ impl Staging {
             .with_context(|| format!("failed to write {}", self.dir.join(name).display()))
     }
 
+    /// Renames the staged file `from` of the set to `to`, a name not staged.
+    ///
+    /// # Panics
+    ///
+    /// If `from` is not a staged file of the set.
+    pub fn rename(&mut self, from: &str, to: &str) -> anyhow::Result<()> {
+        let at = self.staged(from);
+        fs::rename(self.path(from), self.path(to))
+            .with_context(|| format!("failed to write {}", self.dir.join(to).display()))?;
+        self.names[at] = to.to_string();
+        Ok(())
+    }
+
+    /// Removes the staged file `name` from the set.
+    ///
+    /// # Panics
+    ///
+    /// If `name` is not a staged file of the set.
+    pub fn remove(&mut self, name: &str) -> anyhow::Result<()> {
+        let at = self.staged(name);
+        fs::remove_file(self.path(name)).with_context(|| format!("failed to remove {}", self.path(name).display()))?;
+        self.names.remove(at);
+        Ok(())
+    }
+
+    /// Where `name` is among the staged files.
+    fn staged(&self, name: &str) -> usize {
+        self.names
+            .iter()
+            .position(|n| n == name)
+            .unwrap_or_else(|| panic!("{name} is not a staged file"))
+    }
+
     /// Puts the set into the output folder, replacing the previous one whole:
     /// every file and the manifest made durable, the staging folder renamed to
     /// `.sightline-commit-<id>` (the point of no return), each file renamed into

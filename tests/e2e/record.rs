@@ -9,7 +9,9 @@ use std::path::Path;
 use std::process::Command;
 
 use crate::bundled::{Bundled, every_run, roundabout_run, sumo_grid_run};
-use crate::support::{FAILING, RECORDING, arg, normalise_execution, read, read_json, root, sightline, temp_dir};
+use crate::support::{
+    FAILING, RECORDING, arg, files_under, normalise_execution, read, read_json, root, sightline, temp_dir,
+};
 
 /// Names a Python that has the official `mcap` package; `.ci/run` sets it.
 const PYTHON_VAR: &str = "SIGHTLINE_MCAP_PYTHON";
@@ -516,8 +518,10 @@ fn replay_refuses_what_is_not_a_recording() {
 
 /// The same scenario and seed give a byte-identical recording whatever the
 /// number of worker threads: a short roundabout recording every topic (all
-/// agents cooperating, a grid every step, each agent's own grid) and a short
-/// junction.
+/// agents cooperating, a grid every step, each agent's own grid), a short
+/// junction, and a short joint junction whose two points share one simulation,
+/// each recorded as it runs (issue 18), of which the failing second point's is
+/// kept and nothing else of the other stays in the evidence set.
 #[test]
 fn recording_is_byte_identical_whatever_the_thread_count() {
     let tmp = temp_dir();
@@ -529,7 +533,12 @@ fn recording_is_byte_identical_whatever_the_thread_count() {
         .replace("duration: 120", "duration: 70")
         .replace("runs: 5 ", "runs: 2 ")
         + "record: { point: 1 }\n";
-    for (name, text) in [("roundabout", roundabout), ("urban", urban)] {
+    let joint = read(&root().join("scenarios/junction-joint.yaml"))
+        .replace("duration: 20", "duration: 8")
+        .replace("where: { fusion.method: bayes }", "where: { fusion.method: dempster }")
+        .replace("blind_recall, at_least: 0.5", "blind_recall, at_least: 0.99")
+        + "record: { grid_rate: 2, agent_grids: true }\n";
+    for (name, text) in [("roundabout", roundabout), ("urban", urban), ("joint", joint)] {
         let scenario = tmp.path().join(format!("{name}.yaml"));
         std::fs::write(&scenario, text).unwrap();
         let evidence: Vec<(Vec<u8>, String)> = ["1", "3"]
@@ -538,6 +547,16 @@ fn recording_is_byte_identical_whatever_the_thread_count() {
                 let out = tmp.path().join(format!("{name}-{jobs}"));
                 let run = sightline(["run", arg(&scenario), "--out", arg(&out), "--jobs", jobs]);
                 assert!(matches!(run.code, Some(0 | 1)), "{run}");
+                if name == "joint" {
+                    let results = read_json(&out.join("results.json"));
+                    assert_eq!(results["recording"]["point"].as_u64(), Some(1), "{run}");
+                    let mut files = files_under(&out);
+                    files.sort();
+                    assert_eq!(
+                        files,
+                        ["junit.xml", "report.html", "results.json", RECORDING].map(Path::new)
+                    );
+                }
                 (
                     std::fs::read(out.join(RECORDING)).unwrap(),
                     normalise_execution(&read(&out.join("results.json"))),
