@@ -323,6 +323,21 @@ pub fn recorded(
     Ok((run, verdicts, Some(info)))
 }
 
+/// The most points `run --record` records in the first pass ([`records_each`]):
+/// at the joint junction a point's recording costs about 75 ms of CPU and
+/// simulating the point again alone about 180 ms (docs/performance.md), so
+/// recording a fourth point would cost more than simulating the chosen one
+/// again.
+const FIRST_PASS_POINTS: usize = 3;
+
+/// Whether `run --record` records each point of `scenario` in the first pass
+/// ([`recorded_each`]) when the point to keep is chosen once the run is
+/// judged: where every point shares one simulation, which simulating the
+/// chosen point again would repeat almost whole, and the points are few.
+pub fn records_each(scenario: &Scenario) -> bool {
+    scenario.points.len() <= FIRST_PASS_POINTS && sightline_engine::shares_one_simulation(scenario)
+}
+
 /// Records every point of `input`'s scenario, each into files of its own
 /// (`point-N.run.mcap`, and `point-N.osi.mcap` with `--osi`), while
 /// `simulate` runs the scenario with them as its sinks, one per point; once
@@ -466,7 +481,7 @@ mod tests {
     fn recording_each_point_keeps_what_simulating_the_kept_point_again_writes() {
         let input = junction();
         let scenario = &input.scenario;
-        assert!(sightline_engine::shares_one_simulation(scenario));
+        assert!(records_each(scenario));
         let templates = Templates::bundled(Page::Run);
         let reporting = Reporting {
             tool: tool(),

@@ -8,8 +8,8 @@ use sightline_reports::{Execution, Page};
 
 use crate::cli::RunArgs;
 use crate::evidence::{
-    EVIDENCE_SET, Reporting, Request, evidence_dirs, recorded, recorded_each, recorded_point, resimulated, tool,
-    write_evidence,
+    EVIDENCE_SET, Reporting, Request, evidence_dirs, recorded, recorded_each, recorded_point, records_each,
+    resimulated, tool, write_evidence,
 };
 use crate::exit::Exit;
 use crate::input::load_all;
@@ -123,10 +123,10 @@ pub fn run(args: &RunArgs) -> anyhow::Result<Exit> {
                     Ok(pool.install(|| sightline_engine::simulate_traced(scenario, record.point, recorder, &mut done)))
                 })?
             }
-            // Every point shares one simulation, which simulating the point to keep
-            // again would repeat whole: each point recorded as it runs, the one
-            // to keep chosen once the run is judged.
-            (None, Some(record)) if sightline_engine::shares_one_simulation(scenario) => {
+            // A few points sharing one simulation, which simulating the point to
+            // keep again would repeat whole: each point recorded as it runs, the
+            // one to keep chosen once the run is judged.
+            (None, Some(record)) if records_each(scenario) => {
                 recorded_each(input, &reporting, &mut staging, record, |sinks| {
                     Ok(pool.install(|| sightline_engine::simulate_traced_each(scenario, sinks, &mut done)))
                 })?
