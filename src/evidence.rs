@@ -515,4 +515,26 @@ mod tests {
         assert_eq!(names, [OSI_TRACE, RECORDING]);
         assert!(each == alone, "the recordings differ");
     }
+
+    /// Up to three points sharing one simulation are recorded in the first
+    /// pass; a fourth, or points of separate simulations, are simulated again.
+    #[test]
+    fn the_first_pass_records_at_most_three_points_of_one_simulation() {
+        let records = |fusion: &str, sweep: &str| {
+            let text = include_str!("../scenarios/junction-joint.yaml")
+                .replace("fusion: { method: bayes }", fusion)
+                .replace("sweep: { fusion.method: [bayes, dempster] }", sweep);
+            let scenario =
+                sightline_dsl::compile("j.yaml", &text, &Default::default()).unwrap_or_else(|e| panic!("{e}"));
+            records_each(&scenario)
+        };
+        let hybrid = "fusion: { method: hybrid, switch: { threshold: 10 } }";
+        assert!(records(hybrid, "sweep: { fusion.method: [bayes, dempster, hybrid] }"));
+        assert!(!records(
+            hybrid,
+            "sweep: { fusion.method: [bayes, dempster, hybrid, distance_weighted] }"
+        ));
+        let sigma = "sweeps: [{ fusion.method: [bayes] }, { localization.position_sigma: [0.1, 0.2] }]";
+        assert!(!records("fusion: { method: bayes }", sigma), "two simulations");
+    }
 }
