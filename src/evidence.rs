@@ -15,7 +15,9 @@ use sightline_engine::trace::{SemanticStep, WorldStep};
 use sightline_oracles::{Status, Verdict};
 use sightline_reports::mcap::{Recorder, Source};
 use sightline_reports::osi::{OSI_TRACE, OsiTrace};
-use sightline_reports::{Execution, OsiTraceInfo, Provenance, RecordingInfo, Templates, Tool, render, sha256_hex};
+use sightline_reports::{
+    Execution, OsiTraceInfo, Provenance, RecordingInfo, Templates, Tool, render, sha256_hex, sha256_hex_of,
+};
 
 use crate::exit::Exit;
 use crate::input::Input;
@@ -389,7 +391,7 @@ fn failed(staging: &Staging, name: &str) -> String {
 /// SHA-256 of the staged file `name` as it is on disk (MCAP writers seek back
 /// as they write), lowercase hex.
 fn staged_sha256(staging: &Staging, name: &str) -> std::io::Result<String> {
-    std::fs::read(staging.path(name)).map(|bytes| sha256_hex(&bytes))
+    sha256_hex_of(std::fs::File::open(staging.path(name))?)
 }
 
 /// Where each scenario's evidence goes (`out` with one scenario, `out/STEM/`

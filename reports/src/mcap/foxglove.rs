@@ -140,19 +140,22 @@ impl Pose3 {
         Self::at(0.0, 0.0, 0.0, 0.0)
     }
 
-    /// Appends `{"position":…,"orientation":…}`, as serde_json writes the pose.
-    pub(crate) fn write_json(&self, out: &mut Vec<u8>) {
-        out.extend_from_slice(br#"{"position":"#);
-        self.write_translation(out);
-        out.extend_from_slice(br#","orientation":"#);
-        self.write_rotation(out);
-        out.push(b'}');
-    }
-
     /// Appends the position as serde_json writes a [`Vector3`].
     pub(crate) fn write_translation(&self, out: &mut Vec<u8>) {
         let Vector3 { x, y, z } = self.position;
         write_fields(out, &[(b"x", x), (b"y", y), (b"z", z)]);
+    }
+
+    /// Appends the position's first two fields, `"x":…,"y":…`, as
+    /// [`write_translation`](Self::write_translation) writes them.
+    pub(crate) fn write_xy(&self, out: &mut Vec<u8>) {
+        write_members(out, &[(b"x", self.position.x), (b"y", self.position.y)]);
+    }
+
+    /// Appends the position's last field, `"z":…`, as
+    /// [`write_translation`](Self::write_translation) writes it.
+    pub(crate) fn write_z(&self, out: &mut Vec<u8>) {
+        write_members(out, &[(b"z", self.position.z)]);
     }
 
     /// Appends the orientation as serde_json writes a quaternion.
@@ -166,6 +169,12 @@ impl Pose3 {
 /// serde_json writes it: a finite number in its shortest round-trip form.
 fn write_fields(out: &mut Vec<u8>, fields: &[(&[u8], f64)]) {
     out.push(b'{');
+    write_members(out, fields);
+    out.push(b'}');
+}
+
+/// [`write_fields`] without the braces.
+fn write_members(out: &mut Vec<u8>, fields: &[(&[u8], f64)]) {
     for (i, (key, value)) in fields.iter().enumerate() {
         if i > 0 {
             out.push(b',');
@@ -176,7 +185,6 @@ fn write_fields(out: &mut Vec<u8>, fields: &[(&[u8], f64)]) {
         // Writing a number into a Vec does not fail.
         let _ = serde_json::to_writer(&mut *out, value);
     }
-    out.push(b'}');
 }
 
 impl Time {

@@ -155,6 +155,8 @@ pub struct Recorder<'s, W: Write + Seek> {
     fields_shown: Vec<usize>,
     /// Per agent, what its `/tf` and `/scene/agents` JSON holds at every step.
     agent_json: Vec<agents::AgentJson>,
+    /// The agents' poses at the step being written, as JSON.
+    poses: agents::StepPoses,
     /// The JSON of the message being written, reused from message to message.
     buffer: Vec<u8>,
     /// Requirements at the recorded point whose metric the steps give.
@@ -194,6 +196,7 @@ impl<'s, W: Write + Seek> Recorder<'s, W> {
             shown: BTreeSet::new(),
             fields_shown: Vec::new(),
             agent_json: Vec::new(),
+            poses: agents::StepPoses::default(),
             buffer: Vec::new(),
             signalled: Vec::new(),
             running: Running {

@@ -1,7 +1,9 @@
 //! `/tf` and `/scene/agents` at every step, written straight into JSON: what
 //! does not change from step to step (an agent's id, kind, size, colour and
 //! label, its sensors' mounts) is rendered once per recorded point, and each
-//! step writes only its times, poses and speeds. The bytes are the ones
+//! step writes only its times, poses and speeds, each pose's numbers formatted
+//! once for the three places they appear (the agent's transform, its box and
+//! its label) and each time once per message. The bytes are the ones
 //! serde_json gives [`FrameTransforms`](crate::mcap::foxglove::FrameTransforms)
 //! and [`SceneUpdate`] of the same entities (a test compares them): encoding
 //! those field by field, every key escaped and every constant number formatted
@@ -22,17 +24,28 @@ pub(super) fn sensor_frame(agent: &str, index: usize) -> String {
 
 /// What an agent's messages hold that no step changes, as JSON.
 pub(super) struct AgentJson {
-    /// Its `/tf` transform after the timestamp, up to the translation.
+    /// Its `/tf` transform after the timestamp, up to the translation's x.
     frame: Vec<u8>,
     /// Each sensor's `/tf` transform after the timestamp, to its end.
     sensors: Vec<Vec<u8>>,
     /// Its entity after the timestamp, up to the speed's digits.
     head: Vec<u8>,
-    /// After the box's pose, up to the label's pose.
+    /// Its box's z, up to the box's orientation.
+    cube_z: Vec<u8>,
+    /// After the box's orientation, up to the label's x.
     cube: Vec<u8>,
-    /// After the label's pose, to the entity's end.
+    /// Its label's z, up to the label's orientation.
+    label_z: Vec<u8>,
+    /// After the label's orientation, to the entity's end.
     label: Vec<u8>,
 }
+
+/// A transform in `map` after its x and y, up to its rotation (agents move in
+/// the plane z = 0).
+const TRANSFORM_Z: &[u8] = br#","z":0.0},"rotation":"#;
+
+/// An entity after its speed's digits, up to its box's x.
+const SPEED_TO_CUBE: &[u8] = br#""}],"arrows":[],"cubes":[{"pose":{"position":{"#;
 
 impl AgentJson {
     /// The pieces of `agent`, drawn in `color`, whose sensors sit at `mounts`.
@@ -61,23 +74,31 @@ impl AgentJson {
             y: agent.width,
             z: height,
         });
+        let z_up_to_orientation = |z: f64| {
+            let mut out = vec![b','];
+            Pose3::at(0.0, 0.0, z, 0.0).write_z(&mut out);
+            out.extend_from_slice(br#"},"orientation":"#);
+            out
+        };
         let label = json(&Text::label(Pose3::identity(), agent.id.clone(), LABEL));
         // The label's fields after its pose: `{"pose":{…},` cut off.
         let label_tail = &label[label.find(r#","billboard""#).expect("a label has billboard")..];
         Self {
-            frame: format!(r#","parent_frame_id":"{FRAME}","child_frame_id":{id},"translation":"#).into_bytes(),
+            frame: format!(r#","parent_frame_id":"{FRAME}","child_frame_id":{id},"translation":{{"#).into_bytes(),
             sensors,
             head: format!(
                 r#","frame_id":"{FRAME}","id":{id},"lifetime":{{"sec":0,"nsec":0}},"frame_locked":false,"metadata":[{{"key":"kind","value":{}}},{{"key":"speed_mps","value":""#,
                 json(agent.kind.name())
             )
             .into_bytes(),
+            cube_z: z_up_to_orientation(height / 2.0),
             cube: format!(
-                r#","size":{size},"color":{}}}],"spheres":[],"cylinders":[],"lines":[],"triangles":[],"texts":[{{"pose":"#,
+                r#"}},"size":{size},"color":{}}}],"spheres":[],"cylinders":[],"lines":[],"triangles":[],"texts":[{{"pose":{{"position":{{"#,
                 json(&color)
             )
             .into_bytes(),
-            label: format!(r#"{label_tail}],"models":[]}}"#).into_bytes(),
+            label_z: z_up_to_orientation(height + 1.0),
+            label: format!(r#"}}{label_tail}],"models":[]}}"#).into_bytes(),
         }
     }
 }
@@ -87,29 +108,65 @@ fn json(value: &(impl serde::Serialize + ?Sized)) -> String {
     serde_json::to_string(value).expect("a string, a vector, a colour or a label encodes")
 }
 
+/// Every agent's pose at one step as the JSON its transform, its box and its
+/// label repeat: the position's `"x":…,"y":…` and the orientation, each
+/// number formatted once.
+#[derive(Default)]
+pub(super) struct StepPoses {
+    json: Vec<u8>,
+    /// Per agent, where its x and y start, where its orientation starts and
+    /// where it ends in `json`; `None` when it is not in the scene.
+    spans: Vec<Option<[usize; 3]>>,
+}
+
+impl StepPoses {
+    /// Holds the poses of `states` (by agent), replacing the previous step's.
+    pub(super) fn write(&mut self, states: &[Option<AgentState>]) {
+        self.json.clear();
+        self.spans.clear();
+        for state in states {
+            let span = state.as_ref().map(|state| {
+                let pose = Pose3::planar(state.pose, 0.0);
+                let start = self.json.len();
+                pose.write_xy(&mut self.json);
+                let xy = self.json.len();
+                pose.write_rotation(&mut self.json);
+                [start, xy, self.json.len()]
+            });
+            self.spans.push(span);
+        }
+    }
+
+    /// Per agent, its x and y and its orientation if it is in the scene.
+    fn iter(&self) -> impl Iterator<Item = Option<(&[u8], &[u8])>> {
+        self.spans
+            .iter()
+            .map(|span| span.map(|[start, xy, end]| (&self.json[start..xy], &self.json[xy..end])))
+    }
+}
+
 /// Writes step `stamp`'s `foxglove.FrameTransforms` into `out` (cleared
-/// first): every agent in the scene (`states`, by agent) in `map`, and each of
-/// its sensors in it.
-pub(super) fn write_transforms(out: &mut Vec<u8>, stamp: Time, states: &[Option<AgentState>], pieces: &[AgentJson]) {
+/// first): every agent in the scene (at `poses`) in `map`, and each of its
+/// sensors in it.
+pub(super) fn write_transforms(out: &mut Vec<u8>, stamp: Time, poses: &StepPoses, pieces: &[AgentJson]) {
+    let mut timestamp = br#"{"timestamp":"#.to_vec();
+    stamp.write_json(&mut timestamp);
     out.clear();
     out.extend_from_slice(br#"{"transforms":["#);
     let mut first = true;
-    for (state, piece) in states.iter().zip(pieces) {
-        let Some(state) = state else { continue };
-        let pose = Pose3::planar(state.pose, 0.0);
+    for (piece, (xy, rotation)) in pieces.iter().zip(poses.iter()).filter_map(|(p, pose)| Some((p, pose?))) {
         for sensor in std::iter::once(None).chain(piece.sensors.iter().map(Some)) {
             if !std::mem::take(&mut first) {
                 out.push(b',');
             }
-            out.extend_from_slice(br#"{"timestamp":"#);
-            stamp.write_json(out);
+            out.extend_from_slice(&timestamp);
             match sensor {
                 Some(sensor) => out.extend_from_slice(sensor),
                 None => {
                     out.extend_from_slice(&piece.frame);
-                    pose.write_translation(out);
-                    out.extend_from_slice(br#","rotation":"#);
-                    pose.write_rotation(out);
+                    out.extend_from_slice(xy);
+                    out.extend_from_slice(TRANSFORM_Z);
+                    out.extend_from_slice(rotation);
                     out.push(b'}');
                 }
             }
@@ -119,36 +176,41 @@ pub(super) fn write_transforms(out: &mut Vec<u8>, stamp: Time, states: &[Option<
 }
 
 /// Writes step `stamp`'s `foxglove.SceneUpdate` of `/scene/agents` into `out`
-/// (cleared first): a delete-all, then every agent in the scene as a box with
-/// its id, kind and speed.
+/// (cleared first): a delete-all, then every agent in the scene (at `poses`,
+/// moving at `states`' speeds) as a box with its id, kind and speed.
 pub(super) fn write_agents(
     out: &mut Vec<u8>,
     stamp: Time,
+    poses: &StepPoses,
     states: &[Option<AgentState>],
-    agents: &[Agent],
     pieces: &[AgentJson],
 ) {
     use std::io::Write as _;
+    let mut timestamp = Vec::new();
+    stamp.write_json(&mut timestamp);
     out.clear();
     out.extend_from_slice(br#"{"deletions":[{"timestamp":"#);
-    stamp.write_json(out);
+    out.extend_from_slice(&timestamp);
     out.extend_from_slice(br#","type":1,"id":""}],"entities":["#);
     let mut first = true;
-    for ((state, agent), piece) in states.iter().zip(agents).zip(pieces) {
-        let Some(state) = state else { continue };
+    for ((state, piece), pose) in states.iter().zip(pieces).zip(poses.iter()) {
+        let (Some(state), Some((xy, rotation))) = (state, pose) else {
+            continue;
+        };
         if !std::mem::take(&mut first) {
             out.push(b',');
         }
-        let height = agent.kind.height();
         out.extend_from_slice(br#"{"timestamp":"#);
-        stamp.write_json(out);
+        out.extend_from_slice(&timestamp);
         out.extend_from_slice(&piece.head);
         let _ = write!(out, "{:.2}", state.speed);
-        out.extend_from_slice(br#""}],"arrows":[],"cubes":[{"pose":"#);
-        Pose3::planar(state.pose, height / 2.0).write_json(out);
-        out.extend_from_slice(&piece.cube);
-        Pose3::planar(state.pose, height + 1.0).write_json(out);
-        out.extend_from_slice(&piece.label);
+        out.extend_from_slice(SPEED_TO_CUBE);
+        for (z, after) in [(&piece.cube_z, &piece.cube), (&piece.label_z, &piece.label)] {
+            out.extend_from_slice(xy);
+            out.extend_from_slice(z);
+            out.extend_from_slice(rotation);
+            out.extend_from_slice(after);
+        }
     }
     out.extend_from_slice(b"]}");
 }
@@ -210,6 +272,7 @@ mod tests {
                 .enumerate()
                 .map(|(i, a)| AgentJson::new(a, color(i), a.sensors.iter().map(mount_pose)))
                 .collect();
+            let mut poses = StepPoses::default();
             for step in 0..7_u32 {
                 let stamp = Time::from_nanos(946_684_800_000_000_000 + u64::from(step) * 123_456_789);
                 let states: Vec<Option<AgentState>> = (0..agents.len())
@@ -223,8 +286,9 @@ mod tests {
                         })
                     })
                     .collect();
+                poses.write(&states);
                 let mut out = Vec::new();
-                write_agents(&mut out, stamp, &states, &agents, &pieces);
+                write_agents(&mut out, stamp, &poses, &states, &pieces);
                 let entities = states
                     .iter()
                     .enumerate()
@@ -232,7 +296,7 @@ mod tests {
                     .collect();
                 let expected = serde_json::to_string(&SceneUpdate::replace(stamp, entities)).unwrap();
                 assert_eq!(String::from_utf8(out.clone()).unwrap(), expected, "{file}, step {step}");
-                write_transforms(&mut out, stamp, &states, &pieces);
+                write_transforms(&mut out, stamp, &poses, &pieces);
                 let transforms = states
                     .iter()
                     .zip(&agents)

@@ -43,10 +43,11 @@ impl<W: Write + Seek> Recorder<'_, W> {
     pub(super) fn publish_agents(&mut self, time: u64, states: &[Option<AgentState>]) {
         let stamp = Time::from_nanos(time);
         let mut buffer = std::mem::take(&mut self.buffer);
-        write_transforms(&mut buffer, stamp, states, &self.agent_json);
+        self.poses.write(states);
+        write_transforms(&mut buffer, stamp, &self.poses, &self.agent_json);
         self.publish_json(topic::TRANSFORMS, TRANSFORMS, time, &buffer);
         self.publish_fields_of_view(time, states);
-        write_agents(&mut buffer, stamp, states, &self.agents, &self.agent_json);
+        write_agents(&mut buffer, stamp, &self.poses, states, &self.agent_json);
         self.publish_json(topic::AGENTS, SCENE, time, &buffer);
         self.buffer = buffer;
     }
