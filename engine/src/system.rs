@@ -27,13 +27,15 @@ use crate::system_objects::{AroundEgo, SystemObject};
 use crate::trace::WorldStep;
 
 /// One detection of the system, in the host agent's frame: metres forward of
-/// its centre (`x`) and to its left (`y`).
+/// its centre (`x`) and to its left (`y`), with the class it reports.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Detection {
     /// Forward of the host's centre, metres.
     pub x: f64,
     /// Left of the host's centre, metres.
     pub y: f64,
+    /// The kind of road user it reports; `None`: unknown.
+    pub class: Option<AgentKind>,
 }
 
 /// What a system under test achieved over a run, each metric with its n.
@@ -417,7 +419,10 @@ pub(crate) mod tests {
             cooperators: &cooperators,
             measured: None,
         };
-        let detections: Vec<Detection> = detections.iter().map(|&(x, y)| Detection { x, y }).collect();
+        let detections: Vec<Detection> = detections
+            .iter()
+            .map(|&(x, y)| Detection { x, y, class: None })
+            .collect();
         judge.step(&world, &detections);
     }
 
