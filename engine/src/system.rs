@@ -28,7 +28,7 @@ use sightline_dsl::{Agent, AgentKind, Area, Metric, ObjectSelection, World};
 
 use crate::math::Point;
 use crate::semantic::{contains, regions};
-use crate::system_objects::{AroundEgo, SystemObject};
+use crate::system_objects::{AroundEgo, Roster, SystemObject};
 use crate::trace::WorldStep;
 
 /// One detection of the system, in the host agent's frame: metres forward of
@@ -177,90 +177,84 @@ struct Matching {
     in_sight: Vec<bool>,
 }
 
-/// Matches a system's detections step by step and sums what it achieved.
+/// Matches a system's detections step by step, sums what it achieved and
+/// keeps the record of every road user around the ego.
 #[derive(Debug, Clone)]
 pub struct SystemJudge {
     host: usize,
     sensors: Vec<usize>,
     gate: f64,
     road_user: Vec<bool>,
-    around: Option<AroundEgo>,
+    roster: Roster,
+    around: AroundEgo,
     steps: u64,
-    regions: Vec<(String, Area)>,
-    agents: Vec<(String, AgentKind)>,
     /// Everything first, then each selection the judge was given.
     selecting: Vec<Selecting>,
 }
 
 impl SystemJudge {
     /// A judge of a system serving `sensors` (indices on the agent) of agent
-    /// `host`, matching within `gate` metres.
-    pub fn new(host: usize, sensors: Vec<usize>, gate: f64) -> Self {
+    /// `host` in `world`, matching within `gate` metres, summing every metric
+    /// also over each of `selections` (only ids, classes and areas select;
+    /// the language refuses the rest of a selection on these metrics), and
+    /// keeping the record of every road user around `world`'s perception ego
+    /// ([`SystemMetrics::objects`]).
+    pub fn new(
+        world: &World,
+        (host, sensors): (usize, Vec<usize>),
+        gate: f64,
+        selections: Vec<ObjectSelection>,
+    ) -> Self {
+        let ego = world.perception.as_ref().map_or(host, |p| p.ego);
+        Self::with((ego, host, sensors), gate, regions(world), selections)
+    }
+
+    /// [`SystemJudge::new`] around agent `ego`, among `regions`.
+    fn with(
+        (ego, host, sensors): (usize, usize, Vec<usize>),
+        gate: f64,
+        regions: Vec<(String, Area)>,
+        selections: Vec<ObjectSelection>,
+    ) -> Self {
+        let everything = std::iter::once(ObjectSelection::ALL).chain(selections);
         Self {
             host,
             sensors,
             gate,
             road_user: Vec::new(),
-            around: None,
+            roster: Roster::new(regions),
+            around: AroundEgo::new(ego, host),
             steps: 0,
-            regions: Vec::new(),
-            agents: Vec::new(),
-            selecting: vec![Selecting::new(ObjectSelection::ALL)],
+            selecting: everything.map(Selecting::new).collect(),
         }
-    }
-
-    /// The judge, also summing every metric over each of `selections`, whose
-    /// areas are regions of `world`. Only ids, classes and areas select; the
-    /// language refuses the rest of a selection on these metrics.
-    pub fn selecting(self, world: &World, selections: Vec<ObjectSelection>) -> Self {
-        self.select(regions(world), selections)
-    }
-
-    /// [`SystemJudge::selecting`] among `regions`, each with its id.
-    fn select(mut self, regions: Vec<(String, Area)>, selections: Vec<ObjectSelection>) -> Self {
-        self.regions = regions;
-        self.selecting.truncate(1);
-        self.selecting.extend(selections.into_iter().map(Selecting::new));
-        self
-    }
-
-    /// The same judge, also keeping the record of every road user around
-    /// `world`'s perception ego ([`SystemMetrics::objects`]).
-    pub fn recording(mut self, world: &World) -> Self {
-        self.around = Some(AroundEgo::new(world, self.host));
-        self
     }
 
     /// Every agent of the run, by index (a sink's `start`).
     pub fn start(&mut self, agents: &[Agent]) {
         self.road_user = agents.iter().map(|a| a.kind != AgentKind::Rsu).collect();
-        self.agents = agents.iter().map(|a| (a.id.clone(), a.kind)).collect();
+        self.roster.start(agents);
         for selecting in &mut self.selecting {
             selecting.first_in_sight = vec![None; agents.len()];
             selecting.first_matched = vec![None; agents.len()];
         }
-        if let Some(around) = &mut self.around {
-            around.start(agents);
-        }
+        self.around.start(&self.roster);
     }
 
     /// Follows the road users around the ego at `step`, whether or not the
     /// system is asked then (for the record).
     pub fn observe(&mut self, step: &WorldStep<'_>) {
-        if let Some(around) = &mut self.around {
-            around.step(step);
-        }
+        self.around.step(step, &self.roster);
     }
 
     /// Whether `selection`'s areas, where it names any, contain `at`.
     fn in_areas(&self, selection: &ObjectSelection, at: Point) -> bool {
         selection.areas.is_empty()
-            || (self.regions.iter()).any(|(region, area)| selection.areas.contains(region) && contains(area, at))
+            || (self.roster.regions.iter()).any(|(region, area)| selection.areas.contains(region) && contains(area, at))
     }
 
     /// Whether `selection` keeps agent `agent` with its centre at `centre`.
     fn keeps(&self, selection: &ObjectSelection, agent: usize, centre: Point) -> bool {
-        let (id, kind) = &self.agents[agent];
+        let (id, kind) = &self.roster.agents[agent];
         (selection.ids.is_empty() || selection.ids.contains(id))
             && (selection.classes.is_empty() || selection.classes.contains(kind))
             && self.in_areas(selection, centre)
@@ -274,7 +268,7 @@ impl SystemJudge {
         (at, class): (Point, Option<AgentKind>),
         matched: Option<usize>,
     ) -> bool {
-        (selection.ids.is_empty() || matched.is_some_and(|agent| selection.ids.contains(&self.agents[agent].0)))
+        (selection.ids.is_empty() || matched.is_some_and(|agent| selection.ids.contains(&self.roster.agents[agent].0)))
             && (selection.classes.is_empty() || class.is_some_and(|class| selection.classes.contains(&class)))
             && self.in_areas(selection, at)
     }
@@ -367,7 +361,7 @@ impl SystemJudge {
             if centre(agent).is_some_and(|at| self.keeps(&s.selection, agent, at)) {
                 s.tally.matched += 1;
                 s.tally.position_error_sum += distance;
-                s.tally.class_correct += u64::from(detection.1 == Some(self.agents[agent].1));
+                s.tally.class_correct += u64::from(detection.1 == Some(self.roster.agents[agent].1));
             }
         }
     }
@@ -376,9 +370,7 @@ impl SystemJudge {
     pub fn finish(self) -> SystemMetrics {
         let mut selecting = self.selecting.into_iter();
         let all = selecting.next().expect("the judge sums everything first");
-        let objects = (self.around.as_ref())
-            .map(|around| around.records((&all.first_in_sight, &all.first_matched)))
-            .unwrap_or_default();
+        let objects = (self.around).records(&self.roster, (&all.first_in_sight, &all.first_matched));
         SystemMetrics {
             steps: self.steps,
             all: all.finish().tally,
@@ -508,7 +500,7 @@ pub(crate) mod tests {
     /// `a`'s a truck (wrong).
     #[test]
     fn matching_is_one_to_one_nearest_first_within_the_gate() {
-        let metrics = two_steps(SystemJudge::new(0, vec![0], 2.0));
+        let metrics = two_steps(SystemJudge::with((0, 0, vec![0]), 2.0, Vec::new(), Vec::new()));
         let all = &metrics.all;
         assert_eq!((metrics.steps, all.in_sight, all.in_sight_matched), (2, 2, 1));
         assert_eq!((all.detections, all.detections_matched, all.matched), (5, 2, 2));
@@ -555,7 +547,7 @@ pub(crate) mod tests {
             ("near_a".into(), circle(10.0, 10.0)),
             ("away".into(), circle(50.0, 50.0)),
         ];
-        let metrics = two_steps(SystemJudge::new(0, vec![0], 2.0).select(regions, selections.clone()));
+        let metrics = two_steps(SystemJudge::with((0, 0, vec![0]), 2.0, regions, selections.clone()));
         let sample = |i: usize, metric| metrics.selected_sample(metric, &selections[i]).unwrap();
         for cars in [0, 2] {
             assert_eq!(sample(cars, Metric::SutRecall), (Some(0.5), 2));
@@ -612,7 +604,7 @@ pub(crate) mod tests {
 
     #[test]
     fn a_step_without_the_host_cooperating_judges_nothing() {
-        let mut judge = SystemJudge::new(3, vec![0], 2.0);
+        let mut judge = SystemJudge::with((3, 3, vec![0]), 2.0, Vec::new(), Vec::new());
         judge.start(&[
             agent("h", AgentKind::Car),
             agent("a", AgentKind::Car),

@@ -26,9 +26,12 @@ pub fn run(scenario: &Scenario, system: &SystemUnderTest, pool: &rayon::ThreadPo
     let Some(Experiment::World(world)) = scenario.points.first().map(|p| &p.setup.experiment) else {
         return Err(anyhow!("a system under test runs in a perception world only"));
     };
-    let judge = SystemJudge::new(system.agent, system.sensors.clone(), system.gate)
-        .selecting(world, selections(scenario))
-        .recording(world);
+    let judge = SystemJudge::new(
+        world,
+        (system.agent, system.sensors.clone()),
+        system.gate,
+        selections(scenario),
+    );
     let mut driver = Driver::start(system, judge, &env).map_err(failed)?;
     let mut outcome = pool.install(|| sightline_engine::simulate_point(scenario, 0, &mut driver));
     let metrics = driver.finish().map_err(failed)?;
