@@ -2,7 +2,8 @@
 //! user around the perception world's ego, when the system's served sensors
 //! first had it in sight, when a judged detection of the system first matched
 //! it, when the ego's own sensors first had it in sight, and its closest
-//! approach to the ego; what the `sut_*` per-object properties read.
+//! approach to the ego; what the `sut_*` per-object properties read. The
+//! run's agents and regions, which the judge reads too, are a [`Roster`].
 //!
 //! The definitions, sightline's choice (docs/osi-sut.md), on the truth and the
 //! run's clock (seconds from its start):
@@ -23,9 +24,9 @@
 //!   the scene).
 
 use serde::{Deserialize, Serialize};
-use sightline_dsl::{Agent, AgentKind, Area, ObjectProperty, ObjectSelection, World};
+use sightline_dsl::{Agent, AgentKind, Area, ObjectProperty, ObjectSelection};
 
-use crate::semantic::{Closest, contains, keeps, regions};
+use crate::semantic::{Closest, contains, keeps};
 use crate::trace::WorldStep;
 
 /// One road user around the ego over a run with a system under test.
@@ -75,6 +76,31 @@ impl SystemObject {
     }
 }
 
+/// The agents of a run, by index, and the regions of its world a selection
+/// or a record names: what the judge and its record both read.
+#[derive(Debug, Clone)]
+pub(crate) struct Roster {
+    /// Each agent's id and kind.
+    pub(crate) agents: Vec<(String, AgentKind)>,
+    /// Each region with its id.
+    pub(crate) regions: Vec<(String, Area)>,
+}
+
+impl Roster {
+    /// `regions`, with no agent yet.
+    pub(crate) fn new(regions: Vec<(String, Area)>) -> Self {
+        Self {
+            agents: Vec::new(),
+            regions,
+        }
+    }
+
+    /// Every agent of the run, by index (a sink's `start`).
+    pub(crate) fn start(&mut self, agents: &[Agent]) {
+        self.agents = agents.iter().map(|a| (a.id.clone(), a.kind)).collect();
+    }
+}
+
 /// What the steps showed of one agent relative to the ego.
 #[derive(Debug, Clone, Default)]
 struct Around {
@@ -82,14 +108,12 @@ struct Around {
     first_seen_by_ego: Option<f64>,
 }
 
-/// Follows every road user around the ego over a run, for the record.
+/// Follows every road user around the ego over a run, for the record, among
+/// the agents and regions of a [`Roster`].
 #[derive(Debug, Clone)]
 pub(crate) struct AroundEgo {
     ego: usize,
     host: usize,
-    regions: Vec<(String, Area)>,
-    /// Each agent's id and kind, by agent index.
-    agents: Vec<(String, AgentKind)>,
     /// By agent index.
     by_agent: Vec<Around>,
     /// By agent index, then region: whether it was inside.
@@ -97,45 +121,39 @@ pub(crate) struct AroundEgo {
 }
 
 impl AroundEgo {
-    /// Nothing seen yet around `world`'s perception ego, with the system
-    /// serving agent `host`.
-    pub(crate) fn new(world: &World, host: usize) -> Self {
-        let ego = world.perception.as_ref().map_or(host, |p| p.ego);
-        Self::with(ego, host, regions(world))
-    }
-
     /// Nothing seen yet around agent `ego`, with the system serving agent
-    /// `host`, in `regions`.
-    fn with(ego: usize, host: usize, regions: Vec<(String, Area)>) -> Self {
+    /// `host`.
+    pub(crate) fn new(ego: usize, host: usize) -> Self {
         Self {
             ego,
             host,
-            regions,
-            agents: Vec::new(),
             by_agent: Vec::new(),
             inside: Vec::new(),
         }
     }
 
-    /// Every agent of the run, by index (a sink's `start`).
-    pub(crate) fn start(&mut self, agents: &[Agent]) {
-        self.agents = agents.iter().map(|a| (a.id.clone(), a.kind)).collect();
-        self.by_agent = vec![Around::default(); agents.len()];
-        self.inside = vec![false; agents.len() * self.regions.len()];
+    /// The run's agents are `roster`'s (a sink's `start`).
+    pub(crate) fn start(&mut self, roster: &Roster) {
+        let agents = roster.agents.len();
+        self.by_agent = vec![Around::default(); agents];
+        self.inside = vec![false; agents * roster.regions.len()];
     }
 
     /// What `step` shows around the ego; nothing without the ego in the scene.
-    pub(crate) fn step(&mut self, step: &WorldStep<'_>) {
+    pub(crate) fn step(&mut self, step: &WorldStep<'_>, roster: &Roster) {
         let Some(ego) = step.agents.get(self.ego).copied().flatten() else {
             return;
         };
-        let regions = self.regions.len();
+        let regions = roster.regions.len();
         for (agent, state) in step.agents.iter().enumerate() {
             let Some(state) = state.filter(|_| agent != self.ego) else {
                 continue;
             };
             let at = state.position();
-            for (inside, (_, area)) in self.inside[agent * regions..][..regions].iter_mut().zip(&self.regions) {
+            for (inside, (_, area)) in self.inside[agent * regions..][..regions]
+                .iter_mut()
+                .zip(&roster.regions)
+            {
                 *inside = *inside || contains(area, at);
             }
             let distance = (at - ego.position()).length();
@@ -165,14 +183,15 @@ impl AroundEgo {
     /// (`first_detected`), both by agent index.
     pub(crate) fn records(
         &self,
+        roster: &Roster,
         (first_in_sight, first_detected): (&[Option<f64>], &[Option<f64>]),
     ) -> Vec<SystemObject> {
-        let regions = self.regions.len();
+        let regions = roster.regions.len();
         (self.by_agent.iter().enumerate())
-            .filter(|&(agent, _)| agent != self.ego && agent != self.host && self.agents[agent].1 != AgentKind::Rsu)
+            .filter(|&(agent, _)| agent != self.ego && agent != self.host && roster.agents[agent].1 != AgentKind::Rsu)
             .filter_map(|(agent, around)| {
                 let inside = &self.inside[agent * regions..][..regions];
-                let (id, class) = &self.agents[agent];
+                let (id, class) = &roster.agents[agent];
                 Some(SystemObject {
                     id: id.clone(),
                     class: *class,
@@ -180,7 +199,7 @@ impl AroundEgo {
                     first_detected: first_detected[agent],
                     first_seen_by_ego: around.first_seen_by_ego,
                     closest: around.closest?,
-                    areas: (self.regions.iter().zip(inside))
+                    areas: (roster.regions.iter().zip(inside))
                         .filter(|&(_, &inside)| inside)
                         .map(|((id, _), _)| id.clone())
                         .collect(),
@@ -212,7 +231,12 @@ mod tests {
 
     /// Step `step` (0.1 s each) with the agents at `agents` and the ego, when
     /// in the scene, sighting `(target, visible fraction)`.
-    fn step(around: &mut AroundEgo, step: usize, agents: &[Option<AgentState>], sighted: &[(usize, f64)]) {
+    fn step(
+        (around, roster): (&mut AroundEgo, &Roster),
+        step: usize,
+        agents: &[Option<AgentState>],
+        sighted: &[(usize, f64)],
+    ) {
         let sighted = sighted
             .iter()
             .map(|&(target, visible_fraction)| Sighting {
@@ -231,13 +255,16 @@ mod tests {
                 observation: &observation,
             })
             .collect();
-        around.step(&WorldStep {
-            step,
-            time: step as f64 * 0.1,
-            agents,
-            cooperators: &cooperators,
-            measured: None,
-        });
+        around.step(
+            &WorldStep {
+                step,
+                time: step as f64 * 0.1,
+                agents,
+                cooperators: &cooperators,
+                measured: None,
+            },
+            roster,
+        );
     }
 
     /// Four steps by hand. The ego (0) at the origin, the host (1), a
@@ -254,8 +281,8 @@ mod tests {
             center: [0.0, 10.0],
             radius: 3.0,
         };
-        let mut around = AroundEgo::with(0, 1, vec![("zone".into(), zone)]);
-        around.start(&[
+        let mut roster = Roster::new(vec![("zone".into(), zone)]);
+        roster.start(&[
             agent("ego", AgentKind::Car),
             agent("host", AgentKind::Car),
             agent("a", AgentKind::Pedestrian),
@@ -263,28 +290,30 @@ mod tests {
             agent("b", AgentKind::Car),
             agent("c", AgentKind::Car),
         ]);
+        let mut around = AroundEgo::new(0, 1);
+        around.start(&roster);
         let rsu = at(5.0, 5.0);
         let host = at(10.0, 0.0);
         step(
-            &mut around,
+            (&mut around, &roster),
             0,
             &[at(0.0, 0.0), host, at(0.0, 20.0), rsu, None, at(30.0, 0.0)],
             &[(5, 0.5), (2, 0.0)],
         );
         step(
-            &mut around,
+            (&mut around, &roster),
             1,
             &[at(0.0, 0.0), host, at(0.0, 12.0), rsu, None, at(25.0, 0.0)],
             &[(2, 0.3)],
         );
         step(
-            &mut around,
+            (&mut around, &roster),
             2,
             &[None, host, at(0.0, 1.0), rsu, None, at(24.0, 0.0)],
             &[],
         );
         step(
-            &mut around,
+            (&mut around, &roster),
             3,
             &[at(0.0, 2.0), host, at(0.0, 8.0), rsu, None, at(22.0, 2.0)],
             &[(2, 1.0)],
@@ -293,7 +322,7 @@ mod tests {
         // 0.1 s, had `c` in sight at 0.1 s and never detected it.
         let in_sight = [None, Some(0.0), Some(0.0), None, None, Some(0.1)];
         let detected = [None, None, Some(0.1), None, None, None];
-        let records = around.records((&in_sight, &detected));
+        let records = around.records(&roster, (&in_sight, &detected));
         let ids: Vec<&str> = records.iter().map(|r| r.id.as_str()).collect();
         assert_eq!(ids, ["a", "c"]);
         let (a, c) = (&records[0], &records[1]);

@@ -39,7 +39,9 @@ def write_message(stream, message):
 
 def serve(perceive):
     """Answers every step: `perceive(views)` returns the detected objects as
-    (x, y, existence_probability, osi_type) tuples in the host's frame."""
+    (x, y, existence_probability, (osi_type, vehicle_type)) tuples in the
+    host's frame; the class is one candidate of probability 1, `vehicle_type`
+    (an osi3.MovingObject.VehicleClassification.Type) None but for a vehicle."""
     if os.environ.get("SIGHTLINE_SUT_PROTOCOL") != PROTOCOL:
         sys.exit(f"this system speaks {PROTOCOL}; sightline announced {os.environ.get('SIGHTLINE_SUT_PROTOCOL')}")
     count = int(os.environ["SIGHTLINE_SUT_VIEWS"])
@@ -57,7 +59,7 @@ def serve(perceive):
             parsed.append(view)
         data = SensorData()
         data.timestamp.CopyFrom(parsed[0].timestamp)
-        for x, y, existence, kind in perceive(parsed):
+        for x, y, existence, (kind, vehicle) in perceive(parsed):
             detected = data.moving_object.add()
             detected.header.existence_probability = existence
             detected.base.position.x = x
@@ -66,4 +68,6 @@ def serve(perceive):
             candidate = detected.candidate.add()
             candidate.probability = 1.0
             candidate.type = kind
+            if vehicle is not None:
+                candidate.vehicle_classification.type = vehicle
         write_message(stdout, data.SerializeToString())

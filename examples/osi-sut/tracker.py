@@ -2,7 +2,7 @@
 least partly in sight (sightline's `sightline.visibility` annotation), coasts
 a track for up to 0.3 s after it was last seen, predicting it at constant
 velocity, and reports positions on its 0.5 m map cells (the centre of the
-cell a track is in). It runs with sightline's protocol (osi_sut.py)."""
+cell a track is in) with the class the ground truth gives. It runs with sightline's protocol (osi_sut.py)."""
 
 import math
 
@@ -48,7 +48,9 @@ class Tracker:
         now = views[0].timestamp.seconds + views[0].timestamp.nanos * 1e-9
         for ident, obj in seen(views, self.keep).items():
             base = obj.base
-            self.tracks[ident] = (now, base.position.x, base.position.y, base.velocity.x, base.velocity.y, obj.type)
+            vehicle = obj.vehicle_classification.type if obj.HasField("vehicle_classification") else None
+            kind = (obj.type, vehicle)
+            self.tracks[ident] = (now, base.position.x, base.position.y, base.velocity.x, base.velocity.y, kind)
         hx, hy, yaw = host_pose(views[0])
         cos, sin = math.cos(yaw), math.sin(yaw)
         detections = []

@@ -26,9 +26,12 @@ pub fn run(scenario: &Scenario, system: &SystemUnderTest, pool: &rayon::ThreadPo
     let Some(Experiment::World(world)) = scenario.points.first().map(|p| &p.setup.experiment) else {
         return Err(anyhow!("a system under test runs in a perception world only"));
     };
-    let judge = SystemJudge::new(system.agent, system.sensors.clone(), system.gate)
-        .selecting(world, selections(scenario))
-        .recording(world);
+    let judge = SystemJudge::new(
+        world,
+        (system.agent, system.sensors.clone()),
+        system.gate,
+        selections(scenario),
+    );
     let mut driver = Driver::start(system, judge, &env).map_err(failed)?;
     let mut outcome = pool.install(|| sightline_engine::simulate_point(scenario, 0, &mut driver));
     let metrics = driver.finish().map_err(failed)?;
@@ -42,13 +45,13 @@ pub fn run(scenario: &Scenario, system: &SystemUnderTest, pool: &rayon::ThreadPo
     })
 }
 
-/// The selections of `scenario`'s checks on the system's road-user metrics
-/// (`sut_recall`, `sut_latency`), each once.
+/// The selections of `scenario`'s checks on the system's metrics (`sut_*`),
+/// each once.
 fn selections(scenario: &Scenario) -> Vec<ObjectSelection> {
     let mut selections: Vec<ObjectSelection> = Vec::new();
     for requirement in &scenario.requirements {
-        let by_road_user = matches!(requirement.check, Check::Metric { metric, .. } if metric.selects_objects());
-        if by_road_user && !requirement.objects.is_all() && !selections.contains(&requirement.objects) {
+        let of_system = matches!(requirement.check, Check::Metric { metric, .. } if metric.of_system());
+        if of_system && !requirement.objects.is_all() && !selections.contains(&requirement.objects) {
             selections.push(requirement.objects.clone());
         }
     }

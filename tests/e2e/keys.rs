@@ -1082,19 +1082,19 @@ const KEYS: &[Key] = &[
     Key {
         path: "requirements[].check.objects.ids",
         field: refused_at(&[("requirements.0.check", r#"{ "metric": "accuracy", "at_least": 0.5, "objects": { "ids": ["x"] } }"#)], OBJECTS_AT),
-        perception: Driven("objects_select_a_systems_object_steps_by_id_class_and_area"),
+        perception: Driven("objects_select_a_systems_object_steps_and_detections_by_id_class_and_area"),
         semantic: with(&[PER_OBJECT], &[("requirements.0.check.objects", r#"{ "ids": ["car"] }"#)]),
     },
     Key {
         path: "requirements[].check.objects.classes",
         field: refused_at(&[("requirements.0.check", r#"{ "metric": "accuracy", "at_least": 0.5, "objects": { "classes": ["car"] } }"#)], OBJECTS_AT),
-        perception: Driven("objects_select_a_systems_object_steps_by_id_class_and_area"),
+        perception: Driven("objects_select_a_systems_object_steps_and_detections_by_id_class_and_area"),
         semantic: with(&[PER_OBJECT], &[("requirements.0.check.objects", r#"{ "classes": ["pedestrian"] }"#)]),
     },
     Key {
         path: "requirements[].check.objects.areas",
         field: refused_at(&[("requirements.0.check", r#"{ "metric": "accuracy", "at_least": 0.5, "objects": { "areas": ["a"] } }"#)], OBJECTS_AT),
-        perception: Driven("objects_select_a_systems_object_steps_by_id_class_and_area"),
+        perception: Driven("objects_select_a_systems_object_steps_and_detections_by_id_class_and_area"),
         semantic: with(&[PER_OBJECT], &[("requirements.0.check.objects", r#"{ "areas": ["cw"] }"#)]),
     },
     Key {

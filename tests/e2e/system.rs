@@ -48,11 +48,23 @@ const HELLO: &str = r"printf '\023\000\000\000sightline-osi-sut/1'";
 /// (field 2) of 0 s and 0 ns, framed.
 const EMPTY_ANSWER: &str = r"printf '\006\000\000\000\022\004\010\000\020\000'";
 
+/// An `osi3.SensorData` answering step 0 with one detection, encoded by hand
+/// from OSI's field numbers: existence probability 1 (header, field 1, its
+/// field 3), 30 m straight ahead of the host (base, field 2; position, its
+/// field 2; x and y, fields 1 and 2), and one candidate (field 8) of
+/// probability 1 (field 1) and type 3, `TYPE_PEDESTRIAN` (field 2); framed.
+const PEDESTRIAN_ANSWER: &str = r"printf '\066\000\000\000\022\004\010\000\020\000\152\056\012\011\031\000\000\000\000\000\000\360\077\022\024\022\022\011\000\000\000\000\000\000\076\100\021\000\000\000\000\000\000\000\000\102\013\011\000\000\000\000\000\000\360\077\020\003'";
+
 /// Writes ONE_STEP with `system` into a fresh folder and runs it there.
 fn run_system(system: &str) -> (Outcome, tempfile::TempDir, Duration) {
+    run_with(system, "")
+}
+
+/// [`run_system`] with `requirements` (YAML list items) added.
+fn run_with(system: &str, requirements: &str) -> (Outcome, tempfile::TempDir, Duration) {
     let dir = temp_dir();
     let file = dir.path().join("sut.yaml");
-    std::fs::write(&file, ONE_STEP.replace("{system}", system)).unwrap();
+    std::fs::write(&file, ONE_STEP.replace("{system}", system) + requirements).unwrap();
     let started = Instant::now();
     let outcome = super::support::sightline(["run", arg(&file), "--out", arg(&dir.path().join("out"))]);
     (outcome, dir, started.elapsed())
@@ -249,6 +261,33 @@ fn a_system_that_detects_nothing_is_judged_and_fails_on_recall() {
     assert_eq!(verdict(&results, "SUT-GHOST").0, "not_exercised");
 }
 
+/// The one car in sight, reported exactly where it is (the ego at (0, −10)
+/// facing north, the car at (0, 20)) as a pedestrian: matched, so no ghost,
+/// and of the wrong class, so the class accuracy is 0 over 1 matched
+/// detection. By class, the detections reported as cars are none; the
+/// matched detections of cars and those of the road user `car` are the one.
+#[test]
+fn a_system_reporting_the_wrong_class_is_judged_by_class() {
+    let requirements = r#"  - { id: CLS, text: c, check: { metric: sut_class_accuracy, at_least: 0.5 } }
+  - { id: PRE-CARS, text: p, check: { metric: sut_precision, at_least: 0.5, objects: { classes: [car] } } }
+  - { id: POS-CARS, text: e, check: { metric: sut_position_error, at_most: 0.5, objects: { classes: [car] } } }
+  - { id: GHOST-CAR, text: g, check: { metric: sut_ghosts, at_most: 0, objects: { ids: [car] } } }
+"#;
+    let system = shell(&format!("{HELLO}; {PEDESTRIAN_ANSWER}; exec cat >/dev/null"), 5.0);
+    let (outcome, dir, _) = run_with(&system, requirements);
+    outcome.assert_exit(1);
+    let results = read_json(&dir.path().join("out").join("results.json"));
+    assert_eq!(verdict(&results, "SUT-REC"), ("pass".into(), Some(1.0), Some(1)));
+    assert_eq!(verdict(&results, "SUT-GHOST"), ("pass".into(), Some(0.0), Some(1)));
+    assert_eq!(verdict(&results, "CLS"), ("fail".into(), Some(0.0), Some(1)));
+    assert_eq!(metric(&results, "sut_class_accuracy"), (Some(0.0), 1));
+    assert_eq!(verdict(&results, "PRE-CARS"), ("not_exercised".into(), None, Some(0)));
+    let (status, error, n) = verdict(&results, "POS-CARS");
+    assert_eq!((status.as_str(), n), ("pass", Some(1)));
+    assert!(error.unwrap() < 1e-9, "{error:?}");
+    assert_eq!(verdict(&results, "GHOST-CAR"), ("pass".into(), Some(0.0), Some(1)));
+}
+
 #[test]
 fn a_scenario_with_a_system_is_neither_recorded_nor_sharded() {
     let dir = temp_dir();
@@ -419,15 +458,16 @@ fn a_system_serving_another_agent_anticipates_what_the_ego_cannot_see() {
     assert_eq!((code, crate::support::failing(&ego)), (Some(1), vec!["SUT-ANT-01"]));
 }
 
-/// `objects` on `sut_recall` and `sut_latency`, on the examples' scene. The
+/// `objects` on the system's metrics, on the examples' scene. The
 /// figures are counted independently of the judge, from the same scene's OSI
 /// trace (`run --osi` without the system): the lidar has the cars in sight at
 /// 101 object-steps and the pedestrians at 11, fully in sight (what the
 /// flawed tracker keeps, coasting 0.3 s) at 89 and 6 of them. The tracker
 /// matches all; the `walkway` strip holds the pedestrians' paths and neither
-/// road; the circle `far` is out of the lidar's range.
+/// road; the circle `far` is out of the lidar's range. Both trackers report
+/// each road user's class from the ground truth.
 #[test]
-fn objects_select_a_systems_object_steps_by_id_class_and_area() {
+fn objects_select_a_systems_object_steps_and_detections_by_id_class_and_area() {
     let Some(python) = python() else { return };
     let selections = r#"areas:
   - { id: walkway, polygon: [[-30, -2], [30, -2], [30, 2], [-30, 2]] }
@@ -439,6 +479,10 @@ system_under_test:"#;
   - { id: WALKWAY, text: w, check: { metric: sut_recall, at_least: 0.9, objects: { areas: [walkway] } } }
   - { id: FAR, text: f, check: { metric: sut_latency, at_most: 1, objects: { areas: [far] } } }
   - { id: CAR-LAT, text: l, check: { metric: sut_latency, at_most: 1, objects: { classes: [car] } } }
+  - { id: PRE-CARS, text: p, check: { metric: sut_precision, at_least: 0.9, objects: { classes: [car] } } }
+  - { id: CLS-CARS, text: k, check: { metric: sut_class_accuracy, at_least: 0.9, objects: { classes: [car] } } }
+  - { id: POS-FAR, text: e, check: { metric: sut_position_error, at_most: 1, objects: { areas: [far] } } }
+  - { id: GHOST-B, text: g, check: { metric: sut_ghosts, at_most: 0, objects: { ids: [walker_b] } } }
 "#;
     let scenario = |name: &str| example(name).replacen("system_under_test:", selections, 1) + extra;
     let (_, good) = run_example(&python, &scenario("tracker.yaml"), "2");
@@ -459,6 +503,29 @@ system_under_test:"#;
         assert_eq!(verdict(results, "CAR-LAT").2, Some(2));
         let objects = &requirement(results, "CAR-LAT")["check"]["objects"];
         assert_eq!(objects, &serde_json::json!({ "classes": ["car"] }));
+    }
+    // Detections by the class they report: the pedestrians' are the matched
+    // pedestrians in sight (11 and 6), the cars' the rest; every one matched
+    // a road user of its class.
+    for (results, pedestrians) in [(&good, 11), (&flawed, 6)] {
+        let (_, all) = metric(results, "sut_precision");
+        assert_eq!(
+            verdict(results, "SUT-PRE-PED"),
+            ("pass".into(), Some(1.0), Some(pedestrians))
+        );
+        assert_eq!(
+            verdict(results, "PRE-CARS"),
+            ("pass".into(), Some(1.0), Some(all - pedestrians))
+        );
+        assert_eq!(
+            verdict(results, "CLS-CARS"),
+            ("pass".into(), Some(1.0), Some(all - pedestrians))
+        );
+        assert_eq!(metric(results, "sut_class_accuracy"), (Some(1.0), all));
+        let (status, ghosts, n) = verdict(results, "GHOST-B");
+        assert_eq!((status.as_str(), ghosts), ("pass", Some(0.0)));
+        assert!((1..=pedestrians).contains(&n.unwrap()), "{n:?}");
+        assert_eq!(verdict(results, "POS-FAR"), ("not_exercised".into(), None, Some(0)));
     }
     // Nothing in the selection: not exercised, naming what it looked for.
     assert_eq!(verdict(&good, "FAR"), ("not_exercised".to_string(), None, Some(0)));

@@ -230,8 +230,8 @@ pub(super) fn ignored(kind: Kind, path: &Path) -> Option<&'static str> {
 
 /// Every key of `tree` that a scenario of `kind` never reads, with why; a key
 /// inside one already listed is not listed again. A perception world `driven`
-/// by a system under test reads `areas`: its `sut_recall` and `sut_latency`
-/// select object-steps by them.
+/// by a system under test reads `areas`: its metrics (`sut_*`) select
+/// object-steps and detections by them.
 pub(super) fn ignored_keys(tree: &Node, kind: Kind, driven: bool) -> Vec<(Path, &'static str)> {
     let driven = driven && kind == Perception;
     let mut found: Vec<(Path, &'static str)> = Vec::new();

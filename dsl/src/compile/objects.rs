@@ -1,5 +1,5 @@
-//! The road users a per-object check judges, or the object-steps a system's
-//! `sut_recall` or `sut_latency` is summed over (`check.objects`): ids, classes
+//! The road users a per-object check judges, or the object-steps and
+//! detections a system's metric (`sut_*`) is summed over (`check.objects`): ids, classes
 //! and areas checked against what the scenario can produce at the
 //! requirement's points, the window against the run. A selection that can
 //! match nothing is an error here; one that matches nothing in a run is not
@@ -28,17 +28,17 @@ pub(super) fn selection(
         return Some(ObjectSelection::default());
     };
     match check {
-        Check::Metric { metric, over_seeds, .. } if metric.selects_objects() => {
+        Check::Metric { metric, over_seeds, .. } if metric.of_system() => {
             if !of_system(ctx, raw, metric, over_seeds.is_some(), path) {
                 return None;
             }
         }
-        Check::Compare { metric, other, .. } if metric.selects_objects() || other.selects_objects() => {
+        Check::Compare { metric, other, .. } if metric.of_system() || other.of_system() => {
             ctx.error(
                 path,
                 ErrorKind::Invalid(
-                    "`objects` does not select within a comparison (`relative_to`); check the selection's \
-                     `sut_recall` or `sut_latency` on its own"
+                    "`objects` does not select within a comparison (`relative_to`); check each metric over \
+                     the selection on its own"
                         .into(),
                 ),
             );
@@ -71,8 +71,8 @@ pub(super) fn selection(
             ctx.error(
                 path,
                 ErrorKind::Invalid(
-                    "`objects` selects the road users of a `per_object` check, or the object-steps a system's \
-                     `sut_recall` or `sut_latency` is summed over"
+                    "`objects` selects the road users of a `per_object` check, or what a system's metric \
+                     (`sut_*`) is summed over"
                         .into(),
                 ),
             );
@@ -161,7 +161,7 @@ pub(super) fn selection(
     })
 }
 
-/// Errors where a selection of the object-steps of `metric`, a system's, asks
+/// Errors where a selection of what `metric`, a system's, is summed over asks
 /// for what the system's judge does not select by: a window or a distance to
 /// an ego (a semantic pipeline's), or a check over seeds.
 fn of_system(ctx: &mut Context<'_>, raw: &RawObjectSelection, metric: Metric, over_seeds: bool, path: &Path) -> bool {
@@ -186,7 +186,7 @@ fn of_system(ctx: &mut Context<'_>, raw: &RawObjectSelection, metric: Metric, ov
             &path.key(key),
             ErrorKind::Invalid(format!(
                 "`{key}` selects road users by their closest approach to a semantic pipeline's ego; `{name}` \
-                 selects its object-steps by `ids`, `classes` and `areas` only"
+                 selects what it is summed over by `ids`, `classes` and `areas` only"
             )),
         );
         return false;

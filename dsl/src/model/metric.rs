@@ -168,6 +168,10 @@ pub enum Metric {
     /// System under test: mean distance, metres, from a matched detection to
     /// the centre of the road user it matches.
     SutPositionError,
+    /// System under test: share of its matched detections whose reported
+    /// class (its most probable candidate's) is the kind of the road user
+    /// they match (0–1).
+    SutClassAccuracy,
     /// System under test: mean latency, seconds, over the road users it
     /// detected after a served sensor first had them in sight: first matched
     /// − first in sight, at least 0.
@@ -179,7 +183,7 @@ pub enum Metric {
 
 impl Metric {
     /// Every metric, in documentation order.
-    pub const ALL: [Metric; 54] = [
+    pub const ALL: [Metric; 55] = [
         Self::Accuracy,
         Self::BelowThreshold,
         Self::BelowThresholdFraction,
@@ -232,6 +236,7 @@ impl Metric {
         Self::SutRecall,
         Self::SutPrecision,
         Self::SutPositionError,
+        Self::SutClassAccuracy,
         Self::SutLatency,
         Self::SutGhosts,
     ];
@@ -291,6 +296,7 @@ impl Metric {
             Self::SutRecall => "sut_recall",
             Self::SutPrecision => "sut_precision",
             Self::SutPositionError => "sut_position_error",
+            Self::SutClassAccuracy => "sut_class_accuracy",
             Self::SutLatency => "sut_latency",
             Self::SutGhosts => "sut_ghosts",
         }
@@ -391,19 +397,18 @@ impl Metric {
     }
 
     /// Whether it judges a system under test (`system_under_test`): measured
-    /// in a perception world that declares one, and only there.
+    /// in a perception world that declares one, and only there. A check on it
+    /// takes an `objects` selection, summed over what the selection keeps.
     pub fn of_system(self) -> bool {
         matches!(
             self,
-            Self::SutRecall | Self::SutPrecision | Self::SutPositionError | Self::SutLatency | Self::SutGhosts
+            Self::SutRecall
+                | Self::SutPrecision
+                | Self::SutPositionError
+                | Self::SutClassAccuracy
+                | Self::SutLatency
+                | Self::SutGhosts
         )
-    }
-
-    /// Whether a check on it takes an `objects` selection: the system's
-    /// metrics over road users (`sut_recall`, `sut_latency`), summed over
-    /// the object-steps the selection keeps.
-    pub fn selects_objects(self) -> bool {
-        matches!(self, Self::SutRecall | Self::SutLatency)
     }
 
     /// Whether only joint worlds measure it: the two halves of
@@ -483,7 +488,7 @@ impl Metric {
             Self::MaxDrac => ObjectProperty::MaxDrac.population(),
             Self::SutRecall => "object-steps in sight of a served sensor",
             Self::SutPrecision | Self::SutGhosts => "judged detections",
-            Self::SutPositionError => "matched detections",
+            Self::SutPositionError | Self::SutClassAccuracy => "matched detections",
             Self::SutLatency => "road users detected after first in sight",
             _ => "cells",
         }

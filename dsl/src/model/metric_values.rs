@@ -27,7 +27,8 @@ impl Metric {
             | Self::GridPacketDeliveryRatio
             | Self::SemanticPacketDeliveryRatio
             | Self::SutRecall
-            | Self::SutPrecision => ValueDomain::Fraction,
+            | Self::SutPrecision
+            | Self::SutClassAccuracy => ValueDomain::Fraction,
             Self::BelowThreshold
             | Self::FalseAlarms
             | Self::MissedDetections

@@ -31,19 +31,20 @@ pub struct Requirement {
 }
 
 /// Which relevant road users a per-object check judges, or which object-steps
-/// a system's `sut_recall` or `sut_latency` is summed over: those matching
+/// and detections a system's metric (`sut_*`) is summed over: those matching
 /// every criterion given (an empty list or no window matches all).
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct ObjectSelection {
     /// Agent ids.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub ids: Vec<String>,
-    /// Classes.
+    /// Classes (of a system's detection: the class it reports).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub classes: Vec<AgentKind>,
     /// Ids of crosswalks, interaction areas or declared `areas`: the road
     /// user's centre was inside one of them at some step with the ego in the
-    /// scene (for a system's object-step: at that step).
+    /// scene (for a system's object-step: at that step; for its detection:
+    /// the detection's position at its step).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub areas: Vec<String>,
     /// [from, to], seconds: its closest approach to the ego lies in it.

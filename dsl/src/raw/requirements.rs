@@ -111,7 +111,8 @@ pub(crate) struct RawCheck {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub per_object: Option<ObjectProperty>,
     /// Which road users a `per_object` check judges (a record property's
-    /// only): those matching every criterion given. Default: all.
+    /// only), or what a system's metric (`sut_*`) is summed over: those
+    /// matching every criterion given. Default: all.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub objects: Option<RawObjectSelection>,
     /// The fewest samples a point needs for the check to judge it (≥ 1): the

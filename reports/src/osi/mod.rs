@@ -10,13 +10,15 @@
 //!   file convention specifies), `sightline run --osi`'s `osi.mcap`.
 //!
 //! - `system`: the protocol that drives a system under test with those
-//!   views and reads back its `osi3.SensorData` (docs/osi-sut.md).
+//!   views and reads back its `osi3.SensorData` (docs/osi-sut.md), each
+//!   detection's class read by `reported_class`.
 //!
 //! The messages are [`sightline_osi::osi3`]'s, compiled from ASAM's descriptors.
 
 pub use trace::{OSI_TRACE, OsiTrace, TraceError};
 pub use views::{AGENT_REFERENCE, VISIBILITY_REFERENCE};
 
+mod reported_class;
 pub mod system;
 mod trace;
 mod views;

@@ -11,8 +11,8 @@
 //! - Each step the served agent is among the cooperating agents, sightline
 //!   writes one `osi3.SensorView` per served sensor ([`sensor_views`]), then
 //!   reads one `osi3.SensorData` ([`detections`]) whose timestamp is the
-//!   views'; its moving objects, with their existence probability and their
-//!   position in the host's frame, are what it detected.
+//!   views'; its moving objects, with their existence probability, their
+//!   position in the host's frame and their class, are what it detected.
 //! - After the last step sightline closes the system's input; the system
 //!   exits with status 0.
 
@@ -24,6 +24,7 @@ use sightline_engine::outcome::Detection;
 use sightline_engine::trace::WorldStep;
 use sightline_osi::osi3;
 
+use super::reported_class::reported_class;
 use super::views::{ground_truth, sensor_view};
 
 /// The protocol's name and version, the system's first message.
@@ -144,7 +145,7 @@ pub fn sensor_views(agents: &[Agent], step: &WorldStep<'_>, host: usize, sensors
 
 /// The detections of a system's `osi3.SensorData` answering the step at
 /// `time`: its moving objects whose existence probability is at least
-/// `min_existence`, in the host's frame.
+/// `min_existence`, in the host's frame, each with the class it reports.
 pub fn detections(message: &[u8], time: f64, min_existence: f64) -> Result<Vec<Detection>, ProtocolError> {
     let data = osi3::SensorData::decode(message)?;
     let expected = super::views::timestamp(time);
@@ -177,8 +178,9 @@ pub fn detections(message: &[u8], time: f64, min_existence: f64) -> Result<Vec<D
                 "moving object {i} has no finite position (base.position.x and y)"
             )));
         };
+        let class = reported_class(i, object).map_err(ProtocolError::Content)?;
         if existence >= min_existence {
-            detections.push(Detection { x, y });
+            detections.push(Detection { x, y, class });
         }
     }
     Ok(detections)
@@ -266,7 +268,11 @@ mod tests {
         let message = data(1.5, vec![object(Some(0.9), 3.0, -1.0), object(Some(0.2), 9.0, 9.0)]);
         assert_eq!(
             detections(&message, 1.5, 0.5).unwrap(),
-            vec![Detection { x: 3.0, y: -1.0 }]
+            vec![Detection {
+                x: 3.0,
+                y: -1.0,
+                class: None
+            }]
         );
     }
 
@@ -282,5 +288,30 @@ mod tests {
             detections(b"\xff\xff", 1.5, 0.5),
             Err(ProtocolError::Decode(_))
         ));
+    }
+
+    #[test]
+    fn each_detection_carries_its_class_and_an_ambiguous_one_is_out_of_protocol() {
+        use osi3::detected_moving_object::CandidateMovingObject;
+        let pedestrian = |probability| CandidateMovingObject {
+            probability: Some(probability),
+            r#type: Some(osi3::moving_object::Type::Pedestrian as i32),
+            ..Default::default()
+        };
+        let mut walker = object(Some(0.9), 3.0, -1.0);
+        walker.candidate = vec![pedestrian(0.8)];
+        let message = data(1.5, vec![walker.clone(), object(Some(0.9), 9.0, 9.0)]);
+        let classes: Vec<_> = (detections(&message, 1.5, 0.5).unwrap().iter())
+            .map(|d| d.class)
+            .collect();
+        assert_eq!(classes, [Some(AgentKind::Pedestrian), None]);
+        // Checked below the existence threshold too, as the rest of an object.
+        walker.candidate.push(pedestrian(0.8));
+        walker.header.as_mut().unwrap().existence_probability = Some(0.1);
+        let error = detections(&data(1.5, vec![walker]), 1.5, 0.5).unwrap_err();
+        assert!(
+            error.to_string().contains("moving object 0 has two most probable"),
+            "{error}"
+        );
     }
 }

@@ -109,7 +109,7 @@ pub struct CheckInfo {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub by: Option<&'static str>,
     /// For a per-object check: the road users it selects; for a system's
-    /// `sut_recall` or `sut_latency`: the object-steps it is summed over
+    /// metric (`sut_*`): the object-steps and detections it is summed over
     /// (left out: all).
     #[serde(skip_serializing_if = "ObjectSelection::is_all")]
     pub objects: ObjectSelection,
