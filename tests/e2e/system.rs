@@ -266,12 +266,16 @@ fn a_system_that_detects_nothing_is_judged_and_fails_on_recall() {
 /// and of the wrong class, so the class accuracy is 0 over 1 matched
 /// detection. By class, the detections reported as cars are none; the
 /// matched detections of cars and those of the road user `car` are the one.
+/// Precision and ghosts select by the reported class, so `pedestrian` is
+/// accepted there though no pedestrian can occur: the one detection, matched.
 #[test]
 fn a_system_reporting_the_wrong_class_is_judged_by_class() {
     let requirements = r#"  - { id: CLS, text: c, check: { metric: sut_class_accuracy, at_least: 0.5 } }
   - { id: PRE-CARS, text: p, check: { metric: sut_precision, at_least: 0.5, objects: { classes: [car] } } }
   - { id: POS-CARS, text: e, check: { metric: sut_position_error, at_most: 0.5, objects: { classes: [car] } } }
   - { id: GHOST-CAR, text: g, check: { metric: sut_ghosts, at_most: 0, objects: { ids: [car] } } }
+  - { id: PRE-PED, text: p, check: { metric: sut_precision, at_least: 0.5, objects: { classes: [pedestrian] } } }
+  - { id: GHOST-BIKE, text: g, check: { metric: sut_ghosts, at_most: 0, objects: { classes: [bicycle] } } }
 "#;
     let system = shell(&format!("{HELLO}; {PEDESTRIAN_ANSWER}; exec cat >/dev/null"), 5.0);
     let (outcome, dir, _) = run_with(&system, requirements);
@@ -286,6 +290,8 @@ fn a_system_reporting_the_wrong_class_is_judged_by_class() {
     assert_eq!((status.as_str(), n), ("pass", Some(1)));
     assert!(error.unwrap() < 1e-9, "{error:?}");
     assert_eq!(verdict(&results, "GHOST-CAR"), ("pass".into(), Some(0.0), Some(1)));
+    assert_eq!(verdict(&results, "PRE-PED"), ("pass".into(), Some(1.0), Some(1)));
+    assert_eq!(verdict(&results, "GHOST-BIKE"), ("not_exercised".into(), None, Some(0)));
 }
 
 #[test]
