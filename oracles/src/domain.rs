@@ -40,6 +40,13 @@ pub enum Quantity {
         /// The step's time, seconds.
         time: f64,
     },
+    /// A system's metric over the selection (`objects`) of one requirement.
+    Selected {
+        /// The metric.
+        metric: Metric,
+        /// The requirement, an index into [`Scenario::requirements`].
+        requirement: usize,
+    },
     /// A property of one of the road users a per-object check judges.
     Object {
         /// The property.
@@ -53,7 +60,7 @@ impl Quantity {
     /// The values the quantity can take.
     pub fn domain(self) -> ValueDomain {
         match self {
-            Self::Metric { metric, .. } => metric.domain(),
+            Self::Metric { metric, .. } | Self::Selected { metric, .. } => metric.domain(),
             Self::Signal { signal, .. } => signal.domain(),
             Self::Object { property, .. } => property.domain(),
         }
@@ -68,6 +75,11 @@ impl fmt::Display for OutOfDomain {
             Quantity::Metric { metric, replicate } => {
                 write!(f, "point {point}, replicate {replicate}: {} = {value}", metric.name())
             }
+            Quantity::Selected { metric, requirement } => write!(
+                f,
+                "point {point}: {} over requirements[{requirement}]'s `objects` = {value}",
+                metric.name()
+            ),
             Quantity::Signal { signal, time } => write!(f, "point {point}: {} = {value} at {time} s", signal.name()),
             Quantity::Object { property, object } => {
                 write!(f, "point {point}: {} = {value} of object {object}", property.name())
@@ -79,9 +91,9 @@ impl fmt::Display for OutOfDomain {
 
 /// Every value in `measurements` outside its domain, point by point: each
 /// metric of each of the point's runs (its own and the replicates its checks
-/// over seeds need), each signal at each step, each property of each road
-/// user a per-object check judges. Empty
-/// when all are in their domains.
+/// over seeds need), each signal at each step, each system metric over a
+/// requirement's selection, each property of each road user a per-object
+/// check judges. Empty when all are in their domains.
 pub fn out_of_domain(scenario: &Scenario, measurements: &(impl Measurements + ?Sized)) -> Vec<OutOfDomain> {
     let mut runs = vec![0; scenario.points.len()];
     for unit in sightline_engine::units(scenario) {
@@ -108,16 +120,34 @@ pub fn out_of_domain(scenario: &Scenario, measurements: &(impl Measurements + ?S
                 check(point, Quantity::Signal { signal, time }, value);
             }
         }
-        let judged = scenario.requirements.iter().filter(|r| r.points.contains(&point));
-        for requirement in judged {
-            let Check::PerObject { property, .. } = requirement.check else {
-                continue;
-            };
-            let values = measurements.per_object(point, property, &requirement.objects);
-            for (object, value) in values.iter().flatten().enumerate() {
-                if let Some(value) = *value {
-                    check(point, Quantity::Object { property, object }, value);
+        let judged = scenario.requirements.iter().enumerate();
+        for (index, requirement) in judged.filter(|(_, r)| r.points.contains(&point)) {
+            let selection = &requirement.objects;
+            match requirement.check {
+                Check::Metric { metric, .. } if !selection.is_all() => {
+                    if let Some(value) = measurements
+                        .selected_sample(point, metric, selection)
+                        .and_then(|s| s.value)
+                    {
+                        check(
+                            point,
+                            Quantity::Selected {
+                                metric,
+                                requirement: index,
+                            },
+                            value,
+                        );
+                    }
                 }
+                Check::PerObject { property, .. } => {
+                    let values = measurements.per_object(point, property, selection);
+                    for (object, value) in values.iter().flatten().enumerate() {
+                        if let Some(value) = *value {
+                            check(point, Quantity::Object { property, object }, value);
+                        }
+                    }
+                }
+                _ => {}
             }
         }
     }
@@ -126,8 +156,9 @@ pub fn out_of_domain(scenario: &Scenario, measurements: &(impl Measurements + ?S
 
 #[cfg(test)]
 mod tests {
-    use sightline_dsl::{Options, compile};
-    use sightline_engine::{Outcome, simulate};
+    use sightline_dsl::{ObjectSelection, Options, compile};
+    use sightline_engine::outcome::{MassAudit, Series};
+    use sightline_engine::{Outcome, Sample, simulate};
 
     use super::*;
 
@@ -185,6 +216,70 @@ requirements:
         assert_eq!(
             found[1].to_string(),
             format!("point 1, replicate 2: accuracy = {accuracy}, outside its domain ([0, 1])")
+        );
+    }
+
+    /// A system's precision over one requirement's selection, and nothing else.
+    struct SelectedPrecision(f64);
+
+    impl Measurements for SelectedPrecision {
+        fn sample(&self, _: usize, _: usize, _: Metric) -> Option<Sample> {
+            None
+        }
+        fn selected_sample(&self, _: usize, metric: Metric, _: &ObjectSelection) -> Option<Sample> {
+            (metric == Metric::SutPrecision).then_some(Sample {
+                value: Some(self.0),
+                n: 2,
+            })
+        }
+        fn audit(&self, _: usize) -> Option<MassAudit> {
+            None
+        }
+        fn series(&self, _: usize, _: Signal) -> Option<Vec<Series>> {
+            None
+        }
+        fn per_object(&self, _: usize, _: ObjectProperty, _: &ObjectSelection) -> Option<Vec<Option<f64>>> {
+            None
+        }
+    }
+
+    #[test]
+    fn a_system_metric_over_a_selection_is_checked_too() {
+        let text = r#"
+sightline: 1
+name: a selection's domain
+time: { duration: 0.1, step: 0.1 }
+grid: { origin: [-30, -30], size: [60, 60], cell: 1 }
+roads: [{ id: ns, polyline: [[0, -30], [0, 30]], speed_limit: 10 }]
+sensor_models: { lidar: { range: 40 } }
+agents:
+  - { id: ego, kind: car, route: [ns], start: { offset: 20 }, speed: { target: 0 }, connected: true, sensors: [lidar] }
+  - { id: car, kind: car, route: [ns], start: { offset: 40 }, speed: { target: 0 } }
+perception: { ego: ego }
+fusion: { method: bayes }
+system_under_test: { command: [sh, -c, "exit 0"], agent: ego }
+requirements:
+  - { id: ALL, text: all, check: { metric: sut_precision, at_least: 0.5 } }
+  - { id: CARS, text: cars, check: { metric: sut_precision, at_least: 0.5, objects: { classes: [car] } } }
+"#;
+        let scenario = compile("t.yaml", text, &Options::default()).unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(out_of_domain(&scenario, &SelectedPrecision(1.0)), []);
+        let found = out_of_domain(&scenario, &SelectedPrecision(1.5));
+        let selected = Quantity::Selected {
+            metric: Metric::SutPrecision,
+            requirement: 1,
+        };
+        assert_eq!(
+            found,
+            [OutOfDomain {
+                point: 0,
+                quantity: selected,
+                value: 1.5
+            }]
+        );
+        assert_eq!(
+            found[0].to_string(),
+            "point 0: sut_precision over requirements[1]'s `objects` = 1.5, outside its domain ([0, 1])"
         );
     }
 }

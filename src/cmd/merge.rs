@@ -280,7 +280,7 @@ fn in_domains(merged: &[Merged]) -> Result<(), String> {
         for problem in sightline_oracles::out_of_domain(&merged.input.scenario, &merged.run) {
             let replicate = match problem.quantity {
                 Quantity::Metric { replicate, .. } => replicate as u32,
-                Quantity::Signal { .. } | Quantity::Object { .. } => 0,
+                Quantity::Selected { .. } | Quantity::Signal { .. } | Quantity::Object { .. } => 0,
             };
             let (path, _, _) = merged
                 .shards
