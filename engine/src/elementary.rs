@@ -35,7 +35,7 @@ pub(crate) fn pow(x: f64, w: f64) -> f64 {
     if exact { power } else { x.powf(w) }
 }
 
-/// powers[i] = xs[i]^ws[i], the same values as [`pow`] one by one: the
+/// `powers[i] = xs[i]^ws[i]`, the same values as [`pow`] one by one: the
 /// kernels run over the slice four at a time without a branch (so that the
 /// compiler vectorises them), and only the rare inputs outside their domain
 /// go to `powf` afterwards.
