@@ -35,11 +35,24 @@ pub(crate) fn pow(x: f64, w: f64) -> f64 {
     if exact { power } else { x.powf(w) }
 }
 
-/// powers[i] = xs[i]^ws[i], the same values as [`pow`] one by one: the
+/// `powers[i] = xs[i]^ws[i]`, the same values as [`pow`] one by one: the
 /// kernels run over the slice four at a time without a branch (so that the
 /// compiler vectorises them), and only the rare inputs outside their domain
 /// go to `powf` afterwards.
+///
+/// Compiled twice and chosen at run time: for the baseline x86-64 (two lanes
+/// a register) and for AVX2 (four), by `multiversion`. The two give the same
+/// bits: the kernels are IEEE additions, multiplications and conversions,
+/// which AVX2 computes as SSE2 does, and FMA, which could fuse them, is not
+/// enabled (nor would the compiler fuse them without being asked).
+#[multiversion::multiversion(targets("x86_64+avx2"))]
 pub(crate) fn pow_many(xs: &[f64], ws: &[f64], powers: &mut [f64]) {
+    pow_lanes(xs, ws, powers);
+}
+
+/// [`pow_many`]'s body, inlined into each of its versions.
+#[inline(always)]
+fn pow_lanes(xs: &[f64], ws: &[f64], powers: &mut [f64]) {
     const LANES: usize = 4;
     debug_assert!(xs.len() == ws.len() && xs.len() == powers.len());
     let whole = xs.len() / LANES * LANES;
@@ -167,10 +180,8 @@ fn ln_normal(x: f64) -> f64 {
 #[inline]
 fn exp_normal(y: f64) -> f64 {
     const INVERSE_STEP: f64 = STEPS as f64 / std::f64::consts::LN_2;
-    // k rounded half away from zero by truncation (`f64::round` is a library
-    // call on x86-64 without SSE4.1).
-    let k = (y * INVERSE_STEP + if y < 0.0 { -0.5 } else { 0.5 }) as i32;
-    let kf = f64::from(k);
+    // k = y · 64 / ln 2 rounded half away from zero.
+    let (kf, k) = truncated(y * INVERSE_STEP + if y < 0.0 { -0.5 } else { 0.5 });
     // |k| < 2¹⁷, so k · LN2_HI / 64 is exact.
     let r = (y - kf * (LN2_HI / STEPS as f64)) - kf * (LN2_LO / STEPS as f64);
     let r2 = r * r;
@@ -179,6 +190,21 @@ fn exp_normal(y: f64) -> f64 {
     let j = (k & (STEPS as i32 - 1)) as usize % STEPS;
     // 2ⁿ is normal for n in [−1022, 1023], which y's range keeps.
     POWERS_OF_TWO[j] * series * f64::from_bits(u64::from((n + 1023) as u32) << 52)
+}
+
+/// t truncated toward zero, as a float (+0 for zero) and as an integer, for
+/// |t| < 2³¹: what `f64::from(t as i32)` and `t as i32` give, without a branch
+/// (`f64::trunc` is a library call on x86-64 without SSE4.1, and `as`, which
+/// saturates, is compiled lane by lane). Adding 1.5 · 2⁵² rounds t to the
+/// nearest integer; the truncation steps back toward zero where that went
+/// away from it; that integer plus 1.5 · 2⁵² holds it in its low bits.
+#[inline]
+fn truncated(t: f64) -> (f64, i32) {
+    const ROUND: f64 = 6_755_399_441_055_744.0;
+    let nearest = (t + ROUND) - ROUND;
+    let whole = nearest - if (nearest > t) & (t >= 0.0) { 1.0 } else { 0.0 }
+        + if (nearest < t) & (t < 0.0) { 1.0 } else { 0.0 };
+    (whole, (whole + ROUND).to_bits() as i32)
 }
 
 /// fdlibm's `__ieee754_log` for a positive normal x, within an ulp: builds
@@ -229,6 +255,7 @@ const fn fdlibm_exp(y: f64) -> f64 {
 
 #[cfg(test)]
 mod tests {
+    use proptest::collection::vec;
     use proptest::prelude::*;
     use proptest::test_runner::TestRunner;
 
@@ -338,6 +365,58 @@ mod tests {
             );
         }
         assert_eq!(pow(1.0, 0.3), 1.0);
+    }
+
+    /// The version of `pow_many` this processor runs (AVX2 where it has it)
+    /// and its body compiled for the baseline (this test's own code) give the
+    /// bits of `pow` one by one, over the power transform's inputs: rows of
+    /// ratios in (0, 1] and weights up to 16, a few outside the domain.
+    #[test]
+    fn pow_many_gives_the_same_bits_on_every_processor() {
+        let inputs = (vec(-40.0..0.0_f64, 1..40), vec(1e-3..16.0_f64, 40));
+        runner()
+            .run(&inputs, |(log10s, mut ws)| {
+                let mut xs: Vec<f64> = log10s.iter().map(|&l| 10f64.powf(l)).collect();
+                ws.truncate(xs.len());
+                if xs.len() > 3 {
+                    (xs[1], xs[2]) = (0.0, 1e-310);
+                }
+                let one_by_one: Vec<u64> = xs.iter().zip(&ws).map(|(&x, &w)| pow(x, w).to_bits()).collect();
+                let (mut dispatched, mut baseline) = (vec![0.0; xs.len()], vec![0.0; xs.len()]);
+                pow_many(&xs, &ws, &mut dispatched);
+                pow_lanes(&xs, &ws, &mut baseline);
+                prop_assert_eq!(
+                    dispatched.iter().map(|p| p.to_bits()).collect::<Vec<_>>(),
+                    one_by_one.clone()
+                );
+                prop_assert_eq!(baseline.iter().map(|p| p.to_bits()).collect::<Vec<_>>(), one_by_one);
+                Ok(())
+            })
+            .unwrap();
+    }
+
+    /// `truncated` is `as i32` (and back) on integers, halves and their
+    /// neighbours, and on 20 000 random values, across exp's range of t.
+    #[test]
+    fn truncated_is_the_cast() {
+        let check = |t: f64| {
+            let (whole, k) = truncated(t);
+            assert_eq!((whole.to_bits(), k), (f64::from(t as i32).to_bits(), t as i32), "{t}");
+        };
+        for n in -70_000..=70_000 {
+            for t in [f64::from(n), f64::from(n) + 0.5] {
+                [t, t.next_up(), t.next_down()].into_iter().for_each(check);
+            }
+        }
+        for t in [0.0, -0.0, 1e-300, -1e-300, 2_147_483_647.0, -2_147_483_648.0] {
+            check(t);
+        }
+        runner()
+            .run(&(-70_000.0..70_000.0_f64), |t| {
+                check(t);
+                Ok(())
+            })
+            .unwrap();
     }
 
     /// `pow_many` gives `pow`'s values, inputs outside the kernels' domain among them.
