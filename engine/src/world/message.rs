@@ -70,13 +70,17 @@ pub(crate) fn header_bytes(sensors: usize) -> u32 {
 }
 
 /// The runs of `observation`'s observed cells on `grid`, in row order: the
-/// cells from its first observed to its last, scanned row by row (cheaper
-/// than sorting them; unknown stretches are skipped a block at a time).
+/// cells from its first observed to its last (found in one pass), scanned row
+/// by row (cheaper than sorting them; stretches of one state, unknown or not,
+/// are crossed a block at a time).
 pub(crate) fn runs(observation: &Observation, grid: &Grid) -> Vec<Run> {
     let touched = observation.touched();
-    let (Some(&first), Some(&last)) = (touched.iter().min(), touched.iter().max()) else {
+    if touched.is_empty() {
         return Vec::new();
-    };
+    }
+    let (first, last) = touched.iter().fold((usize::MAX, 0), |(first, last), &cell| {
+        (first.min(cell), last.max(cell))
+    });
     let mut runs: Vec<Run> = Vec::new();
     for row in first / grid.cols..=last / grid.cols {
         let start = first.max(row * grid.cols);
