@@ -70,49 +70,46 @@ pub(crate) fn header_bytes(sensors: usize) -> u32 {
 }
 
 /// The runs of `observation`'s observed cells on `grid`, in row order: the
-/// cells from its first observed to its last, scanned row by row (cheaper
-/// than sorting them; unknown stretches are skipped a block at a time).
+/// cells from its first observed to its last (found in one pass), scanned row
+/// by row (cheaper than sorting them; stretches of one state, unknown or not,
+/// are crossed a block at a time).
 pub(crate) fn runs(observation: &Observation, grid: &Grid) -> Vec<Run> {
     let touched = observation.touched();
-    let (Some(&first), Some(&last)) = (touched.iter().min(), touched.iter().max()) else {
+    if touched.is_empty() {
         return Vec::new();
-    };
+    }
+    let (first, last) = touched.iter().fold((usize::MAX, 0), |(first, last), &cell| {
+        (first.min(cell), last.max(cell))
+    });
     let mut runs: Vec<Run> = Vec::new();
     for row in first / grid.cols..=last / grid.cols {
         let start = first.max(row * grid.cols);
         let cells = observation.cells(start..last.min(row * grid.cols + grid.cols - 1) + 1);
-        let mut i = next_observed(cells, 0);
+        let mut i = same_until(cells, 0, Observed::Unknown, cells.len());
         while i < cells.len() {
             let state = cells[i];
-            let limit = cells.len().min(i + MAX_RUN as usize);
-            let mut end = i + 1;
-            while end < limit && cells[end] == state {
-                end += 1;
-            }
+            let end = same_until(cells, i + 1, state, cells.len().min(i + MAX_RUN as usize));
             runs.push(Run {
                 start: start + i,
                 len: (end - i) as u32,
                 state,
             });
-            i = next_observed(cells, end);
+            i = same_until(cells, end, Observed::Unknown, cells.len());
         }
     }
     runs
 }
 
-/// The first of `cells` from `i` on that is observed, or their number: most
-/// of an observation's span is unknown, skipped 16 cells at a time (a
-/// comparison of all 16 without an early exit, which the compiler vectorises).
-fn next_observed(cells: &[Observed], mut i: usize) -> usize {
+/// The first of `cells` from `i` to `limit` whose state is not `state`, or
+/// `limit`: long stretches (unknown ones, free ones) are crossed 16 cells at a
+/// time (a comparison of all 16 without an early exit, which the compiler
+/// vectorises).
+fn same_until(cells: &[Observed], mut i: usize, state: Observed, limit: usize) -> usize {
     const BLOCK: usize = 16;
-    while let Some(block) = cells.get(i..i + BLOCK)
-        && block
-            .iter()
-            .fold(true, |unknown, &c| unknown & (c == Observed::Unknown))
-    {
+    while i + BLOCK <= limit && cells[i..i + BLOCK].iter().fold(true, |same, &c| same & (c == state)) {
         i += BLOCK;
     }
-    while i < cells.len() && cells[i] == Observed::Unknown {
+    while i < limit && cells[i] == state {
         i += 1;
     }
     i

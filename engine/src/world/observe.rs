@@ -261,6 +261,9 @@ impl Observation {
         let rays = (sensor.fov / sensor.ray_spacing).ceil().max(1.0) as usize;
         let first = -sensor.fov / 2.0 + sensor.ray_spacing / 2.0;
         let (true_heading, estimated_heading) = (truth.rotation.angle(), estimate.rotation.angle());
+        // Marking free changes only unknown cells: borrowed apart, the walk
+        // keeps the grid's address in a register.
+        let (cells, touched) = (&mut self.cells[..], &mut self.touched);
         for i in 0..rays {
             let bearing = first + i as f64 * sensor.ray_spacing;
             let length = scene
@@ -273,7 +276,10 @@ impl Observation {
                 Vector::new(angle.cos(), angle.sin()),
                 length,
                 |cell, _| {
-                    self.mark(cell, Observed::Free);
+                    if cells[cell] == Observed::Unknown {
+                        cells[cell] = Observed::Free;
+                        touched.push(cell);
+                    }
                     true
                 },
             );

@@ -259,19 +259,25 @@ impl<'a> Radio<'a> {
                 }
             }
         }
+        // Each sender's copy takes in its own parcels, in order of arrival, and
+        // ages apart from the others': the senders run in parallel.
+        let mut arrived: Vec<Vec<Parcel>> = self.senders.iter().map(|_| Vec::new()).collect();
         for (_, parcel) in self.in_flight.arrived(time) {
             let age = ((time - parcel.sensed) / self.step).round() as usize;
             if self.stats.ages.len() <= age {
                 self.stats.ages.resize(age + 1, 0);
             }
             self.stats.ages[age] += 1;
-            self.senders[parcel.sender]
-                .held
-                .receive(parcel.serial, parcel.sensed, &parcel.sensors, &parcel.runs);
+            arrived[parcel.sender].push(parcel);
         }
-        self.senders
-            .par_iter_mut()
-            .for_each(|sender| sender.held.age(time, messages));
+        self.senders.par_iter_mut().zip(arrived).for_each(|(sender, parcels)| {
+            for parcel in parcels {
+                sender
+                    .held
+                    .receive(parcel.serial, parcel.sensed, &parcel.sensors, &parcel.runs);
+            }
+            sender.held.age(time, messages);
+        });
     }
 
     /// The ego's copies of the senders' grids that hold evidence, in

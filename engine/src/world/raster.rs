@@ -289,8 +289,8 @@ pub fn traverse(grid: &Grid, from: Point, direction: Vector, length: f64, mut vi
     }
     let start = from + direction * t_in;
     let clamp_index = |v: f64, lo: f64, count: usize| (((v - lo) / grid.cell).floor().max(0.0) as usize).min(count - 1);
-    let mut col = clamp_index(start.x, low.x, grid.cols);
-    let mut row = clamp_index(start.y, low.y, grid.rows);
+    let col = clamp_index(start.x, low.x, grid.cols);
+    let row = clamp_index(start.y, low.y, grid.rows);
     let step_col: isize = if direction.x >= 0.0 { 1 } else { -1 };
     let step_row: isize = if direction.y >= 0.0 { 1 } else { -1 };
     // Distance along the ray to the next vertical and horizontal cell boundary.
@@ -309,25 +309,38 @@ pub fn traverse(grid: &Grid, from: Point, direction: Vector, length: f64, mut vi
     } else {
         grid.cell / direction.y.abs()
     };
+    // The walk keeps the cell's index and, per axis, how many more cells lie
+    // ahead on the grid: the same cells as stepping the column and row and
+    // checking them against the grid's edges.
+    let (cols, rows) = (grid.cols, grid.rows);
+    let (cell_step_x, mut x_left) = if step_col > 0 { (1, cols - 1 - col) } else { (-1, col) };
+    let (cell_step_y, mut y_left) = if step_row > 0 {
+        (cols as isize, rows - 1 - row)
+    } else {
+        (-(cols as isize), row)
+    };
+    let mut cell = row * cols + col;
     let mut enter = t_in;
     loop {
-        if !visit(row * grid.cols + col, enter) {
+        if !visit(cell, enter) {
             return;
         }
         if t_max_x < t_max_y {
             enter = t_max_x;
             t_max_x += t_delta_x;
-            col = match col.checked_add_signed(step_col) {
-                Some(c) if c < grid.cols => c,
-                _ => return,
-            };
+            if x_left == 0 {
+                return;
+            }
+            x_left -= 1;
+            cell = cell.wrapping_add_signed(cell_step_x);
         } else {
             enter = t_max_y;
             t_max_y += t_delta_y;
-            row = match row.checked_add_signed(step_row) {
-                Some(r) if r < grid.rows => r,
-                _ => return,
-            };
+            if y_left == 0 {
+                return;
+            }
+            y_left -= 1;
+            cell = cell.wrapping_add_signed(cell_step_y);
         }
         if enter >= t_out {
             return;
@@ -338,6 +351,7 @@ pub fn traverse(grid: &Grid, from: Point, direction: Vector, length: f64, mut vi
 #[cfg(test)]
 mod tests {
     use approx::assert_relative_eq;
+    use proptest::strategy::Strategy;
 
     use super::*;
     use crate::math::Pose;
@@ -449,6 +463,99 @@ mod tests {
             let from = Vector::new(x, y);
             let walked = raster.walk(from, Vector::new(angle.cos(), angle.sin()), range, agent_code(0));
             proptest::prop_assert_eq!(raster.free_length(from, angle, range, 0).to_bits(), walked.to_bits());
+        }
+    }
+
+    /// The walk as first written (Amanatides and Woo's column and row,
+    /// checked against the grid's edges at every step), the reference of
+    /// the one kept.
+    fn stepped(grid: &Grid, from: Point, direction: Vector, length: f64) -> Vec<(usize, u64)> {
+        let mut visited = Vec::new();
+        let low = Vector::new(grid.origin[0], grid.origin[1]);
+        let high = low + Vector::new(grid.cols as f64, grid.rows as f64) * grid.cell;
+        let (mut t_in, mut t_out) = (0.0_f64, length);
+        for axis in 0..2 {
+            let (o, d, lo, hi) = (from[axis], direction[axis], low[axis], high[axis]);
+            if d.abs() < 1e-12 {
+                if o < lo || o >= hi {
+                    return visited;
+                }
+            } else {
+                let (t0, t1) = ((lo - o) / d, (hi - o) / d);
+                t_in = t_in.max(t0.min(t1));
+                t_out = t_out.min(t0.max(t1));
+            }
+        }
+        if t_in >= t_out {
+            return visited;
+        }
+        let start = from + direction * t_in;
+        let index = |v: f64, lo: f64, count: usize| (((v - lo) / grid.cell).floor().max(0.0) as usize).min(count - 1);
+        let (mut col, mut row) = (index(start.x, low.x, grid.cols), index(start.y, low.y, grid.rows));
+        let step_col: isize = if direction.x >= 0.0 { 1 } else { -1 };
+        let step_row: isize = if direction.y >= 0.0 { 1 } else { -1 };
+        let boundary = |i: usize, lo: f64, step: isize| lo + (i as f64 + if step > 0 { 1.0 } else { 0.0 }) * grid.cell;
+        let next = |o: f64, d: f64, b: f64| if d.abs() < 1e-12 { f64::INFINITY } else { (b - o) / d };
+        let mut t_max_x = next(from.x, direction.x, boundary(col, low.x, step_col));
+        let mut t_max_y = next(from.y, direction.y, boundary(row, low.y, step_row));
+        let delta = |d: f64| {
+            if d.abs() < 1e-12 {
+                f64::INFINITY
+            } else {
+                grid.cell / d.abs()
+            }
+        };
+        let (t_delta_x, t_delta_y) = (delta(direction.x), delta(direction.y));
+        let mut enter = t_in;
+        loop {
+            visited.push((row * grid.cols + col, enter.to_bits()));
+            if t_max_x < t_max_y {
+                enter = t_max_x;
+                t_max_x += t_delta_x;
+                col = match col.checked_add_signed(step_col) {
+                    Some(c) if c < grid.cols => c,
+                    _ => return visited,
+                };
+            } else {
+                enter = t_max_y;
+                t_max_y += t_delta_y;
+                row = match row.checked_add_signed(step_row) {
+                    Some(r) if r < grid.rows => r,
+                    _ => return visited,
+                };
+            }
+            if enter >= t_out {
+                return visited;
+            }
+        }
+    }
+
+    proptest::proptest! {
+        /// The walk visits the same cells, entered at the same distances to
+        /// the bit, as the column-and-row walk it replaced: rays from inside
+        /// and outside a grid, along its axes, its diagonals and any angle,
+        /// ending inside it or beyond its edges.
+        #[test]
+        fn proptest_the_walk_visits_the_cells_of_the_column_and_row_walk(
+            cols in 1..40_usize, rows in 1..40_usize, cell in 0.1..2.0_f64,
+            x in -0.3..1.3_f64, y in -0.3..1.3_f64,
+            angle in proptest::prop_oneof![
+                (0..16_i32).prop_map(|eighth| f64::from(eighth) * std::f64::consts::FRAC_PI_8),
+                -4.0..4.0_f64,
+            ],
+            length in 0.0..1.5_f64,
+        ) {
+            let grid = Grid { origin: [-3.0, 2.0], cell, cols, rows };
+            let size = Vector::new(cols as f64, rows as f64) * cell;
+            let from = Vector::new(-3.0 + x * size.x, 2.0 + y * size.y);
+            let direction = Vector::new(angle.cos(), angle.sin());
+            let length = length * size.length();
+            let mut visited = Vec::new();
+            traverse(&grid, from, direction, length, |cell, enter| {
+                visited.push((cell, enter.to_bits()));
+                true
+            });
+            proptest::prop_assert_eq!(visited, stepped(&grid, from, direction, length));
         }
     }
 

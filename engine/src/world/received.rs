@@ -35,9 +35,10 @@ pub(super) struct Held {
     /// Per cell: the serial of the generation its state came in.
     from: Vec<u32>,
     touched: Vec<usize>,
-    /// The generations that may still be live, in slot `serial % slots.len()`:
+    /// The generations that may still be live, in slot [`slot`]`(serial)`:
     /// more slots than generations fit in `max_age`, so that live ones never
-    /// share a slot.
+    /// share a slot, and a power of two of them, so that finding a cell's
+    /// slot takes a mask, not a division.
     slots: Vec<Option<Generation>>,
     /// Whether a generation left its slot since the held cells were last
     /// checked: some may still name it.
@@ -50,7 +51,7 @@ impl Held {
     /// Nothing held, on a grid of `cells` cells, for messages generated at
     /// `messages.rate_hz` (at most one per step) and dropped at `max_age`.
     pub(super) fn new(cells: usize, messages: &Messages) -> Self {
-        let live = (messages.max_age * messages.rate_hz).floor() as usize + 2;
+        let live = ((messages.max_age * messages.rate_hz).floor() as usize + 2).next_power_of_two();
         Self {
             cells: vec![Observed::Unknown; cells],
             from: vec![0; cells],
@@ -65,7 +66,7 @@ impl Held {
     /// with sensors at `sensors`: its runs overwrite what the ego held of
     /// their cells.
     pub(super) fn receive(&mut self, serial: u32, sensed: f64, sensors: &[Point], runs: &[Run]) {
-        let slot = serial as usize % self.slots.len();
+        let slot = slot(&self.slots, serial);
         if self.slots[slot].as_ref().is_none_or(|g| g.serial != serial) {
             self.stale |= self.slots[slot].is_some();
             self.slots[slot] = Some(Generation {
@@ -105,7 +106,7 @@ impl Held {
         }
         let (cells, from, slots) = (&mut self.cells, &self.from, &self.slots);
         self.touched.retain(|&cell| {
-            let live = slots[from[cell] as usize % slots.len()]
+            let live = slots[slot(slots, from[cell])]
                 .as_ref()
                 .is_some_and(|g| g.serial == from[cell]);
             if !live {
@@ -122,10 +123,15 @@ impl Held {
     }
 
     fn generation(&self, cell: usize) -> &Generation {
-        self.slots[self.from[cell] as usize % self.slots.len()]
+        self.slots[slot(&self.slots, self.from[cell])]
             .as_ref()
             .expect("a held cell's generation is live")
     }
+}
+
+/// The slot of generation `serial` among `slots` (a power of two of them).
+fn slot(slots: &[Option<Generation>], serial: u32) -> usize {
+    serial as usize & (slots.len() - 1)
 }
 
 impl Evidence for Held {
