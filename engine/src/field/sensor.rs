@@ -81,7 +81,7 @@ impl SensorModel {
         self.draw(&self.dirichlet(distance), occupied, distance, rng)
     }
 
-    /// The mass vectors of `draws`, in order, into `masses`: what [`Self::sample`]
+    /// The mass vectors of `draws`, in order, into `masses`: what `Self::sample` (test builds)
     /// draws one by one, in three passes. The Dirichlet parameters of every
     /// draw are computed first, and the Gamma draws are normalised last, each
     /// in a loop without a branch: their square roots and divisions would
@@ -128,7 +128,7 @@ impl SensorModel {
         normalised(self.draw_unnormalised(dirichlet, occupied, distance, rng))
     }
 
-    /// [`Self::draw`] before its normalisation (see [`Dirichlet::sample_unnormalised`]).
+    /// `Self::draw` (test builds) before its normalisation (see [`Dirichlet::sample_unnormalised`]).
     #[inline(always)]
     fn draw_unnormalised(&self, dirichlet: &Dirichlet, occupied: bool, distance: f64, rng: &mut MassRng) -> Mass {
         let truth = if occupied { State::Occupied } else { State::Empty };
@@ -192,7 +192,7 @@ impl Dirichlet {
         normalised(self.sample_unnormalised(favoured, rng))
     }
 
-    /// [`Self::sample`] before its normalisation: the three Gamma draws, or the
+    /// `Self::sample` (test builds) before its normalisation: the three Gamma draws, or the
     /// vertex (which sums to 1) when all three underflow.
     #[inline(always)]
     fn sample_unnormalised<R: Rng + ?Sized>(&self, favoured: State, rng: &mut R) -> Mass {
