@@ -20,7 +20,7 @@ use crate::Tool;
 
 /// The format of sightline's recordings, written in `/sightline/scenario`;
 /// replay reads this version only.
-pub const RECORDING_FORMAT: &str = "sightline-recording/4";
+pub const RECORDING_FORMAT: &str = "sightline-recording/5";
 
 /// A number that survives JSON exactly: finite values as JSON numbers (read back
 /// bit for bit). JSON has no number for NaN and the infinities, and the viewers'
@@ -427,6 +427,29 @@ pub struct RequirementSignal {
     /// The signed margin so far (≥ 0 holds).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub margin: Option<f64>,
+}
+
+/// `/sightline/speeds` (every step of a world): what changes from step to
+/// step of the agents `/scene/agents` draws, for a Plot panel
+/// (`/sightline/speeds.agents[:]{id=="ego"}.speed_mps`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[schemars(title = "sightline.Speeds")]
+pub struct SpeedsRecord {
+    /// The sweep point: its index in results.json's `sweep`.
+    pub point: usize,
+    /// The step.
+    pub step: usize,
+    /// Every agent in the scene at the step, in agent order.
+    pub agents: Vec<AgentSpeed>,
+}
+
+/// An agent's speed at one step.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct AgentSpeed {
+    /// The agent's id (its `/tf` frame and its `/scene/agents` entity).
+    pub id: String,
+    /// Its speed, m/s, rounded to the centimetre per second.
+    pub speed_mps: f64,
 }
 
 /// `/v2x/packets` (one message per packet, at the step it is sent).
