@@ -235,7 +235,7 @@ impl<'s, W: Write + Seek> Recorder<'s, W> {
                     .map(|import| ImportRecord {
                         kind: import.kind.name().into(),
                         path: import.path.clone(),
-                        sha256: sha256_hex(&import.bytes),
+                        sha256: crate::hex(&import.sha256),
                     })
                     .collect(),
             },
