@@ -78,7 +78,9 @@ fn a_recording_reads_back_to_the_runs_measurements_and_verdicts() {
     assert_eq!(recording.verdicts.len(), 2);
     // 60 steps; grids every 5 steps; the ego, the car and the RSU cooperate.
     let counts = &recording.counts;
-    assert_eq!(counts[topic::AGENTS], 60);
+    assert_eq!(counts[topic::SPEEDS], 60);
+    // The four agents stay in the scene: their boxes are written once.
+    assert_eq!(counts[topic::AGENTS], 1);
     assert_eq!(counts[topic::SIGNALS], 60);
     assert_eq!(counts[topic::FUSED_GRID], 12);
     assert_eq!(counts[&topic::agent_grid("rsu")], 12);

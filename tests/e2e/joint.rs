@@ -131,7 +131,7 @@ fn the_bundled_joint_junction_runs_both_models_in_one_world() {
     }
     let channels = channels(&run.recording);
     let steps = 200;
-    for topic in ["/scene/agents", "/sightline/signals"] {
+    for topic in ["/sightline/speeds", "/sightline/signals"] {
         assert_eq!(channels[topic].count, steps, "{topic}: one per step");
     }
     for topic in [

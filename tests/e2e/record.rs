@@ -134,7 +134,9 @@ fn bundled_roundabout_recording_has_foxglove_channels_and_the_steps() {
             ("/sightline/scenario", "sightline.Scenario", 1),
             ("/scene/map", "foxglove.SceneUpdate", 1),
             ("/tf", "foxglove.FrameTransforms", 300),
-            ("/scene/agents", "foxglove.SceneUpdate", 300),
+            ("/sightline/speeds", "sightline.Speeds", 300),
+            // At the first step, then each time a vehicle enters or leaves.
+            ("/scene/agents", "foxglove.SceneUpdate", 11),
             // At the first step, then each time a vehicle with sensors enters or leaves.
             ("/scene/fields_of_view", "foxglove.SceneUpdate", 5),
             // Steps 0, 10, …, 290.
@@ -226,7 +228,7 @@ fn urban_recording_counts_the_packets_messages_and_approaches() {
     let recording = std::fs::read(out.join(RECORDING)).unwrap();
     let channels = channels(&recording);
     for (topic, schema) in [
-        ("/scene/agents", "foxglove.SceneUpdate"),
+        ("/sightline/speeds", "sightline.Speeds"),
         ("/sightline/signals", "sightline.Signals"),
     ] {
         assert_eq!(channels[topic].schema, schema);

@@ -200,67 +200,153 @@ fn every_point_is_recorded_a_minute_after_the_last() {
         .collect();
     let expected: Vec<u64> = (0..16).map(|k| epoch + k * minute + 3_900_000_000).collect();
     assert_eq!(cleared, expected);
+    // Until then /tf holds the point's last frames (written again at that
+    // time), so that what is locked to them does not glide towards the next
+    // point's first step.
+    let tf: Vec<&mcap::Message> = on("/tf").collect();
+    let frames = |m: &mcap::Message| -> Vec<serde_json::Value> {
+        let mut transforms = json(m)["transforms"].as_array().unwrap().clone();
+        for t in &mut transforms {
+            assert_eq!(t["timestamp"], json(m)["transforms"][0]["timestamp"]);
+            t.as_object_mut().unwrap().remove("timestamp");
+        }
+        transforms
+    };
+    for at in expected {
+        let k = tf
+            .iter()
+            .position(|m| m.log_time == at)
+            .expect("/tf when a point is cleared");
+        assert_eq!(tf[k - 1].log_time, at - 1_000_000_000);
+        assert_eq!(frames(tf[k]), frames(tf[k - 1]), "at {at}");
+    }
     assert_eq!(on("/scene/map").count(), 17);
 }
 
-/// `/scene/fields_of_view` is written only when the agents with sensors in
-/// the scene change, and always shows what `/tf` places: at every step of every
-/// recording, the latest fields-of-view message up to that step holds exactly
-/// one entity per sensor frame of that step's `/tf`, locked to that frame and
-/// kept until replaced. A point's fields of view are cleared with its agents.
+/// Every entity locked to a frame is drawn where `/tf` places that frame, and
+/// the topics of such entities are written only when what they show changes:
+/// in every recording, once all messages of a time at which `/tf` is written
+/// are read, each entity of the latest message of every `foxglove.SceneUpdate`
+/// topic that is `frame_locked` (kept until replaced) is in a frame that time's
+/// `/tf` holds; at each step (a time with `/sightline/signals`), `/scene/agents`
+/// shows exactly the agents `/tf` places in `map`, one entity per frame, and
+/// `/scene/fields_of_view` exactly the sensor frames. Each message of those two
+/// topics replaces the whole set, and differs from the one before it.
 #[test]
-fn fields_of_view_follow_the_sensor_frames_and_are_written_when_they_change() {
-    let mut written_less = false;
+fn locked_entities_follow_tf_and_are_written_when_they_change() {
+    let locked_topics = ["/scene/agents", "/scene/fields_of_view"];
+    let mut written_less = [false; 2];
     for (name, recording) in recordings() {
-        let (mut steps, mut writes) = (0, 0);
-        // The latest message's sensors, and the sensor frames of the step whose
-        // /tf was read last (a step writes /tf, then its fields of view if they
-        // change, then /scene/agents).
-        let (mut shown, mut placed) = (BTreeSet::new(), None);
-        for m in mcap::MessageStream::new(recording).unwrap().map(|m| m.unwrap()) {
-            let json: serde_json::Value = serde_json::from_slice(&m.data).unwrap();
-            match m.channel.topic.as_str() {
-                "/scene/fields_of_view" => {
-                    writes += 1;
-                    assert_eq!(json["deletions"][0]["type"], 1, "{name}: each message replaces all");
-                    let entities = json["entities"].as_array().unwrap();
-                    for entity in entities {
-                        assert_eq!(entity["frame_locked"], true, "{name}: {entity}");
-                        assert_eq!(entity["frame_id"], entity["id"], "{name}");
-                        assert_eq!(entity["lifetime"], serde_json::json!({ "sec": 0, "nsec": 0 }));
-                        assert_eq!(entity["lines"].as_array().unwrap().len(), 1, "{name}");
-                    }
-                    shown = entities.iter().map(|e| e["id"].as_str().unwrap().to_string()).collect();
+        // Per topic, the latest message's entities as (id, frame, locked).
+        let mut shown: std::collections::BTreeMap<String, Vec<(String, String, bool)>> = Default::default();
+        let mut writes = [0; 2];
+        let mut steps = 0;
+        // The time being read, its /tf frames (child → parent) and whether it is a step.
+        let mut time = None;
+        let mut frames: Option<std::collections::BTreeMap<String, String>> = None;
+        let mut step = false;
+        let check = |at: u64,
+                     frames: &std::collections::BTreeMap<String, String>,
+                     step: bool,
+                     shown: &std::collections::BTreeMap<String, Vec<(String, String, bool)>>| {
+            for (topic, entities) in shown {
+                for (id, frame, locked) in entities {
+                    assert!(
+                        !locked || frames.contains_key(frame),
+                        "{name}: {topic}'s {id} is locked to {frame}, which /tf lacks at {at}"
+                    );
                 }
-                "/tf" => {
+            }
+            if !step {
+                return;
+            }
+            let of = |topic: &str| -> BTreeSet<String> {
+                let entities = shown.get(topic).map(Vec::as_slice).unwrap_or_default();
+                let set: BTreeSet<String> = entities.iter().map(|(_, frame, _)| frame.clone()).collect();
+                assert_eq!(
+                    set.len(),
+                    entities.len(),
+                    "{name}: one {topic} entity per frame at {at}"
+                );
+                set
+            };
+            let agents: BTreeSet<String> = frames
+                .iter()
+                .filter(|(_, p)| *p == "map")
+                .map(|(c, _)| c.clone())
+                .collect();
+            let sensors: BTreeSet<String> = frames
+                .iter()
+                .filter(|(_, p)| *p != "map")
+                .map(|(c, _)| c.clone())
+                .collect();
+            assert_eq!(of("/scene/agents"), agents, "{name} at {at}");
+            assert_eq!(of("/scene/fields_of_view"), sensors, "{name} at {at}");
+        };
+        for m in mcap::MessageStream::new(recording).unwrap().map(|m| m.unwrap()) {
+            if time != Some(m.log_time) {
+                if let (Some(at), Some(frames)) = (time, frames.take()) {
+                    check(at, &frames, step, &shown);
+                }
+                (time, step) = (Some(m.log_time), false);
+            }
+            let json: serde_json::Value = serde_json::from_slice(&m.data).unwrap();
+            let topic = m.channel.topic.as_str();
+            match m.channel.schema.as_ref().map(|s| s.name.as_str()) {
+                Some("foxglove.FrameTransforms") => {
                     steps += 1;
                     let transforms = json["transforms"].as_array().unwrap().iter();
-                    let frames = transforms.map(|t| t["child_frame_id"].as_str().unwrap().to_string());
-                    placed = Some(
-                        frames
-                            .filter(|frame| frame.contains("/sensor"))
-                            .collect::<BTreeSet<_>>(),
+                    frames = Some(
+                        transforms
+                            .map(|t| {
+                                let child = t["child_frame_id"].as_str().unwrap().to_string();
+                                (child, t["parent_frame_id"].as_str().unwrap().to_string())
+                            })
+                            .collect(),
                     );
                 }
-                "/scene/agents" => {
-                    let agents = json["entities"].as_array().unwrap();
-                    assert!(
-                        agents.iter().all(|a| a["lines"].as_array().unwrap().is_empty()),
-                        "{name}"
-                    );
-                    if let Some(placed) = placed.take() {
-                        assert_eq!(shown, placed, "{name} at {}", m.log_time);
+                Some("foxglove.SceneUpdate") => {
+                    let entities: Vec<(String, String, bool)> = json["entities"]
+                        .as_array()
+                        .unwrap()
+                        .iter()
+                        .map(|e| {
+                            let locked = e["frame_locked"] == true;
+                            if locked {
+                                assert_eq!(e["lifetime"], serde_json::json!({ "sec": 0, "nsec": 0 }), "{name}");
+                            }
+                            let text = |key: &str| e[key].as_str().unwrap().to_string();
+                            (text("id"), text("frame_id"), locked)
+                        })
+                        .collect();
+                    if let Some(k) = locked_topics.iter().position(|t| *t == topic) {
+                        writes[k] += 1;
+                        assert_eq!(json["deletions"][0]["type"], 1, "{name}: each message replaces all");
+                        assert!(entities.iter().all(|(_, _, locked)| *locked), "{name}: {topic}");
+                        assert_ne!(
+                            shown.get(topic),
+                            Some(&entities),
+                            "{name}: {topic} written again unchanged at {}",
+                            m.log_time
+                        );
                     }
+                    shown.insert(topic.to_string(), entities);
                 }
+                _ if topic == "/sightline/signals" => step = true,
                 _ => {}
             }
         }
-        assert!(writes <= steps, "{name}: {writes} > {steps}");
-        written_less |= writes > 0 && writes < steps;
+        if let (Some(at), Some(frames)) = (time, frames.take()) {
+            check(at, &frames, step, &shown);
+        }
+        for (k, topic) in locked_topics.iter().enumerate() {
+            assert!(writes[k] <= steps, "{name}: {topic} {} > {steps}", writes[k]);
+            written_less[k] |= writes[k] > 0 && writes[k] < steps;
+        }
     }
-    assert!(
-        written_less,
-        "some recording keeps its fields of view over several steps"
+    assert_eq!(
+        written_less, [true; 2],
+        "some recording keeps its agents and its fields of view over several steps"
     );
 }
 

@@ -27,10 +27,10 @@ def problems_of(schema_name, message):
             return ["a grid outside the map frame"]
     elif schema_name == "foxglove.SceneUpdate":
         for entity in message["entities"]:
-            # In the world frame, or (a field of view) locked to a sensor's frame.
-            locked = entity["frame_locked"] and "/sensor" in entity["frame_id"]
-            if entity["frame_id"] != "map" and not locked:
-                return ["an entity outside the map frame, not locked to a sensor's frame"]
+            # In the world frame, or locked to a frame /tf moves (an agent's
+            # box, a sensor's field of view).
+            if entity["frame_id"] != "map" and not entity["frame_locked"]:
+                return ["an entity outside the map frame and not locked to it"]
     return []
 
 

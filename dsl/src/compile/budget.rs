@@ -58,9 +58,10 @@ pub const MAX_PREDICTION_SAMPLES: f64 = 10_000.0;
 /// The most agent-steps a recording holds: agents × steps, summed over the
 /// recorded points (agents as the run counts them: declared, imported and the
 /// traffic expected, so more than are in the scene at once). Each agent in the
-/// scene is a frame and a box with its fields of view (`/tf`,
-/// `/scene/agents`) at every step: some 80 bytes of the file each, measured at
-/// the bundled junction (docs/recording.md), so at most about 0.8 GB.
+/// scene is a frame and a speed at every step (`/tf`, `/sightline/speeds`),
+/// and a box when the agents in the scene change (`/scene/agents`): some 36
+/// bytes of the file each, measured at the bundled junction (docs/recording.md;
+/// 80 before recording format 5), so at most about 0.4 GB.
 pub const MAX_RECORDED_AGENT_STEPS: f64 = 1.0e7;
 
 /// The most grid cells a recording holds: the grid's cells × the grids

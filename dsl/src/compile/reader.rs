@@ -5,6 +5,8 @@
 
 use std::path::Path as FsPath;
 
+use sha2::{Digest, Sha256};
+
 use crate::compile::Loader;
 use crate::compile::context::Context;
 use crate::error::{Error, ErrorKind, Location, utf8_text};
@@ -74,6 +76,7 @@ impl Reader<'_, '_, '_> {
                 self.imports.push(Import {
                     kind,
                     path: file,
+                    sha256: Sha256::digest(&bytes).into(),
                     bytes,
                     named: by_scenario,
                 });

@@ -189,9 +189,14 @@ pub struct Import {
     /// Its path: the scenario file's directory joined with the path written in
     /// the scenario.
     pub path: String,
-    /// Its bytes, which the evidence hashes.
+    /// Its bytes, which the recording attaches.
     #[serde(skip)]
     pub bytes: Vec<u8>,
+    /// SHA-256 of its bytes, by which the evidence names it (results.json's
+    /// `inputs`, the recording's `/sightline/scenario`): computed once, as it
+    /// is read.
+    #[serde(skip)]
+    pub sha256: [u8; 32],
     /// Whether the scenario names it under `traces` (else the configuration
     /// `traces.sumocfg` names it).
     pub named: bool,

@@ -146,18 +146,6 @@ impl Pose3 {
         write_fields(out, &[(b"x", x), (b"y", y), (b"z", z)]);
     }
 
-    /// Appends the position's first two fields, `"x":…,"y":…`, as
-    /// [`write_translation`](Self::write_translation) writes them.
-    pub(crate) fn write_xy(&self, out: &mut Vec<u8>) {
-        write_members(out, &[(b"x", self.position.x), (b"y", self.position.y)]);
-    }
-
-    /// Appends the position's last field, `"z":…`, as
-    /// [`write_translation`](Self::write_translation) writes it.
-    pub(crate) fn write_z(&self, out: &mut Vec<u8>) {
-        write_members(out, &[(b"z", self.position.z)]);
-    }
-
     /// Appends the orientation as serde_json writes a quaternion.
     pub(crate) fn write_rotation(&self, out: &mut Vec<u8>) {
         let Quaternion { x, y, z, w } = self.orientation;
@@ -169,12 +157,6 @@ impl Pose3 {
 /// serde_json writes it: a finite number in its shortest round-trip form.
 fn write_fields(out: &mut Vec<u8>, fields: &[(&[u8], f64)]) {
     out.push(b'{');
-    write_members(out, fields);
-    out.push(b'}');
-}
-
-/// [`write_fields`] without the braces.
-fn write_members(out: &mut Vec<u8>, fields: &[(&[u8], f64)]) {
     for (i, (key, value)) in fields.iter().enumerate() {
         if i > 0 {
             out.push(b',');
@@ -185,6 +167,7 @@ fn write_members(out: &mut Vec<u8>, fields: &[(&[u8], f64)]) {
         // Writing a number into a Vec does not fail.
         let _ = serde_json::to_writer(&mut *out, value);
     }
+    out.push(b'}');
 }
 
 impl Time {
@@ -379,9 +362,6 @@ impl Entity {
         self
     }
 
-    /// With a label (the recorder writes labelled agents directly; see
-    /// `write::agents`, checked against this).
-    #[cfg(test)]
     pub(crate) fn text(mut self, text: Text) -> Self {
         self.texts.push(text);
         self

@@ -3,10 +3,10 @@
 
 pub use read::{ReadError, RecordedRun, Recording, read};
 pub use wire::{
-    ApproachRecord, ArrivalRecord, AuditRecord, CellSignals, ConflictRecord, ImportRecord, ItemRecord, MessageRecord,
-    MetricValue, ObjectRecord, ObjectValue, OutcomeRecord, PacketRecord, PointVerdictRecord, RECORDING_FORMAT, Real,
-    ReplicateRecord, RequirementSignal, RequirementSignals, ScenarioRecord, SemanticSignals, SeriesRecord, SeriesRun,
-    SeriesSample, SignalsRecord, VerdictRecord,
+    AgentSpeed, ApproachRecord, ArrivalRecord, AuditRecord, CellSignals, ConflictRecord, ImportRecord, ItemRecord,
+    MessageRecord, MetricValue, ObjectRecord, ObjectValue, OutcomeRecord, PacketRecord, PointVerdictRecord,
+    RECORDING_FORMAT, Real, ReplicateRecord, RequirementSignal, RequirementSignals, ScenarioRecord, SemanticSignals,
+    SeriesRecord, SeriesRun, SeriesSample, SignalsRecord, SpeedsRecord, VerdictRecord,
 };
 pub use write::{Recorder, Source, WriteError};
 

@@ -15,10 +15,14 @@ pub const REQUIREMENTS: &str = "/sightline/requirements";
 /// `foxglove.SceneUpdate`, once at time 0: roads, occluders, areas, the region.
 pub const MAP: &str = "/scene/map";
 /// `foxglove.FrameTransforms`, every step: the frame tree, `map` → each agent
-/// in the scene → its sensors.
+/// in the scene → its sensors (and, with every point recorded, the last
+/// step's again when a point's scene is cleared).
 pub const TRANSFORMS: &str = "/tf";
-/// `foxglove.SceneUpdate`, every step: agents and their ids.
+/// `foxglove.SceneUpdate`, whenever the agents in the scene change: each
+/// agent's box and id, locked to its frame.
 pub const AGENTS: &str = "/scene/agents";
+/// `sightline.Speeds`, every step of a world: each agent's speed.
+pub const SPEEDS: &str = "/sightline/speeds";
 /// `foxglove.SceneUpdate`, whenever the agents with sensors in the scene
 /// change: their sensors' fields of view, each locked to its sensor's frame.
 pub const FIELDS_OF_VIEW: &str = "/scene/fields_of_view";

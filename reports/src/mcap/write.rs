@@ -21,7 +21,7 @@ use mcap::{Attachment, Compression, WriteOptions, Writer};
 use sightline_dsl::{Agent, Check, Experiment, Grid as CellGrid, JointPart, Metric, Record, RecordedPoints, Scenario};
 use sightline_engine::TraceSink;
 use sightline_engine::outcome::{SemanticMetrics, WorldMetrics};
-use sightline_engine::trace::{Pose, SemanticStep, Vector, WorldStep, mount_pose};
+use sightline_engine::trace::{AgentState, Pose, SemanticStep, Vector, WorldStep, mount_pose};
 
 use super::counts::WORLD_STEP_METRICS;
 use super::foxglove::{LineType, SceneUpdate, Time};
@@ -153,10 +153,12 @@ pub struct Recorder<'s, W: Write + Seek> {
     shown: BTreeSet<usize>,
     /// Agents whose fields of view `/scene/fields_of_view` shows, in order.
     fields_shown: Vec<usize>,
-    /// Per agent, what its `/tf` and `/scene/agents` JSON holds at every step.
+    /// Agents `/scene/agents` shows, in order.
+    agents_shown: Vec<usize>,
+    /// Per agent, what its `/tf` and `/sightline/speeds` JSON holds at every step.
     agent_json: Vec<agents::AgentJson>,
-    /// The agents' poses at the step being written, as JSON.
-    poses: agents::StepPoses,
+    /// Every agent's state at the latest step (`None`: not in the scene).
+    last_states: Vec<Option<AgentState>>,
     /// The JSON of the message being written, reused from message to message.
     buffer: Vec<u8>,
     /// Requirements at the recorded point whose metric the steps give.
@@ -195,8 +197,9 @@ impl<'s, W: Write + Seek> Recorder<'s, W> {
             cooperating: BTreeSet::new(),
             shown: BTreeSet::new(),
             fields_shown: Vec::new(),
+            agents_shown: Vec::new(),
             agent_json: Vec::new(),
-            poses: agents::StepPoses::default(),
+            last_states: Vec::new(),
             buffer: Vec::new(),
             signalled: Vec::new(),
             running: Running {
@@ -232,7 +235,7 @@ impl<'s, W: Write + Seek> Recorder<'s, W> {
                     .map(|import| ImportRecord {
                         kind: import.kind.name().into(),
                         path: import.path.clone(),
-                        sha256: sha256_hex(&import.bytes),
+                        sha256: crate::hex(&import.sha256),
                     })
                     .collect(),
             },
@@ -314,7 +317,9 @@ impl<'s, W: Write + Seek> Recorder<'s, W> {
             .unwrap_or_default();
         self.shown.clear();
         self.fields_shown.clear();
+        self.agents_shown.clear();
         self.agent_json.clear();
+        self.last_states.clear();
         self.agents.clear();
         self.fields_of_view.clear();
         if let Some(world) = world {

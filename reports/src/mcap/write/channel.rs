@@ -14,7 +14,7 @@ use crate::mcap::flat::flat_schema_of as schema_of;
 use crate::mcap::foxglove::{FRAME_TRANSFORMS_SCHEMA, GRID_SCHEMA, LOG_SCHEMA, SCENE_UPDATE_SCHEMA};
 use crate::mcap::wire::{
     ApproachRecord, ArrivalRecord, MessageRecord, OutcomeRecord, PacketRecord, RequirementSignals, RoadUserRecord,
-    ScenarioRecord, SignalsRecord, VerdictRecord,
+    ScenarioRecord, SignalsRecord, SpeedsRecord, VerdictRecord,
 };
 
 /// A channel's schema: its name and its JSON Schema.
@@ -45,6 +45,7 @@ pub(super) const VERDICT: SchemaSpec = SchemaSpec::new("sightline.Verdict", sche
 pub(super) const SIGNALS: SchemaSpec = SchemaSpec::new("sightline.Signals", schema_of::<SignalsRecord>);
 pub(super) const REQUIREMENTS: SchemaSpec =
     SchemaSpec::new("sightline.RequirementSignals", schema_of::<RequirementSignals>);
+pub(super) const SPEEDS: SchemaSpec = SchemaSpec::new("sightline.Speeds", schema_of::<SpeedsRecord>);
 pub(super) const PACKET: SchemaSpec = SchemaSpec::new("sightline.Packet", schema_of::<PacketRecord>);
 pub(super) const MESSAGE: SchemaSpec = SchemaSpec::new("sightline.SemanticMessage", schema_of::<MessageRecord>);
 pub(super) const ARRIVAL: SchemaSpec = SchemaSpec::new("sightline.Arrival", schema_of::<ArrivalRecord>);

@@ -12,9 +12,9 @@ use sightline_dsl::{Agent, AgentKind, Area, Grid as CellGrid, World};
 use sightline_engine::trace::{AgentState, Body, CooperatorStep, Vector};
 
 use super::Recorder;
-use super::agents::{AgentJson, sensor_frame, write_agents, write_transforms};
-use super::channel::{SCENE, TRANSFORMS};
-use crate::mcap::foxglove::{Color, Cube, Entity, Line, LineType, Pose3, SceneUpdate, Time, Vector3};
+use super::agents::{AgentJson, sensor_frame, write_speeds, write_transforms};
+use super::channel::{SCENE, SPEEDS, TRANSFORMS};
+use crate::mcap::foxglove::{Color, Cube, Entity, Line, LineType, Pose3, SceneUpdate, Text, Time, Vector3};
 use crate::mcap::topic;
 
 /// Segments of a full circle (a 360° sensor's range, a region).
@@ -35,21 +35,25 @@ const AREA: Color = Color::rgba(1.0, 0.85, 0.2, 0.7);
 const OUTLINE: Color = Color::rgba(0.4, 0.4, 0.4, 0.6);
 const DETECTION: Color = Color::rgba(1.0, 0.2, 0.6, 0.7);
 const ESTIMATE: Color = Color::rgba(0.1, 0.9, 0.9, 0.9);
+const LABEL: Color = Color::rgba(1.0, 1.0, 1.0, 1.0);
 
 impl<W: Write + Seek> Recorder<'_, W> {
-    /// `/tf` and `/scene/agents`: every agent in the scene as a frame and as a
-    /// box with its id, and its sensors as frames and (when they change)
-    /// fields of view.
-    pub(super) fn publish_agents(&mut self, time: u64, states: &[Option<AgentState>]) {
-        let stamp = Time::from_nanos(time);
+    /// A step's scene: `/tf` (every agent in the scene as a frame, its sensors
+    /// as frames under it), and when they change, the fields of view
+    /// (`/scene/fields_of_view`) and the agents' boxes (`/scene/agents`), each
+    /// locked to its frame; then every agent's speed (`/sightline/speeds`).
+    pub(super) fn publish_agents(&mut self, time: u64, step: usize, states: &[Option<AgentState>]) {
         let mut buffer = std::mem::take(&mut self.buffer);
-        self.poses.write(states);
-        write_transforms(&mut buffer, stamp, &self.poses, &self.agent_json);
+        write_transforms(&mut buffer, Time::from_nanos(time), states, &self.agent_json);
         self.publish_json(topic::TRANSFORMS, TRANSFORMS, time, &buffer);
-        self.publish_fields_of_view(time, states);
-        write_agents(&mut buffer, stamp, &self.poses, states, &self.agent_json);
-        self.publish_json(topic::AGENTS, SCENE, time, &buffer);
+        let present: Vec<usize> = (0..states.len()).filter(|&i| states[i].is_some()).collect();
+        self.publish_fields_of_view(time, &present);
+        self.publish_scene_agents(time, present);
+        write_speeds(&mut buffer, self.record.point, step, states, &self.agent_json);
+        self.publish_json(topic::SPEEDS, SPEEDS, time, &buffer);
         self.buffer = buffer;
+        self.last_states.clear();
+        self.last_states.extend_from_slice(states);
     }
 
     /// What [`publish_agents`](Self::publish_agents) writes of each agent at
@@ -59,12 +63,46 @@ impl<W: Write + Seek> Recorder<'_, W> {
         self.agent_json = self
             .agents
             .iter()
-            .enumerate()
-            .map(|(i, agent)| {
-                let mounts = self.fields_of_view[i].iter().map(|(mount, _, _)| *mount);
-                AgentJson::new(agent, self.color(i, agent), mounts)
+            .zip(&self.fields_of_view)
+            .map(|(agent, sensors)| AgentJson::new(agent, sensors.iter().map(|(mount, _, _)| *mount)))
+            .collect();
+    }
+
+    /// `/scene/agents`: every agent in the scene as a box of its footprint
+    /// with its id as a label and its kind as metadata, locked to the agent's
+    /// frame (the viewer moves it with the agent's `/tf`); written only when
+    /// the agents in the scene change, each message the whole set, as the
+    /// fields of view are.
+    fn publish_scene_agents(&mut self, time: u64, present: Vec<usize>) {
+        if present == self.agents_shown {
+            return;
+        }
+        let stamp = Time::from_nanos(time);
+        let entities = present
+            .iter()
+            .map(|&i| {
+                let agent = &self.agents[i];
+                let height = agent.kind.height();
+                Entity::locked(stamp, agent.id.clone(), agent.id.clone())
+                    .meta("kind", agent.kind.name())
+                    .cube(Cube {
+                        pose: Pose3::at(0.0, 0.0, height / 2.0, 0.0),
+                        size: Vector3 {
+                            x: agent.length,
+                            y: agent.width,
+                            z: height,
+                        },
+                        color: self.color(i, agent),
+                    })
+                    .text(Text::label(
+                        Pose3::at(0.0, 0.0, height + 1.0, 0.0),
+                        agent.id.clone(),
+                        LABEL,
+                    ))
             })
             .collect();
+        self.publish(topic::AGENTS, SCENE, time, &SceneUpdate::replace(stamp, entities));
+        self.agents_shown = present;
     }
 
     /// `/scene/fields_of_view`: each sensor's field of view of every agent in
@@ -72,13 +110,11 @@ impl<W: Write + Seek> Recorder<'_, W> {
     /// agent's `/tf`); written only when the agents with sensors in the scene
     /// change, each message the whole set (a viewer that seeks reads the
     /// latest message of each topic, so none may depend on an earlier one).
-    fn publish_fields_of_view(&mut self, time: u64, states: &[Option<AgentState>]) {
-        let present: Vec<usize> = states
+    fn publish_fields_of_view(&mut self, time: u64, in_scene: &[usize]) {
+        let present: Vec<usize> = in_scene
             .iter()
-            .zip(&self.fields_of_view)
-            .enumerate()
-            .filter(|(_, (state, sensors))| state.is_some() && !sensors.is_empty())
-            .map(|(i, _)| i)
+            .copied()
+            .filter(|&i| !self.fields_of_view[i].is_empty())
             .collect();
         if present == self.fields_shown {
             return;
@@ -169,18 +205,25 @@ impl<W: Write + Seek> Recorder<'_, W> {
         self.shown = now;
     }
 
-    /// Clears the agents (`/scene/agents`) and every cooperating agent's
-    /// detections at `time`: the end of a point when another follows.
+    /// Clears the agents (`/scene/agents`), their fields of view and every
+    /// cooperating agent's detections at `time`: the end of a point when
+    /// another follows. `/tf` holds the last step's frames until then, so
+    /// that what is locked to them stays where it was rather than gliding
+    /// towards the next point's first step.
     pub(super) fn clear_scene(&mut self, time: u64) {
         let stamp = Time::from_nanos(time);
-        self.publish(topic::AGENTS, SCENE, time, &SceneUpdate::replace(stamp, Vec::new()));
-        if !std::mem::take(&mut self.fields_shown).is_empty() {
-            self.publish(
-                topic::FIELDS_OF_VIEW,
-                SCENE,
-                time,
-                &SceneUpdate::replace(stamp, Vec::new()),
-            );
+        if self.last_states.iter().any(Option::is_some) {
+            let mut buffer = std::mem::take(&mut self.buffer);
+            write_transforms(&mut buffer, stamp, &self.last_states, &self.agent_json);
+            self.publish_json(topic::TRANSFORMS, TRANSFORMS, time, &buffer);
+            self.buffer = buffer;
+        }
+        let agents = !std::mem::take(&mut self.agents_shown).is_empty();
+        let fields = !std::mem::take(&mut self.fields_shown).is_empty();
+        for (topic, shown) in [(topic::AGENTS, agents), (topic::FIELDS_OF_VIEW, fields)] {
+            if shown {
+                self.publish(topic, SCENE, time, &SceneUpdate::replace(stamp, Vec::new()));
+            }
         }
         for gone in std::mem::take(&mut self.shown) {
             let topic = topic::detections(&self.agent_id(gone));

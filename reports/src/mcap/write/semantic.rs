@@ -32,7 +32,7 @@ impl<W: Write + Seek> Recorder<'_, W> {
             self.publish(topic::ARRIVALS, ARRIVAL, self.at(arrival.at), &record);
         }
         if !self.joint() {
-            self.publish_agents(time, step.agents);
+            self.publish_agents(time, step.step, step.agents);
         }
         let mut signals = SemanticSignals {
             packets: 0,

@@ -22,7 +22,7 @@ impl<W: Write + Seek> Recorder<'_, W> {
     pub(super) fn publish_world_step(&mut self, step: &WorldStep<'_>) {
         let time = self.at(step.time);
         self.last = time;
-        self.publish_agents(time, step.agents);
+        self.publish_agents(time, step.step, step.agents);
         self.publish_detections(time, step.cooperators);
         let cells = step.measured.and_then(|measured| {
             let fused = measured.fused.first()?;

@@ -36,7 +36,7 @@ impl Results {
             .chain(scenario.imports.iter().map(|import| InputInfo {
                 kind: import.kind.name(),
                 path: import.path.clone(),
-                sha256: crate::sha256_hex(&import.bytes),
+                sha256: crate::hex(&import.sha256),
             }))
             .collect(),
             recording: provenance.recording.clone(),
