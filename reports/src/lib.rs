@@ -194,8 +194,8 @@ pub fn sha256_hex_of(mut reader: impl std::io::Read) -> std::io::Result<String> 
     }
 }
 
-/// `digest` as lowercase hex.
-fn hex(digest: &[u8]) -> String {
+/// `digest` as lowercase hex (an import's [`sha256`](sightline_dsl::Import::sha256), as the evidence names it).
+pub fn hex(digest: &[u8]) -> String {
     digest.iter().map(|b| format!("{b:02x}")).collect()
 }
 

@@ -13,7 +13,7 @@ use std::path::{Path, PathBuf};
 use std::time::{Instant, SystemTime};
 
 use rayon::prelude::*;
-use sightline_reports::{Execution, Shard, ShardInput, campaign_id, sha256_hex, shard_bytes};
+use sightline_reports::{Execution, Shard, ShardInput, campaign_id, hex, sha256_hex, shard_bytes};
 
 use crate::cli::ShardSpec;
 use crate::evidence::{Request, tool};
@@ -98,7 +98,7 @@ pub fn inputs_of(input: &Input) -> Vec<ShardInput> {
     };
     let imports = input.scenario.imports.iter().map(|import| ShardInput {
         path: import.path.clone(),
-        sha256: sha256_hex(&import.bytes),
+        sha256: hex(&import.sha256),
     });
     std::iter::once(scenario).chain(imports).collect()
 }
