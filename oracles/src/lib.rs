@@ -17,7 +17,7 @@
 //! that no run can give (a share above 1, a NaN), which `merge` and `replay`
 //! refuse before judging.
 //!
-//! [`falsify`] searches a scenario's `vary` space for a case that breaks a
+//! [`falsify()`] searches a scenario's `vary` space for a case that breaks a
 //! requirement and shrinks it; the caller compiles, simulates and checks each
 //! case.
 #![warn(missing_docs)]

@@ -19,7 +19,7 @@
 //! `docs/results.schema.json`.
 //!
 //! `sightline export` writes a scenario's world for other simulators:
-//! [`export`] simulates one sweep point and returns an ASAM OpenSCENARIO
+//! [`export()`] simulates one sweep point and returns an ASAM OpenSCENARIO
 //! scenario and its ASAM OpenDRIVE map (written formats belong here, beside
 //! the evidence; the language owns only the compiled model they are made from).
 //!

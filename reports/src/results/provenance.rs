@@ -72,7 +72,7 @@ pub struct Tool {
 
 /// The schema of `T` with no key beyond its fields, for the types results.json
 /// shares with formats whose schemas stay open ([`Tool`],
-/// [`Execution`](crate::Execution)).
+/// [`Execution`]).
 pub(super) fn closed<T: JsonSchema>(generator: &mut SchemaGenerator) -> Schema {
     let mut schema = T::json_schema(generator);
     schema.insert("additionalProperties".into(), false.into());

@@ -58,7 +58,7 @@ pub struct Lane {
     /// at least two points.
     pub shape: Vec<Xy>,
     /// The vehicle classes it permits (`allow`, `disallow`; all when it gives
-    /// neither), one bit per entry of [`CLASSES`](super::CLASSES).
+    /// neither), one bit per entry of [`CLASSES`].
     pub permitted: u64,
 }
 

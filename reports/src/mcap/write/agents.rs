@@ -2,7 +2,7 @@
 //! what does not change from step to step (an agent's id, its sensors' mounts)
 //! is rendered once per recorded point, and each step writes only its times,
 //! poses and speeds. The bytes are the ones serde_json gives
-//! [`FrameTransforms`](crate::mcap::foxglove::FrameTransforms) and
+//! `FrameTransforms` (the test's message type) and
 //! [`SpeedsRecord`](crate::mcap::wire::SpeedsRecord) of the same agents (a test
 //! compares them): encoding those field by field, every key escaped and every
 //! constant number formatted again, was most of what recording a step cost.
