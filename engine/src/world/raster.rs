@@ -263,11 +263,30 @@ fn contains(polygon: &[Point], p: Point) -> bool {
     inside
 }
 
-/// Walks the cells a ray from `from` along the unit `direction` crosses within
-/// `length`, in order, calling `visit(cell, distance at which the ray enters
-/// it)` until it returns `false`. The part of the ray outside the grid is
-/// skipped.
-pub fn traverse(grid: &Grid, from: Point, direction: Vector, length: f64, mut visit: impl FnMut(usize, f64) -> bool) {
+/// Where a ray enters a grid, and what Amanatides and Woo's walk steps by.
+struct Entry {
+    /// The first cell's column.
+    col: usize,
+    /// The first cell's row.
+    row: usize,
+    /// The walk's step in columns, ±1.
+    step_col: isize,
+    /// The walk's step in rows, ±1.
+    step_row: isize,
+    /// Distance along the ray to the next vertical and horizontal cell boundary.
+    t_max: [f64; 2],
+    /// Distance along the ray between two vertical, and two horizontal, boundaries.
+    t_delta: [f64; 2],
+    /// Distance along the ray at which it enters the grid.
+    t_in: f64,
+    /// Distance along the ray at which it leaves the grid, or ends.
+    t_out: f64,
+}
+
+/// Where a ray from `from` along the unit `direction`, `length` long, enters
+/// `grid`; `None` when none of it lies inside.
+#[inline]
+fn entry(grid: &Grid, from: Point, direction: Vector, length: f64) -> Option<Entry> {
     let low = Vector::new(grid.origin[0], grid.origin[1]);
     let high = low + Vector::new(grid.cols as f64, grid.rows as f64) * grid.cell;
     // Clip the ray to the grid (slab method).
@@ -276,7 +295,7 @@ pub fn traverse(grid: &Grid, from: Point, direction: Vector, length: f64, mut vi
         let (o, d, lo, hi) = (from[axis], direction[axis], low[axis], high[axis]);
         if d.abs() < 1e-12 {
             if o < lo || o >= hi {
-                return;
+                return None;
             }
         } else {
             let (t0, t1) = ((lo - o) / d, (hi - o) / d);
@@ -285,7 +304,7 @@ pub fn traverse(grid: &Grid, from: Point, direction: Vector, length: f64, mut vi
         }
     }
     if t_in >= t_out {
-        return;
+        return None;
     }
     let start = from + direction * t_in;
     let clamp_index = |v: f64, lo: f64, count: usize| (((v - lo) / grid.cell).floor().max(0.0) as usize).min(count - 1);
@@ -293,21 +312,48 @@ pub fn traverse(grid: &Grid, from: Point, direction: Vector, length: f64, mut vi
     let row = clamp_index(start.y, low.y, grid.rows);
     let step_col: isize = if direction.x >= 0.0 { 1 } else { -1 };
     let step_row: isize = if direction.y >= 0.0 { 1 } else { -1 };
-    // Distance along the ray to the next vertical and horizontal cell boundary.
     let boundary =
         |index: usize, lo: f64, step: isize| lo + (index as f64 + if step > 0 { 1.0 } else { 0.0 }) * grid.cell;
     let next = |o: f64, d: f64, b: f64| if d.abs() < 1e-12 { f64::INFINITY } else { (b - o) / d };
-    let mut t_max_x = next(from.x, direction.x, boundary(col, low.x, step_col));
-    let mut t_max_y = next(from.y, direction.y, boundary(row, low.y, step_row));
-    let t_delta_x = if direction.x.abs() < 1e-12 {
-        f64::INFINITY
-    } else {
-        grid.cell / direction.x.abs()
+    let delta = |d: f64| {
+        if d.abs() < 1e-12 {
+            f64::INFINITY
+        } else {
+            grid.cell / d.abs()
+        }
     };
-    let t_delta_y = if direction.y.abs() < 1e-12 {
-        f64::INFINITY
-    } else {
-        grid.cell / direction.y.abs()
+    Some(Entry {
+        col,
+        row,
+        step_col,
+        step_row,
+        t_max: [
+            next(from.x, direction.x, boundary(col, low.x, step_col)),
+            next(from.y, direction.y, boundary(row, low.y, step_row)),
+        ],
+        t_delta: [delta(direction.x), delta(direction.y)],
+        t_in,
+        t_out,
+    })
+}
+
+/// Walks the cells a ray from `from` along the unit `direction` crosses within
+/// `length`, in order, calling `visit(cell, distance at which the ray enters
+/// it)` until it returns `false`. The part of the ray outside the grid is
+/// skipped.
+pub fn traverse(grid: &Grid, from: Point, direction: Vector, length: f64, mut visit: impl FnMut(usize, f64) -> bool) {
+    let Some(Entry {
+        col,
+        row,
+        step_col,
+        step_row,
+        t_max: [mut t_max_x, mut t_max_y],
+        t_delta: [t_delta_x, t_delta_y],
+        t_in,
+        t_out,
+    }) = entry(grid, from, direction, length)
+    else {
+        return;
     };
     // The walk keeps the cell's index and, per axis, how many more cells lie
     // ahead on the grid: the same cells as stepping the column and row and
@@ -467,45 +513,23 @@ mod tests {
     }
 
     /// The walk as first written (Amanatides and Woo's column and row,
-    /// checked against the grid's edges at every step), the reference of
-    /// the one kept.
+    /// checked against the grid's edges at every step) from the same
+    /// [`entry`], the reference of the one kept.
     fn stepped(grid: &Grid, from: Point, direction: Vector, length: f64) -> Vec<(usize, u64)> {
         let mut visited = Vec::new();
-        let low = Vector::new(grid.origin[0], grid.origin[1]);
-        let high = low + Vector::new(grid.cols as f64, grid.rows as f64) * grid.cell;
-        let (mut t_in, mut t_out) = (0.0_f64, length);
-        for axis in 0..2 {
-            let (o, d, lo, hi) = (from[axis], direction[axis], low[axis], high[axis]);
-            if d.abs() < 1e-12 {
-                if o < lo || o >= hi {
-                    return visited;
-                }
-            } else {
-                let (t0, t1) = ((lo - o) / d, (hi - o) / d);
-                t_in = t_in.max(t0.min(t1));
-                t_out = t_out.min(t0.max(t1));
-            }
-        }
-        if t_in >= t_out {
+        let Some(Entry {
+            mut col,
+            mut row,
+            step_col,
+            step_row,
+            t_max: [mut t_max_x, mut t_max_y],
+            t_delta: [t_delta_x, t_delta_y],
+            t_in,
+            t_out,
+        }) = entry(grid, from, direction, length)
+        else {
             return visited;
-        }
-        let start = from + direction * t_in;
-        let index = |v: f64, lo: f64, count: usize| (((v - lo) / grid.cell).floor().max(0.0) as usize).min(count - 1);
-        let (mut col, mut row) = (index(start.x, low.x, grid.cols), index(start.y, low.y, grid.rows));
-        let step_col: isize = if direction.x >= 0.0 { 1 } else { -1 };
-        let step_row: isize = if direction.y >= 0.0 { 1 } else { -1 };
-        let boundary = |i: usize, lo: f64, step: isize| lo + (i as f64 + if step > 0 { 1.0 } else { 0.0 }) * grid.cell;
-        let next = |o: f64, d: f64, b: f64| if d.abs() < 1e-12 { f64::INFINITY } else { (b - o) / d };
-        let mut t_max_x = next(from.x, direction.x, boundary(col, low.x, step_col));
-        let mut t_max_y = next(from.y, direction.y, boundary(row, low.y, step_row));
-        let delta = |d: f64| {
-            if d.abs() < 1e-12 {
-                f64::INFINITY
-            } else {
-                grid.cell / d.abs()
-            }
         };
-        let (t_delta_x, t_delta_y) = (delta(direction.x), delta(direction.y));
         let mut enter = t_in;
         loop {
             visited.push((row * grid.cols + col, enter.to_bits()));
