@@ -7,10 +7,10 @@ use roxmltree::{Document, Node, ParsingOptions};
 
 use crate::Location;
 use crate::de::closest;
-use crate::import::xml::{XmlError, malformed};
 pub(crate) use crate::import::xml::{
-    attribute, children, element_error, number, number_or, optional_number, string, tag, value_error,
+    Locator, attribute, children, element_error, number, number_or, optional_number, string, tag, value_error,
 };
+use crate::import::xml::{XmlError, malformed};
 
 /// The most bytes an OpenDRIVE file may hold: about 25 times a dense 1 km²
 /// city network, and what the parsed tree of such a file keeps within a few
@@ -49,33 +49,6 @@ pub(crate) fn parse(text: &str) -> Result<Document<'_>, OpenDriveError> {
         },
         _ => malformed(text, &error),
     })
-}
-
-/// Locates elements by line and column in one pass over the text: roxmltree's
-/// own `text_pos_at` counts lines from the start at every call, which over
-/// every element of a large map is quadratic.
-pub(crate) struct Locator {
-    /// The byte offset where each line starts.
-    starts: Vec<usize>,
-}
-
-impl Locator {
-    /// The locator of `text`.
-    pub(crate) fn new(text: &str) -> Self {
-        let starts = std::iter::once(0)
-            .chain(text.match_indices('\n').map(|(i, _)| i + 1))
-            .collect();
-        Self { starts }
-    }
-
-    /// Where element `node` starts (its `<`).
-    pub(crate) fn at(&self, node: Node) -> Location {
-        let pos = node.range().start;
-        let line = self.starts.partition_point(|&start| start <= pos);
-        let start = self.starts[line - 1];
-        let column = node.document().input_text()[start..pos].chars().count() + 1;
-        Location::new(line, column)
-    }
 }
 
 /// The first element child of `node` named `name`.

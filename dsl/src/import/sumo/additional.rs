@@ -4,7 +4,7 @@
 use roxmltree::Node;
 
 use super::vclass::vehicle_class;
-use super::xml::{self, SumoError};
+use super::xml::{self, Locator, SumoError};
 use crate::Location;
 use crate::geometry::Xy;
 
@@ -122,21 +122,22 @@ pub fn parse_additional(text: &str) -> Result<Additional, SumoError> {
             ));
         }
     };
+    let locator = Locator::new(text);
     let mut additional = Additional::default();
     for node in root.children().filter(Node::is_element) {
         match node.tag_name().name() {
-            "poly" => additional.polygons.push(polygon(node)?),
-            "poi" => additional.pois.push(poi(node)?),
-            "vType" => additional.vtypes.push(vtype(node)?),
+            "poly" => additional.polygons.push(polygon(node, &locator)?),
+            "poi" => additional.pois.push(poi(node, &locator)?),
+            "vType" => additional.vtypes.push(vtype(node, &locator)?),
             "vTypeDistribution" => {
                 for node in xml::children(node, "vType") {
-                    additional.vtypes.push(vtype(node)?);
+                    additional.vtypes.push(vtype(node, &locator)?);
                 }
             }
             name if is_routes || READ.contains(&name) => {}
             name => match additional.ignored.iter_mut().find(|(n, _, _)| n == name) {
                 Some((_, count, _)) => *count += 1,
-                None => additional.ignored.push((name.to_owned(), 1, xml::location(node))),
+                None => additional.ignored.push((name.to_owned(), 1, locator.at(node))),
             },
         }
     }
@@ -150,7 +151,7 @@ fn is_geo<'a, 'i>(node: Node<'a, 'i>) -> Option<roxmltree::Attribute<'a, 'i>> {
 }
 
 /// One `<poly>`.
-fn polygon(node: Node) -> Result<Polygon, SumoError> {
+fn polygon(node: Node, locator: &Locator) -> Result<Polygon, SumoError> {
     let id = xml::string(node, "id")?;
     if let Some(geo) = is_geo(node) {
         let message = format!(
@@ -164,12 +165,12 @@ fn polygon(node: Node) -> Result<Polygon, SumoError> {
         id: id.to_owned(),
         kind: node.attribute("type").unwrap_or_default().to_owned(),
         shape,
-        location: xml::location(node),
+        location: locator.at(node),
     })
 }
 
 /// One `<poi>`.
-fn poi(node: Node) -> Result<Poi, SumoError> {
+fn poi(node: Node, locator: &Locator) -> Result<Poi, SumoError> {
     let id = xml::string(node, "id")?;
     if is_geo(node).is_some() || node.has_attribute("lon") || node.has_attribute("lat") {
         let message = format!(
@@ -201,12 +202,12 @@ fn poi(node: Node) -> Result<Poi, SumoError> {
         kind: node.attribute("type").unwrap_or_default().to_owned(),
         at,
         height,
-        location: xml::location(node),
+        location: locator.at(node),
     })
 }
 
 /// One `<vType>`.
-fn vtype(node: Node) -> Result<VType, SumoError> {
+fn vtype(node: Node, locator: &Locator) -> Result<VType, SumoError> {
     let id = xml::string(node, "id")?;
     let vclass = match node.attribute_node("vClass") {
         Some(attribute) => Some(vehicle_class(attribute.value()).map(|c| c.name).ok_or_else(|| {
@@ -235,7 +236,7 @@ fn vtype(node: Node) -> Result<VType, SumoError> {
         length: size[0],
         width: size[1],
         gui_shape: node.attribute("guiShape").map(str::to_owned),
-        location: xml::location(node),
+        location: locator.at(node),
     })
 }
 

@@ -5,7 +5,7 @@ use std::collections::HashMap;
 
 use roxmltree::{Document, Node};
 
-use super::xml::{self, SumoError};
+use super::xml::{self, Locator, SumoError};
 use crate::Location;
 use crate::geometry::Xy;
 
@@ -69,6 +69,7 @@ pub fn parse_fcd(text: &str) -> Result<Fcd, SumoError> {
     let doc = xml::parse(text)?;
     reject_projected_output(&doc)?;
     let root = xml::root(&doc, "fcd-export")?;
+    let locator = Locator::new(text);
     let mut objects: Vec<FcdObject> = Vec::new();
     // Each id's index in `objects`, and whether it was a <person>.
     let mut seen: HashMap<&str, (usize, bool)> = HashMap::new();
@@ -113,7 +114,7 @@ pub fn parse_fcd(text: &str) -> Result<Fcd, SumoError> {
                         is_person,
                         vtype: vtype.to_owned(),
                         samples: vec![sample],
-                        location: xml::location(node),
+                        location: locator.at(node),
                     });
                 }
             }

@@ -6,10 +6,10 @@ use roxmltree::{Document, Node};
 
 use crate::Location;
 use crate::geometry::Xy;
-use crate::import::xml::{XmlError, malformed};
 pub(crate) use crate::import::xml::{
-    attribute, children, element_error, error_at_pos, location, number, number_or, string, tag, value_error,
+    Locator, attribute, children, element_error, error_at_pos, number, number_or, string, tag, value_error,
 };
+use crate::import::xml::{XmlError, malformed};
 
 /// A problem in a SUMO file, located by line and column.
 pub type SumoError = XmlError;
