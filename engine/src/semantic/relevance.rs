@@ -24,14 +24,18 @@ pub fn contains(area: &Area, point: Point) -> bool {
         Area::Polygon(corners) => {
             // Even-odd ray crossing.
             let mut inside = false;
-            for (i, a) in corners.iter().enumerate() {
-                let b = corners[(i + 1) % corners.len()];
+            let Some(&last) = corners.last() else {
+                return false;
+            };
+            let mut a = &last;
+            for b in corners {
                 if (a[1] > point.y) != (b[1] > point.y) {
                     let x = a[0] + (point.y - a[1]) / (b[1] - a[1]) * (b[0] - a[0]);
                     if point.x < x {
                         inside = !inside;
                     }
                 }
+                a = b;
             }
             inside
         }
