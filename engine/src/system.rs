@@ -24,10 +24,10 @@
 //! which has no id, is never kept by ids).
 
 use serde::{Deserialize, Serialize};
-use sightline_dsl::{Agent, AgentKind, Area, Metric, ObjectSelection, World};
+use sightline_dsl::{Agent, AgentKind, Metric, ObjectSelection, World};
 
 use crate::math::Point;
-use crate::semantic::{contains, regions};
+use crate::semantic::{Region, contains, regions};
 use crate::system_objects::{AroundEgo, Roster, SystemObject};
 use crate::trace::WorldStep;
 
@@ -213,7 +213,7 @@ impl SystemJudge {
     fn with(
         (ego, host, sensors): (usize, usize, Vec<usize>),
         gate: f64,
-        regions: Vec<(String, Area)>,
+        regions: Vec<(String, Region)>,
         selections: Vec<ObjectSelection>,
     ) -> Self {
         let everything = std::iter::once(ObjectSelection::ALL).chain(selections);
@@ -397,7 +397,7 @@ fn latencies(first_in_sight: &[Option<f64>], first_matched: &[Option<f64>]) -> (
 #[cfg(test)]
 pub(crate) mod tests {
     use approx::assert_relative_eq;
-    use sightline_dsl::Motion;
+    use sightline_dsl::{Area, Motion};
 
     use super::*;
     use crate::math::{Pose, Vector};
@@ -532,9 +532,11 @@ pub(crate) mod tests {
             areas: areas.into_iter().map(String::from).collect(),
             ..ObjectSelection::default()
         };
-        let circle = |x: f64, y: f64| Area::Circle {
-            center: [x, y],
-            radius: 1.0,
+        let circle = |x: f64, y: f64| {
+            Region::new(Area::Circle {
+                center: [x, y],
+                radius: 1.0,
+            })
         };
         let selections = vec![
             select(vec![AgentKind::Car], vec![], vec![]),

@@ -24,9 +24,9 @@
 //!   the scene).
 
 use serde::{Deserialize, Serialize};
-use sightline_dsl::{Agent, AgentKind, Area, ObjectProperty, ObjectSelection};
+use sightline_dsl::{Agent, AgentKind, ObjectProperty, ObjectSelection};
 
-use crate::semantic::{Closest, contains, keeps};
+use crate::semantic::{Closest, Region, contains, keeps};
 use crate::trace::WorldStep;
 
 /// One road user around the ego over a run with a system under test.
@@ -83,12 +83,12 @@ pub(crate) struct Roster {
     /// Each agent's id and kind.
     pub(crate) agents: Vec<(String, AgentKind)>,
     /// Each region with its id.
-    pub(crate) regions: Vec<(String, Area)>,
+    pub(crate) regions: Vec<(String, Region)>,
 }
 
 impl Roster {
     /// `regions`, with no agent yet.
-    pub(crate) fn new(regions: Vec<(String, Area)>) -> Self {
+    pub(crate) fn new(regions: Vec<(String, Region)>) -> Self {
         Self {
             agents: Vec::new(),
             regions,
@@ -212,6 +212,7 @@ impl AroundEgo {
 #[cfg(test)]
 mod tests {
     use approx::assert_relative_eq;
+    use sightline_dsl::Area;
     use sightline_dsl::ObjectProperty::{SutAnticipation, SutDelay, SutLead};
 
     use super::*;
@@ -277,10 +278,10 @@ mod tests {
     /// but wholly hidden).
     #[test]
     fn the_record_by_hand() {
-        let zone = Area::Circle {
+        let zone = Region::new(Area::Circle {
             center: [0.0, 10.0],
             radius: 3.0,
-        };
+        });
         let mut roster = Roster::new(vec![("zone".into(), zone)]);
         roster.start(&[
             agent("ego", AgentKind::Car),

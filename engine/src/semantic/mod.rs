@@ -35,7 +35,7 @@ pub use {
 };
 
 pub(crate) use criticality::{Criticality, OrientedBox, post_encroachment};
-pub(crate) use relevance::{contains, regions};
+pub(crate) use relevance::{Region, contains, regions};
 pub(crate) use rsu::rsu_sight_idealisations;
 pub(crate) use selection::keeps;
 pub(crate) use simulate::{Ground, Layer, idealisations};

@@ -33,11 +33,11 @@
 //!   area their footprints at those steps share; none where it never had one.
 
 use serde::{Deserialize, Serialize};
-use sightline_dsl::{Agent, AgentKind, Area, Semantic, World};
+use sightline_dsl::{Agent, AgentKind, Semantic, World};
 
 use super::criticality::{Criticality, OrientedBox, post_encroachment, velocity};
 use super::ego::Knowledge;
-use super::relevance::{contains, regions};
+use super::relevance::{Region, contains, regions};
 use crate::world::AgentState;
 
 /// How the ego came to know a road user: by V2X, by its own sight, in which
@@ -194,7 +194,7 @@ pub(super) struct Encounters {
     /// The ego's time and state at each step with it in the scene.
     ego_states: Vec<(f64, AgentState)>,
     /// The regions a record names, with their ids.
-    regions: Vec<(String, Area)>,
+    regions: Vec<(String, Region)>,
     /// By agent index, then region: whether it was inside.
     inside: Vec<bool>,
 }

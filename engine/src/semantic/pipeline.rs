@@ -31,7 +31,7 @@ pub struct Pipeline<'a> {
     /// The pipeline's settings.
     pub semantic: &'a Semantic,
     /// Interaction areas and crosswalks.
-    pub areas: Areas<'a>,
+    pub areas: Areas,
     /// The static map's occluders.
     pub occluders: &'a Occluders,
     /// The paths vehicles may follow.
@@ -235,7 +235,7 @@ mod tests {
         let pipeline = Pipeline {
             semantic: &semantic,
             areas: Areas {
-                interaction: &[],
+                interaction: Vec::new(),
                 crosswalks: Vec::new(),
             },
             occluders: &occluders,
