@@ -52,21 +52,32 @@ impl Pipeline<'_> {
         let ego = ego_trajectory[0];
         let ego_path = |t: f64| sample(&ego_trajectory, t / self.dt);
         let current: Vec<(usize, &Track)> = ldm.current(now).filter(|&(agent, _)| agent != s.ego).collect();
+        let body = |agent: usize, track: &Track| {
+            let m = track.latest();
+            Body::rectangle(
+                agent,
+                Pose::new(m.position, m.heading),
+                Vector::new(m.length, m.width) / 2.0,
+            )
+        };
+        // Layer 3 asks whether one segment, from the ego to an object nearer
+        // than `proximity`, crosses a footprint: a footprint that reaches no
+        // nearer than that (its centre farther than `proximity` and its half
+        // diagonal, with a metre to spare) crosses none, and is left out of
+        // the tree, which is built again at every cycle.
         let bodies = Bodies::new(
             current
                 .iter()
-                .map(|&(agent, track)| {
+                .filter(|(_, track)| {
                     let m = track.latest();
-                    Body::rectangle(
-                        agent,
-                        Pose::new(m.position, m.heading),
-                        Vector::new(m.length, m.width) / 2.0,
-                    )
+                    let reach = Vector::new(m.length, m.width).length() / 2.0;
+                    (m.position - ego).length() <= s.proximity + reach + 1.0
                 })
+                .map(|&(agent, track)| body(agent, track))
                 .collect(),
         );
         let mut items = Vec::new();
-        for (body, &(agent, track)) in bodies.all().iter().zip(&current) {
+        for &(agent, track) in &current {
             let m = track.latest();
             // Layer 1: proximity.
             if (m.position - ego).length() >= s.proximity {
@@ -89,7 +100,7 @@ impl Pipeline<'_> {
                     .vehicle_relevant(s.horizon, (ego, &ego_path), (m.position, &path))
             };
             // Layer 3: obstruction from the ego's viewpoint.
-            let nlos = match visibility(self.occluders, &bodies, ego, s.ego, body) {
+            let nlos = match visibility(self.occluders, &bodies, ego, s.ego, &body(agent, track)) {
                 Visibility::Los => None,
                 hidden => Some(hidden),
             };
