@@ -4,7 +4,7 @@
 use sightline_dsl::geometry::Polyline;
 use sightline_dsl::{AgentKind, RiskScope, Semantic};
 
-use super::ldm::{Ldm, Track};
+use super::ldm::{Ldm, Measurement, Track};
 use super::message::{Item, Labels};
 use super::relevance::Areas;
 use super::risk::{Conflict, RouteMap, Trajectory, along, conflict, hypotheses, straight};
@@ -52,27 +52,12 @@ impl Pipeline<'_> {
         let ego = ego_trajectory[0];
         let ego_path = |t: f64| sample(&ego_trajectory, t / self.dt);
         let current: Vec<(usize, &Track)> = ldm.current(now).filter(|&(agent, _)| agent != s.ego).collect();
-        let body = |agent: usize, track: &Track| {
-            let m = track.latest();
-            Body::rectangle(
-                agent,
-                Pose::new(m.position, m.heading),
-                Vector::new(m.length, m.width) / 2.0,
-            )
-        };
-        // Layer 3 asks whether one segment, from the ego to an object nearer
-        // than `proximity`, crosses a footprint: a footprint that reaches no
-        // nearer than that (its centre farther than `proximity` and its half
-        // diagonal, with a metre to spare) crosses none, and is left out of
-        // the tree, which is built again at every cycle.
+        let body = |agent: usize, track: &Track| footprint(agent, track.latest());
+        // The tree is built again at every cycle: only of what layer 3 may meet.
         let bodies = Bodies::new(
             current
                 .iter()
-                .filter(|(_, track)| {
-                    let m = track.latest();
-                    let reach = Vector::new(m.length, m.width).length() / 2.0;
-                    (m.position - ego).length() <= s.proximity + reach + 1.0
-                })
+                .filter(|(_, track)| may_block(ego, s.proximity, track.latest()))
                 .map(|&(agent, track)| body(agent, track))
                 .collect(),
         );
@@ -179,12 +164,31 @@ fn earliest(a: Conflict, b: Conflict) -> Conflict {
     }
 }
 
+/// The footprint of agent `agent` measured as `m`.
+fn footprint(agent: usize, m: &Measurement) -> Body {
+    Body::rectangle(
+        agent,
+        Pose::new(m.position, m.heading),
+        Vector::new(m.length, m.width) / 2.0,
+    )
+}
+
+/// Whether an object measured as `m` may cross a line of sight of layer 3:
+/// one segment from `ego` to an object nearer than `proximity`. A footprint
+/// whose centre is farther than `proximity` and its half diagonal (with a
+/// metre to spare for rounding) reaches no such segment.
+fn may_block(ego: Point, proximity: f64, m: &Measurement) -> bool {
+    let reach = Vector::new(m.length, m.width).length() / 2.0;
+    (m.position - ego).length() <= proximity + reach + 1.0
+}
+
 #[cfg(test)]
 mod tests {
     use sightline_dsl::{Baseline, Caution, RsuSight, ShareCycles};
 
+    use proptest::prelude::*;
+
     use super::*;
-    use crate::semantic::ldm::Measurement;
 
     fn settings() -> Semantic {
         Semantic {
@@ -278,5 +282,40 @@ mod tests {
         // Car 3, between the ego and car 1, hides car 1.
         assert_eq!(items[0].labels.nlos, Some(Visibility::NlosDynamic));
         assert_eq!(items[1].labels.nlos, None);
+    }
+
+    proptest! {
+        /// Layer 3 gives the same answer with the footprints `may_block`
+        /// keeps as with every footprint: objects of up to 20 m anywhere
+        /// within 200 m, a target nearer than the proximity.
+        #[test]
+        fn the_footprints_left_out_block_nothing(
+            objects in prop::collection::vec(
+                (-200.0..200.0_f64, -200.0..200.0_f64, -3.2..3.2_f64, 0.5..20.0_f64, 0.5..4.0_f64),
+                1..40,
+            ),
+            target in (0.0..49.9_f64, -3.2..3.2_f64),
+        ) {
+            let proximity = 50.0;
+            let ego = Point::new(3.0, -7.0);
+            let at = |(x, y, heading, length, width): (f64, f64, f64, f64, f64)| Measurement {
+                position: Point::new(x, y),
+                heading,
+                length,
+                width,
+                ..car(0.0, 0.0, 0.0, 0.0, 0.0)
+            };
+            let measured: Vec<Measurement> = objects.into_iter().map(at).collect();
+            let (distance, bearing) = target;
+            let to = ego + Vector::new(bearing.cos(), bearing.sin()) * distance;
+            let every = Bodies::new(measured.iter().enumerate().map(|(i, m)| footprint(i + 2, m)).collect());
+            let kept = Bodies::new(
+                (measured.iter().enumerate())
+                    .filter(|(_, m)| may_block(ego, proximity, m))
+                    .map(|(i, m)| footprint(i + 2, m))
+                    .collect(),
+            );
+            prop_assert_eq!(kept.block(ego, to, [0, 1]), every.block(ego, to, [0, 1]));
+        }
     }
 }
