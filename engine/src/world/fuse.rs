@@ -1,7 +1,8 @@
 //! The fuse phase of a world: the observations that reached the ego fused cell
 //! by cell with each job's rule, over the counted cells they cover.
 //!
-//! Fusion runs in parallel over fixed-size chunks of the covered cells. Each
+//! Fusion runs in parallel over fixed-size chunks of the covered cells, each
+//! fused as soon as the coverage has found it, while the coverage goes on. Each
 //! chunk's fused estimates are tallied against the ground truth as they are
 //! computed (the roundabout's grid has 360 000 cells: estimates are not kept),
 //! and handed on chunk by chunk, so that the measure phase sums them in chunk
@@ -142,7 +143,7 @@ impl Coverage {
                 if !self.covered[cell] && counted(cell) {
                     self.covered[cell] = true;
                     self.cells.push(cell);
-                    if self.cells.len() % CHUNK == 0 {
+                    if self.cells.len().is_multiple_of(CHUNK) {
                         let index = self.cells.len() / CHUNK - 1;
                         chunk(index, &self.cells[index * CHUNK..]);
                     }
@@ -154,7 +155,7 @@ impl Coverage {
                 self.ego = self.cells.len() as u64;
             }
         }
-        if self.cells.len() % CHUNK != 0 {
+        if !self.cells.len().is_multiple_of(CHUNK) {
             let index = self.cells.len() / CHUNK;
             chunk(index, &self.cells[index * CHUNK..]);
         }

@@ -1,6 +1,7 @@
 //! The step loop of a world, as a sequence of phases: **move** (agents advance
 //! and their footprints are drawn), **sense** (each cooperating agent estimates
-//! its pose and observes), **communicate** (what reaches the ego: over the
+//! its pose and observes; a sender due over the radio encodes what it sensed
+//! in the same task), **communicate** (what reaches the ego: over the
 //! [`Radio`] when the scenario declares `v2x`, else every grid whole and at
 //! once), **fuse** (every
 //! job's grid over the cells covered, tallied against the ground truth) and
