@@ -1,13 +1,15 @@
 //! The fuse phase of a world: the observations that reached the ego fused cell
 //! by cell with each job's rule, over the counted cells they cover.
 //!
-//! Fusion runs in parallel over fixed-size chunks of the covered cells. Each
+//! Fusion runs in parallel over fixed-size chunks of the covered cells, each
+//! fused as soon as the coverage has found it, while the coverage goes on. Each
 //! chunk's fused estimates are tallied against the ground truth as they are
 //! computed (the roundabout's grid has 360 000 cells: estimates are not kept),
 //! and handed on chunk by chunk, so that the measure phase sums them in chunk
 //! order whatever the thread count.
 
-use rayon::prelude::*;
+use std::sync::mpsc;
+
 use sightline_dsl::{Grid, Perception, Rule};
 
 use super::evidence::Evidence;
@@ -124,21 +126,39 @@ impl Coverage {
     }
 
     /// Covers every cell of `received` (the ego's observation first) that
-    /// `counted` admits.
-    fn cover(&mut self, received: &[&dyn Evidence], counted: impl Fn(usize) -> bool) {
+    /// `counted` admits, handing `chunk` each [`CHUNK`] covered cells as they
+    /// are found (the last ones however many), with its index.
+    fn cover(
+        &mut self,
+        received: &[&dyn Evidence],
+        counted: impl Fn(usize) -> bool,
+        mut chunk: impl FnMut(usize, &[usize]),
+    ) {
         for &cell in &self.cells {
             self.covered[cell] = false;
         }
         self.cells.clear();
-        for observation in received {
+        for (i, observation) in received.iter().enumerate() {
             for &cell in observation.touched() {
                 if !self.covered[cell] && counted(cell) {
                     self.covered[cell] = true;
                     self.cells.push(cell);
+                    if self.cells.len().is_multiple_of(CHUNK) {
+                        let index = self.cells.len() / CHUNK - 1;
+                        chunk(index, &self.cells[index * CHUNK..]);
+                    }
                 }
             }
+            // The ego's observation comes first and touches each cell once:
+            // every counted cell of it is covered.
+            if i == 0 {
+                self.ego = self.cells.len() as u64;
+            }
         }
-        self.ego = received[0].touched().iter().filter(|&&c| counted(c)).count() as u64;
+        if !self.cells.len().is_multiple_of(CHUNK) {
+            let index = self.cells.len() / CHUNK;
+            chunk(index, &self.cells[index * CHUNK..]);
+        }
     }
 
     /// The covered cells, in the order first touched.
@@ -226,14 +246,15 @@ impl<'a, 'j> Fusion<'a, 'j> {
         received: &[&dyn Evidence],
         senders: &[Point],
         truth: &Truth,
-        counted: impl Fn(usize) -> bool,
+        counted: impl Fn(usize) -> bool + Send,
         (picture, owners): (bool, bool),
     ) -> Fused<'_> {
-        self.coverage.cover(received, counted);
         let fresh = received.iter().all(|o| o.fresh());
-        let mut chunks = Vec::with_capacity(self.jobs.len());
-        for ((job, values), memo) in self.jobs.iter().zip(&mut self.values).zip(&self.memos) {
-            let tallier = Tallier {
+        let talliers: Vec<Tallier> = self
+            .jobs
+            .iter()
+            .zip(&self.memos)
+            .map(|(job, memo)| Tallier {
                 fusion: CellFusion {
                     grid: self.grid,
                     rule: &job.fusion.rule,
@@ -246,24 +267,43 @@ impl<'a, 'j> Fusion<'a, 'j> {
                 owners: owners.then(|| truth.owners()),
                 senders,
                 memo: memo.as_ref().filter(|_| fresh),
-            };
-            let fused: Vec<(WorldTally, CellValues)> = self
-                .coverage
-                .cells
-                .par_chunks(CHUNK)
-                .map(|chunk| tallier.tally(chunk, picture))
-                .collect();
-            if picture {
+            })
+            .collect();
+        // Each chunk of covered cells is fused and tallied by every job as
+        // soon as the coverage has found it, while the coverage goes on; the
+        // chunks are put back in order.
+        let (done, tallied) = mpsc::channel();
+        rayon::scope(|scope| {
+            self.coverage.cover(received, counted, |index, cells| {
+                let (cells, done, talliers) = (cells.to_vec(), done.clone(), &talliers);
+                scope.spawn(move |_| {
+                    let fused: Vec<(WorldTally, CellValues)> =
+                        talliers.iter().map(|tallier| tallier.tally(&cells, picture)).collect();
+                    done.send((index, fused)).expect("the fuse phase awaits every chunk");
+                });
+            });
+        });
+        drop(done);
+        let mut fused: Vec<(usize, Vec<(WorldTally, CellValues)>)> = tallied.into_iter().collect();
+        fused.sort_unstable_by_key(|&(index, _)| index);
+        if picture {
+            for (j, values) in self.values.iter_mut().enumerate() {
                 values.probability.clear();
                 values.uncertainty.clear();
                 values.decision.clear();
-                for (_, chunk) in &fused {
+                for (_, jobs) in &fused {
+                    let chunk = &jobs[j].1;
                     values.probability.extend(&chunk.probability);
                     values.uncertainty.extend(&chunk.uncertainty);
                     values.decision.extend(&chunk.decision);
                 }
             }
-            chunks.push(fused.into_iter().map(|(tally, _)| tally).collect());
+        }
+        let mut chunks: Vec<Vec<WorldTally>> = vec![Vec::with_capacity(fused.len()); self.jobs.len()];
+        for (_, jobs) in fused {
+            for (j, (tally, _)) in jobs.into_iter().enumerate() {
+                chunks[j].push(tally);
+            }
         }
         Fused {
             coverage: &self.coverage,

@@ -28,6 +28,7 @@ use sightline_dsl::{Agent, AgentKind, Grid, Messages, V2x};
 
 use super::evidence::Evidence;
 use super::message::{Message, Run, header_bytes, pack, runs};
+use super::observe::Observation;
 use super::received::Held;
 use super::sight::Occluders;
 use super::state::AgentState;
@@ -170,29 +171,14 @@ impl<'a> Radio<'a> {
         }
     }
 
-    /// Communicate at `time`, the ego in the scene: the senders in `sensed`
-    /// whose generation is due send what they sensed; what arrived by `time`
-    /// is taken in, and what is held ages.
-    pub(super) fn communicate(
-        &mut self,
-        time: f64,
-        sensed: &[CooperatorStep<'_>],
-        (agents, states): (&[Agent], &[Option<AgentState>]),
-        occluders: &Occluders,
-    ) {
-        let ego = states[self.ego]
-            .expect("the radio runs while the ego is in the scene")
-            .position();
-        // Which senders generate now, in cooperation order, and where they are.
-        let mut due: Vec<(usize, &CooperatorStep<'_>, Point)> = Vec::new();
-        for c in sensed.iter().filter(|c| c.agent != self.ego) {
-            let index = self
-                .senders
-                .iter()
-                .position(|s| s.agent == c.agent)
-                .expect("a cooperator sends");
+    /// Generate at `time`, the ego in the scene (its `states`): the senders in
+    /// the scene whose generation is due (at a fixed `rate_hz` from their
+    /// first step there, at most once a step), in cooperation order, by agent
+    /// index. Each will send the grid it senses this step.
+    pub(super) fn generate(&mut self, time: f64, states: &[Option<AgentState>]) -> Vec<usize> {
+        let mut due = Vec::new();
+        for sender in self.senders.iter_mut().filter(|s| states[s.agent].is_some()) {
             self.stats.sender_steps += 1;
-            let sender = &mut self.senders[index];
             if sender.due.is_some_and(|due| time + 1e-9 < due) {
                 continue;
             }
@@ -205,29 +191,51 @@ impl<'a> Radio<'a> {
             }
             sender.due = Some(next);
             sender.serial += 1;
-            let position = states[c.agent].expect("a sensing agent is in the scene").position();
-            due.push((index, c, position));
+            due.push(sender.agent);
         }
-        // Encoding draws nothing: it runs in parallel, and the messages go out
-        // in cooperation order, each sender drawing from its own stream.
-        let (grid, messages) = (self.grid, self.messages);
-        let packed: Vec<Vec<Message>> = due
-            .par_iter()
-            .map(|&(_, c, position)| {
-                let observation = c.observation;
-                let sensor = observation.sensor_positions.first().copied().unwrap_or(position);
-                pack(
-                    &runs(observation, grid),
-                    grid,
-                    header_bytes(observation.sensor_positions.len()),
-                    messages.max_bytes,
-                    messages.oversize,
-                    sensor,
-                )
-            })
-            .collect();
+        due
+    }
+
+    /// The messages a sender at `position` sends of the grid it sensed,
+    /// `observation`. Encoding draws nothing: senders encode in parallel, each
+    /// as it senses.
+    pub(super) fn encode(&self, observation: &Observation, position: Point) -> Vec<Message> {
+        let sensor = observation.sensor_positions.first().copied().unwrap_or(position);
+        pack(
+            &runs(observation, self.grid),
+            self.grid,
+            header_bytes(observation.sensor_positions.len()),
+            self.messages.max_bytes,
+            self.messages.oversize,
+            sensor,
+        )
+    }
+
+    /// Communicate at `time`, the ego in the scene: the senders whose
+    /// generation is due send the messages they encoded (`sent`, in the order
+    /// [`Self::generate`] named them, with what each sensed); what arrived by
+    /// `time` is taken in, and what is held ages.
+    pub(super) fn communicate(
+        &mut self,
+        time: f64,
+        sent: Vec<(&CooperatorStep<'_>, Vec<Message>)>,
+        (agents, states): (&[Agent], &[Option<AgentState>]),
+        occluders: &Occluders,
+    ) {
+        let ego = states[self.ego]
+            .expect("the radio runs while the ego is in the scene")
+            .position();
+        let messages = self.messages;
         let channel = &self.v2x.channel;
-        for ((index, c, position), packed) in due.into_iter().zip(packed) {
+        // The messages go out in cooperation order, each sender drawing from
+        // its own stream.
+        for (c, packed) in sent {
+            let index = self
+                .senders
+                .iter()
+                .position(|s| s.agent == c.agent)
+                .expect("a cooperator sends");
+            let position = states[c.agent].expect("a sensing agent is in the scene").position();
             let sender = &mut self.senders[index];
             let link = Link {
                 distance_m: (ego - position).length(),

@@ -1,6 +1,7 @@
 //! The step loop of a world, as a sequence of phases: **move** (agents advance
 //! and their footprints are drawn), **sense** (each cooperating agent estimates
-//! its pose and observes), **communicate** (what reaches the ego: over the
+//! its pose and observes; a sender due over the radio encodes what it sensed
+//! in the same task), **communicate** (what reaches the ego: over the
 //! [`Radio`] when the scenario declares `v2x`, else every grid whole and at
 //! once), **fuse** (every
 //! job's grid over the cells covered, tallied against the ground truth) and
@@ -27,6 +28,7 @@ use super::fuse::{self, Fusion};
 use super::layer::StepLayer;
 use super::localization::{self, PoseEstimator};
 use super::measure::{MeasuredStep, Measures, unmeasured};
+use super::message::Message;
 use super::metrics::WorldOutcome;
 use super::motion::{self, Kinematics};
 use super::observe::{self, Observation, StepScene};
@@ -245,14 +247,29 @@ pub fn run(
         let time = k as f64 * world.step;
         scene.advance(k, agents);
         layer.step(k, &scene.states, &scene.bodies, &mut scene.kinematics);
-        let sensed = sense(&setting, k, &scene, &mut cooperators);
-        if scene.states[perception.ego].is_none() {
+        let ego_in_scene = scene.states[perception.ego].is_some();
+        let due = match &mut radio {
+            Some(radio) if ego_in_scene => radio.generate(time, &scene.states),
+            _ => Vec::new(),
+        };
+        let (sensed, encoded) = sense(&setting, k, &scene, &mut cooperators, (radio.as_ref(), &due));
+        if !ego_in_scene {
             unmeasured(k, time, &scene.states, &sensed, sink);
             layer.record(k, &scene.states, sink);
             continue;
         }
         if let Some(radio) = &mut radio {
-            radio.communicate(time, &sensed, (agents, &scene.states), &setting.occluders);
+            let sent = due
+                .iter()
+                .zip(encoded)
+                .map(|(agent, messages)| {
+                    (
+                        sensed.iter().find(|c| c.agent == *agent).expect("a due sender sensed"),
+                        messages,
+                    )
+                })
+                .collect();
+            radio.communicate(time, sent, (agents, &scene.states), &setting.occluders);
         }
         let (received, reporting) = communicate(&sensed, radio.as_ref());
         let senders: Vec<Point> = sensed[1..]
@@ -303,15 +320,18 @@ pub fn run(
 }
 
 /// Sense: every cooperating agent in the scene estimates its pose at step `k`
-/// (a roadside unit knows its surveyed one) and observes with it. Agents update
-/// their pose estimates whether or not the ego is there. Returns what those in
-/// the scene sensed, in cooperation order.
+/// (a roadside unit knows its surveyed one) and observes with it; those `due`
+/// to send over the `radio` encode what they sensed, as they sense. Agents
+/// update their pose estimates whether or not the ego is there. Returns what
+/// those in the scene sensed, in cooperation order, and the messages of those
+/// due, in the order of `due`.
 fn sense<'c>(
     setting: &Setting<'_>,
     k: usize,
     scene: &Scene<'_>,
     cooperators: &'c mut [Cooperator],
-) -> Vec<CooperatorStep<'c>> {
+    (radio, due): (Option<&Radio<'_>>, &[usize]),
+) -> (Vec<CooperatorStep<'c>>, Vec<Vec<Message>>) {
     let world = setting.world;
     let agents = setting.agents;
     let step_scene = StepScene {
@@ -320,26 +340,31 @@ fn sense<'c>(
         bodies: &scene.bodies,
         raster: &scene.raster,
     };
-    cooperators.par_iter_mut().for_each(|c| {
-        c.present = false;
-        let Some(state) = scene.states[c.agent] else { return };
-        let agent = &agents[c.agent];
-        let estimate = match agent.motion {
-            // A roadside unit's position is surveyed.
-            Motion::Fixed { .. } => state.pose,
-            Motion::Along { .. } | Motion::Trace { .. } => {
-                // Step k's odometry draws are block k of the agent's stream.
-                c.odometry.set_block_pos(k as u64);
-                c.estimator
-                    .estimate(state.pose, world.step, &mut c.localization, &mut c.odometry)
-            }
-        };
-        c.estimate = estimate;
-        c.observation
-            .observe(&step_scene, (c.agent, agent), state.pose, estimate, &mut c.detections);
-        c.present = true;
-    });
-    cooperators
+    let encoded: Vec<Option<Vec<Message>>> = cooperators
+        .par_iter_mut()
+        .map(|c| {
+            c.present = false;
+            let state = scene.states[c.agent]?;
+            let agent = &agents[c.agent];
+            let estimate = match agent.motion {
+                // A roadside unit's position is surveyed.
+                Motion::Fixed { .. } => state.pose,
+                Motion::Along { .. } | Motion::Trace { .. } => {
+                    // Step k's odometry draws are block k of the agent's stream.
+                    c.odometry.set_block_pos(k as u64);
+                    c.estimator
+                        .estimate(state.pose, world.step, &mut c.localization, &mut c.odometry)
+                }
+            };
+            c.estimate = estimate;
+            c.observation
+                .observe(&step_scene, (c.agent, agent), state.pose, estimate, &mut c.detections);
+            c.present = true;
+            let radio = radio.filter(|_| due.contains(&c.agent))?;
+            Some(radio.encode(&c.observation, state.position()))
+        })
+        .collect();
+    let sensed = cooperators
         .iter()
         .filter(|c| c.present)
         .map(|c| CooperatorStep {
@@ -347,7 +372,8 @@ fn sense<'c>(
             estimate: c.estimate,
             observation: &c.observation,
         })
-        .collect()
+        .collect();
+    (sensed, encoded.into_iter().flatten().collect())
 }
 
 /// Communicate: the evidence the ego fuses, its own observation first, and
