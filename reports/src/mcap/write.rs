@@ -2,10 +2,9 @@
 //! into an MCAP file as the engine runs, then every point's outcome and every
 //! verdict.
 //!
-//! The recorder builds each message as the engine hands it a step, an owned
-//! record of what the step shows (the agents' states copied); a thread of its
-//! own encodes it as JSON, compresses and writes it ([`container`]),
-//! concurrently with the simulation. Grids are encoded as they are built.
+//! The recorder encodes each message as the engine hands it a step; a thread
+//! of its own compresses and writes them ([`container`]), concurrently with
+//! the simulation.
 //!
 //! Memory stays bounded: each message is built, handed to the writer thread
 //! in a batch and dropped once written into the current chunk (the MCAP
@@ -15,15 +14,13 @@
 //! This module holds the recorder and its state from step to step: how a
 //! recording starts, and the running values of the requirements its steps
 //! signal. Its children write the rest: the channels and their schemas
-//! ([`channel`]), the file ([`container`]), the scene ([`scene`]), a
-//! perception world's steps ([`world`]), a semantic world's ([`semantic`])
-//! and the end ([`outcomes`]). A joint
+//! ([`channel`]), the file ([`container`]), the scene ([`scene`]), a perception world's steps ([`world`]),
+//! a semantic world's ([`semantic`]) and the end ([`outcomes`]). A joint
 //! world's step is both: the grid's part, then the pipeline's, in one step's
 //! scene and signals.
 
 use std::collections::BTreeSet;
 use std::io::Write;
-use std::sync::Arc;
 
 use mcap::{Compression, WriteOptions};
 use sightline_dsl::{Agent, Check, Experiment, Grid as CellGrid, JointPart, Metric, Record, RecordedPoints, Scenario};
@@ -151,8 +148,7 @@ pub struct Recorder<'s, W> {
     record: Record,
     /// The occupancy grid; `None` in a semantic world, which fuses none.
     grid: Option<CellGrid>,
-    /// The first grid that did not encode; once set, nothing more is
-    /// written (the writer thread's failures are its own, for `finish`).
+    /// The first write error; once set, nothing more is written.
     failure: Option<WriteError>,
     /// Log time of the latest step, nanoseconds since 1970 (the recording's
     /// clock starts at `record.start`).
@@ -173,9 +169,11 @@ pub struct Recorder<'s, W> {
     /// Agents `/scene/agents` shows, in order.
     agents_shown: Vec<usize>,
     /// Per agent, what its `/tf` and `/sightline/speeds` JSON holds at every step.
-    agent_json: Arc<[agents::AgentJson]>,
+    agent_json: Vec<agents::AgentJson>,
     /// Every agent's state at the latest step (`None`: not in the scene).
-    last_states: Arc<[Option<AgentState>]>,
+    last_states: Vec<Option<AgentState>>,
+    /// The JSON of the message being written, reused from message to message.
+    buffer: Vec<u8>,
     /// Requirements at the recorded point whose metric the steps give.
     signalled: Vec<(String, Metric, sightline_dsl::Bound)>,
     running: Running,
@@ -210,8 +208,9 @@ impl<'s, W: Write + Send + 'static> Recorder<'s, W> {
             shown: BTreeSet::new(),
             fields_shown: Vec::new(),
             agents_shown: Vec::new(),
-            agent_json: Arc::from([]),
-            last_states: Arc::from([]),
+            agent_json: Vec::new(),
+            last_states: Vec::new(),
+            buffer: Vec::new(),
             signalled: Vec::new(),
             running: Running {
                 world: None,
@@ -231,7 +230,7 @@ impl<'s, W: Write + Send + 'static> Recorder<'s, W> {
             topic::SCENARIO,
             SCENARIO,
             record.start,
-            ScenarioRecord {
+            &ScenarioRecord {
                 format: RECORDING_FORMAT.into(),
                 tool: source.tool.clone(),
                 file: source.file.into(),
@@ -327,14 +326,14 @@ impl<W> Recorder<'_, W> {
         self.shown.clear();
         self.fields_shown.clear();
         self.agents_shown.clear();
-        self.agent_json = Arc::from([]);
-        self.last_states = Arc::from([]);
+        self.agent_json.clear();
+        self.last_states.clear();
         self.agents.clear();
         self.fields_of_view.clear();
         if let Some(world) = world {
             let map = map_entities(world, self.grid.as_ref(), self.base);
             let stamp = Time::from_nanos(self.base);
-            self.publish(topic::MAP, SCENE, self.base, SceneUpdate::replace(stamp, map));
+            self.publish(topic::MAP, SCENE, self.base, &SceneUpdate::replace(stamp, map));
         }
     }
 
@@ -366,7 +365,7 @@ impl<W> Recorder<'_, W> {
             step,
             requirements,
         };
-        self.publish(topic::REQUIREMENTS, REQUIREMENTS, time, message);
+        self.publish(topic::REQUIREMENTS, REQUIREMENTS, time, &message);
     }
 
     /// The recording's time `seconds` of simulated time after the recorded

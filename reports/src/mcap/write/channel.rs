@@ -1,13 +1,12 @@
 //! The channels a recording writes: each message type's schema, and how a
-//! message is handed to the container (which registers the topic's channel
-//! and schema on first use) and where it is encoded: a grid here, anything
-//! else on the writer thread.
+//! message is encoded for its topic (the container registers the topic's
+//! channel and schema on first use).
 
 use serde::Serialize;
 
 use super::{Recorder, WriteError};
 use crate::mcap::flat::flat_schema_of as schema_of;
-use crate::mcap::foxglove::{FRAME_TRANSFORMS_SCHEMA, GRID_SCHEMA, Grid, LOG_SCHEMA, SCENE_UPDATE_SCHEMA};
+use crate::mcap::foxglove::{FRAME_TRANSFORMS_SCHEMA, GRID_SCHEMA, LOG_SCHEMA, SCENE_UPDATE_SCHEMA};
 use crate::mcap::wire::{
     ApproachRecord, ArrivalRecord, MessageRecord, OutcomeRecord, PacketRecord, RequirementSignals, RoadUserRecord,
     ScenarioRecord, SignalsRecord, SpeedsRecord, VerdictRecord,
@@ -50,44 +49,32 @@ pub(super) const OBJECT: SchemaSpec = SchemaSpec::new("sightline.Object", schema
 
 impl<W> Recorder<'_, W> {
     /// Writes `message` on `topic` (created with `schema` on first use) at
-    /// `log_time` nanoseconds, encoded on the writer thread (whose first
-    /// failure [`finish`](Self::finish) reports).
-    pub(super) fn publish(
+    /// `log_time` nanoseconds; the first failure is kept for
+    /// [`finish`](Self::finish) and stops all further writing.
+    pub(super) fn publish(&mut self, topic: &str, schema: SchemaSpec, log_time: u64, message: &impl Serialize) {
+        self.write(topic, schema, log_time, |out| serde_json::to_writer(out, message));
+    }
+
+    /// [`publish`](Self::publish) of a message already encoded, `json`.
+    pub(super) fn publish_json(&mut self, topic: &str, schema: SchemaSpec, log_time: u64, json: &[u8]) {
+        self.write(topic, schema, log_time, |out| {
+            out.extend_from_slice(json);
+            Ok(())
+        });
+    }
+
+    /// Writes the message `encode` writes, as [`publish`](Self::publish) does.
+    fn write(
         &mut self,
         topic: &str,
         schema: SchemaSpec,
         log_time: u64,
-        message: impl Serialize + Send + 'static,
+        encode: impl FnOnce(&mut Vec<u8>) -> serde_json::Result<()>,
     ) {
-        self.publish_with(topic, schema, log_time, move |out| serde_json::to_writer(out, &message));
-    }
-
-    /// [`publish`](Self::publish) of the message `encode` writes, on the
-    /// writer thread.
-    pub(super) fn publish_with(
-        &mut self,
-        topic: &str,
-        schema: SchemaSpec,
-        log_time: u64,
-        encode: impl FnOnce(&mut Vec<u8>) -> serde_json::Result<()> + Send + 'static,
-    ) {
-        if self.failure.is_none() {
-            self.out.unencoded(topic, schema, log_time, encode);
-        }
-    }
-
-    /// [`publish`](Self::publish) of a grid, encoded here: its size is the
-    /// grid's, which would otherwise wait for the thread in every queued
-    /// batch. The first failure is kept for [`finish`](Self::finish) and
-    /// stops all further writing.
-    pub(super) fn publish_grid(&mut self, topic: &str, log_time: u64, grid: &Grid) {
         if self.failure.is_some() {
             return;
         }
-        if let Err(error) = self
-            .out
-            .message(topic, GRID, log_time, |out| serde_json::to_writer(out, grid))
-        {
+        if let Err(error) = self.out.message(topic, schema, log_time, encode) {
             self.failure = Some(WriteError::Json(error));
         }
     }

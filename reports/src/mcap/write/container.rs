@@ -1,9 +1,9 @@
 //! The recording's MCAP container, written on a thread of its own: the
-//! recorder adds each message to a batch, encoded or to be encoded, and hands
-//! full batches to a writer thread over a bounded channel; the thread encodes
-//! what is left to encode, registers the channels and schemas, compresses the
-//! chunks (lz4), computes their CRCs and writes the file, in the order the
-//! recorder gave them, so the bytes are the ones writing in place gives.
+//! recorder encodes each message into a batch and hands full batches to a
+//! writer thread over a bounded channel; the thread registers the channels and
+//! schemas, compresses the chunks (lz4), computes their CRCs and writes the
+//! file, in the order the recorder gave them, so the bytes are the ones
+//! writing in place gives.
 //!
 //! The thread writes without seeking back ([`NoSeek`]: each chunk is built in
 //! memory and written whole), so what reaches the output is the file in order
@@ -11,9 +11,8 @@
 //! ([`Sha256Writer`](crate::Sha256Writer)).
 //!
 //! Memory stays bounded: at most [`QUEUED`] batches wait for the thread, each
-//! about [`BATCH_BYTES`] encoded (or one message, when larger) and at most
-//! [`BATCH_MESSAGES`] messages, and the thread hands each batch back emptied,
-//! to be filled again.
+//! about [`BATCH_BYTES`] (or one message, when larger), and the thread hands
+//! each batch back emptied, to be filled again.
 
 use std::any::Any;
 use std::borrow::Cow;
@@ -29,11 +28,8 @@ use mcap::{Attachment, WriteOptions, Writer};
 use super::WriteError;
 use super::channel::SchemaSpec;
 
-/// A batch is handed to the thread once it holds this many bytes encoded…
+/// A batch is handed to the thread once it holds this many bytes.
 const BATCH_BYTES: usize = 64 * 1024;
-
-/// … or this many messages.
-const BATCH_MESSAGES: usize = 64;
 
 /// How many full batches may wait for the thread; the recorder waits beyond.
 const QUEUED: usize = 4;
@@ -61,9 +57,6 @@ struct Batch {
     entries: Vec<Entry>,
 }
 
-/// Writes a message's JSON at the end of a buffer.
-type Encode = Box<dyn FnOnce(&mut Vec<u8>) -> serde_json::Result<()> + Send>;
-
 /// What the thread writes; the ones with `len` take the next `len` bytes of
 /// their batch.
 enum Entry {
@@ -72,12 +65,6 @@ enum Entry {
     Channel { topic: String, schema: SchemaSpec },
     /// A message on channel index `channel`.
     Message { channel: usize, log_time: u64, len: usize },
-    /// A message on channel index `channel`, for the thread to encode.
-    Unencoded {
-        channel: usize,
-        log_time: u64,
-        encode: Encode,
-    },
     /// A file attached.
     Attachment {
         name: String,
@@ -124,8 +111,8 @@ impl<W: Write + Send + 'static> Container<W> {
 
 impl<W> Container<W> {
     /// Adds a message on `topic` (created with `schema` on first use) at
-    /// `log_time` nanoseconds, which `encode` writes now; nothing when it
-    /// fails, or once the thread has stopped.
+    /// `log_time` nanoseconds, which `encode` writes; nothing when it fails,
+    /// or once the thread has stopped.
     pub(super) fn message(
         &mut self,
         topic: &str,
@@ -146,28 +133,6 @@ impl<W> Container<W> {
         self.batch.entries.push(Entry::Message { channel, log_time, len });
         self.sent_when_full();
         Ok(())
-    }
-
-    /// Adds a message as [`message`](Self::message) does, which `encode`
-    /// writes on the thread (its failure is then the thread's).
-    pub(super) fn unencoded(
-        &mut self,
-        topic: &str,
-        schema: SchemaSpec,
-        log_time: u64,
-        encode: impl FnOnce(&mut Vec<u8>) -> serde_json::Result<()> + Send + 'static,
-    ) {
-        if self.to_thread.is_none() {
-            return;
-        }
-        let channel = self.channel(topic, schema);
-        let encode = Box::new(encode);
-        self.batch.entries.push(Entry::Unencoded {
-            channel,
-            log_time,
-            encode,
-        });
-        self.sent_when_full();
     }
 
     /// Attaches `data` as the file `name` of type `media_type`, at `log_time`.
@@ -200,7 +165,7 @@ impl<W> Container<W> {
     }
 
     fn sent_when_full(&mut self) {
-        if self.batch.bytes.len() >= BATCH_BYTES || self.batch.entries.len() >= BATCH_MESSAGES {
+        if self.batch.bytes.len() >= BATCH_BYTES {
             self.send();
         }
     }
@@ -247,7 +212,6 @@ fn write_batches<W: Write>(
     let mut schemas: BTreeMap<&'static str, u16> = BTreeMap::new();
     let mut channels: Vec<u16> = Vec::new();
     let mut sequence = 0;
-    let mut json = Vec::new();
     for mut batch in batches {
         let Batch { bytes, entries } = &mut batch;
         let mut rest = bytes.as_slice();
@@ -271,17 +235,13 @@ fn write_batches<W: Write>(
                 }
                 Entry::Message { channel, log_time, len } => {
                     sequence += 1;
-                    out.write_to_known_channel(&header(channels[channel], sequence, log_time), take(len))?;
-                }
-                Entry::Unencoded {
-                    channel,
-                    log_time,
-                    encode,
-                } => {
-                    json.clear();
-                    encode(&mut json)?;
-                    sequence += 1;
-                    out.write_to_known_channel(&header(channels[channel], sequence, log_time), &json)?;
+                    let header = MessageHeader {
+                        channel_id: channels[channel],
+                        sequence,
+                        log_time,
+                        publish_time: log_time,
+                    };
+                    out.write_to_known_channel(&header, take(len))?;
                 }
                 Entry::Attachment {
                     name,
@@ -303,16 +263,6 @@ fn write_batches<W: Write>(
     }
     out.finish()?;
     Ok(out.into_inner().into_inner())
-}
-
-/// The header of message `sequence` on channel `channel_id`, at `log_time`.
-fn header(channel_id: u16, sequence: u32, log_time: u64) -> MessageHeader {
-    MessageHeader {
-        channel_id,
-        sequence,
-        log_time,
-        publish_time: log_time,
-    }
 }
 
 /// What a panic said, when it said it with a string.
@@ -366,26 +316,18 @@ mod tests {
         items
     }
 
-    /// `items` through a container into `out`, every other message encoded
-    /// on the thread.
+    /// `items` through a container into `out`.
     fn contained<W: Write + Send + 'static>(out: W, items: &[Item]) -> Result<W, WriteError> {
         let mut container = Container::start(out, options())?;
-        for (i, item) in items.iter().enumerate() {
+        for item in items {
             match item {
                 Item::Attachment(name, data) => container.attach(name, "application/xml", 5, data),
-                Item::Message(topic, schema, time, json) if i % 2 == 0 => container
+                Item::Message(topic, schema, time, json) => container
                     .message(topic, *schema, *time, |out| {
                         out.extend_from_slice(json);
                         Ok(())
                     })
                     .unwrap(),
-                Item::Message(topic, schema, time, json) => {
-                    let json = json.clone();
-                    container.unencoded(topic, *schema, *time, move |out| {
-                        out.extend_from_slice(&json);
-                        Ok(())
-                    });
-                }
             }
         }
         container.finish()
@@ -470,8 +412,7 @@ mod tests {
 
     /// An output that fails on the thread is the recording's error, and a
     /// panic on the thread is one too, not an abort; the recorder goes on
-    /// handing messages over until the end either way. A message the thread
-    /// fails to encode is the recording's error too.
+    /// handing messages over until the end either way.
     #[test]
     fn the_threads_failure_or_panic_is_the_recordings_error() {
         let items = items();
@@ -491,14 +432,6 @@ mod tests {
         };
         match contained(panicking, &items) {
             Err(WriteError::Panicked(message)) => assert_eq!(message, "the output broke"),
-            other => panic!("{:?}", other.map(|_| ())),
-        }
-        let mut container = Container::start(Vec::new(), options()).unwrap();
-        container.unencoded("/a", SIGNALS, 0, |out| {
-            serde_json::to_writer(out, &BTreeMap::from([((1, 2), 3)]))
-        });
-        match container.finish() {
-            Err(WriteError::Json(error)) => assert!(error.to_string().contains("key must be a string"), "{error}"),
             other => panic!("{:?}", other.map(|_| ())),
         }
     }

@@ -93,18 +93,18 @@ impl<W: Write + Send + 'static> Recorder<'_, W> {
                     })
                     .collect(),
             };
-            self.publish(topic::OUTCOME, OUTCOME, end, record);
+            self.publish(topic::OUTCOME, OUTCOME, end, &record);
             if let Some(metrics) = outcome.semantic() {
                 // A joint world's records say when each road user came into the grid.
                 let in_grid = matches!(outcome, Outcome::World(_));
                 for object in metrics.objects.iter().take(MAX_OBJECT_RECORDS) {
                     let record = road_user_record(point.index, object, in_grid);
-                    self.publish(topic::OBJECTS, OBJECT, end, record);
+                    self.publish(topic::OBJECTS, OBJECT, end, &record);
                 }
             }
         }
         for (requirement, verdict) in scenario.requirements.iter().zip(verdicts) {
-            self.publish(topic::VERDICTS, VERDICT, end, verdict_record(requirement, verdict));
+            self.publish(topic::VERDICTS, VERDICT, end, &verdict_record(requirement, verdict));
             let level = match verdict.status {
                 sightline_oracles::Status::Pass => Level::Info,
                 sightline_oracles::Status::NotExercised if !verdict.fails_run() => Level::Warning,
@@ -122,7 +122,7 @@ impl<W: Write + Send + 'static> Recorder<'_, W> {
                 scenario.file.clone(),
                 requirement.location.line,
             );
-            self.publish(topic::LOG, LOG, end, log);
+            self.publish(topic::LOG, LOG, end, &log);
         }
         self.take_failure()?;
         self.out.finish()

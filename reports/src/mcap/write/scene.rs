@@ -6,7 +6,6 @@
 
 use std::collections::BTreeSet;
 use std::f64::consts::{PI, TAU};
-use std::sync::Arc;
 
 use sightline_dsl::{Agent, AgentKind, Area, Grid as CellGrid, World};
 use sightline_engine::trace::{AgentState, Body, CooperatorStep, Vector};
@@ -43,27 +42,17 @@ impl<W> Recorder<'_, W> {
     /// (`/scene/fields_of_view`) and the agents' boxes (`/scene/agents`), each
     /// locked to its frame; then every agent's speed (`/sightline/speeds`).
     pub(super) fn publish_agents(&mut self, time: u64, step: usize, states: &[Option<AgentState>]) {
-        let states: Arc<[Option<AgentState>]> = states.into();
-        self.publish_transforms(time, &states);
+        let mut buffer = std::mem::take(&mut self.buffer);
+        write_transforms(&mut buffer, Time::from_nanos(time), states, &self.agent_json);
+        self.publish_json(topic::TRANSFORMS, TRANSFORMS, time, &buffer);
         let present: Vec<usize> = (0..states.len()).filter(|&i| states[i].is_some()).collect();
         self.publish_fields_of_view(time, &present);
         self.publish_scene_agents(time, present);
-        let (point, speeds, pieces) = (self.record.point, Arc::clone(&states), Arc::clone(&self.agent_json));
-        self.publish_with(topic::SPEEDS, SPEEDS, time, move |out| {
-            write_speeds(out, point, step, &speeds, &pieces);
-            Ok(())
-        });
-        self.last_states = states;
-    }
-
-    /// `/tf` at `time`: every agent in the scene at `states` in `map`, and
-    /// its sensors in it.
-    fn publish_transforms(&mut self, time: u64, states: &Arc<[Option<AgentState>]>) {
-        let (states, pieces) = (Arc::clone(states), Arc::clone(&self.agent_json));
-        self.publish_with(topic::TRANSFORMS, TRANSFORMS, time, move |out| {
-            write_transforms(out, Time::from_nanos(time), &states, &pieces);
-            Ok(())
-        });
+        write_speeds(&mut buffer, self.record.point, step, states, &self.agent_json);
+        self.publish_json(topic::SPEEDS, SPEEDS, time, &buffer);
+        self.buffer = buffer;
+        self.last_states.clear();
+        self.last_states.extend_from_slice(states);
     }
 
     /// What [`publish_agents`](Self::publish_agents) writes of each agent at
@@ -75,8 +64,7 @@ impl<W> Recorder<'_, W> {
             .iter()
             .zip(&self.fields_of_view)
             .map(|(agent, sensors)| AgentJson::new(agent, sensors.iter().map(|(mount, _, _)| *mount)))
-            .collect::<Vec<_>>()
-            .into();
+            .collect();
     }
 
     /// `/scene/agents`: every agent in the scene as a box of its footprint
@@ -112,7 +100,7 @@ impl<W> Recorder<'_, W> {
                     ))
             })
             .collect();
-        self.publish(topic::AGENTS, SCENE, time, SceneUpdate::replace(stamp, entities));
+        self.publish(topic::AGENTS, SCENE, time, &SceneUpdate::replace(stamp, entities));
         self.agents_shown = present;
     }
 
@@ -154,7 +142,7 @@ impl<W> Recorder<'_, W> {
             topic::FIELDS_OF_VIEW,
             SCENE,
             time,
-            SceneUpdate::replace(stamp, entities),
+            &SceneUpdate::replace(stamp, entities),
         );
         self.fields_shown = present;
     }
@@ -207,11 +195,11 @@ impl<W> Recorder<'_, W> {
                 );
             }
             let topic = topic::detections(&agent.id);
-            self.publish(&topic, SCENE, time, SceneUpdate::replace(stamp, entities));
+            self.publish(&topic, SCENE, time, &SceneUpdate::replace(stamp, entities));
         }
         for gone in self.shown.difference(&now).copied().collect::<Vec<_>>() {
             let topic = topic::detections(&self.agent_id(gone));
-            self.publish(&topic, SCENE, time, SceneUpdate::replace(stamp, Vec::new()));
+            self.publish(&topic, SCENE, time, &SceneUpdate::replace(stamp, Vec::new()));
         }
         self.shown = now;
     }
@@ -224,19 +212,21 @@ impl<W> Recorder<'_, W> {
     pub(super) fn clear_scene(&mut self, time: u64) {
         let stamp = Time::from_nanos(time);
         if self.last_states.iter().any(Option::is_some) {
-            let states = Arc::clone(&self.last_states);
-            self.publish_transforms(time, &states);
+            let mut buffer = std::mem::take(&mut self.buffer);
+            write_transforms(&mut buffer, stamp, &self.last_states, &self.agent_json);
+            self.publish_json(topic::TRANSFORMS, TRANSFORMS, time, &buffer);
+            self.buffer = buffer;
         }
         let agents = !std::mem::take(&mut self.agents_shown).is_empty();
         let fields = !std::mem::take(&mut self.fields_shown).is_empty();
         for (topic, shown) in [(topic::AGENTS, agents), (topic::FIELDS_OF_VIEW, fields)] {
             if shown {
-                self.publish(topic, SCENE, time, SceneUpdate::replace(stamp, Vec::new()));
+                self.publish(topic, SCENE, time, &SceneUpdate::replace(stamp, Vec::new()));
             }
         }
         for gone in std::mem::take(&mut self.shown) {
             let topic = topic::detections(&self.agent_id(gone));
-            self.publish(&topic, SCENE, time, SceneUpdate::replace(stamp, Vec::new()));
+            self.publish(&topic, SCENE, time, &SceneUpdate::replace(stamp, Vec::new()));
         }
     }
 }

@@ -27,7 +27,7 @@ impl<W> Recorder<'_, W> {
                 at: arrival.at,
                 items: self.items(&arrival.items),
             };
-            self.publish(topic::ARRIVALS, ARRIVAL, self.at(arrival.at), record);
+            self.publish(topic::ARRIVALS, ARRIVAL, self.at(arrival.at), &record);
         }
         if !self.joint() {
             self.publish_agents(time, step.step, step.agents);
@@ -63,7 +63,7 @@ impl<W> Recorder<'_, W> {
                 rssi_dbm: Some(packet.reception.rssi_dbm).filter(|r| r.is_finite()),
                 received,
             };
-            self.publish(topic::PACKETS, PACKET, time, record);
+            self.publish(topic::PACKETS, PACKET, time, &record);
             if let PacketKind::Downlink { items, bytes } = &packet.kind {
                 signals.messages += 1;
                 signals.messages_received += u64::from(received);
@@ -75,7 +75,7 @@ impl<W> Recorder<'_, W> {
                     bytes: *bytes as u64,
                     items: self.items(items),
                 };
-                self.publish(topic::MESSAGES, MESSAGE, time, record);
+                self.publish(topic::MESSAGES, MESSAGE, time, &record);
             }
         }
         for approach in step.approaches {
@@ -85,7 +85,7 @@ impl<W> Recorder<'_, W> {
                 agent: self.agent_id(approach.agent),
                 flagged: approach.flagged,
             };
-            self.publish(topic::APPROACHES, APPROACH, time, record);
+            self.publish(topic::APPROACHES, APPROACH, time, &record);
         }
         if let Some(running) = &mut self.running.semantic {
             running.messages += signals.messages;
@@ -99,7 +99,7 @@ impl<W> Recorder<'_, W> {
             cells: self.pending_cells.take(),
             semantic: Some(signals),
         };
-        self.publish(topic::SIGNALS, SIGNALS, time, record);
+        self.publish(topic::SIGNALS, SIGNALS, time, &record);
         self.publish_requirement_signals(step.step, time);
     }
 

@@ -7,7 +7,7 @@ use sightline_engine::outcome::{CellTally, WorldMetrics};
 use sightline_engine::trace::{CooperatorStep, FusedGrid, Measured, Observed, WorldStep};
 
 use super::Recorder;
-use super::channel::SIGNALS;
+use super::channel::{GRID, SIGNALS};
 use crate::mcap::foxglove::{Grid, Numeric, Time};
 use crate::mcap::topic;
 use crate::mcap::wire::{CellSignals, SignalsRecord};
@@ -42,7 +42,7 @@ impl<W> Recorder<'_, W> {
             cells,
             semantic: None,
         };
-        self.publish(topic::SIGNALS, SIGNALS, time, signals);
+        self.publish(topic::SIGNALS, SIGNALS, time, &signals);
         self.publish_requirement_signals(step.step, time);
     }
 
@@ -60,7 +60,7 @@ impl<W> Recorder<'_, W> {
         }
         let data: Vec<u8> = values.iter().flat_map(|v| v.to_le_bytes()).collect();
         let grid = crop.grid(&grid, time, &["probability", "uncertainty"], Numeric::Float32, &data);
-        self.publish_grid(topic::FUSED_GRID, time, &grid);
+        self.publish(topic::FUSED_GRID, GRID, time, &grid);
     }
 
     /// `/perception/<id>/grid`: each cooperating agent's own grid, cropped to
@@ -83,7 +83,7 @@ impl<W> Recorder<'_, W> {
             }
             let grid = crop.grid(&grid, time, &["state"], Numeric::Uint8, &data);
             let topic = topic::agent_grid(&self.agent_id(c.agent));
-            self.publish_grid(&topic, time, &grid);
+            self.publish(&topic, GRID, time, &grid);
         }
     }
 
