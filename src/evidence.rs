@@ -16,7 +16,8 @@ use sightline_oracles::{Status, Verdict};
 use sightline_reports::mcap::{Recorder, Source};
 use sightline_reports::osi::{OSI_TRACE, OsiTrace};
 use sightline_reports::{
-    Execution, OsiTraceInfo, Provenance, RecordingInfo, Templates, Tool, render, sha256_hex, sha256_hex_of,
+    Execution, OsiTraceInfo, Provenance, RecordingInfo, Sha256Writer, Templates, Tool, render, sha256_hex,
+    sha256_hex_of,
 };
 
 use crate::exit::Exit;
@@ -171,7 +172,8 @@ pub fn resimulated(input: &Input, record: Record, run: Run, recorder: &mut impl 
 /// What a recorded point's steps are written to: the recording, and the OSI
 /// trace with `--osi`, each a staged file of the evidence set.
 pub struct Sinks<'s> {
-    recorder: Recorder<'s, BufWriter<File>>,
+    /// The recording, hashed as it is written.
+    recorder: Recorder<'s, Sha256Writer<BufWriter<File>>>,
     /// The recording's staged name.
     name: String,
     /// The OSI trace and its staged name.
@@ -206,8 +208,13 @@ impl<'s> Sinks<'s> {
             seed: reporting.request.seed,
             record_flag: reporting.request.record,
         };
-        let recorder = Recorder::new(BufWriter::new(file), &input.scenario, record, &source)
-            .with_context(|| failed(staging, RECORDING))?;
+        let recorder = Recorder::new(
+            Sha256Writer::new(BufWriter::new(file)),
+            &input.scenario,
+            record,
+            &source,
+        )
+        .with_context(|| failed(staging, RECORDING))?;
         let osi = match osi_file {
             Some((osi_file, name)) => Some((
                 OsiTrace::new(BufWriter::new(osi_file), &input.scenario, record, &input.name)
@@ -230,11 +237,11 @@ impl<'s> Sinks<'s> {
         (run, verdicts): (&Run, &[Verdict]),
     ) -> anyhow::Result<RecordingInfo> {
         let Self { recorder, name, osi } = self;
-        recorder
+        let (mut file, sha256) = recorder
             .finish(run, verdicts)
             .with_context(|| failed(staging, RECORDING))?
-            .flush()
-            .with_context(|| failed(staging, RECORDING))?;
+            .finish();
+        file.flush().with_context(|| failed(staging, RECORDING))?;
         let osi_trace = match osi {
             Some((osi, osi_name)) => {
                 osi.finish()
@@ -252,7 +259,7 @@ impl<'s> Sinks<'s> {
         stage_as(staging, &name, RECORDING)?;
         Ok(RecordingInfo {
             file: RECORDING.into(),
-            sha256: staged_sha256(staging, RECORDING).with_context(|| failed(staging, RECORDING))?,
+            sha256,
             point: record.point,
             label: scenario.points[record.point].label(),
             every_point: record.points == RecordedPoints::All,
@@ -388,8 +395,8 @@ fn failed(staging: &Staging, name: &str) -> String {
     format!("failed to write {}", staging.dir().join(name).display())
 }
 
-/// SHA-256 of the staged file `name` as it is on disk (MCAP writers seek back
-/// as they write), lowercase hex.
+/// SHA-256 of the staged file `name` as it is on disk (the OSI trace's MCAP
+/// writer seeks back as it writes), lowercase hex.
 fn staged_sha256(staging: &Staging, name: &str) -> std::io::Result<String> {
     sha256_hex_of(std::fs::File::open(staging.path(name))?)
 }

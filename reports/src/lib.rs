@@ -194,6 +194,41 @@ pub fn sha256_hex_of(mut reader: impl std::io::Read) -> std::io::Result<String> 
     }
 }
 
+/// A writer that hashes what passes through it: a file's SHA-256 as it is
+/// written, for an output written in order (as the recording's
+/// [`Recorder`](mcap::Recorder) writes it), without reading the file back.
+pub struct Sha256Writer<W> {
+    inner: W,
+    hasher: Sha256,
+}
+
+impl<W> Sha256Writer<W> {
+    /// Hashes what is written into `inner`.
+    pub fn new(inner: W) -> Self {
+        Self {
+            inner,
+            hasher: Sha256::new(),
+        }
+    }
+
+    /// The output, and [`sha256_hex`] of every byte it accepted.
+    pub fn finish(self) -> (W, String) {
+        (self.inner, hex(&self.hasher.finalize()))
+    }
+}
+
+impl<W: std::io::Write> std::io::Write for Sha256Writer<W> {
+    fn write(&mut self, bytes: &[u8]) -> std::io::Result<usize> {
+        let written = self.inner.write(bytes)?;
+        self.hasher.update(&bytes[..written]);
+        Ok(written)
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        self.inner.flush()
+    }
+}
+
 /// `digest` as lowercase hex (an import's [`sha256`](sightline_dsl::Import::sha256), as the evidence names it).
 pub fn hex(digest: &[u8]) -> String {
     digest.iter().map(|b| format!("{b:02x}")).collect()
@@ -235,5 +270,39 @@ mod tests {
             interrupt: true,
         });
         assert_eq!(read.unwrap(), sha256_hex(&bytes));
+    }
+
+    /// Takes at most 5 bytes a write.
+    struct Narrow(Vec<u8>);
+
+    impl std::io::Write for Narrow {
+        fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+            let n = buf.len().min(5);
+            self.0.extend_from_slice(&buf[..n]);
+            Ok(n)
+        }
+
+        fn flush(&mut self) -> std::io::Result<()> {
+            Ok(())
+        }
+    }
+
+    /// What the output accepted, a few bytes at a time, is what is hashed.
+    #[test]
+    fn a_written_hash_is_the_hash_of_the_bytes_written() {
+        use std::io::Write as _;
+        let bytes: Vec<u8> = (0..70_001_u32).map(|i| (i * 17 % 253) as u8).collect();
+        let mut out = Sha256Writer::new(Narrow(Vec::new()));
+        out.write_all(b"abc").unwrap();
+        out.write_all(&bytes).unwrap();
+        let (Narrow(written), hash) = out.finish();
+        assert_eq!(written, [&b"abc"[..], &bytes].concat());
+        assert_eq!(hash, sha256_hex(&written));
+        let (_, abc) = {
+            let mut out = Sha256Writer::new(Vec::new());
+            out.write_all(b"abc").unwrap();
+            out.finish()
+        };
+        assert_eq!(abc, "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
     }
 }

@@ -2,22 +2,27 @@
 //! into an MCAP file as the engine runs, then every point's outcome and every
 //! verdict.
 //!
-//! Memory stays bounded: each message is built, written into the current chunk
-//! and dropped (the MCAP writer keeps one chunk and the indexes); no grid is kept
-//! after its step.
+//! The recorder encodes each message as the engine hands it a step; a thread
+//! of its own compresses and writes them ([`container`]), concurrently with
+//! the simulation.
+//!
+//! Memory stays bounded: each message is built, handed to the writer thread
+//! in a batch and dropped once written into the current chunk (the MCAP
+//! writer keeps one chunk and the indexes; a few batches wait for it at most);
+//! no grid is kept after its step.
 //!
 //! This module holds the recorder and its state from step to step: how a
 //! recording starts, and the running values of the requirements its steps
 //! signal. Its children write the rest: the channels and their schemas
-//! ([`channel`]), the scene ([`scene`]), a perception world's steps ([`world`]),
+//! ([`channel`]), the file ([`container`]), the scene ([`scene`]), a perception world's steps ([`world`]),
 //! a semantic world's ([`semantic`]) and the end ([`outcomes`]). A joint
 //! world's step is both: the grid's part, then the pipeline's, in one step's
 //! scene and signals.
 
-use std::collections::{BTreeMap, BTreeSet};
-use std::io::{Seek, Write};
+use std::collections::BTreeSet;
+use std::io::Write;
 
-use mcap::{Attachment, Compression, WriteOptions, Writer};
+use mcap::{Compression, WriteOptions};
 use sightline_dsl::{Agent, Check, Experiment, Grid as CellGrid, JointPart, Metric, Record, RecordedPoints, Scenario};
 use sightline_engine::TraceSink;
 use sightline_engine::outcome::{SemanticMetrics, WorldMetrics};
@@ -32,10 +37,12 @@ use super::wire::{
 };
 use crate::{Tool, sha256_hex};
 use channel::{REQUIREMENTS, SCENARIO, SCENE};
+use container::Container;
 use scene::{field_of_view, map_entities};
 
 mod agents;
 mod channel;
+mod container;
 mod outcomes;
 mod scene;
 mod semantic;
@@ -50,6 +57,12 @@ pub enum WriteError {
     /// A message did not encode.
     #[error("failed to encode a recorded message: {0}")]
     Json(#[from] serde_json::Error),
+    /// The thread that writes the file did not start.
+    #[error("failed to start the recording's writer thread: {0}")]
+    Thread(std::io::Error),
+    /// The thread that writes the file panicked.
+    #[error("the recording's writer thread panicked: {0}")]
+    Panicked(String),
 }
 
 /// Where a recording comes from, as the CLI knows it.
@@ -121,20 +134,20 @@ impl Running {
 /// [`simulate_traced`](sightline_engine::simulate_traced) as the sink, then
 /// [`finish`](Self::finish) it with the run and its verdicts.
 ///
+/// The output is written on a thread the recorder starts, in order and
+/// without seeking back: wrapped in a [`Sha256Writer`](crate::Sha256Writer),
+/// it gives the file's hash as it is written.
+///
 /// The bytes depend only on the scenario, the seed and the tool's own version
 /// (the MCAP header names the library `sightline`, without a version): the same
 /// run gives the same file whatever the thread count.
-pub struct Recorder<'s, W: Write + Seek> {
-    out: Writer<W>,
+pub struct Recorder<'s, W> {
+    /// The file, written on a thread of its own.
+    out: Container<W>,
     scenario: &'s Scenario,
     record: Record,
     /// The occupancy grid; `None` in a semantic world, which fuses none.
     grid: Option<CellGrid>,
-    /// Topic → channel id, created on first use.
-    channels: BTreeMap<String, u16>,
-    /// Schema name → schema id.
-    schemas: BTreeMap<String, u16>,
-    sequence: u32,
     /// The first write error; once set, nothing more is written.
     failure: Option<WriteError>,
     /// Log time of the latest step, nanoseconds since 1970 (the recording's
@@ -169,7 +182,7 @@ pub struct Recorder<'s, W: Write + Seek> {
     pending_cells: Option<CellSignals>,
 }
 
-impl<'s, W: Write + Seek> Recorder<'s, W> {
+impl<'s, W: Write + Send + 'static> Recorder<'s, W> {
     /// Starts the recording of `scenario` into `out`: the MCAP header,
     /// `/sightline/scenario`, the imported files as attachments, and (one point
     /// recorded) point `record.point`'s static scene. With every point recorded
@@ -180,13 +193,10 @@ impl<'s, W: Write + Seek> Recorder<'s, W> {
             .compression(Some(Compression::Lz4))
             .library("sightline");
         let mut recorder = Self {
-            out: options.create(out)?,
+            out: Container::start(out, options)?,
             scenario,
             record,
             grid: None,
-            channels: BTreeMap::new(),
-            schemas: BTreeMap::new(),
-            sequence: 0,
             failure: None,
             last: record.start,
             base: record.start,
@@ -241,13 +251,9 @@ impl<'s, W: Write + Seek> Recorder<'s, W> {
             },
         );
         for import in &scenario.imports {
-            recorder.out.attach(&Attachment {
-                log_time: record.start,
-                create_time: record.start,
-                name: import.path.clone(),
-                media_type: "application/xml".into(),
-                data: std::borrow::Cow::Borrowed(&import.bytes),
-            })?;
+            recorder
+                .out
+                .attach(&import.path, "application/xml", record.start, &import.bytes);
         }
         if record.points == RecordedPoints::One {
             recorder.begin(record.point);
@@ -255,7 +261,9 @@ impl<'s, W: Write + Seek> Recorder<'s, W> {
         recorder.take_failure()?;
         Ok(recorder)
     }
+}
 
+impl<W> Recorder<'_, W> {
     /// Whether the recorded point is a joint world, whose steps each model
     /// reports in turn.
     fn joint(&self) -> bool {
@@ -373,7 +381,7 @@ impl<'s, W: Write + Seek> Recorder<'s, W> {
     }
 }
 
-impl<W: Write + Seek> TraceSink for Recorder<'_, W> {
+impl<W> TraceSink for Recorder<'_, W> {
     fn point(&mut self, point: usize) {
         self.begin(point);
     }

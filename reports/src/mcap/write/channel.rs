@@ -1,12 +1,7 @@
 //! The channels a recording writes: each message type's schema, and how a
-//! message is written on its topic, the topic's channel and schema registered
-//! on first use.
+//! message is encoded for its topic (the container registers the topic's
+//! channel and schema on first use).
 
-use std::collections::BTreeMap;
-use std::io::{Seek, Write};
-
-use mcap::McapError;
-use mcap::records::MessageHeader;
 use serde::Serialize;
 
 use super::{Recorder, WriteError};
@@ -20,8 +15,8 @@ use crate::mcap::wire::{
 /// A channel's schema: its name and its JSON Schema.
 #[derive(Clone, Copy)]
 pub(super) struct SchemaSpec {
-    name: &'static str,
-    data: fn() -> Vec<u8>,
+    pub(super) name: &'static str,
+    pub(super) data: fn() -> Vec<u8>,
 }
 
 impl SchemaSpec {
@@ -52,73 +47,35 @@ pub(super) const ARRIVAL: SchemaSpec = SchemaSpec::new("sightline.Arrival", sche
 pub(super) const APPROACH: SchemaSpec = SchemaSpec::new("sightline.Approach", schema_of::<ApproachRecord>);
 pub(super) const OBJECT: SchemaSpec = SchemaSpec::new("sightline.Object", schema_of::<RoadUserRecord>);
 
-impl<W: Write + Seek> Recorder<'_, W> {
+impl<W> Recorder<'_, W> {
     /// Writes `message` on `topic` (created with `schema` on first use) at
     /// `log_time` nanoseconds; the first failure is kept for
     /// [`finish`](Self::finish) and stops all further writing.
     pub(super) fn publish(&mut self, topic: &str, schema: SchemaSpec, log_time: u64, message: &impl Serialize) {
-        if self.failure.is_some() {
-            return;
-        }
-        if let Err(error) = self.try_publish(topic, schema, log_time, message) {
-            self.failure = Some(error);
-        }
+        self.write(topic, schema, log_time, |out| serde_json::to_writer(out, message));
     }
 
     /// [`publish`](Self::publish) of a message already encoded, `json`.
     pub(super) fn publish_json(&mut self, topic: &str, schema: SchemaSpec, log_time: u64, json: &[u8]) {
-        if self.failure.is_some() {
-            return;
-        }
-        if let Err(error) = self.try_write(topic, schema, log_time, json) {
-            self.failure = Some(error);
-        }
+        self.write(topic, schema, log_time, |out| {
+            out.extend_from_slice(json);
+            Ok(())
+        });
     }
 
-    fn try_publish(
+    /// Writes the message `encode` writes, as [`publish`](Self::publish) does.
+    fn write(
         &mut self,
         topic: &str,
         schema: SchemaSpec,
         log_time: u64,
-        message: &impl Serialize,
-    ) -> Result<(), WriteError> {
-        let data = serde_json::to_vec(message)?;
-        self.try_write(topic, schema, log_time, &data)
+        encode: impl FnOnce(&mut Vec<u8>) -> serde_json::Result<()>,
+    ) {
+        if self.failure.is_some() {
+            return;
+        }
+        if let Err(error) = self.out.message(topic, schema, log_time, encode) {
+            self.failure = Some(WriteError::Json(error));
+        }
     }
-
-    fn try_write(&mut self, topic: &str, schema: SchemaSpec, log_time: u64, data: &[u8]) -> Result<(), WriteError> {
-        let (out, schemas) = (&mut self.out, &mut self.schemas);
-        let channel_id = registered(&mut self.channels, topic, || {
-            let schema_id = registered(schemas, schema.name, || {
-                out.add_schema(schema.name, "jsonschema", &(schema.data)())
-            })?;
-            out.add_channel(schema_id, topic, "json", &BTreeMap::new())
-        })?;
-        self.sequence += 1;
-        self.out.write_to_known_channel(
-            &MessageHeader {
-                channel_id,
-                sequence: self.sequence,
-                log_time,
-                publish_time: log_time,
-            },
-            data,
-        )?;
-        Ok(())
-    }
-}
-
-/// The id `table` holds for `name`, or else the one `register` gives it, which
-/// the table then keeps.
-fn registered(
-    table: &mut BTreeMap<String, u16>,
-    name: &str,
-    register: impl FnOnce() -> Result<u16, McapError>,
-) -> Result<u16, McapError> {
-    if let Some(&id) = table.get(name) {
-        return Ok(id);
-    }
-    let id = register()?;
-    table.insert(name.to_string(), id);
-    Ok(id)
 }

@@ -3,7 +3,7 @@
 //! (`/semantic/objects`), and every verdict, structured (`/sightline/verdicts`)
 //! and as a log line (`/log`), written once the run is over.
 
-use std::io::{Seek, Write};
+use std::io::Write;
 
 use sightline_dsl::{Check, ObjectProperty, ObjectSelection, Signal};
 use sightline_engine::{Outcome, Run};
@@ -19,7 +19,7 @@ use crate::mcap::wire::{
 };
 use crate::results::{MAX_OBJECT_RECORDS, object_result};
 
-impl<W: Write + Seek> Recorder<'_, W> {
+impl<W: Write + Send + 'static> Recorder<'_, W> {
     /// Writes every point's outcome, every verdict (structured and as log lines)
     /// at the time of the last step, and closes the file; returns the output.
     pub fn finish(mut self, run: &Run, verdicts: &[Verdict]) -> Result<W, WriteError> {
@@ -125,8 +125,7 @@ impl<W: Write + Seek> Recorder<'_, W> {
             self.publish(topic::LOG, LOG, end, &log);
         }
         self.take_failure()?;
-        self.out.finish()?;
-        Ok(self.out.into_inner())
+        self.out.finish()
     }
 }
 

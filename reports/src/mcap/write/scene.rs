@@ -6,7 +6,6 @@
 
 use std::collections::BTreeSet;
 use std::f64::consts::{PI, TAU};
-use std::io::{Seek, Write};
 
 use sightline_dsl::{Agent, AgentKind, Area, Grid as CellGrid, World};
 use sightline_engine::trace::{AgentState, Body, CooperatorStep, Vector};
@@ -37,7 +36,7 @@ const DETECTION: Color = Color::rgba(1.0, 0.2, 0.6, 0.7);
 const ESTIMATE: Color = Color::rgba(0.1, 0.9, 0.9, 0.9);
 const LABEL: Color = Color::rgba(1.0, 1.0, 1.0, 1.0);
 
-impl<W: Write + Seek> Recorder<'_, W> {
+impl<W> Recorder<'_, W> {
     /// A step's scene: `/tf` (every agent in the scene as a frame, its sensors
     /// as frames under it), and when they change, the fields of view
     /// (`/scene/fields_of_view`) and the agents' boxes (`/scene/agents`), each

@@ -2,8 +2,6 @@
 //! and the ego receives, every V2X packet, the close approaches, and the step's
 //! semantic signals (`/sightline/signals`), its counts added to the running sums.
 
-use std::io::{Seek, Write};
-
 use sightline_engine::trace::{Item, PacketKind, SemanticStep, Visibility};
 
 use super::Recorder;
@@ -14,7 +12,7 @@ use crate::mcap::wire::{
     SignalsRecord,
 };
 
-impl<W: Write + Seek> Recorder<'_, W> {
+impl<W> Recorder<'_, W> {
     /// Everything a semantic world's step shows: the messages reaching the
     /// ego, the agents, every packet and semantic message sent, the close
     /// approaches, and the step's signals, its counts added to the running sums.

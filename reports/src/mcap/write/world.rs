@@ -2,8 +2,6 @@
 //! cooperating agent's own grid, cropped to the cells they hold, and the step's
 //! cell signals (`/sightline/signals`), its counts added to the running sums.
 
-use std::io::{Seek, Write};
-
 use sightline_dsl::{Grid as CellGrid, Metric};
 use sightline_engine::outcome::{CellTally, WorldMetrics};
 use sightline_engine::trace::{CooperatorStep, FusedGrid, Measured, Observed, WorldStep};
@@ -14,7 +12,7 @@ use crate::mcap::foxglove::{Grid, Numeric, Time};
 use crate::mcap::topic;
 use crate::mcap::wire::{CellSignals, SignalsRecord};
 
-impl<W: Write + Seek> Recorder<'_, W> {
+impl<W> Recorder<'_, W> {
     /// Everything a perception world's step shows: the agents, each
     /// cooperating agent's detections, the fused grid and the agents' own grids
     /// (at the grid rate), and the step's signals (in a joint world, kept to
