@@ -19,7 +19,8 @@ const APPROACH_STEP: f64 = 0.25;
 
 /// An area with the bounds of its polygon's corners: a point outside them is
 /// outside the polygon without a look at its edges, and [`contains`] then
-/// answers what the edges would, to the bit.
+/// answers what the edges would, to the bit (for finite corners, the only
+/// ones the dsl and the imports admit).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Region {
     area: Area,
