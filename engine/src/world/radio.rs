@@ -212,9 +212,9 @@ impl<'a> Radio<'a> {
     }
 
     /// Communicate at `time`, the ego in the scene: the senders whose
-    /// generation is due send the messages they encoded (`sent`, in the order
-    /// [`Self::generate`] named them, with what each sensed); what arrived by
-    /// `time` is taken in, and what is held ages.
+    /// generation is due send the messages they encoded (`sent`, in
+    /// cooperation order, with what each sensed); what arrived by `time` is
+    /// taken in, and what is held ages.
     pub(super) fn communicate(
         &mut self,
         time: f64,

@@ -259,14 +259,11 @@ pub fn run(
             continue;
         }
         if let Some(radio) = &mut radio {
-            let sent = due
-                .iter()
-                .zip(encoded)
+            let sent = encoded
+                .into_iter()
                 .map(|(agent, messages)| {
-                    (
-                        sensed.iter().find(|c| c.agent == *agent).expect("a due sender sensed"),
-                        messages,
-                    )
+                    let sensed = sensed.iter().find(|c| c.agent == agent);
+                    (sensed.expect("a sender encodes what it sensed"), messages)
                 })
                 .collect();
             radio.communicate(time, sent, (agents, &scene.states), &setting.occluders);
@@ -323,15 +320,15 @@ pub fn run(
 /// (a roadside unit knows its surveyed one) and observes with it; those `due`
 /// to send over the `radio` encode what they sensed, as they sense. Agents
 /// update their pose estimates whether or not the ego is there. Returns what
-/// those in the scene sensed, in cooperation order, and the messages of those
-/// due, in the order of `due`.
+/// those in the scene sensed, and the messages of those due with their agent
+/// index, both in cooperation order.
 fn sense<'c>(
     setting: &Setting<'_>,
     k: usize,
     scene: &Scene<'_>,
     cooperators: &'c mut [Cooperator],
     (radio, due): (Option<&Radio<'_>>, &[usize]),
-) -> (Vec<CooperatorStep<'c>>, Vec<Vec<Message>>) {
+) -> (Vec<CooperatorStep<'c>>, Vec<(usize, Vec<Message>)>) {
     let world = setting.world;
     let agents = setting.agents;
     let step_scene = StepScene {
@@ -340,7 +337,7 @@ fn sense<'c>(
         bodies: &scene.bodies,
         raster: &scene.raster,
     };
-    let encoded: Vec<Option<Vec<Message>>> = cooperators
+    let encoded: Vec<Option<(usize, Vec<Message>)>> = cooperators
         .par_iter_mut()
         .map(|c| {
             c.present = false;
@@ -361,7 +358,7 @@ fn sense<'c>(
                 .observe(&step_scene, (c.agent, agent), state.pose, estimate, &mut c.detections);
             c.present = true;
             let radio = radio.filter(|_| due.contains(&c.agent))?;
-            Some(radio.encode(&c.observation, state.position()))
+            Some((c.agent, radio.encode(&c.observation, state.position())))
         })
         .collect();
     let sensed = cooperators
