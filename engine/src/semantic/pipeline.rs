@@ -52,13 +52,12 @@ impl Pipeline<'_> {
         let ego = ego_trajectory[0];
         let ego_path = |t: f64| sample(&ego_trajectory, t / self.dt);
         let current: Vec<(usize, &Track)> = ldm.current(now).filter(|&(agent, _)| agent != s.ego).collect();
-        let body = |agent: usize, track: &Track| footprint(agent, track.latest());
         // The tree is built again at every cycle: only of what layer 3 may meet.
         let bodies = Bodies::new(
             current
                 .iter()
                 .filter(|(_, track)| may_block(ego, s.proximity, track.latest()))
-                .map(|&(agent, track)| body(agent, track))
+                .map(|&(agent, track)| footprint(agent, track.latest()))
                 .collect(),
         );
         let mut items = Vec::new();
@@ -85,7 +84,7 @@ impl Pipeline<'_> {
                     .vehicle_relevant(s.horizon, (ego, &ego_path), (m.position, &path))
             };
             // Layer 3: obstruction from the ego's viewpoint.
-            let nlos = match visibility(self.occluders, &bodies, ego, s.ego, &body(agent, track)) {
+            let nlos = match visibility(self.occluders, &bodies, ego, s.ego, &footprint(agent, m)) {
                 Visibility::Los => None,
                 hidden => Some(hidden),
             };
