@@ -469,6 +469,63 @@ fn collect_topics(node: &serde_json::Value, out: &mut Vec<String>) {
     }
 }
 
+/// Every series the layout plots finds numbers in some recording: its message
+/// path (`/topic.field[0].field`, `field[:]{key=="value"}`, as the viewers
+/// write them) resolved on the topic's messages.
+#[test]
+fn the_layouts_plots_find_numbers() {
+    let layout: serde_json::Value = serde_json::from_str(&read(&root().join("docs/foxglove-layout.json"))).unwrap();
+    let panels = layout["configById"].as_object().unwrap();
+    let paths: Vec<&str> = (panels.iter())
+        .filter(|(id, _)| id.starts_with("Plot!"))
+        .flat_map(|(_, panel)| panel["paths"].as_array().unwrap())
+        .map(|path| path["value"].as_str().unwrap())
+        .collect();
+    assert!(paths.len() >= 7, "the layout plots series: {paths:?}");
+    let recorded = recordings();
+    for path in paths {
+        let (topic, fields) = path.split_once('.').unwrap();
+        let found = recorded.iter().any(|(_, recording)| {
+            mcap::MessageStream::new(recording)
+                .unwrap()
+                .map(|message| message.unwrap())
+                .filter(|message| message.channel.topic == topic)
+                .any(|message| {
+                    let value: serde_json::Value = serde_json::from_slice(&message.data).unwrap();
+                    resolve(&value, fields).iter().any(|v| v.is_number())
+                })
+        });
+        assert!(found, "the layout plots {path}, which finds no number in any recording");
+    }
+}
+
+/// The values a message path's fields (after the topic) reach in `value`:
+/// `name`, `name[i]`, `name[:]` and `name[:]{key=="text"}`, joined by `.`.
+fn resolve<'v>(value: &'v serde_json::Value, fields: &str) -> Vec<&'v serde_json::Value> {
+    let mut reached = vec![value];
+    for field in fields.split('.') {
+        let (name, rest) = field.split_once('[').map_or((field, ""), |(n, r)| (n, r));
+        reached = reached.into_iter().filter_map(|v| v.get(name)).collect();
+        if rest.is_empty() {
+            continue;
+        }
+        let (index, filter) = rest.split_once(']').unwrap();
+        reached = (reached.into_iter())
+            .filter_map(|v| v.as_array())
+            .flat_map(|items| match index {
+                ":" => items.iter().collect::<Vec<_>>(),
+                i => items.get(i.parse::<usize>().unwrap()).into_iter().collect(),
+            })
+            .collect();
+        if let Some(filter) = filter.strip_prefix('{').and_then(|f| f.strip_suffix('}')) {
+            let (key, text) = filter.split_once("==").unwrap();
+            let text = text.trim_matches('"');
+            reached.retain(|v| v.get(key).and_then(|k| k.as_str()) == Some(text));
+        }
+    }
+    reached
+}
+
 /// Every recording (the bundled scenarios' and the extra ones): Foxglove's
 /// published schemas, the viewers' subset, and every message valid against its
 /// schema.
