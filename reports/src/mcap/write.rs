@@ -44,6 +44,7 @@ mod agents;
 mod channel;
 mod container;
 mod outcomes;
+mod records;
 mod scene;
 mod semantic;
 mod world;
@@ -170,6 +171,8 @@ pub struct Recorder<'s, W> {
     agents_shown: Vec<usize>,
     /// Per agent, what its `/tf` and `/sightline/speeds` JSON holds at every step.
     agent_json: Vec<agents::AgentJson>,
+    /// Each agent's id as a JSON string, for the semantic records.
+    ids: records::Ids,
     /// Every agent's state at the latest step (`None`: not in the scene).
     last_states: Vec<Option<AgentState>>,
     /// The JSON of the message being written, reused from message to message.
@@ -209,6 +212,7 @@ impl<'s, W: Write + Send + 'static> Recorder<'s, W> {
             fields_shown: Vec::new(),
             agents_shown: Vec::new(),
             agent_json: Vec::new(),
+            ids: records::Ids::default(),
             last_states: Vec::new(),
             buffer: Vec::new(),
             signalled: Vec::new(),
@@ -327,6 +331,7 @@ impl<W> Recorder<'_, W> {
         self.fields_shown.clear();
         self.agents_shown.clear();
         self.agent_json.clear();
+        self.ids = records::Ids::default();
         self.last_states.clear();
         self.agents.clear();
         self.fields_of_view.clear();
@@ -388,6 +393,7 @@ impl<W> TraceSink for Recorder<'_, W> {
 
     fn start(&mut self, agents: &[Agent]) {
         self.agents = agents.to_vec();
+        self.ids = records::Ids::new(agents.iter().map(|a| a.id.as_str()));
         self.fields_of_view = agents
             .iter()
             .map(|agent| {

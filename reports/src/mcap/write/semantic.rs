@@ -2,15 +2,13 @@
 //! and the ego receives, every V2X packet, the close approaches, and the step's
 //! semantic signals (`/sightline/signals`), its counts added to the running sums.
 
-use sightline_engine::trace::{Item, PacketKind, SemanticStep, Visibility};
+use sightline_engine::trace::{PacketKind, SemanticStep};
 
 use super::Recorder;
 use super::channel::{APPROACH, ARRIVAL, MESSAGE, PACKET, SIGNALS};
+use super::records::StepRecords;
 use crate::mcap::topic;
-use crate::mcap::wire::{
-    ApproachRecord, ArrivalRecord, ConflictRecord, ItemRecord, MessageRecord, PacketRecord, SemanticSignals,
-    SignalsRecord,
-};
+use crate::mcap::wire::{SemanticSignals, SignalsRecord};
 
 impl<W> Recorder<'_, W> {
     /// Everything a semantic world's step shows: the messages reaching the
@@ -21,17 +19,21 @@ impl<W> Recorder<'_, W> {
     pub(super) fn publish_semantic_step(&mut self, step: &SemanticStep<'_>) {
         let time = self.at(step.time);
         self.last = time;
+        let (ids, mut buffer) = (std::mem::take(&mut self.ids), std::mem::take(&mut self.buffer));
+        let records = StepRecords {
+            ids: &ids,
+            point: self.record.point,
+            step: step.step,
+        };
         for arrival in step.arrivals {
-            let record = ArrivalRecord {
-                point: self.record.point,
-                at: arrival.at,
-                items: self.items(&arrival.items),
-            };
-            self.publish(topic::ARRIVALS, ARRIVAL, self.at(arrival.at), &record);
+            records.arrival(&mut buffer, arrival);
+            self.publish_json(topic::ARRIVALS, ARRIVAL, self.at(arrival.at), &buffer);
         }
+        self.buffer = buffer;
         if !self.joint() {
             self.publish_agents(time, step.step, step.agents);
         }
+        let mut buffer = std::mem::take(&mut self.buffer);
         let mut signals = SemanticSignals {
             packets: 0,
             received: 0,
@@ -46,47 +48,20 @@ impl<W> Recorder<'_, W> {
             let received = packet.reception.received;
             signals.packets += 1;
             signals.received += u64::from(received);
-            let (kind, bytes) = match &packet.kind {
-                PacketKind::Uplink => ("uplink", None),
-                PacketKind::Downlink { bytes, .. } => ("downlink", Some(*bytes as u64)),
-                PacketKind::Direct => ("direct", None),
-            };
-            let record = PacketRecord {
-                point: self.record.point,
-                step: step.step,
-                from: self.agent_id(packet.from),
-                to: self.agent_id(packet.to),
-                kind: kind.into(),
-                bytes,
-                distance_m: packet.link.distance_m,
-                los: packet.link.los,
-                rssi_dbm: Some(packet.reception.rssi_dbm).filter(|r| r.is_finite()),
-                received,
-            };
-            self.publish(topic::PACKETS, PACKET, time, &record);
+            records.packet(&mut buffer, packet);
+            self.publish_json(topic::PACKETS, PACKET, time, &buffer);
             if let PacketKind::Downlink { items, bytes } = &packet.kind {
                 signals.messages += 1;
                 signals.messages_received += u64::from(received);
-                let record = MessageRecord {
-                    point: self.record.point,
-                    step: step.step,
-                    from: self.agent_id(packet.from),
-                    received,
-                    bytes: *bytes as u64,
-                    items: self.items(items),
-                };
-                self.publish(topic::MESSAGES, MESSAGE, time, &record);
+                records.message(&mut buffer, packet, items, *bytes);
+                self.publish_json(topic::MESSAGES, MESSAGE, time, &buffer);
             }
         }
         for approach in step.approaches {
-            let record = ApproachRecord {
-                point: self.record.point,
-                step: step.step,
-                agent: self.agent_id(approach.agent),
-                flagged: approach.flagged,
-            };
-            self.publish(topic::APPROACHES, APPROACH, time, &record);
+            records.approach(&mut buffer, approach);
+            self.publish_json(topic::APPROACHES, APPROACH, time, &buffer);
         }
+        (self.ids, self.buffer) = (ids, buffer);
         if let Some(running) = &mut self.running.semantic {
             running.messages += signals.messages;
             running.delivered += signals.messages_received;
@@ -101,28 +76,5 @@ impl<W> Recorder<'_, W> {
         };
         self.publish(topic::SIGNALS, SIGNALS, time, &record);
         self.publish_requirement_signals(step.step, time);
-    }
-
-    fn items(&self, items: &[Item]) -> Vec<ItemRecord> {
-        items
-            .iter()
-            .map(|item| ItemRecord {
-                agent: self.agent_id(item.agent),
-                nlos: item.labels.nlos.map(|v| {
-                    match v {
-                        Visibility::NlosStatic => "static",
-                        Visibility::NlosDynamic => "dynamic",
-                        Visibility::Los => "los",
-                    }
-                    .to_string()
-                }),
-                relevant: item.labels.relevant,
-                speeding: item.labels.speeding,
-                conflict: item.labels.conflict.map(|c| ConflictRecord {
-                    time: c.time,
-                    separation: c.separation,
-                }),
-            })
-            .collect()
     }
 }
