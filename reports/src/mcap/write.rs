@@ -149,8 +149,6 @@ pub struct Recorder<'s, W> {
     record: Record,
     /// The occupancy grid; `None` in a semantic world, which fuses none.
     grid: Option<CellGrid>,
-    /// The first write error; once set, nothing more is written.
-    failure: Option<WriteError>,
     /// Log time of the latest step, nanoseconds since 1970 (the recording's
     /// clock starts at `record.start`).
     last: u64,
@@ -175,8 +173,6 @@ pub struct Recorder<'s, W> {
     ids: records::Ids,
     /// Every agent's state at the latest step (`None`: not in the scene).
     last_states: Vec<Option<AgentState>>,
-    /// The JSON of the message being written, reused from message to message.
-    buffer: Vec<u8>,
     /// Requirements at the recorded point whose metric the steps give.
     signalled: Vec<(String, Metric, sightline_dsl::Bound)>,
     running: Running,
@@ -200,7 +196,6 @@ impl<'s, W: Write + Send + 'static> Recorder<'s, W> {
             scenario,
             record,
             grid: None,
-            failure: None,
             last: record.start,
             base: record.start,
             open: false,
@@ -214,7 +209,6 @@ impl<'s, W: Write + Send + 'static> Recorder<'s, W> {
             agent_json: Vec::new(),
             ids: records::Ids::default(),
             last_states: Vec::new(),
-            buffer: Vec::new(),
             signalled: Vec::new(),
             running: Running {
                 world: None,
@@ -262,7 +256,7 @@ impl<'s, W: Write + Send + 'static> Recorder<'s, W> {
         if record.points == RecordedPoints::One {
             recorder.begin(record.point);
         }
-        recorder.take_failure()?;
+        recorder.out.take_failure()?;
         Ok(recorder)
     }
 }
@@ -340,10 +334,6 @@ impl<W> Recorder<'_, W> {
             let stamp = Time::from_nanos(self.base);
             self.publish(topic::MAP, SCENE, self.base, &SceneUpdate::replace(stamp, map));
         }
-    }
-
-    fn take_failure(&mut self) -> Result<(), WriteError> {
-        self.failure.take().map_or(Ok(()), Err)
     }
 
     /// `/sightline/requirements`: each signalled requirement over the steps so far.

@@ -91,13 +91,12 @@ fn in_scene<'a>(
         .filter_map(|(piece, state)| Some((piece, state.as_ref()?)))
 }
 
-/// Writes `foxglove.FrameTransforms` at `stamp` into `out` (cleared first):
+/// Appends `foxglove.FrameTransforms` at `stamp` to `out`:
 /// every agent in the scene (at `states`) in `map`, and each of its sensors in
 /// it.
 pub(super) fn write_transforms(out: &mut Vec<u8>, stamp: Time, states: &[Option<AgentState>], pieces: &[AgentJson]) {
     let mut timestamp = br#"{"timestamp":"#.to_vec();
     stamp.write_json(&mut timestamp);
-    out.clear();
     out.extend_from_slice(br#"{"transforms":["#);
     for (i, (piece, state)) in in_scene(states, pieces).enumerate() {
         if i > 0 {
@@ -119,13 +118,12 @@ pub(super) fn write_transforms(out: &mut Vec<u8>, stamp: Time, states: &[Option<
     out.extend_from_slice(b"]}");
 }
 
-/// Writes `foxglove.SceneUpdate` at `stamp` into `out` (cleared first): every
+/// Appends `foxglove.SceneUpdate` at `stamp` to `out`: every
 /// earlier entity deleted, and the entities of the agents `present` (indexes
 /// into `pieces`).
 pub(super) fn write_scene_agents(out: &mut Vec<u8>, stamp: Time, present: &[usize], pieces: &[AgentJson]) {
     let mut timestamp = br#"{"timestamp":"#.to_vec();
     stamp.write_json(&mut timestamp);
-    out.clear();
     out.extend_from_slice(br#"{"deletions":["#);
     out.extend_from_slice(&timestamp);
     out.extend_from_slice(br#","type":1,"id":""}],"entities":["#);
@@ -139,8 +137,8 @@ pub(super) fn write_scene_agents(out: &mut Vec<u8>, stamp: Time, present: &[usiz
     out.extend_from_slice(b"]}");
 }
 
-/// Writes step `step`'s `sightline.Speeds` of point `point` into `out`
-/// (cleared first): every agent in the scene (at `states`) with its speed.
+/// Appends step `step`'s `sightline.Speeds` of point `point` to `out`: every
+/// agent in the scene (at `states`) with its speed.
 pub(super) fn write_speeds(
     out: &mut Vec<u8>,
     point: usize,
@@ -148,7 +146,6 @@ pub(super) fn write_speeds(
     states: &[Option<AgentState>],
     pieces: &[AgentJson],
 ) {
-    out.clear();
     // Writing into a Vec does not fail.
     let _ = write!(out, r#"{{"point":{point},"step":{step},"agents":["#);
     for (i, (piece, state)) in in_scene(states, pieces).enumerate() {
@@ -230,6 +227,7 @@ mod tests {
                 let expected = serde_json::to_string(&FrameTransforms { transforms }).unwrap();
                 assert_eq!(String::from_utf8(out.clone()).unwrap(), expected, "{file}, step {step}");
                 let in_scene: Vec<usize> = (0..agents.len()).filter(|&i| states[i].is_some()).collect();
+                out.clear();
                 write_scene_agents(&mut out, stamp, &in_scene, &pieces);
                 let entities = in_scene
                     .iter()
@@ -237,6 +235,7 @@ mod tests {
                     .collect();
                 let expected = serde_json::to_string(&SceneUpdate::replace(stamp, entities)).unwrap();
                 assert_eq!(String::from_utf8(out.clone()).unwrap(), expected, "{file}, step {step}");
+                out.clear();
                 write_speeds(&mut out, 3, step as usize, &states, &pieces);
                 let record = SpeedsRecord {
                     point: 3,

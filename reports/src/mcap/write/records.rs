@@ -46,7 +46,7 @@ pub(super) struct StepRecords<'a> {
 
 impl StepRecords<'_> {
     /// Writes `packet` as a [`PacketRecord`](crate::mcap::wire::PacketRecord)
-    /// into `out` (cleared first).
+    /// onto `out`.
     pub(super) fn packet(&self, out: &mut Vec<u8>, packet: &Packet) {
         let (kind, bytes): (&[u8], _) = match &packet.kind {
             PacketKind::Uplink => (b"uplink", None),
@@ -78,9 +78,8 @@ impl StepRecords<'_> {
         out.push(b'}');
     }
 
-    /// Writes the semantic message `packet` carries (`items`, `bytes` long)
-    /// as a [`MessageRecord`](crate::mcap::wire::MessageRecord) into `out`
-    /// (cleared first).
+    /// Appends the semantic message `packet` carries (`items`, `bytes` long)
+    /// as a [`MessageRecord`](crate::mcap::wire::MessageRecord) to `out`.
     pub(super) fn message(&self, out: &mut Vec<u8>, packet: &Packet, items: &[Item], bytes: usize) {
         self.head(out);
         out.extend_from_slice(br#","from":"#);
@@ -93,9 +92,8 @@ impl StepRecords<'_> {
         out.push(b'}');
     }
 
-    /// Writes `approach` as an
-    /// [`ApproachRecord`](crate::mcap::wire::ApproachRecord) into `out`
-    /// (cleared first).
+    /// Appends `approach` as an
+    /// [`ApproachRecord`](crate::mcap::wire::ApproachRecord) to `out`.
     pub(super) fn approach(&self, out: &mut Vec<u8>, approach: &Approach) {
         self.head(out);
         out.extend_from_slice(br#","agent":"#);
@@ -106,9 +104,8 @@ impl StepRecords<'_> {
     }
 
     /// Writes `arrival` as an [`ArrivalRecord`](crate::mcap::wire::ArrivalRecord)
-    /// into `out` (cleared first).
+    /// onto `out`.
     pub(super) fn arrival(&self, out: &mut Vec<u8>, arrival: &Arrival) {
-        out.clear();
         out.extend_from_slice(br#"{"point":"#);
         value(out, &self.point);
         out.extend_from_slice(br#","at":"#);
@@ -117,9 +114,8 @@ impl StepRecords<'_> {
         out.push(b'}');
     }
 
-    /// Clears `out` and opens a record with its point and step.
+    /// Opens a record with its point and step.
     fn head(&self, out: &mut Vec<u8>) {
-        out.clear();
         out.extend_from_slice(br#"{"point":"#);
         value(out, &self.point);
         out.extend_from_slice(br#","step":"#);
@@ -227,10 +223,13 @@ mod tests {
             .collect()
     }
 
+    /// What `write` appends after an earlier message.
     fn written(write: impl FnOnce(&mut Vec<u8>)) -> String {
-        let mut out = b"left from the previous message".to_vec();
+        let earlier = br#"{"earlier":true}"#;
+        let mut out = earlier.to_vec();
         write(&mut out);
-        String::from_utf8(out).unwrap()
+        assert_eq!(&out[..earlier.len()], earlier);
+        String::from_utf8(out[earlier.len()..].to_vec()).unwrap()
     }
 
     /// Every record, written directly, is byte for byte what serde_json gives

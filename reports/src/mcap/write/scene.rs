@@ -42,15 +42,17 @@ impl<W> Recorder<'_, W> {
     /// (`/scene/fields_of_view`) and the agents' boxes (`/scene/agents`), each
     /// locked to its frame; then every agent's speed (`/sightline/speeds`).
     pub(super) fn publish_agents(&mut self, time: u64, step: usize, states: &[Option<AgentState>]) {
-        let mut buffer = std::mem::take(&mut self.buffer);
-        write_transforms(&mut buffer, Time::from_nanos(time), states, &self.agent_json);
-        self.publish_json(topic::TRANSFORMS, TRANSFORMS, time, &buffer);
+        let pieces = &self.agent_json;
+        self.out.written(topic::TRANSFORMS, TRANSFORMS, time, |out| {
+            write_transforms(out, Time::from_nanos(time), states, pieces);
+        });
         let present: Vec<usize> = (0..states.len()).filter(|&i| states[i].is_some()).collect();
         self.publish_fields_of_view(time, &present);
         self.publish_scene_agents(time, present);
-        write_speeds(&mut buffer, self.record.point, step, states, &self.agent_json);
-        self.publish_json(topic::SPEEDS, SPEEDS, time, &buffer);
-        self.buffer = buffer;
+        let (point, pieces) = (self.record.point, &self.agent_json);
+        self.out.written(topic::SPEEDS, SPEEDS, time, |out| {
+            write_speeds(out, point, step, states, pieces);
+        });
         self.last_states.clear();
         self.last_states.extend_from_slice(states);
     }
@@ -79,10 +81,10 @@ impl<W> Recorder<'_, W> {
         if present == self.agents_shown {
             return;
         }
-        let mut buffer = std::mem::take(&mut self.buffer);
-        write_scene_agents(&mut buffer, Time::from_nanos(time), &present, &self.agent_json);
-        self.publish_json(topic::AGENTS, SCENE, time, &buffer);
-        self.buffer = buffer;
+        let pieces = &self.agent_json;
+        self.out.written(topic::AGENTS, SCENE, time, |out| {
+            write_scene_agents(out, Time::from_nanos(time), &present, pieces);
+        });
         self.agents_shown = present;
     }
 
@@ -194,10 +196,10 @@ impl<W> Recorder<'_, W> {
     pub(super) fn clear_scene(&mut self, time: u64) {
         let stamp = Time::from_nanos(time);
         if self.last_states.iter().any(Option::is_some) {
-            let mut buffer = std::mem::take(&mut self.buffer);
-            write_transforms(&mut buffer, stamp, &self.last_states, &self.agent_json);
-            self.publish_json(topic::TRANSFORMS, TRANSFORMS, time, &buffer);
-            self.buffer = buffer;
+            let (states, pieces) = (&self.last_states, &self.agent_json);
+            self.out.written(topic::TRANSFORMS, TRANSFORMS, time, |out| {
+                write_transforms(out, stamp, states, pieces);
+            });
         }
         let agents = !std::mem::take(&mut self.agents_shown).is_empty();
         let fields = !std::mem::take(&mut self.fields_shown).is_empty();

@@ -19,21 +19,20 @@ impl<W> Recorder<'_, W> {
     pub(super) fn publish_semantic_step(&mut self, step: &SemanticStep<'_>) {
         let time = self.at(step.time);
         self.last = time;
-        let (ids, mut buffer) = (std::mem::take(&mut self.ids), std::mem::take(&mut self.buffer));
+        let ids = std::mem::take(&mut self.ids);
         let records = StepRecords {
             ids: &ids,
             point: self.record.point,
             step: step.step,
         };
         for arrival in step.arrivals {
-            records.arrival(&mut buffer, arrival);
-            self.publish_json(topic::ARRIVALS, ARRIVAL, self.at(arrival.at), &buffer);
+            let at = self.at(arrival.at);
+            self.out
+                .written(topic::ARRIVALS, ARRIVAL, at, |out| records.arrival(out, arrival));
         }
-        self.buffer = buffer;
         if !self.joint() {
             self.publish_agents(time, step.step, step.agents);
         }
-        let mut buffer = std::mem::take(&mut self.buffer);
         let mut signals = SemanticSignals {
             packets: 0,
             received: 0,
@@ -48,20 +47,21 @@ impl<W> Recorder<'_, W> {
             let received = packet.reception.received;
             signals.packets += 1;
             signals.received += u64::from(received);
-            records.packet(&mut buffer, packet);
-            self.publish_json(topic::PACKETS, PACKET, time, &buffer);
+            self.out
+                .written(topic::PACKETS, PACKET, time, |out| records.packet(out, packet));
             if let PacketKind::Downlink { items, bytes } = &packet.kind {
                 signals.messages += 1;
                 signals.messages_received += u64::from(received);
-                records.message(&mut buffer, packet, items, *bytes);
-                self.publish_json(topic::MESSAGES, MESSAGE, time, &buffer);
+                self.out.written(topic::MESSAGES, MESSAGE, time, |out| {
+                    records.message(out, packet, items, *bytes);
+                });
             }
         }
         for approach in step.approaches {
-            records.approach(&mut buffer, approach);
-            self.publish_json(topic::APPROACHES, APPROACH, time, &buffer);
+            self.out
+                .written(topic::APPROACHES, APPROACH, time, |out| records.approach(out, approach));
         }
-        (self.ids, self.buffer) = (ids, buffer);
+        self.ids = ids;
         if let Some(running) = &mut self.running.semantic {
             running.messages += signals.messages;
             running.delivered += signals.messages_received;
