@@ -19,6 +19,8 @@ impl<W> Recorder<'_, W> {
     pub(super) fn publish_semantic_step(&mut self, step: &SemanticStep<'_>) {
         let time = self.at(step.time);
         self.last = time;
+        // Taken for the step: the records name agents by them while the
+        // recorder writes the agents too.
         let ids = std::mem::take(&mut self.ids);
         let records = StepRecords {
             ids: &ids,
