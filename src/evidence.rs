@@ -17,7 +17,6 @@ use sightline_reports::mcap::{Recorder, Source};
 use sightline_reports::osi::{OSI_TRACE, OsiTrace};
 use sightline_reports::{
     Execution, OsiTraceInfo, Provenance, RecordingInfo, Sha256Writer, Templates, Tool, render, sha256_hex,
-    sha256_hex_of,
 };
 
 use crate::exit::Exit;
@@ -176,8 +175,8 @@ pub struct Sinks<'s> {
     recorder: Recorder<'s, Sha256Writer<BufWriter<File>>>,
     /// The recording's staged name.
     name: String,
-    /// The OSI trace and its staged name.
-    osi: Option<(OsiTrace<BufWriter<File>>, String)>,
+    /// The OSI trace, hashed as it is written, and its staged name.
+    osi: Option<(OsiTrace<Sha256Writer<BufWriter<File>>>, String)>,
 }
 
 impl<'s> Sinks<'s> {
@@ -217,8 +216,13 @@ impl<'s> Sinks<'s> {
         .with_context(|| failed(staging, RECORDING))?;
         let osi = match osi_file {
             Some((osi_file, name)) => Some((
-                OsiTrace::new(BufWriter::new(osi_file), &input.scenario, record, &input.name)
-                    .with_context(|| failed(staging, OSI_TRACE))?,
+                OsiTrace::new(
+                    Sha256Writer::new(BufWriter::new(osi_file)),
+                    &input.scenario,
+                    record,
+                    &input.name,
+                )
+                .with_context(|| failed(staging, OSI_TRACE))?,
                 name,
             )),
             None => None,
@@ -244,14 +248,12 @@ impl<'s> Sinks<'s> {
         file.flush().with_context(|| failed(staging, RECORDING))?;
         let osi_trace = match osi {
             Some((osi, osi_name)) => {
-                osi.finish()
-                    .with_context(|| failed(staging, OSI_TRACE))?
-                    .flush()
-                    .with_context(|| failed(staging, OSI_TRACE))?;
+                let (mut osi_file, sha256) = osi.finish().with_context(|| failed(staging, OSI_TRACE))?.finish();
+                osi_file.flush().with_context(|| failed(staging, OSI_TRACE))?;
                 stage_as(staging, &osi_name, OSI_TRACE)?;
                 Some(OsiTraceInfo {
                     file: OSI_TRACE.into(),
-                    sha256: staged_sha256(staging, OSI_TRACE).with_context(|| failed(staging, OSI_TRACE))?,
+                    sha256,
                 })
             }
             None => None,
@@ -393,12 +395,6 @@ fn stage_as(staging: &mut Staging, name: &str, as_name: &str) -> anyhow::Result<
 /// What a failure to write the evidence file `name` says.
 fn failed(staging: &Staging, name: &str) -> String {
     format!("failed to write {}", staging.dir().join(name).display())
-}
-
-/// SHA-256 of the staged file `name` as it is on disk (the OSI trace's MCAP
-/// writer seeks back as it writes), lowercase hex.
-fn staged_sha256(staging: &Staging, name: &str) -> std::io::Result<String> {
-    sha256_hex_of(std::fs::File::open(staging.path(name))?)
 }
 
 /// Where each scenario's evidence goes (`out` with one scenario, `out/STEM/`

@@ -179,24 +179,10 @@ pub fn sha256_hex(bytes: &[u8]) -> String {
     hex(&Sha256::digest(bytes))
 }
 
-/// [`sha256_hex`] of everything `reader` gives, read a block at a time: a
-/// file's hash without holding the whole file in memory.
-pub fn sha256_hex_of(mut reader: impl std::io::Read) -> std::io::Result<String> {
-    let mut hasher = Sha256::new();
-    let mut block = vec![0; 1 << 16];
-    loop {
-        match reader.read(&mut block) {
-            Ok(0) => return Ok(hex(&hasher.finalize())),
-            Ok(n) => hasher.update(&block[..n]),
-            Err(error) if error.kind() == std::io::ErrorKind::Interrupted => {}
-            Err(error) => return Err(error),
-        }
-    }
-}
-
 /// A writer that hashes what passes through it: a file's SHA-256 as it is
 /// written, for an output written in order (as the recording's
-/// [`Recorder`](mcap::Recorder) writes it), without reading the file back.
+/// [`Recorder`](mcap::Recorder) and the [`OsiTrace`](osi::OsiTrace) write
+/// it), without reading the file back.
 pub struct Sha256Writer<W> {
     inner: W,
     hasher: Sha256,
@@ -237,40 +223,6 @@ pub fn hex(digest: &[u8]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// Gives its bytes a few at a time, interrupted before each read.
-    struct Trickle<'a> {
-        bytes: &'a [u8],
-        interrupt: bool,
-    }
-
-    impl std::io::Read for Trickle<'_> {
-        fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
-            self.interrupt = !self.interrupt;
-            if !self.interrupt {
-                return Err(std::io::ErrorKind::Interrupted.into());
-            }
-            let n = buf.len().min(self.bytes.len()).min(7_001);
-            buf[..n].copy_from_slice(&self.bytes[..n]);
-            self.bytes = &self.bytes[n..];
-            Ok(n)
-        }
-    }
-
-    /// FIPS 180-2's "abc" example, and a hash read in short, interrupted
-    /// reads across several blocks equals the hash of the bytes at once.
-    #[test]
-    fn a_read_hash_is_the_bytes_hash() {
-        let abc = "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad";
-        assert_eq!(sha256_hex(b"abc"), abc);
-        assert_eq!(sha256_hex_of(&b"abc"[..]).unwrap(), abc);
-        let bytes: Vec<u8> = (0..200_003_u32).map(|i| (i * 31 % 251) as u8).collect();
-        let read = sha256_hex_of(Trickle {
-            bytes: &bytes,
-            interrupt: true,
-        });
-        assert_eq!(read.unwrap(), sha256_hex(&bytes));
-    }
 
     /// Takes at most 5 bytes a write.
     struct Narrow(Vec<u8>);

@@ -44,6 +44,7 @@ mod agents;
 mod channel;
 mod container;
 mod outcomes;
+mod records;
 mod scene;
 mod semantic;
 mod world;
@@ -148,8 +149,6 @@ pub struct Recorder<'s, W> {
     record: Record,
     /// The occupancy grid; `None` in a semantic world, which fuses none.
     grid: Option<CellGrid>,
-    /// The first write error; once set, nothing more is written.
-    failure: Option<WriteError>,
     /// Log time of the latest step, nanoseconds since 1970 (the recording's
     /// clock starts at `record.start`).
     last: u64,
@@ -170,10 +169,10 @@ pub struct Recorder<'s, W> {
     agents_shown: Vec<usize>,
     /// Per agent, what its `/tf` and `/sightline/speeds` JSON holds at every step.
     agent_json: Vec<agents::AgentJson>,
+    /// Each agent's id as a JSON string, for the semantic records.
+    ids: records::Ids,
     /// Every agent's state at the latest step (`None`: not in the scene).
     last_states: Vec<Option<AgentState>>,
-    /// The JSON of the message being written, reused from message to message.
-    buffer: Vec<u8>,
     /// Requirements at the recorded point whose metric the steps give.
     signalled: Vec<(String, Metric, sightline_dsl::Bound)>,
     running: Running,
@@ -197,7 +196,6 @@ impl<'s, W: Write + Send + 'static> Recorder<'s, W> {
             scenario,
             record,
             grid: None,
-            failure: None,
             last: record.start,
             base: record.start,
             open: false,
@@ -209,8 +207,8 @@ impl<'s, W: Write + Send + 'static> Recorder<'s, W> {
             fields_shown: Vec::new(),
             agents_shown: Vec::new(),
             agent_json: Vec::new(),
+            ids: records::Ids::default(),
             last_states: Vec::new(),
-            buffer: Vec::new(),
             signalled: Vec::new(),
             running: Running {
                 world: None,
@@ -258,7 +256,7 @@ impl<'s, W: Write + Send + 'static> Recorder<'s, W> {
         if record.points == RecordedPoints::One {
             recorder.begin(record.point);
         }
-        recorder.take_failure()?;
+        recorder.out.take_failure()?;
         Ok(recorder)
     }
 }
@@ -327,6 +325,7 @@ impl<W> Recorder<'_, W> {
         self.fields_shown.clear();
         self.agents_shown.clear();
         self.agent_json.clear();
+        self.ids = records::Ids::default();
         self.last_states.clear();
         self.agents.clear();
         self.fields_of_view.clear();
@@ -335,10 +334,6 @@ impl<W> Recorder<'_, W> {
             let stamp = Time::from_nanos(self.base);
             self.publish(topic::MAP, SCENE, self.base, &SceneUpdate::replace(stamp, map));
         }
-    }
-
-    fn take_failure(&mut self) -> Result<(), WriteError> {
-        self.failure.take().map_or(Ok(()), Err)
     }
 
     /// `/sightline/requirements`: each signalled requirement over the steps so far.
@@ -388,6 +383,7 @@ impl<W> TraceSink for Recorder<'_, W> {
 
     fn start(&mut self, agents: &[Agent]) {
         self.agents = agents.to_vec();
+        self.ids = records::Ids::new(agents.iter().map(|a| a.id.as_str()));
         self.fields_of_view = agents
             .iter()
             .map(|agent| {

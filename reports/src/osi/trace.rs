@@ -19,11 +19,16 @@
 //! scenario, the seed and the recorded point: the MCAP header names the
 //! library `sightline` without a version, and the metadata no wall-clock time
 //! (OSI's recommended `creation_time` is left out for that reason).
+//!
+//! The trace is written in order, without seeking back (each chunk is built
+//! in memory and written whole), so a writer can hash it as it passes
+//! ([`Sha256Writer`](crate::Sha256Writer)).
 
 use std::collections::BTreeMap;
-use std::io::{Seek, Write};
+use std::io::Write;
 
 use mcap::records::{MessageHeader, Metadata};
+use mcap::write::NoSeek;
 use mcap::{Compression, WriteOptions, Writer};
 use prost::Message;
 use sightline_dsl::{Agent, Experiment, Record, Scenario};
@@ -42,8 +47,8 @@ pub struct TraceError(#[from] mcap::McapError);
 
 /// Streams one sweep point's steps into an OSI trace: create it before the
 /// run, hand it to the engine as a sink, then [`finish`](Self::finish) it.
-pub struct OsiTrace<W: Write + Seek> {
-    out: Writer<W>,
+pub struct OsiTrace<W: Write> {
+    out: Writer<NoSeek<W>>,
     agents: Vec<Agent>,
     ego: Option<usize>,
     /// Schema name → schema id.
@@ -54,14 +59,15 @@ pub struct OsiTrace<W: Write + Seek> {
     failure: Option<mcap::McapError>,
 }
 
-impl<W: Write + Seek> OsiTrace<W> {
+impl<W: Write> OsiTrace<W> {
     /// Starts the trace of point `record.point` of `scenario` (read from
     /// `file`) into `out`: the MCAP header and the OSI metadata.
     pub fn new(out: W, scenario: &Scenario, record: Record, file: &str) -> Result<Self, TraceError> {
         let options = WriteOptions::new()
             .compression(Some(Compression::Lz4))
-            .library("sightline");
-        let mut out = options.create(out)?;
+            .library("sightline")
+            .disable_seeking(true);
+        let mut out = options.create(NoSeek::new(out))?;
         let version = sightline_osi::osi_version();
         let protobuf = sightline_osi::PROTOBUF_VERSION.to_string();
         let point = &scenario.points[record.point];
@@ -106,7 +112,7 @@ impl<W: Write + Seek> OsiTrace<W> {
             return Err(error.into());
         }
         self.out.finish()?;
-        Ok(self.out.into_inner())
+        Ok(self.out.into_inner().into_inner())
     }
 
     /// Writes `message` of OSI type `schema` on `topic` (described by
@@ -172,7 +178,7 @@ impl<W: Write + Seek> OsiTrace<W> {
     }
 }
 
-impl<W: Write + Seek> TraceSink for OsiTrace<W> {
+impl<W: Write> TraceSink for OsiTrace<W> {
     fn start(&mut self, agents: &[Agent]) {
         self.agents = agents.to_vec();
     }

@@ -1,8 +1,9 @@
-//! `/tf` and `/sightline/speeds` at every step, written straight into JSON:
-//! what does not change from step to step (an agent's id, its sensors' mounts)
-//! is rendered once per recorded point, and each step writes only its times,
-//! poses and speeds. The bytes are the ones serde_json gives
-//! `FrameTransforms` (the test's message type) and
+//! `/tf` and `/sightline/speeds` at every step, and `/scene/agents` when the
+//! agents in the scene change, written straight into JSON: what does not
+//! change from step to step (an agent's id, its sensors' mounts, its box and
+//! label) is rendered once per recorded point, and each step writes only its
+//! times, poses and speeds. The bytes are the ones serde_json gives
+//! `FrameTransforms` (the test's message type), `SceneUpdate` and
 //! [`SpeedsRecord`](crate::mcap::wire::SpeedsRecord) of the same agents (a test
 //! compares them): encoding those field by field, every key escaped and every
 //! constant number formatted again, was most of what recording a step cost.
@@ -12,7 +13,7 @@ use std::io::Write as _;
 use sightline_dsl::Agent;
 use sightline_engine::trace::{AgentState, Pose};
 
-use crate::mcap::foxglove::{FRAME, Pose3, Time};
+use crate::mcap::foxglove::{Entity, FRAME, Pose3, Time};
 
 /// The frame of sensor `index` of agent `agent` (`<agent>/sensor<index>`).
 pub(super) fn sensor_frame(agent: &str, index: usize) -> String {
@@ -33,11 +34,14 @@ pub(super) struct AgentJson {
     sensors: Vec<Vec<u8>>,
     /// Its `/sightline/speeds` entry, up to the speed.
     speed: Vec<u8>,
+    /// Its `/scene/agents` entity after the timestamp, to its end.
+    entity: Vec<u8>,
 }
 
 impl AgentJson {
-    /// The pieces of `agent`, whose sensors sit at `mounts`.
-    pub(super) fn new(agent: &Agent, mounts: impl IntoIterator<Item = Pose>) -> Self {
+    /// The pieces of `agent`, whose sensors sit at `mounts` and whose
+    /// `/scene/agents` entity is `entity` (at time 0).
+    pub(super) fn new(agent: &Agent, mounts: impl IntoIterator<Item = Pose>, entity: &Entity) -> Self {
         let id = json(&agent.id);
         let sensors = mounts
             .into_iter()
@@ -60,9 +64,16 @@ impl AgentJson {
             frame: format!(r#","parent_frame_id":"{FRAME}","child_frame_id":{id},"translation":"#).into_bytes(),
             sensors,
             speed: format!(r#"{{"id":{id},"speed_mps":"#).into_bytes(),
+            entity: json(entity)
+                .strip_prefix(ENTITY_AT_0)
+                .expect("an entity starts with its timestamp")
+                .into(),
         }
     }
 }
+
+/// What an entity's JSON opens with at time 0, up to the end of its timestamp.
+const ENTITY_AT_0: &str = r#"{"timestamp":{"sec":0,"nsec":0}"#;
 
 /// Serde_json's encoding of `value`, which cannot fail for these types.
 fn json(value: &(impl serde::Serialize + ?Sized)) -> String {
@@ -80,13 +91,12 @@ fn in_scene<'a>(
         .filter_map(|(piece, state)| Some((piece, state.as_ref()?)))
 }
 
-/// Writes `foxglove.FrameTransforms` at `stamp` into `out` (cleared first):
+/// Appends `foxglove.FrameTransforms` at `stamp` to `out`:
 /// every agent in the scene (at `states`) in `map`, and each of its sensors in
 /// it.
 pub(super) fn write_transforms(out: &mut Vec<u8>, stamp: Time, states: &[Option<AgentState>], pieces: &[AgentJson]) {
     let mut timestamp = br#"{"timestamp":"#.to_vec();
     stamp.write_json(&mut timestamp);
-    out.clear();
     out.extend_from_slice(br#"{"transforms":["#);
     for (i, (piece, state)) in in_scene(states, pieces).enumerate() {
         if i > 0 {
@@ -108,8 +118,27 @@ pub(super) fn write_transforms(out: &mut Vec<u8>, stamp: Time, states: &[Option<
     out.extend_from_slice(b"]}");
 }
 
-/// Writes step `step`'s `sightline.Speeds` of point `point` into `out`
-/// (cleared first): every agent in the scene (at `states`) with its speed.
+/// Appends `foxglove.SceneUpdate` at `stamp` to `out`: every
+/// earlier entity deleted, and the entities of the agents `present` (indexes
+/// into `pieces`).
+pub(super) fn write_scene_agents(out: &mut Vec<u8>, stamp: Time, present: &[usize], pieces: &[AgentJson]) {
+    let mut timestamp = br#"{"timestamp":"#.to_vec();
+    stamp.write_json(&mut timestamp);
+    out.extend_from_slice(br#"{"deletions":["#);
+    out.extend_from_slice(&timestamp);
+    out.extend_from_slice(br#","type":1,"id":""}],"entities":["#);
+    for (i, &agent) in present.iter().enumerate() {
+        if i > 0 {
+            out.push(b',');
+        }
+        out.extend_from_slice(&timestamp);
+        out.extend_from_slice(&pieces[agent].entity);
+    }
+    out.extend_from_slice(b"]}");
+}
+
+/// Appends step `step`'s `sightline.Speeds` of point `point` to `out`: every
+/// agent in the scene (at `states`) with its speed.
 pub(super) fn write_speeds(
     out: &mut Vec<u8>,
     point: usize,
@@ -117,7 +146,6 @@ pub(super) fn write_speeds(
     states: &[Option<AgentState>],
     pieces: &[AgentJson],
 ) {
-    out.clear();
     // Writing into a Vec does not fail.
     let _ = write!(out, r#"{{"point":{point},"step":{step},"agents":["#);
     for (i, (piece, state)) in in_scene(states, pieces).enumerate() {
@@ -136,8 +164,9 @@ mod tests {
     use sightline_dsl::{Experiment, Options, compile};
     use sightline_engine::trace::{Vector, mount_pose};
 
+    use super::super::scene::agent_entity;
     use super::*;
-    use crate::mcap::foxglove::{FrameTransform, FrameTransforms};
+    use crate::mcap::foxglove::{Color, FrameTransform, FrameTransforms, SceneUpdate};
     use crate::mcap::wire::{AgentSpeed, SpeedsRecord};
 
     /// The agents of a bundled scenario's first point (cars, a bus, pedestrians,
@@ -151,17 +180,23 @@ mod tests {
         }
     }
 
-    /// Both messages, written directly, are byte for byte what serde_json gives
-    /// the message types, for every agent of two bundled scenarios at poses in
-    /// every quadrant (some out of the scene), odd speeds and times.
+    /// The three messages, written directly, are byte for byte what
+    /// serde_json gives the message types, for every agent of two bundled
+    /// scenarios at poses in every quadrant (some out of the scene), odd
+    /// speeds and times.
     #[test]
     fn written_json_is_serde_jsons() {
         for file in ["roundabout-six-agents.yaml", "urban-rsu-semantic.yaml"] {
             let agents = agents(file);
             assert!(agents.iter().any(|a| !a.sensors.is_empty()), "{file}");
+            let colors = [Color::rgba(0.1, 0.2, 0.3, 0.4), Color::rgba(1.0, 0.5, 0.25, 1.0)];
             let pieces: Vec<AgentJson> = agents
                 .iter()
-                .map(|a| AgentJson::new(a, a.sensors.iter().map(mount_pose)))
+                .enumerate()
+                .map(|(i, a)| {
+                    let entity = agent_entity(Time::from_nanos(0), a, colors[i % 2]);
+                    AgentJson::new(a, a.sensors.iter().map(mount_pose), &entity)
+                })
                 .collect();
             for step in 0..7_u32 {
                 let stamp = Time::from_nanos(946_684_800_000_000_000 + u64::from(step) * 123_456_789);
@@ -191,6 +226,16 @@ mod tests {
                     .collect();
                 let expected = serde_json::to_string(&FrameTransforms { transforms }).unwrap();
                 assert_eq!(String::from_utf8(out.clone()).unwrap(), expected, "{file}, step {step}");
+                let in_scene: Vec<usize> = (0..agents.len()).filter(|&i| states[i].is_some()).collect();
+                out.clear();
+                write_scene_agents(&mut out, stamp, &in_scene, &pieces);
+                let entities = in_scene
+                    .iter()
+                    .map(|&i| agent_entity(stamp, &agents[i], colors[i % 2]))
+                    .collect();
+                let expected = serde_json::to_string(&SceneUpdate::replace(stamp, entities)).unwrap();
+                assert_eq!(String::from_utf8(out.clone()).unwrap(), expected, "{file}, step {step}");
+                out.clear();
                 write_speeds(&mut out, 3, step as usize, &states, &pieces);
                 let record = SpeedsRecord {
                     point: 3,

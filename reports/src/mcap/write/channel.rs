@@ -4,7 +4,7 @@
 
 use serde::Serialize;
 
-use super::{Recorder, WriteError};
+use super::Recorder;
 use crate::mcap::flat::flat_schema_of as schema_of;
 use crate::mcap::foxglove::{FRAME_TRANSFORMS_SCHEMA, GRID_SCHEMA, LOG_SCHEMA, SCENE_UPDATE_SCHEMA};
 use crate::mcap::wire::{
@@ -52,30 +52,7 @@ impl<W> Recorder<'_, W> {
     /// `log_time` nanoseconds; the first failure is kept for
     /// [`finish`](Self::finish) and stops all further writing.
     pub(super) fn publish(&mut self, topic: &str, schema: SchemaSpec, log_time: u64, message: &impl Serialize) {
-        self.write(topic, schema, log_time, |out| serde_json::to_writer(out, message));
-    }
-
-    /// [`publish`](Self::publish) of a message already encoded, `json`.
-    pub(super) fn publish_json(&mut self, topic: &str, schema: SchemaSpec, log_time: u64, json: &[u8]) {
-        self.write(topic, schema, log_time, |out| {
-            out.extend_from_slice(json);
-            Ok(())
-        });
-    }
-
-    /// Writes the message `encode` writes, as [`publish`](Self::publish) does.
-    fn write(
-        &mut self,
-        topic: &str,
-        schema: SchemaSpec,
-        log_time: u64,
-        encode: impl FnOnce(&mut Vec<u8>) -> serde_json::Result<()>,
-    ) {
-        if self.failure.is_some() {
-            return;
-        }
-        if let Err(error) = self.out.message(topic, schema, log_time, encode) {
-            self.failure = Some(WriteError::Json(error));
-        }
+        self.out
+            .message(topic, schema, log_time, |out| serde_json::to_writer(out, message));
     }
 }

@@ -47,6 +47,9 @@ pub(super) struct Container<W> {
     recycled: Receiver<Batch>,
     /// The thread; `None` once joined.
     thread: Option<JoinHandle<Result<W, WriteError>>>,
+    /// The first message that did not encode; once set, nothing more is
+    /// written.
+    failure: Option<WriteError>,
 }
 
 /// Messages and attachments, encoded, for the thread to write in order.
@@ -91,13 +94,15 @@ impl<W: Write + Send + 'static> Container<W> {
             to_thread: Some(to_thread),
             recycled,
             thread: Some(thread),
+            failure: None,
         })
     }
 
     /// Hands the last batch over, waits for the thread to write it and the
-    /// MCAP summary, and gives the output back; the thread's first failure,
-    /// or its panic, as an error.
+    /// MCAP summary, and gives the output back; the first message that did
+    /// not encode, the thread's first failure, or its panic, as an error.
     pub(super) fn finish(mut self) -> Result<W, WriteError> {
+        self.take_failure()?;
         self.send();
         self.to_thread = None;
         match self.thread.take() {
@@ -111,28 +116,43 @@ impl<W: Write + Send + 'static> Container<W> {
 
 impl<W> Container<W> {
     /// Adds a message on `topic` (created with `schema` on first use) at
-    /// `log_time` nanoseconds, which `encode` writes; nothing when it fails,
-    /// or once the thread has stopped.
+    /// `log_time` nanoseconds, which `encode` appends; nothing once the thread
+    /// has stopped or a message did not encode (the first such failure is
+    /// kept for [`finish`](Self::finish)).
     pub(super) fn message(
         &mut self,
         topic: &str,
         schema: SchemaSpec,
         log_time: u64,
         encode: impl FnOnce(&mut Vec<u8>) -> serde_json::Result<()>,
-    ) -> serde_json::Result<()> {
-        if self.to_thread.is_none() {
-            return Ok(());
+    ) {
+        if self.to_thread.is_none() || self.failure.is_some() {
+            return;
         }
         let start = self.batch.bytes.len();
         if let Err(error) = encode(&mut self.batch.bytes) {
             self.batch.bytes.truncate(start);
-            return Err(error);
+            self.failure = Some(WriteError::Json(error));
+            return;
         }
         let channel = self.channel(topic, schema);
         let len = self.batch.bytes.len() - start;
         self.batch.entries.push(Entry::Message { channel, log_time, len });
         self.sent_when_full();
-        Ok(())
+    }
+
+    /// [`message`](Self::message) of a message `write` appends, which cannot
+    /// fail.
+    pub(super) fn written(&mut self, topic: &str, schema: SchemaSpec, log_time: u64, write: impl FnOnce(&mut Vec<u8>)) {
+        self.message(topic, schema, log_time, |out| {
+            write(out);
+            Ok(())
+        });
+    }
+
+    /// The first message that did not encode, taken.
+    pub(super) fn take_failure(&mut self) -> Result<(), WriteError> {
+        self.failure.take().map_or(Ok(()), Err)
     }
 
     /// Attaches `data` as the file `name` of type `media_type`, at `log_time`.
@@ -322,12 +342,9 @@ mod tests {
         for item in items {
             match item {
                 Item::Attachment(name, data) => container.attach(name, "application/xml", 5, data),
-                Item::Message(topic, schema, time, json) => container
-                    .message(topic, *schema, *time, |out| {
-                        out.extend_from_slice(json);
-                        Ok(())
-                    })
-                    .unwrap(),
+                Item::Message(topic, schema, time, json) => {
+                    container.written(topic, *schema, *time, |out| out.extend_from_slice(json));
+                }
             }
         }
         container.finish()
@@ -459,11 +476,7 @@ mod tests {
         let mut container = Container::start(Closes { _on_drop: closes }, options()).unwrap();
         for item in &items()[..5_000] {
             if let Item::Message(topic, schema, time, json) = item {
-                let encode = |out: &mut Vec<u8>| {
-                    out.extend_from_slice(json);
-                    Ok(())
-                };
-                container.message(topic, *schema, *time, encode).unwrap();
+                container.written(topic, *schema, *time, |out| out.extend_from_slice(json));
             }
         }
         drop(container);

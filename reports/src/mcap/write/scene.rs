@@ -11,7 +11,7 @@ use sightline_dsl::{Agent, AgentKind, Area, Grid as CellGrid, World};
 use sightline_engine::trace::{AgentState, Body, CooperatorStep, Vector};
 
 use super::Recorder;
-use super::agents::{AgentJson, sensor_frame, write_speeds, write_transforms};
+use super::agents::{AgentJson, sensor_frame, write_scene_agents, write_speeds, write_transforms};
 use super::channel::{SCENE, SPEEDS, TRANSFORMS};
 use crate::mcap::foxglove::{Color, Cube, Entity, Line, LineType, Pose3, SceneUpdate, Text, Time, Vector3};
 use crate::mcap::topic;
@@ -42,15 +42,17 @@ impl<W> Recorder<'_, W> {
     /// (`/scene/fields_of_view`) and the agents' boxes (`/scene/agents`), each
     /// locked to its frame; then every agent's speed (`/sightline/speeds`).
     pub(super) fn publish_agents(&mut self, time: u64, step: usize, states: &[Option<AgentState>]) {
-        let mut buffer = std::mem::take(&mut self.buffer);
-        write_transforms(&mut buffer, Time::from_nanos(time), states, &self.agent_json);
-        self.publish_json(topic::TRANSFORMS, TRANSFORMS, time, &buffer);
+        let pieces = &self.agent_json;
+        self.out.written(topic::TRANSFORMS, TRANSFORMS, time, |out| {
+            write_transforms(out, Time::from_nanos(time), states, pieces);
+        });
         let present: Vec<usize> = (0..states.len()).filter(|&i| states[i].is_some()).collect();
         self.publish_fields_of_view(time, &present);
         self.publish_scene_agents(time, present);
-        write_speeds(&mut buffer, self.record.point, step, states, &self.agent_json);
-        self.publish_json(topic::SPEEDS, SPEEDS, time, &buffer);
-        self.buffer = buffer;
+        let (point, pieces) = (self.record.point, &self.agent_json);
+        self.out.written(topic::SPEEDS, SPEEDS, time, |out| {
+            write_speeds(out, point, step, states, pieces);
+        });
         self.last_states.clear();
         self.last_states.extend_from_slice(states);
     }
@@ -63,44 +65,26 @@ impl<W> Recorder<'_, W> {
             .agents
             .iter()
             .zip(&self.fields_of_view)
-            .map(|(agent, sensors)| AgentJson::new(agent, sensors.iter().map(|(mount, _, _)| *mount)))
+            .enumerate()
+            .map(|(i, (agent, sensors))| {
+                let entity = agent_entity(Time::from_nanos(0), agent, self.color(i, agent));
+                AgentJson::new(agent, sensors.iter().map(|(mount, _, _)| *mount), &entity)
+            })
             .collect();
     }
 
-    /// `/scene/agents`: every agent in the scene as a box of its footprint
-    /// with its id as a label and its kind as metadata, locked to the agent's
-    /// frame (the viewer moves it with the agent's `/tf`); written only when
-    /// the agents in the scene change, each message the whole set, as the
-    /// fields of view are.
+    /// `/scene/agents`: every agent in the scene as its
+    /// [`agent_entity`], locked to the agent's frame (the viewer moves it with
+    /// the agent's `/tf`); written only when the agents in the scene change,
+    /// each message the whole set, as the fields of view are.
     fn publish_scene_agents(&mut self, time: u64, present: Vec<usize>) {
         if present == self.agents_shown {
             return;
         }
-        let stamp = Time::from_nanos(time);
-        let entities = present
-            .iter()
-            .map(|&i| {
-                let agent = &self.agents[i];
-                let height = agent.kind.height();
-                Entity::locked(stamp, agent.id.clone(), agent.id.clone())
-                    .meta("kind", agent.kind.name())
-                    .cube(Cube {
-                        pose: Pose3::at(0.0, 0.0, height / 2.0, 0.0),
-                        size: Vector3 {
-                            x: agent.length,
-                            y: agent.width,
-                            z: height,
-                        },
-                        color: self.color(i, agent),
-                    })
-                    .text(Text::label(
-                        Pose3::at(0.0, 0.0, height + 1.0, 0.0),
-                        agent.id.clone(),
-                        LABEL,
-                    ))
-            })
-            .collect();
-        self.publish(topic::AGENTS, SCENE, time, &SceneUpdate::replace(stamp, entities));
+        let pieces = &self.agent_json;
+        self.out.written(topic::AGENTS, SCENE, time, |out| {
+            write_scene_agents(out, Time::from_nanos(time), &present, pieces);
+        });
         self.agents_shown = present;
     }
 
@@ -212,10 +196,10 @@ impl<W> Recorder<'_, W> {
     pub(super) fn clear_scene(&mut self, time: u64) {
         let stamp = Time::from_nanos(time);
         if self.last_states.iter().any(Option::is_some) {
-            let mut buffer = std::mem::take(&mut self.buffer);
-            write_transforms(&mut buffer, stamp, &self.last_states, &self.agent_json);
-            self.publish_json(topic::TRANSFORMS, TRANSFORMS, time, &buffer);
-            self.buffer = buffer;
+            let (states, pieces) = (&self.last_states, &self.agent_json);
+            self.out.written(topic::TRANSFORMS, TRANSFORMS, time, |out| {
+                write_transforms(out, stamp, states, pieces);
+            });
         }
         let agents = !std::mem::take(&mut self.agents_shown).is_empty();
         let fields = !std::mem::take(&mut self.fields_shown).is_empty();
@@ -229,6 +213,29 @@ impl<W> Recorder<'_, W> {
             self.publish(&topic, SCENE, time, &SceneUpdate::replace(stamp, Vec::new()));
         }
     }
+}
+
+/// An agent's `/scene/agents` entity at `stamp`: a box of its footprint in
+/// `color` with its id as a label and its kind as metadata, in the agent's
+/// frame, locked to it.
+pub(super) fn agent_entity(stamp: Time, agent: &Agent, color: Color) -> Entity {
+    let height = agent.kind.height();
+    Entity::locked(stamp, agent.id.clone(), agent.id.clone())
+        .meta("kind", agent.kind.name())
+        .cube(Cube {
+            pose: Pose3::at(0.0, 0.0, height / 2.0, 0.0),
+            size: Vector3 {
+                x: agent.length,
+                y: agent.width,
+                z: height,
+            },
+            color,
+        })
+        .text(Text::label(
+            Pose3::at(0.0, 0.0, height + 1.0, 0.0),
+            agent.id.clone(),
+            LABEL,
+        ))
 }
 
 /// A sensor's field of view in its own frame: a circle of its range when it

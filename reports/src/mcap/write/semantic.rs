@@ -2,15 +2,13 @@
 //! and the ego receives, every V2X packet, the close approaches, and the step's
 //! semantic signals (`/sightline/signals`), its counts added to the running sums.
 
-use sightline_engine::trace::{Item, PacketKind, SemanticStep, Visibility};
+use sightline_engine::trace::{PacketKind, SemanticStep};
 
 use super::Recorder;
 use super::channel::{APPROACH, ARRIVAL, MESSAGE, PACKET, SIGNALS};
+use super::records::StepRecords;
 use crate::mcap::topic;
-use crate::mcap::wire::{
-    ApproachRecord, ArrivalRecord, ConflictRecord, ItemRecord, MessageRecord, PacketRecord, SemanticSignals,
-    SignalsRecord,
-};
+use crate::mcap::wire::{SemanticSignals, SignalsRecord};
 
 impl<W> Recorder<'_, W> {
     /// Everything a semantic world's step shows: the messages reaching the
@@ -21,13 +19,18 @@ impl<W> Recorder<'_, W> {
     pub(super) fn publish_semantic_step(&mut self, step: &SemanticStep<'_>) {
         let time = self.at(step.time);
         self.last = time;
+        // Taken for the step: the records name agents by them while the
+        // recorder writes the agents too.
+        let ids = std::mem::take(&mut self.ids);
+        let records = StepRecords {
+            ids: &ids,
+            point: self.record.point,
+            step: step.step,
+        };
         for arrival in step.arrivals {
-            let record = ArrivalRecord {
-                point: self.record.point,
-                at: arrival.at,
-                items: self.items(&arrival.items),
-            };
-            self.publish(topic::ARRIVALS, ARRIVAL, self.at(arrival.at), &record);
+            let at = self.at(arrival.at);
+            self.out
+                .written(topic::ARRIVALS, ARRIVAL, at, |out| records.arrival(out, arrival));
         }
         if !self.joint() {
             self.publish_agents(time, step.step, step.agents);
@@ -46,47 +49,21 @@ impl<W> Recorder<'_, W> {
             let received = packet.reception.received;
             signals.packets += 1;
             signals.received += u64::from(received);
-            let (kind, bytes) = match &packet.kind {
-                PacketKind::Uplink => ("uplink", None),
-                PacketKind::Downlink { bytes, .. } => ("downlink", Some(*bytes as u64)),
-                PacketKind::Direct => ("direct", None),
-            };
-            let record = PacketRecord {
-                point: self.record.point,
-                step: step.step,
-                from: self.agent_id(packet.from),
-                to: self.agent_id(packet.to),
-                kind: kind.into(),
-                bytes,
-                distance_m: packet.link.distance_m,
-                los: packet.link.los,
-                rssi_dbm: Some(packet.reception.rssi_dbm).filter(|r| r.is_finite()),
-                received,
-            };
-            self.publish(topic::PACKETS, PACKET, time, &record);
+            self.out
+                .written(topic::PACKETS, PACKET, time, |out| records.packet(out, packet));
             if let PacketKind::Downlink { items, bytes } = &packet.kind {
                 signals.messages += 1;
                 signals.messages_received += u64::from(received);
-                let record = MessageRecord {
-                    point: self.record.point,
-                    step: step.step,
-                    from: self.agent_id(packet.from),
-                    received,
-                    bytes: *bytes as u64,
-                    items: self.items(items),
-                };
-                self.publish(topic::MESSAGES, MESSAGE, time, &record);
+                self.out.written(topic::MESSAGES, MESSAGE, time, |out| {
+                    records.message(out, packet, items, *bytes);
+                });
             }
         }
         for approach in step.approaches {
-            let record = ApproachRecord {
-                point: self.record.point,
-                step: step.step,
-                agent: self.agent_id(approach.agent),
-                flagged: approach.flagged,
-            };
-            self.publish(topic::APPROACHES, APPROACH, time, &record);
+            self.out
+                .written(topic::APPROACHES, APPROACH, time, |out| records.approach(out, approach));
         }
+        self.ids = ids;
         if let Some(running) = &mut self.running.semantic {
             running.messages += signals.messages;
             running.delivered += signals.messages_received;
@@ -101,28 +78,5 @@ impl<W> Recorder<'_, W> {
         };
         self.publish(topic::SIGNALS, SIGNALS, time, &record);
         self.publish_requirement_signals(step.step, time);
-    }
-
-    fn items(&self, items: &[Item]) -> Vec<ItemRecord> {
-        items
-            .iter()
-            .map(|item| ItemRecord {
-                agent: self.agent_id(item.agent),
-                nlos: item.labels.nlos.map(|v| {
-                    match v {
-                        Visibility::NlosStatic => "static",
-                        Visibility::NlosDynamic => "dynamic",
-                        Visibility::Los => "los",
-                    }
-                    .to_string()
-                }),
-                relevant: item.labels.relevant,
-                speeding: item.labels.speeding,
-                conflict: item.labels.conflict.map(|c| ConflictRecord {
-                    time: c.time,
-                    separation: c.separation,
-                }),
-            })
-            .collect()
     }
 }
