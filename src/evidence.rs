@@ -399,9 +399,15 @@ fn failed(staging: &Staging, name: &str) -> String {
 
 /// Where each scenario's evidence goes (`out` with one scenario, `out/STEM/`
 /// with several, `out/STEM/` under the working directory without `out`); `None`
-/// (after printing why) when two scenarios would share a directory, or one read
-/// from standard input has no `out`.
-pub fn evidence_dirs<'a>(out: Option<&Path>, inputs: impl IntoIterator<Item = &'a Input>) -> Option<Vec<PathBuf>> {
+/// (after printing why) when two scenarios would share a directory, one read
+/// from standard input has no `out`, or the set written there, whose files are
+/// `replaces`, would replace or remove a file the command reads (a
+/// `counterexample.yaml` run with `--out` its own folder).
+pub fn evidence_dirs<'a>(
+    out: Option<&Path>,
+    inputs: impl IntoIterator<Item = &'a Input>,
+    replaces: &[&str],
+) -> Option<Vec<PathBuf>> {
     let inputs: Vec<&Input> = inputs.into_iter().collect();
     if out.is_none()
         && let Some(input) = inputs.iter().find(|i| i.is_stdin())
@@ -427,8 +433,39 @@ pub fn evidence_dirs<'a>(out: Option<&Path>, inputs: impl IntoIterator<Item = &'
             );
             return None;
         }
+        if let Some(read) = replaced_input(dir, input, replaces) {
+            eprintln!(
+                "{}: error: the evidence written into {} would replace this file, which the command reads; give \
+                 another --out",
+                read.display(),
+                dir.display()
+            );
+            return None;
+        }
     }
     Some(dirs)
+}
+
+/// The first file `input` reads (the scenario file, then its imports) that a
+/// set of `replaces` written into `dir` would replace, if any.
+fn replaced_input(dir: &Path, input: &Input, replaces: &[&str]) -> Option<PathBuf> {
+    // Where a file is, with its folder resolved (links, `..`); `None` when the
+    // folder does not exist, so that nothing in it can be replaced.
+    let resolved = |file: &Path| {
+        let folder = file
+            .parent()
+            .filter(|p| !p.as_os_str().is_empty())
+            .unwrap_or(Path::new("."));
+        Some(std::fs::canonicalize(folder).ok()?.join(file.file_name()?))
+    };
+    let dir = std::fs::canonicalize(dir).ok()?;
+    let scenario = (!input.is_stdin()).then(|| input.path.clone());
+    let imports = input.scenario.imports.iter().map(|import| PathBuf::from(&import.path));
+    scenario.into_iter().chain(imports).find(|file| {
+        replaces
+            .iter()
+            .any(|name| resolved(file.as_path()) == Some(dir.join(name)))
+    })
 }
 
 #[cfg(test)]

@@ -226,11 +226,21 @@ impl Templates {
     }
 }
 
+/// The work a custom set may do to render one page, in minijinja's fuel (about
+/// one instruction, or 64 bytes of data): a bound on the time and memory a
+/// template's loops can take (about 2 s and 1.3 GB). The example set renders
+/// the page of every bundled scenario within it.
+const CUSTOM_FUEL: u64 = 20_000_000;
+
 /// The environment every page renders in: strict about undefined values,
 /// escaping every template as HTML, the bundled templates under their names
-/// and, with `load`, a custom set's files under theirs.
+/// and, with `load`, a custom set's files under theirs, rendered on at most
+/// [`CUSTOM_FUEL`].
 fn environment(load: Option<Arc<Loader>>) -> Environment<'static> {
     let mut env = Environment::new();
+    if load.is_some() {
+        env.set_fuel(Some(CUSTOM_FUEL));
+    }
     env.set_undefined_behavior(UndefinedBehavior::Strict);
     // Escaping follows the name's extension by default; a custom set's
     // `header.txt` must be escaped too.

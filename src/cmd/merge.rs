@@ -59,7 +59,7 @@ pub fn merge(args: &MergeArgs) -> anyhow::Result<Exit> {
     let Some(templates) = templates else {
         return Ok(Exit::Invalid);
     };
-    let Some(dirs) = evidence_dirs(args.out.as_deref(), merged.iter().map(|m| &m.input)) else {
+    let Some(dirs) = evidence_dirs(args.out.as_deref(), merged.iter().map(|m| &m.input), EVIDENCE_SET) else {
         return Ok(Exit::Invalid);
     };
     let mut exit = Exit::Pass;

@@ -32,7 +32,9 @@ pub fn run(args: &RunArgs) -> anyhow::Result<Exit> {
     let (Some(inputs), Some(templates)) = (inputs, templates) else {
         return Ok(Exit::Invalid);
     };
-    let Some(dirs) = evidence_dirs(args.out.as_deref(), &inputs) else {
+    // A shard writes only its shard file.
+    let replaces = if args.shard.is_some() { &[][..] } else { EVIDENCE_SET };
+    let Some(dirs) = evidence_dirs(args.out.as_deref(), &inputs, replaces) else {
         return Ok(Exit::Invalid);
     };
     if let Some(input) = inputs.iter().find(|i| args.osi && !has_road_users(&i.scenario)) {

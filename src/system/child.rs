@@ -1,7 +1,9 @@
 //! A system under test's process: started with its input and output as pipes,
 //! fed and read by two threads so that every wait is bounded by a time limit,
 //! and killed and reaped on every path: when it is dropped, and on SIGINT,
-//! SIGTERM or SIGHUP (a clean-up registered with `signals`).
+//! SIGTERM or SIGHUP (a clean-up registered with `signals`). On Unix it leads
+//! a process group of its own, killed whole: what it started (a helper left
+//! running, holding sightline's standard error) goes with it.
 
 use std::io::Write;
 use std::process::{Command, Stdio};
@@ -51,7 +53,13 @@ fn lock(process: &Shared) -> MutexGuard<'_, Option<std::process::Child>> {
 /// Kills the process if it still runs and waits for it: nothing is left.
 fn reap(process: &Shared) {
     if let Some(mut child) = lock(process).take() {
-        // It may have exited already; either way `wait` reaps it.
+        // It may have exited already; either way `wait` reaps it. The group
+        // outlives its leader while a process it started runs.
+        #[cfg(unix)]
+        let _ = rustix::process::kill_process_group(
+            rustix::process::Pid::from_child(&child),
+            rustix::process::Signal::KILL,
+        );
         let _ = child.kill();
         let _ = child.wait();
     }
@@ -68,6 +76,8 @@ impl Child {
             .stdin(Stdio::piped())
             .stdout(Stdio::piped())
             .stderr(Stdio::inherit());
+        #[cfg(unix)]
+        std::os::unix::process::CommandExt::process_group(&mut process, 0);
         let mut child = process.spawn().map_err(ChildError::Start)?;
         let (mut stdin, mut stdout) = (child.stdin.take(), child.stdout.take());
         let process: Shared = Arc::new(Mutex::new(Some(child)));

@@ -200,6 +200,55 @@ fn a_new_set_replaces_the_previous_one_whole() {
     assert_eq!(names(&out), expected.map(PathBuf::from));
 }
 
+/// A set never replaces a file the command reads: the counterexample of a
+/// search, run with `--out` its own folder as its header's command invites,
+/// would be removed by the run's commit (a search with `--budget` may not find
+/// it again). Refused with exit 2 before anything runs, the folder untouched;
+/// `--shard`, which writes only its shard file, and another `--out` run.
+// See: session 17's outside check.
+#[test]
+fn a_set_that_would_replace_the_scenario_it_runs_is_refused() {
+    let tmp = temp_dir();
+    let out = tmp.path().join("search");
+    let search = [
+        "falsify",
+        "scenarios/urban-falsify.yaml",
+        "--cases",
+        "4",
+        "--out",
+        arg(&out),
+    ];
+    sightline(search).assert_exit(1);
+    let before = snapshot(&out);
+    let counterexample = out.join("counterexample.yaml");
+    for command in ["run", "merge"] {
+        let refused = match command {
+            "run" => sightline(["run", arg(&counterexample), "--out", arg(&out)]),
+            _ => {
+                let shards = tmp.path().join("shards");
+                sightline(["run", arg(&counterexample), "--out", arg(&shards), "--shard", "1/1"]).assert_exit(0);
+                sightline(["merge", arg(&shards), "--out", arg(&out)])
+            }
+        };
+        refused.assert_exit(2);
+        assert_eq!(
+            refused.stderr,
+            format!(
+                "{}: error: the evidence written into {} would replace this file, which the command reads; give \
+                 another --out\n",
+                counterexample.display(),
+                out.display()
+            ),
+            "{command}"
+        );
+        assert_eq!(snapshot(&out), before, "{command} leaves the folder as it was");
+    }
+    sightline(["run", arg(&counterexample), "--out", arg(&out), "--shard", "1/2"]).assert_exit(0);
+    let elsewhere = tmp.path().join("elsewhere");
+    sightline(["run", arg(&counterexample), "--out", arg(&elsewhere)]).assert_exit(1);
+    assert!(counterexample.exists());
+}
+
 /// SIGKILL cannot be handled: a run killed while it simulates leaves its
 /// staging folder, and nothing else; the next run into the folder removes it
 /// with a note, and writes its set.

@@ -219,6 +219,28 @@ fn a_system_past_its_step_timeout_is_an_error_and_is_killed() {
     assert!(!running(marker), "the system was left running");
 }
 
+/// What the system started goes with it: a helper it left running (holding
+/// sightline's standard error, so a pipeline reading it, as this test's, would
+/// wait for the helper) is killed with the system.
+// See: session 17's outside check.
+#[test]
+fn a_helper_the_system_started_is_killed_with_it() {
+    let (system, helper) = ("sleep 33.5", "sleep 34.25");
+    let script = format!("{HELLO}; {helper} & exec {system}");
+    let (outcome, dir, elapsed) = run_system(&shell(&script, 0.5));
+    assert_error(
+        &outcome,
+        dir.path(),
+        "at step 0",
+        "it did not answer within 0.5 s (its step_timeout)",
+    );
+    assert!(elapsed < Duration::from_secs(20), "took {elapsed:?}");
+    assert!(
+        !running(system) && !running(helper),
+        "the system or its helper was left running"
+    );
+}
+
 #[test]
 fn an_interrupted_run_reaps_its_system() {
     let marker = "sleep 32.75";

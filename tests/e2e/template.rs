@@ -233,6 +233,47 @@ fn a_misspelt_field_is_refused_when_rendered() {
     assert!(!out.exists(), "nothing is written");
 }
 
+/// A page whose loops would run for hours, or whose output would fill the
+/// memory, runs out of its budget instead: exit 2 at the loop's line within
+/// the caps, and nothing written.
+// See: session 17's outside check.
+#[test]
+fn a_template_that_would_run_for_hours_is_refused_within_the_caps() {
+    let tmp = temp_dir();
+    for (name, body) in [
+        // 10^10 iterations: a quarter of an hour at about 10^7 a second.
+        (
+            "loops",
+            "{% for i in range(100000) %}{% for j in range(100000) %}x{% endfor %}{% endfor %}",
+        ),
+        // 10^5 copies of the results: gigabytes.
+        ("copies", "{% for i in range(100000) %}{{ results }}{% endfor %}"),
+    ] {
+        let set = tmp.path().join(name);
+        template_set(
+            &set,
+            &[(
+                "report.html",
+                &format!("{{% extends \"sightline/report.html\" %}}\n{{% block footer %}}{body}{{% endblock %}}\n"),
+            )],
+        );
+        let out = tmp.path().join(format!("out-{name}"));
+        let refused = crate::support::sightline_capped(
+            crate::support::root(),
+            ["run", SMALL_FIELD, "--out", arg(&out), "--template", arg(&set)],
+        );
+        refused.assert_exit(2);
+        assert!(
+            refused.stderr.starts_with(&format!("{}/report.html:2", set.display()))
+                && refused
+                    .stderr
+                    .contains("failed to render the page: engine ran out of fuel"),
+            "{refused}"
+        );
+        assert!(!out.exists(), "nothing is written");
+    }
+}
+
 /// The example set in the docs renders both pages.
 #[test]
 fn the_example_template_set_renders_both_pages() {
