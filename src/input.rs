@@ -39,13 +39,19 @@ impl Input {
 /// too. Prints every error (as `file:line:col: error: …`) and returns `None` if
 /// any file is invalid; prints the warnings of each valid file (as
 /// `file:line:col: warning: …`).
-pub fn load_all(paths: &[PathBuf], seed: Option<u64>, record: bool, osi: bool) -> Option<Vec<Input>> {
+pub fn load_all(
+    paths: &[PathBuf],
+    seed: Option<u64>,
+    (record, osi): (bool, bool),
+    processes: Option<u32>,
+) -> Option<Vec<Input>> {
     let disk = |path: &Path| read_regular(path, DATA_LIMIT);
     let options = Options {
         seed,
         loader: Some(&disk),
         record,
         osi,
+        processes,
     };
     let mut inputs = Vec::new();
     let mut valid = true;

@@ -276,3 +276,37 @@ proptest! {
         prop_assert_eq!(error.location.line, line_of(&text, &format!("{key}: {value:e}")));
     }
 }
+
+/// A check over seeds multiplies its points' work: the urban junction's eight
+/// points at 10 000 seeds would take days in one process, so `run` (one
+/// process) refuses it at the check's `seeds`, a run split into enough shards
+/// takes it, and a compilation that simulates nothing (a merge, a replay) does
+/// not judge it.
+#[test]
+fn the_work_of_a_run_counts_its_seeds_and_is_split_by_shards() {
+    let text = with(
+        URBAN,
+        "check: { metric: packet_delivery_ratio, at_least: 0.95 }",
+        "check: { metric: packet_delivery_ratio, at_least: 0.95, seeds: 10000 }",
+    );
+    let processes = |processes| Options {
+        processes,
+        ..Default::default()
+    };
+    let refused = compile("s.yaml", &text, &processes(Some(1))).expect_err("too much for one process");
+    let [error] = &refused.0[..] else {
+        panic!("one error: {refused}")
+    };
+    assert!(matches!(error.kind, ErrorKind::TooLarge(_)), "{error}");
+    assert_eq!(error.path, "requirements[4].check.seeds");
+    assert_eq!(error.location.line, line_of(&text, "seeds: 10000"));
+    let message = error.to_string();
+    assert!(
+        message.contains("8 sweep points, each at the seeds") && message.contains("--shard K/N"),
+        "{message}"
+    );
+    assert!(compile("s.yaml", &text, &processes(Some(100))).is_ok());
+    assert!(compile("s.yaml", &text, &processes(None)).is_ok());
+    // The file as bundled: well within one process.
+    assert!(compile("s.yaml", URBAN, &processes(Some(1))).is_ok());
+}

@@ -8,7 +8,7 @@ use crate::output::say;
 
 /// Validates every file; prints one line per valid file, every error otherwise.
 pub fn check(files: &[PathBuf]) -> Exit {
-    let Some(inputs) = load_all(files, None, false, false) else {
+    let Some(inputs) = load_all(files, None, (false, false), Some(1)) else {
         return Exit::Invalid;
     };
     for input in inputs {

@@ -25,7 +25,7 @@ const EXPORT_SET: &[&str] = &[SCENARIO_FILE, MAP_FILE];
 /// Exports the requested point of the scenario; [`Exit::Invalid`] (nothing
 /// written) when it cannot be exported.
 pub fn export(args: &ExportArgs) -> anyhow::Result<Exit> {
-    let Some(input) = load_all(std::slice::from_ref(&args.file), args.seed, false, false)
+    let Some(input) = load_all(std::slice::from_ref(&args.file), args.seed, (false, false), None)
         .and_then(|inputs| inputs.into_iter().next())
     else {
         return Ok(Exit::Invalid);

@@ -44,8 +44,8 @@ enum Stop {
 /// Searches, then writes `falsify.json`, `junit.xml`, `report.html` and, when
 /// a case breaks a requirement, `counterexample.yaml`.
 pub fn falsify(args: &FalsifyArgs) -> anyhow::Result<Exit> {
-    let input =
-        load_all(std::slice::from_ref(&args.file), None, false, false).and_then(|inputs| inputs.into_iter().next());
+    let input = load_all(std::slice::from_ref(&args.file), None, (false, false), Some(1))
+        .and_then(|inputs| inputs.into_iter().next());
     let templates = templates(args.template.as_deref(), Page::Falsify);
     let (Some(input), Some(templates)) = (input, templates) else {
         return Ok(Exit::Invalid);
@@ -212,6 +212,7 @@ fn simulate_case(path: &str, text: &str, vary: &[Vary], indices: &[u64]) -> Resu
         loader: Some(&disk),
         record: false,
         osi: false,
+        processes: Some(1),
     };
     let case = sightline_dsl::compile(path, &case_text, &options).map_err(|errors| {
         Stop::Invalid(format!(

@@ -218,7 +218,7 @@ fn assemble_all(shards: Vec<(PathBuf, Shard)>) -> Result<Vec<Merged>, String> {
         if let Some(missing) = (1..=first.count).find(|k| !parts.contains_key(k)) {
             return Err(format!("{file}: error: shard {missing}/{} is missing", first.count));
         }
-        let mut inputs = load_all(&[PathBuf::from(file)], request.seed, request.record, false)
+        let mut inputs = load_all(&[PathBuf::from(file)], request.seed, (request.record, false), None)
             .ok_or_else(|| format!("{file}: error: the scenario no longer compiles (see above)"))?;
         let input = inputs.pop().expect("one input per file");
         let now = inputs_of(&input);

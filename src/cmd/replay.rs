@@ -50,6 +50,7 @@ pub fn replay(file: &Path) -> Exit {
         loader: Some(&loader),
         record: recording.scenario.record_flag,
         osi: false,
+        processes: None,
     };
     let scenario = match sightline_dsl::compile(&recording.scenario.file, &recording.scenario.text, &options) {
         Ok(scenario) => scenario,

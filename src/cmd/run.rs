@@ -27,7 +27,12 @@ pub fn run(args: &RunArgs) -> anyhow::Result<Exit> {
         record: args.record || args.osi,
         osi: args.osi,
     };
-    let inputs = load_all(&args.files, request.seed, request.record, request.osi);
+    let inputs = load_all(
+        &args.files,
+        request.seed,
+        (request.record, request.osi),
+        Some(args.shard.map_or(1, |shard| shard.count)),
+    );
     let templates = templates(args.template.as_deref(), Page::Run);
     let (Some(inputs), Some(templates)) = (inputs, templates) else {
         return Ok(Exit::Invalid);

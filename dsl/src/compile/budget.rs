@@ -1,13 +1,14 @@
 //! The resource model (`docs/limits.md`): each quantity that sizes a point's
 //! work or memory, computed as a product in f64 from the compiled setup before
 //! anything is simulated or allocated, and refused with its numbers when it
-//! exceeds its limit. Together with the ranges of `raw::range` and the limits
-//! on grid cells, steps, sensors, sweep points, runs and seeds, these bound
-//! every loop and allocation of a run.
+//! exceeds its limit; then the work of the whole run, every point at the seeds
+//! its checks need, per process ([`run_budget`]). Together with the ranges of
+//! `raw::range` and the limits on grid cells, steps, sensors, sweep points,
+//! runs and seeds, these bound every loop and allocation of a run.
 
 use super::context::Context;
 use crate::error::ErrorKind;
-use crate::model::{Experiment, Field, Grid, Layout, Point, Setup, Traffic, World, grid_every};
+use crate::model::{Check, Experiment, Field, Grid, Layout, Point, Requirement, Setup, Traffic, World, grid_every};
 use crate::path::Path;
 
 /// The most agents in one run: declared, imported and the traffic expected to
@@ -86,13 +87,7 @@ pub(super) fn recording_budget(
         let Experiment::World(world) = &point.setup.experiment else {
             return None;
         };
-        let duration = world.step * world.steps as f64;
-        let (vehicles, pedestrians, _) = world
-            .traffic
-            .as_ref()
-            .map(|t| expected_traffic(t, world, duration))
-            .unwrap_or_default();
-        let agent_steps = (world.agents.len() as f64 + vehicles + pedestrians) * world.steps as f64;
+        let agent_steps = agent_count(world) * world.steps as f64;
         let grids = match (&point.setup.occupancy, &world.perception, grid_every(point, grid_rate)) {
             (Some(occupancy), Some(perception), Some(every)) => {
                 let per_grid = if agent_grids {
@@ -133,6 +128,83 @@ pub(super) fn recording_budget(
     )
 }
 
+/// The most work one process may do, in points at the per-point work limits
+/// (agent-steps, grid cells crossed by rays, rays cast at objects, mass
+/// vectors drawn): the sum, over the sweep points and the seeds their checks
+/// run them at, of each point's [`load`].
+pub const MAX_RUN_LOAD: f64 = 100.0;
+
+/// A point's work: its largest share of a per-point work limit (1 at the
+/// limit).
+fn load(setup: &Setup) -> f64 {
+    let grid = setup.occupancy.as_ref().map(|o| &o.grid);
+    match (&setup.experiment, grid) {
+        (Experiment::Field(field), Some(grid)) => field_draws(field, grid) / MAX_FIELD_DRAWS,
+        (Experiment::Field(_), None) => 0.0,
+        (Experiment::World(world), grid) => {
+            let (agents, steps) = (agent_count(world), world.steps as f64);
+            let moving = agents * steps * runs(world) / MAX_AGENT_STEPS;
+            let rays = grid.and_then(|grid| ray_work(world, grid));
+            rays.map_or(moving, |rays| {
+                moving
+                    .max(rays.cells * steps / MAX_RAY_CELLS)
+                    .max(rays.fans * agents * steps / MAX_SIGHTING_RAYS)
+            })
+        }
+    }
+}
+
+/// Checks the work of simulating `points`, each at its own seed and at the
+/// seeds the checks over seeds among `requirements` that apply to it need,
+/// split over `processes`: at most [`MAX_RUN_LOAD`] a process. Charged to
+/// the check with the most seeds when there is one, else to `sweep` (the
+/// sweep's key in the file).
+pub(super) fn run_budget(
+    ctx: &mut Context<'_>,
+    points: &[Point],
+    requirements: &[Requirement],
+    (processes, sweep): (u32, &Path),
+) -> bool {
+    let seeds = |r: &Requirement| match &r.check {
+        Check::Metric {
+            over_seeds: Some(over), ..
+        } => over.seeds,
+        _ => 1,
+    };
+    let mut replicates = vec![1_u32; points.len()];
+    for requirement in requirements {
+        for &p in &requirement.points {
+            replicates[p] = replicates[p].max(seeds(requirement));
+        }
+    }
+    let total: f64 = (points.iter().zip(&replicates))
+        .map(|(point, &n)| load(&point.setup) * f64::from(n))
+        .sum();
+    let most_seeds = (requirements.iter().enumerate()).max_by_key(|(_, r)| seeds(r));
+    let at = match most_seeds {
+        Some((i, r)) if seeds(r) > 1 => Path::root().key("requirements").index(i).key("check").key("seeds"),
+        _ => sweep.clone(),
+    };
+    let processes = f64::from(processes.max(1));
+    limit(
+        ctx,
+        &at,
+        total / processes,
+        MAX_RUN_LOAD,
+        &format!(
+            "points' worth of work in a process ({}, each at the seeds its checks need{}; a point at the per-point \
+             work limits counts 1)",
+            match points.len() {
+                1 => "1 sweep point".to_string(),
+                n => format!("{n} sweep points"),
+            },
+            if processes > 1.0 { ", shared by the shards" } else { "" }
+        ),
+        "sweep fewer points, check over fewer `seeds`, or split the run into shards (`sightline run --shard K/N`, \
+         each held to the limit, then `sightline merge`)",
+    )
+}
+
 /// Checks every product of the resource model of one point's setup; returns
 /// whether all are within their limits.
 pub(super) fn within_budget(ctx: &mut Context<'_>, setup: &Setup) -> bool {
@@ -145,15 +217,10 @@ pub(super) fn within_budget(ctx: &mut Context<'_>, setup: &Setup) -> bool {
 }
 
 fn field_budget(ctx: &mut Context<'_>, field: &Field, grid: &Grid) -> bool {
-    let sensors = match &field.layout {
-        Layout::Positions(positions) => positions.len() as f64,
-        Layout::Random { count } => *count as f64,
-    };
-    let in_range = (std::f64::consts::PI * (field.range / grid.cell).powi(2)).min(grid.cells() as f64);
     limit(
         ctx,
         &Path::root().key("field").key("sensors"),
-        sensors * in_range,
+        field_draws(field, grid),
         MAX_FIELD_DRAWS,
         "mass vectors drawn at a point (sensors × cells within range)",
         "use fewer sensors, a shorter range or larger cells",
@@ -162,8 +229,7 @@ fn field_budget(ctx: &mut Context<'_>, field: &Field, grid: &Grid) -> bool {
 
 fn world_budget(ctx: &mut Context<'_>, world: &World, grid: Option<&Grid>) -> bool {
     let root = Path::root();
-    let duration = world.step * world.steps as f64;
-    let runs = world.semantic.as_ref().map_or(1.0, |s| f64::from(s.runs));
+    let runs = runs(world);
     let lanes = world.roads.iter().flat_map(|r| &r.lanes);
     let lane_points: f64 = lanes.clone().map(|l| l.points().len() as f64).sum();
     let lane_length: f64 = lanes.map(|l| l.length()).sum();
@@ -172,8 +238,7 @@ fn world_budget(ctx: &mut Context<'_>, world: &World, grid: Option<&Grid>) -> bo
         .iter()
         .map(|a| a.motion.path().map_or(1.0, |p| p.points().len() as f64))
         .sum();
-    let generated = world.traffic.as_ref().map(|t| expected_traffic(t, world, duration));
-    let (vehicles, pedestrians, traffic_points) = generated.unwrap_or_default();
+    let (vehicles, pedestrians, traffic_points) = generated_traffic(world);
     let agents = world.agents.len() as f64 + vehicles + pedestrians;
     // The agents are charged to what contributes most of them.
     let agents_at = if vehicles >= pedestrians.max(world.agents.len() as f64) {
@@ -263,28 +328,13 @@ fn world_budget(ctx: &mut Context<'_>, world: &World, grid: Option<&Grid>) -> bo
 /// their fans cast at the `agents` of the run (charged where the agents are),
 /// at most one fan per sensor and agent a step.
 fn rays_budget(ctx: &mut Context<'_>, world: &World, grid: &Grid, (agents, agents_at): (f64, &Path)) -> bool {
-    let Some(perception) = &world.perception else {
-        return true;
-    };
-    let diagonal = (grid.cols as f64).hypot(grid.rows as f64) * grid.cell;
-    let mut rays = 0.0;
-    let mut cells = 0.0;
-    let mut fans = 0.0;
-    let mut busiest: Option<(&str, f64)> = None;
-    for sensor in perception.cooperating.iter().flat_map(|&a| &world.agents[a].sensors) {
-        let cast = (sensor.fov / sensor.ray_spacing).ceil().max(1.0);
-        rays += cast;
-        // A ray crosses about one cell per cell side along it, in both axes.
-        cells += cast * 2.0 * sensor.range.min(diagonal) / grid.cell;
-        // A fan spans an object's extent, less than a half turn.
-        fans += (std::f64::consts::PI.min(sensor.fov) / sensor.ray_spacing)
-            .ceil()
-            .clamp(FAN_RAYS.0, FAN_RAYS.1);
-        if busiest.is_none_or(|(_, most)| cast > most) {
-            busiest = Some((&sensor.model, cast));
-        }
-    }
-    let Some((model, _)) = busiest else {
+    let Some(RayWork {
+        rays,
+        cells,
+        fans,
+        busiest: Some(model),
+    }) = ray_work(world, grid)
+    else {
         return true;
     };
     let at = Path::root().key("sensor_models").key(model).key("ray_spacing_deg");
@@ -312,9 +362,81 @@ fn rays_budget(ctx: &mut Context<'_>, world: &World, grid: &Grid, (agents, agent
     )
 }
 
+/// What the cooperating agents' sensors cast at each step of a world.
+struct RayWork<'w> {
+    /// Rays cast.
+    rays: f64,
+    /// Grid cells those rays cross.
+    cells: f64,
+    /// Rays cast at one object by every sensor's fan.
+    fans: f64,
+    /// The sensor model that casts the most rays (`None`: no cooperating sensor).
+    busiest: Option<&'w str>,
+}
+
+/// The rays the cooperating agents of `world` cast per step over `grid`;
+/// `None` when the world measures no collective perception.
+fn ray_work<'w>(world: &'w World, grid: &Grid) -> Option<RayWork<'w>> {
+    let perception = world.perception.as_ref()?;
+    let diagonal = (grid.cols as f64).hypot(grid.rows as f64) * grid.cell;
+    let mut work = RayWork {
+        rays: 0.0,
+        cells: 0.0,
+        fans: 0.0,
+        busiest: None,
+    };
+    let mut most = 0.0;
+    for sensor in perception.cooperating.iter().flat_map(|&a| &world.agents[a].sensors) {
+        let cast = (sensor.fov / sensor.ray_spacing).ceil().max(1.0);
+        work.rays += cast;
+        // A ray crosses about one cell per cell side along it, in both axes.
+        work.cells += cast * 2.0 * sensor.range.min(diagonal) / grid.cell;
+        // A fan spans an object's extent, less than a half turn.
+        work.fans += (std::f64::consts::PI.min(sensor.fov) / sensor.ray_spacing)
+            .ceil()
+            .clamp(FAN_RAYS.0, FAN_RAYS.1);
+        if work.busiest.is_none() || cast > most {
+            (work.busiest, most) = (Some(sensor.model.as_str()), cast);
+        }
+    }
+    Some(work)
+}
+
 /// The fewest and the most rays a fan casts at an object (the engine's
 /// `world::fan`).
 const FAN_RAYS: (f64, f64) = (10.0, 360.0);
+
+/// The mass vectors the field experiment draws at a point: sensors × the
+/// cells within a sensor's range.
+fn field_draws(field: &Field, grid: &Grid) -> f64 {
+    let sensors = match &field.layout {
+        Layout::Positions(positions) => positions.len() as f64,
+        Layout::Random { count } => *count as f64,
+    };
+    let in_range = (std::f64::consts::PI * (field.range / grid.cell).powi(2)).min(grid.cells() as f64);
+    sensors * in_range
+}
+
+/// The runs a world's point pools (`semantic.runs`, else 1).
+fn runs(world: &World) -> f64 {
+    world.semantic.as_ref().map_or(1.0, |s| f64::from(s.runs))
+}
+
+/// The agents of a run of `world`: declared, imported and the traffic
+/// expected.
+fn agent_count(world: &World) -> f64 {
+    let (vehicles, pedestrians, _) = generated_traffic(world);
+    world.agents.len() as f64 + vehicles + pedestrians
+}
+
+/// The vehicles and pedestrians `world`'s traffic is expected to generate
+/// over its run, and the path points they hold (see [`expected_traffic`]).
+fn generated_traffic(world: &World) -> (f64, f64, f64) {
+    let duration = world.step * world.steps as f64;
+    (world.traffic.as_ref())
+        .map(|t| expected_traffic(t, world, duration))
+        .unwrap_or_default()
+}
 
 /// The vehicles and pedestrians the traffic is expected to generate over a
 /// run, and the path points they hold: on each route its initial population

@@ -5,6 +5,7 @@ use std::collections::{BTreeMap, HashMap, HashSet};
 use std::sync::Arc;
 use std::{fmt, io};
 
+use super::budget::run_budget;
 use super::context::{Context, has, locate_key};
 use super::ignored::ignored;
 use super::kind::{self, Kind};
@@ -42,6 +43,11 @@ pub struct Options<'a> {
     /// The recorded point is also written as an OSI trace (the CLI's
     /// `--osi`): the resource model then bounds the trace's objects too.
     pub osi: bool,
+    /// The scenario is to be simulated by this many processes (`run`: 1,
+    /// `run --shard K/N`: N): the resource model then bounds the work of each
+    /// (`budget::MAX_RUN_LOAD`). `None` where nothing is simulated (a merge,
+    /// a replay) or only one point (an export).
+    pub processes: Option<u32>,
 }
 
 impl fmt::Debug for Options<'_> {
@@ -51,6 +57,7 @@ impl fmt::Debug for Options<'_> {
             .field("loader", &self.loader.map(|_| "…"))
             .field("record", &self.record)
             .field("osi", &self.osi)
+            .field("processes", &self.processes)
             .finish()
     }
 }
@@ -145,6 +152,10 @@ fn compile_inner(file: &str, source: &str, options: &Options<'_>) -> Result<Scen
     };
     let points = compiled.as_ref().map(Configurations::points);
     let requirements = requirements(&mut ctx, &raw.requirements, points);
+    if let (Some(points), Some(processes)) = (points, options.processes) {
+        let sweep = Path::root().key(if raw.sweeps.is_empty() { "sweep" } else { "sweeps" });
+        run_budget(&mut ctx, points, &requirements, (processes, &sweep));
+    }
     let references = references(&mut ctx, &raw.references, points);
     let start = start(&mut ctx, raw.time.as_ref());
     let record = record(&mut ctx, raw.record.as_ref(), options.record, points, start);
