@@ -173,15 +173,7 @@ fn a_new_set_replaces_the_previous_one_whole() {
     sightline(["run", SMALL_FIELD, "--out", arg(&out)]).assert_exit(0);
     assert_evidence_files(&out);
     assert!(!out.join(RECORDING).exists());
-    let search = [
-        "falsify",
-        "scenarios/urban-falsify.yaml",
-        "--cases",
-        "4",
-        "--out",
-        arg(&out),
-    ];
-    sightline(search).assert_exit(1);
+    sightline(search_into(&out)).assert_exit(1);
     assert_eq!(
         names(&out),
         ["counterexample.yaml", "falsify.json", "junit.xml", "report.html"].map(PathBuf::from)
@@ -200,6 +192,19 @@ fn a_new_set_replaces_the_previous_one_whole() {
     assert_eq!(names(&out), expected.map(PathBuf::from));
 }
 
+/// A short search of the bundled falsify scenario writing into `out` (it
+/// finds a counterexample: exit 1).
+fn search_into(out: &Path) -> [&str; 6] {
+    [
+        "falsify",
+        "scenarios/urban-falsify.yaml",
+        "--cases",
+        "4",
+        "--out",
+        arg(out),
+    ]
+}
+
 /// A set never replaces a file the command reads: the counterexample of a
 /// search, run with `--out` its own folder as its header's command invites,
 /// would be removed by the run's commit (a search with `--budget` may not find
@@ -210,15 +215,7 @@ fn a_new_set_replaces_the_previous_one_whole() {
 fn a_set_that_would_replace_the_scenario_it_runs_is_refused() {
     let tmp = temp_dir();
     let out = tmp.path().join("search");
-    let search = [
-        "falsify",
-        "scenarios/urban-falsify.yaml",
-        "--cases",
-        "4",
-        "--out",
-        arg(&out),
-    ];
-    sightline(search).assert_exit(1);
+    sightline(search_into(&out)).assert_exit(1);
     let before = snapshot(&out);
     let counterexample = out.join("counterexample.yaml");
     for command in ["run", "merge"] {

@@ -204,11 +204,10 @@ fn running(marker: &str) -> bool {
     })
 }
 
-#[test]
-fn a_system_past_its_step_timeout_is_an_error_and_is_killed() {
-    // A sleep no other test starts, to find it.
-    let marker = "sleep 31.25";
-    let (outcome, dir, elapsed) = run_system(&shell(&format!("{HELLO}; exec {marker}"), 0.5));
+/// Runs the system `script` (a shell script) with a step timeout of 0.5 s,
+/// which it outlasts at step 0: an error, within 20 s.
+fn run_past_its_timeout(script: &str) {
+    let (outcome, dir, elapsed) = run_system(&shell(script, 0.5));
     assert_error(
         &outcome,
         dir.path(),
@@ -216,6 +215,13 @@ fn a_system_past_its_step_timeout_is_an_error_and_is_killed() {
         "it did not answer within 0.5 s (its step_timeout)",
     );
     assert!(elapsed < Duration::from_secs(20), "took {elapsed:?}");
+}
+
+#[test]
+fn a_system_past_its_step_timeout_is_an_error_and_is_killed() {
+    // A sleep no other test starts, to find it.
+    let marker = "sleep 31.25";
+    run_past_its_timeout(&format!("{HELLO}; exec {marker}"));
     assert!(!running(marker), "the system was left running");
 }
 
@@ -226,15 +232,7 @@ fn a_system_past_its_step_timeout_is_an_error_and_is_killed() {
 #[test]
 fn a_helper_the_system_started_is_killed_with_it() {
     let (system, helper) = ("sleep 33.5", "sleep 34.25");
-    let script = format!("{HELLO}; {helper} & exec {system}");
-    let (outcome, dir, elapsed) = run_system(&shell(&script, 0.5));
-    assert_error(
-        &outcome,
-        dir.path(),
-        "at step 0",
-        "it did not answer within 0.5 s (its step_timeout)",
-    );
-    assert!(elapsed < Duration::from_secs(20), "took {elapsed:?}");
+    run_past_its_timeout(&format!("{HELLO}; {helper} & exec {system}"));
     assert!(
         !running(system) && !running(helper),
         "the system or its helper was left running"
