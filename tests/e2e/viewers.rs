@@ -19,6 +19,7 @@ use std::process::Command;
 use std::sync::OnceLock;
 
 use crate::bundled::every_run;
+use crate::record::messages;
 use crate::support::{RECORDING, arg, read, root, sightline, temp_dir};
 
 /// Set by `.ci/run` once `npm ci` has installed `ci/viewers/`: the check must run.
@@ -486,14 +487,7 @@ fn the_layouts_plots_find_numbers() {
     for path in paths {
         let (topic, fields) = path.split_once('.').unwrap();
         let found = recorded.iter().any(|(_, recording)| {
-            mcap::MessageStream::new(recording)
-                .unwrap()
-                .map(|message| message.unwrap())
-                .filter(|message| message.channel.topic == topic)
-                .any(|message| {
-                    let value: serde_json::Value = serde_json::from_slice(&message.data).unwrap();
-                    resolve(&value, fields).iter().any(|v| v.is_number())
-                })
+            (messages(recording, topic).iter()).any(|message| resolve(message, fields).iter().any(|v| v.is_number()))
         });
         assert!(found, "the layout plots {path}, which finds no number in any recording");
     }
