@@ -2,9 +2,11 @@
 //! into an MCAP file as the engine runs, then every point's outcome and every
 //! verdict.
 //!
-//! The recorder encodes each message as the engine hands it a step; a thread
+//! The recorder takes each message as the engine hands it a step; a thread
 //! of its own compresses and writes them ([`container`]), concurrently with
-//! the simulation.
+//! the simulation. The messages of every step that cost most to encode (the
+//! frames, speeds, detections and grids) are encoded on that thread too: the
+//! recorder hands it what they hold, the simulation goes on.
 //!
 //! Memory stays bounded: each message is built, handed to the writer thread
 //! in a batch and dropped once written into the current chunk (the MCAP
@@ -21,6 +23,7 @@
 
 use std::collections::BTreeSet;
 use std::io::Write;
+use std::sync::Arc;
 
 use mcap::{Compression, WriteOptions};
 use sightline_dsl::{Agent, Check, Experiment, Grid as CellGrid, JointPart, Metric, Record, RecordedPoints, Scenario};
@@ -168,11 +171,12 @@ pub struct Recorder<'s, W> {
     /// Agents `/scene/agents` shows, in order.
     agents_shown: Vec<usize>,
     /// Per agent, what its `/tf` and `/sightline/speeds` JSON holds at every step.
-    agent_json: Vec<agents::AgentJson>,
+    /// Shared with the writer thread, which encodes those messages.
+    agent_json: Arc<[agents::AgentJson]>,
     /// Each agent's id as a JSON string, for the semantic records.
     ids: records::Ids,
     /// Every agent's state at the latest step (`None`: not in the scene).
-    last_states: Vec<Option<AgentState>>,
+    last_states: Arc<[Option<AgentState>]>,
     /// Requirements at the recorded point whose metric the steps give.
     signalled: Vec<(String, Metric, sightline_dsl::Bound)>,
     running: Running,
@@ -206,9 +210,9 @@ impl<'s, W: Write + Send + 'static> Recorder<'s, W> {
             shown: BTreeSet::new(),
             fields_shown: Vec::new(),
             agents_shown: Vec::new(),
-            agent_json: Vec::new(),
+            agent_json: Arc::new([]),
             ids: records::Ids::default(),
-            last_states: Vec::new(),
+            last_states: Arc::new([]),
             signalled: Vec::new(),
             running: Running {
                 world: None,
@@ -324,9 +328,9 @@ impl<W> Recorder<'_, W> {
         self.shown.clear();
         self.fields_shown.clear();
         self.agents_shown.clear();
-        self.agent_json.clear();
+        self.agent_json = Arc::new([]);
         self.ids = records::Ids::default();
-        self.last_states.clear();
+        self.last_states = Arc::new([]);
         self.agents.clear();
         self.fields_of_view.clear();
         if let Some(world) = world {

@@ -55,4 +55,19 @@ impl<W> Recorder<'_, W> {
         self.out
             .message(topic, schema, log_time, |out| serde_json::to_writer(out, message));
     }
+
+    /// [`publish`](Self::publish) of a message the writer thread encodes
+    /// (holding about `held` bytes): encoding off the simulation's thread.
+    pub(super) fn publish_deferred(
+        &mut self,
+        topic: &str,
+        schema: SchemaSpec,
+        log_time: u64,
+        held: usize,
+        message: impl Serialize + Send + 'static,
+    ) {
+        self.out.deferred(topic, schema, log_time, held, move |out| {
+            serde_json::to_writer(out, &message)
+        });
+    }
 }

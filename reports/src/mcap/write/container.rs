@@ -1,9 +1,11 @@
 //! The recording's MCAP container, written on a thread of its own: the
-//! recorder encodes each message into a batch and hands full batches to a
-//! writer thread over a bounded channel; the thread registers the channels and
-//! schemas, compresses the chunks (lz4), computes their CRCs and writes the
-//! file, in the order the recorder gave them, so the bytes are the ones
-//! writing in place gives.
+//! recorder encodes each message into a batch, or hands the thread what it
+//! needs to encode it ([`Container::deferred`]: the messages of every step,
+//! encoded off the simulation's thread), and hands full batches to a writer
+//! thread over a bounded channel; the thread registers the channels and
+//! schemas, encodes the deferred messages, compresses the chunks (lz4),
+//! computes their CRCs and writes the file, in the order the recorder gave
+//! them, so the bytes are the ones writing in place gives.
 //!
 //! The thread writes without seeking back ([`NoSeek`]: each chunk is built in
 //! memory and written whole), so what reaches the output is the file in order
@@ -11,8 +13,9 @@
 //! ([`Sha256Writer`](crate::Sha256Writer)).
 //!
 //! Memory stays bounded: at most [`QUEUED`] batches wait for the thread, each
-//! about [`BATCH_BYTES`] (or one message, when larger), and the thread hands
-//! each batch back emptied, to be filled again.
+//! about [`BATCH_BYTES`] (or one message, when larger; a deferred message
+//! counts what it holds), and the thread hands each batch back emptied, to be
+//! filled again.
 
 use std::any::Any;
 use std::borrow::Cow;
@@ -52,13 +55,19 @@ pub(super) struct Container<W> {
     failure: Option<WriteError>,
 }
 
-/// Messages and attachments, encoded, for the thread to write in order.
+/// Messages and attachments, encoded or to encode, for the thread to write in
+/// order.
 #[derive(Default)]
 struct Batch {
     /// The entries' bytes, one after the other.
     bytes: Vec<u8>,
+    /// The bytes the deferred messages hold, about.
+    held: usize,
     entries: Vec<Entry>,
 }
+
+/// How the thread encodes a deferred message: it owns what it needs.
+type Encode = Box<dyn FnOnce(&mut Vec<u8>) -> serde_json::Result<()> + Send>;
 
 /// What the thread writes; the ones with `len` take the next `len` bytes of
 /// their batch.
@@ -68,6 +77,12 @@ enum Entry {
     Channel { topic: String, schema: SchemaSpec },
     /// A message on channel index `channel`.
     Message { channel: usize, log_time: u64, len: usize },
+    /// A message on channel index `channel` that the thread encodes.
+    Deferred {
+        channel: usize,
+        log_time: u64,
+        encode: Encode,
+    },
     /// A file attached.
     Attachment {
         name: String,
@@ -150,6 +165,33 @@ impl<W> Container<W> {
         });
     }
 
+    /// Adds a message on `topic` (created with `schema` on first use) at
+    /// `log_time` nanoseconds that the writer thread encodes with `encode`,
+    /// in its place among the others: encoding off the caller's thread.
+    /// `encode` owns what it needs, about `held` bytes (counted toward the
+    /// batch's size); a failure to encode stops the recording, reported by
+    /// [`finish`](Self::finish).
+    pub(super) fn deferred(
+        &mut self,
+        topic: &str,
+        schema: SchemaSpec,
+        log_time: u64,
+        held: usize,
+        encode: impl FnOnce(&mut Vec<u8>) -> serde_json::Result<()> + Send + 'static,
+    ) {
+        if self.to_thread.is_none() || self.failure.is_some() {
+            return;
+        }
+        let channel = self.channel(topic, schema);
+        self.batch.held += held;
+        self.batch.entries.push(Entry::Deferred {
+            channel,
+            log_time,
+            encode: Box::new(encode),
+        });
+        self.sent_when_full();
+    }
+
     /// The first message that did not encode, taken.
     pub(super) fn take_failure(&mut self) -> Result<(), WriteError> {
         self.failure.take().map_or(Ok(()), Err)
@@ -185,7 +227,7 @@ impl<W> Container<W> {
     }
 
     fn sent_when_full(&mut self) {
-        if self.batch.bytes.len() >= BATCH_BYTES {
+        if self.batch.bytes.len() + self.batch.held >= BATCH_BYTES {
             self.send();
         }
     }
@@ -232,8 +274,10 @@ fn write_batches<W: Write>(
     let mut schemas: BTreeMap<&'static str, u16> = BTreeMap::new();
     let mut channels: Vec<u16> = Vec::new();
     let mut sequence = 0;
+    // A deferred message's bytes, encoded.
+    let mut encoded = Vec::new();
     for mut batch in batches {
-        let Batch { bytes, entries } = &mut batch;
+        let Batch { bytes, held, entries } = &mut batch;
         let mut rest = bytes.as_slice();
         let mut take = |len: usize| {
             let (data, after) = rest.split_at(len);
@@ -255,13 +299,17 @@ fn write_batches<W: Write>(
                 }
                 Entry::Message { channel, log_time, len } => {
                     sequence += 1;
-                    let header = MessageHeader {
-                        channel_id: channels[channel],
-                        sequence,
-                        log_time,
-                        publish_time: log_time,
-                    };
-                    out.write_to_known_channel(&header, take(len))?;
+                    out.write_to_known_channel(&header(channels[channel], sequence, log_time), take(len))?;
+                }
+                Entry::Deferred {
+                    channel,
+                    log_time,
+                    encode,
+                } => {
+                    sequence += 1;
+                    encoded.clear();
+                    encode(&mut encoded)?;
+                    out.write_to_known_channel(&header(channels[channel], sequence, log_time), &encoded)?;
                 }
                 Entry::Attachment {
                     name,
@@ -278,11 +326,23 @@ fn write_batches<W: Write>(
             }
         }
         bytes.clear();
+        *held = 0;
         // The recorder may have gone (dropped unfinished); the batch then goes too.
         let _ = recycle.send(batch);
     }
     out.finish()?;
     Ok(out.into_inner().into_inner())
+}
+
+/// The header of message `sequence` on channel `channel_id`, published when
+/// logged.
+fn header(channel_id: u16, sequence: u32, log_time: u64) -> MessageHeader {
+    MessageHeader {
+        channel_id,
+        sequence,
+        log_time,
+        publish_time: log_time,
+    }
 }
 
 /// What a panic said, when it said it with a string.
@@ -336,12 +396,20 @@ mod tests {
         items
     }
 
-    /// `items` through a container into `out`.
+    /// `items` through a container into `out`: every third message deferred
+    /// (encoded by the thread), the others encoded in the batch.
     fn contained<W: Write + Send + 'static>(out: W, items: &[Item]) -> Result<W, WriteError> {
         let mut container = Container::start(out, options())?;
-        for item in items {
+        for (i, item) in items.iter().enumerate() {
             match item {
                 Item::Attachment(name, data) => container.attach(name, "application/xml", 5, data),
+                Item::Message(topic, schema, time, json) if i % 3 == 0 => {
+                    let json = json.clone();
+                    container.deferred(topic, *schema, *time, json.len(), move |out| {
+                        out.extend_from_slice(&json);
+                        Ok(())
+                    });
+                }
                 Item::Message(topic, schema, time, json) => {
                     container.written(topic, *schema, *time, |out| out.extend_from_slice(json));
                 }
@@ -403,6 +471,28 @@ mod tests {
             expected.len()
         );
         assert_eq!(hash, sha256_hex(&expected));
+    }
+
+    /// A deferred message that does not encode on the thread is the
+    /// recording's error.
+    #[test]
+    fn a_deferred_message_that_does_not_encode_is_the_recordings_error() {
+        let mut container = Container::start(Vec::new(), options()).unwrap();
+        for (i, item) in items().into_iter().enumerate() {
+            if let Item::Message(topic, schema, time, json) = item {
+                container.deferred(topic, schema, time, json.len(), move |out| {
+                    if i == 2_000 {
+                        return Err(serde::ser::Error::custom("a value that does not encode"));
+                    }
+                    out.extend_from_slice(&json);
+                    Ok(())
+                });
+            }
+        }
+        match container.finish() {
+            Err(WriteError::Json(error)) => assert_eq!(error.to_string(), "a value that does not encode"),
+            other => panic!("{:?}", other.map(|_| ())),
+        }
     }
 
     /// An output that fails, or panics, once it has taken `limit` bytes.

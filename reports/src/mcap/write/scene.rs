@@ -6,6 +6,7 @@
 
 use std::collections::BTreeSet;
 use std::f64::consts::{PI, TAU};
+use std::sync::Arc;
 
 use sightline_dsl::{Agent, AgentKind, Area, Grid as CellGrid, World};
 use sightline_engine::trace::{AgentState, Body, CooperatorStep, Vector};
@@ -42,19 +43,28 @@ impl<W> Recorder<'_, W> {
     /// (`/scene/fields_of_view`) and the agents' boxes (`/scene/agents`), each
     /// locked to its frame; then every agent's speed (`/sightline/speeds`).
     pub(super) fn publish_agents(&mut self, time: u64, step: usize, states: &[Option<AgentState>]) {
-        let pieces = &self.agent_json;
-        self.out.written(topic::TRANSFORMS, TRANSFORMS, time, |out| {
-            write_transforms(out, Time::from_nanos(time), states, pieces);
-        });
+        let states: Arc<[Option<AgentState>]> = states.into();
+        self.publish_transforms(time, &states);
         let present: Vec<usize> = (0..states.len()).filter(|&i| states[i].is_some()).collect();
         self.publish_fields_of_view(time, &present);
         self.publish_scene_agents(time, present);
-        let (point, pieces) = (self.record.point, &self.agent_json);
-        self.out.written(topic::SPEEDS, SPEEDS, time, |out| {
-            write_speeds(out, point, step, states, pieces);
+        let (point, pieces, held) = (self.record.point, Arc::clone(&self.agent_json), size_of_val(&*states));
+        let speeds = Arc::clone(&states);
+        self.out.deferred(topic::SPEEDS, SPEEDS, time, held, move |out| {
+            write_speeds(out, point, step, &speeds, &pieces);
+            Ok(())
         });
-        self.last_states.clear();
-        self.last_states.extend_from_slice(states);
+        self.last_states = states;
+    }
+
+    /// `/tf` of the agents at `states`, encoded by the writer thread.
+    fn publish_transforms(&mut self, time: u64, states: &Arc<[Option<AgentState>]>) {
+        let (states, pieces, held) = (Arc::clone(states), Arc::clone(&self.agent_json), size_of_val(&**states));
+        self.out
+            .deferred(topic::TRANSFORMS, TRANSFORMS, time, held, move |out| {
+                write_transforms(out, Time::from_nanos(time), &states, &pieces);
+                Ok(())
+            });
     }
 
     /// What [`publish_agents`](Self::publish_agents) writes of each agent at
@@ -179,7 +189,8 @@ impl<W> Recorder<'_, W> {
                 );
             }
             let topic = topic::detections(&agent.id);
-            self.publish(&topic, SCENE, time, &SceneUpdate::replace(stamp, entities));
+            let held = size_of_val(entities.as_slice());
+            self.publish_deferred(&topic, SCENE, time, held, SceneUpdate::replace(stamp, entities));
         }
         for gone in self.shown.difference(&now).copied().collect::<Vec<_>>() {
             let topic = topic::detections(&self.agent_id(gone));
@@ -196,10 +207,7 @@ impl<W> Recorder<'_, W> {
     pub(super) fn clear_scene(&mut self, time: u64) {
         let stamp = Time::from_nanos(time);
         if self.last_states.iter().any(Option::is_some) {
-            let (states, pieces) = (&self.last_states, &self.agent_json);
-            self.out.written(topic::TRANSFORMS, TRANSFORMS, time, |out| {
-                write_transforms(out, stamp, states, pieces);
-            });
+            self.publish_transforms(time, &self.last_states.clone());
         }
         let agents = !std::mem::take(&mut self.agents_shown).is_empty();
         let fields = !std::mem::take(&mut self.fields_shown).is_empty();

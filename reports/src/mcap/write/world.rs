@@ -59,8 +59,11 @@ impl<W> Recorder<'_, W> {
             values[at + 1] = u;
         }
         let data: Vec<u8> = values.iter().flat_map(|v| v.to_le_bytes()).collect();
-        let grid = crop.grid(&grid, time, &["probability", "uncertainty"], Numeric::Float32, &data);
-        self.publish(topic::FUSED_GRID, GRID, time, &grid);
+        let grid = crop.grid(&grid, time, &["probability", "uncertainty"], Numeric::Float32, data);
+        self.out
+            .deferred(topic::FUSED_GRID, GRID, time, grid.data_len(), move |out| {
+                grid.write_json(out)
+            });
     }
 
     /// `/perception/<id>/grid`: each cooperating agent's own grid, cropped to
@@ -81,9 +84,10 @@ impl<W> Recorder<'_, W> {
                     Observed::Own => 3,
                 };
             }
-            let grid = crop.grid(&grid, time, &["state"], Numeric::Uint8, &data);
+            let grid = crop.grid(&grid, time, &["state"], Numeric::Uint8, data);
             let topic = topic::agent_grid(&self.agent_id(c.agent));
-            self.publish(&topic, GRID, time, &grid);
+            self.out
+                .deferred(&topic, GRID, time, grid.data_len(), move |out| grid.write_json(out));
         }
     }
 
@@ -150,7 +154,7 @@ impl Crop {
         (cell / grid.cols - self.row) * self.cols + (cell % grid.cols - self.col)
     }
 
-    fn grid(&self, grid: &CellGrid, time: u64, names: &[&'static str], kind: Numeric, data: &[u8]) -> Grid {
+    fn grid(&self, grid: &CellGrid, time: u64, names: &[&'static str], kind: Numeric, data: Vec<u8>) -> Grid {
         let corner = [
             grid.origin[0] + self.col as f64 * grid.cell,
             grid.origin[1] + self.row as f64 * grid.cell,
