@@ -43,6 +43,11 @@ pub enum Command {
         /// Scenario files (`-`: standard input).
         #[arg(required = true)]
         files: Vec<PathBuf>,
+        /// Judge the work of a run as `run --shard K/N` splits it over N
+        /// processes (default: one process, as `run`): a campaign too large for
+        /// one process is valid when sharded.
+        #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
+        shards: Option<u32>,
     },
     /// Print the JSON Schema of the scenario language (for editors).
     Schema {

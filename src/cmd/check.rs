@@ -6,20 +6,25 @@ use crate::exit::Exit;
 use crate::input::load_all;
 use crate::output::say;
 
-/// Validates every file; prints one line per valid file, every error otherwise.
-pub fn check(files: &[PathBuf]) -> Exit {
-    let Some(inputs) = load_all(files, None, (false, false), Some(1)) else {
+/// Validates every file, its run's work judged as split over `shards`
+/// processes; prints one line per valid file, every error otherwise.
+pub fn check(files: &[PathBuf], shards: u32) -> Exit {
+    let Some(inputs) = load_all(files, None, (false, false), Some(shards)) else {
         return Exit::Invalid;
     };
+    let plural = |n: usize| if n == 1 { "" } else { "s" };
     for input in inputs {
         let scenario = &input.scenario;
+        let (points, requirements) = (scenario.points.len(), scenario.requirements.len());
+        let sharded = match shards {
+            1 => String::new(),
+            n => format!(", run as {n} shards"),
+        };
         say(format_args!(
-            "{}: ok ({} sweep point{}, {} requirement{})",
+            "{}: ok ({points} sweep point{}, {requirements} requirement{}{sharded})",
             input.name,
-            scenario.points.len(),
-            if scenario.points.len() == 1 { "" } else { "s" },
-            scenario.requirements.len(),
-            if scenario.requirements.len() == 1 { "" } else { "s" },
+            plural(points),
+            plural(requirements),
         ));
     }
     Exit::Pass

@@ -19,7 +19,7 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<Exit> {
         Command::Run(args) => run::run(&args),
         Command::Falsify(args) => falsify::falsify(&args),
         Command::Merge(args) => merge::merge(&args),
-        Command::Check { files } => Ok(check::check(&files)),
+        Command::Check { files, shards } => Ok(check::check(&files, shards.unwrap_or(1))),
         Command::Schema { markdown } => schema::schema(markdown),
         Command::Export(args) => export::export(&args),
         Command::Selftest => Ok(selftest::selftest()),

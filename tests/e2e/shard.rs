@@ -375,6 +375,33 @@ fn a_shard_outside_one_to_n_is_a_usage_error() {
     }
 }
 
+/// `check --shards N` judges a run's work as `run --shard K/N` does: a
+/// campaign too large for one process, refused by `check` as by one shard,
+/// is valid split over two; zero shards is a usage error.
+#[test]
+fn check_judges_the_work_of_a_run_split_into_shards() {
+    let file = "tests/fixtures/invalid/run-work-beyond-limit.yaml";
+    let whole = sightline(["check", file]);
+    whole.assert_exit(2);
+    assert!(whole.stderr.contains("exceed the limit of 100"), "{whole}");
+    for one in [
+        sightline(["check", "--shards", "1", file]),
+        sightline(["run", "--shard", "1/1", file]),
+    ] {
+        one.assert_exit(2);
+        assert_eq!(one.stderr, whole.stderr);
+    }
+    let split = sightline(["check", "--shards", "2", file]);
+    split.assert_exit(0);
+    assert_eq!(
+        split.stdout,
+        format!("{file}: ok (1 sweep point, 1 requirement, run as 2 shards)\n")
+    );
+    let none = sightline(["check", "--shards", "0", file]);
+    none.assert_exit(2);
+    assert!(none.stderr.contains("--shards"), "{none}");
+}
+
 /// The urban junction cut to 70 s (the ego is served from about 50 s on),
 /// pooling two runs at two densities; its recording, of a point chosen once
 /// the run is judged, is made by the merge.
