@@ -397,6 +397,23 @@ fn failed(staging: &Staging, name: &str) -> String {
     format!("failed to write {}", staging.dir().join(name).display())
 }
 
+/// Fails when a file stands where one of `dirs`, or a directory above it,
+/// is to be created: found before anything runs (a shard or a second
+/// scenario would otherwise simulate first), it fails as creating the
+/// directory would (evidence that cannot be written: exit 3).
+pub fn creatable(dirs: &[PathBuf]) -> anyhow::Result<()> {
+    for dir in dirs {
+        if let Some(file) = dir.ancestors().find(|a| a.exists()).filter(|a| !a.is_dir()) {
+            anyhow::bail!(
+                "failed to create {}: {} is not a directory",
+                dir.display(),
+                file.display()
+            );
+        }
+    }
+    Ok(())
+}
+
 /// Where each scenario's evidence goes (`out` with one scenario, `out/STEM/`
 /// with several, `out/STEM/` under the working directory without `out`); `None`
 /// (after printing why) when two scenarios would share a directory, one read

@@ -22,7 +22,8 @@ use sightline_reports::{Execution, Page, Shard, ShardInput, campaign_id, read_sh
 use super::shard::inputs_of;
 use crate::cli::MergeArgs;
 use crate::evidence::{
-    EVIDENCE_SET, Reporting, Request, evidence_dirs, recorded, recorded_point, resimulated, tool, write_evidence,
+    EVIDENCE_SET, Reporting, Request, creatable, evidence_dirs, recorded, recorded_point, resimulated, tool,
+    write_evidence,
 };
 use crate::exit::Exit;
 use crate::files::{DATA_LIMIT, read_regular};
@@ -62,6 +63,7 @@ pub fn merge(args: &MergeArgs) -> anyhow::Result<Exit> {
     let Some(dirs) = evidence_dirs(args.out.as_deref(), merged.iter().map(|m| &m.input), EVIDENCE_SET) else {
         return Ok(Exit::Invalid);
     };
+    creatable(&dirs)?;
     let mut exit = Exit::Pass;
     for (merged, dir) in merged.into_iter().zip(&dirs) {
         let (started, clock) = (SystemTime::now(), Instant::now());

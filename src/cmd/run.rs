@@ -8,7 +8,7 @@ use sightline_reports::{Execution, Page};
 
 use crate::cli::RunArgs;
 use crate::evidence::{
-    EVIDENCE_SET, Reporting, Request, evidence_dirs, recorded, recorded_each, recorded_point, records_each,
+    EVIDENCE_SET, Reporting, Request, creatable, evidence_dirs, recorded, recorded_each, recorded_point, records_each,
     resimulated, tool, write_evidence,
 };
 use crate::exit::Exit;
@@ -42,6 +42,7 @@ pub fn run(args: &RunArgs) -> anyhow::Result<Exit> {
     let Some(dirs) = evidence_dirs(args.out.as_deref(), &inputs, replaces) else {
         return Ok(Exit::Invalid);
     };
+    creatable(&dirs)?;
     if let Some(input) = inputs.iter().find(|i| args.osi && !has_road_users(&i.scenario)) {
         eprintln!(
             "{}: error: --osi traces road users, and a field experiment has none: only a world (agents) has an OSI trace",

@@ -509,14 +509,27 @@ fn unwritable_evidence_dir_is_an_internal_error() {
     let tmp = temp_dir();
     let blocker = tmp.path().join("evidence");
     std::fs::write(&blocker, "a file where the directory should go").unwrap();
-    let outcome = sightline(["run", SMALL_FIELD, "--out", arg(&blocker)]);
+    let refused = format!("error: failed to create {}", blocker.display());
+    for shard in [&[][..], &["--shard", "1/2"]] {
+        let outcome = sightline(["run", SMALL_FIELD, "--out", arg(&blocker)].iter().chain(shard));
+        outcome.assert_exit(3);
+        assert!(outcome.stderr.starts_with(&refused), "{outcome}");
+    }
+    // Found before anything runs: the first scenario's evidence is not
+    // written when the second's directory cannot be.
+    let out = tmp.path().join("two");
+    std::fs::create_dir(&out).unwrap();
+    std::fs::write(out.join("seed-sweep"), "a file where the directory should go").unwrap();
+    let outcome = sightline(["run", SMALL_FIELD, SEED_SWEEP, "--out", arg(&out)]);
     outcome.assert_exit(3);
-    assert!(
-        outcome
-            .stderr
-            .starts_with(&format!("error: failed to create {}", blocker.display())),
-        "{outcome}"
+    assert_eq!(
+        outcome.stderr,
+        format!(
+            "error: failed to create {0}: {0} is not a directory\n",
+            out.join("seed-sweep").display()
+        )
     );
+    assert!(!out.join("small-field").exists(), "{outcome}");
 }
 
 /// `sightline run … | head -1` closes stdout while sightline still prints its
