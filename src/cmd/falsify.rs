@@ -63,10 +63,7 @@ pub fn falsify(args: &FalsifyArgs) -> anyhow::Result<Exit> {
         return Ok(Exit::Invalid);
     };
     let mut staging = Staging::open(&dir, EVIDENCE_SET)?;
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(args.jobs.map_or(0, usize::from))
-        .build()
-        .context("failed to start worker threads")?;
+    let pool = super::run::worker_pool(args.jobs)?;
     let (started_at, started) = (SystemTime::now(), Instant::now());
     let search = Search {
         cases: args.cases,

@@ -2,7 +2,6 @@
 
 use std::time::{Instant, SystemTime};
 
-use anyhow::Context;
 use sightline_dsl::{Experiment, RecordedPoints, Scenario};
 use sightline_reports::{Execution, Page};
 
@@ -176,5 +175,6 @@ pub fn worker_pool(jobs: Option<u16>) -> anyhow::Result<rayon::ThreadPool> {
     rayon::ThreadPoolBuilder::new()
         .num_threads(jobs.map_or(0, usize::from))
         .build()
-        .context("failed to start worker threads")
+        // Its message already ends with the system's reason (its source).
+        .map_err(|error| anyhow::anyhow!("failed to start worker threads: {error}"))
 }

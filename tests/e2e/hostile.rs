@@ -19,8 +19,8 @@ use tempfile::TempDir;
 
 use crate::fuzz::reduced;
 use crate::support::{
-    EVIDENCE_FILES, Outcome, TIME_CAP_SECONDS, caps_available, evidence_problem, files_under, is_located_error,
-    leftovers, root, sightline_capped, temp_dir,
+    EVIDENCE_FILES, Outcome, SMALL_FIELD, TIME_CAP_SECONDS, arg, caps_available, evidence_problem, files_under,
+    is_located_error, leftovers, root, sightline_capped, temp_dir,
 };
 
 /// The reduced bundled scenario `scenarios/NAME.yaml` with `edit` made to it,
@@ -110,6 +110,32 @@ fn an_alias_bomb_is_refused() {
         text.push_str(&format!("a{level}: &a{level} [{aliases}]\n"));
     }
     assert_refused(&text);
+}
+
+/// More worker threads than the memory cap holds (`--jobs 65535`) is exit 3
+/// with the system's reason said once, and nothing written.
+#[test]
+fn more_worker_threads_than_memory_holds_is_an_internal_error() {
+    if !caps_available() {
+        return;
+    }
+    let tmp = temp_dir();
+    for (command, scenario) in [("run", SMALL_FIELD), ("falsify", "scenarios/urban-falsify.yaml")] {
+        let scenario = root().join(scenario);
+        let outcome = sightline_capped(tmp.path(), [command, arg(&scenario), "--jobs", "65535", "--out", "out"]);
+        outcome.assert_exit(3);
+        assert!(
+            outcome.stderr.starts_with("error: failed to start worker threads: ")
+                && outcome.stderr.lines().count() == 1,
+            "{outcome}"
+        );
+        assert_eq!(outcome.stderr.matches("os error").count(), 1, "{outcome}");
+        assert_eq!(
+            files_under(&tmp.path().join("out")),
+            Vec::<std::path::PathBuf>::new(),
+            "{outcome}"
+        );
+    }
 }
 
 /// `count` values from `first`, `step` apart.
