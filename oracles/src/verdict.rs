@@ -210,7 +210,7 @@ fn verdict(scenario: &Scenario, requirement: &Requirement, measurements: &(impl 
                     let runs = measurements.series(point, signal).unwrap_or_default();
                     let window = temporal::Window {
                         within,
-                        covered: last_step_time(scenario, point),
+                        covered: run_end(scenario, point),
                         min_steps: min,
                     };
                     temporal::evaluate(signal, operator, bound, window, &runs)
@@ -281,11 +281,12 @@ fn uncovered(scenario: &Scenario, point: usize, evaluation: Evaluation) -> Evalu
     }
 }
 
-/// The time of the last step a world point simulates, seconds (`None` for the
-/// field experiment, which has no time).
-fn last_step_time(scenario: &Scenario, point: usize) -> Option<f64> {
+/// When a world point's run ends, seconds: its last step's time plus a step,
+/// each step's state holding until the next (`None` for the field
+/// experiment, which has no time).
+fn run_end(scenario: &Scenario, point: usize) -> Option<f64> {
     match &scenario.points[point].setup.experiment {
-        Experiment::World(world) => Some(world.steps.saturating_sub(1) as f64 * world.step),
+        Experiment::World(world) => Some(world.steps as f64 * world.step),
         Experiment::Field(_) => None,
     }
 }

@@ -15,6 +15,26 @@ use crate::support::{
 /// comes that close, and six anticipation times are measured.
 const IDLE: &str = "tests/fixtures/not-exercised/junction-idle.yaml";
 
+/// A temporal check's window covers the run up to its end, its last step's
+/// time plus a step (each step's state holds until the next): `within` the
+/// run's duration is judged over every step; a window reaching past the end
+/// is not exercised.
+#[test]
+fn a_window_of_the_runs_duration_is_judged_and_one_past_it_is_not() {
+    let tmp = temp_dir();
+    let text = std::fs::read_to_string(crate::support::root().join(IDLE)).unwrap();
+    for (within, verdict) in [("120", "pass"), ("120.05", "not_exercised")] {
+        let file = tmp.path().join(format!("within-{within}.yaml"));
+        std::fs::write(&file, text.replace("within: 200 }", &format!("within: {within} }}"))).unwrap();
+        let out = tmp.path().join(within);
+        sightline(["run", arg(&file), "--out", arg(&out)]).assert_exit(1);
+        let results = read_json(&out.join("results.json"));
+        let window = requirement(&results, "IDLE-RSU-T");
+        assert_eq!(window["verdict"], verdict, "within {within}: {window}");
+        assert_eq!(window["n"], 1200, "within {within}: {window}");
+    }
+}
+
 #[test]
 fn requirements_with_nothing_to_judge_are_not_exercised_and_fail_the_run() {
     let tmp = temp_dir();
@@ -36,7 +56,7 @@ fn requirements_with_nothing_to_judge_are_not_exercised_and_fail_the_run() {
          the check needs",
         "  not exercised IDLE-RSU-T: measured none (rsu_only_objects at the decisive step of n = 1200 defined steps \
          (1 run)), threshold 1.0, margin none, n = 1200: nothing to judge: the window of 200 s reaches past the \
-         run's last step at 119.9 s",
+         run's end at 120 s",
     ] {
         assert!(outcome.stdout.contains(&format!("{line}\n")), "{line}\n{outcome}");
     }

@@ -19,8 +19,9 @@ use crate::Evaluation;
 pub(crate) struct Window {
     /// Only the first this many seconds (`None`: the whole run).
     pub within: Option<f64>,
-    /// The time of the run's last step, seconds: a window reaching past it is
-    /// not covered (`None`: unknown, taken as covered).
+    /// When the run ends, seconds (its last step's time plus a step: each
+    /// step's state holds until the next): a window reaching past it is not
+    /// covered, one ending there is (`None`: unknown, taken as covered).
     pub covered: Option<f64>,
     /// The fewest defined steps each run needs in the window.
     pub min_steps: u64,
@@ -53,13 +54,13 @@ pub(crate) fn evaluate(
     let span = window
         .within
         .map_or(String::new(), |w| format!(" within {} s", short(w)));
-    if let (Some(within), Some(last)) = (window.within, window.covered)
-        && last + 1e-9 < within
+    if let (Some(within), Some(end)) = (window.within, window.covered)
+        && end + 1e-9 < within
     {
         let message = format!(
-            "nothing to judge: the window of {} s reaches past the run's last step at {} s",
+            "nothing to judge: the window of {} s reaches past the run's end at {} s",
             short(within),
-            short(last)
+            short(end)
         );
         return Evaluation::not_exercised(steps, measured, message);
     }
@@ -189,14 +190,17 @@ mod tests {
 
     #[test]
     fn a_window_past_the_run_is_not_exercised() {
-        // The run's last step is at 10 s; a 12 s window is not covered, even
-        // though every defined step holds.
-        let found = check(Temporal::Always, Bound::AtLeast(0.5), Some(12.0), &[SIGNAL.to_vec()]);
-        assert_eq!(found.status, Status::NotExercised);
-        assert_eq!(
-            found.message,
-            "nothing to judge: the window of 12 s reaches past the run's last step at 10 s"
-        );
+        // The run ends at 10 s; a 12 s window, or one a millisecond longer,
+        // is not covered, even though every defined step holds; one of 10 s,
+        // the whole run, is.
+        for within in [12.0, 10.001] {
+            let found = check(Temporal::Always, Bound::AtLeast(0.5), Some(within), &[SIGNAL.to_vec()]);
+            assert_eq!(found.status, Status::NotExercised, "{within}");
+            assert_eq!(
+                found.message,
+                format!("nothing to judge: the window of {within} s reaches past the run's end at 10 s")
+            );
+        }
         assert_eq!(
             check(Temporal::Always, Bound::AtLeast(0.5), Some(10.0), &[SIGNAL.to_vec()]).status,
             Status::Pass
