@@ -22,6 +22,25 @@ pub struct XmlError {
     pub message: String,
 }
 
+/// A number read from a file, as a message shows it: as Rust writes it
+/// (`12`, `0.25`; `{:.3}` keeps its precision), or in exponent form when that
+/// would run past 15 digits (`-1e308`, not 309 of them).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Number(pub f64);
+
+impl std::fmt::Display for Number {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let value = self.0;
+        let plain = value == 0.0 || (1e-6..1e15).contains(&value.abs());
+        match (plain, f.precision()) {
+            (true, None) => write!(f, "{value}"),
+            (true, Some(digits)) => write!(f, "{value:.digits$}"),
+            (false, None) => write!(f, "{value:e}"),
+            (false, Some(digits)) => write!(f, "{value:.digits$e}"),
+        }
+    }
+}
+
 /// Where `text` ends.
 pub(crate) fn end_of(text: &str) -> Location {
     let last_line = text.rsplit('\n').next().unwrap_or_default();
@@ -164,6 +183,19 @@ mod tests {
 
     fn first_child_error<T>(text: &str, read: impl Fn(Node) -> Result<T, XmlError>) -> String {
         error_of_first_child(&roxmltree::Document::parse(text).unwrap(), read)
+    }
+
+    /// Numbers in messages read as written, in exponent form only past 15
+    /// digits, with or without a precision.
+    #[test]
+    fn numbers_in_messages_stay_short() {
+        let shown = |v: f64| (format!("{}", Number(v)), format!("{:.3}", Number(v)));
+        assert_eq!(shown(12.0), ("12".into(), "12.000".into()));
+        assert_eq!(shown(-0.25), ("-0.25".into(), "-0.250".into()));
+        assert_eq!(shown(0.0), ("0".into(), "0.000".into()));
+        assert_eq!(shown(-1e308), ("-1e308".into(), "-1.000e308".into()));
+        assert_eq!(shown(2.5e15), ("2.5e15".into(), "2.500e15".into()));
+        assert_eq!(shown(1e-9), ("1e-9".into(), "1.000e-9".into()));
     }
 
     /// The one-pass locator places every element where roxmltree's own

@@ -10,6 +10,7 @@ use super::fresnel::fresnel;
 use super::xml::{self, Locator, OpenDriveError};
 use crate::Location;
 use crate::geometry::Xy;
+use crate::import::xml::Number;
 
 /// Consecutive records must chain within this, metres: a record's `s` equal to
 /// the previous one's `s + length`, and its start point the previous one's end.
@@ -92,8 +93,9 @@ pub(crate) fn plan_view(node: Node, locator: &Locator) -> Result<Vec<Geometry>, 
                     child,
                     format!(
                         "the reference line does not chain: this record starts at s = {} but the previous one \
-                         ends at s = {end} (s + length)",
-                        record.s
+                         ends at s = {} (s + length)",
+                        Number(record.s),
+                        Number(end)
                     ),
                 ));
             }
@@ -103,9 +105,13 @@ pub(crate) fn plan_view(node: Node, locator: &Locator) -> Result<Vec<Geometry>, 
                 return Err(xml::element_error(
                     child,
                     format!(
-                        "the reference line does not close: this record starts at ({}, {}), {gap:.3} m from where \
+                        "the reference line does not close: this record starts at ({}, {}), {:.3} m from where \
                          the previous one ends ({:.3}, {:.3})",
-                        record.start.position[0], record.start.position[1], reached[0], reached[1]
+                        Number(record.start.position[0]),
+                        Number(record.start.position[1]),
+                        Number(gap),
+                        Number(reached[0]),
+                        Number(reached[1])
                     ),
                 ));
             }

@@ -6,6 +6,7 @@ use roxmltree::Node;
 
 use super::xml::{self, Locator, OpenDriveError};
 use crate::Location;
+use crate::import::xml::Number;
 
 /// A cubic in s: a + b·ds + c·ds² + d·ds³ with ds = s − `s`, valid from `s` to
 /// the next record's `s`.
@@ -175,7 +176,10 @@ pub(crate) fn lanes(node: Node, length: f64, locator: &Locator) -> Result<Lanes,
             _ => None,
         };
         if let Some(problem) = problem {
-            return Err(xml::element_error(child, format!("{problem} (s = {})", section.s)));
+            return Err(xml::element_error(
+                child,
+                format!("{problem} (s = {})", Number(section.s)),
+            ));
         }
         sections.push(section);
     }
@@ -204,8 +208,8 @@ fn records(node: Node, name: &'static str, start: &str) -> Result<Vec<Poly3>, Op
                 child,
                 format!(
                     "<{name}> records are not in order of `{start}` ({} after {})",
-                    record.s,
-                    records[records.len() - 1].s
+                    Number(record.s),
+                    Number(records[records.len() - 1].s)
                 ),
             ));
         }

@@ -11,6 +11,7 @@ use super::lanes::{LaneSection, Lanes, Speed, lanes, road_speeds};
 use super::objects::{Object, objects};
 use super::xml::{self, Locator, OpenDriveError};
 use crate::Location;
+use crate::import::xml::Number;
 
 /// The longest road sightline reads, metres.
 pub const MAX_ROAD_LENGTH: f64 = 100_000.0;
@@ -165,7 +166,10 @@ fn road(node: Node, locator: &Locator) -> Result<Road, OpenDriveError> {
         return Err(xml::value_error(
             node,
             &length_attribute,
-            format!("road {id}: a length of {length} m is out of range; expected > 0 and ≤ {MAX_ROAD_LENGTH} m"),
+            format!(
+                "road {id}: a length of {} m is out of range; expected > 0 and ≤ {MAX_ROAD_LENGTH} m",
+                Number(length)
+            ),
         ));
     }
     let junction = Some(xml::string(node, "junction")?)
@@ -226,7 +230,9 @@ fn check_extent(id: &str, reference: &[Geometry], length: f64) -> Result<(), Ope
         Some((
             last.at,
             format!(
-                "road {id}: its reference line ends at s = {end} (s + length of the last record), but the road's length is {length}"
+                "road {id}: its reference line ends at s = {} (s + length of the last record), but the road's length is {}",
+                Number(end),
+                Number(length)
             ),
         ))
     } else {

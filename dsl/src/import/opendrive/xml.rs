@@ -10,7 +10,7 @@ use crate::de::closest;
 pub(crate) use crate::import::xml::{
     Locator, attribute, children, element_error, number, number_or, optional_number, string, tag, value_error,
 };
-use crate::import::xml::{XmlError, malformed};
+use crate::import::xml::{Number, XmlError, malformed};
 
 /// The most bytes an OpenDRIVE file may hold: about 25 times a dense 1 km²
 /// city network, and what the parsed tree of such a file keeps within a few
@@ -95,7 +95,11 @@ pub(crate) fn non_negative(node: Node, name: &str) -> Result<f64, OpenDriveError
     let value = number(node, name)?;
     if value < 0.0 {
         let attribute = attribute(node, name)?;
-        let message = format!("attribute `{name}` of {} must be ≥ 0, found {value}", tag(node));
+        let message = format!(
+            "attribute `{name}` of {} must be ≥ 0, found {}",
+            tag(node),
+            Number(value)
+        );
         return Err(value_error(node, &attribute, message));
     }
     Ok(value)
