@@ -241,6 +241,10 @@ fn environment(load: Option<Arc<Loader>>) -> Environment<'static> {
     if load.is_some() {
         env.set_fuel(Some(CUSTOM_FUEL));
     }
+    // Minijinja's default follows the build (on only with debug assertions,
+    // so in every test build): a release build's render errors would lose
+    // their column and what was undefined.
+    env.set_debug(true);
     env.set_undefined_behavior(UndefinedBehavior::Strict);
     // Escaping follows the name's extension by default; a custom set's
     // `header.txt` must be escaped too.
