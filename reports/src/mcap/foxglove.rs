@@ -439,6 +439,8 @@ struct Vector2 {
 }
 
 /// `foxglove.Grid`: cells of one numeric type, each cell its fields in order.
+/// The recorder writes it with [`write_json`](Self::write_json); its serde
+/// encoding is what that is tested against.
 #[derive(Debug, Clone, Serialize)]
 pub(crate) struct Grid {
     #[serde(flatten)]

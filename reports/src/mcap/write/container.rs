@@ -61,7 +61,7 @@ pub(super) struct Container<W> {
 struct Batch {
     /// The entries' bytes, one after the other.
     bytes: Vec<u8>,
-    /// The bytes the deferred messages hold, about.
+    /// The bytes the deferred messages and their entries hold, about.
     held: usize,
     entries: Vec<Entry>,
 }
@@ -183,7 +183,9 @@ impl<W> Container<W> {
             return;
         }
         let channel = self.channel(topic, schema);
-        self.batch.held += held;
+        // The entry counts too, so that messages holding nothing still fill
+        // a batch.
+        self.batch.held += held + size_of::<Entry>();
         self.batch.entries.push(Entry::Deferred {
             channel,
             log_time,
@@ -493,6 +495,26 @@ mod tests {
             Err(WriteError::Json(error)) => assert_eq!(error.to_string(), "a value that does not encode"),
             other => panic!("{:?}", other.map(|_| ())),
         }
+    }
+
+    /// Deferred messages that hold nothing still fill a batch: the one being
+    /// filled never grows past a batch's worth of entries.
+    #[test]
+    fn deferred_messages_holding_nothing_still_fill_a_batch() {
+        let mut container = Container::start(Vec::new(), options()).unwrap();
+        let most = BATCH_BYTES / size_of::<Entry>() + 1;
+        for i in 0..100_000 {
+            container.deferred("/a", SCENE, i, 0, |out| {
+                out.extend_from_slice(b"{}");
+                Ok(())
+            });
+            assert!(
+                container.batch.entries.len() <= most,
+                "{} entries",
+                container.batch.entries.len()
+            );
+        }
+        container.finish().unwrap();
     }
 
     /// An output that fails, or panics, once it has taken `limit` bytes.
