@@ -41,7 +41,6 @@ pub fn run(args: &RunArgs) -> anyhow::Result<Exit> {
     let Some(dirs) = evidence_dirs(args.out.as_deref(), &inputs, replaces) else {
         return Ok(Exit::Invalid);
     };
-    creatable(&dirs)?;
     if let Some(input) = inputs.iter().find(|i| args.osi && !has_road_users(&i.scenario)) {
         eprintln!(
             "{}: error: --osi traces road users, and a field experiment has none: only a world (agents) has an OSI trace",
@@ -77,6 +76,7 @@ pub fn run(args: &RunArgs) -> anyhow::Result<Exit> {
         );
         return Ok(Exit::Invalid);
     }
+    creatable(&dirs)?;
     let pool = worker_pool(args.jobs)?;
     if let Some(shard) = args.shard {
         return super::shard::run_shard(&pool, shard, &inputs, &dirs, request);
