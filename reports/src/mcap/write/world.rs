@@ -60,10 +60,7 @@ impl<W> Recorder<'_, W> {
         }
         let data: Vec<u8> = values.iter().flat_map(|v| v.to_le_bytes()).collect();
         let grid = crop.grid(&grid, time, &["probability", "uncertainty"], Numeric::Float32, data);
-        self.out
-            .deferred(topic::FUSED_GRID, GRID, time, grid.data_len(), move |out| {
-                grid.write_json(out)
-            });
+        self.publish_grid(topic::FUSED_GRID, time, grid);
     }
 
     /// `/perception/<id>/grid`: each cooperating agent's own grid, cropped to
@@ -86,9 +83,14 @@ impl<W> Recorder<'_, W> {
             }
             let grid = crop.grid(&grid, time, &["state"], Numeric::Uint8, data);
             let topic = topic::agent_grid(&self.agent_id(c.agent));
-            self.out
-                .deferred(&topic, GRID, time, grid.data_len(), move |out| grid.write_json(out));
+            self.publish_grid(&topic, time, grid);
         }
+    }
+
+    /// Writes `grid` on `topic`, encoded by the writer thread.
+    fn publish_grid(&mut self, topic: &str, time: u64, grid: Grid) {
+        self.out
+            .deferred(topic, GRID, time, grid.data_len(), move |out| grid.write_json(out));
     }
 
     /// The step's cell signals; adds the step to the running counts.
