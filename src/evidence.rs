@@ -397,18 +397,22 @@ fn failed(staging: &Staging, name: &str) -> String {
     format!("failed to write {}", staging.dir().join(name).display())
 }
 
-/// Fails when a file stands where one of `dirs`, or a directory above it,
-/// is to be created: found before anything runs (a shard or a second
-/// scenario would otherwise simulate first), it fails as creating the
-/// directory would (evidence that cannot be written: exit 3).
+/// Fails when a file, or a symbolic link to nothing, stands where one of
+/// `dirs`, or a directory above it, is to be created: found before anything
+/// runs (a shard or a second scenario would otherwise simulate first), it
+/// fails as creating the directory would (evidence that cannot be written:
+/// exit 3).
 pub fn creatable(dirs: &[PathBuf]) -> anyhow::Result<()> {
     for dir in dirs {
-        if let Some(file) = dir.ancestors().find(|a| a.exists()).filter(|a| !a.is_dir()) {
-            anyhow::bail!(
-                "failed to create {}: {} is not a directory",
-                dir.display(),
-                file.display()
-            );
+        let Some(found) = dir.ancestors().find(|a| a.symlink_metadata().is_ok()) else {
+            continue;
+        };
+        if !found.is_dir() {
+            let what = match found.exists() {
+                true => "is not a directory",
+                false => "is a symbolic link to nothing",
+            };
+            anyhow::bail!("failed to create {}: {} {what}", dir.display(), found.display());
         }
     }
     Ok(())

@@ -530,6 +530,23 @@ fn unwritable_evidence_dir_is_an_internal_error() {
         )
     );
     assert!(!out.join("small-field").exists(), "{outcome}");
+    // A symbolic link to nothing where the directory goes is found as early.
+    #[cfg(unix)]
+    {
+        let dangling = tmp.path().join("dangling");
+        std::os::unix::fs::symlink(tmp.path().join("nowhere"), &dangling).unwrap();
+        for shard in [&[][..], &["--shard", "1/2"]] {
+            let outcome = sightline(["run", SMALL_FIELD, "--out", arg(&dangling)].iter().chain(shard));
+            outcome.assert_exit(3);
+            assert_eq!(
+                outcome.stderr,
+                format!(
+                    "error: failed to create {0}: {0} is a symbolic link to nothing\n",
+                    dangling.display()
+                ),
+            );
+        }
+    }
 }
 
 /// `sightline run … | head -1` closes stdout while sightline still prints its
