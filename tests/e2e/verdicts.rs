@@ -189,42 +189,82 @@ fn the_measured_column_says_what_it_holds() {
     ));
 }
 
-/// A trace that does not cover the run (the grid's minute of SUMO run in a
-/// run of 80 s) is a warning on stderr and in results.json, and a requirement
-/// that would pass is not exercised, so the run fails (issue 19).
-#[test]
-fn a_pass_on_a_run_the_trace_does_not_cover_is_not_exercised() {
-    let tmp = temp_dir();
-    let scenario = tmp.path().join("uncovered.yaml");
-    let text = format!(
-        "sightline: 1\nname: uncovered\ntime: {{ duration: 80, step: 0.1 }}\n\
-         traces: {{ fcd: {root}/scenarios/sumo/grid3x3.fcd.xml, net: {root}/scenarios/sumo/grid3x3.net.xml }}\n\
+/// A scenario replaying the SUMO grid's trace `fcd` for `duration` seconds,
+/// with one requirement that passes wherever the trace has road users.
+fn replaying(fcd: &str, duration: u32) -> String {
+    format!(
+        "sightline: 1\nname: uncovered\ntime: {{ duration: {duration}, step: 0.1 }}\n\
+         traces: {{ fcd: {fcd}, net: {root}/scenarios/sumo/grid3x3.net.xml }}\n\
          sensor_models: {{ front: {{ range: 80, fov_deg: 70 }}, around: {{ range: 100 }} }}\n\
          agents:\n  - {{ id: ego, kind: car, trace: veh7, connected: true, sensors: [front] }}\n\
          \x20 - {{ id: rsu, kind: rsu, position: [93.5, 93.5], sensors: [around] }}\n\
          semantic: {{ ego: ego }}\n\
          requirements:\n  - {{ id: PDR, text: Delivered., check: {{ metric: packet_delivery_ratio, at_least: 0 }} }}\n",
         root = crate::support::root().display()
-    );
-    std::fs::write(&scenario, text).unwrap();
+    )
+}
+
+/// Runs `scenario` (text) and asserts that it fails, warning `warning` on
+/// stderr and in results.json, its requirement not exercised.
+fn assert_uncovered(scenario: &str, warning: &str) {
+    let tmp = temp_dir();
+    let file = tmp.path().join("uncovered.yaml");
+    std::fs::write(&file, scenario).unwrap();
     let out = tmp.path().join("evidence");
-    let outcome = sightline(["run", arg(&scenario), "--out", arg(&out)]);
+    let outcome = sightline(["run", arg(&file), "--out", arg(&out)]);
     outcome.assert_exit(1);
-    assert!(
-        outcome.stderr.contains(
-            "grid3x3.fcd.xml:1:1: warning: the trace does not cover the run: it has road users from 0 s to 59.9 s \
-             only of the run's 0 s to 80 s"
-        ),
-        "{outcome}"
-    );
+    assert!(outcome.stderr.contains(warning), "{outcome}");
     let results = read_json(&out.join("results.json"));
     let pdr = &results["requirements"][0];
     assert_eq!(pdr["verdict"], "not_exercised", "{pdr}");
     let warnings = results["warnings"].as_array().unwrap();
-    assert!(warnings.iter().any(|w| {
-        w["message"]
-            .as_str()
-            .unwrap()
-            .starts_with("the trace does not cover the run")
-    }));
+    let (_, message) = warning.split_once("warning: ").unwrap();
+    assert!(
+        warnings
+            .iter()
+            .any(|w| w["message"].as_str().unwrap().starts_with(message)),
+        "{warnings:?}"
+    );
+}
+
+/// A trace that does not cover the run (the grid's minute of SUMO run in a
+/// run of 80 s) is a warning on stderr and in results.json, and a requirement
+/// that would pass is not exercised, so the run fails (issue 19).
+#[test]
+fn a_pass_on_a_run_the_trace_does_not_cover_is_not_exercised() {
+    let fcd = format!("{}/scenarios/sumo/grid3x3.fcd.xml", crate::support::root().display());
+    assert_uncovered(
+        &replaying(&fcd, 80),
+        "grid3x3.fcd.xml:1:1: warning: the trace does not cover the run: it has road users from 0 s to 59.9 s \
+         only of the run's 0 s to 80 s",
+    );
+}
+
+/// A trace with a hole (the grid's minute with its timesteps from 10 s to
+/// 49.9 s taken out) does not cover the run either, though road users are
+/// traced at its start and end: the requirement that held on the 20 s left is
+/// not exercised.
+#[test]
+fn a_pass_on_a_run_with_a_hole_in_its_trace_is_not_exercised() {
+    let tmp = temp_dir();
+    let text = read(&crate::support::root().join("scenarios/sumo/grid3x3.fcd.xml"));
+    let mut parts = text.split("    <timestep ");
+    let mut holed = parts.next().unwrap().to_owned();
+    for part in parts {
+        let time: f64 = part["time=\"".len()..].split('"').next().unwrap().parse().unwrap();
+        if !(10.0..50.0).contains(&time) {
+            holed.push_str("    <timestep ");
+            holed.push_str(part);
+        }
+    }
+    let line = holed[..holed.find("<timestep time=\"50.00\"").unwrap()].lines().count();
+    let fcd = tmp.path().join("holed.fcd.xml");
+    std::fs::write(&fcd, holed).unwrap();
+    assert_uncovered(
+        &replaying(&fcd.display().to_string(), 60),
+        &format!(
+            "holed.fcd.xml:{line}:5: warning: the trace does not cover the run: it has no timestep from 9.9 s to 50 s \
+             of the run's 0 s to 60 s"
+        ),
+    );
 }

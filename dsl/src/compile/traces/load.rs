@@ -318,7 +318,8 @@ impl Imported {
 
     /// A warning when the trace does not cover the run's steps, at 0, `step`,
     /// … up to `duration`: its first sample of a road user comes later than
-    /// the first step, or its last earlier than the last step, by more than a
+    /// the first step, its last earlier than the last step, or two of its
+    /// successive timesteps within the run lie further apart, by more than a
     /// sample period (or a step, when longer).
     pub(crate) fn coverage(&self, duration: f64, step: f64) -> Option<Warning> {
         let times = self
@@ -337,17 +338,23 @@ impl Imported {
         };
         let tolerance = period.max(step) + 1e-9;
         let last_step = ((duration / step).round() - 1.0).max(0.0) * step;
-        if first <= tolerance && last >= last_step - tolerance {
-            return None;
-        }
-        let span = if first > last {
-            "no road user at all".to_owned()
+        let (span, location) = if first > last {
+            ("no road user at all".to_owned(), Location::new(1, 1))
+        } else if first > tolerance || last < last_step - tolerance {
+            let span = format!("road users from {} s to {} s only", round(first), round(last));
+            (span, Location::new(1, 1))
         } else {
-            format!("road users from {} s to {} s only", round(first), round(last))
+            let hole = self.fcd.timesteps.windows(2).find(|pair| {
+                let (before, after) = (pair[0].time - self.begin, pair[1].time - self.begin);
+                after - before > tolerance && before < last_step && after > 0.0
+            })?;
+            let (before, after) = (hole[0].time - self.begin, hole[1].time - self.begin);
+            let span = format!("no timestep from {} s to {} s", round(before), round(after));
+            (span, hole[1].location)
         };
         Some(Warning {
             file: self.fcd_file.clone(),
-            location: Location::new(1, 1),
+            location,
             message: format!(
                 "the trace does not cover the run: it has {span} of the run's 0 s to {} s (scenario time, \
                  `traces.begin` {} s); the requirements are not exercised where it has none",

@@ -14,6 +14,18 @@ use crate::geometry::Xy;
 pub struct Fcd {
     /// Every vehicle and person, in order of first appearance.
     pub objects: Vec<FcdObject>,
+    /// Every `<timestep>`, empty ones too, in time order: what times the trace
+    /// covers, with road users or without.
+    pub timesteps: Vec<Timestep>,
+}
+
+/// A `<timestep>` of the trace.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Timestep {
+    /// Simulation time, seconds.
+    pub time: f64,
+    /// Where it is in the file.
+    pub location: Location,
 }
 
 /// One vehicle or person and its samples.
@@ -73,15 +85,18 @@ pub fn parse_fcd(text: &str) -> Result<Fcd, SumoError> {
     let mut objects: Vec<FcdObject> = Vec::new();
     // Each id's index in `objects`, and whether it was a <person>.
     let mut seen: HashMap<&str, (usize, bool)> = HashMap::new();
-    let mut previous: Option<f64> = None;
+    let mut timesteps: Vec<Timestep> = Vec::new();
     for step in xml::children(root, "timestep") {
         let time = xml::number(step, "time")?;
-        if let Some(previous) = previous.filter(|&previous| time < previous) {
+        if let Some(previous) = timesteps.last().map(|t| t.time).filter(|&previous| time < previous) {
             let attribute = xml::attribute(step, "time")?;
             let message = format!("time {time} is earlier than the previous timestep's {previous}");
             return Err(xml::value_error(step, &attribute, message));
         }
-        previous = Some(time);
+        timesteps.push(Timestep {
+            time,
+            location: locator.at(step),
+        });
         for node in step.children().filter(Node::is_element) {
             let is_person = match node.tag_name().name() {
                 "vehicle" => false,
@@ -120,7 +135,7 @@ pub fn parse_fcd(text: &str) -> Result<Fcd, SumoError> {
             }
         }
     }
-    Ok(Fcd { objects })
+    Ok(Fcd { objects, timesteps })
 }
 
 /// One `<vehicle>` or `<person>` at `time`.

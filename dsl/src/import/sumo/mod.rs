@@ -22,7 +22,7 @@
 
 pub use additional::{Additional, Poi, PoiAt, Polygon, VType, parse_additional};
 pub use config::{Config, ConfigFile, parse_config};
-pub use fcd::{Fcd, FcdObject, FcdSample, parse_fcd};
+pub use fcd::{Fcd, FcdObject, FcdSample, Timestep, parse_fcd};
 pub use net::{Connection, DEFAULT_LANE_WIDTH, Edge, Junction, Lane, Network, parse_net};
 pub use vclass::{CLASSES, Replay, VehicleClass, builtin_class, kind_of, shape_kind, vehicle_class};
 pub use xml::{MAX_ATTRIBUTES, MAX_ELEMENTS, SumoError};
