@@ -31,8 +31,9 @@ pub(crate) struct Window {
 /// steps in `window`; each run must satisfy it, so the point's robustness is
 /// the smallest over runs. A window the run does not cover, or a run with
 /// fewer defined steps in it than the window's minimum, leaves the check not
-/// exercised (an `always` over nothing would pass vacuously); no run at all is
-/// an error.
+/// exercised (an `always` over nothing would pass vacuously), unless a run
+/// already breaks an `always` on the steps there are: a violation seen is a
+/// failure whatever the steps not seen hold. No run at all is an error.
 pub(crate) fn evaluate(
     signal: Signal,
     operator: Temporal,
@@ -54,44 +55,51 @@ pub(crate) fn evaluate(
     let span = window
         .within
         .map_or(String::new(), |w| format!(" within {} s", short(w)));
-    if let (Some(within), Some(end)) = (window.within, window.covered)
-        && end + 1e-9 < within
-    {
-        let message = format!(
-            "nothing to judge: the window of {} s reaches past the run's end at {} s",
+    let uncovered = match (window.within, window.covered) {
+        (Some(within), Some(end)) if end + 1e-9 < within => Some(format!(
+            "the window of {} s reaches past the run's end at {} s",
             short(within),
             short(end)
-        );
-        return Evaluation::not_exercised(steps, measured, message);
-    }
+        )),
+        _ => None,
+    };
+    // Why every run is incomplete (the window is not covered), else why the
+    // first incomplete run is.
+    let mut incomplete = uncovered.clone();
     let mut worst: Option<(f64, f64, f64)> = None;
     for series in runs {
         let defined = series.iter().filter(|(t, _)| in_window(*t));
         let count = defined.clone().count() as u64;
-        if count < window.min_steps {
-            let message = if count == 0 {
-                format!(
-                    "nothing to judge: {name} is never defined{span} in one of the {} runs",
-                    runs.len()
-                )
-            } else {
-                format!(
-                    "nothing to judge: {name} is defined at {count} steps{span} in one of the {} runs, fewer than the {} the check needs",
-                    runs.len(),
-                    window.min_steps
-                )
-            };
-            return Evaluation::not_exercised(steps, measured, message);
-        }
         let margins = defined.map(|&(t, v)| (bound.margin(v), t, v));
         let decisive = match operator {
             Temporal::Always => margins.min_by(|a, b| a.0.total_cmp(&b.0)),
             Temporal::Eventually => margins.max_by(|a, b| a.0.total_cmp(&b.0).then(b.1.total_cmp(&a.1))),
+        };
+        let short_of_steps = count < window.min_steps;
+        if short_of_steps && incomplete.is_none() {
+            incomplete = Some(if count == 0 {
+                format!("{name} is never defined{span} in one of the {} runs", runs.len())
+            } else {
+                format!(
+                    "{name} is defined at {count} steps{span} in one of the {} runs, fewer than the {} the check needs",
+                    runs.len(),
+                    window.min_steps
+                )
+            });
         }
-        .expect("the run has a defined step in the window");
-        if worst.is_none_or(|w| decisive.0 < w.0) {
+        // A run's margin counts when its window is complete, or when it
+        // already breaks an `always`, which more steps cannot mend.
+        let complete = !short_of_steps && uncovered.is_none();
+        if let Some(decisive) = decisive.filter(|d| complete || (operator == Temporal::Always && d.0 < 0.0))
+            && worst.is_none_or(|w| decisive.0 < w.0)
+        {
             worst = Some(decisive);
         }
+    }
+    if let Some(why) = &incomplete
+        && worst.is_none_or(|(margin, ..)| margin >= 0.0)
+    {
+        return Evaluation::not_exercised(steps, measured, format!("nothing to judge: {why}"));
     }
     let Some((margin, time, value)) = worst else {
         return Evaluation::error(format!("{name} is not measured at this point (no run to check)"));
@@ -186,6 +194,42 @@ mod tests {
             check(Temporal::Always, Bound::AtLeast(0.5), None, &[]).status,
             Status::Error
         );
+    }
+
+    #[test]
+    fn a_violation_seen_fails_an_always_whatever_the_steps_not_seen() {
+        // The 0.6 at 0.3 s breaks `always ≥ 0.65` in a window past the run's
+        // end, and in a run pooled with one never defined: a failure either way.
+        let found = check(Temporal::Always, Bound::AtLeast(0.65), Some(12.0), &[SIGNAL.to_vec()]);
+        assert_eq!(
+            (found.status, found.value, found.time),
+            (Status::Fail, Some(0.6), Some(0.3))
+        );
+        let found = check(
+            Temporal::Always,
+            Bound::AtLeast(0.65),
+            None,
+            &[Vec::new(), SIGNAL.to_vec()],
+        );
+        assert_eq!((found.status, found.value, found.n), (Status::Fail, Some(0.6), Some(5)));
+        // Held on the steps seen, it stays unjudged; so does an `eventually`
+        // met or missed on them (the steps not seen would decide a miss, and
+        // a pass on part of a window is not earned).
+        let found = check(
+            Temporal::Always,
+            Bound::AtLeast(0.5),
+            None,
+            &[Vec::new(), SIGNAL.to_vec()],
+        );
+        assert_eq!(found.status, Status::NotExercised);
+        assert_eq!(
+            found.message,
+            "nothing to judge: blind_recall is never defined in one of the 2 runs"
+        );
+        for bound in [Bound::AtLeast(0.9), Bound::AtLeast(0.99)] {
+            let found = check(Temporal::Eventually, bound, Some(12.0), &[SIGNAL.to_vec()]);
+            assert_eq!(found.status, Status::NotExercised, "{bound:?}");
+        }
     }
 
     #[test]
