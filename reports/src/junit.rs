@@ -59,7 +59,7 @@ pub fn junit(results: &Results) -> Report {
             let shown = |v: Option<f64>| v.map_or("none".to_string(), |v| format!("{v:?}"));
             let (value, margin) = (shown(point.value), shown(point.margin));
             let n = point.n.map_or("unknown".to_string(), |n| n.to_string());
-            let relation = format!("{} {:?}", requirement.check.relation, requirement.check.threshold);
+            let relation = format!("{} {:?}", requirement.relation(), requirement.threshold);
             if point.verdict != Status::Pass {
                 let mut message = format!(
                     "{} {}: measured {value}{} ({}); threshold {relation}; margin {margin}; n = {n}: {}",

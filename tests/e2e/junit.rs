@@ -142,11 +142,17 @@ fn assert_suite_matches(suite: &Value, results: &Value) {
         assert_eq!(get(&out, "margin"), shown(&p["margin"]), "{path} {title}");
         let n = p["n"].as_u64().map_or("unknown".into(), |n| n.to_string());
         assert_eq!(get(&out, "n"), n, "{path} {title}");
-        let threshold = get(&out, "threshold")
-            .rsplit(' ')
-            .next()
-            .and_then(|t| t.parse::<f64>().ok());
-        assert_eq!(threshold, r["check"]["threshold"].as_f64(), "{path} {title}");
+        // What the value is compared with: a share of seeds with its share.
+        let relation = match r["check"]["over_seeds"]["statistic"].get("share") {
+            Some(_) => "at_least",
+            None => r["check"]["relation"].as_str().unwrap(),
+        };
+        let threshold = r["threshold"].as_f64().unwrap();
+        assert_eq!(
+            get(&out, "threshold"),
+            format!("{relation} {threshold:?}"),
+            "{path} {title}"
+        );
     }
 }
 

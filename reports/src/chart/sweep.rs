@@ -136,16 +136,19 @@ fn thresholds(results: &Results, metric: &str, x_at: impl Fn(usize) -> Option<f6
             continue;
         };
         let sign = if r.check.relation == "at_most" { "≤" } else { "≥" };
+        // The metric's own bound: a share of seeds compares its share with
+        // `r.threshold`, the metric with this.
+        let threshold = r.check.threshold;
         let text = match unit {
-            "1" => format!("{sign} {}", tick(&r.threshold)),
-            unit => format!("{sign} {} {unit}", tick(&r.threshold)),
+            "1" => format!("{sign} {}", tick(&threshold)),
+            unit => format!("{sign} {} {unit}", tick(&threshold)),
         };
         match bounds.iter_mut().find(|b| b.text == text && b.x == x) {
             Some(bound) => bound.ids.push(&r.id),
             None => bounds.push(Bound {
                 ids: vec![&r.id],
                 text,
-                value: r.threshold,
+                value: threshold,
                 x,
             }),
         }

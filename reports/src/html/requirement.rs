@@ -76,11 +76,7 @@ pub(super) fn finding(r: &RequirementResult) -> Finding {
         label: decisive.map(|p| p.label.clone()).unwrap_or_default(),
         measured: with_unit(r.value, unit),
         what: r.measured.clone(),
-        threshold: format!(
-            "{} {}",
-            relation_sign(r.check.relation),
-            with_unit(Some(r.threshold), unit)
-        ),
+        threshold: format!("{} {}", relation_sign(r.relation()), with_unit(Some(r.threshold), unit)),
         margin: with_unit(r.margin, unit),
         n: r.n.map_or_else(|| "—".into(), |n| number(n as f64)),
         message: r.message.clone(),

@@ -80,6 +80,21 @@ pub struct RequirementResult {
     pub points: Vec<PointVerdict>,
 }
 
+impl RequirementResult {
+    /// How the deciding value compares with `threshold`: `at_least`,
+    /// `at_most` or `tolerance` as the check is written, but `at_least` for a
+    /// share of seeds, whichever way its metric is bounded.
+    pub fn relation(&self) -> &'static str {
+        match self.check.over_seeds {
+            Some(OverSeeds {
+                statistic: Statistic::Share { .. },
+                ..
+            }) => "at_least",
+            _ => self.check.relation,
+        }
+    }
+}
+
 /// A check in the form it was written.
 #[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
 #[schemars(deny_unknown_fields)]
