@@ -5,7 +5,7 @@
 use std::fmt::Display;
 
 use sightline_dsl::Scenario;
-use sightline_oracles::{Measurements, Status, Verdict};
+use sightline_oracles::{Measurements, Status, Verdict, headline};
 
 use crate::exit::Exit;
 use crate::output::say;
@@ -15,15 +15,9 @@ use crate::output::say;
 /// per requirement that does not pass, naming its deciding point, measured
 /// value, threshold, margin and n; returns [`Exit::Pass`] when no verdict fails
 /// the run (every requirement passes, or is not exercised for an accepted
-/// reason), [`Exit::Fail`] otherwise.
+/// reason), [`Exit::Fail`] otherwise and when there is no requirement.
 pub fn print_verdicts(path: &str, scenario: &Scenario, verdicts: &[Verdict], tail: impl Display) -> Exit {
-    // Pass exactly when no verdict fails the run.
-    let headline = verdicts
-        .iter()
-        .filter(|v| v.fails_run())
-        .map(|v| v.status)
-        .max()
-        .unwrap_or(Status::Pass);
+    let headline = headline(verdicts);
     let passed = verdicts.iter().filter(|v| v.status == Status::Pass).count();
     let points = scenario.points.len();
     let named: Vec<String> = [Status::Error, Status::Fail, Status::NotExercised]
@@ -43,7 +37,9 @@ pub fn print_verdicts(path: &str, scenario: &Scenario, verdicts: &[Verdict], tai
             (!ids.is_empty()).then(|| format!("{}: {}{note}", status.words(), ids.join(", ")))
         })
         .collect();
-    let named = if named.is_empty() {
+    let named = if verdicts.is_empty() {
+        " (no requirements: nothing to judge)".to_owned()
+    } else if named.is_empty() {
         String::new()
     } else {
         format!(" ({})", named.join("; "))

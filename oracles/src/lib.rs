@@ -27,7 +27,7 @@ pub use domain::{OutOfDomain, Quantity, out_of_domain};
 pub use falsify::{Case, Outcome, Phase, Score, Search, falsify};
 pub use known::known_answers;
 pub use measurements::Measurements;
-pub use verdict::{Evaluation, Status, Verdict, check};
+pub use verdict::{Evaluation, Status, Verdict, check, headline};
 
 mod check;
 mod domain;

@@ -152,6 +152,21 @@ impl Verdict {
     }
 }
 
+/// What a run's verdicts tell a CI gate: the worst status that fails the run,
+/// `Pass` when none does, and `NotExercised` when there is no requirement at
+/// all (nothing was judged, so nothing was passed).
+pub fn headline(verdicts: &[Verdict]) -> Status {
+    if verdicts.is_empty() {
+        return Status::NotExercised;
+    }
+    verdicts
+        .iter()
+        .filter(|v| v.fails_run())
+        .map(|v| v.status)
+        .max()
+        .unwrap_or(Status::Pass)
+}
+
 /// Checks every requirement of `scenario` against the measurements of a run
 /// (a [`Run`](sightline_engine::Run), or a recording's), in requirement order.
 pub fn check(scenario: &Scenario, measurements: &(impl Measurements + ?Sized)) -> Vec<Verdict> {

@@ -15,6 +15,33 @@ use crate::support::{
 /// comes that close, and six anticipation times are measured.
 const IDLE: &str = "tests/fixtures/not-exercised/junction-idle.yaml";
 
+/// A scenario without requirements judges nothing, so it does not pass: not
+/// exercised, and the gate fails.
+#[test]
+fn a_scenario_without_requirements_is_not_exercised() {
+    let tmp = temp_dir();
+    let text = read(&crate::support::root().join(crate::support::SMALL_FIELD));
+    let (head, tail) = text.split_once("requirements:\n").unwrap();
+    let references = &tail[tail.find("references:").unwrap()..];
+    let file = tmp.path().join("unjudged.yaml");
+    std::fs::write(&file, format!("{head}{references}")).unwrap();
+    let out = tmp.path().join("evidence");
+    let outcome = sightline(["run", arg(&file), "--out", arg(&out)]);
+    outcome.assert_exit(1);
+    assert!(
+        outcome.stdout.starts_with(&format!(
+            "NOT EXERCISED {}: 0 of 0 requirements hold over 3 sweep points (no requirements: nothing to judge)",
+            file.display()
+        )),
+        "{outcome}"
+    );
+    let results = read_json(&out.join("results.json"));
+    assert_eq!(
+        (&results["verdict"], &results["gate"]),
+        (&"not_exercised".into(), &"fail".into())
+    );
+}
+
 /// A temporal check's window covers the run up to its end, its last step's
 /// time plus a step (each step's state holds until the next): `within` the
 /// run's duration is judged over every step; a window reaching past the end

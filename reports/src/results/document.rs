@@ -35,11 +35,12 @@ pub struct Results {
     pub recording: Option<RecordingInfo>,
     /// The seed, when every point shares one (`null` when the seed is swept).
     pub seed: Option<u64>,
-    /// The overall verdict: the worst requirement verdict (pass with no requirements).
+    /// The overall verdict: the worst requirement verdict (not exercised with
+    /// no requirements: nothing was judged).
     pub verdict: Status,
     /// What a CI gate should do: `pass` when every requirement passes or is
     /// not exercised with an accepted reason (`sightline run` exits 0),
-    /// `fail` otherwise (it exits 1).
+    /// `fail` otherwise, and with no requirements (it exits 1).
     pub gate: Status,
     /// Requirement counts.
     pub summary: Summary,

@@ -45,11 +45,10 @@ impl Results {
                 .iter()
                 .map(|v| v.status)
                 .max()
-                .map_or(Status::Pass, Status::from),
-            gate: if verdicts.iter().any(Verdict::fails_run) {
-                Status::Fail
-            } else {
-                Status::Pass
+                .map_or(Status::NotExercised, Status::from),
+            gate: match sightline_oracles::headline(verdicts) {
+                sightline_oracles::Status::Pass => Status::Pass,
+                _ => Status::Fail,
             },
             summary: Summary {
                 requirements: verdicts.len(),
