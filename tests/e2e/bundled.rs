@@ -445,9 +445,9 @@ fn urban_semantic_scenario_runs_end_to_end() {
             "{id}"
         );
     }
-    // No road user comes within d_min of the ego at some densities: URB-MISS-01
-    // is not exercised there, which the scenario accepts with a reason, and the
-    // verdict says so rather than `pass`.
+    // No road user comes within d_min of the waiting ego: URB-MISS-01 is not
+    // exercised there (and only there), which the scenario accepts with a
+    // reason, and the verdict says so rather than `pass`.
     let miss = requirement(results, "URB-MISS-01");
     assert_eq!(
         (&miss["verdict"], &miss["fails_run"]),
@@ -457,11 +457,12 @@ fn urban_semantic_scenario_runs_end_to_end() {
         miss["accept_not_exercised"]
             .as_str()
             .unwrap()
-            .starts_with("At the lightest traffic")
+            .starts_with("Where the ego waits 480 m down its road")
     );
     for point in miss["points"].as_array().unwrap() {
-        let idle = point["n"] == 0;
-        assert_eq!(point["verdict"] == "not_exercised", idle, "{point}");
+        let waiting = point["label"].as_str().unwrap().contains("agents.ego.speed.target=0");
+        assert_eq!(point["verdict"] == "not_exercised", waiting, "{point}");
+        assert_eq!(point["n"] == 0, waiting, "{point}");
     }
     // 13 rows in five sweeps; density 23 at the paper's `risk_for` and
     // density 10 at our `shares_over` and `contribution_over` are rows of two
