@@ -94,6 +94,9 @@ macro_rules! invalid_inputs {
 }
 
 invalid_inputs! {
+    occluder_types_name_what_the_imported_files_have => "traces-occluder-type-absent",
+    map_occluder_types_name_what_the_map_has => "opendrive-occluder-type-absent",
+    a_roadside_unit_listed_twice_and_a_sub_step_horizon_are_refused => "semantic-rsus-and-horizon",
     system_under_test_is_validated => "system-under-test-errors",
     system_under_test_sensors_are_on_its_agent => "system-under-test-sensors",
     system_under_test_runs_once => "system-under-test-run-once",

@@ -15,7 +15,7 @@
 
 use std::collections::HashMap;
 
-use super::checks::known_names;
+use super::checks::{known_names, types_present};
 use super::context::Context;
 use super::reader::{Failed, Named, Reader};
 use crate::error::{Error, ErrorKind};
@@ -103,6 +103,10 @@ pub(super) fn load(ctx: &mut Context<'_>, raw: Option<&RawMap>, loader: Option<&
     let default = raw.speed_limit.unwrap_or(f64::INFINITY);
     let roads = lane_roads(ctx, &file, &map, LaneUse::Drive, default);
     let walkways = lane_roads(ctx, &file, &map, LaneUse::Walk, default);
+    if ok && ctx.has(&at.key("occluder_types")) {
+        let kinds = map.objects.iter().map(|o| o.kind.as_str());
+        ok &= types_present(ctx, &at.key("occluder_types"), &raw.occluder_types, kinds, "object");
+    }
     let mut occluders = Vec::new();
     let mut crosswalks = Vec::new();
     for object in &map.objects {

@@ -87,6 +87,22 @@ pub(super) fn selection(
         })
         .collect();
     let mut ok = true;
+    // An empty list would select nothing, though a missing one selects all.
+    for (key, empty) in [
+        ("ids", raw.ids.is_empty()),
+        ("classes", raw.classes.is_empty()),
+        ("areas", raw.areas.is_empty()),
+    ] {
+        if empty && ctx.has(&path.key(key)) {
+            ctx.error(
+                &path.key(key),
+                ErrorKind::Invalid(format!(
+                    "an empty list selects nothing; leave `{key}` out to select by the others"
+                )),
+            );
+            ok = false;
+        }
+    }
     let road_users: BTreeSet<&str> = worlds.iter().flat_map(|w| road_users(w).map(|(_, id)| id)).collect();
     for (i, id) in raw.ids.iter().enumerate() {
         if !road_users.contains(id.as_str()) {

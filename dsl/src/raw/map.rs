@@ -17,7 +17,8 @@ use super::range;
 pub(crate) struct RawMap {
     /// The OpenDRIVE file, relative to the scenario file's directory.
     pub opendrive: String,
-    /// The object types (`type` of `<object>`) whose outlines block sight.
+    /// The object types (`type` of `<object>`) whose outlines block sight;
+    /// when given, each must be a type of an object of the map.
     #[serde(default = "default_occluder_types")]
     pub occluder_types: Vec<String>,
     /// Every junction with connecting roads becomes an interaction area,

@@ -136,7 +136,7 @@ pub(crate) struct RawCheck {
 #[schemars(rename = "ObjectSelection")]
 pub(crate) struct RawObjectSelection {
     /// Ids of declared or traced agents (generated road users are selected by
-    /// class and area).
+    /// class and area). Each of these lists, when given, is not empty.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub ids: Vec<String>,
     /// Classes a road user of the scenario can have.

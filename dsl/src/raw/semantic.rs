@@ -35,14 +35,15 @@ pub(crate) struct RawInteractionArea {
 pub(crate) struct RawSemantic {
     /// Id of the assisted vehicle (connected, with sensors).
     pub ego: String,
-    /// Ids of the roadside units that assist it. Default: every RSU with sensors.
+    /// Ids of the roadside units that assist it, each once. Default: every RSU
+    /// with sensors.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rsus: Option<Vec<String>>,
     /// Proximity filter: objects farther from the ego are not sent, metres.
     #[serde(default = "default_proximity")]
     #[schemars(transform = range::EXTENT.schema())]
     pub proximity: f64,
-    /// Prediction horizon T_p, seconds.
+    /// Prediction horizon T_p, seconds: at least one step.
     #[serde(default = "default_horizon")]
     #[schemars(transform = range::REACTION.schema())]
     pub horizon: f64,

@@ -67,7 +67,8 @@ pub(crate) struct RawTraces {
     /// and its vehicle types count as the route files' do.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub poly: Option<String>,
-    /// The polygon types that block sight.
+    /// The polygon types that block sight; when given, each must be a type of
+    /// a polygon of the imported files.
     #[serde(default = "default_occluder_types")]
     pub occluder_types: Vec<String>,
     /// With a network: every junction where paths from two roads meet or cross

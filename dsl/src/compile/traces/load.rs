@@ -16,7 +16,7 @@ use super::files::{Files, read_files};
 use super::network::{FILE_START, scene};
 use super::objects::{Body, InFile, PoiRsu, bodies, poi_rsus};
 use crate::compile::Loader;
-use crate::compile::checks::known_names;
+use crate::compile::checks::{known_names, types_present};
 use crate::compile::context::Context;
 use crate::error::{Error, ErrorKind, Location, Warning};
 use crate::geometry::counter_clockwise;
@@ -153,6 +153,14 @@ pub(crate) fn load(ctx: &mut Context<'_>, raw: Option<&RawTraces>, loader: Optio
             location: FILE_START,
             message: message.clone(),
         }));
+    }
+    if ctx.has(&at.key("occluder_types")) {
+        let kinds: Vec<&str> = others
+            .iter()
+            .flat_map(|(_, a)| &a.polygons)
+            .map(|p| p.kind.as_str())
+            .collect();
+        ok &= types_present(ctx, &at.key("occluder_types"), &raw.occluder_types, kinds, "polygon");
     }
     let mut occluders = Vec::new();
     for (file, additional) in &others {

@@ -419,6 +419,10 @@ pub(super) fn semantic_of(
             for (i, id) in ids.iter().enumerate() {
                 let at = path.key("rsus").index(i);
                 let Some(index) = find(ctx, id, &at) else { continue };
+                if found.contains(&index) {
+                    ctx.error(&at, ErrorKind::Invalid(format!("`{id}` is listed twice")));
+                    continue;
+                }
                 if agents[index].kind != AgentKind::Rsu || agents[index].sensors.is_empty() {
                     ctx.error(
                         &at,
@@ -490,6 +494,17 @@ pub(super) fn semantic_of(
             raw.baseline.interval,
             range::SPAN,
         );
+    if ok && raw.horizon < step {
+        // A prediction of less than a step has no segment to test.
+        ctx.error(
+            &path.key("horizon"),
+            ErrorKind::OutOfRange {
+                expected: format!("at least one {step} s step"),
+                found: raw.horizon.to_string(),
+            },
+        );
+        ok = false;
+    }
     ok &= ctx.expect(
         range::RUNS.contains(f64::from(raw.runs)),
         &path.key("runs"),
