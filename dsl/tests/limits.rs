@@ -310,3 +310,68 @@ fn the_work_of_a_run_counts_its_seeds_and_is_split_by_shards() {
     // The file as bundled: well within one process.
     assert!(compile("s.yaml", URBAN, &processes(Some(1))).is_ok());
 }
+
+/// Laying an occluder on the grid tests each cell of its bounding box against
+/// each of its edges: an outline of 30 000 corners over the whole grid is
+/// refused before anything is laid (it took minutes).
+#[test]
+fn an_occluder_of_many_corners_over_the_grid_is_refused() {
+    let teeth = 15_000;
+    let mut corners: Vec<String> = (0..teeth)
+        .flat_map(|i| {
+            let x = -150.0 + 300.0 * f64::from(i) / f64::from(teeth);
+            [format!("[{x}, -150]"), format!("[{}, -149]", x + 0.01)]
+        })
+        .collect();
+    corners.extend(["[150, 150]".to_string(), "[-150, 150]".to_string()]);
+    let comb = format!("  - {{ id: comb, polygon: [{}] }}\n", corners.join(", "));
+    let text = with(
+        ROUNDABOUT,
+        "occluders:                       # ours: four corner blocks clear of the ring\n",
+        &format!("occluders:\n{comb}"),
+    );
+    let errors = errors(&text);
+    assert!(
+        errors.0.iter().any(|e| e.path == "occluders"
+            && e.to_string().contains(
+                "1.1e10 edge tests laying the occluders on the grid (each occluder's cells on the grid × its corners \
+                 × runs) exceed the limit of 1e10"
+            )),
+        "{errors}"
+    );
+}
+
+/// Every requirement is a verdict at each point it applies to, each written
+/// to the evidence with its text: too many verdicts, or text repeated into
+/// too many bytes, are refused (a thousand requirements over a thousand
+/// points ran out of memory).
+#[test]
+fn verdicts_and_the_text_they_repeat_are_bounded() {
+    let many: String = (0..2000)
+        .map(|i| format!("  - {{ id: R{i}, text: t, check: {{ invariant: mass_function }} }}\n"))
+        .collect();
+    let long = format!(
+        "  - {{ id: LONG, text: {}, check: {{ invariant: mass_function }} }}\n",
+        "t".repeat(1_000_000)
+    );
+    for (added, message) in [
+        (
+            many,
+            " verdicts (requirements × the sweep points each applies to) exceed the limit of 100000",
+        ),
+        (
+            long,
+            " bytes of requirement text in the evidence (each text × the points it applies to) exceed the limit of 5e7",
+        ),
+    ] {
+        let text = with(FIELD, "requirements:\n", &format!("requirements:\n{added}"));
+        let errors = errors(&text);
+        assert!(
+            errors
+                .0
+                .iter()
+                .any(|e| e.path == "requirements" && e.to_string().contains(message)),
+            "{errors}"
+        );
+    }
+}

@@ -49,6 +49,11 @@ pub const MAX_SIGHTING_RAYS: f64 = 1.0e9;
 /// radio, the ego's copy of what each other cooperating agent sent).
 pub const MAX_CELLS_HELD: f64 = 1.0e8;
 
+/// The most point-in-polygon edge tests that laying the occluders on the
+/// grid takes at a point: every cell of an occluder's bounding box (within
+/// the grid) against every edge of its outline, for each run.
+pub const MAX_OCCLUDER_TESTS: f64 = 1.0e10;
+
 /// The most mass vectors the field experiment draws at a point (sensors × the
 /// cells within a sensor's range).
 pub const MAX_FIELD_DRAWS: f64 = 1.0e9;
@@ -125,6 +130,42 @@ pub(super) fn recording_budget(
         MAX_RECORDED_GRID_CELLS,
         &format!("grid cells recorded {which} (cells × grids recorded)"),
         "record fewer grids (`grid_rate`, `agent_grids`), one point, or use larger cells",
+    )
+}
+
+/// The most verdicts a run gives: each requirement at each point it applies
+/// to, each kept with its message and written to results.json, junit.xml and
+/// the report.
+pub const MAX_VERDICTS: f64 = 100_000.0;
+
+/// The most bytes of requirement text the evidence repeats: each
+/// requirement's text × the points it applies to (junit.xml has a case per
+/// requirement and point, each with the text).
+pub const MAX_TEXT_REPEATED: f64 = 5.0e7;
+
+/// Checks the verdicts `requirements` give and the text their evidence
+/// repeats; returns whether both are within their limits.
+pub(super) fn verdicts_budget(ctx: &mut Context<'_>, requirements: &[Requirement]) -> bool {
+    let at = Path::root().key("requirements");
+    let verdicts: f64 = requirements.iter().map(|r| r.points.len() as f64).sum();
+    let text: f64 = requirements
+        .iter()
+        .map(|r| r.text.len() as f64 * r.points.len() as f64)
+        .sum();
+    limit(
+        ctx,
+        &at,
+        verdicts,
+        MAX_VERDICTS,
+        "verdicts (requirements × the sweep points each applies to)",
+        "check fewer requirements, or each at fewer points (`where`)",
+    ) && limit(
+        ctx,
+        &at,
+        text,
+        MAX_TEXT_REPEATED,
+        "bytes of requirement text in the evidence (each text × the points it applies to)",
+        "shorten the requirements' text, or check each at fewer points",
     )
 }
 
@@ -320,7 +361,43 @@ fn world_budget(ctx: &mut Context<'_>, world: &World, grid: Option<&Grid>) -> bo
         );
         ok &= rays_budget(ctx, world, grid, (agents, &agents_at));
     }
+    if let Some(grid) = grid {
+        ok &= limit(
+            ctx,
+            &root.key("occluders"),
+            occluder_tests(world, grid) * runs,
+            MAX_OCCLUDER_TESTS,
+            "edge tests laying the occluders on the grid (each occluder's cells on the grid × its corners × runs)",
+            "use fewer corners, smaller occluders or larger cells",
+        );
+    }
     ok
+}
+
+/// The edge tests that laying `world`'s occluders on `grid` takes once: the
+/// cells of each one's bounding box within the grid × its corners.
+fn occluder_tests(world: &World, grid: &Grid) -> f64 {
+    // The cells from `lo` to `hi` along an axis starting at `origin`.
+    let span = |lo: f64, hi: f64, origin: f64, count: usize| {
+        let first = ((lo - origin) / grid.cell).floor().max(0.0);
+        let last = ((hi - origin) / grid.cell).floor().min(count as f64 - 1.0);
+        (last - first + 1.0).max(0.0)
+    };
+    world
+        .occluders
+        .iter()
+        .map(|occluder| {
+            let (lo, hi) = occluder
+                .polygon
+                .iter()
+                .fold(([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]), |(lo, hi), &[x, y]| {
+                    ([lo[0].min(x), lo[1].min(y)], [hi[0].max(x), hi[1].max(y)])
+                });
+            let cols = span(lo[0], hi[0], grid.origin[0], grid.cols);
+            let rows = span(lo[1], hi[1], grid.origin[1], grid.rows);
+            cols * rows * occluder.polygon.len() as f64
+        })
+        .sum()
 }
 
 /// The rays the cooperating agents cast per step, and the cells they cross

@@ -5,7 +5,7 @@ use std::collections::{BTreeMap, HashMap, HashSet};
 use std::sync::Arc;
 use std::{fmt, io};
 
-use super::budget::run_budget;
+use super::budget::{run_budget, verdicts_budget};
 use super::context::{Context, has, locate_key};
 use super::ignored::ignored;
 use super::kind::{self, Kind};
@@ -152,6 +152,7 @@ fn compile_inner(file: &str, source: &str, options: &Options<'_>) -> Result<Scen
     };
     let points = compiled.as_ref().map(Configurations::points);
     let requirements = requirements(&mut ctx, &raw.requirements, points);
+    verdicts_budget(&mut ctx, &requirements);
     if let (Some(points), Some(processes)) = (points, options.processes) {
         let sweep = Path::root().key(if raw.sweeps.is_empty() { "sweep" } else { "sweeps" });
         run_budget(&mut ctx, points, &requirements, (processes, &sweep));
