@@ -64,11 +64,21 @@ pub struct Score {
 }
 
 impl Score {
-    /// The score of a case from its verdicts.
+    /// The score of a case from its verdicts: the worst is one that could not
+    /// be checked, else one that breaks the run, else the smallest margin; an
+    /// accepted not-exercised verdict without a margin only when nothing
+    /// else is there (it would hide every margin from the guided search).
     pub fn of(verdicts: &[Verdict]) -> Self {
+        let rank = |v: &Verdict| match (v.status, v.fails_run(), v.decisive.margin) {
+            (Status::Error, ..) => 0,
+            (_, true, _) => 1,
+            (_, false, Some(_)) => 2,
+            (_, false, None) => 3,
+        };
         let worst = verdicts.iter().min_by(|a, b| {
-            b.status
-                .cmp(&a.status)
+            rank(a)
+                .cmp(&rank(b))
+                .then(b.status.cmp(&a.status))
                 .then_with(|| match (a.decisive.margin, b.decisive.margin) {
                     (Some(x), Some(y)) => x.total_cmp(&y),
                     (x, y) => x.is_some().cmp(&y.is_some()),
@@ -463,8 +473,12 @@ mod tests {
             accepted: Some("no pedestrians in this variant".into()),
             ..idle
         };
-        let score = Score::of(&[accepted]);
+        let score = Score::of(std::slice::from_ref(&accepted));
         assert!(!score.breaks);
         assert_eq!(score.robustness(), f64::INFINITY);
+        // Beside a margin, the accepted one does not hide it from the search.
+        let score = Score::of(&[accepted, verdict("A", Status::Pass, Some(0.3))]);
+        assert_eq!((score.requirement.as_deref(), score.margin), (Some("A"), Some(0.3)));
+        assert_eq!(score.robustness(), 0.3);
     }
 }
