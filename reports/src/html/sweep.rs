@@ -84,6 +84,7 @@ pub(super) struct ComparisonView {
     metric: &'static str,
     published: String,
     measured: String,
+    n: String,
     ratio: String,
 }
 
@@ -184,6 +185,7 @@ pub(super) fn comparisons(results: &Results) -> Vec<ComparisonView> {
                 metric: r.metric,
                 published: with_unit(Some(r.published), unit),
                 measured: with_unit(p.measured, unit),
+                n: p.n.map_or_else(|| "—".into(), |n| number(n as f64)),
                 ratio: p
                     .measured
                     .filter(|_| r.published != 0.0)

@@ -27,6 +27,9 @@ pub struct ReferencePoint {
     pub label: String,
     /// The measured value (`null` where undefined).
     pub measured: Option<f64>,
+    /// What the measured value is computed over, its n (`null` where the
+    /// point does not measure the metric).
+    pub n: Option<u64>,
 }
 
 /// A modelling idealisation that applied to the run: what a model takes as

@@ -84,6 +84,7 @@ impl Results {
                             point: p,
                             label: labels[p].clone(),
                             measured: run.points[p].value(r.metric),
+                            n: run.points[p].sample(r.metric).map(|s| s.n),
                         })
                         .collect(),
                 })
