@@ -180,7 +180,9 @@ fn options(setup: &Setup) -> Vec<ModelOption> {
     match &setup.experiment {
         Experiment::Field(field) => options.push(ModelOption::ErrorModel(field.masses.error_model)),
         Experiment::World(world) => {
-            options.push(ModelOption::Following(world.driving.following));
+            if world.drives_vehicles() {
+                options.push(ModelOption::Following(world.driving.following));
+            }
             if world.perception.is_some() {
                 let localization = &world.localization;
                 options.push(ModelOption::PoseFilter(localization.filter));

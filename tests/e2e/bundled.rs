@@ -596,6 +596,11 @@ fn sumo_grid_scenario_runs_end_to_end_and_hashes_its_imports() {
     // No road user comes within d_min of the ego in this trace: nothing to judge.
     let miss = requirement(results, "GRID-MISS-01");
     assert_eq!((&miss["verdict"], &miss["n"]), (&"not_exercised".into(), &0.into()));
+    // Every vehicle replays the trace, the ego too: no car following is
+    // assumed, and the ego cannot react to what it is told.
+    let assumptions = results["assumptions"].to_string();
+    assert!(assumptions.contains("semantic.ego-replays"), "{assumptions}");
+    assert!(!assumptions.contains("motion.no-following"), "{assumptions}");
     let inputs: Vec<(&str, &str, &str)> = results["inputs"]
         .as_array()
         .unwrap()

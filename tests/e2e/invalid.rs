@@ -94,6 +94,7 @@ macro_rules! invalid_inputs {
 }
 
 invalid_inputs! {
+    car_following_where_every_vehicle_replays_a_trace_is_refused => "traces-driving-without-driven-vehicles",
     occluder_types_name_what_the_imported_files_have => "traces-occluder-type-absent",
     map_occluder_types_name_what_the_map_has => "opendrive-occluder-type-absent",
     a_roadside_unit_listed_twice_and_a_sub_step_horizon_are_refused => "semantic-rsus-and-horizon",

@@ -614,8 +614,8 @@ const KEYS: &[Key] = &[
     Key {
         path: "map.occluder_types",
         field: Section,
-        perception: with(&[("map", r#"{ "opendrive": "opendrive/crossroads.xodr" }"#), ("grid", r#"{ "origin": [120, -30], "size": [90, 120], "cell": 1 }"#), ("agents.0.route", r#"["road 2 lane -1", "road 106 lane -1", "road 4 lane 1"]"#), ("agents.0.start.offset", "60"), ("agents.1.route", r#"["road 3 lane -1", "road 107 lane -1", "road 1 lane 1"]"#), ("agents.1.start.offset", "60"), ("agents.2.route", r#"["road 1 lane -1"]"#), ("agents.3.path", "[[150, 60], [150, 50]]"), ("agents.4.position", "[157, 19]")], &[("map.occluder_types", r#"["tree"]"#)]),
-        semantic: with(MAP_SEMANTIC, &[("map.occluder_types", r#"["tree"]"#)]),
+        perception: with(&[("map", r#"{ "opendrive": "opendrive/crossroads.xodr" }"#), ("grid", r#"{ "origin": [120, -30], "size": [90, 120], "cell": 1 }"#), ("agents.0.route", r#"["road 2 lane -1", "road 106 lane -1", "road 4 lane 1"]"#), ("agents.0.start.offset", "60"), ("agents.1.route", r#"["road 3 lane -1", "road 107 lane -1", "road 1 lane 1"]"#), ("agents.1.start.offset", "60"), ("agents.2.route", r#"["road 1 lane -1"]"#), ("agents.3.path", "[[150, 60], [150, 50]]"), ("agents.4.position", "[157, 19]")], &[("map.occluder_types", "[]")]),
+        semantic: with(MAP_SEMANTIC, &[("map.occluder_types", "[]")]),
     },
     Key {
         path: "map.junction_areas",

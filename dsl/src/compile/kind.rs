@@ -169,7 +169,13 @@ impl Unused<'_> {
                 });
             }
         }
-        if world.driving.following == Following::None {
+        if !world.drives_vehicles() {
+            for key in ["following", "headway", "min_gap", "deceleration"] {
+                self.check(root.key("driving").key(key), || {
+                    "no vehicle drives by the model: each one replays its trace or stands still".into()
+                });
+            }
+        } else if world.driving.following == Following::None {
             let why = || "vehicles ignore each other (`following: none`), so no car-following model runs".to_string();
             for key in ["headway", "min_gap", "deceleration"] {
                 self.check(root.key("driving").key(key), why);

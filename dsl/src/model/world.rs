@@ -62,6 +62,14 @@ impl World {
     pub fn is_joint(&self) -> bool {
         self.perception.is_some() && self.semantic.is_some()
     }
+
+    /// Whether a vehicle drives by the car-following model (`driving`): a
+    /// declared vehicle on its way, or generated vehicle traffic; not when
+    /// every vehicle replays a trace or stands still.
+    pub fn drives_vehicles(&self) -> bool {
+        self.traffic.as_ref().is_some_and(|t| t.vehicles.is_some())
+            || (self.agents.iter()).any(|a| a.kind.is_vehicle() && matches!(a.motion, Motion::Along { .. }))
+    }
 }
 
 /// A road's lanes.

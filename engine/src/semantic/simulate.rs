@@ -55,7 +55,7 @@
 //!   it would have been cautious.
 
 use rayon::prelude::*;
-use sightline_dsl::{Agent, AgentKind, Semantic, ShareCycles, World};
+use sightline_dsl::{Agent, AgentKind, Motion, Semantic, ShareCycles, World};
 
 use super::criticality;
 use super::ego::{self, Ego};
@@ -88,6 +88,14 @@ pub(crate) const PIPELINE_EXACT_POSES: Idealisation = Idealisation {
     id: "joint.pipeline-exact-poses",
     text: "In the semantic pipeline the ego and the roadside units know their own poses exactly (the ego's \
            plan and sight, the roadside units' measurements); only the grid's cooperating agents localize.",
+};
+
+/// A traced ego does not react.
+pub(crate) const EGO_REPLAYS: Idealisation = Idealisation {
+    id: "semantic.ego-replays",
+    text: "The ego replays its trace: it cannot slow down when a roadside unit flags a conflict, so its \
+           trajectory, and every close approach, is the trace's whatever it is told; `cautious_time` counts \
+           the time it would have been cautious.",
 };
 
 /// Each model of a joint world senses on its own.
@@ -136,6 +144,9 @@ pub(crate) fn idealisations(world: &World, semantic: &Semantic) -> Vec<Idealisat
     }
     if world.is_joint() {
         listed.push(TWO_SENSOR_MODELS);
+    }
+    if matches!(world.agents[semantic.ego].motion, Motion::Trace { .. }) {
+        listed.push(EGO_REPLAYS);
     }
     listed
 }
