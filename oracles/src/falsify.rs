@@ -76,13 +76,12 @@ impl Score {
             (_, false, None) => 3,
         };
         let worst = verdicts.iter().min_by(|a, b| {
-            rank(a)
-                .cmp(&rank(b))
-                .then(b.status.cmp(&a.status))
-                .then_with(|| match (a.decisive.margin, b.decisive.margin) {
+            rank(a).cmp(&rank(b)).then(b.status.cmp(&a.status)).then_with(|| {
+                match (a.decisive.margin, b.decisive.margin) {
                     (Some(x), Some(y)) => x.total_cmp(&y),
                     (x, y) => x.is_some().cmp(&y.is_some()),
-                })
+                }
+            })
         });
         Self {
             requirement: worst.map(|v| v.id.clone()),

@@ -30,8 +30,9 @@ pub struct SeedStatistics {
 /// own first). The compared value is the bound; its margin is against the
 /// threshold for a mean, against `share` for a share, and its n is the number
 /// of seeds. A seed with fewer than `min_samples` samples leaves the check not
-/// exercised; a seed where the metric is missing or undefined over samples is
-/// an error.
+/// exercised, unless a share misses even with every such seed counted as
+/// holding (a failure whatever they hold); a seed where the metric is missing
+/// or undefined over samples is an error.
 pub(crate) fn evaluate(
     metric: Metric,
     bound: Bound,
@@ -47,10 +48,53 @@ pub(crate) fn evaluate(
     let short_of = samples.iter().filter(|s| s.n < min_samples).count();
     let fewest = samples.iter().map(|s| s.n).min().unwrap_or(0);
     if short_of > 0 {
-        let message = format!(
-            "nothing to judge at {short_of} of {seeds} seeds: {name} over as few as n = {fewest} {}, fewer than the {min_samples} the check needs",
+        let unjudged = format!(
+            "{short_of} of {seeds} seeds: {name} over as few as n = {fewest} {}, fewer than the {min_samples} the check needs",
             metric.population()
         );
+        let judged_defined = (samples.iter())
+            .filter(|s| s.n >= min_samples)
+            .all(|s| s.value.is_some_and(|v| !v.is_nan()));
+        if let (Statistic::Share { share, method }, true) = (over.statistic, judged_defined) {
+            // A share that misses even with every seed not judged counted as
+            // holding fails whatever those seeds hold.
+            let holding = samples
+                .iter()
+                .filter(|s| s.n >= min_samples && s.value.is_some_and(|v| bound.margin(v) >= 0.0))
+                .count();
+            let best = (holding + short_of) as u32;
+            let n = seeds as u32;
+            let limit = share_lower(method, best, n, over.confidence);
+            if limit < share {
+                let statistics = SeedStatistics {
+                    seeds: n,
+                    confidence: over.confidence,
+                    method: method_name(method),
+                    estimate: f64::from(best) / f64::from(n),
+                    bound: limit,
+                };
+                let measured = format!(
+                    "lower {} % {} bound of the share of n = {n} seeds that hold, at best",
+                    short(over.confidence * 100.0),
+                    method_title(method)
+                );
+                let message = format!(
+                    "{} at {holding} seeds; with the {short_of} not judged holding too, the share's lower {}% \
+                     bound {} ({}) misses {} (margin {}); not judged: {unjudged}",
+                    relation(name, bound),
+                    short(over.confidence * 100.0),
+                    short(limit),
+                    statistics.method,
+                    short(share),
+                    short(limit - share)
+                );
+                return Evaluation {
+                    seeds: Some(statistics),
+                    ..Evaluation::judged(limit, limit - share, u64::from(n), measured, message)
+                };
+            }
+        }
+        let message = format!("nothing to judge at {unjudged}");
         return Evaluation::not_exercised(fewest, format!("{name} at each of {seeds} seeds"), message);
     }
     let Some(values) = samples
@@ -91,35 +135,23 @@ pub(crate) fn evaluate(
         }
         Statistic::Share { share, method } => {
             let holding = values.iter().filter(|&&v| bound.margin(v) >= 0.0).count() as u32;
-            let limit = match method {
-                RateBound::ClopperPearson => clopper_pearson_lower(holding, n, over.confidence),
-                RateBound::Wilson => wilson_lower(holding, n, over.confidence),
-            };
+            let limit = share_lower(method, holding, n, over.confidence);
             let statistics = SeedStatistics {
                 seeds: n,
                 confidence: over.confidence,
-                method: match method {
-                    RateBound::ClopperPearson => "clopper_pearson",
-                    RateBound::Wilson => "wilson",
-                },
+                method: method_name(method),
                 estimate: f64::from(holding) / f64::from(n),
                 bound: limit,
             };
-            let relation = match bound {
-                Bound::AtLeast(t) => format!("{name} ≥ {}", short(t)),
-                Bound::AtMost(t) => format!("{name} ≤ {}", short(t)),
-            };
             let description = format!(
-                "{relation} at {holding} of {n} seeds, the share's lower {confidence}% bound {} ({})",
+                "{} at {holding} of {n} seeds, the share's lower {confidence}% bound {} ({})",
+                relation(name, bound),
                 short(limit),
                 statistics.method
             );
             let measured = format!(
                 "lower {confidence} % {} bound of the share of n = {n} seeds that hold",
-                match method {
-                    RateBound::ClopperPearson => "Clopper–Pearson",
-                    RateBound::Wilson => "Wilson",
-                }
+                method_title(method)
             );
             (statistics, share, limit - share, description, measured)
         }
@@ -133,6 +165,38 @@ pub(crate) fn evaluate(
     Evaluation {
         seeds: Some(statistics),
         ..Evaluation::judged(statistics.bound, margin, u64::from(n), measured, message)
+    }
+}
+
+/// `name ≥ t` or `name ≤ t`.
+fn relation(name: &str, bound: Bound) -> String {
+    match bound {
+        Bound::AtLeast(t) => format!("{name} ≥ {}", short(t)),
+        Bound::AtMost(t) => format!("{name} ≤ {}", short(t)),
+    }
+}
+
+/// The one-sided lower bound of a share of `k` in `n` at `confidence`, by `method`.
+fn share_lower(method: RateBound, k: u32, n: u32, confidence: f64) -> f64 {
+    match method {
+        RateBound::ClopperPearson => clopper_pearson_lower(k, n, confidence),
+        RateBound::Wilson => wilson_lower(k, n, confidence),
+    }
+}
+
+/// `method` as results.json names it.
+fn method_name(method: RateBound) -> &'static str {
+    match method {
+        RateBound::ClopperPearson => "clopper_pearson",
+        RateBound::Wilson => "wilson",
+    }
+}
+
+/// `method` in words.
+fn method_title(method: RateBound) -> &'static str {
+    match method {
+        RateBound::ClopperPearson => "Clopper–Pearson",
+        RateBound::Wilson => "Wilson",
     }
 }
 
@@ -314,6 +378,32 @@ mod tests {
             "{}",
             e.message
         );
+    }
+
+    #[test]
+    fn a_share_that_misses_even_if_the_seeds_not_judged_held_fails() {
+        // at_most 2 holds at 2 of the 9 seeds judged (1 and 2); the tenth has
+        // too few samples. Even if it held, 3 of 10 clears no share of 0.5.
+        let mut values = one_to_ten();
+        values[9] = Some(Sample { value: None, n: 0 });
+        let share = |share| {
+            over(Statistic::Share {
+                share,
+                method: RateBound::Wilson,
+            })
+        };
+        let e = evaluate(Metric::MissedCriticals, Bound::AtMost(2.0), share(0.5), &values, 1);
+        assert_eq!((e.status, e.n), (Status::Fail, Some(10)));
+        assert_relative_eq!(e.value.unwrap(), wilson_lower(3, 10, 0.95), epsilon = 1e-12);
+        assert!(
+            e.message
+                .starts_with("missed_criticals ≤ 2 at 2 seeds; with the 1 not judged holding too"),
+            "{}",
+            e.message
+        );
+        // A share of 0.1 it could clear with the tenth: not exercised.
+        let e = evaluate(Metric::MissedCriticals, Bound::AtMost(2.0), share(0.1), &values, 1);
+        assert_eq!(e.status, Status::NotExercised);
     }
 
     #[test]
