@@ -107,6 +107,10 @@ pub fn write_evidence(
     } else if reporting.request.record {
         reproduce.push_str(" --record");
     }
+    // A scenario on standard input names no evidence directory of its own.
+    if input.is_stdin() {
+        reproduce.push_str(&format!(" --out {}", staging.dir().display()));
+    }
     let templates = reporting.templates;
     let evidence = match render(scenario, &run, &verdicts, &provenance, &reproduce, templates) {
         Ok(evidence) => evidence,

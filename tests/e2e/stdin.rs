@@ -33,6 +33,11 @@ fn check_and_run_read_the_scenario_from_stdin() {
     assert_evidence_files(&out);
     let results = read_json(&out.join("results.json"));
     assert_eq!(results["scenario"]["path"], "<stdin>");
+    // The report's command to reproduce the run is one `run` accepts: a
+    // scenario on standard input needs `--out`.
+    let report = crate::support::unescape_html(&crate::support::read(&out.join("report.html")));
+    let reproduce = format!("sightline run - --seed 42 --out {}<", out.display());
+    assert!(report.contains(&reproduce), "{reproduce}");
     // The same bytes as the file: the same hash.
     let by_file = sightline_fed(
         root(),
