@@ -109,6 +109,14 @@ fn requirements_with_nothing_to_judge_are_not_exercised_and_fail_the_run() {
     );
     assert_eq!(results["sweep"][0]["metrics"]["missed_criticals"], 0.0);
     assert_eq!(results["sweep"][0]["samples"]["missed_criticals"], 0);
+    // The report's table of every metric shows it as not measured.
+    let report = unescape_html(&read(&out.join("report.html")));
+    assert!(
+        report.contains(
+            r#"<td class="text">missed_<wbr>criticals</td><td class="text">close approaches</td><td class="text">objects/run</td><td class="num">—</td><td class="num">0</td>"#
+        ),
+        "missed_criticals over no close approach is shown as —"
+    );
     // The median has the six samples it needs by default, and is judged.
     let median = requirement(&results, "IDLE-ANT-MEDIAN");
     assert_eq!(

@@ -34,7 +34,9 @@ pub(super) fn samples_table(p: &PointResult) -> TableView {
                 name.clone(),
                 population.to_string(),
                 metric_unit(name).to_string(),
-                or_dash(p.metrics.get(name)),
+                // A count over nobody (missed criticals with no close
+                // approach) is 0, but nothing was measured.
+                or_dash(p.metrics.get(name).filter(|_| *n > 0)),
                 number(*n as f64),
             ]
         })
