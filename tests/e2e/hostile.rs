@@ -428,6 +428,37 @@ fn opendrive_maps_beyond_their_limits_are_refused_within_the_caps() {
     }
 }
 
+/// A lane 1 mm long whose road is its own successor: the map's routes from it
+/// would go round it 100 000 times within their reach, and building them once
+/// took a stack frame a turn (a stack overflow, an abort). It runs to a whole
+/// evidence set.
+#[test]
+fn a_road_of_1_mm_linked_to_itself_runs() {
+    if !caps_available() {
+        return;
+    }
+    let tmp = case(
+        "sightline: 1\nname: loop road\ntime: { duration: 2, step: 0.1 }\nmap: { opendrive: loop.xodr }\n\
+         sensor_models: { s: { range: 50 } }\nagents:\n\
+         - { id: ego, kind: car, route: [road 1 lane -1], speed: { target: 1 }, connected: true, sensors: [s] }\n\
+         - { id: rsu, kind: rsu, position: [0, 10], sensors: [s] }\nsemantic: { ego: ego, horizon: 3 }\n\
+         requirements:\n  - { id: R1, text: messages, check: { metric: packet_delivery_ratio, at_least: 0 } }\n",
+    );
+    let map = r#"<OpenDRIVE><header revMajor="1" revMinor="6"/>
+<road id="1" junction="-1" length="0.001">
+  <link><predecessor elementType="road" elementId="1" contactPoint="end"/><successor elementType="road" elementId="1" contactPoint="start"/></link>
+  <type s="0" type="town"><speed max="50" unit="km/h"/></type>
+  <planView><geometry s="0" x="0" y="0" hdg="0" length="0.001"><line/></geometry></planView>
+  <lanes><laneSection s="0"><center><lane id="0" type="none"/></center><right>
+    <lane id="-1" type="driving"><link><predecessor id="-1"/><successor id="-1"/></link><width a="3.5" b="0" c="0" d="0" sOffset="0"/></lane>
+  </right></laneSection></lanes>
+</road></OpenDRIVE>
+"#;
+    std::fs::write(tmp.path().join("loop.xodr"), map).expect("the map is written");
+    let run = capped(tmp.path(), &["run", "case.yaml", "--out", "out"]);
+    assert_eq!(evidence_problem(&tmp.path().join("out"), run.code), None, "{run}");
+}
+
 /// A run whose report.html cannot be written (a folder stands in its place)
 /// fails, and leaves the previous run's results.json and junit.xml as they
 /// were: a folder holds one run's set, never a mix.
