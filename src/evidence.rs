@@ -421,7 +421,8 @@ pub fn creatable(dirs: &[PathBuf]) -> anyhow::Result<()> {
 /// Where each scenario's evidence goes (`out` with one scenario, `out/STEM/`
 /// with several, `out/STEM/` under the working directory without `out`); `None`
 /// (after printing why) when two scenarios would share a directory, one read
-/// from standard input has no `out`, or the set written there, whose files are
+/// from standard input has no `out`, one's name leaves no directory name
+/// (`...yaml`: `..`), or the set written there, whose files are
 /// `replaces`, would replace or remove a file the command reads (a
 /// `counterexample.yaml` run with `--out` its own folder).
 pub fn evidence_dirs<'a>(
@@ -439,10 +440,24 @@ pub fn evidence_dirs<'a>(
         );
         return None;
     }
+    let named = |input: &Input| {
+        let dir = match out {
+            Some(out) => stem(&input.path).map(|stem| out.join(stem)),
+            None => default_dir(&input.path),
+        };
+        if dir.is_none() {
+            eprintln!(
+                "{}: error: its name without the extension is `.` or `..`, which cannot name its evidence \
+                 directory; rename the file{}",
+                input.name,
+                if out.is_none() { " or give --out DIR" } else { "" }
+            );
+        }
+        dir
+    };
     let dirs: Vec<PathBuf> = match (out, inputs.len()) {
         (Some(out), 1) => vec![out.to_path_buf()],
-        (Some(out), _) => inputs.iter().map(|i| out.join(stem(&i.path))).collect(),
-        (None, _) => inputs.iter().map(|i| default_dir(&i.path)).collect(),
+        _ => inputs.iter().map(|i| named(i)).collect::<Option<_>>()?,
     };
     let mut seen = HashSet::new();
     for (dir, input) in dirs.iter().zip(&inputs) {
