@@ -424,11 +424,13 @@ pub fn creatable(dirs: &[PathBuf]) -> anyhow::Result<()> {
 /// from standard input has no `out`, one's name leaves no directory name
 /// (`...yaml`: `..`), or the set written there, whose files are
 /// `replaces`, would replace or remove a file the command reads (a
-/// `counterexample.yaml` run with `--out` its own folder).
+/// `counterexample.yaml` run with `--out` its own folder, the `--template`
+/// set's `report.html` run with `--out` the set's folder).
 pub fn evidence_dirs<'a>(
     out: Option<&Path>,
     inputs: impl IntoIterator<Item = &'a Input>,
     replaces: &[&str],
+    template: Option<&Path>,
 ) -> Option<Vec<PathBuf>> {
     let inputs: Vec<&Input> = inputs.into_iter().collect();
     if out.is_none()
@@ -469,7 +471,8 @@ pub fn evidence_dirs<'a>(
             );
             return None;
         }
-        if let Some(read) = replaced_input(dir, input, replaces) {
+        let replaced = replaced_input(dir, input, replaces).or_else(|| replaced_template(dir, template?, replaces));
+        if let Some(read) = replaced {
             eprintln!(
                 "{}: error: the evidence written into {} would replace this file, which the command reads; give \
                  another --out",
@@ -502,6 +505,21 @@ fn replaced_input(dir: &Path, input: &Input, replaces: &[&str]) -> Option<PathBu
             .iter()
             .any(|name| resolved(file.as_path()) == Some(dir.join(name)))
     })
+}
+
+/// The first file of the template set in `template` that a set of `replaces`
+/// written into `dir` would replace, if any: one there when `dir` is the set's
+/// folder or a folder in it.
+fn replaced_template(dir: &Path, template: &Path, replaces: &[&str]) -> Option<PathBuf> {
+    let within = std::fs::canonicalize(dir)
+        .ok()?
+        .strip_prefix(std::fs::canonicalize(template).ok()?)
+        .ok()?
+        .to_path_buf();
+    replaces
+        .iter()
+        .map(|name| template.join(&within).join(name))
+        .find(|file| file.symlink_metadata().is_ok())
 }
 
 #[cfg(test)]

@@ -60,7 +60,12 @@ pub fn merge(args: &MergeArgs) -> anyhow::Result<Exit> {
     let Some(templates) = templates else {
         return Ok(Exit::Invalid);
     };
-    let Some(dirs) = evidence_dirs(args.out.as_deref(), merged.iter().map(|m| &m.input), EVIDENCE_SET) else {
+    let Some(dirs) = evidence_dirs(
+        args.out.as_deref(),
+        merged.iter().map(|m| &m.input),
+        EVIDENCE_SET,
+        args.template.as_deref(),
+    ) else {
         return Ok(Exit::Invalid);
     };
     creatable(&dirs)?;
