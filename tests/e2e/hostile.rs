@@ -338,6 +338,35 @@ fn a_fifo_and_dev_zero_are_refused_within_the_caps() {
     assert_refused_file(tmp.path(), "/dev/zero");
 }
 
+/// A FIFO as the manifest of an interrupted commit in the output folder is
+/// neither opened for writing nor read (reading it waited for ever for a
+/// writer): the run warns, leaves the folder, and writes its set.
+#[test]
+fn a_fifo_as_a_leftover_commit_manifest_is_left_within_the_caps() {
+    if !caps_available() {
+        return;
+    }
+    let tmp = temp_dir();
+    let commit = tmp.path().join("out").join(".sightline-commit-1-x");
+    std::fs::create_dir_all(&commit).unwrap();
+    let manifest = commit.join("manifest");
+    let made = Command::new("mkfifo").arg(&manifest).status().expect("mkfifo runs");
+    assert!(made.success(), "mkfifo");
+    let out = tmp.path().join("out");
+    let run = capped(root(), &["run", SMALL_FIELD, "--out", arg(&out)]);
+    run.assert_exit(0);
+    let names = ["junit.xml", "report.html", "results.json"].map(std::path::PathBuf::from);
+    assert_eq!(files_under(&out)[1..], names, "{run}");
+    assert!(
+        run.stderr.contains(&format!(
+            "{}: warning: failed to read the manifest of an interrupted commit (a FIFO, not a regular file)",
+            manifest.display()
+        )),
+        "{run}"
+    );
+    assert!(manifest.exists(), "the folder is left as it is");
+}
+
 /// A SUMO file of more elements than the parser may hold (1 000 001 empty
 /// elements in 4 MB) is refused before it is parsed, with an error at the
 /// first element past the limit: the root is the first, so the 999 999th
