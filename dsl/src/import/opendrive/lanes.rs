@@ -324,6 +324,26 @@ fn lane(node: Node, locator: &Locator) -> Result<Lane, OpenDriveError> {
     if widths.is_empty() {
         return Err(xml::element_error(node, format!("lane {id} has no <width>")));
     }
+    // A width may reach 0 where a lane opens or closes, but not start below
+    // it; and a lane that carries road users has some width somewhere.
+    for (record, width) in xml::children(node, "width").zip(&widths) {
+        if width.k[0] < 0.0 {
+            let message = format!(
+                "lane {id}: a <width> starts at a negative width, {} m; give the lane's width (≥ 0) where the record \
+                 starts",
+                Number(width.k[0])
+            );
+            return Err(xml::value_error(record, &xml::attribute(record, "a")?, message));
+        }
+    }
+    if carries != LaneUse::Other && widths.iter().all(|w| w.k == [0.0; 4]) {
+        return Err(xml::element_error(
+            node,
+            format!(
+                "lane {id} ({kind}) has no width anywhere: every <width> is 0; leave the lane out or give its width"
+            ),
+        ));
+    }
     let (mut predecessors, mut successors) = (Vec::new(), Vec::new());
     if let Some(link) = xml::child(node, "link") {
         xml::allowed_children(link, &["predecessor", "successor"], &[])?;
@@ -493,6 +513,36 @@ mod tests {
             .unwrap_err(),
             "10:115: lane -1: lane borders (<border>) are not supported; give the lane's <width> instead"
         );
+    }
+
+    /// A width that starts below 0, and a lane carrying road users that has no
+    /// width anywhere, are refused; a width that starts at 0 and grows (a lane
+    /// opening), and a zero-width lane that carries no one, are read.
+    #[test]
+    fn a_negative_width_and_a_lane_of_no_width_are_refused() {
+        let sidewalk = r#"<width sOffset="0" a="2" b="0" c="0" d="0"/>"#;
+        let with = |width: &str| LANES.replace(sidewalk, width);
+        assert_eq!(
+            read(&with(r#"<width sOffset="0" a="-3.5" b="0" c="0" d="0"/>"#)).unwrap_err(),
+            "9:59: lane -2: a <width> starts at a negative width, -3.5 m; give the lane's width (≥ 0) where the \
+             record starts"
+        );
+        assert_eq!(
+            read(&with(
+                r#"<width sOffset="0" a="2" b="0" c="0" d="0"/><width sOffset="5" a="-1" b="1" c="0" d="0"/>"#
+            ))
+            .unwrap_err(),
+            "9:103: lane -2: a <width> starts at a negative width, -1 m; give the lane's width (≥ 0) where the \
+             record starts"
+        );
+        assert_eq!(
+            read(&with(r#"<width sOffset="0" a="0" b="0" c="0" d="0"/>"#)).unwrap_err(),
+            "9:7: lane -2 (sidewalk) has no width anywhere: every <width> is 0; leave the lane out or give its width"
+        );
+        let opening = read(&with(r#"<width sOffset="0" a="0" b="0.1" c="0" d="0"/>"#)).unwrap();
+        assert_relative_eq!(value_at(&opening.sections[0].lane(-2).unwrap().widths, 10.0), 1.0);
+        let shoulder = with(r#"<width sOffset="0" a="0" b="0" c="0" d="0"/>"#).replace("sidewalk", "shoulder");
+        assert!(read(&shoulder).is_ok());
     }
 
     #[test]
