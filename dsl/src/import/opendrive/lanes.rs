@@ -7,6 +7,7 @@ use roxmltree::Node;
 use super::xml::{self, Locator, OpenDriveError};
 use crate::Location;
 use crate::import::xml::Number;
+use crate::raw::range;
 
 /// A cubic in s: a + b·ds + c·ds² + d·ds³ with ds = s − `s`, valid from `s` to
 /// the next record's `s`.
@@ -412,7 +413,8 @@ fn max_speed(node: Node) -> Result<Option<f64>, OpenDriveError> {
         return Ok(None);
     }
     let value = xml::non_negative(node, "max")?;
-    let factor = match xml::choice(node, "unit", &["m/s", "km/h", "mph"])? {
+    let unit = xml::choice(node, "unit", &["m/s", "km/h", "mph"])?;
+    let factor = match unit {
         Some("km/h") => 1.0 / 3.6,
         Some("mph") => 0.447_04,
         _ => 1.0,
@@ -424,7 +426,17 @@ fn max_speed(node: Node) -> Result<Option<f64>, OpenDriveError> {
             "a speed limit of 0 stops all traffic; give a positive `max`".into(),
         ));
     }
-    Ok(Some(value * factor))
+    let limit = value * factor;
+    if !range::SPEED_POSITIVE.contains(limit) {
+        let message = format!(
+            "a speed limit of {} {} is above {} m/s, a scenario's largest speed limit",
+            Number(value),
+            unit.unwrap_or("m/s"),
+            range::SPEED_POSITIVE.max
+        );
+        return Err(xml::value_error(node, &max, message));
+    }
+    Ok(Some(limit))
 }
 
 #[cfg(test)]
@@ -543,6 +555,22 @@ mod tests {
         assert_relative_eq!(value_at(&opening.sections[0].lane(-2).unwrap().widths, 10.0), 1.0);
         let shoulder = with(r#"<width sOffset="0" a="0" b="0" c="0" d="0"/>"#).replace("sidewalk", "shoulder");
         assert!(read(&shoulder).is_ok());
+    }
+
+    /// A limit above 150 m/s (the largest a scenario's own speed limits take)
+    /// is refused in the unit the file gives; 540 km/h is 150 m/s.
+    #[test]
+    fn a_speed_limit_above_150_m_s_is_refused() {
+        assert_eq!(
+            read(&LANES.replace(r#"max="50""#, r#"max="541""#)).unwrap_err(),
+            "5:105: a speed limit of 541 km/h is above 150 m/s, a scenario's largest speed limit"
+        );
+        let doc = xml::parse(r#"<road><type s="0" type="town"><speed max="1e6"/></type></road>"#).unwrap();
+        assert_eq!(
+            road_speeds(doc.root_element()).unwrap_err().to_string(),
+            "1:43: a speed limit of 1000000 m/s is above 150 m/s, a scenario's largest speed limit"
+        );
+        assert!(read(&LANES.replace(r#"max="50""#, r#"max="540""#)).is_ok());
     }
 
     #[test]
