@@ -425,13 +425,16 @@ pub fn creatable(dirs: &[PathBuf]) -> anyhow::Result<()> {
 /// Where each scenario's evidence goes (`out` with one scenario, `out/STEM/`
 /// with several, `out/STEM/` under the working directory without `out`); `None`
 /// (after printing why) when two scenarios would share a directory, one read
-/// from standard input has no `out`, or the set written there, whose files are
+/// from standard input has no `out`, one's name leaves no directory name
+/// (`...yaml`: `..`), or the set written there, whose files are
 /// `replaces`, would replace or remove a file the command reads (a
-/// `counterexample.yaml` run with `--out` its own folder).
+/// `counterexample.yaml` run with `--out` its own folder, the `--template`
+/// set's `report.html` run with `--out` the set's folder).
 pub fn evidence_dirs<'a>(
     out: Option<&Path>,
     inputs: impl IntoIterator<Item = &'a Input>,
     replaces: &[&str],
+    template: Option<&Path>,
 ) -> Option<Vec<PathBuf>> {
     let inputs: Vec<&Input> = inputs.into_iter().collect();
     if out.is_none()
@@ -443,10 +446,24 @@ pub fn evidence_dirs<'a>(
         );
         return None;
     }
+    let named = |input: &Input| {
+        let dir = match out {
+            Some(out) => stem(&input.path).map(|stem| out.join(stem)),
+            None => default_dir(&input.path),
+        };
+        if dir.is_none() {
+            eprintln!(
+                "{}: error: its name without the extension is `.` or `..`, which cannot name its evidence \
+                 directory; rename the file{}",
+                input.name,
+                if out.is_none() { " or give --out DIR" } else { "" }
+            );
+        }
+        dir
+    };
     let dirs: Vec<PathBuf> = match (out, inputs.len()) {
         (Some(out), 1) => vec![out.to_path_buf()],
-        (Some(out), _) => inputs.iter().map(|i| out.join(stem(&i.path))).collect(),
-        (None, _) => inputs.iter().map(|i| default_dir(&i.path)).collect(),
+        _ => inputs.iter().map(|i| named(i)).collect::<Option<_>>()?,
     };
     let mut seen = HashSet::new();
     for (dir, input) in dirs.iter().zip(&inputs) {
@@ -458,7 +475,8 @@ pub fn evidence_dirs<'a>(
             );
             return None;
         }
-        if let Some(read) = replaced_input(dir, input, replaces) {
+        let replaced = replaced_input(dir, input, replaces).or_else(|| replaced_template(dir, template?, replaces));
+        if let Some(read) = replaced {
             eprintln!(
                 "{}: error: the evidence written into {} would replace this file, which the command reads; give \
                  another --out",
@@ -491,6 +509,21 @@ fn replaced_input(dir: &Path, input: &Input, replaces: &[&str]) -> Option<PathBu
             .iter()
             .any(|name| resolved(file.as_path()) == Some(dir.join(name)))
     })
+}
+
+/// The first file of the template set in `template` that a set of `replaces`
+/// written into `dir` would replace, if any: one there when `dir` is the set's
+/// folder or a folder in it.
+fn replaced_template(dir: &Path, template: &Path, replaces: &[&str]) -> Option<PathBuf> {
+    let within = std::fs::canonicalize(dir)
+        .ok()?
+        .strip_prefix(std::fs::canonicalize(template).ok()?)
+        .ok()?
+        .to_path_buf();
+    replaces
+        .iter()
+        .map(|name| template.join(&within).join(name))
+        .find(|file| file.symlink_metadata().is_ok())
 }
 
 #[cfg(test)]

@@ -10,17 +10,20 @@ use std::time::Instant;
 use crate::input::STDIN;
 
 /// The default output directory of a scenario file: `out/STEM/` (STEM: the file
-/// name without its extension).
-pub fn default_dir(file: &Path) -> PathBuf {
-    Path::new("out").join(stem(file))
+/// name without its extension); `None` when its [`stem`] names no directory.
+pub fn default_dir(file: &Path) -> Option<PathBuf> {
+    Some(Path::new("out").join(stem(file)?))
 }
 
-/// A scenario file's name without its extension (`stdin` for `-`).
-pub fn stem(file: &Path) -> OsString {
+/// A scenario file's name without its extension (`stdin` for `-`); `None` when
+/// that is `.` or `..` (`...yaml`), which name a directory already there (the
+/// evidence went into the folder above).
+pub fn stem(file: &Path) -> Option<OsString> {
     if file == Path::new(STDIN) {
-        return "stdin".into();
+        return Some("stdin".into());
     }
-    file.file_stem().map_or_else(|| "scenario".into(), |s| s.to_os_string())
+    let stem = file.file_stem().map_or_else(|| "scenario".into(), |s| s.to_os_string());
+    (!matches!(stem.to_str(), Some("" | "." | ".."))).then_some(stem)
 }
 
 /// The path of `to` seen from the directory `from_dir` (both absolute, or both

@@ -138,9 +138,16 @@ fn case_times(
 /// The text of a JUnit report. quick-junit writes a `skipped` count on the
 /// root `<testsuites>`, which no published Jenkins schema allows there; it is
 /// dropped (each `<testsuite>` keeps its own), so that the file validates
-/// against Jenkins' junit-10.xsd.
+/// against Jenkins' junit-10.xsd. quick-junit drops the control characters
+/// XML 1.0 does not allow, but not its two other excluded characters, U+FFFE
+/// and U+FFFF (a scenario's name or a requirement's text may hold them):
+/// each becomes U+FFFD, so that the file stays well-formed.
 pub fn junit_xml(report: &Report) -> Result<String, quick_junit::SerializeError> {
-    let text = report.to_string()?;
+    const NOT_XML: [char; 2] = ['\u{FFFE}', '\u{FFFF}'];
+    let mut text = report.to_string()?;
+    if text.contains(NOT_XML) {
+        text = text.replace(NOT_XML, "\u{FFFD}");
+    }
     let root = text
         .find("<testsuites ")
         .map(|at| (at, at + text[at..].find('>').unwrap_or(0)));
@@ -202,6 +209,30 @@ pub(crate) fn classname(name: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// XML 1.0's characters: #x9 | #xA | #xD | [#x20-#xD7FF] | [#xE000-#xFFFD]
+    /// | [#x10000-#x10FFFF].
+    fn is_xml_char(c: char) -> bool {
+        matches!(c, '\t' | '\n' | '\r' | '\u{20}'..='\u{D7FF}' | '\u{E000}'..='\u{FFFD}' | '\u{10000}'..)
+    }
+
+    /// A suite and a case named with U+FFFE, U+FFFF and control characters
+    /// give a file of XML 1.0's characters only, the two non-characters as
+    /// U+FFFD.
+    #[test]
+    fn characters_xml_does_not_allow_are_not_written() {
+        let mut suite = new_suite("a\u{FFFE}b\u{1}", "x\u{FFFF}.yaml", "00");
+        let mut case = new_case("R\u{FFFF}1".into(), TestCaseStatus::success(), "s\u{FFFE}", "p", 3);
+        case.set_system_out("text \u{FFFE}\u{FFFF} \u{7}end");
+        suite.add_test_case(case);
+        let mut report = Report::new("sightline");
+        report.add_test_suite(suite);
+        let text = junit_xml(&report).unwrap();
+        assert_eq!(text.chars().find(|&c| !is_xml_char(c)), None, "{text}");
+        assert!(text.contains("a\u{FFFD}b"), "{text}");
+        assert!(text.contains("R\u{FFFD}1"), "{text}");
+        assert!(text.contains("text \u{FFFD}\u{FFFD} end"), "{text}");
+    }
 
     #[test]
     fn classnames_are_dotted_identifiers_of_the_name() {

@@ -61,7 +61,8 @@ pub fn export(args: &ExportArgs) -> anyhow::Result<Exit> {
             return Ok(Exit::Invalid);
         }
     };
-    let Some(dir) = evidence_dirs(args.out.as_deref(), [&input], EXPORT_SET).and_then(|dirs| dirs.into_iter().next())
+    let Some(dir) =
+        evidence_dirs(args.out.as_deref(), [&input], EXPORT_SET, None).and_then(|dirs| dirs.into_iter().next())
     else {
         return Ok(Exit::Invalid);
     };

@@ -58,7 +58,8 @@ pub fn falsify(args: &FalsifyArgs) -> anyhow::Result<Exit> {
     }
     let text =
         sightline_dsl::utf8_text(&input.bytes).map_err(|_| anyhow::anyhow!("{path} was valid UTF-8 when compiled"))?;
-    let Some(dir) = evidence_dirs(args.out.as_deref(), [&input], EVIDENCE_SET).and_then(|dirs| dirs.into_iter().next())
+    let Some(dir) = evidence_dirs(args.out.as_deref(), [&input], EVIDENCE_SET, args.template.as_deref())
+        .and_then(|dirs| dirs.into_iter().next())
     else {
         return Ok(Exit::Invalid);
     };

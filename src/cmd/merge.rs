@@ -11,7 +11,7 @@
 //! pooled semantic point's first run) is simulated again, and must give the
 //! outcome its shard gave.
 
-use std::collections::{BTreeMap, HashMap};
+use std::collections::{BTreeMap, HashMap, HashSet};
 use std::path::{Path, PathBuf};
 use std::time::{Instant, SystemTime};
 
@@ -60,7 +60,12 @@ pub fn merge(args: &MergeArgs) -> anyhow::Result<Exit> {
     let Some(templates) = templates else {
         return Ok(Exit::Invalid);
     };
-    let Some(dirs) = evidence_dirs(args.out.as_deref(), merged.iter().map(|m| &m.input), EVIDENCE_SET) else {
+    let Some(dirs) = evidence_dirs(
+        args.out.as_deref(),
+        merged.iter().map(|m| &m.input),
+        EVIDENCE_SET,
+        args.template.as_deref(),
+    ) else {
         return Ok(Exit::Invalid);
     };
     creatable(&dirs)?;
@@ -107,7 +112,8 @@ fn collect(paths: &[PathBuf]) -> Result<Vec<(PathBuf, Shard)>, String> {
     for path in paths {
         if path.is_dir() {
             let before = files.len();
-            find_shards(path, &mut files).map_err(|e| format!("{}: error: {e}", path.display()))?;
+            find_shards(path, &mut HashSet::new(), &mut files)
+                .map_err(|e| format!("{}: error: {e}", path.display()))?;
             if files.len() == before {
                 return Err(format!(
                     "{}: error: no shard files (shard-K-of-N.cbor, written by `sightline run --shard K/N`) in it",
@@ -154,12 +160,21 @@ fn refuse_repeats(files: &[PathBuf]) -> Result<(), String> {
     Ok(())
 }
 
-/// Adds the shard files under `dir` to `files`.
-fn find_shards(dir: &Path, files: &mut Vec<PathBuf>) -> std::io::Result<()> {
-    for entry in std::fs::read_dir(dir)? {
-        let path = entry?.path();
+/// Adds the shard files under `dir` to `files`, searching each directory once
+/// (by its canonical path) however many links lead to it: a link to a
+/// directory above led round for ever. `visited` holds the directories searched.
+fn find_shards(dir: &Path, visited: &mut HashSet<PathBuf>, files: &mut Vec<PathBuf>) -> std::io::Result<()> {
+    if !visited.insert(std::fs::canonicalize(dir)?) {
+        return Ok(());
+    }
+    let mut entries = std::fs::read_dir(dir)?
+        .map(|entry| entry.map(|e| e.path()))
+        .collect::<std::io::Result<Vec<_>>>()?;
+    // The spelling of a directory reached twice is the first in path order.
+    entries.sort();
+    for path in entries {
         if path.is_dir() {
-            find_shards(&path, files)?;
+            find_shards(&path, visited, files)?;
         } else if is_shard_name(&path) {
             files.push(path);
         }

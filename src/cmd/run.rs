@@ -38,7 +38,7 @@ pub fn run(args: &RunArgs) -> anyhow::Result<Exit> {
     };
     // A shard writes only its shard file.
     let replaces = if args.shard.is_some() { &[][..] } else { EVIDENCE_SET };
-    let Some(dirs) = evidence_dirs(args.out.as_deref(), &inputs, replaces) else {
+    let Some(dirs) = evidence_dirs(args.out.as_deref(), &inputs, replaces, args.template.as_deref()) else {
         return Ok(Exit::Invalid);
     };
     if let Some(input) = inputs.iter().find(|i| args.osi && !has_road_users(&i.scenario)) {

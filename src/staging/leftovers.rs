@@ -25,6 +25,7 @@ use std::time::SystemTime;
 use anyhow::Context;
 
 use super::manifest::{MANIFEST, Manifest};
+use crate::files::{TEXT_LIMIT, read_regular};
 
 /// The name of a staging folder begins so, followed by its id.
 pub const STAGING: &str = ".sightline-staging-";
@@ -98,9 +99,15 @@ enum Owner {
     Gone(Option<File>),
 }
 
-/// Whose `folder` is, seen by a run that started at `started`.
+/// Whose `folder` is, seen by a run that started at `started`. A manifest that
+/// is not a regular file (a FIFO, a device: sightline writes none) is not
+/// opened, as if there were none.
 fn owner(folder: &Path, started: SystemTime) -> std::io::Result<Owner> {
-    match OpenOptions::new().read(true).write(true).open(folder.join(MANIFEST)) {
+    let manifest = folder.join(MANIFEST);
+    if fs::metadata(&manifest).is_ok_and(|m| !m.is_file()) {
+        return by_age(folder, started);
+    }
+    match OpenOptions::new().read(true).write(true).open(manifest) {
         Ok(manifest) => match manifest.try_lock() {
             Ok(()) => Ok(Owner::Gone(Some(manifest))),
             Err(TryLockError::WouldBlock) => Ok(Owner::Alive),
@@ -128,7 +135,10 @@ fn by_age(path: &Path, started: SystemTime) -> std::io::Result<Owner> {
 fn manifest_of(folder: &Path) -> Option<Manifest> {
     static WARNED: Mutex<BTreeSet<PathBuf>> = Mutex::new(BTreeSet::new());
     let path = folder.join(MANIFEST);
-    let problem = match fs::read_to_string(&path) {
+    let text = read_regular(&path, TEXT_LIMIT).and_then(|bytes| {
+        String::from_utf8(bytes).map_err(|_| std::io::Error::new(ErrorKind::InvalidData, "not UTF-8 text"))
+    });
+    let problem = match text {
         Ok(text) => match Manifest::parse(&text) {
             Ok(manifest) => return Some(manifest),
             Err((line, problem)) => format!(

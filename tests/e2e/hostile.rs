@@ -338,6 +338,35 @@ fn a_fifo_and_dev_zero_are_refused_within_the_caps() {
     assert_refused_file(tmp.path(), "/dev/zero");
 }
 
+/// A FIFO as the manifest of an interrupted commit in the output folder is
+/// neither opened for writing nor read (reading it waited for ever for a
+/// writer): the run warns, leaves the folder, and writes its set.
+#[test]
+fn a_fifo_as_a_leftover_commit_manifest_is_left_within_the_caps() {
+    if !caps_available() {
+        return;
+    }
+    let tmp = temp_dir();
+    let commit = tmp.path().join("out").join(".sightline-commit-1-x");
+    std::fs::create_dir_all(&commit).unwrap();
+    let manifest = commit.join("manifest");
+    let made = Command::new("mkfifo").arg(&manifest).status().expect("mkfifo runs");
+    assert!(made.success(), "mkfifo");
+    let out = tmp.path().join("out");
+    let run = capped(root(), &["run", SMALL_FIELD, "--out", arg(&out)]);
+    run.assert_exit(0);
+    let names = ["junit.xml", "report.html", "results.json"].map(std::path::PathBuf::from);
+    assert_eq!(files_under(&out)[1..], names, "{run}");
+    assert!(
+        run.stderr.contains(&format!(
+            "{}: warning: failed to read the manifest of an interrupted commit (a FIFO, not a regular file)",
+            manifest.display()
+        )),
+        "{run}"
+    );
+    assert!(manifest.exists(), "the folder is left as it is");
+}
+
 /// A SUMO file of more elements than the parser may hold (1 000 001 empty
 /// elements in 4 MB) is refused before it is parsed, with an error at the
 /// first element past the limit: the root is the first, so the 999 999th
@@ -426,6 +455,37 @@ fn opendrive_maps_beyond_their_limits_are_refused_within_the_caps() {
             "{name}: no error located in {map}\n{check}"
         );
     }
+}
+
+/// A lane 1 mm long whose road is its own successor: the map's routes from it
+/// would go round it 100 000 times within their reach, and building them once
+/// took a stack frame a turn (a stack overflow, an abort). It runs to a whole
+/// evidence set.
+#[test]
+fn a_road_of_1_mm_linked_to_itself_runs() {
+    if !caps_available() {
+        return;
+    }
+    let tmp = case(
+        "sightline: 1\nname: loop road\ntime: { duration: 2, step: 0.1 }\nmap: { opendrive: loop.xodr }\n\
+         sensor_models: { s: { range: 50 } }\nagents:\n\
+         - { id: ego, kind: car, route: [road 1 lane -1], speed: { target: 1 }, connected: true, sensors: [s] }\n\
+         - { id: rsu, kind: rsu, position: [0, 10], sensors: [s] }\nsemantic: { ego: ego, horizon: 3 }\n\
+         requirements:\n  - { id: R1, text: messages, check: { metric: packet_delivery_ratio, at_least: 0 } }\n",
+    );
+    let map = r#"<OpenDRIVE><header revMajor="1" revMinor="6"/>
+<road id="1" junction="-1" length="0.001">
+  <link><predecessor elementType="road" elementId="1" contactPoint="end"/><successor elementType="road" elementId="1" contactPoint="start"/></link>
+  <type s="0" type="town"><speed max="50" unit="km/h"/></type>
+  <planView><geometry s="0" x="0" y="0" hdg="0" length="0.001"><line/></geometry></planView>
+  <lanes><laneSection s="0"><center><lane id="0" type="none"/></center><right>
+    <lane id="-1" type="driving"><link><predecessor id="-1"/><successor id="-1"/></link><width a="3.5" b="0" c="0" d="0" sOffset="0"/></lane>
+  </right></laneSection></lanes>
+</road></OpenDRIVE>
+"#;
+    std::fs::write(tmp.path().join("loop.xodr"), map).expect("the map is written");
+    let run = capped(tmp.path(), &["run", "case.yaml", "--out", "out"]);
+    assert_eq!(evidence_problem(&tmp.path().join("out"), run.code), None, "{run}");
 }
 
 /// A run whose report.html cannot be written (a folder stands in its place)

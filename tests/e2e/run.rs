@@ -1,7 +1,7 @@
 //! `sightline run` on valid scenarios: the exit code says whether every
 //! requirement holds, and the three evidence files say why.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
 use quick_junit::{NonSuccessKind, TestCaseStatus};
@@ -467,6 +467,42 @@ fn files_sharing_a_stem_are_refused_before_anything_is_written() {
         )
     );
     assert!(!out.exists(), "{} was created", out.display());
+}
+
+/// A file named `...yaml` (stem `..`) or `..yaml` (stem `.`) names no evidence
+/// directory: with another file and `--out`, or alone without it, the set went
+/// into the folder above (replacing or removing files there). Refused with
+/// exit 2 before anything is written, the folder above untouched.
+// See: session 19's hostile-input check.
+#[test]
+fn a_file_whose_stem_is_dot_or_dot_dot_is_refused() {
+    for name in ["...yaml", "..yaml"] {
+        let tmp = temp_dir();
+        let campaign = tmp.path().join("campaign");
+        std::fs::create_dir(&campaign).unwrap();
+        std::fs::write(campaign.join("report.html"), "precious").unwrap();
+        let dotted = campaign.join(name);
+        std::fs::copy(root().join(SMALL_FIELD), &dotted).unwrap();
+        let out = campaign.join("evidence");
+        let with_out = sightline(["run", SMALL_FIELD, arg(&dotted), "--out", arg(&out)]);
+        let alone = sightline_in(&campaign, ["run", name]);
+        for outcome in [with_out, alone] {
+            outcome.assert_exit(2);
+            assert!(
+                outcome
+                    .stderr
+                    .contains(&format!("{name}: error: its name without the extension is `.` or `..`")),
+                "{outcome}"
+            );
+            assert_eq!(outcome.stdout, "", "{outcome}");
+        }
+        assert_eq!(
+            files_under(&campaign),
+            [PathBuf::from(name), PathBuf::from("report.html")],
+            "{name}"
+        );
+        assert_eq!(read(&campaign.join("report.html")), "precious");
+    }
 }
 
 #[test]

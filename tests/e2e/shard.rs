@@ -11,7 +11,8 @@ use sightline_engine::Outcome;
 use sightline_reports::{Shard, read_shard, shard_bytes};
 
 use crate::support::{
-    FAILING, SEED_SWEEP, arg, files_under, normalise_execution, normalise_junit_times, read, sightline, temp_dir,
+    FAILING, SEED_SWEEP, arg, caps_available, files_under, normalise_execution, normalise_junit_times, read, root,
+    sightline, sightline_capped, temp_dir,
 };
 
 /// A world with a shared-data group, replicates and a recording.
@@ -239,6 +240,40 @@ fn a_shard_file_given_twice_is_refused() {
             file(1).display()
         ),
     );
+}
+
+/// Links to directories above are followed once each: a directory holding the
+/// shards and links back to itself and to its parent merges (the search went
+/// round for ever, its memory growing), and one holding only links to itself
+/// has no shard files.
+#[cfg(unix)]
+#[test]
+fn links_to_a_directory_above_are_searched_once() {
+    if !caps_available() {
+        return;
+    }
+    let tmp = temp_dir();
+    let campaign = tmp.path().join("campaign");
+    shards(&[SEED_SWEEP], 2, &campaign);
+    let link = |from: PathBuf, to: &str| std::os::unix::fs::symlink(to, from).expect("a link");
+    for name in ["a", "b", "c"] {
+        link(campaign.join(name), ".");
+    }
+    link(campaign.join("s1").join("up"), "..");
+    // Run where the shards ran: the scenarios' paths are relative to it.
+    let merged = tmp.path().join("merged");
+    let merge = sightline_capped(root(), ["merge", arg(&campaign), "--out", arg(&merged)]);
+    merge.assert_exit(0);
+    let lone = tmp.path().join("lone");
+    std::fs::create_dir(&lone).unwrap();
+    for name in ["a", "b", "c"] {
+        link(lone.join(name), ".");
+    }
+    let none = tmp.path().join("none");
+    let merge = sightline_capped(root(), ["merge", arg(&lone), "--out", arg(&none)]);
+    merge.assert_exit(2);
+    let message = format!("{}: error: no shard files", lone.display());
+    assert!(merge.stderr.starts_with(&message), "{merge}");
 }
 
 /// A flipped bit anywhere in a shard file (the header, the payload) and a

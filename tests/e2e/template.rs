@@ -132,6 +132,54 @@ fn a_missing_block_is_refused_and_nothing_is_written() {
     assert!(!out.exists(), "nothing is written");
 }
 
+/// A run, a falsification or a merge whose `--out` is the template set's own
+/// folder (or a folder in it) would replace the set's `report.html` with the
+/// rendered page: refused with exit 2 before anything runs, the set as it
+/// was.
+// See: session 19's hostile-input check.
+#[test]
+fn a_set_written_over_its_own_templates_is_refused() {
+    let tmp = temp_dir();
+    let set = tmp.path().join("org");
+    let page = "{% extends \"sightline/report.html\" %}\n";
+    let search_page = "{% extends \"sightline/falsify.html\" %}\n";
+    template_set(
+        &set,
+        &[
+            ("report.html", page),
+            ("falsify.html", search_page),
+            ("nested/report.html", page),
+            ("nested/falsify.html", search_page),
+        ],
+    );
+    let search = ["falsify", "scenarios/urban-falsify.yaml", "--cases", "2"];
+    let nested = set.join("nested");
+    for (out, template) in [(&set, &set), (&nested, &set), (&nested, &nested)] {
+        let run = run_with(template, out);
+        let falsify = sightline(
+            search
+                .iter()
+                .copied()
+                .chain(["--out", arg(out), "--template", arg(template)]),
+        );
+        for outcome in [run, falsify] {
+            outcome.assert_exit(2);
+            assert_eq!(
+                outcome.stderr,
+                format!(
+                    "{}: error: the evidence written into {} would replace this file, which the command reads; \
+                     give another --out\n",
+                    out.join("report.html").display(),
+                    out.display()
+                )
+            );
+        }
+    }
+    assert_eq!(read(&set.join("report.html")), page);
+    assert_eq!(read(&set.join("nested/report.html")), page);
+    assert_eq!(files_under(&set).len(), 4, "nothing is written into the set");
+}
+
 #[test]
 fn a_syntax_error_names_the_file_line_and_column() {
     let tmp = temp_dir();

@@ -6,6 +6,7 @@
 use roxmltree::{Attribute, Node};
 
 use crate::Location;
+use crate::raw::range::Range;
 
 /// A problem in an XML file, located by line and column.
 ///
@@ -136,6 +137,27 @@ pub(crate) fn string<'a>(node: Node<'a, '_>, name: &str) -> Result<&'a str, XmlE
 /// A required finite number.
 pub(crate) fn number(node: Node, name: &str) -> Result<f64, XmlError> {
     finite(node, &attribute(node, name)?)
+}
+
+/// A required number within `range`: a speed a file gives, for one, within the
+/// range the scenario's own speeds have.
+pub(crate) fn number_within(node: Node, name: &str, range: Range) -> Result<f64, XmlError> {
+    let value = number(node, name)?;
+    if range.contains(value) {
+        return Ok(value);
+    }
+    let unit = if range.unit.is_empty() {
+        String::new()
+    } else {
+        format!(" {}", range.unit)
+    };
+    let message = format!(
+        "attribute `{name}` of {} must be {}{unit}, found {}",
+        tag(node),
+        range.words(),
+        Number(value)
+    );
+    Err(value_error(node, &attribute(node, name)?, message))
 }
 
 /// An optional finite number, `default` when absent.

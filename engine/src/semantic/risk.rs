@@ -14,8 +14,8 @@
 //! - Conflict (eq. 3) is tested on the segments between prediction samples, not
 //!   only at the samples, so a fast crossing is not missed between two samples.
 
-use sightline_dsl::Road;
 use sightline_dsl::geometry::{Polyline, Xy, distance};
+use sightline_dsl::{LaneLink, Road};
 
 use super::ldm::Track;
 use crate::math::Point;
@@ -100,22 +100,28 @@ impl RouteMap {
 /// each of its links across the junction into the next lane, and on, branching at
 /// every fork, until the route reaches `reach` metres past the junction after the
 /// lane it starts on (the home stretch). At most [`MAX_BRANCHES`] routes start on
-/// one lane; a route ends early at a lane without links.
+/// one lane; a route ends early at a lane without links, or where the lane's
+/// routes have taken [`MAX_ROUTE_POINTS`] points from the lanes and junctions
+/// they continue through (a cycle of short lanes would take them forever).
 pub fn lane_routes(roads: &[Road], reach: f64) -> Vec<MapRoute> {
     let mut routes = Vec::new();
     for road in roads {
-        for (lane, line) in road.lanes.iter().enumerate() {
+        for lane in 0..road.lanes.len() {
             let mut branches = Branches {
                 roads,
                 reach,
                 start: routes.len(),
                 routes: &mut routes,
             };
-            branches.extend(road, lane, &mut line.points().to_vec(), None);
+            branches.build(road, lane);
         }
     }
     routes
 }
+
+/// Most points the routes from one lane take from the lanes and junctions they
+/// continue through.
+pub const MAX_ROUTE_POINTS: usize = 1 << 16;
 
 /// The routes from one lane, built depth first.
 struct Branches<'a> {
@@ -126,33 +132,98 @@ struct Branches<'a> {
     start: usize,
 }
 
-impl Branches<'_> {
-    /// Continues `points` (ending at the end of lane `lane` of `road`) through
-    /// each of that lane's links; `home` is the length of the home stretch once
-    /// known.
-    fn extend(&mut self, road: &Road, lane: usize, points: &mut Vec<Xy>, home: Option<f64>) {
-        if self.routes.len() - self.start >= MAX_BRANCHES {
+/// A lane on the route being built, with the links from it still to follow.
+struct Step<'a> {
+    links: Vec<&'a LaneLink>,
+    /// How many of `links` have been followed.
+    followed: usize,
+    /// The route's length up to the end of this lane, metres.
+    length: f64,
+    /// The length of the route's home stretch, once past the first junction.
+    home: Option<f64>,
+    /// How many points the route had before this lane's junction and lane.
+    kept: usize,
+}
+
+impl<'a> Branches<'a> {
+    /// Builds the routes that start on lane `lane` of `road`: the route grows by
+    /// a junction and a lane at each step down, and one is kept at each lane
+    /// that ends it (no links, or `reach` past the home stretch).
+    fn build(&mut self, road: &'a Road, lane: usize) {
+        let mut points = road.lanes[lane].points().to_vec();
+        let length = points.windows(2).map(|p| distance(p[0], p[1])).sum::<f64>();
+        let mut budget = MAX_ROUTE_POINTS;
+        let links = Self::links(road, lane);
+        if links.is_empty() {
+            self.keep(&points, length, None);
             return;
         }
-        let length = |points: &[Xy]| points.windows(2).map(|p| distance(p[0], p[1])).sum::<f64>();
-        let links: Vec<_> = road.links.iter().filter(|link| link.from_lane == lane).collect();
-        let so_far = length(points);
-        if links.is_empty() || home.is_some_and(|home| so_far - home >= self.reach) {
-            if let Some(path) = Polyline::new(points.iter().copied()) {
-                let home = home.unwrap_or(so_far).min(path.length());
-                self.routes.push(MapRoute { path, home });
+        let mut stack = vec![Step {
+            links,
+            followed: 0,
+            length,
+            home: None,
+            kept: points.len(),
+        }];
+        while let Some(step) = stack.last_mut() {
+            if self.routes.len() - self.start >= MAX_BRANCHES {
+                return;
             }
-            return;
-        }
-        for link in links {
-            let kept = points.len();
-            points.extend(&link.via);
-            let home = home.unwrap_or_else(|| length(points));
+            let Some(&link) = step.links.get(step.followed) else {
+                points.truncate(step.kept);
+                stack.pop();
+                continue;
+            };
+            step.followed += 1;
             let next = &self.roads[link.to_road];
-            points.extend(next.lanes[link.to_lane].points());
-            self.extend(next, link.to_lane, points, Some(home));
-            points.truncate(kept);
+            let lane = &next.lanes[link.to_lane];
+            let kept = points.len();
+            let mut length = step.length;
+            append(&mut points, &mut length, &link.via);
+            let home = step.home.unwrap_or(length);
+            append(&mut points, &mut length, lane.points());
+            budget = budget.saturating_sub(link.via.len() + lane.points().len());
+            let links = Self::links(next, link.to_lane);
+            if links.is_empty() || length - home >= self.reach || budget == 0 {
+                self.keep(&points, length, Some(home));
+                if budget == 0 {
+                    return;
+                }
+                points.truncate(kept);
+            } else {
+                stack.push(Step {
+                    links,
+                    followed: 0,
+                    length,
+                    home: Some(home),
+                    kept,
+                });
+            }
         }
+    }
+
+    /// The links from lane `lane` of `road`.
+    fn links(road: &'a Road, lane: usize) -> Vec<&'a LaneLink> {
+        road.links.iter().filter(|link| link.from_lane == lane).collect()
+    }
+
+    /// Keeps the route through `points`, `length` metres long, whose home
+    /// stretch is `home` metres (the whole route when `None`).
+    fn keep(&mut self, points: &[Xy], length: f64, home: Option<f64>) {
+        if let Some(path) = Polyline::new(points.iter().copied()) {
+            let home = home.unwrap_or(length).min(path.length());
+            self.routes.push(MapRoute { path, home });
+        }
+    }
+}
+
+/// Appends `more` to `points`, adding what they add to `length`.
+fn append(points: &mut Vec<Xy>, length: &mut f64, more: &[Xy]) {
+    for &p in more {
+        if let Some(&last) = points.last() {
+            *length += distance(last, p);
+        }
+        points.push(p);
     }
 }
 
@@ -389,5 +460,28 @@ mod tests {
         let east = map.branches(Point::new(150.0, 0.0), 0.0);
         assert_eq!(east.len(), 1);
         assert_relative_eq!(east[0].1, 40.0);
+    }
+
+    /// A 1 mm lane linked to itself twice, with a 100 m reach: the route from
+    /// it would go round 100 000 times and fork at every turn. It ends where the
+    /// lane's routes have taken their points, one route of at most that many
+    /// points past its own lane, and the recursion this replaced overflowed the
+    /// stack.
+    #[test]
+    fn lane_routes_end_a_cycle_of_short_lanes_at_the_points_limit() {
+        let roads = [road(
+            "loop",
+            [[0.0, 0.0], [0.001, 0.0]],
+            vec![link(0, Vec::new()), link(0, Vec::new())],
+        )];
+        let routes = lane_routes(&roads, 100.0);
+        assert_eq!(routes.len(), 1);
+        let points = routes[0].path.points().len();
+        assert!(points <= 2 + MAX_ROUTE_POINTS, "{points} points");
+        assert!(
+            points >= MAX_ROUTE_POINTS / 2,
+            "{points} points: ended before the limit"
+        );
+        assert!(routes[0].path.length() < 100.0);
     }
 }

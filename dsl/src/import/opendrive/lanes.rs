@@ -7,6 +7,7 @@ use roxmltree::Node;
 use super::xml::{self, Locator, OpenDriveError};
 use crate::Location;
 use crate::import::xml::Number;
+use crate::raw::range;
 
 /// A cubic in s: a + b·ds + c·ds² + d·ds³ with ds = s − `s`, valid from `s` to
 /// the next record's `s`.
@@ -324,6 +325,26 @@ fn lane(node: Node, locator: &Locator) -> Result<Lane, OpenDriveError> {
     if widths.is_empty() {
         return Err(xml::element_error(node, format!("lane {id} has no <width>")));
     }
+    // A width may reach 0 where a lane opens or closes, but not start below
+    // it; and a lane that carries road users has some width somewhere.
+    for (record, width) in xml::children(node, "width").zip(&widths) {
+        if width.k[0] < 0.0 {
+            let message = format!(
+                "lane {id}: a <width> starts at a negative width, {} m; give the lane's width (≥ 0) where the record \
+                 starts",
+                Number(width.k[0])
+            );
+            return Err(xml::value_error(record, &xml::attribute(record, "a")?, message));
+        }
+    }
+    if carries != LaneUse::Other && widths.iter().all(|w| w.k == [0.0; 4]) {
+        return Err(xml::element_error(
+            node,
+            format!(
+                "lane {id} ({kind}) has no width anywhere: every <width> is 0; leave the lane out or give its width"
+            ),
+        ));
+    }
     let (mut predecessors, mut successors) = (Vec::new(), Vec::new());
     if let Some(link) = xml::child(node, "link") {
         xml::allowed_children(link, &["predecessor", "successor"], &[])?;
@@ -392,7 +413,8 @@ fn max_speed(node: Node) -> Result<Option<f64>, OpenDriveError> {
         return Ok(None);
     }
     let value = xml::non_negative(node, "max")?;
-    let factor = match xml::choice(node, "unit", &["m/s", "km/h", "mph"])? {
+    let unit = xml::choice(node, "unit", &["m/s", "km/h", "mph"])?;
+    let factor = match unit {
         Some("km/h") => 1.0 / 3.6,
         Some("mph") => 0.447_04,
         _ => 1.0,
@@ -404,7 +426,17 @@ fn max_speed(node: Node) -> Result<Option<f64>, OpenDriveError> {
             "a speed limit of 0 stops all traffic; give a positive `max`".into(),
         ));
     }
-    Ok(Some(value * factor))
+    let limit = value * factor;
+    if !range::SPEED_POSITIVE.contains(limit) {
+        let message = format!(
+            "a speed limit of {} {} is above {} m/s, a scenario's largest speed limit",
+            Number(value),
+            unit.unwrap_or("m/s"),
+            range::SPEED_POSITIVE.max
+        );
+        return Err(xml::value_error(node, &max, message));
+    }
+    Ok(Some(limit))
 }
 
 #[cfg(test)]
@@ -493,6 +525,52 @@ mod tests {
             .unwrap_err(),
             "10:115: lane -1: lane borders (<border>) are not supported; give the lane's <width> instead"
         );
+    }
+
+    /// A width that starts below 0, and a lane carrying road users that has no
+    /// width anywhere, are refused; a width that starts at 0 and grows (a lane
+    /// opening), and a zero-width lane that carries no one, are read.
+    #[test]
+    fn a_negative_width_and_a_lane_of_no_width_are_refused() {
+        let sidewalk = r#"<width sOffset="0" a="2" b="0" c="0" d="0"/>"#;
+        let with = |width: &str| LANES.replace(sidewalk, width);
+        assert_eq!(
+            read(&with(r#"<width sOffset="0" a="-3.5" b="0" c="0" d="0"/>"#)).unwrap_err(),
+            "9:59: lane -2: a <width> starts at a negative width, -3.5 m; give the lane's width (≥ 0) where the \
+             record starts"
+        );
+        assert_eq!(
+            read(&with(
+                r#"<width sOffset="0" a="2" b="0" c="0" d="0"/><width sOffset="5" a="-1" b="1" c="0" d="0"/>"#
+            ))
+            .unwrap_err(),
+            "9:103: lane -2: a <width> starts at a negative width, -1 m; give the lane's width (≥ 0) where the \
+             record starts"
+        );
+        assert_eq!(
+            read(&with(r#"<width sOffset="0" a="0" b="0" c="0" d="0"/>"#)).unwrap_err(),
+            "9:7: lane -2 (sidewalk) has no width anywhere: every <width> is 0; leave the lane out or give its width"
+        );
+        let opening = read(&with(r#"<width sOffset="0" a="0" b="0.1" c="0" d="0"/>"#)).unwrap();
+        assert_relative_eq!(value_at(&opening.sections[0].lane(-2).unwrap().widths, 10.0), 1.0);
+        let shoulder = with(r#"<width sOffset="0" a="0" b="0" c="0" d="0"/>"#).replace("sidewalk", "shoulder");
+        assert!(read(&shoulder).is_ok());
+    }
+
+    /// A limit above 150 m/s (the largest a scenario's own speed limits take)
+    /// is refused in the unit the file gives; 540 km/h is 150 m/s.
+    #[test]
+    fn a_speed_limit_above_150_m_s_is_refused() {
+        assert_eq!(
+            read(&LANES.replace(r#"max="50""#, r#"max="541""#)).unwrap_err(),
+            "5:105: a speed limit of 541 km/h is above 150 m/s, a scenario's largest speed limit"
+        );
+        let doc = xml::parse(r#"<road><type s="0" type="town"><speed max="1e6"/></type></road>"#).unwrap();
+        assert_eq!(
+            road_speeds(doc.root_element()).unwrap_err().to_string(),
+            "1:43: a speed limit of 1000000 m/s is above 150 m/s, a scenario's largest speed limit"
+        );
+        assert!(read(&LANES.replace(r#"max="50""#, r#"max="540""#)).is_ok());
     }
 
     #[test]

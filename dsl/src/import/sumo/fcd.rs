@@ -8,6 +8,7 @@ use roxmltree::{Document, Node};
 use super::xml::{self, Locator, SumoError};
 use crate::Location;
 use crate::geometry::Xy;
+use crate::raw::range;
 
 /// A trace read from SUMO FCD output.
 #[derive(Debug, Clone, PartialEq)]
@@ -72,8 +73,10 @@ pub struct FcdSample {
 /// attributes leave it out, and a rider then reads as a pedestrian at its
 /// vehicle's position.
 ///
-/// Errors: malformed XML, a missing or non-finite attribute, timesteps out of
-/// time order, an id used by both a vehicle and a person, and geographic
+/// Errors: malformed XML, a missing or non-finite attribute, a `speed` outside
+/// a scenario's speed range (0 to 150 m/s), timesteps out of time order or two
+/// at one time, an id twice in one timestep or used by both a vehicle and a
+/// person, and geographic
 /// coordinates: `lon`/`lat` attributes, or a file whose header records
 /// `--fcd-output.geo` or `--fcd-output.utm` (x and y are then not network
 /// coordinates). Without SUMO's header, such coordinates go undetected.
@@ -88,9 +91,12 @@ pub fn parse_fcd(text: &str) -> Result<Fcd, SumoError> {
     let mut timesteps: Vec<Timestep> = Vec::new();
     for step in xml::children(root, "timestep") {
         let time = xml::number(step, "time")?;
-        if let Some(previous) = timesteps.last().map(|t| t.time).filter(|&previous| time < previous) {
+        if let Some(previous) = timesteps.last().map(|t| t.time).filter(|&previous| time <= previous) {
             let attribute = xml::attribute(step, "time")?;
-            let message = format!("time {time} is earlier than the previous timestep's {previous}");
+            let message = match time < previous {
+                true => format!("time {time} is earlier than the previous timestep's {previous}"),
+                false => format!("time {time} is the previous timestep's too; each timestep is at its own time"),
+            };
             return Err(xml::value_error(step, &attribute, message));
         }
         timesteps.push(Timestep {
@@ -116,7 +122,14 @@ pub fn parse_fcd(text: &str) -> Result<Fcd, SumoError> {
             }
             let sample = sample(node, time)?;
             match seen.get(id) {
-                Some(&(index, was_person)) if was_person == is_person => objects[index].samples.push(sample),
+                Some(&(index, was_person)) if was_person == is_person => {
+                    let samples = &mut objects[index].samples;
+                    if samples.last().is_some_and(|last| last.time == time) {
+                        let message = format!("`{id}` appears twice in the timestep at time {time}");
+                        return Err(xml::element_error(node, message));
+                    }
+                    samples.push(sample);
+                }
                 Some(_) => {
                     let message = format!("`{id}` appears as both a <vehicle> and a <person>");
                     return Err(xml::element_error(node, message));
@@ -144,7 +157,7 @@ fn sample(node: Node, time: f64) -> Result<FcdSample, SumoError> {
         time,
         position: [xml::number(node, "x")?, xml::number(node, "y")?],
         heading: heading(xml::number(node, "angle")?),
-        speed: xml::number(node, "speed")?,
+        speed: xml::number_within(node, "speed", range::SPEED)?,
         lane: node.attribute("lane").map(str::to_owned),
     })
 }
@@ -307,6 +320,31 @@ mod tests {
             "5:9: the file was written with --fcd-output.geo, so x and y are longitude and latitude, \
              which are not supported; rerun sumo without --fcd-output.geo"
         );
+    }
+
+    /// Each of these changed verdicts: a road user twice in one timestep, or
+    /// one timestep twice, held two positions at one time; a speed of −5 or
+    /// 1e300 m/s was taken as measured.
+    #[test]
+    fn a_road_user_twice_at_one_time_and_speeds_out_of_range_are_errors() {
+        let text = TRACE.replace(
+            r#"<vehicle id="v1" x="50.00""#,
+            r#"<vehicle id="v0" x="12.00" y="1.60" angle="90.00" speed="12.50"/>
+        <vehicle id="v1" x="50.00""#,
+        );
+        assert_eq!(error(&text), "9:9: `v0` appears twice in the timestep at time 0.1");
+        let text = TRACE.replace(r#"time="0.20""#, r#"time="0.10""#);
+        assert_eq!(
+            error(&text),
+            "13:21: time 0.1 is the previous timestep's too; each timestep is at its own time"
+        );
+        for (speed, found) in [("-5", "-5"), ("150.01", "150.01"), ("1e300", "1e300")] {
+            let text = TRACE.replace(r#"speed="8.00""#, &format!(r#"speed="{speed}""#));
+            assert_eq!(
+                error(&text),
+                format!("9:68: attribute `speed` of <vehicle> must be a number from 0 to 150 m/s, found {found}")
+            );
+        }
     }
 
     #[test]

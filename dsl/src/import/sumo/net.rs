@@ -8,6 +8,7 @@ use roxmltree::Node;
 use super::vclass::CLASSES;
 use super::xml::{self, SumoError};
 use crate::geometry::Xy;
+use crate::raw::range;
 
 /// SUMO's default lane width, metres, for lanes that give none.
 pub const DEFAULT_LANE_WIDTH: f64 = 3.2;
@@ -121,7 +122,8 @@ type LaneOf<'a> = (&'a str, u32);
 
 /// Reads a SUMO network (`<net><edge><lane …/></edge>…<junction …/>…<connection …/></net>`).
 ///
-/// A lane needs `id`, `index`, `speed` and `shape` (`x,y x,y …`, at least two
+/// A lane needs `id`, `index`, `speed` (m/s, in the range of a scenario's
+/// speed limits: above 0, at most 150) and `shape` (`x,y x,y …`, at least two
 /// points; a height `x,y,z` is dropped); `width` is optional. A connection needs
 /// `from`, `to`, `fromLane` and `toLane`; `via` is optional. A junction needs
 /// `id`; `type`, `incLanes` and `shape` are optional. The location, roundabouts,
@@ -257,7 +259,7 @@ fn lane(node: Node) -> Result<Lane, SumoError> {
     let lane = Lane {
         id: xml::string(node, "id")?.to_owned(),
         index: xml::index(node, "index")?,
-        speed: xml::number(node, "speed")?,
+        speed: xml::number_within(node, "speed", range::SPEED_POSITIVE)?,
         width: xml::number_or(node, "width", DEFAULT_LANE_WIDTH)?,
         shape: xml::shape(node, "shape")?,
         permitted,
@@ -415,6 +417,13 @@ mod tests {
             error(&text),
             "12:42: attribute `speed` of <lane> is not a number: \"8,33\""
         );
+        for (speed, found) in [("0", "0"), ("-5", "-5"), ("150.5", "150.5"), ("1e300", "1e300")] {
+            let text = NET.replace(r#"speed="8.33""#, &format!(r#"speed="{speed}""#));
+            assert_eq!(
+                error(&text),
+                format!("12:42: attribute `speed` of <lane> must be a number > 0 and ≤ 150 m/s, found {found}")
+            );
+        }
         let text = NET.replace(r#"index="1" "#, "");
         assert_eq!(error(&text), "9:9: missing attribute `index` on <lane>");
         let text = NET.replace("103.20,-1.60 200.00,-1.60", "103.20,-1.60 200.00;-1.60");
