@@ -397,6 +397,14 @@ impl Unused<'_> {
             }
             PathLossModel::Tr36885Urban => {}
         }
+        if let Some(semantic) = &world.semantic
+            && world.perception.is_none()
+            && semantic.rsus.iter().all(|&i| world.agents[i].antenna_m.is_some())
+        {
+            self.check(channel.key("rsu_antenna_m"), || {
+                "every roadside unit has its own antenna height (a SUMO point of interest's `height`)".into()
+            });
+        }
         if world.is_joint() {
             return;
         }
