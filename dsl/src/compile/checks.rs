@@ -67,32 +67,34 @@ pub(super) fn whole_multiple(length: f64, step: f64) -> Option<f64> {
 }
 
 /// "it has a, b" (or "it has none"), and the closest name when `name` looks like a typo of one.
-/// Checks that every type of `types` (the list at `list`) is among `present`,
-/// the types of the imported `what`s: a type nothing has would block no sight.
-pub(super) fn types_present<'a>(
+/// Checks that every type of `types` (the list at `list`) is among `known`;
+/// `missing` says what a type that is not means. Returns whether all are.
+pub(super) fn types_among(
     ctx: &mut Context<'_>,
     list: &Path,
     types: &[String],
-    present: impl IntoIterator<Item = &'a str>,
-    what: &str,
+    known: &[&str],
+    missing: impl Fn(&str) -> String,
 ) -> bool {
-    let mut present: Vec<&str> = present.into_iter().collect();
-    present.sort_unstable();
-    present.dedup();
     let mut ok = true;
     for (i, kind) in types.iter().enumerate() {
-        if !present.contains(&kind.as_str()) {
+        if !known.contains(&kind.as_str()) {
             ctx.error(
                 &list.index(i),
-                ErrorKind::DanglingReference(format!(
-                    "no {what} of type `{kind}` in the imported files ({})",
-                    known_names(kind, &present)
-                )),
+                ErrorKind::DanglingReference(format!("{} ({})", missing(kind), known_names(kind, known))),
             );
             ok = false;
         }
     }
     ok
+}
+
+/// The distinct `types`, sorted.
+pub(super) fn distinct<'a>(types: impl IntoIterator<Item = &'a str>) -> Vec<&'a str> {
+    let mut types: Vec<&str> = types.into_iter().collect();
+    types.sort_unstable();
+    types.dedup();
+    types
 }
 
 pub(super) fn known_names(name: &str, known: &[&str]) -> String {

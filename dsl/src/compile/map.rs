@@ -15,7 +15,7 @@
 
 use std::collections::HashMap;
 
-use super::checks::{known_names, types_present};
+use super::checks::{distinct, types_among};
 use super::context::Context;
 use super::reader::{Failed, Named, Reader};
 use crate::error::{Error, ErrorKind};
@@ -104,8 +104,10 @@ pub(super) fn load(ctx: &mut Context<'_>, raw: Option<&RawMap>, loader: Option<&
     let roads = lane_roads(ctx, &file, &map, LaneUse::Drive, default);
     let walkways = lane_roads(ctx, &file, &map, LaneUse::Walk, default);
     if ok && ctx.has(&at.key("occluder_types")) {
-        let kinds = map.objects.iter().map(|o| o.kind.as_str());
-        ok &= types_present(ctx, &at.key("occluder_types"), &raw.occluder_types, kinds, "object");
+        let kinds = distinct(map.objects.iter().map(|o| o.kind.as_str()));
+        ok &= types_among(ctx, &at.key("occluder_types"), &raw.occluder_types, &kinds, |kind| {
+            format!("no object of type `{kind}` in the imported files")
+        });
     }
     let mut occluders = Vec::new();
     let mut crosswalks = Vec::new();
@@ -178,20 +180,9 @@ pub(super) fn load(ctx: &mut Context<'_>, raw: Option<&RawMap>, loader: Option<&
 
 /// Checks that every occluder type is one of OpenDRIVE's object types.
 fn occluder_types(ctx: &mut Context<'_>, at: &Path, types: &[String]) -> bool {
-    let mut ok = true;
-    for (i, kind) in types.iter().enumerate() {
-        if !OBJECT_TYPES.contains(&kind.as_str()) {
-            ctx.error(
-                &at.index(i),
-                ErrorKind::DanglingReference(format!(
-                    "OpenDRIVE has no object type `{kind}` ({})",
-                    known_names(kind, &OBJECT_TYPES)
-                )),
-            );
-            ok = false;
-        }
-    }
-    ok
+    types_among(ctx, at, types, &OBJECT_TYPES, |kind| {
+        format!("OpenDRIVE has no object type `{kind}`")
+    })
 }
 
 /// Checks that `map.speed_limit` is given exactly when a drivable lane has a

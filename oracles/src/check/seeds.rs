@@ -62,17 +62,10 @@ pub(crate) fn evaluate(
                 .iter()
                 .filter(|s| s.n >= min_samples && s.value.is_some_and(|v| bound.margin(v) >= 0.0))
                 .count();
-            let best = (holding + short_of) as u32;
             let n = seeds as u32;
-            let limit = share_lower(method, best, n, over.confidence);
+            let statistics = share_statistics(method, (holding + short_of) as u32, n, over.confidence);
+            let limit = statistics.bound;
             if limit < share {
-                let statistics = SeedStatistics {
-                    seeds: n,
-                    confidence: over.confidence,
-                    method: method_name(method),
-                    estimate: f64::from(best) / f64::from(n),
-                    bound: limit,
-                };
                 let measured = format!(
                     "lower {} % {} bound of the share of n = {n} seeds that hold, at best",
                     short(over.confidence * 100.0),
@@ -135,14 +128,8 @@ pub(crate) fn evaluate(
         }
         Statistic::Share { share, method } => {
             let holding = values.iter().filter(|&&v| bound.margin(v) >= 0.0).count() as u32;
-            let limit = share_lower(method, holding, n, over.confidence);
-            let statistics = SeedStatistics {
-                seeds: n,
-                confidence: over.confidence,
-                method: method_name(method),
-                estimate: f64::from(holding) / f64::from(n),
-                bound: limit,
-            };
+            let statistics = share_statistics(method, holding, n, over.confidence);
+            let limit = statistics.bound;
             let description = format!(
                 "{} at {holding} of {n} seeds, the share's lower {confidence}% bound {} ({})",
                 relation(name, bound),
@@ -176,19 +163,19 @@ fn relation(name: &str, bound: Bound) -> String {
     }
 }
 
-/// The one-sided lower bound of a share of `k` in `n` at `confidence`, by `method`.
-fn share_lower(method: RateBound, k: u32, n: u32, confidence: f64) -> f64 {
-    match method {
-        RateBound::ClopperPearson => clopper_pearson_lower(k, n, confidence),
-        RateBound::Wilson => wilson_lower(k, n, confidence),
-    }
-}
-
-/// `method` as results.json names it.
-fn method_name(method: RateBound) -> &'static str {
-    match method {
-        RateBound::ClopperPearson => "clopper_pearson",
-        RateBound::Wilson => "wilson",
+/// A share of `k` seeds holding of `n`, with its one-sided lower bound at
+/// `confidence` by `method`.
+fn share_statistics(method: RateBound, k: u32, n: u32, confidence: f64) -> SeedStatistics {
+    let (name, bound) = match method {
+        RateBound::ClopperPearson => ("clopper_pearson", clopper_pearson_lower(k, n, confidence)),
+        RateBound::Wilson => ("wilson", wilson_lower(k, n, confidence)),
+    };
+    SeedStatistics {
+        seeds: n,
+        confidence,
+        method: name,
+        estimate: f64::from(k) / f64::from(n),
+        bound,
     }
 }
 

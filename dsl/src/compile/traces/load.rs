@@ -16,7 +16,7 @@ use super::files::{Files, read_files};
 use super::network::{FILE_START, scene};
 use super::objects::{Body, InFile, PoiRsu, bodies, poi_rsus};
 use crate::compile::Loader;
-use crate::compile::checks::{known_names, types_present};
+use crate::compile::checks::{distinct, known_names, types_among};
 use crate::compile::context::Context;
 use crate::error::{Error, ErrorKind, Location, Warning};
 use crate::geometry::counter_clockwise;
@@ -97,13 +97,7 @@ pub(crate) fn load(ctx: &mut Context<'_>, raw: Option<&RawTraces>, loader: Optio
     };
     let rsus = match poi_rsus(&others, raw.rsus.as_ref().map(|r| r.poi_type.as_str()), net.as_ref()) {
         Ok((rsus, _)) if rsus.is_empty() && raw.rsus.is_some() => {
-            let mut kinds: Vec<&str> = others
-                .iter()
-                .flat_map(|(_, a)| &a.pois)
-                .map(|p| p.kind.as_str())
-                .collect();
-            kinds.sort_unstable();
-            kinds.dedup();
+            let kinds = distinct(others.iter().flat_map(|(_, a)| &a.pois).map(|p| p.kind.as_str()));
             let poi_type = raw.rsus.as_ref().map(|r| r.poi_type.as_str()).unwrap_or_default();
             ctx.error(
                 &at.key("rsus").key("poi_type"),
@@ -155,12 +149,10 @@ pub(crate) fn load(ctx: &mut Context<'_>, raw: Option<&RawTraces>, loader: Optio
         }));
     }
     if ctx.has(&at.key("occluder_types")) {
-        let kinds: Vec<&str> = others
-            .iter()
-            .flat_map(|(_, a)| &a.polygons)
-            .map(|p| p.kind.as_str())
-            .collect();
-        ok &= types_present(ctx, &at.key("occluder_types"), &raw.occluder_types, kinds, "polygon");
+        let kinds = distinct(others.iter().flat_map(|(_, a)| &a.polygons).map(|p| p.kind.as_str()));
+        ok &= types_among(ctx, &at.key("occluder_types"), &raw.occluder_types, &kinds, |kind| {
+            format!("no polygon of type `{kind}` in the imported files")
+        });
     }
     let mut occluders = Vec::new();
     for (file, additional) in &others {
