@@ -148,6 +148,7 @@ pub(crate) struct ParseError {
 ///
 /// An empty document is an error: a scenario always has content.
 pub(crate) fn parse(source: &str) -> Result<Node, ParseError> {
+    unprintable(source)?;
     let mut builder = Builder::default();
     let mut parser = Parser::new_from_str(source);
     while let Some(event) = parser.next_event() {
@@ -159,6 +160,31 @@ pub(crate) fn parse(source: &str) -> Result<Node, ParseError> {
         builder.on_event(event, span)?;
     }
     builder.finish()
+}
+
+/// Fails at the first character YAML 1.2 does not allow in a stream (its
+/// `c-printable`: a control character but tab and line breaks, DEL, a C1
+/// control but NEL, U+FFFE, U+FFFF), which the parser would pass on into the
+/// evidence; written as an escape in a double-quoted string, it is allowed.
+fn unprintable(source: &str) -> Result<(), ParseError> {
+    let printable = |c: char| {
+        matches!(c, '\t' | '\n' | '\r' | ' '..='~' | '\u{85}' | '\u{A0}'..='\u{D7FF}' | '\u{E000}'..='\u{FFFD}')
+            || c >= '\u{10000}'
+    };
+    let Some((offset, c)) = source.char_indices().find(|&(_, c)| !printable(c)) else {
+        return Ok(());
+    };
+    let before = &source[..offset];
+    let line = before.matches('\n').count() + 1;
+    let column = before[before.rfind('\n').map_or(0, |n| n + 1)..].chars().count() + 1;
+    Err(ParseError {
+        location: Location::new(line, column),
+        path: Path::root(),
+        kind: ErrorKind::Syntax(format!(
+            "U+{:04X} is not a character YAML allows in a file; write it as an escape in a double-quoted string",
+            u32::from(c)
+        )),
+    })
 }
 
 /// The most nodes a document may hold, aliases expanded: far more than any
