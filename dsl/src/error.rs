@@ -31,13 +31,15 @@ impl fmt::Display for Location {
 /// `bytes` as UTF-8 text, or the location of the first byte that is not UTF-8.
 pub fn utf8_text(bytes: &[u8]) -> Result<&str, Location> {
     std::str::from_utf8(bytes).map_err(|e| {
-        let valid = &bytes[..e.valid_up_to()];
-        let line_start = valid.iter().rposition(|&b| b == b'\n').map_or(0, |i| i + 1);
-        let line = valid.iter().filter(|&&b| b == b'\n').count() + 1;
-        // The prefix is valid UTF-8, so its characters can be counted.
-        let column = String::from_utf8_lossy(&valid[line_start..]).chars().count() + 1;
-        Location::new(line, column)
+        // The prefix up to the error is valid UTF-8.
+        end_of(&String::from_utf8_lossy(&bytes[..e.valid_up_to()]))
     })
+}
+
+/// Where `text` ends: the line and column of the character after it.
+pub(crate) fn end_of(text: &str) -> Location {
+    let last_line = text.rsplit('\n').next().unwrap_or_default();
+    Location::new(text.matches('\n').count() + 1, last_line.chars().count() + 1)
 }
 
 /// One problem in a scenario file.

@@ -22,7 +22,7 @@ use std::collections::hash_map::Entry;
 
 use saphyr_parser::{Event, Parser, ScalarStyle, Span, Tag};
 
-use crate::error::{ErrorKind, Location};
+use crate::error::{ErrorKind, Location, end_of};
 use crate::path::Path;
 
 /// One YAML value with the position of its first character.
@@ -174,11 +174,8 @@ fn unprintable(source: &str) -> Result<(), ParseError> {
     let Some((offset, c)) = source.char_indices().find(|&(_, c)| !printable(c)) else {
         return Ok(());
     };
-    let before = &source[..offset];
-    let line = before.matches('\n').count() + 1;
-    let column = before[before.rfind('\n').map_or(0, |n| n + 1)..].chars().count() + 1;
     Err(ParseError {
-        location: Location::new(line, column),
+        location: end_of(&source[..offset]),
         path: Path::root(),
         kind: ErrorKind::Syntax(format!(
             "U+{:04X} is not a character YAML allows in a file; write it as an escape in a double-quoted string",

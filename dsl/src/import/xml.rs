@@ -6,6 +6,7 @@
 use roxmltree::{Attribute, Node};
 
 use crate::Location;
+use crate::error::end_of;
 use crate::raw::range::Range;
 
 /// A problem in an XML file, located by line and column.
@@ -40,12 +41,6 @@ impl std::fmt::Display for Number {
             (false, Some(digits)) => write!(f, "{value:.digits$e}"),
         }
     }
-}
-
-/// Where `text` ends.
-pub(crate) fn end_of(text: &str) -> Location {
-    let last_line = text.rsplit('\n').next().unwrap_or_default();
-    Location::new(text.matches('\n').count() + 1, last_line.chars().count() + 1)
 }
 
 /// The message of a roxmltree parse error as `malformed xml: …`, and where it
