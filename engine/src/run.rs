@@ -286,17 +286,21 @@ pub fn assemble(
 ) -> Result<Run, AssembleError> {
     let mut expected: HashMap<Unit, Option<Vec<Outcome>>> = units(scenario).into_iter().map(|u| (u, None)).collect();
     for (unit, outcomes) in pieces {
+        // A unit of the scenario names only its points, so it is looked up
+        // before its points are.
+        let Some(slot @ None) = expected.get_mut(&unit) else {
+            return Err(AssembleError::Unexpected(unit));
+        };
         let fits = outcomes.len() == unit.group.len()
             && unit
                 .group
                 .iter()
                 .zip(&outcomes)
                 .all(|(&i, outcome)| measures(&scenario.points[i].setup.experiment, outcome));
-        match expected.get_mut(&unit) {
-            Some(slot @ None) if fits => *slot = Some(outcomes),
-            Some(None) => return Err(AssembleError::Mismatched(unit)),
-            Some(Some(_)) | None => return Err(AssembleError::Unexpected(unit)),
+        if !fits {
+            return Err(AssembleError::Mismatched(unit));
         }
+        *slot = Some(outcomes);
     }
     let mut points: Vec<Option<Outcome>> = vec![None; scenario.points.len()];
     let mut replicates: Vec<Vec<Outcome>> = vec![Vec::new(); scenario.points.len()];

@@ -85,6 +85,12 @@ fn a_missing_repeated_or_foreign_unit_is_refused() {
 
     let foreign = assemble(&scenario, without(5).chain([(unit(&[2, 3], 3), pieces[5].1.clone())]));
     assert_eq!(foreign, Err(AssembleError::Unexpected(unit(&[2, 3], 3))));
+    // A unit naming a point the scenario does not have (a forged shard).
+    let beyond = assemble(
+        &scenario,
+        without(5).chain([(unit(&[999], 0), pieces[5].1[..1].to_vec())]),
+    );
+    assert_eq!(beyond, Err(AssembleError::Unexpected(unit(&[999], 0))));
 
     let short = (unit(&[0, 1], 0), pieces[0].1[..1].to_vec());
     let mismatched = assemble(&scenario, without(0).chain([short]));
