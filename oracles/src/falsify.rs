@@ -61,6 +61,21 @@ pub struct Score {
     /// Whether the case fails a `sightline run`: a requirement fails, could
     /// not be checked, or is not exercised without accepting it.
     pub breaks: bool,
+    /// Every requirement's outcome in this case, in the scenario's order.
+    pub each: Vec<Judged>,
+}
+
+/// One requirement's outcome in one case.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Judged {
+    /// The requirement's id.
+    pub id: String,
+    /// Its status.
+    pub status: Status,
+    /// Its margin (`None` when it could not be checked or was not exercised).
+    pub margin: Option<f64>,
+    /// Whether it fails a `sightline run` of the case.
+    pub breaks: bool,
 }
 
 impl Score {
@@ -88,6 +103,15 @@ impl Score {
             status: worst.map_or(Status::Pass, |v| v.status),
             margin: worst.and_then(|v| v.decisive.margin),
             breaks: verdicts.iter().any(Verdict::fails_run),
+            each: verdicts
+                .iter()
+                .map(|v| Judged {
+                    id: v.id.clone(),
+                    status: v.status,
+                    margin: v.decisive.margin,
+                    breaks: v.fails_run(),
+                })
+                .collect(),
         }
     }
 
@@ -339,6 +363,7 @@ mod tests {
                         status: if margin < 0.0 { Status::Fail } else { Status::Pass },
                         margin: Some(margin),
                         breaks: margin < 0.0,
+                        each: Vec::new(),
                     }
                 })
                 .collect())
@@ -448,6 +473,20 @@ mod tests {
         assert!(!score.breaks);
         let score = Score::of(&[pass.clone(), fail.clone(), close]);
         assert_eq!((score.requirement.as_deref(), score.status), (Some("C"), Status::Fail));
+        // Every requirement's own outcome is kept beside the worst.
+        let each: Vec<(&str, Status, Option<f64>, bool)> = score
+            .each
+            .iter()
+            .map(|j| (j.id.as_str(), j.status, j.margin, j.breaks))
+            .collect();
+        assert_eq!(
+            each,
+            [
+                ("A", Status::Pass, Some(0.3), false),
+                ("C", Status::Fail, Some(-0.2), true),
+                ("B", Status::Pass, Some(0.1), false)
+            ]
+        );
         let score = Score::of(&[pass, error, fail]);
         assert_eq!((score.requirement.as_deref(), score.status), (Some("D"), Status::Error));
         let none = Score::of(&[]);

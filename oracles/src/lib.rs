@@ -24,7 +24,7 @@
 
 pub use check::seeds::{SeedStatistics, clopper_pearson_lower, mean_bound, wilson_lower};
 pub use domain::{OutOfDomain, Quantity, out_of_domain};
-pub use falsify::{Case, Outcome, Phase, Score, Search, falsify};
+pub use falsify::{Case, Judged, Outcome, Phase, Score, Search, falsify};
 pub use known::known_answers;
 pub use measurements::Measurements;
 pub use verdict::{Evaluation, Status, Verdict, check, headline};

@@ -4,7 +4,7 @@
 
 use serde::Serialize;
 use sightline_dsl::{Scenario, Vary};
-use sightline_oracles::{Case, Outcome, Phase, Search, Status};
+use sightline_oracles::{Case, Judged, Outcome, Phase, Search, Status};
 
 use crate::execution::Execution;
 use crate::results::Tool;
@@ -98,12 +98,65 @@ pub(crate) fn search_name(search: &Search) -> &'static str {
     if search.guided { "guided" } else { "random" }
 }
 
+/// What a search found for one requirement, over every case tried.
+#[derive(Debug)]
+pub(crate) struct Tally<'a> {
+    /// Cases tried.
+    pub cases: usize,
+    /// Cases in which it was judged (not "not exercised").
+    pub exercised: usize,
+    /// Cases in which it failed a `sightline run` of the case.
+    pub broken: usize,
+    /// The first case that broke it (index in the outcome's cases) and its judgement.
+    pub first_broken: Option<(usize, &'a Judged)>,
+    /// Its smallest margin over every case.
+    pub smallest: Option<f64>,
+    /// The counterexample's judgement of it, when the counterexample breaks it.
+    pub by_counterexample: Option<&'a Judged>,
+}
+
+impl<'a> Tally<'a> {
+    /// The tally of requirement `id` over the cases of `outcome`.
+    pub(crate) fn of(outcome: &'a Outcome, id: &str) -> Self {
+        let judged = |case: &'a Case| case.score.each.iter().find(|j| j.id == id);
+        let mut tally = Tally {
+            cases: outcome.cases.len(),
+            exercised: 0,
+            broken: 0,
+            first_broken: None,
+            smallest: None,
+            by_counterexample: outcome
+                .counterexample
+                .and_then(|i| judged(&outcome.cases[i]))
+                .filter(|j| j.breaks),
+        };
+        for (i, judged) in outcome
+            .cases
+            .iter()
+            .enumerate()
+            .filter_map(|(i, c)| Some((i, judged(c)?)))
+        {
+            tally.exercised += usize::from(judged.status != Status::NotExercised);
+            if judged.breaks {
+                tally.broken += 1;
+                tally.first_broken.get_or_insert((i, judged));
+            }
+            if let Some(margin) = judged.margin {
+                tally.smallest = Some(tally.smallest.map_or(margin, |m: f64| m.min(margin)));
+            }
+        }
+        tally
+    }
+}
+
 /// junit.xml of a falsification: one case per requirement of the scenario.
-/// The requirement the counterexample breaks is a failure (an error when it
+/// A requirement the counterexample breaks is a failure (an error when it
 /// could not be checked) naming `counterexample.yaml` and the command that
-/// reproduces it; every other requirement passes the search: no case tried
-/// broke it. Each case's `<system-out>` says how many cases were tried, in how
-/// many the requirement had the smallest margin, and the smallest.
+/// reproduces it; one that another case broke is a failure naming that case's
+/// values; one that no case judged is skipped (its not being exercised is
+/// accepted), or a failure when no case was tried at all; the rest pass the
+/// search. Each case's `<system-out>` says how
+/// many cases were tried, judged it and broke it, and its smallest margin.
 pub fn falsify_junit(f: &Falsification<'_>) -> quick_junit::Report {
     use quick_junit::{NonSuccessKind, TestCaseStatus};
 
@@ -117,55 +170,78 @@ pub fn falsify_junit(f: &Falsification<'_>) -> quick_junit::Report {
         "tool",
         format!("{} {} ({})", f.tool.name, f.tool.version, f.tool.git).as_str(),
     ));
-    let found = f.outcome.counterexample.map(|i| &f.outcome.cases[i]);
     let duration = std::time::Duration::from_secs_f64(f.execution.duration_seconds.max(0.0));
-    let tried = f.outcome.cases.len().to_string();
+    let shown = |margin: Option<f64>| margin.map_or("none".to_string(), |m| format!("{m:?}"));
+    let values = |case: &Case| -> String {
+        scenario
+            .vary
+            .iter()
+            .zip(&case.indices)
+            .map(|(v, &i)| format!("{}={}", v.path, sightline_dsl::display_value(&v.value(i))))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let kind = |judged: &Judged| match judged.status {
+        Status::Error => NonSuccessKind::Error,
+        _ => NonSuccessKind::Failure,
+    };
     for requirement in &scenario.requirements {
-        let worst: Vec<&Case> = f
-            .outcome
-            .cases
-            .iter()
-            .filter(|c| c.score.requirement.as_deref() == Some(requirement.id.as_str()))
-            .collect();
-        let smallest = worst
-            .iter()
-            .filter_map(|c| c.score.margin)
-            .min_by(f64::total_cmp)
-            .map_or("none".to_string(), |m| format!("{m:?}"));
-        let mut status = TestCaseStatus::success();
+        let id = requirement.id.as_str();
+        let tally = Tally::of(f.outcome, id);
         let mut out = vec![
             ("requirement", requirement.id.clone()),
             ("text", requirement.text.clone()),
-            ("cases", tried.clone()),
-            ("cases_worst", worst.len().to_string()),
-            ("smallest_margin", smallest),
+            ("cases", tally.cases.to_string()),
+            ("cases_exercised", tally.exercised.to_string()),
+            ("cases_broken", tally.broken.to_string()),
+            ("smallest_margin", shown(tally.smallest)),
         ];
-        if let Some(case) = found.filter(|c| c.score.requirement.as_deref() == Some(requirement.id.as_str())) {
-            let kind = match case.score.status {
-                Status::Error => NonSuccessKind::Error,
-                _ => NonSuccessKind::Failure,
-            };
-            let values: Vec<String> = scenario
-                .vary
-                .iter()
-                .zip(&case.indices)
-                .map(|(v, &i)| format!("{}={}", v.path, sightline_dsl::display_value(&v.value(i))))
-                .collect();
-            let margin = case.score.margin.map_or("none".to_string(), |m| format!("{m:?}"));
-            status = TestCaseStatus::non_success(kind);
-            status.set_type(case.score.status.name()).set_message(format!(
-                "counterexample.yaml breaks {} ({}, margin {margin}) at {}; reproduce: {}",
-                requirement.id,
-                case.score.status.name(),
-                values.join(", "),
+        let status = if let (Some(judged), Some(i)) = (tally.by_counterexample, f.outcome.counterexample) {
+            let margin = shown(judged.margin);
+            let mut status = TestCaseStatus::non_success(kind(judged));
+            status.set_type(judged.status.name()).set_message(format!(
+                "counterexample.yaml breaks {id} ({}, margin {margin}) at {}; reproduce: {}",
+                judged.status.name(),
+                values(&f.outcome.cases[i]),
                 f.reproduce.unwrap_or("sightline run counterexample.yaml")
             ));
             out.extend([
                 ("counterexample", "counterexample.yaml".to_string()),
-                ("verdict", case.score.status.name().to_string()),
+                ("verdict", judged.status.name().to_string()),
                 ("margin", margin),
             ]);
-        }
+            status
+        } else if let Some((i, judged)) = tally.first_broken {
+            let mut status = TestCaseStatus::non_success(kind(judged));
+            status.set_type(judged.status.name()).set_message(format!(
+                "{} of {} cases broke {id}, first case {} ({}, margin {}) at {}; counterexample.yaml does not \
+                 break it: set those values to reproduce it",
+                tally.broken,
+                tally.cases,
+                i + 1,
+                judged.status.name(),
+                shown(judged.margin),
+                values(&f.outcome.cases[i]),
+            ));
+            status
+        } else if tally.cases == 0 {
+            // Like a run without samples: nothing was judged, and the search fails the gate.
+            let mut status = TestCaseStatus::non_success(NonSuccessKind::Failure);
+            status.set_type(Status::NotExercised.name()).set_message(format!(
+                "not exercised: no case was tried within the budget, so nothing judged {id}"
+            ));
+            status
+        } else if tally.exercised == 0 {
+            // Not exercised in every case, and accepted (else every case broke it).
+            let mut status = TestCaseStatus::skipped();
+            status.set_type(Status::NotExercised.name()).set_message(format!(
+                "not exercised in any of the {} cases tried (accepted)",
+                tally.cases
+            ));
+            status
+        } else {
+            TestCaseStatus::success()
+        };
         let mut case = new_case(
             requirement.id.clone(),
             status,

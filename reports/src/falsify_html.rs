@@ -4,11 +4,11 @@
 
 use serde::Serialize;
 use sightline_dsl::{Domain, Vary, display_value};
-use sightline_oracles::{Case, Phase};
+use sightline_oracles::{Case, Phase, Status};
 
 use crate::Error;
 use crate::chart::{Chart, margin_chart};
-use crate::falsify::{Falsification, document};
+use crate::falsify::{Falsification, Tally, document};
 use crate::html::{DocumentView, content_id, control, number, or_dash};
 use crate::template::Templates;
 
@@ -34,6 +34,21 @@ struct View<'a> {
     counterexample: Option<CounterexampleView>,
     /// Without a counterexample: the smallest margin seen.
     closest: Option<ClosestView>,
+    /// Every requirement over every case tried, as junit.xml judges it.
+    requirements: Vec<RequirementView>,
+}
+
+#[derive(Serialize)]
+struct RequirementView {
+    id: String,
+    /// `fail` (a case broke it), `error`, `not_exercised` (no case judged it)
+    /// or `pass` (every case that judged it held).
+    verdict: &'static str,
+    exercised: usize,
+    broken: usize,
+    /// The first case that broke it, 1-based.
+    first_broken: Option<usize>,
+    smallest: String,
 }
 
 #[derive(Serialize)]
@@ -60,6 +75,8 @@ struct CounterexampleView {
     case: usize,
     first: usize,
     requirement: String,
+    /// The other requirements it breaks.
+    also: Vec<String>,
     status: &'static str,
     margin: String,
     values: Vec<(String, String)>,
@@ -85,6 +102,13 @@ impl<'a> View<'a> {
                 case: i + 1,
                 first: outcome.first_counterexample.unwrap_or(i + 1),
                 requirement: requirement(case),
+                also: case
+                    .score
+                    .each
+                    .iter()
+                    .filter(|j| j.breaks && Some(&j.id) != case.score.requirement.as_ref())
+                    .map(|j| j.id.clone())
+                    .collect(),
                 status: case.score.status.name(),
                 margin: or_dash(case.score.margin),
                 values: vary
@@ -142,6 +166,27 @@ impl<'a> View<'a> {
             chart: margin_chart(&outcome.cases, outcome.counterexample)?,
             counterexample,
             closest,
+            requirements: f
+                .scenario
+                .requirements
+                .iter()
+                .map(|requirement| {
+                    let tally = Tally::of(outcome, &requirement.id);
+                    let first = tally.by_counterexample.or(tally.first_broken.map(|(_, j)| j));
+                    RequirementView {
+                        id: requirement.id.clone(),
+                        verdict: match first {
+                            Some(judged) => judged.status.name(),
+                            None if tally.exercised == 0 => Status::NotExercised.name(),
+                            None => Status::Pass.name(),
+                        },
+                        exercised: tally.exercised,
+                        broken: tally.broken,
+                        first_broken: tally.first_broken.map(|(i, _)| i + 1),
+                        smallest: or_dash(tally.smallest),
+                    }
+                })
+                .collect(),
         })
     }
 }

@@ -104,6 +104,7 @@ impl Page {
                 "settings",
                 "cases",
                 "counterexample",
+                "requirements",
             ],
         }
     }
@@ -321,6 +322,7 @@ mod tests {
             "counterexample",
             "document_control",
             "provenance",
+            "requirements",
             "settings",
         ];
         let sorted = |page: &[&str]| {
@@ -362,7 +364,7 @@ mod tests {
                 "{% block document_control %}{% endblock %}{% block banner %}{% endblock %}{% block provenance %}{% endblock %}\
                  {% for c in report.cases %}{% block cases %}{{ c }}{% endblock %}{% endfor %}\
                  {% if report.counterexample %}{% block counterexample %}{% endblock %}{% endif %}\
-                 {% block settings %}{% endblock %}",
+                 {% block settings %}{% endblock %}{% block requirements %}{% endblock %}",
             )],
         )
         .unwrap();
@@ -513,7 +515,7 @@ mod tests {
             &[(
                 "falsify.html",
                 "{% block document_control %}{% endblock %}{% block banner %}{% include \"name.txt\" %}{% endblock %}{% block provenance %}{% endblock %}\
-                 {% block settings %}{% endblock %}{% block cases %}{% endblock %}{% block counterexample %}{% endblock %}",
+                 {% block settings %}{% endblock %}{% block cases %}{% endblock %}{% block counterexample %}{% endblock %}{% block requirements %}{% endblock %}",
             ), ("name.txt", "{{ report.name }}")],
         )
         .unwrap();
@@ -550,7 +552,7 @@ mod tests {
             &[(
                 "falsify.html",
                 "{% block document_control %}{% endblock %}{% block banner %}{% endblock %}{% block provenance %}{% endblock %}{% block settings %}{% endblock %}\
-                 {% block cases %}{% endblock %}\n{% block counterexample %}{{ report.nmae }}{% endblock %}",
+                 {% block cases %}{% endblock %}{% block requirements %}{% endblock %}\n{% block counterexample %}{{ report.nmae }}{% endblock %}",
             )],
         )
         .unwrap();

@@ -56,6 +56,10 @@ pub fn falsify(args: &FalsifyArgs) -> anyhow::Result<Exit> {
         eprintln!("{path}: error: nothing to falsify: the scenario has no `vary` section");
         return Ok(Exit::Invalid);
     }
+    if scenario.requirements.is_empty() {
+        eprintln!("{path}: error: nothing to falsify: the scenario has no requirements");
+        return Ok(Exit::Invalid);
+    }
     let text =
         sightline_dsl::utf8_text(&input.bytes).map_err(|_| anyhow::anyhow!("{path} was valid UTF-8 when compiled"))?;
     let Some(dir) = evidence_dirs(args.out.as_deref(), [&input], EVIDENCE_SET, args.template.as_deref())
@@ -155,6 +159,13 @@ pub fn falsify(args: &FalsifyArgs) -> anyhow::Result<Exit> {
         // The commit also removes a counterexample.yaml of an earlier search,
         // which would contradict this one.
         staging.commit()?;
+        if outcome.cases.is_empty() {
+            say(format_args!(
+                "NOT EXERCISED {path}: no case was tried within the budget -> {}",
+                dir.display()
+            ));
+            return Ok(Exit::Fail);
+        }
         let closest = outcome
             .cases
             .iter()
@@ -178,10 +189,19 @@ pub fn falsify(args: &FalsifyArgs) -> anyhow::Result<Exit> {
         .score
         .margin
         .map_or_else(|| "none".to_string(), |m| format!("{m:.6}"));
+    let broken: Vec<String> = found
+        .score
+        .each
+        .iter()
+        .filter(|judged| judged.breaks)
+        .map(|judged| {
+            let margin = judged.margin.map_or_else(|| "none".to_string(), |m| format!("{m:.6}"));
+            format!("{} ({}, margin {margin})", judged.id, judged.status.name())
+        })
+        .collect();
     let mut header = format!(
-        "# A counterexample to {path}, found by\n#   {command}\n\
-         # It breaks {requirement} ({}, margin {margin}) with\n",
-        found.score.status.name()
+        "# A counterexample to {path}, found by\n#   {command}\n# It breaks {} with\n",
+        broken.join(", ")
     );
     for (vary, &index) in scenario.vary.iter().zip(&found.indices) {
         header.push_str(&format!("#   {}: {}\n", vary.path, display_value(&vary.value(index))));
@@ -189,8 +209,12 @@ pub fn falsify(args: &FalsifyArgs) -> anyhow::Result<Exit> {
     header.push_str(&format!("# Reproduce: {reproduce}\n"));
     staging.write("counterexample.yaml", (header + &case_text).as_bytes())?;
     staging.commit()?;
+    let also = match broken.len() {
+        0 | 1 => String::new(),
+        n => format!(" and {} more", n - 1),
+    };
     say(format_args!(
-        "FOUND {path}: {requirement} {} (margin {margin}) at {}; first broken by case {}, {} cases in all ({evaluations} simulations, {rate:.1}/s) -> {}",
+        "FOUND {path}: {requirement} {} (margin {margin}){also} at {}; first broken by case {}, {} cases in all ({evaluations} simulations, {rate:.1}/s) -> {}",
         found.score.status.name(),
         values(&scenario.vary, &found.indices),
         outcome.first_counterexample.unwrap_or_default(),
@@ -212,12 +236,19 @@ fn simulate_case(path: &str, text: &str, vary: &[Vary], indices: &[u64]) -> Resu
         osi: false,
         processes: Some(1),
     };
+    // The errors' lines are in the case as written out, which is not kept:
+    // each is named by its key instead.
     let case = sightline_dsl::compile(path, &case_text, &options).map_err(|errors| {
-        Stop::Invalid(format!(
-            "{errors}\n{path}: error: vary: the case {} is invalid (the locations above are in the case \
-             written out as a scenario)",
-            values(vary, indices)
-        ))
+        let case = values(vary, indices);
+        let lines: Vec<String> = errors
+            .0
+            .iter()
+            .map(|error| match error.path.as_str() {
+                "" => format!("{path}: error: vary: the case {case} is invalid: {}", error.kind),
+                key => format!("{path}: error: vary: the case {case} is invalid: {key}: {}", error.kind),
+            })
+            .collect();
+        Stop::Invalid(lines.join("\n"))
     })?;
     let run = sightline_engine::simulate(&case);
     Ok(Score::of(&sightline_oracles::check(&case, &run)))

@@ -250,6 +250,84 @@ fn a_space_that_cannot_break_a_requirement_exits_0() {
     assert!(html.contains("<th scope=\"row\">Budget</th><td>0.5 s of wall-clock time</td>"));
 }
 
+/// junit.xml judges every requirement over every case tried: a second
+/// requirement the counterexample also breaks fails too (not only its worst),
+/// and a search that tried no case judged nothing.
+#[test]
+fn every_requirement_a_case_breaks_fails_and_a_search_without_cases_is_not_exercised() {
+    let dir = temp_dir();
+    let two = read(Path::new(SCENARIO)).replace(
+        "requirements:\n",
+        "requirements:\n  - id: TS-40\n    text: The RSU sends at most 40 % of what it perceives.\n    \
+         check: { metric: transmitted_share, at_most: 0.4 }\n",
+    );
+    let file = dir.path().join("two.yaml");
+    std::fs::write(&file, two).unwrap();
+    let out = dir.path().join("out");
+    let found = falsify(arg(&file), &out, &["--cases", "6"]);
+    found.assert_exit(1);
+    // Both requirements broke in some case; junit.xml fails both, each naming
+    // the counterexample when it breaks it (as a run of it shows) and the
+    // first case that broke it otherwise.
+    let run = sightline([
+        "run",
+        arg(&out.join("counterexample.yaml")),
+        "--out",
+        arg(&dir.path().join("run")),
+    ]);
+    run.assert_exit(1);
+    let text = read(&out.join("counterexample.yaml"));
+    let junit = read_junit(&out.join("junit.xml"));
+    for case in &junit.test_suites[0].test_cases {
+        let id = case.name.as_str();
+        let TestCaseStatus::NonSuccess { kind, message, .. } = &case.status else {
+            panic!("{id} passes the search");
+        };
+        assert_eq!(*kind, NonSuccessKind::Failure);
+        let message = message.as_ref().unwrap().as_str();
+        if run.stdout.contains(&format!("fail {id}:")) {
+            assert!(
+                message.starts_with(&format!("counterexample.yaml breaks {id} (fail, margin -")),
+                "{message}"
+            );
+            assert!(text.contains(&format!("{id} (fail, margin -")), "{text}");
+        } else {
+            assert!(
+                message.contains(&format!(" cases broke {id}, first case ")),
+                "{message}"
+            );
+            assert!(message.contains("counterexample.yaml does not break it"), "{message}");
+        }
+    }
+    let html = unescape_html(&read(&out.join("report.html")));
+    assert!(html.contains("<h2>Requirements over the search</h2>"), "the tally");
+
+    // A budget spent before the first case: nothing judged, the gate fails.
+    let none = falsify(arg(&file), &out, &["--budget", "0.000000001"]);
+    none.assert_exit(1);
+    assert!(none.stdout.starts_with("NOT EXERCISED "), "{none}");
+    let junit = read_junit(&out.join("junit.xml"));
+    for case in &junit.test_suites[0].test_cases {
+        assert!(
+            matches!(
+                &case.status,
+                TestCaseStatus::NonSuccess {
+                    kind: NonSuccessKind::Failure,
+                    ..
+                }
+            ),
+            "{:?}",
+            case.status
+        );
+    }
+    assert!(!out.join("counterexample.yaml").exists());
+    let html = unescape_html(&read(&out.join("report.html")));
+    assert!(
+        html.contains("NOT EXERCISED: no case was tried within the budget"),
+        "the banner"
+    );
+}
+
 #[test]
 fn a_scenario_without_vary_or_with_an_invalid_one_exits_2_and_writes_nothing() {
     let out = temp_dir();
@@ -264,6 +342,31 @@ fn a_scenario_without_vary_or_with_an_invalid_one_exits_2_and_writes_nothing() {
     let invalid = falsify("tests/fixtures/invalid/vary-errors.yaml", &target, &[]);
     invalid.assert_exit(2);
     assert!(invalid.stderr.contains("vary-errors.yaml:11:3: error:"), "{invalid}");
+    // Without requirements there is nothing to break.
+    let dir = temp_dir();
+    let text = read(Path::new(SCENARIO));
+    let without = dir.path().join("without.yaml");
+    std::fs::write(&without, &text[..text.find("\nrequirements:").unwrap() + 1]).unwrap();
+    let nothing = falsify(arg(&without), &target, &[]);
+    nothing.assert_exit(2);
+    assert!(
+        nothing
+            .stderr
+            .contains("error: nothing to falsify: the scenario has no requirements"),
+        "{nothing}"
+    );
+    // A case the language refuses names its keys, not lines of a file never written.
+    let step = dir.path().join("step.yaml");
+    std::fs::write(&step, text.replace("vary:\n", "vary:\n  time.step: [0.05, 0.1]\n")).unwrap();
+    let refused = falsify(arg(&step), &target, &["--cases", "4"]);
+    refused.assert_exit(2);
+    assert!(
+        refused
+            .stderr
+            .lines()
+            .all(|line| line.contains("step.yaml: error: vary: the case time.step=")),
+        "{refused}"
+    );
     falsify(SCENARIO, &target, &["--budget", "-1"]).assert_exit(2);
     assert!(!target.exists());
 }

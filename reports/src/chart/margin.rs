@@ -174,6 +174,7 @@ mod tests {
                 },
                 margin,
                 breaks: margin.is_none_or(|m| m < 0.0),
+                each: Vec::new(),
             },
         };
         assert_eq!(margin_chart(&[case(Phase::Random, None)], None).unwrap(), None);
