@@ -90,6 +90,9 @@ fn load(path: &Path, options: &Options<'_>) -> Result<Input, String> {
     let text =
         sightline_dsl::utf8_text(&bytes).map_err(|at| format!("{name}:{at}: error: the file is not UTF-8 text"))?;
     let scenario = sightline_dsl::compile(&name, text, options).map_err(|errors| errors.to_string())?;
+    if let Some(shards) = options.processes.filter(|&n| n > 1) {
+        shard_budget(&name, &scenario, shards)?;
+    }
     for warning in &scenario.warnings {
         eprintln!("{warning}");
     }
@@ -99,4 +102,33 @@ fn load(path: &Path, options: &Options<'_>) -> Result<Input, String> {
         bytes,
         scenario,
     })
+}
+
+/// Holds each of `shards` shards of `scenario` to the work limit of a process.
+/// The language bounds the run's work divided by the shard count; `run --shard`
+/// deals the units out in turn (see `cmd::shard`), so one shard can get the
+/// heavy units of an uneven sweep. Whichever shard a scenario's first unit goes
+/// to, the shards get the same sets of its units, so the check does not
+/// depend on the other files of the run.
+fn shard_budget(name: &str, scenario: &sightline_dsl::Scenario, shards: u32) -> Result<(), String> {
+    let mut loads = vec![0.0; shards as usize];
+    for (u, unit) in sightline_engine::units(scenario).iter().enumerate() {
+        let work: f64 = unit
+            .group
+            .iter()
+            .map(|&point| sightline_dsl::point_load(&scenario.points[point].setup))
+            .sum();
+        loads[u % shards as usize] += work;
+    }
+    let most = loads.iter().copied().fold(0.0, f64::max);
+    if most <= sightline_dsl::MAX_RUN_LOAD {
+        return Ok(());
+    }
+    Err(format!(
+        "{name}: error: one of {shards} shards would do {most:.0} points' worth of work (each at the seeds its \
+         checks need; a point at the per-point work limits counts 1), more than the limit of {} a process: \
+         `run --shard` deals the sweep's points and seeds out in turn, so shards get uneven shares of an \
+         uneven sweep; split it into more shards, sweep fewer points or check over fewer `seeds`",
+        sightline_dsl::MAX_RUN_LOAD
+    ))
 }

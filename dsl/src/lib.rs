@@ -30,6 +30,7 @@
 //! ```
 #![warn(missing_docs)]
 
+pub use compile::budget::{MAX_RUN_LOAD, load as point_load};
 pub use compile::{Loader, Options, compile, instantiate};
 pub use error::{Error, ErrorKind, Errors, Location, Warning, utf8_text};
 pub use model::*;

@@ -437,6 +437,36 @@ fn check_judges_the_work_of_a_run_split_into_shards() {
     assert!(none.stderr.contains("--shards"), "{none}");
 }
 
+/// Shards are dealt units in turn, so an uneven sweep (heavy and light points
+/// alternating) gives one shard all the heavy ones: each shard is held to the
+/// limit, not the run's work divided by N.
+#[test]
+fn each_shard_of_an_uneven_sweep_is_held_to_the_limit() {
+    let dir = temp_dir();
+    let seeds: Vec<String> = (1..=150).map(|s| s.to_string()).collect();
+    let text = read(Path::new("scenarios/urban-falsify.yaml"))
+        .replace("time: { duration: 10, step: 0.1 }", "time: { duration: 300, step: 0.1 }")
+        .replace(
+            "vary:\n  v2x.channel.sensitivity_dbm: [-100, -60]\n  traffic.pedestrians.per_minute: { one_of: [2, 0, 6] }\n",
+            &format!("sweep:\n  seed: [{}]\n  semantic.runs: [64, 1]\n", seeds.join(", ")),
+        );
+    assert!(text.contains("semantic.runs: [64, 1]"));
+    let file = dir.path().join("uneven.yaml");
+    std::fs::write(&file, text).unwrap();
+    // The run's work over two is within the limit; the shard with every
+    // 64-run point is not.
+    let two = sightline(["check", "--shards", "2", arg(&file)]);
+    two.assert_exit(2);
+    assert!(
+        two.stderr
+            .contains("error: one of 2 shards would do 131 points' worth of work"),
+        "{two}"
+    );
+    sightline(["run", "--shard", "1/2", arg(&file), "--out", arg(&dir.path().join("o"))]).assert_exit(2);
+    assert!(!dir.path().join("o").exists());
+    sightline(["check", "--shards", "3", arg(&file)]).assert_exit(0);
+}
+
 /// The urban junction cut to 70 s (the ego is served from about 50 s on),
 /// pooling two runs at two densities; its recording, of a point chosen once
 /// the run is judged, is made by the merge.

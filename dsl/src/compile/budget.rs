@@ -176,8 +176,8 @@ pub(super) fn verdicts_budget(ctx: &mut Context<'_>, requirements: &[Requirement
 pub const MAX_RUN_LOAD: f64 = 100.0;
 
 /// A point's work: its largest share of a per-point work limit (1 at the
-/// limit).
-fn load(setup: &Setup) -> f64 {
+/// limit). [`MAX_RUN_LOAD`] bounds their sum over what one process simulates.
+pub fn load(setup: &Setup) -> f64 {
     let grid = setup.occupancy.as_ref().map(|o| &o.grid);
     match (&setup.experiment, grid) {
         (Experiment::Field(field), Some(grid)) => field_draws(field, grid) / MAX_FIELD_DRAWS,

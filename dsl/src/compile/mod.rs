@@ -14,7 +14,7 @@
 //! steps), and `budget` the resource model every setup must fit
 //! (`docs/limits.md`).
 
-mod budget;
+pub(crate) mod budget;
 mod checks;
 mod compare;
 mod context;
