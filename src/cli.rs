@@ -91,8 +91,9 @@ pub struct RunArgs {
     pub osi: bool,
     /// Render report.html with the template set in DIR: its report.html (which
     /// may extend `sightline/report.html`) and what that includes or extends.
-    /// Checked before anything runs; see docs/report-templates.md.
-    #[arg(long, value_name = "DIR")]
+    /// Checked before anything runs; see docs/report-templates.md. Not with
+    /// --shard, which writes no report: give it to `sightline merge`.
+    #[arg(long, value_name = "DIR", conflicts_with = "shard")]
     pub template: Option<PathBuf>,
     /// Simulate only slice K of N of the scenarios' work (sweep points and
     /// seeds) and write DIR/shard-K-of-N.cbor instead of evidence; `sightline

@@ -401,6 +401,29 @@ fn a_scenario_changed_since_its_shards_is_refused() {
     );
 }
 
+/// A shard writes no report, so a template given to it would be ignored:
+/// `merge --template` renders it.
+#[test]
+fn a_shard_refuses_a_template() {
+    let dir = temp_dir();
+    let run = sightline([
+        "run",
+        SEED_SWEEP,
+        "--shard",
+        "1/2",
+        "--template",
+        "docs/report-templates",
+        "--out",
+        arg(dir.path()),
+    ]);
+    run.assert_exit(2);
+    assert!(
+        run.stderr
+            .contains("the argument '--shard <K/N>' cannot be used with '--template <DIR>'"),
+        "{run}"
+    );
+}
+
 #[test]
 fn a_shard_outside_one_to_n_is_a_usage_error() {
     for spec in ["0/3", "4/3", "1/0", "2", "a/b"] {
