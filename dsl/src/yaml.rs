@@ -165,7 +165,7 @@ pub(crate) fn parse(source: &str) -> Result<Node, ParseError> {
 /// Fails at the first character YAML 1.2 does not allow in a stream (its
 /// `c-printable`: a control character but tab and line breaks, DEL, a C1
 /// control but NEL, U+FFFE, U+FFFF), which the parser would pass on into the
-/// evidence; written as an escape in a double-quoted string, it is allowed.
+/// evidence; written as an escape, [`Builder::reject_controls`] refuses it.
 fn unprintable(source: &str) -> Result<(), ParseError> {
     let printable = |c: char| {
         matches!(c, '\t' | '\n' | '\r' | ' '..='~' | '\u{85}' | '\u{A0}'..='\u{D7FF}' | '\u{E000}'..='\u{FFFD}')
@@ -178,7 +178,8 @@ fn unprintable(source: &str) -> Result<(), ParseError> {
         location: end_of(&source[..offset]),
         path: Path::root(),
         kind: ErrorKind::Syntax(format!(
-            "U+{:04X} is not a character YAML allows in a file; write it as an escape in a double-quoted string",
+            "U+{:04X} is not a character YAML allows in a file (a control character, which scenario text may not \
+             hold)",
             u32::from(c)
         )),
     })
@@ -257,6 +258,7 @@ impl Builder {
             }
             Event::Scalar(text, style, anchor, tag) => {
                 self.reject_tag(tag.as_deref(), location)?;
+                self.reject_controls(&text, location)?;
                 self.count(1, location)?;
                 let value = resolve_scalar(&text, style);
                 let node = Node::new(value, location);
@@ -341,6 +343,31 @@ impl Builder {
     }
 
     /// Refuses any tag: `!!float 1` would otherwise be read as the integer 1.
+    /// Fails on a control character in a scalar as read, escapes decoded:
+    /// one but tab and line feed (C0, DEL, C1), U+FFFE, U+FFFF, or a
+    /// bidirectional embedding, override or isolate (U+202A–U+202E,
+    /// U+2066–U+2069). A scenario's text reaches terminals, reports and XML,
+    /// where such a character would overwrite or reorder what is shown (or,
+    /// in XML, cannot be written at all).
+    fn reject_controls(&self, text: &str, location: Location) -> Result<(), ParseError> {
+        let control = |c: char| {
+            matches!(c, '\0'..='\u{8}' | '\u{B}'..='\u{1F}' | '\u{7F}'..='\u{9F}' | '\u{FFFE}' | '\u{FFFF}')
+                || matches!(c, '\u{202A}'..='\u{202E}' | '\u{2066}'..='\u{2069}')
+        };
+        match text.chars().find(|&c| control(c)) {
+            None => Ok(()),
+            Some(c) => Err(ParseError {
+                location,
+                path: self.path(),
+                kind: ErrorKind::Invalid(format!(
+                    "the text holds U+{:04X}, a control character: scenario text is shown in terminals, reports and \
+                     XML, where it would hide or reorder what is shown; leave it out",
+                    u32::from(c)
+                )),
+            }),
+        }
+    }
+
     fn reject_tag(&self, tag: Option<&Tag>, location: Location) -> Result<(), ParseError> {
         let Some(tag) = tag else { return Ok(()) };
         // As written: `!!float`, not the resolved `tag:yaml.org,2002:float`.

@@ -10,13 +10,32 @@ use crate::error::{ErrorKind, Location};
 use crate::path::Path;
 use crate::raw::range;
 
-/// Records a duplicate-id error for every repeated id of a list; returns whether all are unique.
+/// The longest id of a declared thing: ids name topics, frames and entities in
+/// the evidence, once per step.
+pub(super) const MAX_ID_CHARS: usize = 64;
+
+/// Whether `id` is one to 64 letters, digits, `-`, `_` or `.`: ids become
+/// recording topics and frames (`/perception/ID/…`, where a `/` would nest),
+/// XML names and terminal text.
+pub(super) fn valid_id(id: &str) -> bool {
+    (1..=MAX_ID_CHARS).contains(&id.chars().count())
+        && id
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || matches!(c, '-' | '_' | '.'))
+}
+
+/// Records an error for every id of a list that is not [`valid_id`] and a
+/// duplicate-id error for every repeated one; returns whether all are valid
+/// and unique.
 pub(super) fn unique_ids<'a>(ctx: &mut Context<'_>, list: &Path, ids: impl Iterator<Item = &'a str>) -> bool {
     let mut first: HashMap<&str, Location> = HashMap::new();
     let mut ok = true;
     for (i, id) in ids.enumerate() {
         let path = list.index(i).key("id");
-        if let Some(&location) = first.get(id) {
+        if !valid_id(id) {
+            ctx.error(&path, invalid_id(id));
+            ok = false;
+        } else if let Some(&location) = first.get(id) {
             ctx.error(
                 &path,
                 ErrorKind::DuplicateId {
@@ -30,6 +49,16 @@ pub(super) fn unique_ids<'a>(ctx: &mut Context<'_>, list: &Path, ids: impl Itera
         }
     }
     ok
+}
+
+/// The error of an id that is not [`valid_id`].
+pub(super) fn invalid_id(id: &str) -> ErrorKind {
+    let shown: String = id.chars().take(MAX_ID_CHARS).collect();
+    ErrorKind::Invalid(format!(
+        "an id is 1 to {MAX_ID_CHARS} letters, digits, `-`, `_` or `.`; found \"{}{}\"",
+        shown.escape_debug(),
+        if shown.len() < id.len() { "…" } else { "" }
+    ))
 }
 
 /// Records an error at `list[i].id` for each declared id that something imported

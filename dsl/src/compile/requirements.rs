@@ -2,6 +2,7 @@
 
 use std::collections::{BTreeMap, HashMap};
 
+use super::checks::{invalid_id, valid_id};
 use super::compare;
 use super::context::{Context, locate};
 use super::objects;
@@ -35,13 +36,7 @@ pub(super) fn requirements(
         let id_path = path.key("id");
         let id_ok = valid_id(&requirement.id);
         if !id_ok {
-            ctx.error(
-                &id_path,
-                ErrorKind::Invalid(format!(
-                    "an id is one or more letters, digits, `-`, `_` or `.`; found \"{}\"",
-                    requirement.id
-                )),
-            );
+            ctx.error(&id_path, invalid_id(&requirement.id));
         } else if let Some(&first) = first_seen.get(requirement.id.as_str()) {
             ctx.error(
                 &id_path,
@@ -223,13 +218,6 @@ pub(super) fn references(ctx: &mut Context<'_>, raw: &[RawReference], points: Op
         }
     }
     compiled
-}
-
-fn valid_id(id: &str) -> bool {
-    !id.is_empty()
-        && id
-            .chars()
-            .all(|c| c.is_ascii_alphanumeric() || matches!(c, '-' | '_' | '.'))
 }
 
 fn check(ctx: &mut Context<'_>, raw: &RawCheck, path: &Path) -> Option<Check> {

@@ -15,6 +15,25 @@ use crate::path::Path;
 use crate::raw::RawAgent;
 use crate::raw::range;
 
+/// Why `id` cannot name an agent, if it cannot: the recording's world frame
+/// (`map`), or the form of a vehicle the semantic world's traffic generates
+/// (`routeI-N`), which would make two road users of one id.
+fn reserved(id: &str) -> Option<&'static str> {
+    let generated = id
+        .strip_prefix("route")
+        .and_then(|rest| rest.split_once('-'))
+        .is_some_and(|(i, n)| {
+            [i, n]
+                .iter()
+                .all(|part| !part.is_empty() && part.chars().all(|c| c.is_ascii_digit()))
+        });
+    match id {
+        "map" => Some("the recording's world frame, the parent of every agent's"),
+        _ if generated => Some("of the form `routeI-N` the traffic a semantic world generates is named by"),
+        _ => None,
+    }
+}
+
 /// What agents are resolved against.
 pub(super) struct Scene<'a> {
     /// Every road, declared and imported.
@@ -34,6 +53,15 @@ pub(super) struct Scene<'a> {
 pub(super) fn agents(ctx: &mut Context<'_>, raw: &[RawAgent], scene: &Scene<'_>) -> Option<(Vec<Agent>, usize)> {
     let list = Path::root().key("agents");
     let mut ok = unique_ids(ctx, &list, raw.iter().map(|a| a.id.as_str()));
+    for (i, agent) in raw.iter().enumerate() {
+        if let Some(why) = reserved(&agent.id) {
+            ctx.error(
+                &list.index(i).key("id"),
+                ErrorKind::Invalid(format!("`{}` is {why}; choose another id", agent.id)),
+            );
+            ok = false;
+        }
+    }
     if let Some(imported) = scene.imported {
         let objects: HashSet<&str> = imported.ids().collect();
         for (i, agent) in raw.iter().enumerate() {
