@@ -50,6 +50,18 @@ fn assert_checked(python: &Path, dir: &Path) {
     assert_eq!(stdout.matches(" 0 errors").count(), 2, "{stdout}");
 }
 
+/// Both files parse as XML 1.0, and no two entities share a name.
+#[track_caller]
+fn assert_well_formed(scenario: &str, map: &str) {
+    roxmltree::Document::parse(map).unwrap_or_else(|e| panic!("the map is no XML: {e}"));
+    let scenario = roxmltree::Document::parse(scenario).unwrap_or_else(|e| panic!("the scenario is no XML: {e}"));
+    let mut names = std::collections::HashSet::new();
+    for object in scenario.descendants().filter(|n| n.has_tag_name("ScenarioObject")) {
+        let name = object.attribute("name").expect("a ScenarioObject has a name");
+        assert!(names.insert(name), "two ScenarioObjects named {name:?}");
+    }
+}
+
 /// Every bundled scenario file.
 fn bundled() -> Vec<PathBuf> {
     let mut files: Vec<PathBuf> = std::fs::read_dir(root().join("scenarios"))
@@ -80,6 +92,7 @@ fn every_bundled_world_exports_and_passes_the_asam_checker() {
         assert!(outcome.stdout.starts_with("EXPORTED "), "{outcome}");
         let scenario = read(&out.join(SCENARIO));
         let map = read(&out.join(MAP));
+        assert_well_formed(&scenario, &map);
         assert!(
             scenario.contains(r#"<FileHeader revMajor="1" revMinor="2""#),
             "{relative:?}"
@@ -114,6 +127,7 @@ fn a_counterexample_exports_and_passes_the_asam_checker() {
     // The counterexample's generated traffic is there, drawn from its seed.
     assert!(outcome.stdout.contains("generated)"), "{outcome}");
     let scenario = read(&out.join(SCENARIO));
+    assert_well_formed(&scenario, &read(&out.join(MAP)));
     assert!(scenario.contains(r#"<ScenarioObject name="ego">"#));
     assert!(scenario.contains(r#"<MiscObject name="rsu" mass="100" miscObjectCategory="pole">"#));
     if let Some(python) = checker() {
@@ -183,6 +197,53 @@ fn an_unknown_point_a_world_without_roads_and_a_field_are_refused_with_nothing_w
     let field = sightline(["export", "tests/fixtures/valid/small-field.yaml", "--out", arg(&out)]);
     field.assert_exit(2);
     assert!(!out.exists(), "nothing is written for a refused export");
+}
+
+/// `scenarios/urban-falsify.yaml` with `from` replaced by `to`, exported:
+/// refused with nothing written, the error one line naming `shown`.
+#[track_caller]
+fn assert_refused(from: &str, to: &str, shown: &str) {
+    let tmp = temp_dir();
+    let file = tmp.path().join("scenario.yaml");
+    let text = read(&root().join("scenarios/urban-falsify.yaml"));
+    assert!(text.contains(from), "{from}");
+    std::fs::write(&file, text.replacen(from, to, 1)).unwrap();
+    let out = tmp.path().join("out");
+    let outcome = sightline(["export", arg(&file), "--out", arg(&out)]);
+    outcome.assert_exit(2);
+    assert!(
+        outcome.stderr.contains("error: ") && outcome.stderr.contains(shown),
+        "{outcome}"
+    );
+    assert!(
+        !outcome.stderr.chars().any(|c| c.is_control() && c != '\n'),
+        "a control character reached standard error\n{outcome}"
+    );
+    assert!(!out.exists(), "nothing is written for a refused export");
+}
+
+/// A name or id holding a character XML 1.0 does not allow is refused,
+/// never written into a malformed file (the DSL may refuse it first).
+#[test]
+fn a_value_xml_cannot_hold_is_refused_with_nothing_written() {
+    assert_refused(
+        r#"name: "Urban junction, 10 s, falsify the RSU-to-ego link""#,
+        r#"name: "Urban \x1b[1m junction""#,
+        r"\u{1b}",
+    );
+    assert_refused("- { id: rsu,", r#"- { id: "r\x01su","#, r"\u{1}");
+    assert_refused("- { id: block_ne,", r#"- { id: "block\uFFFEne","#, r"\u{fffe}");
+}
+
+/// A declared agent named as generated traffic is (`route1-1`, the first
+/// vehicle of the first route) makes no two entities of one name.
+#[test]
+fn an_agent_named_as_generated_traffic_is_refused() {
+    assert_refused(
+        "agents:\n",
+        "agents:\n  - { id: route1-1, kind: pedestrian, path: [[100, 100], [101, 100]], speed: { target: 1 } }\n",
+        "route1-1",
+    );
 }
 
 #[test]

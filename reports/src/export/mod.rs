@@ -62,6 +62,23 @@ pub enum ExportError {
     /// A world without roads has no map.
     #[error("nothing to export as a map: the scenario declares no roads (OpenDRIVE needs at least one)")]
     NoRoads,
+    /// A name or id holds a character XML 1.0 does not allow.
+    #[error("the value \"{value}\" holds U+{code:04X}, a character XML 1.0 does not allow: it cannot be exported")]
+    Unwritable {
+        /// The value, escaped as Rust's debug format escapes a string.
+        value: String,
+        /// The character's code point.
+        code: u32,
+    },
+    /// Two entities of the scenario have one name.
+    #[error("two entities are named \"{0}\": OpenSCENARIO knows an entity by its name")]
+    DuplicateName(String),
+}
+
+impl From<xml::Unwritable> for ExportError {
+    fn from(xml::Unwritable { value, code }: xml::Unwritable) -> Self {
+        Self::Unwritable { value, code }
+    }
 }
 
 /// Simulates the requested point once, at its seed, and writes its world as
@@ -102,14 +119,14 @@ pub fn export(request: &ExportRequest<'_>) -> Result<Export, ExportError> {
         map_file: request.map_file,
         duration: world.steps as f64 * world.step,
     };
-    let (openscenario, entities) = openscenario::openscenario(&header, &motions);
+    let (openscenario, entities) = openscenario::openscenario(&header, &motions)?;
     let declared = world.agents.len();
     let generated = motions.samples[declared.min(motions.samples.len())..]
         .iter()
         .filter(|samples| !samples.is_empty())
         .count();
     Ok(Export {
-        opendrive: opendrive::opendrive(&map, &scenario.name),
+        opendrive: opendrive::opendrive(&map, &scenario.name)?,
         openscenario,
         notes,
         roads: map.roads.len(),
