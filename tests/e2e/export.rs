@@ -247,6 +247,44 @@ fn an_agent_named_as_generated_traffic_is_refused() {
     );
 }
 
+/// The notes name what the files leave out of this scenario: the junctions'
+/// connections of the network it imports, by its kind, an OpenDRIVE map's
+/// sidewalks (a walker of the crossroads walks `road 4 lane -2`, one), and a
+/// system under test.
+#[test]
+fn the_notes_say_what_is_left_out_by_the_map_s_kind() {
+    let tmp = temp_dir();
+    let export = |file: &str| {
+        let outcome = sightline(["export", file, "--out", arg(&tmp.path().join(file.replace('/', "-")))]);
+        outcome.assert_exit(0);
+        outcome.stderr
+    };
+    let crossroads = export("scenarios/opendrive-crossroads-semantic.yaml");
+    assert!(
+        crossroads.contains("note: the connections across the OpenDRIVE map's junctions are not linked"),
+        "{crossroads}"
+    );
+    assert!(
+        crossroads.contains("note: the OpenDRIVE map's sidewalks and other walking lanes are not in the map"),
+        "{crossroads}"
+    );
+    assert!(!crossroads.contains("SUMO"), "{crossroads}");
+    let town = export("scenarios/sumo-town-semantic.yaml");
+    assert!(
+        town.contains("note: the connections across the SUMO network's junctions are not linked"),
+        "{town}"
+    );
+    assert!(
+        !town.contains("OpenDRIVE") && !town.contains("system under test"),
+        "{town}"
+    );
+    let tracker = export("examples/osi-sut/tracker.yaml");
+    assert!(
+        tracker.contains("note: the system under test (`python3 examples/osi-sut/tracker.py`) is not exported"),
+        "{tracker}"
+    );
+}
+
 #[test]
 fn an_export_that_cannot_be_put_in_place_leaves_neither_file() {
     let tmp = temp_dir();

@@ -246,13 +246,6 @@ pub(crate) fn map(world: &World) -> Option<Map> {
         })
         .collect();
     let junctions = link(world, &mut roads, &mut notes);
-    if world.roads.iter().any(|road| !road.links.is_empty()) {
-        notes.push(
-            "the connections across a SUMO network's junctions are not linked in the map (its roads and \
-             lanes are; the agents' trajectories drive through the junctions)"
-                .into(),
-        );
-    }
     place_objects(world, &mut roads);
     Some(Map {
         roads,

@@ -19,7 +19,7 @@ mod xml;
 pub use opendrive::OPENDRIVE_VERSION;
 pub use openscenario::OPENSCENARIO_VERSION;
 
-use sightline_dsl::{Experiment, Scenario};
+use sightline_dsl::{Experiment, ImportKind, Scenario, World};
 
 /// The two files of an export, in memory.
 #[derive(Debug, Clone, PartialEq)]
@@ -93,12 +93,13 @@ pub fn export(request: &ExportRequest<'_>) -> Result<Export, ExportError> {
     let mut motions = motion::Motions::default();
     sightline_engine::simulate_point(scenario, request.point, &mut motions);
     let mut notes = map.notes.clone();
-    let absent: Vec<&str> = motions
+    notes.extend(left_out(scenario, world));
+    let absent: Vec<String> = motions
         .agents
         .iter()
         .zip(&motions.samples)
         .filter(|(_, samples)| samples.is_empty())
-        .map(|(agent, _)| agent.id.as_str())
+        .map(|(agent, _)| agent.id.escape_debug().to_string())
         .collect();
     if !absent.is_empty() {
         notes.push(format!(
@@ -134,4 +135,37 @@ pub fn export(request: &ExportRequest<'_>) -> Result<Export, ExportError> {
         entities,
         generated,
     })
+}
+
+/// What the files leave out of `scenario` whatever the run: the links across
+/// an imported network's junctions, an OpenDRIVE map's sidewalks, the system
+/// under test.
+fn left_out(scenario: &Scenario, world: &World) -> Vec<String> {
+    let imported = |kind| scenario.imports.iter().any(|import| import.kind == kind);
+    let mut notes = Vec::new();
+    if world.roads.iter().any(|road| !road.links.is_empty()) {
+        let network = if imported(ImportKind::OpenDrive) {
+            "the OpenDRIVE map's"
+        } else {
+            "the SUMO network's"
+        };
+        notes.push(format!(
+            "the connections across {network} junctions are not linked in the map (its roads and lanes are; the \
+             agents' trajectories drive through the junctions)"
+        ));
+    }
+    if imported(ImportKind::OpenDrive) {
+        notes.push(
+            "the OpenDRIVE map's sidewalks and other walking lanes are not in the map (its driving lanes are); the \
+             pedestrians' trajectories follow them"
+                .into(),
+        );
+    }
+    if let Some(system) = &scenario.system_under_test {
+        notes.push(format!(
+            "the system under test (`{}`) is not exported: the files hold the world it is driven in",
+            system.name().escape_debug()
+        ));
+    }
+    notes
 }
