@@ -5,9 +5,9 @@
 //! a process group of its own, killed whole: what it started (a helper left
 //! running, holding sightline's standard error) goes with it.
 
-use std::io::Write;
+use std::io::{Read, Write};
 use std::process::{Command, Stdio};
-use std::sync::mpsc::{self, Receiver, RecvTimeoutError, Sender};
+use std::sync::mpsc::{self, Receiver, RecvTimeoutError, Sender, TryRecvError};
 use std::sync::{Arc, Mutex, MutexGuard};
 use std::time::{Duration, Instant};
 
@@ -30,6 +30,9 @@ pub enum ChildError {
     /// Its output broke the framing.
     #[error("{0}")]
     Protocol(#[from] ProtocolError),
+    /// It wrote to its output after the last step's answer: the bytes read.
+    #[error("it wrote {0} bytes after the last step")]
+    AfterEnd(u64),
     /// It failed after its input was closed: how it ended, in words.
     #[error("it {0} after the last step")]
     Exit(String),
@@ -43,7 +46,24 @@ pub struct Child {
     process: Shared,
     ticket: Ticket,
     input: Option<Sender<Vec<u8>>>,
-    output: Receiver<Result<Vec<u8>, ChildError>>,
+    /// Each message or error read, with the bytes of its output read by then.
+    output: Receiver<(Result<Vec<u8>, ChildError>, u64)>,
+    /// The bytes of its output up to the end of the last message taken.
+    read: u64,
+}
+
+/// A reader that counts the bytes read.
+struct Counted<R> {
+    inner: R,
+    read: u64,
+}
+
+impl<R: Read> Read for Counted<R> {
+    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+        let n = self.inner.read(buf)?;
+        self.read += n as u64;
+        Ok(n)
+    }
 }
 
 fn lock(process: &Shared) -> MutexGuard<'_, Option<std::process::Child>> {
@@ -96,17 +116,20 @@ impl Child {
                 }
             }
         });
-        let (send, output) = mpsc::channel();
+        // One message at most waits in the channel: a system that floods its
+        // output is read no faster than its answers are taken.
+        let (send, output) = mpsc::sync_channel(0);
         std::thread::spawn(move || {
             let Some(stdout) = stdout.as_mut() else { return };
+            let mut stdout = Counted { inner: stdout, read: 0 };
             loop {
-                let message = match read_frame(stdout) {
+                let message = match read_frame(&mut stdout) {
                     Ok(Some(message)) => Ok(message),
                     Ok(None) => Err(ChildError::Closed(String::new())),
                     Err(error) => Err(error.into()),
                 };
                 let last = message.is_err();
-                if send.send(message).is_err() || last {
+                if send.send((message, stdout.read)).is_err() || last {
                     return;
                 }
             }
@@ -116,6 +139,7 @@ impl Child {
             ticket,
             input: Some(input),
             output,
+            read: 0,
         })
     }
 
@@ -131,11 +155,14 @@ impl Child {
     /// Its next message, waiting at most `limit` seconds.
     pub fn receive(&mut self, limit: f64) -> Result<Vec<u8>, ChildError> {
         match self.output.recv_timeout(Duration::from_secs_f64(limit)) {
-            Ok(Ok(message)) => Ok(message),
-            Ok(Err(ChildError::Closed(_))) | Err(RecvTimeoutError::Disconnected) => {
+            Ok((Ok(message), read)) => {
+                self.read = read;
+                Ok(message)
+            }
+            Ok((Err(ChildError::Closed(_)), _)) | Err(RecvTimeoutError::Disconnected) => {
                 Err(ChildError::Closed(self.exit_status(limit)))
             }
-            Ok(Err(error)) => Err(error),
+            Ok((Err(error), _)) => Err(error),
             Err(RecvTimeoutError::Timeout) => Err(ChildError::Timeout(limit)),
         }
     }
@@ -163,13 +190,31 @@ impl Child {
     }
 
     /// Closes its input and waits up to `limit` seconds for it to exit with
-    /// status 0; whatever happens, it is reaped.
+    /// status 0, its output ending with the last answer: a byte more is an
+    /// error. Whatever happens, it is reaped.
     pub fn finish(mut self, limit: f64) -> Result<(), ChildError> {
         self.input = None;
-        match self.wait(limit) {
-            Some(status) if status.success() => Ok(()),
-            Some(status) => Err(ChildError::Exit(describe(status))),
-            None => Err(ChildError::Timeout(limit)),
+        let deadline = Instant::now() + Duration::from_secs_f64(limit);
+        let mut ended = false;
+        loop {
+            if !ended {
+                match self.output.try_recv() {
+                    // Its output ended, or failed, where its last answer did.
+                    Ok((Err(_), read)) if read == self.read => ended = true,
+                    Ok((_, read)) => return Err(ChildError::AfterEnd(read - self.read)),
+                    Err(TryRecvError::Disconnected) => ended = true,
+                    Err(TryRecvError::Empty) => {}
+                }
+            }
+            let status = lock(&self.process).as_mut().and_then(|c| c.try_wait().ok().flatten());
+            let late = Instant::now() >= deadline;
+            match status {
+                Some(status) if !status.success() => return Err(ChildError::Exit(describe(status))),
+                // A process it started may hold its output open past its exit.
+                Some(_) if ended || late => return Ok(()),
+                None if late => return Err(ChildError::Timeout(limit)),
+                _ => std::thread::sleep(Duration::from_millis(2)),
+            }
         }
     }
 }

@@ -26,9 +26,20 @@ impl std::fmt::Display for When {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             Self::Start => write!(f, "before step 0"),
-            Self::Step(step, time) => write!(f, "at step {step} (t = {time} s)"),
+            Self::Step(step, time) => write!(f, "at step {step} (t = {} s)", Seconds(*time)),
             Self::End => write!(f, "after the last step"),
         }
+    }
+}
+
+/// A time in seconds to the nanosecond, OSI's resolution, without trailing
+/// zeros: `1.2`, not `1.2000000000000002`.
+struct Seconds(f64);
+
+impl std::fmt::Display for Seconds {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let fixed = format!("{:.9}", self.0);
+        f.write_str(fixed.trim_end_matches('0').trim_end_matches('.'))
     }
 }
 
@@ -123,5 +134,20 @@ impl TraceSink for Driver<'_> {
     /// A failed system ends the run: nothing of it is judged.
     fn gave_up(&self) -> bool {
         self.failure.is_some()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_step_time_shows_to_the_nanosecond_without_trailing_zeros() {
+        let shown = |time| When::Step(3, time).to_string();
+        assert_eq!(shown(0.1 + 0.2), "at step 3 (t = 0.3 s)");
+        assert_eq!(shown(0.0), "at step 3 (t = 0 s)");
+        assert_eq!(shown(12.0), "at step 3 (t = 12 s)");
+        assert_eq!(shown(1.2000000000000002), "at step 3 (t = 1.2 s)");
+        assert_eq!(shown(0.000_000_001), "at step 3 (t = 0.000000001 s)");
     }
 }

@@ -1,6 +1,6 @@
 //! `sightline export` (issue 19, part 3): every bundled world and a falsify
 //! counterexample written as OpenSCENARIO and OpenDRIVE, both files passing
-//! the ASAM Quality Checker with no error when `SIGHTLINE_QC_PYTHON` names a
+//! the ASAM Quality Checker with no error and no warning when `SIGHTLINE_QC_PYTHON` names a
 //! Python that has it (`.ci/run` sets it; with `CI` set the test fails rather
 //! than skip without it); the sweep point chosen by label; the same bytes from
 //! the same scenario; and scenarios it cannot export refused with nothing written.
@@ -32,7 +32,8 @@ fn checker() -> Option<PathBuf> {
     }
 }
 
-/// Runs the checker on an export's folder and panics on any error it reports.
+/// Runs the checker on an export's folder and panics on any error or warning
+/// it reports.
 #[track_caller]
 fn assert_checked(python: &Path, dir: &Path) {
     let output = Command::new(python)
@@ -47,7 +48,19 @@ fn assert_checked(python: &Path, dir: &Path) {
         dir.display(),
         String::from_utf8_lossy(&output.stderr)
     );
-    assert_eq!(stdout.matches(" 0 errors").count(), 2, "{stdout}");
+    assert_eq!(stdout.matches(" 0 errors, 0 warnings,").count(), 2, "{stdout}");
+}
+
+/// Both files parse as XML 1.0, and no two entities share a name.
+#[track_caller]
+fn assert_well_formed(scenario: &str, map: &str) {
+    roxmltree::Document::parse(map).unwrap_or_else(|e| panic!("the map is no XML: {e}"));
+    let scenario = roxmltree::Document::parse(scenario).unwrap_or_else(|e| panic!("the scenario is no XML: {e}"));
+    let mut names = std::collections::HashSet::new();
+    for object in scenario.descendants().filter(|n| n.has_tag_name("ScenarioObject")) {
+        let name = object.attribute("name").expect("a ScenarioObject has a name");
+        assert!(names.insert(name), "two ScenarioObjects named {name:?}");
+    }
 }
 
 /// Every bundled scenario file.
@@ -80,6 +93,7 @@ fn every_bundled_world_exports_and_passes_the_asam_checker() {
         assert!(outcome.stdout.starts_with("EXPORTED "), "{outcome}");
         let scenario = read(&out.join(SCENARIO));
         let map = read(&out.join(MAP));
+        assert_well_formed(&scenario, &map);
         assert!(
             scenario.contains(r#"<FileHeader revMajor="1" revMinor="2""#),
             "{relative:?}"
@@ -114,6 +128,7 @@ fn a_counterexample_exports_and_passes_the_asam_checker() {
     // The counterexample's generated traffic is there, drawn from its seed.
     assert!(outcome.stdout.contains("generated)"), "{outcome}");
     let scenario = read(&out.join(SCENARIO));
+    assert_well_formed(&scenario, &read(&out.join(MAP)));
     assert!(scenario.contains(r#"<ScenarioObject name="ego">"#));
     assert!(scenario.contains(r#"<MiscObject name="rsu" mass="100" miscObjectCategory="pole">"#));
     if let Some(python) = checker() {
@@ -183,6 +198,91 @@ fn an_unknown_point_a_world_without_roads_and_a_field_are_refused_with_nothing_w
     let field = sightline(["export", "tests/fixtures/valid/small-field.yaml", "--out", arg(&out)]);
     field.assert_exit(2);
     assert!(!out.exists(), "nothing is written for a refused export");
+}
+
+/// `scenarios/urban-falsify.yaml` with `from` replaced by `to`, exported:
+/// refused with nothing written, the error one line naming `shown`.
+#[track_caller]
+fn assert_refused(from: &str, to: &str, shown: &str) {
+    let tmp = temp_dir();
+    let file = tmp.path().join("scenario.yaml");
+    let text = read(&root().join("scenarios/urban-falsify.yaml"));
+    assert!(text.contains(from), "{from}");
+    std::fs::write(&file, text.replacen(from, to, 1)).unwrap();
+    let out = tmp.path().join("out");
+    let outcome = sightline(["export", arg(&file), "--out", arg(&out)]);
+    outcome.assert_exit(2);
+    assert!(
+        outcome.stderr.contains("error: ") && outcome.stderr.contains(shown),
+        "{outcome}"
+    );
+    assert!(
+        !outcome.stderr.chars().any(|c| c.is_control() && c != '\n'),
+        "a control character reached standard error\n{outcome}"
+    );
+    assert!(!out.exists(), "nothing is written for a refused export");
+}
+
+/// A name or id holding a character XML 1.0 does not allow is refused,
+/// never written into a malformed file (the DSL may refuse it first).
+#[test]
+fn a_value_xml_cannot_hold_is_refused_with_nothing_written() {
+    assert_refused(
+        r#"name: "Urban junction, 10 s, falsify the RSU-to-ego link""#,
+        r#"name: "Urban \x1b[1m junction""#,
+        r"\u{1b}",
+    );
+    assert_refused("- { id: rsu,", r#"- { id: "r\x01su","#, r"\u{1}");
+    assert_refused("- { id: block_ne,", r#"- { id: "block\uFFFEne","#, r"\u{fffe}");
+}
+
+/// A declared agent named as generated traffic is (`route1-1`, the first
+/// vehicle of the first route) makes no two entities of one name.
+#[test]
+fn an_agent_named_as_generated_traffic_is_refused() {
+    assert_refused(
+        "agents:\n",
+        "agents:\n  - { id: route1-1, kind: pedestrian, path: [[100, 100], [101, 100]], speed: { target: 1 } }\n",
+        "route1-1",
+    );
+}
+
+/// The notes name what the files leave out of this scenario: the junctions'
+/// connections of the network it imports, by its kind, an OpenDRIVE map's
+/// sidewalks (a walker of the crossroads walks `road 4 lane -2`, one), and a
+/// system under test.
+#[test]
+fn the_notes_say_what_is_left_out_by_the_map_s_kind() {
+    let tmp = temp_dir();
+    let export = |file: &str| {
+        let outcome = sightline(["export", file, "--out", arg(&tmp.path().join(file.replace('/', "-")))]);
+        outcome.assert_exit(0);
+        outcome.stderr
+    };
+    let crossroads = export("scenarios/opendrive-crossroads-semantic.yaml");
+    assert!(
+        crossroads.contains("note: the connections across the OpenDRIVE map's junctions are not linked"),
+        "{crossroads}"
+    );
+    assert!(
+        crossroads.contains("note: the OpenDRIVE map's sidewalks and other walking lanes are not in the map"),
+        "{crossroads}"
+    );
+    assert!(!crossroads.contains("SUMO"), "{crossroads}");
+    let town = export("scenarios/sumo-town-semantic.yaml");
+    assert!(
+        town.contains("note: the connections across the SUMO network's junctions are not linked"),
+        "{town}"
+    );
+    assert!(
+        !town.contains("OpenDRIVE") && !town.contains("system under test"),
+        "{town}"
+    );
+    let tracker = export("examples/osi-sut/tracker.yaml");
+    assert!(
+        tracker.contains("note: the system under test (`python3 examples/osi-sut/tracker.py`) is not exported"),
+        "{tracker}"
+    );
 }
 
 #[test]

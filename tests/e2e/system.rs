@@ -192,6 +192,83 @@ fn a_system_that_fails_after_the_last_step_is_an_error() {
     );
 }
 
+/// An answer to step 0 of `objects` empty moving objects (field 13, two
+/// bytes each), framed, in a file of `dir`; the shell command that writes it.
+fn empty_objects_answer(dir: &Path, objects: usize) -> String {
+    let mut message = b"\x12\x04\x08\x00\x10\x00".to_vec();
+    message.extend([0x6a, 0].repeat(objects));
+    let mut framed = (message.len() as u32).to_le_bytes().to_vec();
+    framed.extend(message);
+    let file = dir.join("answer.bin");
+    std::fs::write(&file, framed).unwrap();
+    format!("cat '{}'", file.display())
+}
+
+/// An answer within the message limit holding more moving objects than the
+/// protocol's bound is refused by count, before its objects are decoded: 16 MB
+/// of empty objects took 5.6 GB to decode (session 19's outside check).
+#[test]
+fn an_answer_of_too_many_moving_objects_is_refused_by_count() {
+    let answers = temp_dir();
+    for (objects, what) in [
+        (
+            10_001,
+            "holds 10001 moving objects, above the protocol's limit of 10000",
+        ),
+        (8_000_000, "holds 8000000 moving objects"),
+    ] {
+        let answer = empty_objects_answer(answers.path(), objects);
+        let (outcome, dir, _) = run_system(&shell(&format!("{HELLO}; {answer}; exec cat >/dev/null"), 20.0));
+        assert_error(&outcome, dir.path(), "at step 0 (t = 0 s)", what);
+    }
+}
+
+/// Anything the system writes after its last answer is an error: another
+/// answer, or a flood of them, which sightline reads no further than its
+/// first message (it used to read on, in memory, until the step timeout).
+#[test]
+fn output_after_the_last_answer_is_an_error() {
+    for script in [
+        format!("{HELLO}; {EMPTY_ANSWER}; cat >/dev/null; {EMPTY_ANSWER}"),
+        format!("{HELLO}; {EMPTY_ANSWER}; cat >/dev/null; while :; do {EMPTY_ANSWER} || exit; done"),
+        format!("{HELLO}; while :; do {EMPTY_ANSWER} || exit; done"),
+    ] {
+        let (outcome, dir, elapsed) = run_system(&shell(&script, 20.0));
+        assert_error(
+            &outcome,
+            dir.path(),
+            "after the last step",
+            "it wrote 10 bytes after the last step",
+        );
+        assert!(elapsed < Duration::from_secs(15), "took {elapsed:?}");
+    }
+    // Bytes that are no message: the four of a length over the limit.
+    let script = format!("{HELLO}; {EMPTY_ANSWER}; cat >/dev/null; yes");
+    let (outcome, dir, _) = run_system(&shell(&script, 20.0));
+    assert_error(
+        &outcome,
+        dir.path(),
+        "after the last step",
+        "it wrote 4 bytes after the last step",
+    );
+}
+
+/// A wrong announcement is shown escaped and bounded, on the error's one
+/// line: no control character or terminal escape of the system's reaches
+/// sightline's standard error.
+#[test]
+fn a_wrong_announcement_is_shown_escaped() {
+    let script = r"printf '\030\000\000\000sightline-osi-sut/1\n\033[2J'; exec cat >/dev/null";
+    let (outcome, dir, _) = run_system(&shell(script, 5.0));
+    assert_error(
+        &outcome,
+        dir.path(),
+        "before step 0",
+        r"it announced `sightline-osi-sut/1\n\u{1b}[2J`, and sightline speaks",
+    );
+    assert!(!outcome.stderr.contains('\x1b'), "{outcome}");
+}
+
 /// Whether a process whose command line holds `marker` runs (read from
 /// `/proc`, as `pgrep -f` does).
 fn running(marker: &str) -> bool {

@@ -164,8 +164,14 @@ pub(crate) struct Object {
     pub height: f64,
 }
 
+/// Headings closer than this, radians, are one direction: consecutive line
+/// records along it are one record. The ASAM checker's tolerance for a
+/// redundant line record (`check_asam_xodr_performance_avoid_redundant_info`).
+const COLLINEAR: f64 = 1e-6;
+
 /// The reference line of a world road: an arc record for an arc or a ring,
-/// one line record per segment of a polyline.
+/// line records along a polyline, one per run of collinear segments (an
+/// imported road's straight stretch is many short segments).
 pub(crate) fn reference(road: &Road) -> Vec<Geometry> {
     if let Some(arc) = road.arc {
         let turn = arc.sweep.signum();
@@ -178,25 +184,36 @@ pub(crate) fn reference(road: &Road) -> Vec<Geometry> {
             curvature: turn / arc.radius,
         }];
     }
-    let mut s = 0.0;
-    road.lanes[0]
-        .points()
-        .windows(2)
-        .map(|pair| {
-            let [a, b] = [pair[0], pair[1]];
-            let length = distance(a, b);
-            let record = Geometry {
-                s,
-                x: a[0],
-                y: a[1],
-                hdg: (b[1] - a[1]).atan2(b[0] - a[0]),
-                length,
-                curvature: 0.0,
-            };
-            s += length;
-            record
-        })
-        .collect()
+    let heading = |a: Xy, b: Xy| (b[1] - a[1]).atan2(b[0] - a[0]);
+    let mut records: Vec<Geometry> = Vec::new();
+    for pair in road.lanes[0].points().windows(2) {
+        let [a, b] = [pair[0], pair[1]];
+        match records.last_mut() {
+            // The record becomes the chord to `b`: exact at its ends.
+            Some(last) if angle_between(last.hdg, heading(a, b)) < COLLINEAR => {
+                let start = [last.x, last.y];
+                (last.hdg, last.length) = (heading(start, b), distance(start, b));
+            }
+            last => {
+                let s = last.map_or(0.0, |g| g.s + g.length);
+                records.push(Geometry {
+                    s,
+                    x: a[0],
+                    y: a[1],
+                    hdg: heading(a, b),
+                    length: distance(a, b),
+                    curvature: 0.0,
+                });
+            }
+        }
+    }
+    records
+}
+
+/// The angle between two headings, radians, from 0 to π.
+fn angle_between(a: f64, b: f64) -> f64 {
+    let d = (a - b).rem_euclid(std::f64::consts::TAU);
+    d.min(std::f64::consts::TAU - d)
 }
 
 /// Position and heading `s` metres along a reference line (clamped to it).
@@ -229,13 +246,6 @@ pub(crate) fn map(world: &World) -> Option<Map> {
         })
         .collect();
     let junctions = link(world, &mut roads, &mut notes);
-    if world.roads.iter().any(|road| !road.links.is_empty()) {
-        notes.push(
-            "the connections across a SUMO network's junctions are not linked in the map (its roads and \
-             lanes are; the agents' trajectories drive through the junctions)"
-                .into(),
-        );
-    }
     place_objects(world, &mut roads);
     Some(Map {
         roads,
@@ -476,6 +486,35 @@ mod tests {
         assert_close(end[0], 30.0);
         assert_close(end[1], 100.0);
         assert_close(hdg, FRAC_PI_2);
+    }
+
+    #[test]
+    fn collinear_segments_are_one_line_record_exact_at_its_ends() {
+        // Three segments east, the second 1e-7 rad off, then one north; a
+        // segment west is not collinear with one east.
+        let off = [20.0 + 10.0 * 1e-7_f64.cos(), 10.0 * 1e-7_f64.sin()];
+        let points = [
+            [0.0, 0.0],
+            [10.0, 0.0],
+            off,
+            [40.0, 0.0],
+            [40.0, 5.0],
+            [40.0, 9.0],
+            [30.0, 9.0],
+        ];
+        let records = reference(&road(&points, None));
+        assert_eq!(records.len(), 3, "{records:?}");
+        let [east, north, west] = [records[0], records[1], records[2]];
+        assert_eq!((east.s, east.x, east.y, east.length), (0.0, 0.0, 0.0, 40.0));
+        assert_close(east.hdg, 0.0);
+        assert_eq!((north.s, north.x, north.y, north.length), (40.0, 40.0, 0.0, 9.0));
+        assert_close(north.hdg, FRAC_PI_2);
+        assert_eq!((west.s, west.length), (49.0, 10.0));
+        let (end, _) = pose_at(&records, 59.0);
+        assert_close(end[0], 30.0);
+        assert_close(end[1], 9.0);
+        assert!(angle_between(-PI + 1e-8, PI - 1e-8) < COLLINEAR);
+        assert_close(angle_between(0.5, -0.5), 1.0);
     }
 
     #[test]

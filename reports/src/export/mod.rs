@@ -19,7 +19,7 @@ mod xml;
 pub use opendrive::OPENDRIVE_VERSION;
 pub use openscenario::OPENSCENARIO_VERSION;
 
-use sightline_dsl::{Experiment, Scenario};
+use sightline_dsl::{Experiment, ImportKind, Scenario, World};
 
 /// The two files of an export, in memory.
 #[derive(Debug, Clone, PartialEq)]
@@ -62,6 +62,23 @@ pub enum ExportError {
     /// A world without roads has no map.
     #[error("nothing to export as a map: the scenario declares no roads (OpenDRIVE needs at least one)")]
     NoRoads,
+    /// A name or id holds a character XML 1.0 does not allow.
+    #[error("the value \"{value}\" holds U+{code:04X}, a character XML 1.0 does not allow: it cannot be exported")]
+    Unwritable {
+        /// The value, escaped as Rust's debug format escapes a string.
+        value: String,
+        /// The character's code point.
+        code: u32,
+    },
+    /// Two entities of the scenario have one name.
+    #[error("two entities are named \"{0}\": OpenSCENARIO knows an entity by its name")]
+    DuplicateName(String),
+}
+
+impl From<xml::Unwritable> for ExportError {
+    fn from(xml::Unwritable { value, code }: xml::Unwritable) -> Self {
+        Self::Unwritable { value, code }
+    }
 }
 
 /// Simulates the requested point once, at its seed, and writes its world as
@@ -76,12 +93,13 @@ pub fn export(request: &ExportRequest<'_>) -> Result<Export, ExportError> {
     let mut motions = motion::Motions::default();
     sightline_engine::simulate_point(scenario, request.point, &mut motions);
     let mut notes = map.notes.clone();
-    let absent: Vec<&str> = motions
+    notes.extend(left_out(scenario, world));
+    let absent: Vec<String> = motions
         .agents
         .iter()
         .zip(&motions.samples)
         .filter(|(_, samples)| samples.is_empty())
-        .map(|(agent, _)| agent.id.as_str())
+        .map(|(agent, _)| agent.id.escape_debug().to_string())
         .collect();
     if !absent.is_empty() {
         notes.push(format!(
@@ -102,14 +120,14 @@ pub fn export(request: &ExportRequest<'_>) -> Result<Export, ExportError> {
         map_file: request.map_file,
         duration: world.steps as f64 * world.step,
     };
-    let (openscenario, entities) = openscenario::openscenario(&header, &motions);
+    let (openscenario, entities) = openscenario::openscenario(&header, &motions)?;
     let declared = world.agents.len();
     let generated = motions.samples[declared.min(motions.samples.len())..]
         .iter()
         .filter(|samples| !samples.is_empty())
         .count();
     Ok(Export {
-        opendrive: opendrive::opendrive(&map, &scenario.name),
+        opendrive: opendrive::opendrive(&map, &scenario.name)?,
         openscenario,
         notes,
         roads: map.roads.len(),
@@ -117,4 +135,37 @@ pub fn export(request: &ExportRequest<'_>) -> Result<Export, ExportError> {
         entities,
         generated,
     })
+}
+
+/// What the files leave out of `scenario` whatever the run: the links across
+/// an imported network's junctions, an OpenDRIVE map's sidewalks, the system
+/// under test.
+fn left_out(scenario: &Scenario, world: &World) -> Vec<String> {
+    let imported = |kind| scenario.imports.iter().any(|import| import.kind == kind);
+    let mut notes = Vec::new();
+    if world.roads.iter().any(|road| !road.links.is_empty()) {
+        let network = if imported(ImportKind::OpenDrive) {
+            "the OpenDRIVE map's"
+        } else {
+            "the SUMO network's"
+        };
+        notes.push(format!(
+            "the connections across {network} junctions are not linked in the map (its roads and lanes are; the \
+             agents' trajectories drive through the junctions)"
+        ));
+    }
+    if imported(ImportKind::OpenDrive) {
+        notes.push(
+            "the OpenDRIVE map's sidewalks and other walking lanes are not in the map (its driving lanes are); the \
+             pedestrians' trajectories follow them"
+                .into(),
+        );
+    }
+    if let Some(system) = &scenario.system_under_test {
+        notes.push(format!(
+            "the system under test (`{}`) is not exported: the files hold the world it is driven in",
+            system.name().escape_debug()
+        ));
+    }
+    notes
 }

@@ -1,13 +1,13 @@
 //! A [`Map`] written as ASAM OpenDRIVE 1.7 XML.
 
 use super::map::{Geometry, Link, Map, MapRoad, ObjectKind};
-use super::xml::{Xml, num};
+use super::xml::{Unwritable, Xml, num};
 
 /// The OpenDRIVE version written: 1.7.
 pub const OPENDRIVE_VERSION: (u32, u32) = (1, 7);
 
 /// The map as an OpenDRIVE document named `name`.
-pub(crate) fn opendrive(map: &Map, name: &str) -> String {
+pub(crate) fn opendrive(map: &Map, name: &str) -> Result<String, Unwritable> {
     let mut xml = Xml::new();
     xml.start("OpenDRIVE", &[]);
     let points = map

@@ -5,6 +5,7 @@
 
 use sightline_dsl::{Agent, AgentKind, Motion};
 
+use super::ExportError;
 use super::motion::{Motions, Sample, thinned};
 use super::xml::{Xml, num};
 
@@ -28,8 +29,9 @@ pub(crate) struct Header<'a> {
 }
 
 /// The entities and storyboard of `motions`; agents never in the scene are
-/// left out. Returns the document and how many entities it has.
-pub(crate) fn openscenario(header: &Header<'_>, motions: &Motions) -> (String, usize) {
+/// left out. Returns the document and how many entities it has; an error
+/// when two have one name or a value cannot be written.
+pub(crate) fn openscenario(header: &Header<'_>, motions: &Motions) -> Result<(String, usize), ExportError> {
     let present: Vec<(&Agent, &[Sample])> = motions
         .agents
         .iter()
@@ -37,6 +39,10 @@ pub(crate) fn openscenario(header: &Header<'_>, motions: &Motions) -> (String, u
         .filter(|(_, samples)| !samples.is_empty())
         .map(|(agent, samples)| (agent, samples.as_slice()))
         .collect();
+    let mut names = std::collections::HashSet::new();
+    if let Some((agent, _)) = present.iter().find(|(agent, _)| !names.insert(agent.id.as_str())) {
+        return Err(ExportError::DuplicateName(agent.id.escape_debug().to_string()));
+    }
     let mut xml = Xml::new();
     xml.start("OpenSCENARIO", &[]);
     xml.empty(
@@ -91,7 +97,7 @@ pub(crate) fn openscenario(header: &Header<'_>, motions: &Motions) -> (String, u
     xml.end();
     xml.end();
     write_time_trigger(&mut xml, "StopTrigger", "end", header.duration);
-    (xml.finish(), present.len())
+    Ok((xml.finish()?, present.len()))
 }
 
 fn write_entity(xml: &mut Xml, agent: &Agent) {

@@ -1,5 +1,7 @@
 //! A small XML writer over quick-xml: elements opened and closed in order,
-//! every attribute value escaped, numbers written one way.
+//! every attribute value escaped, numbers written one way. A value holding a
+//! character XML 1.0 does not allow (a control character but tab and line
+//! breaks, U+FFFE, U+FFFF) cannot be written at all: the document is refused.
 
 use quick_xml::Writer;
 use quick_xml::events::{BytesDecl, BytesEnd, BytesStart, Event};
@@ -8,6 +10,24 @@ use quick_xml::events::{BytesDecl, BytesEnd, BytesStart, Event};
 pub(crate) struct Xml {
     writer: Writer<Vec<u8>>,
     open: Vec<&'static str>,
+    /// The first value written that XML 1.0 cannot hold.
+    unwritable: Option<String>,
+}
+
+/// A value XML 1.0 cannot hold, escaped as Rust's debug format escapes a
+/// string, and its first character XML does not allow.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub(crate) struct Unwritable {
+    /// The value, escaped.
+    pub value: String,
+    /// The character's code point.
+    pub code: u32,
+}
+
+/// Whether XML 1.0 allows `c` in a document (its production `Char`; Rust's
+/// strings hold no surrogate).
+fn allowed(c: char) -> bool {
+    matches!(c, '\t' | '\n' | '\r' | '\u{20}'..='\u{fffd}' | '\u{10000}'..)
 }
 
 /// An element's attributes: names and their values, unescaped.
@@ -21,11 +41,13 @@ impl Xml {
         Self {
             writer,
             open: Vec::new(),
+            unwritable: None,
         }
     }
 
     /// Opens `name`; [`Self::end`] closes it.
     pub(crate) fn start(&mut self, name: &'static str, attributes: Attributes<'_>) {
+        self.check(attributes);
         let element = element(name, attributes);
         write(&mut self.writer, Event::Start(element));
         self.open.push(name);
@@ -33,6 +55,7 @@ impl Xml {
 
     /// Writes `name` with no content.
     pub(crate) fn empty(&mut self, name: &'static str, attributes: Attributes<'_>) {
+        self.check(attributes);
         let element = element(name, attributes);
         write(&mut self.writer, Event::Empty(element));
     }
@@ -43,14 +66,33 @@ impl Xml {
         write(&mut self.writer, Event::End(BytesEnd::new(name)));
     }
 
-    /// The document, every element closed, with a final newline.
-    pub(crate) fn finish(mut self) -> String {
+    /// Keeps the first of `attributes`' values that XML cannot hold.
+    fn check(&mut self, attributes: Attributes<'_>) {
+        if self.unwritable.is_some() {
+            return;
+        }
+        self.unwritable = attributes
+            .iter()
+            .find(|(_, value)| !value.chars().all(allowed))
+            .map(|(_, value)| value.clone());
+    }
+
+    /// The document, every element closed, with a final newline; an error
+    /// naming the first value XML 1.0 cannot hold, if one was written.
+    pub(crate) fn finish(mut self) -> Result<String, Unwritable> {
+        if let Some(value) = self.unwritable {
+            let code = value.chars().find(|&c| !allowed(c)).map_or(0, u32::from);
+            return Err(Unwritable {
+                value: value.escape_debug().collect(),
+                code,
+            });
+        }
         while !self.open.is_empty() {
             self.end();
         }
         let mut bytes = self.writer.into_inner();
         bytes.push(b'\n');
-        String::from_utf8(bytes).expect("the document is written from UTF-8 strings")
+        Ok(String::from_utf8(bytes).expect("the document is written from UTF-8 strings"))
     }
 }
 
@@ -86,13 +128,37 @@ mod tests {
         let mut xml = Xml::new();
         xml.start("a", &[("name", "<b> & \"c\" 'd'".into())]);
         xml.empty("e", &[("x", num(-0.0)), ("y", num(1.0 / 3.0)), ("z", num(1e-12))]);
-        let text = xml.finish();
+        let text = xml.finish().unwrap();
         assert!(
             text.contains(r#"<a name="&lt;b&gt; &amp; &quot;c&quot; &apos;d&apos;">"#),
             "{text}"
         );
         assert!(text.contains(r#"<e x="0" y="0.333333333" z="0"/>"#), "{text}");
         assert!(text.ends_with("</a>\n"), "{text}");
+    }
+
+    #[test]
+    fn a_value_xml_cannot_hold_refuses_the_document() {
+        for (value, code) in [
+            ("a\u{1b}[1m", 0x1b),
+            ("\0", 0),
+            ("x\u{fffe}", 0xfffe),
+            ("\u{ffff}", 0xffff),
+        ] {
+            let mut xml = Xml::new();
+            xml.start("a", &[("name", "fine".into())]);
+            xml.empty("b", &[("x", "1".into()), ("id", value.into())]);
+            let error = xml.finish().unwrap_err();
+            assert_eq!(error.code, code, "{value:?}");
+            assert_eq!(error.value, value.escape_debug().to_string());
+            assert!(!error.value.chars().any(char::is_control), "{error:?}");
+        }
+        let mut xml = Xml::new();
+        xml.empty(
+            "a",
+            &[("name", "tab\tline\nreturn\r \u{d7ff}\u{e000}\u{fffd}\u{10000}".into())],
+        );
+        assert!(xml.finish().is_ok());
     }
 
     #[test]

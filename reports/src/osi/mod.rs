@@ -18,6 +18,7 @@
 pub use trace::{OSI_TRACE, OsiTrace, TraceError};
 pub use views::{AGENT_REFERENCE, VISIBILITY_REFERENCE};
 
+mod answer;
 mod reported_class;
 pub mod system;
 mod trace;

@@ -5,16 +5,16 @@
 //! reported.
 
 use sightline_dsl::AgentKind;
-use sightline_osi::osi3;
-use sightline_osi::osi3::detected_moving_object::CandidateMovingObject;
+
+use super::answer::{Candidate, Object};
 use sightline_osi::osi3::moving_object::{Type as ObjectType, vehicle_classification::Type as VehicleType};
 
 /// The class `object` reports: that of its most probable candidate, `None`
 /// without a candidate or for a type no kind maps to. A candidate without a
 /// probability from 0 to 1, or two most probable candidates, are out of
 /// protocol: the error says which, for moving object `index`.
-pub(super) fn reported_class(index: usize, object: &osi3::DetectedMovingObject) -> Result<Option<AgentKind>, String> {
-    let mut best: Option<(f64, &CandidateMovingObject)> = None;
+pub(super) fn reported_class(index: usize, object: &Object) -> Result<Option<AgentKind>, String> {
+    let mut best: Option<(f64, &Candidate)> = None;
     let mut tied = false;
     for (j, candidate) in object.candidate.iter().enumerate() {
         let Some(p) = candidate.probability.filter(|p| (0.0..=1.0).contains(p)) else {
@@ -38,7 +38,7 @@ pub(super) fn reported_class(index: usize, object: &osi3::DetectedMovingObject) 
 
 /// The kind of road user `candidate` names; `None` for one sightline does
 /// not model (animals, trams, wheelchairs, …) or an unknown or other type.
-fn kind(candidate: &CandidateMovingObject) -> Option<AgentKind> {
+fn kind(candidate: &Candidate) -> Option<AgentKind> {
     match ObjectType::try_from(candidate.r#type?).ok()? {
         ObjectType::Pedestrian => Some(AgentKind::Pedestrian),
         ObjectType::Vehicle => {
@@ -65,24 +65,19 @@ fn kind(candidate: &CandidateMovingObject) -> Option<AgentKind> {
 
 #[cfg(test)]
 mod tests {
-    use sightline_osi::osi3::moving_object::VehicleClassification;
-
     use super::*;
+    use crate::osi::answer::VehicleClassification;
 
-    fn candidate(probability: f64, kind: ObjectType, vehicle: Option<VehicleType>) -> CandidateMovingObject {
-        CandidateMovingObject {
+    fn candidate(probability: f64, kind: ObjectType, vehicle: Option<VehicleType>) -> Candidate {
+        Candidate {
             probability: Some(probability),
             r#type: Some(kind as i32),
-            vehicle_classification: vehicle.map(|v| VehicleClassification {
-                r#type: Some(v as i32),
-                ..Default::default()
-            }),
-            ..Default::default()
+            vehicle_classification: vehicle.map(|v| VehicleClassification { r#type: Some(v as i32) }),
         }
     }
 
-    fn class(candidates: Vec<CandidateMovingObject>) -> Result<Option<AgentKind>, String> {
-        let object = osi3::DetectedMovingObject {
+    fn class(candidates: Vec<Candidate>) -> Result<Option<AgentKind>, String> {
+        let object = Object {
             candidate: candidates,
             ..Default::default()
         };
@@ -133,7 +128,7 @@ mod tests {
         assert_eq!(class(vec![candidate(0.7, ObjectType::Vehicle, None)]), Ok(None));
         assert_eq!(class(vec![candidate(0.7, ObjectType::Animal, None)]), Ok(None));
         assert_eq!(class(vec![]), Ok(None));
-        let unset = CandidateMovingObject {
+        let unset = Candidate {
             probability: Some(1.0),
             ..Default::default()
         };
@@ -179,7 +174,7 @@ mod tests {
                 "{p}"
             );
         }
-        let missing = CandidateMovingObject::default();
+        let missing = Candidate::default();
         assert!(class(vec![missing]).is_err());
     }
 }

@@ -24,6 +24,8 @@ use sightline_engine::outcome::Detection;
 use sightline_engine::trace::WorldStep;
 use sightline_osi::osi3;
 
+use super::answer::{self, AnswerError};
+pub use super::answer::{MAX_CANDIDATES, MAX_OBJECTS, decoded_bound};
 use super::reported_class::reported_class;
 use super::views::{ground_truth, sensor_view};
 
@@ -36,6 +38,9 @@ pub const PROTOCOL_ENV: &str = "SIGHTLINE_SUT_PROTOCOL";
 /// The environment variable that tells the system how many `SensorView`s
 /// each step brings (one per served sensor).
 pub const VIEWS_ENV: &str = "SIGHTLINE_SUT_VIEWS";
+
+/// The most characters of a wrong version announcement an error shows.
+pub const VERSION_SHOWN: usize = 64;
 
 /// The largest message either side may send, bytes (16 MiB).
 pub const MAX_MESSAGE: u32 = 16 << 20;
@@ -60,12 +65,25 @@ pub enum ProtocolError {
     /// Its first message is not this protocol's name and version.
     #[error("it announced `{found}`, and sightline speaks `{PROTOCOL}`")]
     Version {
-        /// What it announced (lossy UTF-8, at most 64 characters).
+        /// What it announced: lossy UTF-8, at most [`VERSION_SHOWN`]
+        /// characters, then `…` if there is more, escaped as Rust's debug
+        /// format escapes a string (control characters and terminal escapes
+        /// are `\n`, `\u{1b}`, …).
         found: String,
     },
     /// A message that is not an `osi3.SensorData`.
     #[error("its message is not an osi3.SensorData: {0}")]
     Decode(#[from] prost::DecodeError),
+    /// A `SensorData` with more entries than a bound of the protocol.
+    #[error("its osi3.SensorData holds {count} {what}, above the protocol's limit of {limit}")]
+    TooMany {
+        /// What it holds too many of.
+        what: &'static str,
+        /// How many.
+        count: usize,
+        /// The bound ([`MAX_OBJECTS`], [`MAX_CANDIDATES`]).
+        limit: usize,
+    },
     /// A `SensorData` that breaks the protocol.
     #[error("its osi3.SensorData {0}")]
     Content(String),
@@ -112,7 +130,16 @@ pub fn check_version(message: &[u8]) -> Result<(), ProtocolError> {
     if message == PROTOCOL.as_bytes() {
         return Ok(());
     }
-    let found = String::from_utf8_lossy(message).chars().take(64).collect();
+    let text = String::from_utf8_lossy(&message[..message.len().min(4 * VERSION_SHOWN)]);
+    let mut found: String = text
+        .chars()
+        .take(VERSION_SHOWN)
+        .collect::<String>()
+        .escape_debug()
+        .collect();
+    if text.chars().nth(VERSION_SHOWN).is_some() || message.len() > 4 * VERSION_SHOWN {
+        found.push('…');
+    }
     Err(ProtocolError::Version { found })
 }
 
@@ -146,8 +173,13 @@ pub fn sensor_views(agents: &[Agent], step: &WorldStep<'_>, host: usize, sensors
 /// The detections of a system's `osi3.SensorData` answering the step at
 /// `time`: its moving objects whose existence probability is at least
 /// `min_existence`, in the host's frame, each with the class it reports.
+/// Only what the protocol reads is decoded, and at most [`MAX_OBJECTS`]
+/// moving objects and [`MAX_CANDIDATES`] candidates.
 pub fn detections(message: &[u8], time: f64, min_existence: f64) -> Result<Vec<Detection>, ProtocolError> {
-    let data = osi3::SensorData::decode(message)?;
+    let data = answer::decode(message).map_err(|error| match error {
+        AnswerError::Decode(error) => ProtocolError::Decode(error),
+        AnswerError::TooMany(what, count, limit) => ProtocolError::TooMany { what, count, limit },
+    })?;
     let expected = super::views::timestamp(time);
     if data.timestamp != Some(expected) {
         let shown = |t: Option<osi3::Timestamp>| {
@@ -234,6 +266,21 @@ mod tests {
             error.to_string(),
             "it announced `sightline-osi-sut/2`, and sightline speaks `sightline-osi-sut/1`"
         );
+    }
+
+    #[test]
+    fn a_wrong_version_is_shown_escaped_and_bounded() {
+        let shown = |message: &[u8]| match check_version(message).unwrap_err() {
+            ProtocolError::Version { found } => found,
+            error => panic!("{error}"),
+        };
+        assert_eq!(shown(b"sightline-osi-sut/1\n"), r"sightline-osi-sut/1\n");
+        assert_eq!(shown(b"\x1b[2J\x07\r\xff"), "\\u{1b}[2J\\u{7}\\r\u{fffd}");
+        let long = "v".repeat(VERSION_SHOWN + 1);
+        assert_eq!(shown(long.as_bytes()), "v".repeat(VERSION_SHOWN) + "…");
+        assert_eq!(shown(&long.as_bytes()[1..]), "v".repeat(VERSION_SHOWN));
+        let error = check_version(b"a\nb").unwrap_err().to_string();
+        assert_eq!(error.lines().count(), 1, "{error}");
     }
 
     fn object(existence: Option<f64>, x: f64, y: f64) -> osi3::DetectedMovingObject {
