@@ -33,10 +33,11 @@ use minijinja::{AutoEscape, Environment, ErrorKind, UndefinedBehavior, Value, co
 use serde::Serialize;
 
 use error::column;
-pub use error::{Location, TemplateError, TemplateErrorKind};
+pub use error::{Callee, Location, TemplateError, TemplateErrorKind};
 
 mod check;
 mod error;
+mod text;
 
 /// The bundled templates, by their stable names.
 const BUNDLED: [(&str, &str); 6] = [
@@ -250,6 +251,7 @@ fn environment(load: Option<Arc<Loader>>) -> Environment<'static> {
     // `header.txt` must be escaped too.
     env.set_auto_escape_callback(|_| AutoEscape::Html);
     env.remove_filter("safe");
+    text::register(&mut env);
     env.set_loader(move |name| {
         if let Some((_, source)) = BUNDLED.iter().find(|(bundled, _)| *bundled == name) {
             return Ok(Some((*source).to_string()));
@@ -521,6 +523,67 @@ mod tests {
             .render(&serde_json::json!({ "name": "<script>x</script>" }), &())
             .unwrap();
         assert_eq!(html, "&lt;script&gt;x&lt;&#x2f;script&gt;");
+    }
+
+    /// `body` rendered in a standalone page of `sightline falsify`, with
+    /// `report.name` set to `name`.
+    fn rendered(body: &str, name: &str) -> Result<String, TemplateError> {
+        let page = format!(
+            "{{% block document_control %}}{{% endblock %}}{{% block banner %}}{body}{{% endblock %}}\
+             {{% block provenance %}}{{% endblock %}}{{% block settings %}}{{% endblock %}}{{% block cases %}}{{% endblock %}}\
+             {{% block counterexample %}}{{% endblock %}}"
+        );
+        custom(Page::Falsify, &[("falsify.html", &page)])?.render(&serde_json::json!({ "name": name }), &())
+    }
+
+    #[test]
+    fn no_filter_turns_a_values_escaped_text_into_markup() {
+        // Markup the template writes, captured whole, stays markup: `s` holds
+        // the name escaped, `lt` a `<`.
+        let set = "{% set lt %}<{% endset %}{% set s %}{{ report.name }}{% endset %}";
+        let name = "<script>x</script>";
+        for attack in [
+            // The audit's: a markup `to` spliced into the escaped name.
+            r#"{{ report.name|replace("&lt;", lt) }}"#,
+            r#"{{ s|replace("&lt;", "<") }}"#,
+            r#"{{ report.name|e|replace("&lt;", lt) }}"#,
+            r#"{{ report.name|escape|replace("&lt;", "<", 5) }}"#,
+            r#"{% filter replace("&lt;", lt) %}{{ report.name }}{% endfilter %}"#,
+            r#"{% macro m() %}{{ report.name }}{% endmacro %}{{ m()|replace("&lt;", lt) }}"#,
+            r#"{% macro w() %}{{ caller()|replace("&lt;", lt) }}{% endmacro %}{% call w() %}{{ report.name }}{% endcall %}"#,
+            // Cut the escaped text at its entities and put markup between the pieces.
+            r#"{{ s|split("&lt;")|join(lt) }}"#,
+            r#"{{ s|split("&lt;")|join(d=lt) }}"#,
+            r#"{% set p = s|lines|first %}{{ p|replace("&lt;", lt) }}"#,
+            r#"{{ [s, lt]|join|replace("&lt;", lt) }}"#,
+            r#"{{ s|format|replace("&lt;", lt) }}"#,
+            r#"{{ "%s"|format(s)|replace("&lt;", lt) }}"#,
+            r#"{{ s|indent(2)|trim|lower|upper|capitalize|reverse|reverse|replace("&lt;", lt) }}"#,
+            r#"{{ (s|string)|replace("&lt;", lt) }}"#,
+            r#"{{ (s ~ lt)|replace("&lt;", lt) }}"#,
+            r#"{{ (s * 2)|replace("&lt;", lt) }}"#,
+        ] {
+            let html = rendered(&format!("{set}{attack}"), name).unwrap_or_else(|e| panic!("{attack}: {e}"));
+            assert!(!html.contains('<'), "{attack} shows markup made of the name: {html}");
+            assert!(html.contains("lt;script"), "{attack}: {html}");
+        }
+        // The template's own markup, captured, is kept; a filter reads it as text.
+        let html = rendered(
+            r#"{% set b %}<b>{{ report.name }}</b>{% endset %}{{ b }} {{ b ~ "<i>" }} {{ report.name|e }} {{ b|upper }}"#,
+            "<x>",
+        )
+        .unwrap();
+        assert_eq!(
+            html,
+            "<b>&lt;x&gt;</b> <b>&lt;x&gt;</b>&lt;i&gt; &lt;x&gt; &lt;B&gt;&amp;LT;X&amp;GT;&lt;&#x2f;B&gt;"
+        );
+        // The filters still do their work on plain text.
+        let html = rendered(
+            r#"{{ "a-b-a"|replace("a", "c") }} {{ "a-b-a"|replace("a", "c", 1) }} {{ "x\ny"|indent(2, true) }} {{ [1, 2]|join(", ") }} {{ "%03d"|format(7) }} {{ "ab"|reverse }}"#,
+            "",
+        )
+        .unwrap();
+        assert_eq!(html, "c-b-c c-b-a   x\n  y 1, 2 007 ba");
     }
 
     #[test]
