@@ -587,6 +587,45 @@ mod tests {
     }
 
     #[test]
+    fn an_unknown_filter_test_or_function_is_refused_before_anything_runs() {
+        for (body, at, message) in [
+            ("{{ results|tojson(indent=2) }}", 12, "unknown filter: `tojson`"),
+            ("{% filter shout %}x{% endfilter %}", 11, "unknown filter: `shout`"),
+            (
+                "{% if report.name is not palindrome %}x{% endif %}",
+                26,
+                "unknown test: `palindrome`",
+            ),
+            ("{{ now() }}", 4, "unknown function: `now`"),
+        ] {
+            let page = format!("{{% extends \"sightline/report.html\" %}}{{% block footer %}}\n{body}{{% endblock %}}");
+            let message_of = refused(Page::Run, &[("report.html", &page)]);
+            assert!(
+                message_of.starts_with(&format!(
+                    "org/report.html:2:{at}: error: {message} is none of this build's"
+                )),
+                "{body}: {message_of}"
+            );
+        }
+        // Filters, tests and functions that exist; macros, imported names and
+        // names given a value are called freely.
+        custom(
+            Page::Run,
+            &[
+                (
+                    "report.html",
+                    "{% extends \"sightline/report.html\" %}{% from \"m.html\" import shout %}{% import \"m.html\" as m %}\
+                     {% block footer %}{% set f = shout %}{{ shout(report.name|upper) }}{{ m.shout(1) }}{{ f(2) }}\
+                     {% for i in range(2) if i is odd and i is not none %}{{ dict(a=i)|length }}{% endfor %}\
+                     {% filter lower %}X{% endfilter %}{% if not(report.name) %}{% endif %}{% endblock %}",
+                ),
+                ("m.html", "{% macro shout(x) %}{{ x }}!{% endmacro %}"),
+            ],
+        )
+        .unwrap();
+    }
+
+    #[test]
     fn template_names_are_constants_and_extends_does_not_loop() {
         let message = refused(
             Page::Run,

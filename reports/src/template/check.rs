@@ -231,9 +231,8 @@ impl Outline {
                 (Some(Token::Pipe), _) | (Some(Token::Ident("filter")), Some(Token::BlockStart)) => {
                     Some(Callee::Filter)
                 }
-                (Some(Token::Ident("is")), _) | (Some(Token::Ident("not")), Some(Token::Ident("is"))) => {
-                    Some(Callee::Test)
-                }
+                (Some(Token::Ident("is")), _) if *name != "not" => Some(Callee::Test),
+                (Some(Token::Ident("not")), Some(Token::Ident("is"))) => Some(Callee::Test),
                 // `x.name(…)` is a method, `{% name(…) %}` a statement, `macro name(…)` a definition.
                 (Some(Token::Dot | Token::BlockStart | Token::Ident("macro")), _) => None,
                 _ if KEYWORDS.contains(name) => None,
