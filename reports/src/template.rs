@@ -17,10 +17,12 @@
 //! contract requires ([`Page::required_blocks`]), defined or inherited; every
 //! block a custom template defines is shown (an override of a block the page
 //! does not have, or one dropped by an override around it, would silently
-//! vanish); and nothing turns escaping off. Every template is HTML-escaped
-//! whatever its file name; `autoescape` blocks and the `safe` filter are not
-//! available. What cannot be known before the data exists (a misspelt field) is
-//! an error when the page is rendered.
+//! vanish); nothing turns escaping off; and every filter, test and function it
+//! calls exists. Every template is HTML-escaped whatever its file name;
+//! `autoescape` blocks and the `safe` filter are not available, and the
+//! filters that make text return plain text, never markup ([`text`]). What
+//! cannot be known before the data exists (a misspelt field) is an error when
+//! the page is rendered.
 //!
 //! This module loads a set into its environment and renders a page; the check
 //! is in [`check`], the errors in [`error`].
@@ -229,7 +231,8 @@ impl Templates {
 
 /// The work a custom set may do to render one page, in minijinja's fuel (about
 /// one instruction, or 64 bytes of data): a bound on the time and memory a
-/// template's loops can take (about 2 s and 1.3 GB). The example set renders
+/// template's loops can take (the worst pages measured stay within 1.2 GB
+/// and 1.5 s of CPU, docs/report-templates.md). The example set renders
 /// the page of every bundled scenario within it.
 const CUSTOM_FUEL: u64 = 20_000_000;
 
@@ -241,6 +244,7 @@ fn environment(load: Option<Arc<Loader>>) -> Environment<'static> {
     let mut env = Environment::new();
     if load.is_some() {
         env.set_fuel(Some(CUSTOM_FUEL));
+        env.set_formatter(text::affordable);
     }
     // Minijinja's default follows the build (on only with debug assertions,
     // so in every test build): a release build's render errors would lose

@@ -1,13 +1,18 @@
 //! The check of a custom template set against its page, before anything
 //! runs: the blocks the page shows (defined or inherited, and not hidden by an
-//! override around them), the templates it reaches by name, and what would turn
-//! escaping off.
+//! override around them), the templates it reaches by name, what would turn
+//! escaping off, and the filters, tests and functions it calls.
 //!
 //! It walks minijinja's syntax tree (`unstable_machinery`, pinned by
 //! the workspace's minijinja version): blocks, `extends`, `include` and
 //! `import` with constant names. `super()` is found by its text, so a block
 //! that mentions it is taken to show its parent's body: the check may accept
-//! a page that hides a block, never refuse one that shows it.
+//! a page that hides a block, never refuse one that shows it. The names a
+//! template calls are read from its tokens: `x|name` and `{% filter name %}`
+//! must be filters of the environment, `x is name` a test, and `name(…)` one
+//! of its functions or a name some template of the page mentions otherwise
+//! (a macro, an import, an assignment, a parameter). A filter named by a
+//! string (`map("upper")`) is known only when it is called.
 
 use std::collections::{BTreeMap, BTreeSet};
 

@@ -13,10 +13,11 @@
 //! is escaped where it is shown, once.
 //!
 //! The filters whose result can be larger than their input (`replace`,
-//! `indent`) check its size first, against [`TEXT_LIMIT`] and the page's fuel.
+//! `indent`, `format`) check its size first, against [`TEXT_LIMIT`] (and,
+//! `replace` and `indent`, the page's fuel).
 
 use minijinja::value::{FunctionArgs, Kwargs, Rest, StringInput, ValueKind, ValueOrKwargs};
-use minijinja::{Environment, Error, ErrorKind, State, Value, filters};
+use minijinja::{Environment, Error, ErrorKind, Output, State, Value, filters};
 
 /// The largest text a filter may return, in bytes: far more than a page
 /// shows (the bundled pages are at most 2.3 MB), and small enough that the
@@ -30,10 +31,10 @@ pub(super) fn register(env: &mut Environment<'static>) {
     env.add_filter("e", escape);
     env.add_filter("replace", replace);
     env.add_filter("indent", indent);
+    env.add_filter("format", format);
     // The builtins, given plain text: their results are plain text too, and
-    // bounded by their input (or charged to the fuel: `format`, `join`).
+    // bounded by their input (or, `join`, charged to the fuel).
     let builtins = [
-        ("format", Value::from_function(filters::format)),
         ("join", Value::from_function(filters::join)),
         ("upper", Value::from_function(filters::upper)),
         ("lower", Value::from_function(filters::lower)),
@@ -47,10 +48,16 @@ pub(super) fn register(env: &mut Environment<'static>) {
     ];
     for (name, builtin) in builtins {
         env.add_filter(name, move |state: &mut State, args: Rest<ValueOrKwargs>| {
-            let args: Vec<Value> = args.iter().map(|arg| plain_items(arg)).collect::<Result<_, _>>()?;
-            builtin.call(state, &args).and_then(|result| plain_items(&result))
+            builtin
+                .call(state, &plain_args(args)?)
+                .and_then(|result| plain_items(&result))
         });
     }
+}
+
+/// A filter's arguments, their markup read as text ([`plain_items`]).
+fn plain_args(args: Rest<ValueOrKwargs>) -> Result<Vec<Value>, Error> {
+    args.iter().map(|arg| plain_items(arg)).collect()
 }
 
 /// `value` with markup read as the text it is: a markup string as a plain
@@ -147,14 +154,50 @@ fn indent(state: &State, args: Rest<ValueOrKwargs>) -> Result<Value, Error> {
     Ok(Value::from(output))
 }
 
-/// Refuses a text of `bytes` bytes past [`TEXT_LIMIT`], and charges it to the
-/// page's fuel (64 bytes to the unit) before it is made.
-fn charge(state: &State, bytes: usize) -> Result<(), Error> {
+/// `format(args…)`: minijinja's printf-style `format`, given plain text, once
+/// its widths and precisions are known to stay within [`TEXT_LIMIT`] (the
+/// sum of every number in the format: `%1270000000s` is refused).
+fn format(state: &mut State, args: Rest<ValueOrKwargs>) -> Result<Value, Error> {
+    let args = plain_args(args)?;
+    let format = args.first().and_then(Value::as_str).unwrap_or_default();
+    let widths = format
+        .split(|c: char| !c.is_ascii_digit())
+        .filter(|digits| !digits.is_empty())
+        .map(|digits| digits.parse::<usize>().unwrap_or(usize::MAX))
+        .fold(format.len(), usize::saturating_add);
+    check_size(widths)?;
+    Value::from_function(filters::format).call(state, &args)
+}
+
+/// Writes `value` escaped, as minijinja does, once the page's fuel is known
+/// to pay for it (64 bytes to the unit, each escaped character at most 6):
+/// a value too large for what is left fails where it is shown, not after a
+/// copy of it is made in the page, at the line of the block that showed it.
+pub(super) fn affordable(out: &mut Output, state: &mut State, value: &Value) -> Result<(), Error> {
+    if let (Some(text), Some((_, remaining))) = (value.as_str(), state.fuel_levels()) {
+        let special = text.bytes().filter(|b| b"&<>\"'/".contains(b)).count();
+        let bytes = text.len().saturating_add(special.saturating_mul(5));
+        if bytes as u64 >= remaining.saturating_mul(64) {
+            return Err(Error::from(ErrorKind::OutOfFuel));
+        }
+    }
+    minijinja::escape_formatter(out, state, value)
+}
+
+/// Refuses a text of `bytes` bytes past [`TEXT_LIMIT`].
+fn check_size(bytes: usize) -> Result<(), Error> {
     if bytes > TEXT_LIMIT {
         return Err(Error::new(
             ErrorKind::InvalidOperation,
             format!("the text would be {bytes} bytes, more than a filter may make ({TEXT_LIMIT})"),
         ));
     }
+    Ok(())
+}
+
+/// Refuses a text of `bytes` bytes past [`TEXT_LIMIT`], and charges it to the
+/// page's fuel (64 bytes to the unit) before it is made.
+fn charge(state: &State, bytes: usize) -> Result<(), Error> {
+    check_size(bytes)?;
     state.consume_fuel(bytes as u64 / 64)
 }
