@@ -44,7 +44,7 @@ pub use results::{
     WorldCounts, results_schema,
 };
 pub use shard::{SHARD_FORMAT, Shard, ShardError, ShardInput, campaign_id, read_shard, shard_bytes};
-pub use template::{Loader, Location, Page, TemplateError, TemplateErrorKind, Templates};
+pub use template::{Callee, Loader, Location, Page, TemplateError, TemplateErrorKind, Templates};
 
 mod chart;
 mod execution;

@@ -17,10 +17,12 @@
 //! contract requires ([`Page::required_blocks`]), defined or inherited; every
 //! block a custom template defines is shown (an override of a block the page
 //! does not have, or one dropped by an override around it, would silently
-//! vanish); and nothing turns escaping off. Every template is HTML-escaped
-//! whatever its file name; `autoescape` blocks and the `safe` filter are not
-//! available. What cannot be known before the data exists (a misspelt field) is
-//! an error when the page is rendered.
+//! vanish); nothing turns escaping off; and every filter, test and function it
+//! calls exists. Every template is HTML-escaped whatever its file name;
+//! `autoescape` blocks and the `safe` filter are not available, and the
+//! filters that make text return plain text, never markup ([`text`]). What
+//! cannot be known before the data exists (a misspelt field) is an error when
+//! the page is rendered.
 //!
 //! This module loads a set into its environment and renders a page; the check
 //! is in [`check`], the errors in [`error`].
@@ -33,10 +35,11 @@ use minijinja::{AutoEscape, Environment, ErrorKind, UndefinedBehavior, Value, co
 use serde::Serialize;
 
 use error::column;
-pub use error::{Location, TemplateError, TemplateErrorKind};
+pub use error::{Callee, Location, TemplateError, TemplateErrorKind};
 
 mod check;
 mod error;
+mod text;
 
 /// The bundled templates, by their stable names.
 const BUNDLED: [(&str, &str); 6] = [
@@ -229,7 +232,8 @@ impl Templates {
 
 /// The work a custom set may do to render one page, in minijinja's fuel (about
 /// one instruction, or 64 bytes of data): a bound on the time and memory a
-/// template's loops can take (about 2 s and 1.3 GB). The example set renders
+/// template's loops can take (the worst pages measured stay within 1.2 GB
+/// and 1.5 s of CPU, docs/report-templates.md). The example set renders
 /// the page of every bundled scenario within it.
 const CUSTOM_FUEL: u64 = 20_000_000;
 
@@ -241,6 +245,7 @@ fn environment(load: Option<Arc<Loader>>) -> Environment<'static> {
     let mut env = Environment::new();
     if load.is_some() {
         env.set_fuel(Some(CUSTOM_FUEL));
+        env.set_formatter(text::affordable);
     }
     // Minijinja's default follows the build (on only with debug assertions,
     // so in every test build): a release build's render errors would lose
@@ -251,6 +256,7 @@ fn environment(load: Option<Arc<Loader>>) -> Environment<'static> {
     // `header.txt` must be escaped too.
     env.set_auto_escape_callback(|_| AutoEscape::Html);
     env.remove_filter("safe");
+    text::register(&mut env);
     env.set_loader(move |name| {
         if let Some((_, source)) = BUNDLED.iter().find(|(bundled, _)| *bundled == name) {
             return Ok(Some((*source).to_string()));
@@ -523,6 +529,106 @@ mod tests {
             .render(&serde_json::json!({ "name": "<script>x</script>" }), &())
             .unwrap();
         assert_eq!(html, "&lt;script&gt;x&lt;&#x2f;script&gt;");
+    }
+
+    /// `body` rendered in a standalone page of `sightline falsify`, with
+    /// `report.name` set to `name`.
+    fn rendered(body: &str, name: &str) -> Result<String, TemplateError> {
+        let page = format!(
+            "{{% block document_control %}}{{% endblock %}}{{% block banner %}}{body}{{% endblock %}}\
+             {{% block provenance %}}{{% endblock %}}{{% block settings %}}{{% endblock %}}{{% block cases %}}{{% endblock %}}\
+             {{% block counterexample %}}{{% endblock %}}"
+        );
+        custom(Page::Falsify, &[("falsify.html", &page)])?.render(&serde_json::json!({ "name": name }), &())
+    }
+
+    #[test]
+    fn no_filter_turns_a_values_escaped_text_into_markup() {
+        // Markup the template writes, captured whole, stays markup: `s` holds
+        // the name escaped, `lt` a `<`.
+        let set = "{% set lt %}<{% endset %}{% set s %}{{ report.name }}{% endset %}";
+        let name = "<script>x</script>";
+        for attack in [
+            // The audit's: a markup `to` spliced into the escaped name.
+            r#"{{ report.name|replace("&lt;", lt) }}"#,
+            r#"{{ s|replace("&lt;", "<") }}"#,
+            r#"{{ report.name|e|replace("&lt;", lt) }}"#,
+            r#"{{ report.name|escape|replace("&lt;", "<", 5) }}"#,
+            r#"{% filter replace("&lt;", lt) %}{{ report.name }}{% endfilter %}"#,
+            r#"{% macro m() %}{{ report.name }}{% endmacro %}{{ m()|replace("&lt;", lt) }}"#,
+            r#"{% macro w() %}{{ caller()|replace("&lt;", lt) }}{% endmacro %}{% call w() %}{{ report.name }}{% endcall %}"#,
+            // Cut the escaped text at its entities and put markup between the pieces.
+            r#"{{ s|split("&lt;")|join(lt) }}"#,
+            r#"{{ s|split("&lt;")|join(d=lt) }}"#,
+            r#"{% set p = s|lines|first %}{{ p|replace("&lt;", lt) }}"#,
+            r#"{{ [s, lt]|join|replace("&lt;", lt) }}"#,
+            r#"{{ s|format|replace("&lt;", lt) }}"#,
+            r#"{{ "%s"|format(s)|replace("&lt;", lt) }}"#,
+            r#"{{ s|indent(2)|trim|lower|upper|capitalize|reverse|reverse|replace("&lt;", lt) }}"#,
+            r#"{{ (s|string)|replace("&lt;", lt) }}"#,
+            r#"{{ (s ~ lt)|replace("&lt;", lt) }}"#,
+            r#"{{ (s * 2)|replace("&lt;", lt) }}"#,
+        ] {
+            let html = rendered(&format!("{set}{attack}"), name).unwrap_or_else(|e| panic!("{attack}: {e}"));
+            assert!(!html.contains('<'), "{attack} shows markup made of the name: {html}");
+            assert!(html.contains("lt;script"), "{attack}: {html}");
+        }
+        // The template's own markup, captured, is kept; a filter reads it as text.
+        let html = rendered(
+            r#"{% set b %}<b>{{ report.name }}</b>{% endset %}{{ b }} {{ b ~ "<i>" }} {{ report.name|e }} {{ b|upper }}"#,
+            "<x>",
+        )
+        .unwrap();
+        assert_eq!(
+            html,
+            "<b>&lt;x&gt;</b> <b>&lt;x&gt;</b>&lt;i&gt; &lt;x&gt; &lt;B&gt;&amp;LT;X&amp;GT;&lt;&#x2f;B&gt;"
+        );
+        // The filters still do their work on plain text.
+        let html = rendered(
+            r#"{{ "a-b-a"|replace("a", "c") }} {{ "a-b-a"|replace("a", "c", 1) }} {{ "x\ny"|indent(2, true) }} {{ [1, 2]|join(", ") }} {{ "%03d"|format(7) }} {{ "ab"|reverse }}"#,
+            "",
+        )
+        .unwrap();
+        assert_eq!(html, "c-b-c c-b-a   x\n  y 1, 2 007 ba");
+    }
+
+    #[test]
+    fn an_unknown_filter_test_or_function_is_refused_before_anything_runs() {
+        for (body, at, message) in [
+            ("{{ results|tojson(indent=2) }}", 12, "unknown filter: `tojson`"),
+            ("{% filter shout %}x{% endfilter %}", 11, "unknown filter: `shout`"),
+            (
+                "{% if report.name is not palindrome %}x{% endif %}",
+                26,
+                "unknown test: `palindrome`",
+            ),
+            ("{{ now() }}", 4, "unknown function: `now`"),
+        ] {
+            let page = format!("{{% extends \"sightline/report.html\" %}}{{% block footer %}}\n{body}{{% endblock %}}");
+            let message_of = refused(Page::Run, &[("report.html", &page)]);
+            assert!(
+                message_of.starts_with(&format!(
+                    "org/report.html:2:{at}: error: {message} is none of this build's"
+                )),
+                "{body}: {message_of}"
+            );
+        }
+        // Filters, tests and functions that exist; macros, imported names and
+        // names given a value are called freely.
+        custom(
+            Page::Run,
+            &[
+                (
+                    "report.html",
+                    "{% extends \"sightline/report.html\" %}{% from \"m.html\" import shout %}{% import \"m.html\" as m %}\
+                     {% block footer %}{% set f = shout %}{{ shout(report.name|upper) }}{{ m.shout(1) }}{{ f(2) }}\
+                     {% for i in range(2) if i is odd and i is not none %}{{ dict(a=i)|length }}{% endfor %}\
+                     {% filter lower %}X{% endfilter %}{% if not(report.name) %}{% endif %}{% endblock %}",
+                ),
+                ("m.html", "{% macro shout(x) %}{{ x }}!{% endmacro %}"),
+            ],
+        )
+        .unwrap();
     }
 
     #[test]

@@ -283,19 +283,41 @@ fn a_misspelt_field_is_refused_when_rendered() {
 
 /// A page whose loops would run for hours, or whose output would fill the
 /// memory, runs out of its budget instead: exit 2 at the loop's line within
-/// the caps, and nothing written.
-// See: session 17's outside check.
+/// the caps, and nothing written. So does a filter asked for gigabytes of
+/// text at once (`format`, `indent`), which aborted under the cap.
+// See: session 17's outside check; session 20's report-area audit (F3).
 #[test]
 fn a_template_that_would_run_for_hours_is_refused_within_the_caps() {
+    if !crate::support::caps_available() {
+        return;
+    }
     let tmp = temp_dir();
-    for (name, body) in [
+    let out_of_fuel = "failed to render the page: engine ran out of fuel";
+    let too_large = "failed to render the page: invalid operation: the text would be";
+    for (name, body, message) in [
         // 10^10 iterations: a quarter of an hour at about 10^7 a second.
         (
             "loops",
             "{% for i in range(100000) %}{% for j in range(100000) %}x{% endfor %}{% endfor %}",
+            out_of_fuel,
         ),
         // 10^5 copies of the results: gigabytes.
-        ("copies", "{% for i in range(100000) %}{{ results }}{% endfor %}"),
+        (
+            "copies",
+            "{% for i in range(100000) %}{{ results }}{% endfor %}",
+            out_of_fuel,
+        ),
+        // 1.27 GB of text in one value, then a copy of it in the page.
+        ("format", "{{ \"%1270000000s\"|format(\"a\") }}", too_large),
+        ("indent", "{{ \"a\"|indent(1270000000, true) }}", too_large),
+        (
+            "replace",
+            "{{ (\"a\" * 100000)|replace(\"a\", \"b\" * 100000) }}",
+            too_large,
+        ),
+        // A value too large for what is left of the budget (300 MB, 1.8 GB
+        // escaped) fails where it is shown, before it is written (it aborted).
+        ("escapes", "{% set a = '\"' * 100000000 %}{{ a ~ a ~ a }}", out_of_fuel),
     ] {
         let set = tmp.path().join(name);
         template_set(
@@ -312,14 +334,115 @@ fn a_template_that_would_run_for_hours_is_refused_within_the_caps() {
         );
         refused.assert_exit(2);
         assert!(
-            refused.stderr.starts_with(&format!("{}/report.html:2", set.display()))
-                && refused
-                    .stderr
-                    .contains("failed to render the page: engine ran out of fuel"),
+            refused.stderr.starts_with(&format!("{}/report.html:2", set.display())) && refused.stderr.contains(message),
+            "{name}: {refused}"
+        );
+        assert!(!out.exists(), "{name}: nothing is written");
+        assert!(
+            files_under(tmp.path())
+                .iter()
+                .all(|f| !f.to_string_lossy().contains(".sightline-staging")),
+            "{name}: no staging folder is left"
+        );
+    }
+}
+
+/// A template set's files are read where they are: a symbolic link in the
+/// set (to a file, or a folder on the way) is refused before anything runs,
+/// so a page cannot show `/etc/hostname` or `/proc/self/environ`.
+// See: session 20's report-area audit (F4).
+#[test]
+fn a_template_read_through_a_symbolic_link_is_refused() {
+    let tmp = temp_dir();
+    let outside = tmp.path().join("outside");
+    template_set(&outside, &[("secret.html", "SECRET")]);
+    for (name, link, target) in [
+        ("parts/x.html", "parts/x.html", outside.join("secret.html")),
+        ("parts/secret.html", "parts", outside.clone()),
+    ] {
+        let set = tmp.path().join("org");
+        let _ = std::fs::remove_dir_all(&set);
+        template_set(
+            &set,
+            &[(
+                "report.html",
+                &format!(
+                    "{{% extends \"sightline/report.html\" %}}\n{{% block footer %}}{{% include \"{name}\" %}}{{% endblock %}}\n"
+                ),
+            )],
+        );
+        std::fs::create_dir_all(set.join(link).parent().unwrap()).unwrap();
+        std::os::unix::fs::symlink(&target, set.join(link)).unwrap();
+        let out = tmp.path().join("out");
+        let refused = run_with(&set, &out);
+        refused.assert_exit(2);
+        assert!(
+            refused.stderr.starts_with(&format!("{}/{name}", set.display()))
+                && refused.stderr.contains(&format!("`{link}` is a symbolic link")),
             "{refused}"
         );
         assert!(!out.exists(), "nothing is written");
     }
+}
+
+/// A filter this build does not have is refused when the set is checked,
+/// before anything is simulated: exit 2 at its line and column.
+// See: session 20's report-area audit (F5).
+#[test]
+fn an_unknown_filter_is_refused_before_anything_runs() {
+    let tmp = temp_dir();
+    let set = tmp.path().join("org");
+    template_set(
+        &set,
+        &[(
+            "report.html",
+            "{% extends \"sightline/report.html\" %}\n{% block footer %}{{ results|tojson }}{% endblock %}\n",
+        )],
+    );
+    let out = tmp.path().join("out");
+    let refused = run_with(&set, &out);
+    refused.assert_exit(2);
+    assert_eq!(
+        refused.stderr,
+        format!(
+            "{}/report.html:2:30: error: unknown filter: `tojson` is none of this build's (see docs/report-templates.md)\n",
+            set.display()
+        )
+    );
+    assert!(refused.stdout.is_empty(), "{refused}");
+    assert!(!out.exists(), "nothing is written");
+}
+
+/// A value's text stays text whatever filters a page passes it through: the
+/// audit's page, which spliced a captured `<` into a hostile scenario name's
+/// escaped text, shows the name escaped.
+// See: session 20's report-area audit (F2).
+#[test]
+fn a_hostile_name_stays_escaped_through_the_filters() {
+    let tmp = temp_dir();
+    let scenario = tmp.path().join("hostile.yaml");
+    let text = read(&crate::support::root().join(SMALL_FIELD)).replace(
+        "name: Small field, three fusion methods",
+        "name: \"N <script>window.pwned=1</script>\"",
+    );
+    std::fs::write(&scenario, text).unwrap();
+    let set = tmp.path().join("org");
+    template_set(
+        &set,
+        &[(
+            "report.html",
+            "{% extends \"sightline/report.html\" %}\n{% set lt %}<{% endset %}{% set gt %}>{% endset %}\n\
+             {% block footer %}{{ report.name|replace(\"&lt;\", lt)|replace(\"&gt;\", gt) }}{% endblock %}\n",
+        )],
+    );
+    let out = tmp.path().join("out");
+    sightline(["run", arg(&scenario), "--out", arg(&out), "--template", arg(&set)]).assert_exit(0);
+    let html = read(&out.join("report.html"));
+    assert!(!html.contains("<script>window"), "the name is shown as markup");
+    assert!(
+        html.contains("&lt;script&gt;window.pwned=1"),
+        "the name is shown as text"
+    );
 }
 
 /// The example set in the docs renders both pages.

@@ -1,13 +1,18 @@
 //! The check of a custom template set against its page, before anything
 //! runs: the blocks the page shows (defined or inherited, and not hidden by an
-//! override around them), the templates it reaches by name, and what would turn
-//! escaping off.
+//! override around them), the templates it reaches by name, what would turn
+//! escaping off, and the filters, tests and functions it calls.
 //!
 //! It walks minijinja's syntax tree (`unstable_machinery`, pinned by
 //! the workspace's minijinja version): blocks, `extends`, `include` and
 //! `import` with constant names. `super()` is found by its text, so a block
 //! that mentions it is taken to show its parent's body: the check may accept
-//! a page that hides a block, never refuse one that shows it.
+//! a page that hides a block, never refuse one that shows it. The names a
+//! template calls are read from its tokens: `x|name` and `{% filter name %}`
+//! must be filters of the environment, `x is name` a test, and `name(…)` one
+//! of its functions or a name some template of the page mentions otherwise
+//! (a macro, an import, an assignment, a parameter). A filter named by a
+//! string (`map("upper")`) is known only when it is called.
 
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -16,7 +21,7 @@ use minijinja::machinery::ast::{Expr, Stmt};
 use minijinja::machinery::{Span, Token, parse, tokenize};
 use minijinja::syntax::SyntaxConfig;
 
-use super::error::{Location, TemplateError, TemplateErrorKind};
+use super::error::{Callee, Location, TemplateError, TemplateErrorKind};
 use super::{BUNDLED_PREFIX, Templates};
 
 impl Templates {
@@ -40,6 +45,7 @@ impl Templates {
                 },
             });
         }
+        self.check_functions(&analysis)?;
         for (level, name) in analysis.chain.iter().enumerate() {
             if name.starts_with(BUNDLED_PREFIX) {
                 continue;
@@ -56,6 +62,28 @@ impl Templates {
                         block: block.clone(),
                         shown: names.iter().map(|n| n.to_string()).collect(),
                     },
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// Refuses a function a template calls by a name that is not one of the
+    /// environment's (`range`, `dict`, `namespace`, `debug`) and that no
+    /// template of the page mentions otherwise (defines as a macro, imports,
+    /// assigns, takes as a parameter): nothing could give it a value.
+    fn check_functions(&self, analysis: &Analysis) -> Result<(), TemplateError> {
+        let globals: BTreeSet<&str> = self.env.globals().map(|(name, _)| name).collect();
+        let mentioned = |name: &str| analysis.outlines.values().any(|o| o.mentions.contains(name));
+        for (template, outline) in &analysis.outlines {
+            let unknown = outline.calls.iter().find(|(callee, called, _)| {
+                *callee == Callee::Function && !globals.contains(called.as_str()) && !mentioned(called)
+            });
+            if let Some((callee, called, at)) = unknown {
+                return Err(TemplateError {
+                    file: self.display(template),
+                    location: Some(*at),
+                    kind: TemplateErrorKind::Unknown(*callee, called.clone()),
                 });
             }
         }
@@ -113,6 +141,21 @@ impl Templates {
                 kind,
             });
         }
+        let unknown = outline.calls.iter().find(|(callee, called, _)| match callee {
+            Callee::Filter => matches!(self.env.empty_state().apply_filter(called, &[]),
+                Err(e) if e.kind() == ErrorKind::UnknownFilter),
+            Callee::Test => matches!(self.env.empty_state().perform_test(called, &[]),
+                Err(e) if e.kind() == ErrorKind::UnknownTest),
+            // Checked with every template's names, in `check`.
+            Callee::Function => false,
+        });
+        if let Some((callee, called, at)) = unknown {
+            return Err(TemplateError {
+                file: self.display(name),
+                location: Some(*at),
+                kind: TemplateErrorKind::Unknown(*callee, called.clone()),
+            });
+        }
         let named: Vec<(String, Location, bool)> = outline
             .extends
             .iter()
@@ -149,6 +192,11 @@ struct Outline {
     unescaped: Option<Location>,
     /// Where it names a template with an expression, if it does.
     dynamic: Option<Location>,
+    /// The filters, tests and functions it calls by name, and where.
+    calls: Vec<(Callee, String, Location)>,
+    /// The names it mentions other than by calling them (what it defines,
+    /// imports, assigns or reads).
+    mentions: BTreeSet<String>,
 }
 
 /// A block as the check sees it.
@@ -174,7 +222,35 @@ impl Outline {
                 outline.unescaped.get_or_insert(Location::of(source, *span));
             }
         }
+        outline.names(source, &tokens);
         Ok(outline)
+    }
+
+    /// Records the names the tokens call (`x|name`, `{% filter name %}`,
+    /// `x is [not] name`, `name(…)`) and mention otherwise.
+    fn names(&mut self, source: &str, tokens: &[(Token<'_>, Span)]) {
+        for (index, (token, span)) in tokens.iter().enumerate() {
+            let Token::Ident(name) = token else { continue };
+            let before = |back: usize| index.checked_sub(back).map(|i| &tokens[i].0);
+            let callee = match (before(1), before(2)) {
+                (Some(Token::Pipe), _) | (Some(Token::Ident("filter")), Some(Token::BlockStart)) => {
+                    Some(Callee::Filter)
+                }
+                (Some(Token::Ident("is")), _) if *name != "not" => Some(Callee::Test),
+                (Some(Token::Ident("not")), Some(Token::Ident("is"))) => Some(Callee::Test),
+                // `x.name(…)` is a method, `{% name(…) %}` a statement, `macro name(…)` a definition.
+                (Some(Token::Dot | Token::BlockStart | Token::Ident("macro")), _) => None,
+                _ if KEYWORDS.contains(name) => None,
+                _ if matches!(tokens.get(index + 1), Some((Token::ParenOpen, _))) => Some(Callee::Function),
+                _ => None,
+            };
+            match callee {
+                Some(callee) => self.calls.push((callee, name.to_string(), Location::of(source, *span))),
+                None => {
+                    self.mentions.insert(name.to_string());
+                }
+            }
+        }
     }
 
     /// Records the statements of `body`, inside block `within` if any.
@@ -242,6 +318,13 @@ impl Outline {
         }
     }
 }
+
+/// The words of minijinja's syntax that can stand before a parenthesis
+/// without calling anything, and the names a template calls that no template
+/// defines (`super()`, `caller()`, `loop(…)` of a recursive loop).
+const KEYWORDS: [&str; 11] = [
+    "if", "elif", "else", "and", "or", "not", "in", "is", "super", "caller", "loop",
+];
 
 /// A template name written as a string constant.
 fn constant(name: &Expr<'_>) -> Option<String> {

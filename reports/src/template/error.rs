@@ -55,6 +55,27 @@ impl fmt::Display for TemplateError {
 
 impl std::error::Error for TemplateError {}
 
+/// What a template calls by name.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Callee {
+    /// `x|name`, `{% filter name %}`.
+    Filter,
+    /// `x is name`.
+    Test,
+    /// `name(…)`.
+    Function,
+}
+
+impl fmt::Display for Callee {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Self::Filter => "filter",
+            Self::Test => "test",
+            Self::Function => "function",
+        })
+    }
+}
+
 /// What is wrong with a template.
 #[derive(Debug, thiserror::Error)]
 pub enum TemplateErrorKind {
@@ -108,6 +129,9 @@ pub enum TemplateErrorKind {
     /// `autoescape` or `safe` would turn escaping off.
     #[error("`autoescape` and the `safe` filter are not available: report data is always HTML-escaped")]
     Unescaped,
+    /// A template calls a filter, test or function there is no such one of.
+    #[error("unknown {0}: `{1}` is none of this build's (see docs/report-templates.md)")]
+    Unknown(Callee, String),
     /// Rendering failed (a misspelt field, a value of the wrong type…).
     #[error("failed to render the page: {0}")]
     Render(String),
