@@ -224,16 +224,17 @@ fn assert_refused(from: &str, to: &str, shown: &str) {
 }
 
 /// A name or id holding a character XML 1.0 does not allow is refused,
-/// never written into a malformed file (the DSL may refuse it first).
+/// never written into a malformed file: the language refuses it first (the
+/// exporter's own refusal is tested in `reports::export::xml`).
 #[test]
 fn a_value_xml_cannot_hold_is_refused_with_nothing_written() {
     assert_refused(
         r#"name: "Urban junction, 10 s, falsify the RSU-to-ego link""#,
         r#"name: "Urban \x1b[1m junction""#,
-        r"\u{1b}",
+        "U+001B",
     );
-    assert_refused("- { id: rsu,", r#"- { id: "r\x01su","#, r"\u{1}");
-    assert_refused("- { id: block_ne,", r#"- { id: "block\uFFFEne","#, r"\u{fffe}");
+    assert_refused("- { id: rsu,", r#"- { id: "r\x01su","#, "U+0001");
+    assert_refused("- { id: block_ne,", r#"- { id: "block\uFFFEne","#, "U+FFFE");
 }
 
 /// A declared agent named as generated traffic is (`route1-1`, the first
