@@ -33,12 +33,30 @@ fn main() -> ExitCode {
     match ended {
         Ok(Ok(exit)) => exit.into(),
         Ok(Err(error)) => {
-            eprintln!("error: {error:#}");
+            report(format_args!("error: {error:#}"));
+            exit::Exit::Internal.into()
+        }
+        // A stream closed by its reader (`sightline check … | head -1`) makes
+        // printing panic: the output could not be written (exit 3), which is
+        // no defect, and stderr may be gone too.
+        Err(payload)
+            if payload
+                .downcast_ref::<String>()
+                .is_some_and(|m| m.starts_with("failed printing to std")) =>
+        {
             exit::Exit::Internal.into()
         }
         Err(_) => {
-            eprintln!("error: internal error in sightline; please report it with the scenario file");
+            report(format_args!(
+                "error: internal error in sightline; please report it with the scenario file"
+            ));
             exit::Exit::Internal.into()
         }
     }
+}
+
+/// Writes a last line to stderr, if stderr is still there.
+fn report(line: std::fmt::Arguments<'_>) {
+    use std::io::Write;
+    let _ = writeln!(std::io::stderr(), "{line}");
 }

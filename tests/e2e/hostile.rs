@@ -597,3 +597,29 @@ fn an_interrupted_run_removes_its_temporary_files() {
         assert_eq!(files_under(&out), Vec::<std::path::PathBuf>::new(), "after SIG{signal}");
     }
 }
+
+/// A reader that closes the stream (`sightline check … 2>&1 | head -1`) makes
+/// printing fail: exit 3 (output that could not be written), never Rust's
+/// panic status 101 from a second failed print.
+// See: session 20's outside check.
+#[test]
+fn a_closed_output_stream_is_exit_3_not_a_panic() {
+    let files = [
+        "tests/fixtures/invalid/several-errors.yaml",
+        "tests/fixtures/invalid/agent-ids-refused.yaml",
+        "tests/fixtures/invalid/semantic-traffic-errors.yaml",
+    ];
+    let mut child = Command::new(env!("CARGO_BIN_EXE_sightline"))
+        .arg("check")
+        .args(files)
+        .current_dir(root())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("sightline starts");
+    // Both streams closed before anything is read.
+    drop(child.stdout.take());
+    drop(child.stderr.take());
+    let status = child.wait().expect("sightline ends");
+    assert_eq!(status.code(), Some(3), "{status}");
+}
