@@ -261,9 +261,29 @@ impl<'de> de::Deserializer<'de> for NodeDeserializer<'de> {
         result.map_err(|e| self.locate(e))
     }
 
+    /// A section is a mapping: a list is not read into its fields in order
+    /// (serde's default), which would take `record: [1]` for `{ point: 1 }`.
+    fn deserialize_struct<V: Visitor<'de>>(
+        self,
+        _name: &'static str,
+        _fields: &'static [&'static str],
+        visitor: V,
+    ) -> Result<V::Value, DeError> {
+        match self.node.value {
+            Value::Seq(_) => {
+                let error = DeError::new(ErrorKind::InvalidType {
+                    expected: "a mapping".into(),
+                    found: self.node.describe(),
+                });
+                Err(self.locate(error))
+            }
+            _ => self.deserialize_any(visitor),
+        }
+    }
+
     serde::forward_to_deserialize_any! {
         bool i8 i16 i32 i64 i128 u8 u16 u32 u64 u128 f32 f64 char str string
-        bytes byte_buf unit unit_struct seq tuple tuple_struct map struct
+        bytes byte_buf unit unit_struct seq tuple tuple_struct map
         identifier ignored_any
     }
 }

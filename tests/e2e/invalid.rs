@@ -98,6 +98,7 @@ invalid_inputs! {
     a_control_character_written_as_an_escape_is_refused => "control-character-escape",
     a_bidirectional_override_is_refused => "bidi-override",
     agent_ids_that_would_nest_or_clash_are_refused => "agent-ids-refused",
+    a_section_written_as_a_list_is_refused => "section-as-list",
     the_channels_rsu_antenna_where_every_rsu_has_its_own_is_refused => "traces-rsu-antenna-all-own",
     car_following_where_every_vehicle_replays_a_trace_is_refused => "traces-driving-without-driven-vehicles",
     occluder_types_name_what_the_imported_files_have => "traces-occluder-type-absent",
