@@ -21,7 +21,7 @@ use sightline_reports::{
 
 use crate::exit::Exit;
 use crate::input::Input;
-use crate::output::{default_dir, stem};
+use crate::output::{default_dir, shell_word, stem};
 use crate::staging::Staging;
 use crate::summary::print_verdicts;
 
@@ -97,7 +97,7 @@ pub fn write_evidence(
         execution,
     };
     // The command as typed: `-` for standard input.
-    let given = input.path.display();
+    let given = shell_word(&input.path);
     let mut reproduce = match scenario.points.iter().map(|p| p.setup.seed).collect::<HashSet<_>>() {
         seeds if seeds.len() == 1 => format!("sightline run {given} --seed {}", scenario.points[0].setup.seed),
         _ => format!("sightline run {given}"),
@@ -109,7 +109,7 @@ pub fn write_evidence(
     }
     // A scenario on standard input names no evidence directory of its own.
     if input.is_stdin() {
-        reproduce.push_str(&format!(" --out {}", staging.dir().display()));
+        reproduce.push_str(&format!(" --out {}", shell_word(staging.dir())));
     }
     let templates = reporting.templates;
     let evidence = match render(scenario, &run, &verdicts, &provenance, &reproduce, templates) {

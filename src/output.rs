@@ -124,3 +124,32 @@ mod tests {
         assert_eq!(relative(Path::new("/a"), Path::new("/a/b.xml")), Path::new("b.xml"));
     }
 }
+
+/// `path` as one word of a POSIX shell command: as it is when it holds only
+/// characters no shell treats specially, else in single quotes (a `'` inside
+/// written `'\''`), so that a reproduce command pasted into a shell runs the
+/// same file and nothing else.
+pub fn shell_word(path: &Path) -> String {
+    let text = path.to_string_lossy();
+    let plain = |c: char| c.is_ascii_alphanumeric() || "-_./=:,+@%".contains(c);
+    if !text.is_empty() && text.chars().all(plain) {
+        text.into_owned()
+    } else {
+        format!("'{}'", text.replace('\'', r"'\''"))
+    }
+}
+
+#[cfg(test)]
+mod shell_tests {
+    use super::*;
+
+    #[test]
+    fn a_path_a_shell_would_split_or_run_is_quoted() {
+        assert_eq!(shell_word(Path::new("scenarios/urban.yaml")), "scenarios/urban.yaml");
+        assert_eq!(
+            shell_word(Path::new("my run $(id) it's.yaml")),
+            r"'my run $(id) it'\''s.yaml'"
+        );
+        assert_eq!(shell_word(Path::new("")), "''");
+    }
+}

@@ -21,7 +21,7 @@ use crate::evidence::{EVIDENCE_SET, evidence_dirs, tool};
 use crate::exit::Exit;
 use crate::files::{DATA_LIMIT, read_regular};
 use crate::input::load_all;
-use crate::output::{relative, say};
+use crate::output::{relative, say, shell_word};
 use crate::staging::Staging;
 use crate::template::templates;
 
@@ -112,7 +112,7 @@ pub fn falsify(args: &FalsifyArgs) -> anyhow::Result<Exit> {
     let elapsed = started.elapsed();
     let mut command = format!(
         "sightline falsify {} --cases {} --seed {}",
-        input.path.display(),
+        shell_word(&input.path),
         args.cases,
         search.seed
     );
@@ -125,7 +125,7 @@ pub fn falsify(args: &FalsifyArgs) -> anyhow::Result<Exit> {
     let evaluations = scores.len();
     let rate = evaluations as f64 / elapsed.as_secs_f64().max(1e-9);
     let counterexample_path = dir.join("counterexample.yaml");
-    let reproduce = format!("sightline run {}", counterexample_path.display());
+    let reproduce = format!("sightline run {}", shell_word(&counterexample_path));
     let tool = tool();
     let execution = Execution::on_this_machine(pool.current_num_threads(), started_at, elapsed);
     let found = outcome.counterexample.map(|i| &outcome.cases[i]);
