@@ -202,6 +202,26 @@ fn bundled_roundabout_recording_has_foxglove_channels_and_the_steps() {
     assert!(run.report.contains(&sha), "the report lacks the recording's hash");
 }
 
+/// The bundled SUMO grid: no road user comes within d_min of the ego, so
+/// missed criticals are over nobody at every step; `/sightline/requirements`
+/// signals no value and no margin for them, never 0 (the verdict is not
+/// exercised).
+#[test]
+fn a_requirement_over_nobody_is_signalled_without_a_value() {
+    let run = sumo_grid_run();
+    let signals = messages(&run.recording, "/sightline/requirements");
+    assert!(!signals.is_empty());
+    for message in &signals {
+        let miss = message["requirements"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|r| r["id"] == "GRID-MISS-01")
+            .expect("GRID-MISS-01 is signalled");
+        assert_eq!((miss.get("value"), miss.get("margin")), (None, None), "{miss}");
+    }
+}
+
 /// The urban junction shortened to 80 s (the ego reaches the junction after
 /// 60 s) with one run per point, half the road users connected (direct packets)
 /// and a d_min of 6 m (close approaches): the recording's messages are the
