@@ -72,6 +72,11 @@ pub(super) fn record(
     let rate_ok = raw
         .grid_rate
         .is_none_or(|rate| ctx.within(&path.key("grid_rate"), rate, range::RATE_OR_ZERO));
+    if raw.agent_grids && raw.grid_rate == Some(0.0) {
+        let why = "`grid_rate: 0` records no grid, so no agent's grid either";
+        ctx.error_at_key(&path.key("agent_grids"), ErrorKind::NoEffect(why.into()));
+        return None;
+    }
     if raw.point.is_some() && !raw.filter.is_empty() {
         ctx.error(
             &path.key("where"),
