@@ -175,11 +175,24 @@ fn the_record_flag_records_the_first_point_with_the_defaults() {
 #[test]
 fn record_where_selects_the_first_matching_point() {
     let text = format!(
-        "{WORLD}sweep: {{ perception.cooperating: [1, 2, 3] }}\nrecord: {{ where: {{ perception.cooperating: 2 }}, grid_rate: 0, agent_grids: true }}\n"
+        "{WORLD}sweep: {{ perception.cooperating: [1, 2, 3] }}\nrecord: {{ where: {{ perception.cooperating: 2 }}, grid_rate: 0 }}\n"
     );
     let record = compiled(&text, &Options::default()).record.expect("recorded");
-    assert_eq!((record.point, record.grid_every, record.agent_grids), (1, None, true));
+    assert_eq!((record.point, record.grid_every, record.agent_grids), (1, None, false));
     assert!(!record.grids_at(0));
+}
+
+/// With no grid recorded (`grid_rate: 0`), `agent_grids: true` would record
+/// none either: refused at its key.
+#[test]
+fn agent_grids_without_grids_have_no_effect() {
+    let text = format!("{WORLD}record: {{ grid_rate: 0, agent_grids: true }}\n");
+    assert_eq!(
+        first_error(&text),
+        "w.yaml:18:25: error: record.agent_grids: has no effect: `grid_rate: 0` records no grid, so no agent's grid either"
+    );
+    let text = format!("{WORLD}record: {{ grid_rate: 0.5, agent_grids: true }}\n");
+    assert!(compiled(&text, &Options::default()).record.unwrap().agent_grids);
 }
 
 #[test]

@@ -66,9 +66,29 @@ pub struct ConflictMetrics {
     pub weighted_cells: u64,
 }
 
-impl FieldMetrics {
-    /// The value of `metric`, or `None` where it is not defined for this run.
+impl ConflictMetrics {
+    /// The value of a conflict `metric`; `None` for another metric and where
+    /// no cell was fused (the maximum and the counts over no cell are no
+    /// figures, not 0).
     pub fn value(&self, metric: Metric) -> Option<f64> {
+        let mean = self.mean?;
+        match metric {
+            Metric::MeanConflict => Some(mean),
+            Metric::MaxConflict => Some(self.max),
+            Metric::TotalConflictCells => Some(self.total_conflict_cells as f64),
+            Metric::WeightedCells => Some(self.weighted_cells as f64),
+            _ => None,
+        }
+    }
+}
+
+impl FieldMetrics {
+    /// The value of `metric`, or `None` where it is not defined for this run
+    /// (its population, [`Self::sample_size`], empty included).
+    pub fn value(&self, metric: Metric) -> Option<f64> {
+        if self.sample_size(metric)? == 0 {
+            return None;
+        }
         let cells = self.cells as f64;
         let confident_errors = (self.false_alarms + self.missed_detections) as f64;
         Some(match metric {
@@ -82,10 +102,9 @@ impl FieldMetrics {
             Metric::DecidedUnknown => self.decided_unknown as f64,
             Metric::Unobserved => self.unobserved as f64,
             Metric::MeanUncertainty => self.mean_uncertainty?,
-            Metric::MeanConflict => self.conflict.as_ref()?.mean?,
-            Metric::MaxConflict => self.conflict.as_ref()?.max,
-            Metric::TotalConflictCells => self.conflict.as_ref()?.total_conflict_cells as f64,
-            Metric::WeightedCells => self.conflict.as_ref()?.weighted_cells as f64,
+            Metric::MeanConflict | Metric::MaxConflict | Metric::TotalConflictCells | Metric::WeightedCells => {
+                self.conflict.as_ref()?.value(metric)?
+            }
             _ => return None,
         })
     }
@@ -406,5 +425,27 @@ mod tests {
         // Position 0.95 × 4 = 3.8: 4 + 0.8 × (10 − 4) = 8.8.
         assert!((quantile(&values, 0.95).unwrap() - 8.8).abs() < 1e-12);
         assert_eq!(quantile(&[], 0.5), None);
+    }
+
+    #[test]
+    fn conflict_over_no_fused_cell_has_no_value() {
+        let conflict = |mean| ConflictMetrics {
+            mean,
+            max: 0.0,
+            total_conflict_cells: 0,
+            weighted_cells: 0,
+        };
+        let conflicts = [
+            Metric::MeanConflict,
+            Metric::MaxConflict,
+            Metric::TotalConflictCells,
+            Metric::WeightedCells,
+        ];
+        for metric in conflicts {
+            assert_eq!(conflict(None).value(metric), None, "{metric:?}");
+        }
+        let values: Vec<_> = conflicts.iter().map(|&m| conflict(Some(0.0)).value(m)).collect();
+        assert_eq!(values, [Some(0.0); 4]);
+        assert_eq!(conflict(Some(0.0)).value(Metric::Accuracy), None);
     }
 }

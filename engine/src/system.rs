@@ -95,7 +95,7 @@ impl Tally {
             Metric::SutClassAccuracy => ratio(self.class_correct as f64, self.matched),
             Metric::SutLatency => ratio(self.latency_sum, self.latencies),
             Metric::SutGhosts => (
-                Some((self.detections - self.detections_matched) as f64),
+                (self.detections > 0).then(|| (self.detections - self.detections_matched) as f64),
                 self.detections,
             ),
             _ => return None,
@@ -566,7 +566,7 @@ pub(crate) mod tests {
         assert_eq!(by_detection(0), ((Some(0.0), 2), (Some(2.0), 2)));
         assert_eq!(by_detection(1), ((Some(1.0), 1), (Some(0.0), 1)));
         assert_eq!(by_detection(2), ((Some(0.5), 2), (Some(1.0), 2)));
-        assert_eq!(by_detection(3), ((None, 0), (Some(0.0), 0)));
+        assert_eq!(by_detection(3), ((None, 0), (None, 0)));
         assert_eq!(by_detection(4), ((Some(1.0), 1), (Some(0.0), 1)));
         // (position error, class accuracy): judged by the matched road user.
         let by_road_user = |i| (sample(i, Metric::SutPositionError), sample(i, Metric::SutClassAccuracy));
@@ -597,10 +597,10 @@ pub(crate) mod tests {
             Metric::SutPositionError,
             Metric::SutClassAccuracy,
             Metric::SutLatency,
+            Metric::SutGhosts,
         ] {
             assert_eq!((metrics.value(metric), metrics.sample_size(metric)), (None, Some(0)));
         }
-        assert_eq!(metrics.sample_size(Metric::SutGhosts), Some(0));
         assert_eq!(metrics.value(Metric::Accuracy), None);
     }
 

@@ -217,6 +217,35 @@ fn markup_in_the_scenario_text_is_shown_as_text() {
     assert!(!html.contains("<script>"), "the report holds a script element");
 }
 
+/// A requirement text holding a 127-character URL, a token with no place to
+/// break, still prints on A4: the traceability table's cells break it
+/// anywhere rather than widen the table past the page (the checker fails a
+/// table wider than the printed page).
+#[test]
+fn a_long_url_in_a_requirement_breaks_within_a4() {
+    let Some(python) = python() else { return };
+    let url = "https://example.org/standards/iso-26262/part-8/clause-11/requirements/tool-qualification/confidence-level/TCL3/section-11.4.5.2";
+    assert_eq!(url.len(), 127);
+    let map = root().join("scenarios/opendrive/crossroads.xodr");
+    let text = read(&root().join("scenarios/opendrive-crossroads-semantic.yaml"))
+        .replace(
+            "opendrive: opendrive/crossroads.xodr",
+            &format!("opendrive: {}", map.display()),
+        )
+        .replace(
+            "text: At least 90 % of the RSU's messages reach the ego.",
+            &format!("text: \"See {url}. At least 90 % of the RSU's messages reach the ego.\""),
+        );
+    assert!(text.contains(url));
+    // The scenario beside its output directory, `page_dir("long-url")`.
+    let dir = page_dir("long-url-scenario");
+    std::fs::create_dir_all(&dir).unwrap();
+    let scenario = dir.join("long-url.yaml");
+    std::fs::write(&scenario, text).unwrap();
+    let results = run_and_open(&python, scenario.to_str().unwrap());
+    assert!(results["requirements"].to_string().contains(url));
+}
+
 /// The report of `sightline falsify` (#18): it opens offline, carries its
 /// document control (an id of its own, the scenario's `document` fields) and
 /// its verdict, and prints on A4 with every column of its tables.

@@ -478,8 +478,17 @@ fn urban_semantic_scenario_runs_end_to_end() {
         let expected = counts["transmitted"].as_f64().unwrap() / counts["perceived"].as_f64().unwrap();
         assert!((share - expected).abs() < 1e-12);
         assert!(counts["labelled"].as_u64() <= counts["transmitted"].as_u64());
-        let per_run = counts["missed_criticals"].as_f64().unwrap() / 5.0;
-        assert_eq!(point["metrics"]["missed_criticals"].as_f64(), Some(per_run));
+        // Missed criticals per run, over the close approaches: none where
+        // there is none (the waiting ego's), not 0.
+        let approaches = counts["close_approaches"].as_u64().unwrap();
+        let waiting = point["label"].as_str().unwrap().contains("agents.ego.speed.target=0");
+        assert_eq!(approaches == 0, waiting, "{point}");
+        let per_run = (approaches > 0).then(|| counts["missed_criticals"].as_f64().unwrap() / 5.0);
+        assert_eq!(
+            point["metrics"].get("missed_criticals").map(|v| v.as_f64().unwrap()),
+            per_run
+        );
+        assert_eq!(point["samples"]["missed_criticals"], approaches);
         assert!(!point["contribution_by_density"].as_array().unwrap().is_empty());
     }
     // Denser traffic puts more on the channel, for the baseline sender too.
@@ -641,6 +650,21 @@ fn sumo_grid_scenario_runs_end_to_end_and_hashes_its_imports() {
     // veh7 is in the trace from 7.0 s to 53.1 s: 462 steps of 0.1 s.
     assert_eq!(point["counts"]["steps"], 462);
     assert_eq!(point["counts"]["generated"], 0);
+    // Missed criticals over no close approach: no figure (not 0) in
+    // results.json, and — in the results table, whose column the requirement
+    // that cites it keeps.
+    assert_eq!(
+        (
+            point["metrics"].get("missed_criticals"),
+            &point["samples"]["missed_criticals"]
+        ),
+        (None, &0.into())
+    );
+    let table = html.split("<h2>Results</h2>").nth(1).unwrap();
+    let table = &table[..table.find("</table>").unwrap()];
+    assert!(table.contains("<th>missed_<wbr>criticals"), "{table}");
+    let cells: Vec<&str> = table.split("<td class=\"num\">").skip(1).collect();
+    assert!(cells.iter().any(|c| c.starts_with("—</td>")), "{table}");
 
     // Checks over 30 seeds: the replicates draw anew, and the bounds are the stated ones.
     let requirement = |id: &str| requirement(results, id);

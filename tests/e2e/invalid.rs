@@ -204,6 +204,9 @@ invalid_inputs! {
     // See: issue 18 (the recording's clock).
     time_start_without_its_offset_is_refused => "time-start-not-a-date",
     time_start_before_1970_is_out_of_range => "time-start-out-of-range",
+    time_start_an_offset_of_a_day_is_refused => "time-start-offset-a-day",
+    time_start_a_leap_second_is_refused => "time-start-leap-second",
+    time_start_past_foxglove_timestamps_is_out_of_range => "time-start-after-2100",
     // See: issue 19, part 4 (bad OpenDRIVE maps).
     malformed_opendrive_is_located_in_the_map => "opendrive-malformed-xml",
     unknown_opendrive_element_suggests_the_closest => "opendrive-unknown-element",

@@ -202,6 +202,43 @@ fn bundled_roundabout_recording_has_foxglove_channels_and_the_steps() {
     assert!(run.report.contains(&sha), "the report lacks the recording's hash");
 }
 
+/// `run --help` says which point `--record` records: the one the bundled
+/// roundabout's recording shows (its first failing requirement's worst), not
+/// the first sweep point.
+#[test]
+fn run_help_names_the_point_record_records() {
+    let help = sightline(["run", "--help"]);
+    assert_eq!(help.code, Some(0), "{help}");
+    let text = help.stdout.split_whitespace().collect::<Vec<_>>().join(" ");
+    assert!(
+        text.contains(
+            "the worst point of the first failing requirement, or the first point when none fails; a grid a second"
+        ),
+        "{text}"
+    );
+    assert!(!text.contains("the first sweep point"), "{text}");
+}
+
+/// The bundled SUMO grid: no road user comes within d_min of the ego, so
+/// missed criticals are over nobody at every step; `/sightline/requirements`
+/// signals no value and no margin for them, never 0 (the verdict is not
+/// exercised).
+#[test]
+fn a_requirement_over_nobody_is_signalled_without_a_value() {
+    let run = sumo_grid_run();
+    let signals = messages(&run.recording, "/sightline/requirements");
+    assert!(!signals.is_empty());
+    for message in &signals {
+        let miss = message["requirements"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|r| r["id"] == "GRID-MISS-01")
+            .expect("GRID-MISS-01 is signalled");
+        assert_eq!((miss.get("value"), miss.get("margin")), (None, None), "{miss}");
+    }
+}
+
 /// The urban junction shortened to 80 s (the ego reaches the junction after
 /// 60 s) with one run per point, half the road users connected (direct packets)
 /// and a d_min of 6 m (close approaches): the recording's messages are the

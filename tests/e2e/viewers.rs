@@ -119,8 +119,9 @@ fn extra_recordings() -> &'static [(&'static str, Vec<u8>)] {
     })
 }
 
-/// A run of the bundled roundabout, 3 s long, recording every point
-/// (`record.points: all`): what it printed, its exit code and its recording.
+/// A run of the bundled roundabout, 3 s long, recording every point and the
+/// agents' grids (`record: { points: all, agent_grids: true }`): what it
+/// printed, its exit code and its recording.
 struct EveryPoint {
     stdout: String,
     code: i32,
@@ -133,7 +134,7 @@ fn every_point() -> &'static EveryPoint {
         let text = read(&root().join("scenarios/roundabout-six-agents.yaml"))
             .replace("duration: 30, step: 0.1", "duration: 3, step: 0.1")
             .replace("snapshot: 12", "snapshot: 2")
-            + "record: { points: all }\n";
+            + "record: { points: all, agent_grids: true }\n";
         let tmp = temp_dir();
         let scenario = tmp.path().join("every-point.yaml");
         std::fs::write(&scenario, text).unwrap();
@@ -163,7 +164,7 @@ fn recordings() -> Vec<(&'static str, &'static [u8])> {
 /// Every point of the roundabout's 17 (`record.points: all`, issue 18), each
 /// in its own minute: the scenario message lists them with their offsets, each
 /// step's signals carry their point and lie within its minute, and a point's
-/// agents are cleared a second after its last step.
+/// agents and grids are cleared a second after its last step.
 #[test]
 fn every_point_is_recorded_a_minute_after_the_last() {
     let recording = &every_point().recording;
@@ -201,6 +202,39 @@ fn every_point_is_recorded_a_minute_after_the_last() {
         .collect();
     let expected: Vec<u64> = (0..16).map(|k| epoch + k * minute + 3_900_000_000).collect();
     assert_eq!(cleared, expected);
+    // So are the grids: each grid topic a point showed (an agent's only where
+    // it cooperates) gets a grid of no cell then (its fields kept; one cell's
+    // row stride, so that a viewer counts 0 rows), and nothing else is
+    // cell-less.
+    let grid_topics: std::collections::BTreeSet<&str> = messages
+        .iter()
+        .map(|m| m.channel.topic.as_str())
+        .filter(|t| *t == "/fusion/grid" || t.ends_with("/grid"))
+        .collect();
+    assert!(grid_topics.len() > 1, "{grid_topics:?}");
+    for topic in grid_topics {
+        let (empty, shown): (Vec<_>, Vec<_>) = messages
+            .iter()
+            .filter(|m| m.channel.topic == topic)
+            .map(|m| (m.log_time, json(m)))
+            .partition(|(_, grid)| grid["column_count"] == 0);
+        let times: Vec<u64> = empty.iter().map(|(t, _)| *t).collect();
+        let showing: Vec<u64> = expected
+            .iter()
+            .copied()
+            .filter(|&at| shown.iter().any(|(t, _)| (at - 3_900_000_000..at).contains(t)))
+            .collect();
+        assert!(!showing.is_empty(), "{topic}");
+        assert_eq!(times, showing, "{topic}");
+        for (_, grid) in &empty {
+            assert_eq!(
+                (&grid["data"], &grid["row_stride"]),
+                (&"".into(), &grid["cell_stride"]),
+                "{topic}"
+            );
+            assert!(!grid["fields"].as_array().unwrap().is_empty(), "{topic}");
+        }
+    }
     // Until then /tf holds the point's last frames (written again at that
     // time), so that what is locked to them does not glide towards the next
     // point's first step.

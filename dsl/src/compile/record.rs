@@ -15,26 +15,28 @@ const DEFAULT_GRID_RATE: f64 = 1.0;
 
 /// The earliest `time.start`: 1970-01-01T00:00:00Z, the recording's time 0.
 const EARLIEST_START: &str = "1970-01-01T00:00:00Z";
-/// The latest `time.start`, well before a run's nanoseconds would overflow the
-/// recording's 64-bit timestamps (in 2554).
-const LATEST_START: &str = "2500-01-01T00:00:00Z";
+/// The latest `time.start`, six years before the recording's Foxglove
+/// timestamps, whose seconds are a `uint32`, overflow (2106-02-07T06:28:16Z).
+const LATEST_START: &str = "2100-01-01T00:00:00Z";
 
 /// Compiles `time.start`: nanoseconds since 1970-01-01T00:00:00Z, `DEFAULT_START`
 /// without it; `None` (after recording why) when it is not a date and time with
-/// its offset, or lies outside 1970 to 2500.
+/// its offset (within ±23:59, a leap second's :60 refused), or lies outside
+/// 1970 to 2100.
 pub(super) fn start(ctx: &mut Context<'_>, time: Option<&RawTime>) -> Option<u64> {
     let Some(text) = time.and_then(|t| t.start.as_deref()) else {
         return Some(DEFAULT_START);
     };
     let path = Path::root().key("time").key("start");
-    let Ok(start) = text.parse::<jiff::Timestamp>() else {
+    let refused = refused_start(text);
+    let Some(start) = text.parse::<jiff::Timestamp>().ok().filter(|_| refused.is_none()) else {
         ctx.error(
             &path,
             ErrorKind::InvalidType {
                 expected: "an ISO 8601 date and time with its UTC offset, such as `2026-03-01T08:00:00Z` or \
                            `2026-03-01T09:00:00+01:00`"
                     .into(),
-                found: format!("`{text}`"),
+                found: format!("`{text}`{}", refused.unwrap_or_default()),
             },
         );
         return None;
@@ -51,6 +53,25 @@ pub(super) fn start(ctx: &mut Context<'_>, time: Option<&RawTime>) -> Option<u64
         return None;
     }
     u64::try_from(start.as_nanosecond()).ok()
+}
+
+/// Why a start time that parses is refused all the same, as words following
+/// it: an offset of a day or more, which no time zone has, or a leap second,
+/// which the recording's clock (Foxglove's, seconds since 1970) cannot hold
+/// and which would silently become the second before it.
+fn refused_start(text: &str) -> Option<&'static str> {
+    let (_, time) = text.split_once(['T', 't', ' '])?;
+    let digits: String = time
+        .chars()
+        .take_while(|c| c.is_ascii_digit() || *c == ':')
+        .filter(char::is_ascii_digit)
+        .collect();
+    if digits.get(4..6) == Some("60") {
+        return Some(" (a leap second: give the second after it, :00 of the next minute)");
+    }
+    let offset = &time[time.find(['+', '-'])? + 1..];
+    let hours: u32 = offset.get(..2)?.parse().ok()?;
+    (hours > 23).then_some(" (an offset of a day or more: offsets lie within ±23:59)")
 }
 
 /// Compiles the `record` section (its defaults when `requested` and the file
@@ -72,6 +93,11 @@ pub(super) fn record(
     let rate_ok = raw
         .grid_rate
         .is_none_or(|rate| ctx.within(&path.key("grid_rate"), rate, range::RATE_OR_ZERO));
+    if raw.agent_grids && raw.grid_rate == Some(0.0) {
+        let why = "`grid_rate: 0` records no grid, so no agent's grid either";
+        ctx.error_at_key(&path.key("agent_grids"), ErrorKind::NoEffect(why.into()));
+        return None;
+    }
     if raw.point.is_some() && !raw.filter.is_empty() {
         ctx.error(
             &path.key("where"),

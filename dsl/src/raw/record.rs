@@ -30,7 +30,7 @@ pub(crate) struct RawRecord {
     #[serde(skip_serializing_if = "Option::is_none")]
     #[schemars(transform = range::RATE_OR_ZERO.schema())]
     pub grid_rate: Option<f64>,
-    /// Also record each cooperating agent's own grid, at `grid_rate`.
+    /// Also record each cooperating agent's own grid, at `grid_rate` (refused with `grid_rate: 0`, which records no grid).
     pub agent_grids: bool,
     /// `one` (the default): the point `point` or `where` names, or the worst
     /// point of the first failing requirement; `all`: every sweep point, one

@@ -19,8 +19,9 @@ pub(crate) struct RawTime {
     #[schemars(transform = range::STEP.schema())]
     pub step: f64,
     /// When step 0 happens, as an ISO 8601 (RFC 3339) date and time with its UTC
-    /// offset (`2026-03-01T08:00:00Z`), from 1970 to 2500: the recording's
-    /// clock (`run.mcap` timestamps). Default 2000-01-01T00:00:00Z, so that the
+    /// offset (`2026-03-01T08:00:00Z`; the offset within ±23:59, no leap
+    /// second), from 1970 to before 2100 (Foxglove's timestamps end in 2106):
+    /// the recording's clock (`run.mcap` timestamps). Default 2000-01-01T00:00:00Z, so that the
     /// same scenario and seed give the same recording.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     #[schemars(extend("format" = "date-time"))]

@@ -223,8 +223,14 @@ impl SemanticMetrics {
         self.objects.iter().filter(|o| o.category == category).count() as u64
     }
 
-    /// The value of `metric`, or `None` where it is not defined for this run.
+    /// The value of `metric`, or `None` where it is not defined for this run:
+    /// where it is not a semantic metric or its population
+    /// ([`Self::sample_size`]) is empty (no close approaches, no relevant
+    /// object: a count per run over nobody is no figure, not 0).
     pub fn value(&self, metric: Metric) -> Option<f64> {
+        if self.sample_size(metric)? == 0 {
+            return None;
+        }
         let ratio = |num: u64, den: u64| (den > 0).then(|| num as f64 / den as f64);
         let rate = |bytes: u64| (self.duration > 0.0).then(|| bytes as f64 / self.duration);
         match metric {
@@ -356,6 +362,8 @@ mod tests {
             transmitted: 4,
             bytes: 1000,
             delivery_by_distance: vec![DeliveryBin { sent: 2, received: 2 }],
+            steps: 100,
+            close_approaches: 2,
             missed_criticals: 1,
             ..Default::default()
         };
@@ -370,6 +378,8 @@ mod tests {
                 DeliveryBin { sent: 1, received: 0 },
                 DeliveryBin { sent: 1, received: 1 },
             ],
+            steps: 300,
+            close_approaches: 3,
             missed_criticals: 2,
             ..Default::default()
         };
@@ -389,5 +399,36 @@ mod tests {
                 DeliveryBin { sent: 1, received: 1 }
             ]
         );
+    }
+
+    #[test]
+    fn a_metric_over_nobody_has_no_value() {
+        // Two pooled runs with no close approach and no relevant object: the
+        // counts per run are over nobody, so they are no figure (not 0).
+        let metrics = SemanticMetrics {
+            runs: 2,
+            duration: 20.0,
+            steps: 200,
+            ..Default::default()
+        };
+        for metric in [
+            Metric::MissedCriticals,
+            Metric::ObjectsWarnedBeforeSeen,
+            Metric::ObjectsWarnedNeverSeen,
+            Metric::ObjectsSeenFirst,
+            Metric::ObjectsNeverKnown,
+        ] {
+            assert_eq!(
+                (metrics.value(metric), metrics.sample_size(metric)),
+                (None, Some(0)),
+                "{metric:?}"
+            );
+        }
+        // One close approach, missed in neither run: 0 per run, over n = 1.
+        let one = SemanticMetrics {
+            close_approaches: 1,
+            ..metrics
+        };
+        assert_eq!(one.value(Metric::MissedCriticals), Some(0.0));
     }
 }

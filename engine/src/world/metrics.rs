@@ -177,10 +177,9 @@ impl WorldMetrics {
                 (pairs > 0).then(|| self.sightings.visible / pairs as f64)
             }
             Metric::MeanUncertainty => self.mean_uncertainty,
-            Metric::MeanConflict => self.conflict.as_ref()?.mean,
-            Metric::MaxConflict => Some(self.conflict.as_ref()?.max),
-            Metric::TotalConflictCells => Some(self.conflict.as_ref()?.total_conflict_cells as f64),
-            Metric::WeightedCells => Some(self.conflict.as_ref()?.weighted_cells as f64),
+            Metric::MeanConflict | Metric::MaxConflict | Metric::TotalConflictCells | Metric::WeightedCells => {
+                self.conflict.as_ref()?.value(metric)
+            }
             _ => None,
         }
     }

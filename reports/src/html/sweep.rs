@@ -120,13 +120,17 @@ pub(super) fn sweep_tables(results: &Results) -> Vec<SweepView> {
 /// metric a requirement or reference uses, each followed by its published value
 /// if any.
 fn sweep_table(results: &Results, axes: &[Axis], rows: &[Row<'_>]) -> TableView {
-    let mut metrics: Vec<&str> = TABLE_METRICS.to_vec();
+    // A default column where some row has a value; a cited one where some row
+    // measures it, its value or — (over nobody: n = 0).
+    let mut metrics: Vec<&str> = TABLE_METRICS
+        .into_iter()
+        .filter(|m| rows.iter().any(|(p, _)| p.metrics.get(m).is_some()))
+        .collect();
     for name in results.cited_metrics() {
-        if !metrics.contains(&name) {
+        if !metrics.contains(&name) && rows.iter().any(|(p, _)| p.samples.get(name).is_some()) {
             metrics.push(name);
         }
     }
-    metrics.retain(|m| rows.iter().any(|(p, _)| p.metrics.0.iter().any(|(k, _)| k == m)));
     let has_published = |metric: &str| results.references.iter().any(|r| r.metric == metric);
 
     let mut heads: Vec<String> = axes

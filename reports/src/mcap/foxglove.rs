@@ -498,6 +498,16 @@ impl Grid {
         Self { head, data }
     }
 
+    /// A grid of no cell with the fields `names` of type `kind`: what a grid
+    /// topic shows once its point is over. Its row stride is one cell's, so
+    /// that a viewer reading the row count as bytes over row stride reads 0
+    /// rows, not 0 / 0.
+    pub(crate) fn cleared(timestamp: Time, names: &[&'static str], kind: Numeric) -> Self {
+        let mut grid = Self::new(timestamp, [0.0, 0.0], 1.0, 0, names, kind, Vec::new());
+        grid.head.row_stride = grid.head.cell_stride;
+        grid
+    }
+
     /// How many bytes its cells hold.
     pub(crate) fn data_len(&self) -> usize {
         self.data.len()

@@ -21,7 +21,7 @@
 //! world's step is both: the grid's part, then the pipeline's, in one step's
 //! scene and signals.
 
-use std::collections::BTreeSet;
+use std::collections::{BTreeMap, BTreeSet};
 use std::io::Write;
 use std::sync::Arc;
 
@@ -170,6 +170,8 @@ pub struct Recorder<'s, W> {
     fields_shown: Vec<usize>,
     /// Agents `/scene/agents` shows, in order.
     agents_shown: Vec<usize>,
+    /// The grid topics the point has shown, with their fields.
+    grids_shown: BTreeMap<String, world::GridFields>,
     /// Per agent, what its `/tf` and `/sightline/speeds` JSON holds at every step.
     /// Shared with the writer thread, which encodes those messages.
     agent_json: Arc<[agents::AgentJson]>,
@@ -210,6 +212,7 @@ impl<'s, W: Write + Send + 'static> Recorder<'s, W> {
             shown: BTreeSet::new(),
             fields_shown: Vec::new(),
             agents_shown: Vec::new(),
+            grids_shown: BTreeMap::new(),
             agent_json: Arc::new([]),
             ids: records::Ids::default(),
             last_states: Arc::new([]),

@@ -199,8 +199,9 @@ impl<W> Recorder<'_, W> {
         self.shown = now;
     }
 
-    /// Clears the agents (`/scene/agents`), their fields of view and every
-    /// cooperating agent's detections at `time`: the end of a point when
+    /// Clears the agents (`/scene/agents`), their fields of view, every
+    /// cooperating agent's detections and the grids (`/fusion/grid`,
+    /// `/perception/<id>/grid`) at `time`: the end of a point when
     /// another follows. `/tf` holds the last step's frames until then, so
     /// that what is locked to them stays where it was rather than gliding
     /// towards the next point's first step.
@@ -220,6 +221,7 @@ impl<W> Recorder<'_, W> {
             let topic = topic::detections(&self.agent_id(gone));
             self.publish(&topic, SCENE, time, &SceneUpdate::replace(stamp, Vec::new()));
         }
+        self.clear_grids(time);
     }
 }
 

@@ -12,6 +12,15 @@ use crate::mcap::foxglove::{Grid, Numeric, Time};
 use crate::mcap::topic;
 use crate::mcap::wire::{CellSignals, SignalsRecord};
 
+/// A grid topic's fields, in order, and their type.
+pub(super) type GridFields = (&'static [&'static str], Numeric);
+
+/// `/fusion/grid`'s fields.
+const FUSED_FIELDS: GridFields = (&["probability", "uncertainty"], Numeric::Float32);
+
+/// `/perception/<id>/grid`'s field.
+const AGENT_FIELDS: GridFields = (&["state"], Numeric::Uint8);
+
 impl<W> Recorder<'_, W> {
     /// Everything a perception world's step shows: the agents, each
     /// cooperating agent's detections, the fused grid and the agents' own grids
@@ -59,8 +68,7 @@ impl<W> Recorder<'_, W> {
             values[at + 1] = u;
         }
         let data: Vec<u8> = values.iter().flat_map(|v| v.to_le_bytes()).collect();
-        let grid = crop.grid(&grid, time, &["probability", "uncertainty"], Numeric::Float32, data);
-        self.publish_grid(topic::FUSED_GRID, time, grid);
+        self.show_grid(topic::FUSED_GRID.into(), time, FUSED_FIELDS, &crop, data);
     }
 
     /// `/perception/<id>/grid`: each cooperating agent's own grid, cropped to
@@ -81,9 +89,24 @@ impl<W> Recorder<'_, W> {
                     Observed::Own => 3,
                 };
             }
-            let grid = crop.grid(&grid, time, &["state"], Numeric::Uint8, data);
             let topic = topic::agent_grid(&self.agent_id(c.agent));
-            self.publish_grid(&topic, time, grid);
+            self.show_grid(topic, time, AGENT_FIELDS, &crop, data);
+        }
+    }
+
+    /// Writes the `crop` of the grid holding `data` on `topic`, which the
+    /// point's end clears.
+    fn show_grid(&mut self, topic: String, time: u64, fields: GridFields, crop: &Crop, data: Vec<u8>) {
+        let Some(grid) = self.grid else { return };
+        let (names, kind) = fields;
+        self.publish_grid(&topic, time, crop.grid(&grid, time, names, kind, data));
+        self.grids_shown.insert(topic, fields);
+    }
+
+    /// Clears every grid topic the point showed: a grid of no cell on each.
+    pub(super) fn clear_grids(&mut self, time: u64) {
+        for (topic, (names, kind)) in std::mem::take(&mut self.grids_shown) {
+            self.publish_grid(&topic, time, Grid::cleared(Time::from_nanos(time), names, kind));
         }
     }
 
