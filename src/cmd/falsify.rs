@@ -60,6 +60,12 @@ pub fn falsify(args: &FalsifyArgs) -> anyhow::Result<Exit> {
         eprintln!("{path}: error: nothing to falsify: the scenario has no requirements");
         return Ok(Exit::Invalid);
     }
+    if scenario.record.is_some() {
+        eprintln!(
+            "{path}: note: record: no case of the search is recorded; the section is kept in counterexample.yaml, \
+             which `sightline run` records"
+        );
+    }
     let text =
         sightline_dsl::utf8_text(&input.bytes).map_err(|_| anyhow::anyhow!("{path} was valid UTF-8 when compiled"))?;
     let Some(dir) = evidence_dirs(args.out.as_deref(), [&input], EVIDENCE_SET, args.template.as_deref())

@@ -408,3 +408,22 @@ fn a_counterexample_reads_the_imported_files_from_its_own_directory() {
     run.assert_exit(1);
     assert!(run.stdout.contains("fail GRID-PDR-01"), "{run}");
 }
+
+/// The search records no case: a `record:` section is said to be kept for
+/// the counterexample, not silently dropped.
+#[test]
+fn a_record_section_is_kept_for_the_counterexample_with_a_note() {
+    let dir = temp_dir();
+    let file = dir.path().join("recorded.yaml");
+    std::fs::write(&file, read(Path::new(SCENARIO)) + "record: {}\n").unwrap();
+    let out = dir.path().join("out");
+    let found = falsify(arg(&file), &out, &["--cases", "2"]);
+    assert!(
+        found.stderr.contains("note: record: no case of the search is recorded"),
+        "{found}"
+    );
+    // The bundled space breaks at its first case.
+    found.assert_exit(1);
+    assert!(!out.join("run.mcap").exists());
+    assert!(read(&out.join("counterexample.yaml")).contains("\nrecord:"));
+}
