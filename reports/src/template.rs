@@ -537,7 +537,7 @@ mod tests {
         let page = format!(
             "{{% block document_control %}}{{% endblock %}}{{% block banner %}}{body}{{% endblock %}}\
              {{% block provenance %}}{{% endblock %}}{{% block settings %}}{{% endblock %}}{{% block cases %}}{{% endblock %}}\
-             {{% block counterexample %}}{{% endblock %}}"
+             {{% block counterexample %}}{{% endblock %}}{{% block requirements %}}{{% endblock %}}"
         );
         custom(Page::Falsify, &[("falsify.html", &page)])?.render(&serde_json::json!({ "name": name }), &())
     }
