@@ -111,8 +111,10 @@ fn load(path: &Path, options: &Options<'_>) -> Result<Input, String> {
 /// to, the shards get the same sets of its units, so the check does not
 /// depend on the other files of the run.
 fn shard_budget(name: &str, scenario: &sightline_dsl::Scenario, shards: u32) -> Result<(), String> {
-    let mut loads = vec![0.0; shards as usize];
-    for (u, unit) in sightline_engine::units(scenario).iter().enumerate() {
+    let units = sightline_engine::units(scenario);
+    // A shard beyond the units gets none: at most one load per unit (N is the user's).
+    let mut loads = vec![0.0; units.len().min(shards as usize)];
+    for (u, unit) in units.iter().enumerate() {
         let work: f64 = unit
             .group
             .iter()

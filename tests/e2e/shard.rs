@@ -488,6 +488,8 @@ fn each_shard_of_an_uneven_sweep_is_held_to_the_limit() {
     sightline(["run", "--shard", "1/2", arg(&file), "--out", arg(&dir.path().join("o"))]).assert_exit(2);
     assert!(!dir.path().join("o").exists());
     sightline(["check", "--shards", "3", arg(&file)]).assert_exit(0);
+    // More shards than units: one unit each, judged without a load per shard.
+    sightline(["check", "--shards", "4000000000", arg(&file)]).assert_exit(0);
 }
 
 /// The urban junction cut to 70 s (the ego is served from about 50 s on),
