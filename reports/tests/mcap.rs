@@ -106,7 +106,9 @@ fn every_point_is_recorded_in_its_own_span_of_time() {
     // 6 s and a second, rounded up to a minute.
     assert_eq!(recorded, [(0, 0.0), (1, 60.0)]);
     assert_eq!(recording.counts[topic::SIGNALS], 120);
-    assert_eq!(recording.counts[topic::FUSED_GRID], 24);
+    // Twelve grids a point, and the empty grid that clears the first point's
+    // a second after its last step.
+    assert_eq!(recording.counts[topic::FUSED_GRID], 25);
     assert_eq!(recording.step_counts.len(), 2);
     for (point, steps) in &recording.step_counts {
         assert_eq!(steps.steps, 60, "point {point}");
