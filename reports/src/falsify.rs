@@ -93,6 +93,15 @@ pub(crate) fn document<'a>(f: &Falsification<'a>) -> Document<'a> {
     }
 }
 
+/// `path=value, …` of the case at `indices` of the `vary` space.
+pub fn case_values(vary: &[Vary], indices: &[u64]) -> String {
+    vary.iter()
+        .zip(indices)
+        .map(|(v, &i)| format!("{}={}", v.path, sightline_dsl::display_value(&v.value(i))))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
 /// `guided` or `random`.
 pub(crate) fn search_name(search: &Search) -> &'static str {
     if search.guided { "guided" } else { "random" }
@@ -172,15 +181,7 @@ pub fn falsify_junit(f: &Falsification<'_>) -> quick_junit::Report {
     ));
     let duration = std::time::Duration::from_secs_f64(f.execution.duration_seconds.max(0.0));
     let shown = |margin: Option<f64>| margin.map_or("none".to_string(), |m| format!("{m:?}"));
-    let values = |case: &Case| -> String {
-        scenario
-            .vary
-            .iter()
-            .zip(&case.indices)
-            .map(|(v, &i)| format!("{}={}", v.path, sightline_dsl::display_value(&v.value(i))))
-            .collect::<Vec<_>>()
-            .join(", ")
-    };
+    let values = |case: &Case| case_values(&scenario.vary, &case.indices);
     let kind = |judged: &Judged| match judged.status {
         Status::Error => NonSuccessKind::Error,
         _ => NonSuccessKind::Failure,

@@ -31,7 +31,7 @@
 pub use chart::{Chart, ChartError, Line, LinesChart, Threshold, anticipation, kde, silverman_bandwidth};
 pub use execution::{Execution, rfc3339};
 pub use export::{Export, ExportError, ExportRequest, OPENDRIVE_VERSION, OPENSCENARIO_VERSION, export};
-pub use falsify::{Falsification, falsify_json, falsify_junit};
+pub use falsify::{Falsification, case_values, falsify_json, falsify_junit};
 pub use falsify_html::falsify_html;
 pub use html::{RunPage, html};
 pub use junit::{junit, junit_xml};

@@ -13,7 +13,7 @@ use rayon::prelude::*;
 use sightline_dsl::{Options, Scenario, Vary, display_value};
 use sightline_oracles::{Score, Search};
 use sightline_reports::{
-    Execution, Falsification, Page, falsify_html, falsify_json, falsify_junit, junit_xml, sha256_hex,
+    Execution, Falsification, Page, case_values, falsify_html, falsify_json, falsify_junit, junit_xml, sha256_hex,
 };
 
 use crate::cli::{FalsifyArgs, SearchMode};
@@ -222,7 +222,7 @@ pub fn falsify(args: &FalsifyArgs) -> anyhow::Result<Exit> {
     say(format_args!(
         "FOUND {path}: {requirement} {} (margin {margin}){also} at {}; first broken by case {}, {} cases in all ({evaluations} simulations, {rate:.1}/s) -> {}",
         found.score.status.name(),
-        values(&scenario.vary, &found.indices),
+        case_values(&scenario.vary, &found.indices),
         outcome.first_counterexample.unwrap_or_default(),
         outcome.cases.len(),
         dir.display()
@@ -245,7 +245,7 @@ fn simulate_case(path: &str, text: &str, vary: &[Vary], indices: &[u64]) -> Resu
     // The errors' lines are in the case as written out, which is not kept:
     // each is named by its key instead.
     let case = sightline_dsl::compile(path, &case_text, &options).map_err(|errors| {
-        let case = values(vary, indices);
+        let case = case_values(vary, indices);
         let lines: Vec<String> = errors
             .0
             .iter()
@@ -293,13 +293,4 @@ fn imports_from(dir: &Path, scenario: &Scenario) -> anyhow::Result<Vec<(String, 
         }
     }
     Ok(settings)
-}
-
-/// `path=value, …` of one case.
-fn values(vary: &[Vary], indices: &[u64]) -> String {
-    vary.iter()
-        .zip(indices)
-        .map(|(v, &i)| format!("{}={}", v.path, display_value(&v.value(i))))
-        .collect::<Vec<_>>()
-        .join(", ")
 }
