@@ -586,13 +586,37 @@ pub fn redact_results_json(text: &str) -> String {
     let version = tool["version"].as_str().expect("tool.version is a string");
     let git = tool["git"].as_str().expect("tool.git is a string");
     assert_eq!(version, env!("CARGO_PKG_VERSION"), "tool.version");
-    assert!(!git.is_empty(), "tool.git is empty");
+    assert_build_id(git);
     let text = replace_once(
         text,
         &format!("\"version\": \"{version}\""),
         "\"version\": \"[VERSION]\"",
     );
     replace_once(&text, &format!("\"git\": \"{git}\""), "\"git\": \"[GIT]\"")
+}
+
+/// Checks that `git` names this checkout as build.rs does: `git describe`'s
+/// revision, and for a modified tree 12 hex digits of the modifications' hash.
+#[track_caller]
+fn assert_build_id(git: &str) {
+    let describe = std::process::Command::new("git")
+        .args(["describe", "--always", "--dirty", "--abbrev=12"])
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .ok()
+        .filter(|o| o.status.success())
+        .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string());
+    match describe {
+        Some(describe) if describe.ends_with("-dirty") => {
+            let hash = git.strip_prefix(&format!("{describe}-")).unwrap_or_default();
+            assert!(
+                hash.len() == 12 && hash.bytes().all(|b| b.is_ascii_hexdigit()),
+                "tool.git {git:?} does not name the modifications of {describe}"
+            );
+        }
+        Some(describe) => assert_eq!(git, describe, "tool.git"),
+        None => assert_eq!(git, "unknown", "tool.git outside a checkout"),
+    }
 }
 
 /// report.html with the tool row (name, version and git revision) redacted and

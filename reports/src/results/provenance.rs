@@ -66,7 +66,8 @@ pub struct Tool {
     pub name: String,
     /// The crate version.
     pub version: String,
-    /// `git describe` of the build (`unknown` outside a checkout).
+    /// `git describe` of the build (`unknown` outside a checkout); a build from a
+    /// modified tree adds git's hash of the modifications (`…-dirty-<12 hex>`).
     pub git: String,
 }
 
