@@ -329,3 +329,49 @@ fn routes_cross_junctions_on_the_networks_paths() {
     assert_eq!(limits.len(), 2);
     assert_relative_eq!(limits[0].0, 89.6, epsilon = 1e-9);
 }
+
+/// Reads the files from disk, with `from` replaced by `to` in the one whose
+/// name ends with `suffix`.
+fn edited(suffix: &'static str, from: &'static str, to: &'static str) -> impl Fn(&Path) -> io::Result<Vec<u8>> {
+    move |path: &Path| {
+        let bytes = disk(path)?;
+        match path.to_string_lossy().ends_with(suffix) {
+            true => Ok(String::from_utf8(bytes).unwrap().replace(from, to).into_bytes()),
+            false => Ok(bytes),
+        }
+    }
+}
+
+/// Imported objects become agents, whose ids name recording frames and topics:
+/// they follow the declared ids' rule, and are refused where they first appear.
+#[test]
+fn imported_ids_follow_the_rule_of_agent_ids() {
+    let at = "…/sumo/grid3x3.fcd.xml:194:9: error: an imported object's id names its agent, and";
+    assert_eq!(
+        errors_with(BASE, &edited(".fcd.xml", "\"veh3\"", "\"map\"")),
+        [format!(
+            "{at} `map` is the recording's world frame, the parent of every agent's; rename it in the simulation"
+        )]
+    );
+    assert_eq!(
+        errors_with(BASE, &edited(".fcd.xml", "\"veh3\"", "\"rsu/sensor0\"")),
+        [format!(
+            "{at} an id is 1 to 64 letters, digits, `-`, `_` or `.`; found \"rsu/sensor0\"; rename it in the \
+             simulation"
+        )]
+    );
+    let rsus = BASE.replace(
+        "sensor_models:",
+        "  rsus: { poi_type: tree, sensors: [around] }\nsensor_models:",
+    );
+    assert_eq!(
+        errors_with(&rsus, &edited(".poly.xml", "\"tree_0\"", "\"route1-2\"")),
+        [
+            "…/sumo/grid3x3.poly.xml:14:5: error: a roadside unit's point of interest: an imported object's id \
+             names its agent, and `route1-2` is of the form `routeI-N` the traffic a semantic world generates is \
+             named by; rename it in the simulation"
+        ]
+    );
+    // The same files as they are compile.
+    world(&rsus);
+}

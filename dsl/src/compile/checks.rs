@@ -24,6 +24,39 @@ pub(super) fn valid_id(id: &str) -> bool {
             .all(|c| c.is_ascii_alphanumeric() || matches!(c, '-' | '_' | '.'))
 }
 
+/// Why `id` cannot name an agent, if it cannot: the recording's world frame
+/// (`map`), or the form of a vehicle the semantic world's traffic generates
+/// (`routeI-N`), which would make two road users of one id.
+pub(super) fn reserved(id: &str) -> Option<&'static str> {
+    let generated = id
+        .strip_prefix("route")
+        .and_then(|rest| rest.split_once('-'))
+        .is_some_and(|(i, n)| {
+            [i, n]
+                .iter()
+                .all(|part| !part.is_empty() && part.chars().all(|c| c.is_ascii_digit()))
+        });
+    match id {
+        "map" => Some("the recording's world frame, the parent of every agent's"),
+        _ if generated => Some("of the form `routeI-N` the traffic a semantic world generates is named by"),
+        _ => None,
+    }
+}
+
+/// Why imported object `id` (a traced vehicle or person, or a roadside unit) cannot
+/// be an agent's, if it cannot: agents' ids follow the declared ones' rule
+/// ([`valid_id`], not [`reserved`]), as they name the same frames and topics.
+pub(super) fn imported_id_problem(id: &str) -> Option<String> {
+    let why = if !valid_id(id) {
+        id_rule(id)
+    } else {
+        format!("`{id}` is {}", reserved(id)?)
+    };
+    Some(format!(
+        "an imported object's id names its agent, and {why}; rename it in the simulation"
+    ))
+}
+
 /// Records an error for every id of a list that is not [`valid_id`] and a
 /// duplicate-id error for every repeated one; returns whether all are valid
 /// and unique.
@@ -53,12 +86,17 @@ pub(super) fn unique_ids<'a>(ctx: &mut Context<'_>, list: &Path, ids: impl Itera
 
 /// The error of an id that is not [`valid_id`].
 pub(super) fn invalid_id(id: &str) -> ErrorKind {
+    ErrorKind::Invalid(id_rule(id))
+}
+
+/// What an id is, and what `id` (not [`valid_id`], shown escaped and cut) is.
+fn id_rule(id: &str) -> String {
     let shown: String = id.chars().take(MAX_ID_CHARS).collect();
-    ErrorKind::Invalid(format!(
+    format!(
         "an id is 1 to {MAX_ID_CHARS} letters, digits, `-`, `_` or `.`; found \"{}{}\"",
         shown.escape_debug(),
         if shown.len() < id.len() { "…" } else { "" }
-    ))
+    )
 }
 
 /// Records an error at `list[i].id` for each declared id that something imported

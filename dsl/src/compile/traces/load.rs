@@ -16,7 +16,7 @@ use super::files::{Files, read_files};
 use super::network::{FILE_START, scene};
 use super::objects::{Body, InFile, PoiRsu, bodies, poi_rsus};
 use crate::compile::Loader;
-use crate::compile::checks::{distinct, known_names, types_among};
+use crate::compile::checks::{distinct, imported_id_problem, known_names, types_among};
 use crate::compile::context::Context;
 use crate::error::{Error, ErrorKind, Location, Warning};
 use crate::geometry::counter_clockwise;
@@ -84,6 +84,14 @@ pub(crate) fn load(ctx: &mut Context<'_>, raw: Option<&RawTraces>, loader: Optio
         fcd_file,
         imports,
     } = files;
+    let misnamed = fcd
+        .objects
+        .iter()
+        .find_map(|o| imported_id_problem(&o.id).map(|why| (o.location, why)));
+    if let Some((location, why)) = misnamed {
+        import_error(ctx, (fcd_file, location, why));
+        return None;
+    }
     let mut warnings = Vec::new();
     let bodies = match bodies(&fcd.objects, &others, &fcd_file) {
         Ok((bodies, found)) => {

@@ -12,6 +12,7 @@
 
 use std::collections::{BTreeMap, HashMap};
 
+use crate::compile::checks::imported_id_problem;
 use crate::error::{Location, Warning};
 use crate::geometry::{Polyline, Xy};
 use crate::import::sumo::{
@@ -172,6 +173,13 @@ pub(super) fn poi_rsus(
             if Some(poi.kind.as_str()) != poi_type {
                 left.entry((file, &poi.kind)).or_insert((poi.location, 0)).1 += 1;
                 continue;
+            }
+            if let Some(why) = imported_id_problem(&poi.id) {
+                return Err((
+                    file.clone(),
+                    poi.location,
+                    format!("a roadside unit's point of interest: {why}"),
+                ));
             }
             let position = match &poi.at {
                 PoiAt::Point(point) => *point,

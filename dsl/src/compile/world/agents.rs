@@ -5,7 +5,7 @@
 use std::collections::{HashMap, HashSet};
 
 use super::routes::route_path;
-use crate::compile::checks::{coordinates, known_names, unique_ids};
+use crate::compile::checks::{coordinates, known_names, reserved, unique_ids};
 use crate::compile::context::{Context, Declaration};
 use crate::compile::traces::{Imported, imported_agents, trace_motion};
 use crate::error::ErrorKind;
@@ -14,25 +14,6 @@ use crate::model::{Agent, AgentKind, Entry, Motion, Road, Sensor};
 use crate::path::Path;
 use crate::raw::RawAgent;
 use crate::raw::range;
-
-/// Why `id` cannot name an agent, if it cannot: the recording's world frame
-/// (`map`), or the form of a vehicle the semantic world's traffic generates
-/// (`routeI-N`), which would make two road users of one id.
-fn reserved(id: &str) -> Option<&'static str> {
-    let generated = id
-        .strip_prefix("route")
-        .and_then(|rest| rest.split_once('-'))
-        .is_some_and(|(i, n)| {
-            [i, n]
-                .iter()
-                .all(|part| !part.is_empty() && part.chars().all(|c| c.is_ascii_digit()))
-        });
-    match id {
-        "map" => Some("the recording's world frame, the parent of every agent's"),
-        _ if generated => Some("of the form `routeI-N` the traffic a semantic world generates is named by"),
-        _ => None,
-    }
-}
 
 /// What agents are resolved against.
 pub(super) struct Scene<'a> {
