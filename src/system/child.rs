@@ -70,16 +70,18 @@ fn lock(process: &Shared) -> MutexGuard<'_, Option<std::process::Child>> {
     process.lock().unwrap_or_else(|poisoned| poisoned.into_inner())
 }
 
+/// Kills what the process started and left running: its process group
+/// outlives it while one of them runs (on Unix; elsewhere nothing).
+fn kill_group(child: &std::process::Child) {
+    #[cfg(unix)]
+    let _ = rustix::process::kill_process_group(rustix::process::Pid::from_child(child), rustix::process::Signal::KILL);
+}
+
 /// Kills the process if it still runs and waits for it: nothing is left.
 fn reap(process: &Shared) {
     if let Some(mut child) = lock(process).take() {
-        // It may have exited already; either way `wait` reaps it. The group
-        // outlives its leader while a process it started runs.
-        #[cfg(unix)]
-        let _ = rustix::process::kill_process_group(
-            rustix::process::Pid::from_child(&child),
-            rustix::process::Signal::KILL,
-        );
+        // It may have exited already; either way `wait` reaps it.
+        kill_group(&child);
         let _ = child.kill();
         let _ = child.wait();
     }
@@ -191,11 +193,12 @@ impl Child {
 
     /// Closes its input and waits up to `limit` seconds for it to exit with
     /// status 0, its output ending with the last answer: a byte more is an
-    /// error. Whatever happens, it is reaped.
+    /// error. What it leaves running is killed when it exits, so that one
+    /// holding its output open ends it. Whatever happens, it is reaped.
     pub fn finish(mut self, limit: f64) -> Result<(), ChildError> {
         self.input = None;
         let deadline = Instant::now() + Duration::from_secs_f64(limit);
-        let mut ended = false;
+        let (mut ended, mut stragglers_killed) = (false, false);
         loop {
             if !ended {
                 match self.output.try_recv() {
@@ -206,15 +209,25 @@ impl Child {
                     Err(TryRecvError::Empty) => {}
                 }
             }
-            let status = lock(&self.process).as_mut().and_then(|c| c.try_wait().ok().flatten());
+            let mut process = lock(&self.process);
+            let status = process.as_mut().and_then(|c| c.try_wait().ok().flatten());
             let late = Instant::now() >= deadline;
             match status {
                 Some(status) if !status.success() => return Err(ChildError::Exit(describe(status))),
-                // A process it started may hold its output open past its exit.
                 Some(_) if ended || late => return Ok(()),
+                // A process it started holds its output open past its exit:
+                // killed, its end closes the output (after what it wrote).
+                Some(_) if !stragglers_killed => {
+                    if let Some(child) = process.as_ref() {
+                        kill_group(child);
+                    }
+                    stragglers_killed = true;
+                }
                 None if late => return Err(ChildError::Timeout(limit)),
-                _ => std::thread::sleep(Duration::from_millis(2)),
+                _ => {}
             }
+            drop(process);
+            std::thread::sleep(Duration::from_millis(2));
         }
     }
 }

@@ -316,6 +316,21 @@ fn a_helper_the_system_started_is_killed_with_it() {
     );
 }
 
+/// A system that exits 0 after its last answer while a helper it started
+/// holds its output open is done when it exits: the helper is killed, and the
+/// run is judged, not held up to the step timeout (60 s here).
+// See: session 20's outside check.
+#[test]
+fn a_helper_holding_the_output_open_does_not_hold_up_the_run() {
+    let helper = "sleep 35.75";
+    let script = format!("{HELLO}; {EMPTY_ANSWER}; {helper} & cat >/dev/null; exit 0");
+    let (outcome, _dir, elapsed) = run_system(&shell(&script, 60.0));
+    outcome.assert_exit(1);
+    assert!(outcome.stdout.contains("fail: SUT-REC"), "{outcome}");
+    assert!(elapsed < Duration::from_secs(20), "took {elapsed:?}");
+    assert!(!running(helper), "the helper was left running");
+}
+
 #[test]
 fn an_interrupted_run_reaps_its_system() {
     let marker = "sleep 32.75";
