@@ -217,6 +217,8 @@ fn a_semantic_run_lists_its_radio_and_its_roadside_units_sight() {
         "v2x.nlos-corner",
         "semantic.rsu-range",
         "ldm.association",
+        "world.synchronous",
+        "v2x.road-users-transparent",
     ] {
         assert!(urban.contains(&id), "{id} missing from {urban:?}");
     }

@@ -156,7 +156,8 @@ pub struct Semantic {
     pub rsus: Vec<usize>,
     /// Proximity threshold, metres.
     pub proximity: f64,
-    /// Prediction horizon T_p, seconds.
+    /// Prediction horizon T_p, seconds; also how far ahead the relevance layer
+    /// looks for a path entering an area.
     pub horizon: f64,
     /// Conflict distance d_min, metres.
     pub d_min: f64,

@@ -43,7 +43,8 @@ pub(crate) struct RawSemantic {
     #[serde(default = "default_proximity")]
     #[schemars(transform = range::EXTENT.schema())]
     pub proximity: f64,
-    /// Prediction horizon T_p, seconds: at least one step.
+    /// Prediction horizon T_p, seconds: at least one step. Also how far ahead
+    /// the relevance layer looks for a path entering an area.
     #[serde(default = "default_horizon")]
     #[schemars(transform = range::REACTION.schema())]
     pub horizon: f64,

@@ -123,6 +123,7 @@ pub(crate) fn idealisations(world: &World, semantic: &Semantic) -> Vec<Idealisat
         },
         world::ONE_RAY,
         world::OUTLINES,
+        world::SYNCHRONOUS,
         ego::EGO_SIGHT,
         rsu::RSU_MEASUREMENTS,
         world::RSU_TRANSPARENT,

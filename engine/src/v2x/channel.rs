@@ -102,6 +102,12 @@ pub(crate) const NO_NLOSV: Idealisation = Idealisation {
            buildings make a link NLOS.",
 };
 
+/// Road users never stand in a link's way.
+pub(crate) const ROAD_USERS_TRANSPARENT: Idealisation = Idealisation {
+    id: "v2x.road-users-transparent",
+    text: "Road users never block or weaken a link: only buildings make a link NLOS.",
+};
+
 /// No channel at all.
 pub(crate) const IDEAL: Idealisation = Idealisation {
     id: "v2x.ideal",
@@ -111,7 +117,7 @@ pub(crate) const IDEAL: Idealisation = Idealisation {
 /// The idealisations of a path-loss model.
 pub(crate) fn path_loss_idealisations(model: PathLossModel) -> &'static [Idealisation] {
     match model {
-        PathLossModel::Tr36885Urban => &[INDEPENDENT_SHADOWING, NLOS_CORNER],
+        PathLossModel::Tr36885Urban => &[INDEPENDENT_SHADOWING, NLOS_CORNER, ROAD_USERS_TRANSPARENT],
         PathLossModel::Tr36885Highway => &[INDEPENDENT_SHADOWING, HIGHWAY_LOS],
         PathLossModel::Tr37885Urban => &[INDEPENDENT_SHADOWING, NO_NLOSV],
         PathLossModel::Ideal => &[IDEAL],

@@ -51,4 +51,5 @@ pub(crate) use following::following_idealisations;
 pub(crate) use localization::{filter_idealisations as localization_idealisations, odometry_idealisations};
 pub(crate) use motion::ON_THEIR_WAY;
 pub(crate) use sight::{ONE_RAY, OUTLINES, PLANAR, RSU_TRANSPARENT};
+pub(crate) use simulate::SYNCHRONOUS;
 pub(crate) use simulate::idealisations;

@@ -55,7 +55,7 @@ pub(crate) const MEMORYLESS: Idealisation = Idealisation {
 pub(crate) const LOSSLESS_EXCHANGE: Idealisation = Idealisation {
     id: "world.lossless-exchange",
     text: "Every cooperating agent's grid reaches the ego at the step it is observed, complete: the scenario \
-           declares no `v2x`, so no radio (loss, delay, size limits) is modelled.",
+           declares no `v2x`, so the grids' exchange models no radio (loss, delay, size limits).",
 };
 
 /// Agents sense together.
