@@ -38,6 +38,69 @@ pub fn read_regular(path: &Path, limit: u64) -> io::Result<Vec<u8>> {
     read_limited(File::open(path)?, limit)
 }
 
+/// The bytes of the regular file `name` (segments joined by `/`) beneath the
+/// folder `root`, following no symbolic link on the way nor at the end: a link
+/// is refused as such (`` `parts` is a symbolic link``). On Unix each segment
+/// is opened from the one before without following a link, so a link swapped
+/// in between a check and the read cannot lead out of `root`.
+pub fn read_beneath(root: &Path, name: &str, limit: u64) -> io::Result<Vec<u8>> {
+    #[cfg(unix)]
+    {
+        use rustix::fs::{AtFlags, CWD, FileType, Mode, OFlags, fstat, openat, statat};
+        let mut at = openat(
+            CWD,
+            root,
+            OFlags::RDONLY | OFlags::CLOEXEC | OFlags::DIRECTORY,
+            Mode::empty(),
+        )?;
+        for (end, segment, last) in segments(name) {
+            let kind = if last { OFlags::NONBLOCK } else { OFlags::DIRECTORY };
+            let flags = OFlags::RDONLY | OFlags::CLOEXEC | OFlags::NOFOLLOW | kind;
+            at = match openat(&at, segment, flags, Mode::empty()) {
+                Ok(next) => next,
+                // Refused for being a link (ELOOP at the end, ENOTDIR on the way).
+                Err(_)
+                    if statat(&at, segment, AtFlags::SYMLINK_NOFOLLOW)
+                        .is_ok_and(|stat| FileType::from_raw_mode(stat.st_mode) == FileType::Symlink) =>
+                {
+                    return Err(linked(&name[..end]));
+                }
+                Err(errno) => return Err(errno.into()),
+            };
+        }
+        match FileType::from_raw_mode(fstat(&at)?.st_mode) {
+            FileType::RegularFile => read_limited(File::from(at), limit),
+            FileType::Directory => Err(refused("a directory, not a regular file")),
+            _ => Err(refused("a special file, not a regular file")),
+        }
+    }
+    #[cfg(not(unix))]
+    {
+        let mut path = root.to_path_buf();
+        for (end, segment, _) in segments(name) {
+            path.push(segment);
+            if std::fs::symlink_metadata(&path)?.file_type().is_symlink() {
+                return Err(linked(&name[..end]));
+            }
+        }
+        read_regular(&path, limit)
+    }
+}
+
+/// Each segment of `name`, with where it ends in `name` and whether it is the last.
+fn segments(name: &str) -> impl Iterator<Item = (usize, &str, bool)> {
+    let mut end = 0;
+    name.split('/').map(move |segment| {
+        end += segment.len() + usize::from(end > 0);
+        (end, segment, end == name.len())
+    })
+}
+
+/// The error of a path through a symbolic link, at `prefix`.
+fn linked(prefix: &str) -> io::Error {
+    refused(&format!("`{prefix}` is a symbolic link, never read through"))
+}
+
 /// The bytes of standard input (`-` on the command line), within `limit`;
 /// refused when it is a terminal (nothing was piped in, and a read would wait
 /// for typing) or a directory (`< dir`).
@@ -153,5 +216,36 @@ mod tests {
     fn a_device_is_refused_without_reading_it() {
         let error = read_regular(Path::new("/dev/zero"), TEXT_LIMIT).unwrap_err();
         assert_eq!(error.to_string(), "a device, not a regular file");
+    }
+
+    /// Beneath a folder, a file is read only where it is: a link at the end or
+    /// on the way is refused by name; a FIFO is refused without waiting for a
+    /// writer; a missing file is `NotFound`.
+    #[cfg(unix)]
+    #[test]
+    fn a_file_beneath_a_folder_is_read_through_no_link() {
+        let dir = tempfile::tempdir().unwrap();
+        let (root, outside) = (dir.path().join("set"), dir.path().join("outside"));
+        std::fs::create_dir_all(root.join("parts")).unwrap();
+        std::fs::create_dir_all(&outside).unwrap();
+        std::fs::write(root.join("parts/a.html"), "A").unwrap();
+        std::fs::write(outside.join("b.html"), "B").unwrap();
+        std::os::unix::fs::symlink(outside.join("b.html"), root.join("parts/b.html")).unwrap();
+        std::os::unix::fs::symlink(&outside, root.join("linked")).unwrap();
+        assert_eq!(read_beneath(&root, "parts/a.html", TEXT_LIMIT).unwrap(), b"A");
+        for (name, link) in [("parts/b.html", "parts/b.html"), ("linked/b.html", "linked")] {
+            let error = read_beneath(&root, name, TEXT_LIMIT).unwrap_err();
+            assert_eq!(
+                error.to_string(),
+                format!("`{link}` is a symbolic link, never read through")
+            );
+        }
+        assert!(rustix::fs::mkfifoat(rustix::fs::CWD, root.join("fifo"), rustix::fs::Mode::RUSR).is_ok());
+        let error = read_beneath(&root, "fifo", TEXT_LIMIT).unwrap_err();
+        assert_eq!(error.to_string(), "a special file, not a regular file");
+        let error = read_beneath(&root, "parts", TEXT_LIMIT).unwrap_err();
+        assert_eq!(error.to_string(), "a directory, not a regular file");
+        let error = read_beneath(&root, "parts/missing.html", TEXT_LIMIT).unwrap_err();
+        assert_eq!(error.kind(), ErrorKind::NotFound);
     }
 }
