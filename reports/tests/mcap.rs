@@ -186,3 +186,37 @@ fn steps_that_do_not_add_up_to_the_outcome_are_refused() {
         "a point count that differs is refused"
     );
 }
+
+/// A cooperating agent that leaves the scene mid-point observes nothing
+/// more: its grid is cleared at the first step it holds no cell, not left on
+/// screen for the rest of the point (session 20's outside check).
+#[test]
+fn a_grid_that_holds_nothing_is_cleared() {
+    // The car reaches the end of its 34.7 m road after about 4.3 s of the 6.
+    let text = WORLD.replace(
+        "route: [arm_in, ring, east_out], start: { offset: 20 }",
+        "route: [east_out], start: { offset: 0 }",
+    );
+    let scenario = compile("t.yaml", &text, &Options::default()).unwrap_or_else(|e| panic!("{e}"));
+    let (_, bytes) = recorded(&scenario);
+    let summary = mcap::Summary::read(&bytes).unwrap().expect("a summary");
+    let channel = summary
+        .channels
+        .values()
+        .find(|c| c.topic == topic::agent_grid("cav"))
+        .expect("the car's grid")
+        .id;
+    let widths: Vec<u64> = mcap::MessageStream::new(&bytes)
+        .unwrap()
+        .map(|m| m.unwrap())
+        .filter(|m| m.channel.id == channel)
+        .map(|m| {
+            let grid: serde_json::Value = serde_json::from_slice(&m.data).unwrap();
+            grid["column_count"].as_u64().unwrap()
+        })
+        .collect();
+    // Grids while it drives, then one of no cell; nothing after it.
+    let (last, shown) = widths.split_last().expect("grids of the car");
+    assert!(!shown.is_empty() && shown.iter().all(|&w| w > 0), "{widths:?}");
+    assert_eq!(*last, 0, "{widths:?}");
+}

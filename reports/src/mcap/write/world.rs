@@ -2,6 +2,8 @@
 //! cooperating agent's own grid, cropped to the cells they hold, and the step's
 //! cell signals (`/sightline/signals`), its counts added to the running sums.
 
+use std::collections::BTreeMap;
+
 use sightline_dsl::{Grid as CellGrid, Metric};
 use sightline_engine::outcome::{CellTally, WorldMetrics};
 use sightline_engine::trace::{CooperatorStep, FusedGrid, Measured, Observed, WorldStep};
@@ -31,6 +33,12 @@ impl<W> Recorder<'_, W> {
         self.last = time;
         self.publish_agents(time, step.step, step.agents);
         self.publish_detections(time, step.cooperators);
+        let grid_step = self.record.grids_at(step.step);
+        let earlier = if grid_step {
+            std::mem::take(&mut self.grids_shown)
+        } else {
+            BTreeMap::new()
+        };
         let cells = step.measured.and_then(|measured| {
             let fused = measured.fused.first()?;
             if let Some(grid) = &fused.grid {
@@ -38,9 +46,10 @@ impl<W> Recorder<'_, W> {
             }
             Some(self.cell_signals(&measured, &fused.cells))
         });
-        if self.record.agent_grids && self.record.grids_at(step.step) {
+        if self.record.agent_grids && grid_step {
             self.publish_agent_grids(time, step.cooperators);
         }
+        self.clear_grids_of(earlier, time);
         if self.joint() {
             self.pending_cells = cells;
             return;
@@ -105,8 +114,18 @@ impl<W> Recorder<'_, W> {
 
     /// Clears every grid topic the point showed: a grid of no cell on each.
     pub(super) fn clear_grids(&mut self, time: u64) {
-        for (topic, (names, kind)) in std::mem::take(&mut self.grids_shown) {
-            self.publish_grid(&topic, time, Grid::cleared(Time::from_nanos(time), names, kind));
+        let shown = std::mem::take(&mut self.grids_shown);
+        self.clear_grids_of(shown, time);
+    }
+
+    /// Clears each of the grid topics `earlier` that no grid was shown on since
+    /// (an agent that left the scene, a grid holding no cell), so that nothing
+    /// of an earlier step's grid stays on screen.
+    fn clear_grids_of(&mut self, earlier: BTreeMap<String, GridFields>, time: u64) {
+        for (topic, (names, kind)) in earlier {
+            if !self.grids_shown.contains_key(&topic) {
+                self.publish_grid(&topic, time, Grid::cleared(Time::from_nanos(time), names, kind));
+            }
         }
     }
 
