@@ -42,11 +42,13 @@ pub(super) fn document(results: &Results, scenario: &Scenario) -> DocumentView {
 }
 
 /// The document-control table of a page with id `id`, dated the day of
-/// `started` (RFC 3339), with the scenario's `document` section.
+/// `started` (RFC 3339), with the scenario's `document` section (a field left
+/// out or blank shows as not given).
 pub(crate) fn control(id: String, started: &str, d: &Document) -> DocumentView {
-    let given = |v: &Option<String>| {
-        v.clone()
-            .unwrap_or_else(|| "— (not given: `document` in the scenario)".into())
+    // A field given blank (`version: ""`) says no more than one left out.
+    let given = |v: &Option<String>| match v {
+        Some(v) if !v.trim().is_empty() => v.clone(),
+        _ => "— (not given: `document` in the scenario)".into(),
     };
     let date = started.get(..10).unwrap_or_default().to_string();
     DocumentView {
@@ -221,15 +223,183 @@ pub(super) fn selftest() -> SelftestView {
 pub(super) struct AppendixView {
     path: String,
     sha256: String,
+    /// How many lines, whatever ends them.
     lines: usize,
+    /// The file's text, exactly.
     text: String,
+    /// The text line by line, each with its line end, so that a page can show
+    /// every end as the file has it.
+    content: Vec<TextLine>,
+    /// The line ends in words: `LF`, `CR LF`, `CR`, or each kind counted.
+    endings: String,
+    /// Whether the text starts with a byte-order mark (U+FEFF).
+    bom: bool,
+}
+
+/// One line of a text and what ends it.
+#[derive(Debug, PartialEq, Serialize)]
+struct TextLine {
+    text: String,
+    /// `null` for a last line that no line break ends.
+    end: Option<LineEnd>,
+}
+
+/// A line break as a file writes it.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[serde(rename_all = "lowercase")]
+enum LineEnd {
+    Lf,
+    CrLf,
+    Cr,
+}
+
+impl LineEnd {
+    fn bytes(self) -> &'static str {
+        match self {
+            LineEnd::Lf => "\n",
+            LineEnd::CrLf => "\r\n",
+            LineEnd::Cr => "\r",
+        }
+    }
+
+    fn name(self) -> &'static str {
+        match self {
+            LineEnd::Lf => "LF",
+            LineEnd::CrLf => "CR LF",
+            LineEnd::Cr => "CR",
+        }
+    }
 }
 
 pub(super) fn appendix(results: &Results, text: &str) -> AppendixView {
+    let content = text_lines(text);
     AppendixView {
         path: results.scenario.path.clone(),
         sha256: results.scenario.sha256.clone(),
-        lines: text.lines().count(),
+        lines: content.len(),
         text: text.to_string(),
+        endings: endings(&content),
+        content,
+        bom: text.starts_with('\u{feff}'),
+    }
+}
+
+/// `text` cut after each line break (LF, CR LF or a lone CR): the lines and
+/// their ends hold every character of `text`, in order.
+fn text_lines(text: &str) -> Vec<TextLine> {
+    let mut lines = Vec::new();
+    let mut rest = text;
+    while !rest.is_empty() {
+        let (line, tail) = rest.split_at(rest.find(['\r', '\n']).unwrap_or(rest.len()));
+        let end = [LineEnd::CrLf, LineEnd::Lf, LineEnd::Cr]
+            .into_iter()
+            .find(|end| tail.starts_with(end.bytes()));
+        lines.push(TextLine {
+            text: line.to_string(),
+            end,
+        });
+        rest = &tail[end.map_or(0, |e| e.bytes().len())..];
+    }
+    lines
+}
+
+/// The line ends of `lines` in words: one kind by its name, several each
+/// counted, and a last line without one said.
+fn endings(lines: &[TextLine]) -> String {
+    let mut kinds: Vec<(LineEnd, usize)> = Vec::new();
+    for end in lines.iter().filter_map(|line| line.end) {
+        match kinds.iter_mut().find(|(kind, _)| *kind == end) {
+            Some((_, n)) => *n += 1,
+            None => kinds.push((end, 1)),
+        }
+    }
+    let mut words = match kinds.as_slice() {
+        [] => "no line break".to_string(),
+        [(end, _)] => format!("{} on every line", end.name()),
+        _ => {
+            let counted: Vec<String> = kinds.iter().map(|(end, n)| format!("{n} {}", end.name())).collect();
+            format!("mixed: {}", counted.join(", "))
+        }
+    };
+    if lines.len() > 1 && lines.last().is_some_and(|line| line.end.is_none()) {
+        words.push_str(if kinds.len() == 1 {
+            " but the last, which has none"
+        } else {
+            "; the last line has none"
+        });
+    }
+    words
+}
+
+#[cfg(test)]
+mod tests {
+    use proptest::prelude::*;
+
+    use super::*;
+
+    fn line(text: &str, end: Option<LineEnd>) -> TextLine {
+        TextLine { text: text.into(), end }
+    }
+
+    #[test]
+    fn a_document_field_left_out_or_blank_is_not_given() {
+        let document = Document {
+            version: Some(String::new()),
+            author: Some("  ".into()),
+            reviewer: None,
+            approver: Some("K. Lee".into()),
+            ..Document::default()
+        };
+        let view = control("SL-0".into(), "2026-11-28T00:00:00Z", &document);
+        let row = |name: &str| view.control.iter().find(|(n, _)| *n == name).map(|(_, v)| v.as_str());
+        let not_given = Some("— (not given: `document` in the scenario)");
+        assert_eq!(
+            ["Version", "Author", "Reviewer", "Approver", "Date"].map(row),
+            [not_given, not_given, not_given, Some("K. Lee"), Some("2026-11-28")]
+        );
+    }
+
+    #[test]
+    fn every_kind_of_line_break_ends_a_line() {
+        use LineEnd::{Cr, CrLf, Lf};
+        assert_eq!(text_lines(""), vec![]);
+        assert_eq!(text_lines("\na: 1\n"), vec![line("", Some(Lf)), line("a: 1", Some(Lf))]);
+        assert_eq!(
+            text_lines("a\r\nb\r\n"),
+            vec![line("a", Some(CrLf)), line("b", Some(CrLf))]
+        );
+        assert_eq!(text_lines("a\rb\r"), vec![line("a", Some(Cr)), line("b", Some(Cr))]);
+        // A CR then an LF with a line between is two ends, not one.
+        assert_eq!(
+            text_lines("a\r\r\nb"),
+            vec![line("a", Some(Cr)), line("", Some(CrLf)), line("b", None)]
+        );
+    }
+
+    #[test]
+    fn the_line_ends_are_said_in_words() {
+        let words = |text: &str| endings(&text_lines(text));
+        assert_eq!(words("a\nb\n"), "LF on every line");
+        assert_eq!(words("a\r\nb\r\n"), "CR LF on every line");
+        assert_eq!(words("a\rb\r"), "CR on every line");
+        assert_eq!(words("a\nb\r\nc\n"), "mixed: 2 LF, 1 CR LF");
+        assert_eq!(words("a\nb"), "LF on every line but the last, which has none");
+        assert_eq!(words("a\nb\r\nc"), "mixed: 1 LF, 1 CR LF; the last line has none");
+        assert_eq!(words("a"), "no line break");
+    }
+
+    proptest! {
+        /// The lines and their ends, joined, are the text again.
+        #[test]
+        fn the_lines_hold_the_text_exactly(text in "[a\r\n ]{0,40}") {
+            let lines = text_lines(&text);
+            let joined: String = lines
+                .iter()
+                .map(|l| format!("{}{}", l.text, l.end.map_or("", LineEnd::bytes)))
+                .collect();
+            prop_assert_eq!(joined, text.clone());
+            prop_assert!(lines.iter().all(|l| !l.text.contains(['\r', '\n'])));
+            prop_assert!(lines.iter().rev().skip(1).all(|l| l.end.is_some()));
+        }
     }
 }
