@@ -68,6 +68,26 @@ fn the_document_id_does_not_depend_on_how_the_scenario_is_named() {
     assert!(ids.iter().all(|id| *id == ids[0]), "{ids:?}");
 }
 
+/// The falsification report's id does not depend on the spelling either: its
+/// falsify.json names the scenario and the command as typed.
+#[test]
+fn the_falsify_document_id_does_not_depend_on_how_the_scenario_is_named() {
+    let tmp = temp_dir();
+    let scenario = "scenarios/urban-falsify.yaml";
+    let ids: Vec<String> = [scenario.to_string(), format!("./{scenario}")]
+        .iter()
+        .enumerate()
+        .map(|(k, name)| {
+            let out = tmp.path().join(k.to_string());
+            let search = sightline(["falsify", name.as_str(), "--cases", "2", "--out", arg(&out)]);
+            assert!(matches!(search.code, Some(0 | 1)), "{search}");
+            assert!(read(&out.join("falsify.json")).contains(name.as_str()));
+            document_id(&out)
+        })
+        .collect();
+    assert_eq!(ids[0], ids[1]);
+}
+
 /// One byte changed in the scenario (in a comment, which changes no result)
 /// or in a file it imports gives another id; the same bytes under another
 /// name give the same id.

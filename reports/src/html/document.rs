@@ -229,8 +229,9 @@ fn world_scope(world: &World, system: Option<&SystemUnderTest>, rows: &mut Vec<(
             if others.is_empty() {
                 "the ego's own only: no other agent cooperates".into()
             } else {
+                let whose = if others.len() == 1 { "agent's" } else { "agents'" };
                 format!(
-                    "the ego's and {} cooperating agents': {}",
+                    "the ego's and {} cooperating {whose}: {}",
                     others.len(),
                     others.join(", ")
                 )
