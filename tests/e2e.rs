@@ -121,6 +121,10 @@ mod stdin;
 #[path = "e2e/template.rs"]
 mod template;
 
+// report.html as a controlled document: its id by content, its scope per kind of world.
+#[path = "e2e/report.rs"]
+mod report;
+
 // report.html in headless Chromium: every bundled report offline, banner and
 // traceability as results.json says, markup in the scenario's text shown as text.
 #[path = "e2e/browser.rs"]

@@ -192,16 +192,31 @@ impl<'a> View<'a> {
 }
 
 /// The falsification report's document control: its id is [`content_id`] of
-/// falsify.json with the tool and the scenario's hash, so that another tool or
-/// scenario gives another id.
+/// falsify.json without the scenario's path and the command (which spell the
+/// path as typed), with what they stood for by content instead: the tool, the
+/// hashes of the scenario and of the files it imports, and the search's
+/// limits. So the same search of the same files gives the same id however the
+/// file was named, and another tool, file or limit gives another.
 fn document_control(f: &Falsification<'_>) -> DocumentView {
     let mut content = serde_json::to_value(document(f)).expect("falsify.json serializes");
     if let Some(object) = content.as_object_mut() {
+        object.remove("scenario");
+        object.remove("command");
         object.insert(
             "tool".into(),
             serde_json::to_value(f.tool).expect("the tool serializes"),
         );
         object.insert("scenario_sha256".into(), f.scenario_sha256.into());
+        let imports: Vec<String> = f.scenario.imports.iter().map(|i| crate::hex(&i.sha256)).collect();
+        object.insert("imports_sha256".into(), imports.into());
+        object.insert(
+            "limits".into(),
+            serde_json::json!({
+                "cases": f.search.cases,
+                "shrink_cases": f.search.shrink_cases,
+                "budget": f.budget,
+            }),
+        );
     }
     control(content_id(content), &f.execution.started, &f.scenario.document)
 }

@@ -17,7 +17,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use crate::bundled::{Bundled, every_run};
-use crate::support::{FAILING, arg, read, read_json, root, sightline};
+use crate::support::{FAILING, arg, read, read_json, root, sha256_hex, sightline};
 
 /// Names a Python with Playwright; `.ci/run` sets it.
 const PYTHON_VAR: &str = "SIGHTLINE_BROWSER_PYTHON";
@@ -244,6 +244,32 @@ fn a_long_url_in_a_requirement_breaks_within_a4() {
     std::fs::write(&scenario, text).unwrap();
     let results = run_and_open(&python, scenario.to_str().unwrap());
     assert!(results["requirements"].to_string().contains(url));
+}
+
+/// The appendix is the scenario file to the character as the browser parses
+/// the page: a file that starts with blank lines (a `<pre>` drops the newline
+/// right after its tag), one with CR LF line ends and one with CR alone (the
+/// HTML parser turns a written CR into LF) each come back from the
+/// appendix's text content exactly, the file whose SHA-256 the report gives.
+#[test]
+fn the_appendix_is_the_scenario_file_character_for_character() {
+    let Some(python) = python() else { return };
+    let text = read(&root().join("tests/fixtures/valid/small-field.yaml"));
+    assert!(text.ends_with('\n') && !text.contains('\r'));
+    let dir = page_dir("appendix-scenarios");
+    std::fs::create_dir_all(&dir).unwrap();
+    for (name, file) in [
+        ("appendix-blank-lines", format!("\n\n{text}")),
+        ("appendix-crlf", text.replace('\n', "\r\n")),
+        ("appendix-cr", text.replace('\n', "\r")),
+    ] {
+        let scenario = dir.join(format!("{name}.yaml"));
+        std::fs::write(&scenario, &file).unwrap();
+        let results = run(scenario.to_str().unwrap());
+        assert_eq!(results["scenario"]["sha256"], sha256_hex(file.as_bytes()), "{name}");
+        let page = open(&python, &page_dir(name));
+        assert_eq!(page["appendix"].as_str(), Some(file.as_str()), "{name}");
+    }
 }
 
 /// The report of `sightline falsify` (#18): it opens offline, carries its

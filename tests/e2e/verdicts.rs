@@ -216,7 +216,7 @@ fn the_measured_column_says_what_it_holds() {
     let html = unescape_html(&read(&out.join("report.html")));
     // The failing requirement in the banner, at its point, with its numbers.
     assert!(html.contains(
-        r##"<a href="#req-NOISE-ACC-01" class="id">NOISE-ACC-01</a> fail at field.masses.gamma=30: measured 0.9812 (value over n = 1600 cells), threshold ≥ 0.995, margin -0.01375, n = 1,600.</li>"##
+        r##"<a href="#req-NOISE-ACC-01" class="id">NOISE-ACC-01</a> fail at field.masses.gamma=30: measured 0.9812 (value over n = 1600 cells), threshold ≥ 0.995, margin -0.01375, n = 1600.</li>"##
     ), "{html}");
     assert!(html.contains(r#"<td class="num">0.9812<div class="what">value over n = 1600 cells</div></td>"#));
     // Each point's details list every metric with its n.

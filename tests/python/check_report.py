@@ -11,7 +11,7 @@ verdict banner (#verdict) or, but for the report of `sightline falsify`
 (--falsify), the traceability table (#traceability). Otherwise it prints
 (exit 0): the document title, the heading, the document-control rows, the
 banner's verdict and text, the traceability table's rows as cell texts, the
-number of script elements and of elements with an inline event handler, and
+scenario appendix's text content (null without one), the number of script elements and of elements with an inline event handler, and
 the globals the page defines beyond a blank page's (a script that ran would
 leave some). Chromium is Debian's, driven by Playwright, started
 without a sandbox and without its own background traffic; nothing is
@@ -65,6 +65,7 @@ READ_PAGE = """() => {
     traceability: table && table.checkVisibility()
       ? Array.from(table.tBodies[0].rows, (row) => Array.from(row.cells, text))
       : null,
+    appendix: document.querySelector("pre.scenario")?.textContent ?? null,
     scripts: document.scripts.length,
     handlers: Array.from(document.querySelectorAll("*"))
       .filter((element) => Array.from(element.attributes).some((a) => a.name.startsWith("on")))

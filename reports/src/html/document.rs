@@ -3,8 +3,10 @@
 //! scope and operational design domain of the scenario, the result of the
 //! tool's self-test run in this process, and the scenario file verbatim.
 
+use std::collections::HashMap;
+
 use serde::Serialize;
-use sightline_dsl::{Document, Experiment, Scenario, Setup};
+use sightline_dsl::{AgentKind, Document, Experiment, Scenario, Setup, SystemUnderTest, World};
 
 use super::format::number;
 use crate::results::Results;
@@ -31,9 +33,35 @@ pub(crate) fn content_id(mut content: serde_json::Value) -> String {
     format!("SL-{}", &sha256_hex(text.as_bytes())[..16])
 }
 
-/// The document id of a run's report: [`content_id`] of its results.json.
+/// The document id of a run's report: [`content_id`] of its results.json
+/// with every file the run read named by its content, not its path: each
+/// string that is an input's path as results.json writes it (the scenario's
+/// `path`, each input's `path`, a warning's `file`) counts as
+/// `sha256:` and that input's hash. How the scenario was named on the
+/// command line (`sc/x.yaml`, `./sc/x.yaml`, an absolute path, another
+/// folder) then changes nothing; a changed byte of any input does.
 pub(super) fn document_id(results: &Results) -> String {
-    content_id(serde_json::to_value(results).expect("results serialize to JSON"))
+    let mut content = serde_json::to_value(results).expect("results serialize to JSON");
+    let hashes: HashMap<&str, &str> = (results.inputs.iter())
+        .map(|input| (input.path.as_str(), input.sha256.as_str()))
+        .collect();
+    name_by_content(&mut content, &hashes);
+    content_id(content)
+}
+
+/// Replaces every string of `value` that is a key of `hashes` (a path) by
+/// `sha256:` and its value.
+fn name_by_content(value: &mut serde_json::Value, hashes: &HashMap<&str, &str>) {
+    match value {
+        serde_json::Value::String(text) => {
+            if let Some(hash) = hashes.get(text.as_str()) {
+                *text = format!("sha256:{hash}");
+            }
+        }
+        serde_json::Value::Array(items) => items.iter_mut().for_each(|item| name_by_content(item, hashes)),
+        serde_json::Value::Object(fields) => fields.values_mut().for_each(|field| name_by_content(field, hashes)),
+        _ => {}
+    }
 }
 
 /// A run's document control.
@@ -42,11 +70,13 @@ pub(super) fn document(results: &Results, scenario: &Scenario) -> DocumentView {
 }
 
 /// The document-control table of a page with id `id`, dated the day of
-/// `started` (RFC 3339), with the scenario's `document` section.
+/// `started` (RFC 3339), with the scenario's `document` section (a field left
+/// out or blank shows as not given).
 pub(crate) fn control(id: String, started: &str, d: &Document) -> DocumentView {
-    let given = |v: &Option<String>| {
-        v.clone()
-            .unwrap_or_else(|| "— (not given: `document` in the scenario)".into())
+    // A field given blank (`version: ""`) says no more than one left out.
+    let given = |v: &Option<String>| match v {
+        Some(v) if !v.trim().is_empty() => v.clone(),
+        _ => "— (not given: `document` in the scenario)".into(),
     };
     let date = started.get(..10).unwrap_or_default().to_string();
     DocumentView {
@@ -106,65 +136,7 @@ pub(super) fn scope(scenario: &Scenario) -> Vec<(&'static str, String)> {
             };
             rows.push(("Sensors", format!("{sensors} fixed, range {} m", number(field.range))));
         }
-        Experiment::World(world) => {
-            let kind = if world.semantic.is_some() {
-                "roadside units' semantic pipeline for an assisted ego (seed 002)"
-            } else {
-                "collective perception of connected vehicles (seed 000)"
-            };
-            rows.push(("Experiment", kind.into()));
-            rows.push((
-                "Time",
-                format!(
-                    "{} s in steps of {} s",
-                    number(world.steps as f64 * world.step),
-                    number(world.step)
-                ),
-            ));
-            rows.push((
-                "Road network",
-                format!("{} roads, {} occluders", world.roads.len(), world.occluders.len()),
-            ));
-            let mut kinds: Vec<(&str, usize)> = Vec::new();
-            for agent in &world.agents {
-                match kinds.iter_mut().find(|(k, _)| *k == agent.kind.name()) {
-                    Some((_, n)) => *n += 1,
-                    None => kinds.push((agent.kind.name(), 1)),
-                }
-            }
-            let agents: Vec<String> = kinds.iter().map(|(k, n)| format!("{n} {k}")).collect();
-            rows.push(("Road users and units", agents.join(", ")));
-            if let Some(traffic) = &world.traffic {
-                let vehicles = traffic
-                    .vehicles
-                    .as_ref()
-                    .map(|v| format!("vehicles {} per km", number(v.density_per_km)));
-                let pedestrians = traffic
-                    .pedestrians
-                    .as_ref()
-                    .map(|p| format!("pedestrians {} per minute", number(p.per_minute)));
-                let parts: Vec<String> = vehicles.into_iter().chain(pedestrians).collect();
-                rows.push(("Generated traffic", parts.join(", ")));
-            }
-            let radio = world.semantic.is_some() || world.perception.as_ref().is_some_and(|p| p.messages.is_some());
-            rows.push((
-                "V2X",
-                if radio {
-                    let v = &world.v2x;
-                    let model = serde_json::to_value(v.channel.model)
-                        .ok()
-                        .and_then(|m| m.as_str().map(str::to_string))
-                        .unwrap_or_default();
-                    format!(
-                        "channel {model}, penetration {}, latency {} s",
-                        number(v.penetration),
-                        number(v.latency)
-                    )
-                } else {
-                    "no radio: cooperating agents' grids reach the ego whole and at once".into()
-                },
-            ));
-        }
+        Experiment::World(world) => world_scope(world, scenario.system_under_test.as_ref(), &mut rows),
     }
     rows.push((
         "Sweep",
@@ -181,6 +153,164 @@ pub(super) fn scope(scenario: &Scenario) -> Vec<(&'static str, String)> {
     ));
     rows.push(("Configurations", scenario.points.len().to_string()));
     rows
+}
+
+/// The scope rows of a world: what it runs (collective perception, the
+/// semantic pipeline or both, a system under test), its time, roads and road
+/// users, who shares a grid, which units run the pipeline, and the radio of
+/// each.
+fn world_scope(world: &World, system: Option<&SystemUnderTest>, rows: &mut Vec<(&'static str, String)>) {
+    let ids = |agents: &[usize]| -> Vec<&str> { agents.iter().map(|&a| world.agents[a].id.as_str()).collect() };
+    let experiment = match (&world.perception, &world.semantic) {
+        (Some(_), Some(_)) => {
+            "joint world: collective perception (seed 000: the ego's grid fused from its own and the cooperating \
+             agents' grids) and the roadside units' semantic pipeline (seed 002), on one scene, for one ego"
+        }
+        (Some(_), None) => {
+            "collective perception (seed 000): the ego's grid fused from its own and the cooperating agents' grids"
+        }
+        _ => "roadside units' semantic pipeline for an assisted ego (seed 002)",
+    };
+    rows.push(("Experiment", experiment.into()));
+    let ego = world
+        .perception
+        .as_ref()
+        .map(|p| p.ego)
+        .or(world.semantic.as_ref().map(|s| s.ego));
+    if let Some(ego) = ego {
+        rows.push(("Ego", world.agents[ego].id.clone()));
+    }
+    if let Some(system) = system {
+        rows.push((
+            "System under test",
+            format!(
+                "`{}` over ASAM OSI, on sensors {} (by index) of {}, matching gate {} m",
+                system.name(),
+                system
+                    .sensors
+                    .iter()
+                    .map(usize::to_string)
+                    .collect::<Vec<_>>()
+                    .join(", "),
+                system.agent_id,
+                number(system.gate)
+            ),
+        ));
+    }
+    rows.push((
+        "Time",
+        format!(
+            "{} s in steps of {} s",
+            number(world.steps as f64 * world.step),
+            number(world.step)
+        ),
+    ));
+    rows.push((
+        "Road network",
+        format!("{} roads, {} occluders", world.roads.len(), world.occluders.len()),
+    ));
+    rows.push(("Road users and units", road_users(world)));
+    if let Some(traffic) = &world.traffic {
+        let vehicles = traffic
+            .vehicles
+            .as_ref()
+            .map(|v| format!("vehicles {} per km", number(v.density_per_km)));
+        let pedestrians = traffic
+            .pedestrians
+            .as_ref()
+            .map(|p| format!("pedestrians {} per minute", number(p.per_minute)));
+        let parts: Vec<String> = vehicles.into_iter().chain(pedestrians).collect();
+        rows.push(("Generated traffic", parts.join(", ")));
+    }
+    if let Some(perception) = &world.perception {
+        let others = ids(&perception.cooperating[1..]);
+        rows.push((
+            "Grids fused",
+            if others.is_empty() {
+                "the ego's own only: no other agent cooperates".into()
+            } else {
+                let whose = if others.len() == 1 { "agent's" } else { "agents'" };
+                format!(
+                    "the ego's and {} cooperating {whose}: {}",
+                    others.len(),
+                    others.join(", ")
+                )
+            },
+        ));
+        rows.push((
+            "V2X, grids",
+            match &perception.messages {
+                Some(m) => format!(
+                    "over the radio: {}, {} Hz messages of at most {} bytes, evidence dropped after {} s",
+                    channel(world),
+                    number(m.rate_hz),
+                    m.max_bytes,
+                    number(m.max_age)
+                ),
+                None => "no radio: cooperating agents' grids reach the ego whole and at once".into(),
+            },
+        ));
+    }
+    if let Some(semantic) = &world.semantic {
+        rows.push((
+            "Semantic pipeline",
+            format!("run by {}", ids(&semantic.rsus).join(", ")),
+        ));
+        let connected = if world.perception.is_some() {
+            "; generated and imported road users are not connected".to_string()
+        } else if world.traffic.as_ref().is_some_and(|t| t.vehicles.is_some()) || world.imported > 0 {
+            format!(
+                "; penetration {} (the share of generated and imported vehicles connected)",
+                number(world.v2x.penetration)
+            )
+        } else {
+            String::new()
+        };
+        rows.push(("V2X, pipeline", format!("{}{connected}", channel(world))));
+    }
+}
+
+/// A world's radio channel in words: its path-loss model and latency.
+fn channel(world: &World) -> String {
+    let model = serde_json::to_value(world.v2x.channel.model)
+        .ok()
+        .and_then(|m| m.as_str().map(str::to_string))
+        .unwrap_or_default();
+    format!("channel {model}, latency {} s", number(world.v2x.latency))
+}
+
+/// The road users and units of a world by kind, in order of first
+/// appearance (`3 cars, 1 roadside unit`), and how many replay a trace.
+fn road_users(world: &World) -> String {
+    let mut kinds: Vec<(AgentKind, usize)> = Vec::new();
+    for agent in &world.agents {
+        match kinds.iter_mut().find(|(k, _)| *k == agent.kind) {
+            Some((_, n)) => *n += 1,
+            None => kinds.push((agent.kind, 1)),
+        }
+    }
+    let mut words = kinds
+        .iter()
+        .map(|&(kind, n)| format!("{n} {}", kind_words(kind, n)))
+        .collect::<Vec<_>>()
+        .join(", ");
+    if world.imported > 0 {
+        words.push_str(&format!(" ({} of them imported from traces)", world.imported));
+    }
+    words
+}
+
+/// A kind of road user or unit as a count of `n` of them says it.
+fn kind_words(kind: AgentKind, n: usize) -> String {
+    let one = match kind {
+        AgentKind::Rsu => "roadside unit",
+        other => other.name(),
+    };
+    match (n, kind) {
+        (1, _) => one.into(),
+        (_, AgentKind::Bus) => "buses".into(),
+        _ => format!("{one}s"),
+    }
 }
 
 /// The tool's self-test, run in this process: every known answer of the
@@ -221,15 +351,183 @@ pub(super) fn selftest() -> SelftestView {
 pub(super) struct AppendixView {
     path: String,
     sha256: String,
+    /// How many lines, whatever ends them.
     lines: usize,
+    /// The file's text, exactly.
     text: String,
+    /// The text line by line, each with its line end, so that a page can show
+    /// every end as the file has it.
+    content: Vec<TextLine>,
+    /// The line ends in words: `LF`, `CR LF`, `CR`, or each kind counted.
+    endings: String,
+    /// Whether the text starts with a byte-order mark (U+FEFF).
+    bom: bool,
+}
+
+/// One line of a text and what ends it.
+#[derive(Debug, PartialEq, Serialize)]
+struct TextLine {
+    text: String,
+    /// `null` for a last line that no line break ends.
+    end: Option<LineEnd>,
+}
+
+/// A line break as a file writes it.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[serde(rename_all = "lowercase")]
+enum LineEnd {
+    Lf,
+    CrLf,
+    Cr,
+}
+
+impl LineEnd {
+    fn bytes(self) -> &'static str {
+        match self {
+            LineEnd::Lf => "\n",
+            LineEnd::CrLf => "\r\n",
+            LineEnd::Cr => "\r",
+        }
+    }
+
+    fn name(self) -> &'static str {
+        match self {
+            LineEnd::Lf => "LF",
+            LineEnd::CrLf => "CR LF",
+            LineEnd::Cr => "CR",
+        }
+    }
 }
 
 pub(super) fn appendix(results: &Results, text: &str) -> AppendixView {
+    let content = text_lines(text);
     AppendixView {
         path: results.scenario.path.clone(),
         sha256: results.scenario.sha256.clone(),
-        lines: text.lines().count(),
+        lines: content.len(),
         text: text.to_string(),
+        endings: endings(&content),
+        content,
+        bom: text.starts_with('\u{feff}'),
+    }
+}
+
+/// `text` cut after each line break (LF, CR LF or a lone CR): the lines and
+/// their ends hold every character of `text`, in order.
+fn text_lines(text: &str) -> Vec<TextLine> {
+    let mut lines = Vec::new();
+    let mut rest = text;
+    while !rest.is_empty() {
+        let (line, tail) = rest.split_at(rest.find(['\r', '\n']).unwrap_or(rest.len()));
+        let end = [LineEnd::CrLf, LineEnd::Lf, LineEnd::Cr]
+            .into_iter()
+            .find(|end| tail.starts_with(end.bytes()));
+        lines.push(TextLine {
+            text: line.to_string(),
+            end,
+        });
+        rest = &tail[end.map_or(0, |e| e.bytes().len())..];
+    }
+    lines
+}
+
+/// The line ends of `lines` in words: one kind by its name, several each
+/// counted, and a last line without one said.
+fn endings(lines: &[TextLine]) -> String {
+    let mut kinds: Vec<(LineEnd, usize)> = Vec::new();
+    for end in lines.iter().filter_map(|line| line.end) {
+        match kinds.iter_mut().find(|(kind, _)| *kind == end) {
+            Some((_, n)) => *n += 1,
+            None => kinds.push((end, 1)),
+        }
+    }
+    let mut words = match kinds.as_slice() {
+        [] => "no line break".to_string(),
+        [(end, _)] => format!("{} on every line", end.name()),
+        _ => {
+            let counted: Vec<String> = kinds.iter().map(|(end, n)| format!("{n} {}", end.name())).collect();
+            format!("mixed: {}", counted.join(", "))
+        }
+    };
+    if lines.len() > 1 && lines.last().is_some_and(|line| line.end.is_none()) {
+        words.push_str(if kinds.len() == 1 {
+            " but the last, which has none"
+        } else {
+            "; the last line has none"
+        });
+    }
+    words
+}
+
+#[cfg(test)]
+mod tests {
+    use proptest::prelude::*;
+
+    use super::*;
+
+    fn line(text: &str, end: Option<LineEnd>) -> TextLine {
+        TextLine { text: text.into(), end }
+    }
+
+    #[test]
+    fn a_document_field_left_out_or_blank_is_not_given() {
+        let document = Document {
+            version: Some(String::new()),
+            author: Some("  ".into()),
+            reviewer: None,
+            approver: Some("K. Lee".into()),
+            ..Document::default()
+        };
+        let view = control("SL-0".into(), "2026-11-28T00:00:00Z", &document);
+        let row = |name: &str| view.control.iter().find(|(n, _)| *n == name).map(|(_, v)| v.as_str());
+        let not_given = Some("— (not given: `document` in the scenario)");
+        assert_eq!(
+            ["Version", "Author", "Reviewer", "Approver", "Date"].map(row),
+            [not_given, not_given, not_given, Some("K. Lee"), Some("2026-11-28")]
+        );
+    }
+
+    #[test]
+    fn every_kind_of_line_break_ends_a_line() {
+        use LineEnd::{Cr, CrLf, Lf};
+        assert_eq!(text_lines(""), vec![]);
+        assert_eq!(text_lines("\na: 1\n"), vec![line("", Some(Lf)), line("a: 1", Some(Lf))]);
+        assert_eq!(
+            text_lines("a\r\nb\r\n"),
+            vec![line("a", Some(CrLf)), line("b", Some(CrLf))]
+        );
+        assert_eq!(text_lines("a\rb\r"), vec![line("a", Some(Cr)), line("b", Some(Cr))]);
+        // A CR then an LF with a line between is two ends, not one.
+        assert_eq!(
+            text_lines("a\r\r\nb"),
+            vec![line("a", Some(Cr)), line("", Some(CrLf)), line("b", None)]
+        );
+    }
+
+    #[test]
+    fn the_line_ends_are_said_in_words() {
+        let words = |text: &str| endings(&text_lines(text));
+        assert_eq!(words("a\nb\n"), "LF on every line");
+        assert_eq!(words("a\r\nb\r\n"), "CR LF on every line");
+        assert_eq!(words("a\rb\r"), "CR on every line");
+        assert_eq!(words("a\nb\r\nc\n"), "mixed: 2 LF, 1 CR LF");
+        assert_eq!(words("a\nb"), "LF on every line but the last, which has none");
+        assert_eq!(words("a\nb\r\nc"), "mixed: 1 LF, 1 CR LF; the last line has none");
+        assert_eq!(words("a"), "no line break");
+    }
+
+    proptest! {
+        /// The lines and their ends, joined, are the text again.
+        #[test]
+        fn the_lines_hold_the_text_exactly(text in "[a\r\n ]{0,40}") {
+            let lines = text_lines(&text);
+            let joined: String = lines
+                .iter()
+                .map(|l| format!("{}{}", l.text, l.end.map_or("", LineEnd::bytes)))
+                .collect();
+            prop_assert_eq!(joined, text.clone());
+            prop_assert!(lines.iter().all(|l| !l.text.contains(['\r', '\n'])));
+            prop_assert!(lines.iter().rev().skip(1).all(|l| l.end.is_some()));
+        }
     }
 }

@@ -78,7 +78,8 @@ pub(super) fn finding(r: &RequirementResult) -> Finding {
         what: r.measured.clone(),
         threshold: format!("{} {}", relation_sign(r.relation()), with_unit(Some(r.threshold), unit)),
         margin: with_unit(r.margin, unit),
-        n: r.n.map_or_else(|| "—".into(), |n| number(n as f64)),
+        // As the `what` beside it writes it (`n = 28529`), not `28,529`.
+        n: r.n.map_or_else(|| "—".into(), |n| n.to_string()),
         message: r.message.clone(),
     }
 }
