@@ -1,8 +1,8 @@
 //! The compiled model: what a valid file becomes, and how problems are reported.
 
 use sightline_dsl::{
-    Bound, Check, ErrorKind, Errors, Experiment, Layout, Location, Metric, Options, OverSeeds, RateBound, Rule,
-    Scenario, SourceCombination, Statistic, Switch, SwitchMeasure, WeightScaling, Weighting, compile,
+    Bound, Check, DecisionRule, ErrorKind, Errors, Experiment, Layout, Location, Metric, Options, OverSeeds, RateBound,
+    Rule, Scenario, SourceCombination, Statistic, Switch, SwitchMeasure, WeightScaling, Weighting, compile,
 };
 
 const BASE: &str = "sightline: 1
@@ -29,6 +29,7 @@ fn defaults_follow_the_paper() {
     assert_eq!(setup.seed, 0);
     let occupancy = setup.occupancy.as_ref().unwrap();
     assert_eq!(occupancy.decision.threshold, 0.8);
+    assert_eq!(occupancy.decision.rule, DecisionRule::Margin);
     assert_eq!(occupancy.fusion.rule, Rule::Dempster);
     assert_eq!(occupancy.fusion.label, "dempster");
     assert_eq!((occupancy.grid.cols, occupancy.grid.rows), (40, 20));
@@ -179,6 +180,33 @@ fn a_bad_swept_value_is_reported_at_the_value() {
     assert_eq!(errors.0.len(), 1);
     assert_eq!(errors.0[0].location, Location::new(9, 29));
     assert_eq!(errors.0[0].path, "decision.threshold");
+}
+
+#[test]
+fn the_decision_rule_is_read_and_an_unknown_one_refused_where_written() {
+    for (written, rule) in [("margin", DecisionRule::Margin), ("exceeds", DecisionRule::Exceeds)] {
+        let scenario = ok(&format!("{BASE}decision: {{ rule: {written}, threshold: 0.6 }}\n"));
+        let decision = scenario.points[0].setup.occupancy.as_ref().unwrap().decision;
+        assert_eq!((decision.rule, decision.threshold), (rule, 0.6), "{written}");
+    }
+    // Swept, each reading is its own point.
+    let swept = ok(&format!("{BASE}sweep:\n  decision.rule: [margin, exceeds]\n"));
+    let rules: Vec<DecisionRule> = swept
+        .points
+        .iter()
+        .map(|point| point.setup.occupancy.as_ref().unwrap().decision.rule)
+        .collect();
+    assert_eq!(rules, [DecisionRule::Margin, DecisionRule::Exceeds]);
+    // Line 8, the value after `decision: { rule: `.
+    let refused = errors(&format!("{BASE}decision: {{ rule: exceed }}\n"));
+    assert_eq!(refused.0.len(), 1);
+    assert_eq!(refused.0[0].path, "decision.rule");
+    assert_eq!(refused.0[0].location, Location::new(8, 19));
+    let message = refused.to_string();
+    assert!(message.starts_with("t.yaml:8:19: error:"), "{message}");
+    assert!(message.contains("exceeds"), "the closest rule is suggested: {message}");
+    let swept = errors(&format!("{BASE}sweep:\n  decision.rule: [margin, p_max]\n"));
+    assert_eq!(swept.0[0].location, Location::new(9, 27));
 }
 
 #[test]

@@ -8,7 +8,7 @@
 //! sums of floating-point values do not depend on the thread count.
 
 use serde::{Deserialize, Serialize};
-use sightline_dsl::Metric;
+use sightline_dsl::{Decision, Metric};
 
 use crate::fusion::{Estimate, State, decide};
 
@@ -310,9 +310,10 @@ impl Tally {
         }
     }
 
-    /// Records one cell: its band, its truth, and its estimate (`None`: unobserved).
+    /// Records one cell: its band, its truth, and its estimate (`None`:
+    /// unobserved), decided by `decision`.
     #[inline]
-    pub(crate) fn record(&mut self, band: usize, occupied: bool, estimate: Option<&Estimate>, threshold: f64) {
+    pub(crate) fn record(&mut self, band: usize, occupied: bool, estimate: Option<&Estimate>, decision: Decision) {
         self.cells += 1;
         self.bands[band].cells += 1;
         let Some(estimate) = estimate else {
@@ -325,7 +326,7 @@ impl Tally {
         if let Estimate::Evidential { combination, .. } = estimate {
             band.conflict_sum += combination.conflict;
         }
-        match (decide(estimate.decision_mass(), threshold), occupied) {
+        match (decide(estimate.decision_mass(), decision), occupied) {
             (None, _) => {
                 self.below += 1;
                 band.below += 1;

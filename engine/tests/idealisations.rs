@@ -56,6 +56,10 @@ const NOT_OPTIONS: &[(&str, &str)] = &[
         "how a sender fits its grid into messages: behaviour the radio models, neither way idealised",
     ),
     ("Paper", "the paper the report is laid out for"),
+    (
+        "DecisionRule",
+        "how a fused cell is judged: which statement of seed 001's metric, not a model of the world",
+    ),
     ("RecordedPoints", "which sweep points the recording holds step by step"),
 ];
 

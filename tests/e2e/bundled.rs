@@ -1,4 +1,4 @@
-//! The bundled scenarios, end to end. The seed-001 field (1000 × 1000 cells, 60
+//! The bundled scenarios, end to end. The seed-001 field (1000 × 1000 cells, 120
 //! sweep points) takes a while, so it runs once (shared by the tests below): the
 //! shape of its evidence, and every figure `docs/findings/seed-001.md` quotes from
 //! it. Then the seed-000 roundabout, the seed-002 junction and the SUMO grid.
@@ -72,12 +72,13 @@ fn evidential_field_scenario_runs_end_to_end() {
     assert_eq!(results["format"], "sightline-results/2");
     assert_eq!(results["verdict"], "pass");
     assert_eq!(results["scenario"]["path"], SCENARIO);
-    assert_eq!(results["sweep"].as_array().map(Vec::len), Some(60));
+    assert_eq!(results["sweep"].as_array().map(Vec::len), Some(120));
     assert_eq!(results["references"].as_array().map(Vec::len), Some(10));
     for reference in results["references"].as_array().unwrap() {
         let points = reference["points"].as_array().unwrap();
-        // Each Table III figure matches one γ and one method, under both error models.
-        assert_eq!(points.len(), 2, "{reference:#}");
+        // Each Table III figure matches one γ and one method, under both error
+        // models and both decision rules.
+        assert_eq!(points.len(), 4, "{reference:#}");
         assert!(points.iter().all(|p| p["measured"].is_number()), "{reference:#}");
     }
 }
@@ -92,17 +93,18 @@ const COLUMNS: [(&str, &str); 6] = [
     ("Bayes", "Bayes"),
 ];
 
-/// The measured value of `metric` at (error model, γ, fusion label).
-fn measured(metric: &str, error_model: &str, gamma: f64, label: &str) -> f64 {
+/// The measured value of `metric` at (decision rule, error model, γ, fusion label).
+fn measured(metric: &str, rule: &str, error_model: &str, gamma: f64, label: &str) -> f64 {
     let points = results()["sweep"].as_array().unwrap();
     let point = points
         .iter()
         .find(|p| {
-            setting(p, "field.masses.error_model").is_some_and(|m| *m == error_model)
+            setting(p, "decision.rule").is_some_and(|r| *r == rule)
+                && setting(p, "field.masses.error_model").is_some_and(|m| *m == error_model)
                 && setting(p, "field.masses.gamma").and_then(|g| g.as_f64()) == Some(gamma)
                 && p["fusion"] == label
         })
-        .unwrap_or_else(|| panic!("no point for {error_model}, γ = {gamma}, {label}"));
+        .unwrap_or_else(|| panic!("no point for {rule}, {error_model}, γ = {gamma}, {label}"));
     point["metrics"][metric].as_f64().unwrap()
 }
 
@@ -142,11 +144,13 @@ fn findings_tables_quote_the_bundled_run() {
         } else {
             panic!("a table heading names no metric: {line:?}")
         };
-        let model = line
-            .split("`error_model: ")
-            .nth(1)
-            .and_then(|s| s.split('`').next())
-            .expect("a table heading names its error model");
+        let named = |key: &str| {
+            line.split(&format!("`{key}: "))
+                .nth(1)
+                .and_then(|s| s.split('`').next())
+                .unwrap_or_else(|| panic!("a table heading names its {key}: {line:?}"))
+        };
+        let (rule, model) = (named("rule"), named("error_model"));
         for cells in &table.rows {
             let gamma: f64 = cells[0].parse().expect("the first column is γ");
             for (column, cell) in table.header.iter().zip(cells).skip(1) {
@@ -166,20 +170,21 @@ fn findings_tables_quote_the_bundled_run() {
                 let actual = if from_paper {
                     published(metric, gamma, label)
                 } else {
-                    measured(metric, model, gamma, label)
+                    measured(metric, rule, model, gamma, label)
                 };
                 // Counts are quoted exactly; accuracies to four decimals.
                 let tolerance = if metric == "accuracy" { 5e-5 } else { 0.0 };
                 assert!(
                     (actual - quoted).abs() <= tolerance,
-                    "{metric} at {model}, γ = {gamma}, {column}: the findings quote {quoted}, the run gives {actual}"
+                    "{metric} at {rule}, {model}, γ = {gamma}, {column}: the findings quote {quoted}, the run gives {actual}"
                 );
                 checked += 1;
             }
         }
     }
-    // Two below-threshold tables of 8 columns, two wrong-label tables of 6, 5 rows each.
-    assert_eq!(checked, 5 * (8 + 8 + 6 + 6));
+    // Per decision rule: two below-threshold tables of 8 columns, one of
+    // confident errors and two of accuracy of 6; 5 rows each.
+    assert_eq!(checked, 2 * 5 * (8 + 8 + 6 + 6 + 6));
 }
 
 /// The bundled seed 000 roundabout.

@@ -347,7 +347,7 @@ const SECTIONS: &[(&str, &str)] = &[
         r#"{ "label": "L", "method": "hybrid", "weights": "mean_one", "sources": "pairwise",
              "switch": { "measure": "ratio", "threshold": 2 } }"#,
     ),
-    ("decision", r#"{ "threshold": 0.5 }"#),
+    ("decision", r#"{ "rule": "exceeds", "threshold": 0.5 }"#),
     (
         "system_under_test",
         r#"{ "command": ["true"], "agent": "ego", "sensors": [0], "step_timeout": 1, "gate": 2, "min_existence": 0.5 }"#,
@@ -545,6 +545,8 @@ const KEYS: &[Key] = &[
         semantic: Section,
     },
     Key { path: "decision.threshold", field: change(&[("decision.threshold", "0.5")]), perception: change(&[("decision.threshold", "0.5")]), semantic: Section },
+    // At θ = 0 both rules decide every cell; at 0.5, margin asks p_max ≥ 0.75, exceeds p_max > 0.5.
+    Key { path: "decision.rule", field: change(&[("decision.rule", r#""exceeds""#)]), perception: with(&[("decision.threshold", "0.5")], &[("decision.rule", r#""exceeds""#)]), semantic: Section },
     // The field experiment.
     Key { path: "field.truth.occupied_fraction", field: change(&[("field.truth.occupied_fraction", "0.5")]), perception: Section, semantic: Section },
     Key { path: "field.truth.blob", field: change(&[("field.truth.blob", "2")]), perception: Section, semantic: Section },
@@ -1215,6 +1217,7 @@ const JOINT_KEYS: &[(&str, Class)] = &[
     ("fusion.switch.measure", with(&[("fusion.method", r#""hybrid""#), ("fusion.switch", r#"{ "measure": "difference", "threshold": 2 }"#)], &[("fusion.switch.measure", r#""ratio""#)])),
     ("fusion.switch.threshold", with(&[("fusion.method", r#""hybrid""#), ("fusion.switch", r#"{ "threshold": 2 }"#)], &[("fusion.switch.threshold", "20")])),
     ("decision.threshold", change(&[("decision.threshold", "0.5")])),
+    ("decision.rule", with(&[("decision.threshold", "0.5")], &[("decision.rule", r#""exceeds""#)])),
     ("sensor_models.<id>.ray_spacing_deg", change(&[("sensor_models.front.ray_spacing_deg", "3")])),
     ("localization.position_sigma", change(&[("localization.position_sigma", "0.5")])),
     ("localization.heading_sigma_deg", change(&[("localization.heading_sigma_deg", "3")])),

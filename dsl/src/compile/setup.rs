@@ -323,6 +323,7 @@ fn fusion(ctx: &mut Context<'_>, raw: &RawFusion, path: &Path) -> Option<Fusion>
 fn decision(ctx: &mut Context<'_>, raw: &RawDecision, path: &Path) -> Option<Decision> {
     ctx.probability(&path.key("threshold"), raw.threshold)
         .then_some(Decision {
+            rule: raw.rule,
             threshold: raw.threshold,
         })
 }

@@ -138,10 +138,27 @@ pub enum SwitchMeasure {
     Ratio,
 }
 
-/// The decision rule of seed 001 (§IV-C): a cell takes the state of its largest
-/// mass p_max when p_max − p_others ≥ θ, and stays undecided otherwise.
+/// The decision rule of seed 001: a cell takes the state of its largest mass
+/// p_max when `rule` holds at θ, and stays undecided otherwise.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Decision {
+    /// Which of the paper's two statements of the rule.
+    pub rule: DecisionRule,
     /// θ.
     pub threshold: f64,
+}
+
+/// The two statements of seed 001's decision rule (p_others: the sum of the
+/// other two masses).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum DecisionRule {
+    /// p_max − p_others ≥ θ, the formula of §IV-C, to which §IV-E refers its
+    /// Table III. With masses summing to 1: p_max ≥ (1 + θ)/2.
+    #[default]
+    Margin,
+    /// p_max > θ: "the probability of one of the states exceeds the threshold"
+    /// (§IV-A); Table III counts cells whose vector "does not exceed the
+    /// threshold θ in any component" (§IV-E).
+    Exceeds,
 }

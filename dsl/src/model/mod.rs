@@ -16,7 +16,8 @@ mod world;
 
 pub use field::{ErrorModel, Field, Layout, Masses, Truth};
 pub use fusion::{
-    Decision, Fusion, FusionMethod, Rule, SourceCombination, Switch, SwitchMeasure, WeightScaling, Weighting,
+    Decision, DecisionRule, Fusion, FusionMethod, Rule, SourceCombination, Switch, SwitchMeasure, WeightScaling,
+    Weighting,
 };
 pub use metric::{JointPart, Metric};
 pub use requirement::{

@@ -5,7 +5,7 @@ use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use super::range;
-use crate::model::{FusionMethod, SourceCombination, SwitchMeasure, WeightScaling};
+use crate::model::{DecisionRule, FusionMethod, SourceCombination, SwitchMeasure, WeightScaling};
 
 /// A regular grid of square cells, axis-aligned in the world frame.
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
@@ -59,12 +59,15 @@ pub(crate) struct RawSwitch {
     pub threshold: f64,
 }
 
-/// The decision rule: a cell takes the state of its largest mass when
-/// p_max − p_others ≥ θ.
+/// The decision rule: a cell takes the state of its largest mass p_max when
+/// p_max − p_others ≥ θ (`rule: margin`, seed 001 §IV-C) or p_max > θ
+/// (`rule: exceeds`, seed 001 §IV-A and §IV-E).
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(default, deny_unknown_fields, expecting = "a decision mapping")]
 #[schemars(rename = "Decision")]
 pub(crate) struct RawDecision {
+    /// Which of seed 001's statements of the rule; the default is §IV-C's formula.
+    pub rule: DecisionRule,
     /// θ (0–1; the paper's 0.8).
     #[schemars(transform = range::PROBABILITY.schema())]
     pub threshold: f64,
@@ -72,6 +75,9 @@ pub(crate) struct RawDecision {
 
 impl Default for RawDecision {
     fn default() -> Self {
-        Self { threshold: 0.8 }
+        Self {
+            rule: DecisionRule::default(),
+            threshold: 0.8,
+        }
     }
 }

@@ -84,6 +84,23 @@ pub fn run(seed: u64, grid: &Grid, field: &Field, samplings: &[Sampling<'_>]) ->
             rules.push(job.fusion.rule);
         }
     }
+    let fusions: Vec<Vec<(usize, Vec<usize>)>> = samplings
+        .iter()
+        .map(|sampling| {
+            let mut fusions: Vec<(usize, Vec<usize>)> = Vec::new();
+            for (index, job) in sampling.jobs.iter().enumerate() {
+                let rule = rules
+                    .iter()
+                    .position(|rule| *rule == job.fusion.rule)
+                    .expect("every job's rule is a rule of the pass");
+                match fusions.iter_mut().find(|(r, _)| *r == rule) {
+                    Some((_, jobs)) => jobs.push(index),
+                    None => fusions.push((rule, vec![index])),
+                }
+            }
+            fusions
+        })
+        .collect();
     let pass = Pass {
         seed,
         grid,
@@ -92,6 +109,7 @@ pub fn run(seed: u64, grid: &Grid, field: &Field, samplings: &[Sampling<'_>]) ->
         sensors: &sensors,
         models: &models,
         samplings,
+        fusions: &fusions,
         rules: &rules,
         // Band membership needs the nearest sensor only up to the last band edge.
         reach: field.distance_bands.last().copied().unwrap_or(0.0).max(field.range),
@@ -161,15 +179,19 @@ struct Pass<'a> {
     samplings: &'a [Sampling<'a>],
     /// The distinct rules of the jobs: each weighs a row's sources once.
     rules: &'a [Rule],
+    /// Per sampling, each of its rules (an index into `rules`) and the jobs
+    /// (indices into the sampling's) that fuse with it: methods that differ
+    /// in label or decision only share one fusion of the row.
+    fusions: &'a [Vec<(usize, Vec<usize>)>],
     reach: f64,
     min_distance: f64,
 }
 
 impl Pass<'_> {
     /// Finds the row's sources and weighs them for each rule, then, sampling
-    /// by sampling, samples their masses, fuses the whole row with each of
-    /// the sampling's jobs (see [`fuse_cells`]) and tallies it: the tallies of
-    /// every job, samplings in order.
+    /// by sampling, samples their masses, fuses the whole row once with each
+    /// rule of the sampling's jobs (see [`fuse_cells`]) and tallies it for
+    /// every job of that rule: the tallies of every job, samplings in order.
     fn row(&self, row: usize, scratch: &mut Scratch) -> (Vec<Tally>, RowCoverage) {
         let grid = self.grid;
         let bands = &self.field.distance_bands;
@@ -225,7 +247,7 @@ impl Pass<'_> {
             weights.plan(rule, &scratch.sources, &scratch.ends);
         }
         let mut tallies = Vec::new();
-        for (sampling, model) in self.samplings.iter().zip(self.models) {
+        for ((sampling, model), fusions) in self.samplings.iter().zip(self.models).zip(self.fusions) {
             model.sample_many(
                 &scratch.draws,
                 &mut rng.clone(),
@@ -235,23 +257,26 @@ impl Pass<'_> {
             for (source, &mass) in scratch.sources.iter_mut().zip(&scratch.masses) {
                 source.mass = mass;
             }
-            tallies.extend(sampling.jobs.iter().map(|job| {
-                let mut tally = Tally::new(bands.len() + 1);
+            let first = tallies.len();
+            tallies.extend(sampling.jobs.iter().map(|_| Tally::new(bands.len() + 1)));
+            let sampling_tallies = &mut tallies[first..];
+            for (rule, jobs) in fusions {
                 let cells = &scratch.cells;
-                let rule = self.rules.iter().position(|rule| *rule == job.fusion.rule);
                 fuse_cells(
-                    &job.fusion.rule,
-                    &scratch.weights[rule.expect("every job's rule is a rule of the pass")],
+                    &self.rules[*rule],
+                    &scratch.weights[*rule],
                     &scratch.sources,
                     &scratch.ends,
                     &mut scratch.fusion,
                     |col, estimate| {
                         let (band, occupied) = cells[col];
-                        tally.record(band, occupied, estimate.as_ref(), job.decision.threshold);
+                        for &job in jobs {
+                            let decision = sampling.jobs[job].decision;
+                            sampling_tallies[job].record(band, occupied, estimate.as_ref(), decision);
+                        }
                     },
                 );
-                tally
-            }));
+            }
         }
         (tallies, coverage)
     }

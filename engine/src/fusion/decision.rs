@@ -1,43 +1,97 @@
-//! The decision rule of seed 001 (§IV-C).
+//! The decision rule of seed 001, in both of the paper's statements.
+
+use sightline_dsl::{Decision, DecisionRule};
 
 use super::mass::{Mass, State};
 
-/// Decides a cell: the state of the largest mass p_max when p_max − p_others ≥ θ
-/// (p_others the sum of the other two), `None` (below threshold) otherwise.
-/// Ties for the largest mass go to the first of Empty, Occupy, Unknown; they can
-/// only decide when θ ≤ 0.
+/// Decides a cell: the state of the largest mass p_max when `decision`'s rule
+/// holds (`margin`: p_max − p_others ≥ θ, p_others the sum of the other two;
+/// `exceeds`: p_max > θ), `None` (below threshold) otherwise. Ties for the
+/// largest mass go to the first of Empty, Occupy, Unknown.
 #[inline]
-pub fn decide(mass: Mass, threshold: f64) -> Option<State> {
+pub fn decide(mass: Mass, decision: Decision) -> Option<State> {
     let masses = mass.to_array();
     let (best, &p_max) = masses
         .iter()
         .enumerate()
         .fold((0, &masses[0]), |acc, (i, m)| if *m > *acc.1 { (i, m) } else { acc });
-    let p_others: f64 = masses.iter().sum::<f64>() - p_max;
-    (p_max - p_others >= threshold).then_some(State::ALL[best])
+    let decided = match decision.rule {
+        DecisionRule::Margin => p_max - (masses.iter().sum::<f64>() - p_max) >= decision.threshold,
+        DecisionRule::Exceeds => p_max > decision.threshold,
+    };
+    decided.then_some(State::ALL[best])
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    #[test]
-    fn decides_at_and_above_the_threshold() {
-        // 0.9 − 0.1 = 0.8 ≥ 0.8.
-        assert_eq!(decide(Mass::new(0.9, 0.05, 0.05), 0.8), Some(State::Empty));
-        assert_eq!(decide(Mass::new(0.05, 0.95, 0.0), 0.8), Some(State::Occupied));
-        assert_eq!(decide(Mass::VACUOUS, 0.8), Some(State::Unknown));
+    fn margin(threshold: f64) -> Decision {
+        Decision {
+            rule: DecisionRule::Margin,
+            threshold,
+        }
+    }
+
+    fn exceeds(threshold: f64) -> Decision {
+        Decision {
+            rule: DecisionRule::Exceeds,
+            threshold,
+        }
     }
 
     #[test]
-    fn stays_undecided_below_the_threshold() {
-        // 0.85 − 0.15 = 0.7 < 0.8.
-        assert_eq!(decide(Mass::new(0.85, 0.1, 0.05), 0.8), None);
-        assert_eq!(decide(Mass::new(0.5, 0.5, 0.0), 0.1), None);
+    fn margin_decides_at_and_above_the_threshold() {
+        // 0.9 − (0.05 + 0.05) = 0.8 ≥ 0.8: the boundary decides.
+        assert_eq!(decide(Mass::new(0.9, 0.05, 0.05), margin(0.8)), Some(State::Empty));
+        // 0.95 − 0.05 = 0.9.
+        assert_eq!(decide(Mass::new(0.05, 0.95, 0.0), margin(0.8)), Some(State::Occupied));
+        assert_eq!(decide(Mass::VACUOUS, margin(0.8)), Some(State::Unknown));
+    }
+
+    #[test]
+    fn margin_stays_undecided_below_the_threshold() {
+        // 0.85 − 0.15 = 0.7 < 0.8, though 0.85 exceeds 0.8.
+        assert_eq!(decide(Mass::new(0.85, 0.1, 0.05), margin(0.8)), None);
+        // 0.5 − 0.5 = 0 < 0.1.
+        assert_eq!(decide(Mass::new(0.5, 0.5, 0.0), margin(0.1)), None);
+    }
+
+    #[test]
+    fn exceeds_decides_strictly_above_the_threshold() {
+        // 0.85 > 0.8, where the margin (0.7) does not reach 0.8.
+        assert_eq!(decide(Mass::new(0.85, 0.1, 0.05), exceeds(0.8)), Some(State::Empty));
+        // 0.81 > 0.8 on Occupy.
+        assert_eq!(decide(Mass::new(0.04, 0.81, 0.15), exceeds(0.8)), Some(State::Occupied));
+        // The boundary: 0.75 does not exceed 0.75 (0.75 and 0.25 are exact in binary).
+        assert_eq!(decide(Mass::new(0.0, 0.25, 0.75), exceeds(0.75)), None);
+        assert_eq!(decide(Mass::new(0.0, 0.25, 0.75), exceeds(0.5)), Some(State::Unknown));
+        // (0.5, 0.3, 0.2): no component exceeds 0.8.
+        assert_eq!(decide(Mass::new(0.5, 0.3, 0.2), exceeds(0.8)), None);
+    }
+
+    #[test]
+    fn the_readings_agree_where_the_margin_threshold_is_twice_the_other_less_one() {
+        // With masses summing to 1, p_max − p_others ≥ θ ⇔ p_max ≥ (1 + θ)/2:
+        // margin at 0.5 and exceeds at 0.75 differ only at p_max = 0.75 exactly.
+        for (mass, decided) in [
+            (Mass::new(0.75, 0.25, 0.0), true), // 0.75 − 0.25 = 0.5 ≥ 0.5; 0.75 ≯ 0.75.
+            (Mass::new(0.875, 0.125, 0.0), true),
+            (Mass::new(0.625, 0.25, 0.125), false),
+        ] {
+            assert_eq!(decide(mass, margin(0.5)).is_some(), decided, "{mass:?}");
+        }
+        assert_eq!(decide(Mass::new(0.75, 0.25, 0.0), exceeds(0.75)), None);
+        assert_eq!(decide(Mass::new(0.875, 0.125, 0.0), exceeds(0.75)), Some(State::Empty));
+        assert_eq!(decide(Mass::new(0.625, 0.25, 0.125), exceeds(0.75)), None);
     }
 
     #[test]
     fn ties_go_to_the_first_state_when_theta_allows() {
-        assert_eq!(decide(Mass::new(0.5, 0.5, 0.0), 0.0), Some(State::Empty));
+        assert_eq!(decide(Mass::new(0.5, 0.5, 0.0), margin(0.0)), Some(State::Empty));
+        assert_eq!(
+            decide(Mass::new(0.25, 0.375, 0.375), exceeds(0.3)),
+            Some(State::Occupied)
+        );
     }
 }

@@ -263,16 +263,52 @@ mod tests {
         }
     }
 
-    /// The mechanism table of docs/findings/seed-001.md: n agreeing sensors at d = 0
-    /// of the paper's experiment, (0.9375, 0.03125, 0.03125) each, at equal distances.
-    /// As written, their fused p_max − p_others falls below θ = 0.8 from n = 4 on, and
-    /// falls further as n grows; Dempster's rule goes to 1.
+    /// Worked by hand with unequal weights (§III-B): m₁ = (0.7, 0.2, 0.1) at 20 m,
+    /// m₂ = (0.1, 0.8, 0.1) at 60 m. w₁ = (1/20)/(1/20 + 1/60) = 0.75, w₂ = 0.25.
+    /// m₁^0.75 = (0.765286, 0.299070, 0.177828), sum 1.242183, so
+    /// m'₁ = (0.616081, 0.240761, 0.143158); m₂^0.25 = (0.562341, 0.945742,
+    /// 0.562341), sum 2.070424, so m'₂ = (0.271607, 0.456786, 0.271607).
+    /// k = 0.616081·0.456786 + 0.240761·0.271607 = 0.346810, α = 1.530948;
+    /// m̃_e = α(0.616081·0.271607 + 0.616081·0.271607 + 0.271607·0.143158) = 0.571880,
+    /// m̃_o = α(0.240761·0.456786 + 0.240761·0.271607 + 0.456786·0.143158) = 0.368593,
+    /// m̃_u = α·0.143158·0.271607 = 0.059527. The nearer source's Empty wins,
+    /// where Dempster's rule (equal say) would favour Occupy.
+    #[test]
+    fn two_sources_with_unequal_weights_by_hand() {
+        let c = combine_two(
+            Mass::new(0.7, 0.2, 0.1),
+            20.0,
+            Mass::new(0.1, 0.8, 0.1),
+            60.0,
+            WeightScaling::SumToOne,
+        );
+        assert_relative_eq!(c.conflict, 0.346810, epsilon = 1e-6);
+        for (a, e) in c.mass.to_array().iter().zip([0.571880, 0.368593, 0.059527]) {
+            assert_relative_eq!(*a, e, epsilon = 1e-6);
+        }
+        // The order of the sources does not matter.
+        let swapped = combine_two(
+            Mass::new(0.1, 0.8, 0.1),
+            60.0,
+            Mass::new(0.7, 0.2, 0.1),
+            20.0,
+            WeightScaling::SumToOne,
+        );
+        for (a, b) in c.mass.to_array().iter().zip(swapped.mass.to_array()) {
+            assert_relative_eq!(*a, b, epsilon = 1e-12);
+        }
+    }
+
+    /// The mechanism table of docs/findings/seed-001.md: n agreeing sensors, each
+    /// reporting the mean vector at d = 0 of the paper's experiment, (0.9375,
+    /// 0.03125, 0.03125), at equal distances. As written, their fused
+    /// p_max − p_others falls below θ = 0.8 from n = 4 on, and falls further as n
+    /// grows (p_max = (1 + margin)/2 stays above 0.8: 0.9110, 0.8853, 0.8739);
+    /// Dempster's rule goes to 1.
     #[test]
     fn as_written_agreeing_sources_fall_below_the_paper_threshold() {
-        let margin = |m: Mass| {
-            let max = m.empty.max(m.occupied).max(m.unknown);
-            max - (m.total() - max)
-        };
+        let p_max = |m: Mass| m.empty.max(m.occupied).max(m.unknown);
+        let margin = |m: Mass| p_max(m) - (m.total() - p_max(m));
         let ideal = Mass::new(0.9375, 0.03125, 0.03125);
         let as_written = Weighting {
             scaling: WeightScaling::SumToOne,
@@ -285,6 +321,7 @@ mod tests {
             assert_relative_eq!(margin(standard.finish().mass), dempster, epsilon = 5e-5);
             let fused = combine_all(sources.iter().copied(), as_written);
             assert_relative_eq!(margin(fused.mass), weighted, epsilon = 5e-5);
+            assert_relative_eq!(p_max(fused.mass), (1.0 + weighted) / 2.0, epsilon = 5e-5);
         }
     }
 

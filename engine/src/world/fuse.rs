@@ -10,7 +10,7 @@
 
 use std::sync::mpsc;
 
-use sightline_dsl::{Grid, Perception, Rule};
+use sightline_dsl::{Decision, Grid, Perception, Rule};
 
 use super::evidence::Evidence;
 use super::memo::{Memo, judge};
@@ -79,11 +79,11 @@ impl CellFusion<'_> {
         fuse(self.rule, sources)
     }
 
-    /// The memo of this rule's fused cells judged at `threshold`, when the
+    /// The memo of this rule's fused cells judged by `decision`, when the
     /// rule reads only masses.
-    pub(super) fn memo(&self, threshold: f64) -> Option<Memo> {
+    pub(super) fn memo(&self, decision: Decision) -> Option<Memo> {
         let fresh = [Observed::Free, Observed::Occupied].map(|state| self.source(state, 1.0, 0.0));
-        Memo::new(self.rule, fresh, threshold)
+        Memo::new(self.rule, fresh, decision)
     }
 
     /// The source an observation of `state` (free or occupied) with `weight`
@@ -224,7 +224,7 @@ impl<'a, 'j> Fusion<'a, 'j> {
                     occupied: perception.occupied,
                     free: perception.free,
                 };
-                fusion.memo(job.decision.threshold)
+                fusion.memo(job.decision)
             })
             .collect();
         Self {
@@ -262,7 +262,7 @@ impl<'a, 'j> Fusion<'a, 'j> {
                     occupied: self.perception.occupied,
                     free: self.perception.free,
                 },
-                threshold: job.decision.threshold,
+                decision: job.decision,
                 truth: truth.cells(),
                 owners: owners.then(|| truth.owners()),
                 senders,
@@ -316,7 +316,7 @@ impl<'a, 'j> Fusion<'a, 'j> {
 /// Tallies one method's fused grid of one step against the truth.
 struct Tallier<'a> {
     fusion: CellFusion<'a>,
-    threshold: f64,
+    decision: Decision,
     truth: &'a [u8],
     /// Per cell, whose footprint it is, when the owners of the cells decided
     /// Occupy are collected.
@@ -340,7 +340,7 @@ impl Tallier<'_> {
             let memoised = self.memo.and_then(|memo| memo.get(self.fusion.observations, cell));
             let judged = match memoised {
                 Some(&judged) => judged,
-                None => judge(self.fusion.estimate(cell, &mut sources), self.threshold),
+                None => judge(self.fusion.estimate(cell, &mut sources), self.decision),
             };
             let (estimate, probability, decision) = (judged.estimate, judged.probability, judged.decision);
             tally.estimates.record(&estimate);

@@ -10,7 +10,7 @@
 //! lookup returns the same bits; the roundabout's 56 000 fused cells a step then need
 //! no logarithm or exponential each.
 
-use sightline_dsl::Rule;
+use sightline_dsl::{Decision, Rule};
 
 use super::evidence::Evidence;
 use super::observe::Observed;
@@ -26,12 +26,12 @@ pub(super) struct Judged {
     pub(super) estimate: Estimate,
     /// Its pignistic (or Bayesian) probability of occupancy.
     pub(super) probability: f64,
-    /// Its decision at the job's threshold.
+    /// Its decision by the job's rule.
     pub(super) decision: Option<State>,
 }
 
-/// Judges a fused estimate at the decision threshold `threshold`.
-pub(super) fn judge(estimate: Estimate, threshold: f64) -> Judged {
+/// Judges a fused estimate by the decision rule `decision`.
+pub(super) fn judge(estimate: Estimate, decision: Decision) -> Judged {
     let probability = match estimate {
         Estimate::Occupancy(o) => o.probability,
         Estimate::Evidential { combination, .. } => pignistic(combination.mass),
@@ -39,12 +39,12 @@ pub(super) fn judge(estimate: Estimate, threshold: f64) -> Judged {
     Judged {
         estimate,
         probability,
-        decision: decide(estimate.decision_mass(), threshold),
+        decision: decide(estimate.decision_mass(), decision),
     }
 }
 
 /// The judged cell of every sequence of fresh sources up to [`MEMO_SOURCES`]
-/// long, for one rule, inverse sensor model and threshold.
+/// long, for one rule, inverse sensor model and decision rule.
 #[derive(Debug, Clone)]
 pub(super) struct Memo {
     /// By key − 2: a sequence of n states is the key 2ⁿ + its bits, occupied
@@ -53,10 +53,10 @@ pub(super) struct Memo {
 }
 
 impl Memo {
-    /// The memo of `rule` at `threshold`, where a fresh observation of a
+    /// The memo of `rule` judged by `decision`, where a fresh observation of a
     /// cell free makes the source `free` and one of it occupied `occupied`;
     /// `None` when the rule reads more than the masses (distances).
-    pub(super) fn new(rule: &Rule, [free, occupied]: [Source; 2], threshold: f64) -> Option<Self> {
+    pub(super) fn new(rule: &Rule, [free, occupied]: [Source; 2], decision: Decision) -> Option<Self> {
         if !matches!(rule, Rule::Bayes | Rule::Dempster) {
             return None;
         }
@@ -70,7 +70,7 @@ impl Memo {
                         .rev()
                         .map(|bit| if key >> bit & 1 == 1 { occupied } else { free }),
                 );
-                judge(fuse(rule, &sources), threshold)
+                judge(fuse(rule, &sources), decision)
             })
             .collect();
         Some(Self { table })
@@ -98,7 +98,7 @@ impl Memo {
 
 #[cfg(test)]
 mod tests {
-    use sightline_dsl::{Grid, SourceCombination, WeightScaling, Weighting};
+    use sightline_dsl::{DecisionRule, Grid, SourceCombination, WeightScaling, Weighting};
 
     use super::super::fuse::CellFusion;
     use super::*;
@@ -134,7 +134,7 @@ mod tests {
 
     /// Every combination of four sources' states (unknown, free, occupied,
     /// own) is one cell: the memo's cell equals the one fused and judged cell
-    /// by cell, to the bit, for Bayes and Dempster at two thresholds.
+    /// by cell, to the bit, for Bayes and Dempster by both rules at two thresholds.
     #[test]
     fn a_looked_up_cell_is_the_computed_one() {
         use Observed::{Free, Occupied, Own, Unknown};
@@ -144,7 +144,9 @@ mod tests {
             .collect();
         let present: Vec<&dyn Evidence> = observations.iter().map(|o| o as &dyn Evidence).collect();
         for rule in [Rule::Bayes, Rule::Dempster] {
-            for threshold in [0.0, 0.8] {
+            for decision in [0.0, 0.8].into_iter().flat_map(|threshold| {
+                [DecisionRule::Margin, DecisionRule::Exceeds].map(|rule| Decision { rule, threshold })
+            }) {
                 let fusion = CellFusion {
                     grid: &GRID,
                     rule: &rule,
@@ -152,11 +154,15 @@ mod tests {
                     occupied: 0.7,
                     free: 0.3,
                 };
-                let memo = fusion.memo(threshold).expect("the rule reads masses only");
+                let memo = fusion.memo(decision).expect("the rule reads masses only");
                 let mut sources = Vec::new();
                 for cell in 1..256 {
-                    let computed = judge(fusion.estimate(cell, &mut sources), threshold);
-                    assert_eq!(memo.get(&present, cell), Some(&computed), "{rule:?} cell {cell}");
+                    let computed = judge(fusion.estimate(cell, &mut sources), decision);
+                    assert_eq!(
+                        memo.get(&present, cell),
+                        Some(&computed),
+                        "{rule:?} {decision:?} cell {cell}"
+                    );
                 }
                 assert_eq!(memo.get(&present, 0), None, "no source: nothing to fuse");
             }
@@ -166,6 +172,10 @@ mod tests {
     /// More sources than the memo holds, or a rule that reads distances: no memo.
     #[test]
     fn long_sequences_and_distance_rules_are_computed() {
+        const ANY: Decision = Decision {
+            rule: DecisionRule::Margin,
+            threshold: 0.0,
+        };
         let rule = Rule::Bayes;
         let many: Vec<Fixed> = (0..=MEMO_SOURCES).map(|_| Fixed(vec![Observed::Free])).collect();
         let present: Vec<&dyn Evidence> = many.iter().map(|o| o as &dyn Evidence).collect();
@@ -176,7 +186,7 @@ mod tests {
             occupied: 0.7,
             free: 0.3,
         };
-        let memo = fusion.memo(0.0).expect("Bayes reads masses only");
+        let memo = fusion.memo(ANY).expect("Bayes reads masses only");
         assert_eq!(memo.get(&present, 0), None);
         assert!(memo.get(&present[1..], 0).is_some());
         let weighted = Rule::DistanceWeighted(Weighting {
@@ -184,6 +194,6 @@ mod tests {
             sources: SourceCombination::default(),
         });
         let free = fusion.source(Observed::Free, 1.0, 0.0);
-        assert!(Memo::new(&weighted, [free, free], 0.0).is_none());
+        assert!(Memo::new(&weighted, [free, free], ANY).is_none());
     }
 }
