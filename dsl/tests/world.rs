@@ -291,22 +291,23 @@ fn an_agent_setting_must_name_an_agent_and_a_setting() {
     }
 }
 
-/// See: issue 13 §6. The roundabout's six studies meet where six vehicles
-/// cooperate at the nominal noise (σ = 0.2 m) with noisy odometry over the
-/// nominal radio (the file's values): 17 distinct configurations, not 22, the
-/// shared one labelled by every sweep, and the requirements at that
-/// configuration checked once.
+/// See: issue 13 §6. The roundabout's first six studies meet where six
+/// vehicles cooperate at the nominal noise (σ = 0.2 m) with noisy odometry
+/// over the nominal radio (the file's values): 17 distinct configurations, not
+/// 22, the shared one labelled by every sweep, and the requirements at that
+/// configuration checked once. The seventh (zero noise) adds two of its own.
 #[test]
 fn the_roundabout_sweeps_meet_at_one_point() {
     let text = include_str!("../../scenarios/roundabout-six-agents.yaml");
     let scenario = compile("roundabout.yaml", text, &Options::default()).unwrap_or_else(|e| panic!("{e}"));
-    assert_eq!(scenario.points.len(), 17);
+    assert_eq!(scenario.points.len(), 19);
     assert_eq!(scenario.sweeps[0].points, [0, 1, 2, 3, 4, 5]);
     assert_eq!(scenario.sweeps[1].points, [6, 7, 5, 8, 9, 10]);
     assert_eq!(scenario.sweeps[2].points, [11, 5]);
     assert_eq!(scenario.sweeps[3].points, [12, 5]);
     assert_eq!(scenario.sweeps[4].points, [5, 13, 14]);
     assert_eq!(scenario.sweeps[5].points, [15, 16, 5]);
+    assert_eq!(scenario.sweeps[6].points, [17, 18]);
     assert_eq!(
         scenario.points[5].label(),
         "v2x.penetration=1 | localization.position_sigma=0.2 | localization.odometry.model=noisy | \

@@ -102,6 +102,36 @@ fn a_hidden_road_user_revealed_by_a_cooperator_counts_in_recall() {
     );
 }
 
+/// The ego-only baseline over the same cells (`ego_occupied_recall`): a car
+/// 10 m in front of the ego, on its road, which it sees whole (8 cells), and
+/// the hidden car. With the ego alone, three cars are road users to find (24
+/// cells) and the ego finds the 8 in front: 8/24, as `occupied_recall`. With
+/// `cav` cooperating, its 8 cells leave the population as self-report: the
+/// ego alone now finds 8 of 16 (0.5) while the fused grid finds all 16. Of the
+/// gain from 1/3 to 1, 1/6 is the population shrinking and 1/2 what
+/// cooperation reveals.
+#[test]
+fn the_ego_alone_is_scored_over_the_same_cells_as_the_fused_grid() {
+    let seen = "  - { id: seen, kind: car, route: [ns], start: { offset: 30 }, speed: { target: 0 } }";
+    let points = run(
+        &format!("{HIDDEN_CAR}\n{seen}"),
+        "sweep: { perception.cooperating: [1, 2] }",
+    );
+    let (alone, together) = (&points[0], &points[1]);
+    assert_eq!((alone.occupied, alone.detected, alone.ego_detected), (24, 8, 8));
+    assert_eq!(measured(alone, Metric::EgoOccupiedRecall), (Some(8.0 / 24.0), Some(24)));
+    assert_eq!(
+        measured(alone, Metric::EgoOccupiedRecall),
+        measured(alone, Metric::OccupiedRecall)
+    );
+    assert_eq!(
+        (together.occupied, together.detected, together.ego_detected),
+        (16, 16, 8)
+    );
+    assert_eq!(measured(together, Metric::EgoOccupiedRecall), (Some(0.5), Some(16)));
+    assert_eq!(measured(together, Metric::OccupiedRecall), (Some(1.0), Some(16)));
+}
+
 /// A cooperator's own cells that another cooperator's sensor also finds
 /// occupied are self-report, but not known *only* through it: `car2`, a
 /// second connected car 10 m east of `cav`, and `cav` each see the other.

@@ -370,6 +370,7 @@ fn world_steps_add_up_to_the_metrics() {
         let expected = CellTally {
             occupied: metrics.occupied,
             detected: metrics.detected,
+            ego_detected: metrics.ego_detected,
             false_positives: metrics.false_positives,
             blind_occupied: metrics.blind_occupied,
             blind_detected: metrics.blind_detected,

@@ -239,6 +239,7 @@ fn metrics_and_masses_stay_valid_on_random_scenes() {
                     Metric::OccupiedPrecision,
                     Metric::BlindRecall,
                     Metric::OccupiedRecallWithSelfReport,
+                    Metric::EgoOccupiedRecall,
                     Metric::SelfReportShare,
                 ] {
                     if let Some(v) = o.metrics.value(metric) {
@@ -247,6 +248,7 @@ fn metrics_and_masses_stay_valid_on_random_scenes() {
                 }
                 prop_assert!(o.metrics.value(Metric::FovGain).is_none_or(|g| g >= 0.0));
                 prop_assert!(o.metrics.detected <= o.metrics.occupied);
+                prop_assert!(o.metrics.ego_detected <= o.metrics.occupied);
                 prop_assert!(o.metrics.blind_detected <= o.metrics.blind_occupied);
                 prop_assert!(o.metrics.blind_occupied <= o.metrics.occupied);
                 let m = &o.metrics;

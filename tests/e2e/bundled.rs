@@ -243,11 +243,12 @@ fn roundabout_scenario_runs_end_to_end() {
             ("RB-MASS-01", "pass"),
         ]
     );
-    assert_eq!(results["sweeps"].as_array().map(Vec::len), Some(6));
+    assert_eq!(results["sweeps"].as_array().map(Vec::len), Some(7));
     // See: issue 13 §6. The configuration the sweeps share (six vehicles,
     // σ = 0.2 m, noisy odometry, the nominal radio) is simulated once, one
     // point with every label, a row of each sweep's table.
-    assert_eq!(results["sweep"].as_array().map(Vec::len), Some(17));
+    // The seventh sweep (zero noise, the ego alone and all six) adds two.
+    assert_eq!(results["sweep"].as_array().map(Vec::len), Some(19));
     let shared = &results["sweep"][5];
     assert_eq!(
         shared["label"],

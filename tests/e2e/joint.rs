@@ -94,6 +94,35 @@ fn a_joint_world_judges_each_road_user_by_the_grid_and_the_warnings() {
     assert!(html.contains("Occupied-cell recall by distance"));
 }
 
+/// A car no sensor sees, following a cooperator over a perfect radio
+/// (`footprint-trail.yaml` in a joint world): the cooperator's old footprints
+/// are not held, so the car never comes into the ego's fused grid and has no
+/// grid_lead; the cooperator, which reports itself, does.
+#[test]
+fn a_car_in_a_cooperator_s_wake_never_comes_into_the_grid() {
+    let tmp = temp_dir();
+    let out = tmp.path().join("out");
+    let run = sightline([
+        "run",
+        "tests/fixtures/valid/joint-footprint-trail.yaml",
+        "--out",
+        arg(&out),
+    ]);
+    run.assert_exit(1);
+    let results = read_json(&out.join("results.json"));
+    let records = results["sweep"][0]["semantic"]["objects"]["records"]
+        .as_array()
+        .unwrap();
+    let first_in_grid = |id: &str| &records.iter().find(|o| o["id"] == id).unwrap()["first_in_grid"];
+    assert_eq!(first_in_grid("car1"), &serde_json::Value::Null);
+    assert!(first_in_grid("cav1").is_number());
+    assert_eq!(verdict(&results, "GRID-LEAD").0, "fail");
+    assert!(
+        run.stdout.contains("had no grid_lead (never in the ego's fused grid)"),
+        "{run}"
+    );
+}
+
 /// The bundled junction runs the fused grid and the semantic pipeline in one
 /// world: the pedestrians near the ego are judged by either, and the
 /// recording holds both models' steps, one record of signals a step.

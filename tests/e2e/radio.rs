@@ -5,7 +5,7 @@
 
 use serde_json::Value;
 
-use crate::support::{arg, read, read_json, sightline, temp_dir};
+use crate::support::{arg, read, read_json, requirement, sightline, temp_dir};
 
 /// The wall scene of the self-report tests, run for 1 s (ten steps): `cav`,
 /// behind the wall, sees a car 10 m east of it that the ego cannot.
@@ -139,4 +139,29 @@ fn selecting_sends_one_message_with_the_detections_first() {
     assert_eq!(radio["sent"], 10);
     assert!(radio["bytes"].as_u64().unwrap() <= 2500);
     assert_eq!(selected["metrics"]["occupied_recall"], 72.0 / 88.0);
+}
+
+/// A cooperator's footprint says where it is: a newer one replaces the older.
+/// Held until `max_age`, the footprints of a moving cooperator left a trail
+/// that fusion read as occupied and credited to the car following in it,
+/// which no sensor sees (`blind_recall` 0.94, a wrong PASS). Only the newest
+/// is held: the car is never known.
+#[test]
+fn a_car_in_a_cooperator_s_wake_is_not_credited_with_its_old_footprints() {
+    let tmp = temp_dir();
+    let out = tmp.path().join("out");
+    sightline(["run", "tests/fixtures/valid/footprint-trail.yaml", "--out", arg(&out)]).assert_exit(1);
+    let results = read_json(&out.join("results.json"));
+    let point = &results["sweep"][0];
+    // car1 is the only road user that does not cooperate, and the ego never sees it.
+    let occupied = point["samples"]["occupied_recall"].as_u64().unwrap();
+    assert!(occupied > 0);
+    assert_eq!(point["samples"]["blind_recall"], occupied);
+    assert_eq!(point["metrics"]["blind_recall"], 0.0);
+    assert_eq!(point["metrics"]["occupied_recall"], 0.0);
+    // cav1's grids do arrive, its own body in them.
+    assert_eq!(point["metrics"]["packet_delivery_ratio"], 1.0);
+    assert!(point["metrics"]["occupied_recall_with_self_report"].as_f64().unwrap() > 0.0);
+    let status = &requirement(&results, "HIDDEN")["verdict"];
+    assert_eq!(status, "fail");
 }

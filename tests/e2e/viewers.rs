@@ -161,7 +161,7 @@ fn recordings() -> Vec<(&'static str, &'static [u8])> {
     bundled.chain(extra).chain(every).collect()
 }
 
-/// Every point of the roundabout's 17 (`record.points: all`, issue 18), each
+/// Every point of the roundabout's 19 (`record.points: all`, issue 18), each
 /// in its own minute: the scenario message lists them with their offsets, each
 /// step's signals carry their point and lie within its minute, and a point's
 /// agents and grids are cleared a second after its last step.
@@ -177,13 +177,13 @@ fn every_point_is_recorded_a_minute_after_the_last() {
     let on = |topic: &'static str| messages.iter().filter(move |m| m.channel.topic == topic);
     let scenario = json(on("/sightline/scenario").next().unwrap());
     let points = scenario["points"].as_array().unwrap();
-    assert_eq!(points.len(), 17);
+    assert_eq!(points.len(), 19);
     for (k, point) in points.iter().enumerate() {
         assert_eq!(point["point"], k);
         assert_eq!(point["offset"], 60.0 * k as f64);
     }
     let minute = 60_000_000_000_u64;
-    let mut steps = [0_u64; 17];
+    let mut steps = [0_u64; 19];
     for m in on("/sightline/signals") {
         let k = json(m)["point"].as_u64().unwrap();
         steps[k as usize] += 1;
@@ -194,13 +194,13 @@ fn every_point_is_recorded_a_minute_after_the_last() {
             m.log_time
         );
     }
-    assert_eq!(steps, [30; 17]);
+    assert_eq!(steps, [30; 19]);
     // The last step of each point but the last is at 2.9 s; its agents go at 3.9 s.
     let cleared: Vec<u64> = on("/scene/agents")
         .filter(|m| json(m)["entities"].as_array().unwrap().is_empty())
         .map(|m| m.log_time)
         .collect();
-    let expected: Vec<u64> = (0..16).map(|k| epoch + k * minute + 3_900_000_000).collect();
+    let expected: Vec<u64> = (0..18).map(|k| epoch + k * minute + 3_900_000_000).collect();
     assert_eq!(cleared, expected);
     // So are the grids: each grid topic a point showed (an agent's only where
     // it cooperates) gets a grid of no cell then (its fields kept; one cell's
@@ -255,7 +255,7 @@ fn every_point_is_recorded_a_minute_after_the_last() {
         assert_eq!(tf[k - 1].log_time, at - 1_000_000_000);
         assert_eq!(frames(tf[k]), frames(tf[k - 1]), "at {at}");
     }
-    assert_eq!(on("/scene/map").count(), 17);
+    assert_eq!(on("/scene/map").count(), 19);
 }
 
 /// Every entity locked to a frame is drawn where `/tf` places that frame, and

@@ -59,6 +59,11 @@ pub enum Metric {
     /// World: `occupied_recall` with the cooperating agents' own footprints
     /// counted as well, as a grid that holds every road user is scored (0–1).
     OccupiedRecallWithSelfReport,
+    /// World: `occupied_recall` of the ego's own observation alone, over the
+    /// same cells (fused and decided by the same rule): the ego-only baseline
+    /// at the same population, so that cooperation's gain is
+    /// `occupied_recall` − `ego_occupied_recall` at one point (0–1).
+    EgoOccupiedRecall,
     /// World: share of the truly occupied cells the fused grid decides Occupy
     /// that only a cooperating agent's report of its own footprint marks
     /// occupied, no sensor (0–1).
@@ -183,7 +188,7 @@ pub enum Metric {
 
 impl Metric {
     /// Every metric, in documentation order.
-    pub const ALL: [Metric; 55] = [
+    pub const ALL: [Metric; 56] = [
         Self::Accuracy,
         Self::BelowThreshold,
         Self::BelowThresholdFraction,
@@ -203,6 +208,7 @@ impl Metric {
         Self::OccupiedPrecision,
         Self::BlindRecall,
         Self::OccupiedRecallWithSelfReport,
+        Self::EgoOccupiedRecall,
         Self::SelfReportShare,
         Self::BrierScore,
         Self::MeanVisibleFraction,
@@ -263,6 +269,7 @@ impl Metric {
             Self::OccupiedPrecision => "occupied_precision",
             Self::BlindRecall => "blind_recall",
             Self::OccupiedRecallWithSelfReport => "occupied_recall_with_self_report",
+            Self::EgoOccupiedRecall => "ego_occupied_recall",
             Self::SelfReportShare => "self_report_share",
             Self::BrierScore => "brier_score",
             Self::MeanVisibleFraction => "mean_visible_fraction",
@@ -326,6 +333,7 @@ impl Metric {
                     | Self::OccupiedPrecision
                     | Self::BlindRecall
                     | Self::OccupiedRecallWithSelfReport
+                    | Self::EgoOccupiedRecall
                     | Self::SelfReportShare
                     | Self::BrierScore
                     | Self::MeanVisibleFraction
@@ -453,7 +461,7 @@ impl Metric {
             | Self::TotalConflictCells
             | Self::WeightedCells => "fused cells",
             Self::FovGain => "cell-steps the ego observes",
-            Self::OccupiedRecall => "occupied cell-steps of non-cooperating road users",
+            Self::OccupiedRecall | Self::EgoOccupiedRecall => "occupied cell-steps of non-cooperating road users",
             Self::OccupiedPrecision => "cell-steps decided occupied",
             Self::BlindRecall => "occupied cell-steps of non-cooperating road users the ego does not observe",
             Self::OccupiedRecallWithSelfReport => "truly occupied cell-steps",

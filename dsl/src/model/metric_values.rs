@@ -18,6 +18,7 @@ impl Metric {
             | Self::OccupiedPrecision
             | Self::BlindRecall
             | Self::OccupiedRecallWithSelfReport
+            | Self::EgoOccupiedRecall
             | Self::SelfReportShare
             | Self::BrierScore
             | Self::MeanVisibleFraction

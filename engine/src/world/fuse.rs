@@ -359,6 +359,7 @@ impl Tallier<'_> {
                 OCCUPIED => {
                     counts.occupied += 1;
                     counts.detected += u64::from(decided);
+                    counts.ego_detected += u64::from(self.ego_decides_occupied(cell, &mut sources));
                     tally.by_distance.record(self.fusion.grid, self.senders, cell, decided);
                     if ego.get(cell) == Observed::Unknown {
                         counts.blind_occupied += 1;
@@ -385,5 +386,26 @@ impl Tallier<'_> {
             }
         }
         (tally, values)
+    }
+
+    /// Whether the ego's own observation alone, fused and judged as the job's
+    /// grid is, decides `cell` Occupy: the ego-only baseline over the cells
+    /// recall counts (`ego_occupied_recall`).
+    fn ego_decides_occupied(&self, cell: usize, sources: &mut Vec<Source>) -> bool {
+        let ego = &self.fusion.observations[..1];
+        if ego[0].get(cell) == Observed::Unknown {
+            return false;
+        }
+        let judged = match self.memo.and_then(|memo| memo.get(ego, cell)) {
+            Some(&judged) => judged,
+            None => {
+                let alone = CellFusion {
+                    observations: ego,
+                    ..self.fusion
+                };
+                judge(alone.estimate(cell, sources), self.decision)
+            }
+        };
+        judged.decision == Some(State::Occupied)
     }
 }

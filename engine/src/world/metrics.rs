@@ -89,6 +89,9 @@ pub struct WorldMetrics {
     pub occupied: u64,
     /// Of those, decided Occupy by the fused grid.
     pub detected: u64,
+    /// Of the `occupied` cell-steps, those the ego's own observation alone
+    /// decides Occupy (fused and decided by the same rule).
+    pub ego_detected: u64,
     /// Cell-steps decided Occupy that are truly free.
     pub false_positives: u64,
     /// Of the `occupied` cell-steps, those the ego did not observe itself.
@@ -136,6 +139,7 @@ impl WorldMetrics {
         add(&mut self.joint_observed, joint_observed);
         add(&mut self.occupied, cells.occupied);
         add(&mut self.detected, cells.detected);
+        add(&mut self.ego_detected, cells.ego_detected);
         add(&mut self.false_positives, cells.false_positives);
         add(&mut self.blind_occupied, cells.blind_occupied);
         add(&mut self.blind_detected, cells.blind_detected);
@@ -155,6 +159,7 @@ impl WorldMetrics {
         match metric {
             Metric::FovGain => ratio(self.joint_observed, self.ego_observed).map(|r| r - 1.0),
             Metric::OccupiedRecall => ratio(self.detected, self.occupied),
+            Metric::EgoOccupiedRecall => ratio(self.ego_detected, self.occupied),
             Metric::OccupiedPrecision => ratio(self.correct(), self.correct().saturating_add(self.false_positives)),
             Metric::BlindRecall => ratio(self.blind_detected, self.blind_occupied),
             Metric::OccupiedRecallWithSelfReport => {
@@ -190,7 +195,7 @@ impl WorldMetrics {
     pub fn sample_size(&self, metric: Metric, fused: u64) -> Option<u64> {
         match metric {
             Metric::FovGain => Some(self.ego_observed),
-            Metric::OccupiedRecall => Some(self.occupied),
+            Metric::OccupiedRecall | Metric::EgoOccupiedRecall => Some(self.occupied),
             Metric::OccupiedPrecision => Some(self.correct().saturating_add(self.false_positives)),
             Metric::BlindRecall => Some(self.blind_occupied),
             Metric::OccupiedRecallWithSelfReport => Some(self.occupied.saturating_add(self.self_report)),
@@ -247,6 +252,8 @@ pub struct CellTally {
     pub occupied: u64,
     /// Of those, decided Occupy by the fused grid.
     pub detected: u64,
+    /// Of the `occupied`, decided Occupy by the ego's own observation alone.
+    pub ego_detected: u64,
     /// Decided Occupy but truly free.
     pub false_positives: u64,
     /// Of the `occupied`, those not observed by the ego itself.
@@ -266,6 +273,7 @@ impl CellTally {
     pub fn add(&mut self, other: &CellTally) {
         self.occupied += other.occupied;
         self.detected += other.detected;
+        self.ego_detected += other.ego_detected;
         self.false_positives += other.false_positives;
         self.blind_occupied += other.blind_occupied;
         self.blind_detected += other.blind_detected;
@@ -355,6 +363,7 @@ mod tests {
         let cells = CellTally {
             occupied: 10,
             detected: 8,
+            ego_detected: 3,
             false_positives: 1,
             blind_occupied: 4,
             blind_detected: 2,
@@ -380,6 +389,10 @@ mod tests {
             (12, 10, 6)
         );
         assert_eq!(metrics.value(Metric::OccupiedRecall), Some(0.8));
+        // The ego alone, over the same 20 cell-steps.
+        assert_eq!(metrics.ego_detected, 6);
+        assert_eq!(metrics.value(Metric::EgoOccupiedRecall), Some(0.3));
+        assert_eq!(metrics.sample_size(Metric::EgoOccupiedRecall, 0), Some(20));
         // (16 + 10) / (20 + 12), over 32 cell-steps; 6 of the 26 correct ones are self-report only.
         assert_eq!(metrics.value(Metric::OccupiedRecallWithSelfReport), Some(26.0 / 32.0));
         assert_eq!(metrics.sample_size(Metric::OccupiedRecallWithSelfReport, 0), Some(32));

@@ -6,6 +6,12 @@
 //! `max_age` old (since it was sensed), then they are dropped. With a `decay`
 //! time constant τ, evidence of age a weighs exp(−a / τ): fusion discounts its
 //! mass toward unknown by that weight.
+//!
+//! The sender's own footprint ([`Observed::Own`]) is the exception: it says
+//! where the sender is, so a newer footprint replaces the older one whole, and
+//! an older one arriving late is ignored. Kept until `max_age`, the footprints
+//! of a moving sender left a trail behind it, which fusion read as occupied
+//! and credited to whoever followed in it (session 21's outside check).
 
 use sightline_dsl::Messages;
 
@@ -35,6 +41,9 @@ pub(super) struct Held {
     /// Per cell: the serial of the generation its state came in.
     from: Vec<u32>,
     touched: Vec<usize>,
+    /// The cells of the sender's footprint as held, and the generation it
+    /// came in: only the newest footprint received is held.
+    own: (Vec<usize>, Option<u32>),
     /// The generations that may still be live, in slot [`slot`]`(serial)`:
     /// more slots than generations fit in `max_age`, so that live ones never
     /// share a slot, and a power of two of them, so that finding a cell's
@@ -56,6 +65,7 @@ impl Held {
             cells: vec![Observed::Unknown; cells],
             from: vec![0; cells],
             touched: Vec::new(),
+            own: (Vec::new(), None),
             slots: vec![None; live],
             stale: false,
             fresh: messages.decay.is_none(),
@@ -77,6 +87,9 @@ impl Held {
             });
         }
         for run in runs {
+            if run.state == Observed::Own && !self.newest_footprint(serial) {
+                continue;
+            }
             for cell in run.cells() {
                 if self.cells[cell] == Observed::Unknown {
                     self.touched.push(cell);
@@ -84,7 +97,34 @@ impl Held {
                 self.cells[cell] = run.state;
                 self.from[cell] = serial;
             }
+            if run.state == Observed::Own {
+                self.own.0.extend(run.cells());
+            }
         }
+    }
+
+    /// Whether a footprint of generation `serial` is the newest received; the
+    /// held one, when older, is dropped first.
+    fn newest_footprint(&mut self, serial: u32) -> bool {
+        match self.own.1 {
+            Some(held) if serial < held => return false,
+            Some(held) if serial == held => return true,
+            _ => {}
+        }
+        let (cells, from) = (&mut self.cells, &self.from);
+        let mut dropped = false;
+        for &cell in &self.own.0 {
+            if cells[cell] == Observed::Own && Some(from[cell]) == self.own.1 {
+                cells[cell] = Observed::Unknown;
+                dropped = true;
+            }
+        }
+        if dropped {
+            self.touched.retain(|&cell| cells[cell] != Observed::Unknown);
+        }
+        self.own.0.clear();
+        self.own.1 = Some(serial);
+        true
     }
 
     /// Ages what is held to `now`: drops the cells whose evidence is older than
@@ -174,6 +214,30 @@ mod tests {
 
     fn run(start: usize, len: u32, state: Observed) -> Run {
         Run { start, len, state }
+    }
+
+    /// The sender's footprint is where its newest message puts it: a newer
+    /// footprint drops the older one at once (no trail behind a moving
+    /// sender), and an older one arriving late is ignored, while the other
+    /// cells of either message are held as any others.
+    #[test]
+    fn only_the_newest_footprint_is_held() {
+        use Observed::{Free, Own, Unknown};
+        let messages = messages(None);
+        let mut held = Held::new(8, &messages);
+        let sensors = [Point::new(0.0, 0.0)];
+        held.receive(0, 0.0, &sensors, &[run(0, 2, Own), run(2, 2, Free)]);
+        held.receive(1, 0.1, &sensors, &[run(1, 2, Own), run(4, 1, Free)]);
+        let states: Vec<Observed> = (0..6).map(|c| held.get(c)).collect();
+        assert_eq!(states, [Unknown, Own, Own, Free, Free, Unknown]);
+        let mut touched = held.touched().to_vec();
+        touched.sort_unstable();
+        assert_eq!(touched, [1, 2, 3, 4]);
+        // Generation 0 again, late: its free cell is taken, its footprint not.
+        held.receive(0, 0.0, &sensors, &[run(5, 1, Free), run(6, 1, Own)]);
+        let states: Vec<Observed> = (0..8).map(|c| held.get(c)).collect();
+        assert_eq!(states, [Unknown, Own, Own, Free, Free, Free, Unknown, Unknown]);
+        assert_eq!(held.touched().len(), 5);
     }
 
     /// Newer messages overwrite the cells they cover; cells no newer message

@@ -90,6 +90,7 @@ pub(super) fn point_body(p: &PointResult) -> (String, Vec<TableView>) {
                     c.occupied as f64,
                 ),
                 ("… decided Occupy", c.detected as f64),
+                ("… decided Occupy by the ego alone", c.ego_detected as f64),
                 ("free cell-steps decided Occupy", c.false_positives as f64),
                 ("occupied cell-steps the ego did not observe", c.blind_occupied as f64),
                 ("… decided Occupy", c.blind_detected as f64),

@@ -12,8 +12,9 @@ use crate::results::{Axis, PointResult, Results};
 
 /// Metrics every sweep table shows; metrics that requirements or references use
 /// are added after them.
-const TABLE_METRICS: [&str; 15] = [
+const TABLE_METRICS: [&str; 16] = [
     "occupied_recall",
+    "ego_occupied_recall",
     "blind_recall",
     "self_report_share",
     "brier_score",

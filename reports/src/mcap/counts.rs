@@ -8,9 +8,10 @@
 use sightline_dsl::Metric;
 
 /// The metrics the steps of a perception world give, summed over them.
-pub(crate) const WORLD_STEP_METRICS: [Metric; 6] = [
+pub(crate) const WORLD_STEP_METRICS: [Metric; 7] = [
     Metric::FovGain,
     Metric::OccupiedRecall,
+    Metric::EgoOccupiedRecall,
     Metric::OccupiedPrecision,
     Metric::BlindRecall,
     Metric::OccupiedRecallWithSelfReport,

@@ -133,6 +133,7 @@ pub fn read(bytes: &[u8]) -> Result<Recording, ReadError> {
                                     let tally = CellTally {
                                         occupied: cells.occupied,
                                         detected: cells.detected,
+                                        ego_detected: cells.ego_detected,
                                         false_positives: cells.false_positives,
                                         blind_occupied: cells.blind_occupied,
                                         blind_detected: cells.blind_detected,

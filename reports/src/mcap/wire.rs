@@ -29,7 +29,7 @@ pub use semantic::{
 
 /// The format of sightline's recordings, written in `/sightline/scenario`;
 /// replay reads this version only.
-pub const RECORDING_FORMAT: &str = "sightline-recording/5";
+pub const RECORDING_FORMAT: &str = "sightline-recording/6";
 
 /// A number that survives JSON exactly: finite values as JSON numbers (read back
 /// bit for bit). JSON has no number for NaN and the infinities, and the viewers'
@@ -356,6 +356,9 @@ pub struct CellSignals {
     pub occupied: u64,
     /// Of those, decided occupied.
     pub detected: u64,
+    /// Of the `occupied` cells, those the ego's own observation alone decides
+    /// occupied.
+    pub ego_detected: u64,
     /// Cells decided occupied that are truly free.
     pub false_positives: u64,
     /// Of the `occupied` cells, those the ego did not observe itself.

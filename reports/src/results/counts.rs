@@ -68,6 +68,9 @@ pub struct WorldCounts {
     pub occupied: u64,
     /// Of those, decided Occupy by the fused grid.
     pub detected: u64,
+    /// Of the `occupied` cell-steps, those the ego's own observation alone
+    /// decides Occupy (`ego_occupied_recall`).
+    pub ego_detected: u64,
     /// Cell-steps decided Occupy that are truly free.
     pub false_positives: u64,
     /// Of the `occupied` cell-steps, those the ego did not observe itself.

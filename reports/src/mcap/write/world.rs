@@ -147,6 +147,7 @@ impl<W> Recorder<'_, W> {
             joint_observed: measured.joint_observed,
             occupied: cells.occupied,
             detected: cells.detected,
+            ego_detected: cells.ego_detected,
             false_positives: cells.false_positives,
             blind_occupied: cells.blind_occupied,
             blind_detected: cells.blind_detected,
