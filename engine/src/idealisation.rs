@@ -183,7 +183,9 @@ fn options(setup: &Setup) -> Vec<ModelOption> {
             if world.drives_vehicles() {
                 options.push(ModelOption::Following(world.driving.following));
             }
-            if world.perception.is_some() {
+            // Exact measurements make the estimate the true pose: no filter runs
+            // in effect, and `localization.exact` says so.
+            if world.perception.is_some() && !world.localization.is_exact() {
                 let localization = &world.localization;
                 options.push(ModelOption::PoseFilter(localization.filter));
                 if localization.filter == PoseFilter::Kalman {

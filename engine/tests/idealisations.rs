@@ -190,8 +190,14 @@ fn a_run_lists_what_its_options_assume() {
         !unfiltered.iter().any(|id| id.ends_with("-odometry")),
         "the raw measurement reads no odometry: {unfiltered:?}"
     );
-    let exact = ids(&WORLD.replace("position_sigma: 0.2", "position_sigma: 0"));
+    // Exact measurements make every estimate the true pose: no filter or
+    // odometry is in effect (the defaults are a Kalman filter with noisy odometry).
+    let exact = ids(&WORLD.replace("{ position_sigma: 0.2, filter: kalman }", "{ position_sigma: 0 }"));
     assert!(exact.contains(&"localization.exact") && !exact.contains(&"localization.white-noise"));
+    assert!(
+        !exact.iter().any(|id| id.ends_with("-odometry")),
+        "exact localization reads no odometry: {exact:?}"
+    );
     let dempster = ids(&WORLD.replace("method: bayes", "method: dempster"));
     assert!(dempster.contains(&"fusion.dempster-independent") && !dempster.contains(&"fusion.bayes-independent"));
 }

@@ -1144,11 +1144,13 @@ const KEYS: &[Key] = &[
     },
     // Sweeps, the space falsify searches, the recording.
     Key { path: "sweep", field: change(&[FUSION_SWEEP]), perception: change(&[COOPERATING_SWEEP]), semantic: change(&[RATE_SWEEP]) },
+    // The second sweep leaves the file's seed as written: a value every sweep
+    // point replaced would be refused.
     Key {
         path: "sweeps",
-        field: change(&[("sweeps", r#"[ { "seed": [1, 2] } ]"#)]),
-        perception: change(&[("sweeps", r#"[ { "seed": [3, 4] } ]"#)]),
-        semantic: change(&[("sweeps", r#"[ { "seed": [5, 6] } ]"#)]),
+        field: change(&[("sweeps", r#"[ { "seed": [1, 2] }, { "fusion.method": ["bayes"] } ]"#)]),
+        perception: change(&[("sweeps", r#"[ { "seed": [3, 4] }, { "perception.cooperating": [1] } ]"#)]),
+        semantic: change(&[("sweeps", r#"[ { "seed": [5, 6] }, { "semantic.rate": [5] } ]"#)]),
     },
     Key {
         path: "vary",

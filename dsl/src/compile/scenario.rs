@@ -105,13 +105,15 @@ fn compile_inner(file: &str, source: &str, options: &Options<'_>) -> Result<Scen
             kind: e.kind,
         }]
     })?;
-    let mut ctx = Context::new(file, &tree);
+    // The file as written is checked with the keys every sweep gives filled in.
+    let given = sweep::completed(&tree);
+    let mut ctx = Context::new(file, &given);
     ctx.driven = tree.get("system_under_test").is_some();
     check_version(&mut ctx);
     if !ctx.errors.is_empty() {
         return Err(ctx.errors);
     }
-    let raw: RawScenario = from_node(&tree, &Path::root()).map_err(|e| vec![ctx.de_error(e)])?;
+    let raw: RawScenario = from_node(&given, &Path::root()).map_err(|e| vec![ctx.de_error(e)])?;
     // Imported files are read and parsed once: `traces` and `map` cannot be swept.
     let imported = traces::load(&mut ctx, raw.traces.as_ref(), options.loader);
     let mapped = map::load(&mut ctx, raw.map.as_ref(), options.loader);
@@ -120,6 +122,7 @@ fn compile_inner(file: &str, source: &str, options: &Options<'_>) -> Result<Scen
     let base = setup(&mut ctx, &raw, imported.as_ref(), mapped.as_ref());
     let setup_tree = without_read_once(&tree);
     let sweeps = sweep::sweeps(&mut ctx, setup_tree.size());
+    sweep::refuse_replaced(&mut ctx, &tree, &sweeps);
     if let (Some(_), Some(axis)) = (options.seed, sweeps.iter().flatten().find(|a| a.dotted == "seed")) {
         ctx.error_at(
             axis.key_location,
