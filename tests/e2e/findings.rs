@@ -168,7 +168,7 @@ fn seed_002_findings_quote_the_bundled_run() {
     let checked = check_swept_tables(results, path, "Measured beside the paper");
     // By density, per road user and their criticality, then by risk_for,
     // shares_over, contribution_over, and the ego waiting.
-    assert_eq!(checked, 4 * 13 + 4 * 12 + 4 * 5 + 2 * 3 + 2 * 3 + 2 * 2 + 10);
+    assert_eq!(checked, 4 * 13 + 4 * 12 + 4 * 6 + 2 * 3 + 2 * 3 + 2 * 2 + 10);
     let bins = check_density_tables(results, path, "Extra objects by scene density");
     assert_eq!(bins, 7 + 5);
 
