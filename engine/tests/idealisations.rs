@@ -31,6 +31,7 @@ fn option(name: &str, value: &str) -> Option<ModelOption> {
         "RiskScope" => ModelOption::RiskScope(parse(value)),
         "RsuSight" => ModelOption::RsuSight(parse(value)),
         "ShareCycles" => ModelOption::ShareCycles(parse(value)),
+        "LabelledBy" => ModelOption::LabelledBy(parse(value)),
         _ => return None,
     })
 }

@@ -332,7 +332,7 @@ const SECTIONS: &[(&str, &str)] = &[
              "overspeed": { "window": 5, "threshold": 2 }, "hypotheses": [0.7, 1, 1.1], "rate": 10, "risk_for": "all",
              "rsu_sight": "range", "history": 5, "caution": { "headway": 2.5, "speed_factor": 0.8, "hold": 3 },
              "baseline": { "distance": 4, "speed": 0.5, "heading_deg": 4, "interval": 1 }, "shares_over": "all",
-             "contribution_over": "all", "runs": 1 }"#,
+             "contribution_over": "all", "labelled_by": "critical", "runs": 1 }"#,
     ),
     (
         "field",
@@ -966,6 +966,7 @@ const KEYS: &[Key] = &[
     Key { path: "semantic.baseline.interval", field: Section, perception: MakesJoint, semantic: change(&[("semantic.baseline", r#"{ "interval": 0.1 }"#)]) },
     Key { path: "semantic.shares_over", field: Section, perception: MakesJoint, semantic: with(&[("agents.0.start.offset", "0")], &[("semantic.shares_over", r#""all""#)]) },
     Key { path: "semantic.contribution_over", field: Section, perception: MakesJoint, semantic: with(&[("agents.0.start.offset", "0")], &[("semantic.contribution_over", r#""all""#)]) },
+    Key { path: "semantic.labelled_by", field: Section, perception: MakesJoint, semantic: change(&[("semantic.labelled_by", r#""critical""#)]) },
     Key { path: "semantic.runs", field: Section, perception: MakesJoint, semantic: change(&[("semantic.runs", "2")]) },
     // Requirements and published figures: what is judged and shown.
     Key { path: "requirements[].id", field: Descriptive, perception: Descriptive, semantic: Descriptive },
