@@ -497,6 +497,10 @@ fn the_field_refuses_an_origin_its_layout_moves_with() {
         );
         assert!(matches!(&refused.0[0].kind, ErrorKind::NoEffect(why) if why.contains("no distance changes")));
     }
+    // Told in one pass with a value every sweep point replaces.
+    let both = errors(&format!("{moved}sweep:\n  field.masses.gamma: [6, 14]\n"));
+    let paths: Vec<&str> = both.0.iter().map(|e| e.path.as_str()).collect();
+    assert_eq!(paths, ["grid.origin", "field.masses.gamma"], "{both}");
     // Given positions, the grid's origin decides which cells they see.
     ok(&moved.replace("regular: { rows: 1, cols: 2 }", "positions: [[5, 5], [15, 5]]"));
 }

@@ -271,7 +271,10 @@ fn motions(text: &str, id: &str) -> Vec<(f64, f64)> {
 
 #[test]
 fn a_sweep_sets_an_agent_named_by_its_id() {
-    let text = format!("{WORLD}sweep:\n  agents.cav.start.time: [0, 5]\n  agents.cav.speed.target: [4, 8]\n");
+    // The sweep gives cav's start and speed: the file leaves them out.
+    let world = WORLD.replace("start: { time: 2 }, speed: { target: 8 }, connected", "connected");
+    assert_ne!(world, WORLD);
+    let text = format!("{world}sweep:\n  agents.cav.start.time: [0, 5]\n  agents.cav.speed.target: [4, 8]\n");
     assert_eq!(motions(&text, "cav"), [(0.0, 4.0), (0.0, 8.0), (5.0, 4.0), (5.0, 8.0)]);
     assert_eq!(
         motions(&text, "ego"),

@@ -122,7 +122,6 @@ fn compile_inner(file: &str, source: &str, options: &Options<'_>) -> Result<Scen
     let base = setup(&mut ctx, &raw, imported.as_ref(), mapped.as_ref());
     let setup_tree = without_read_once(&tree);
     let sweeps = sweep::sweeps(&mut ctx, setup_tree.size());
-    sweep::refuse_replaced(&mut ctx, &tree, &sweeps);
     if let (Some(_), Some(axis)) = (options.seed, sweeps.iter().flatten().find(|a| a.dotted == "seed")) {
         ctx.error_at(
             axis.key_location,
@@ -153,6 +152,9 @@ fn compile_inner(file: &str, source: &str, options: &Options<'_>) -> Result<Scen
         },
         _ => None,
     };
+    // After the points, so that a file also refused for what its settings
+    // leave without effect is told both in one pass.
+    sweep::refuse_replaced(&mut ctx, &tree, &sweeps);
     let points = compiled.as_ref().map(Configurations::points);
     let requirements = requirements(&mut ctx, &raw.requirements, points);
     verdicts_budget(&mut ctx, &requirements);
