@@ -464,9 +464,9 @@ fn urban_semantic_scenario_runs_end_to_end() {
         assert_eq!(point["verdict"] == "not_exercised", waiting, "{point}");
         assert_eq!(point["n"] == 0, waiting, "{point}");
     }
-    // 17 rows in six sweeps; density 23 at the paper's `risk_for` and
-    // density 10 at our `shares_over` and `contribution_over` are rows of two
-    // and three sweeps.
+    // 21 rows in six sweeps; density 23 at the paper's `risk_for` and
+    // density 10 at our `shares_over` and `contribution_over` are rows of
+    // three and four sweeps (each density also `labelled_by: any`).
     let points = results["sweep"].as_array().unwrap();
     assert_eq!(points.len(), 12);
     for point in points {
@@ -497,7 +497,8 @@ fn urban_semantic_scenario_runs_end_to_end() {
     // Counting every cycle, not only those serving the ego, can only lower the shares.
     assert_eq!(
         points[1]["label"],
-        "traffic.vehicles.density_per_km=10 | semantic.shares_over=ego_in_range | semantic.contribution_over=ego_in_range"
+        "traffic.vehicles.density_per_km=10 | semantic.shares_over=ego_in_range | semantic.contribution_over=ego_in_range | \
+         traffic.vehicles.density_per_km=10, semantic.labelled_by=any"
     );
     assert_eq!(points[5]["label"], "semantic.shares_over=all");
     assert!(load(5, "transmitted_share") < load(1, "transmitted_share"));
