@@ -622,13 +622,14 @@ mod tests {
     fn the_first_pass_records_at_most_three_points_of_one_simulation() {
         let records = |fusion: &str, sweep: &str| {
             let text = include_str!("../scenarios/junction-joint.yaml")
-                .replace("fusion: { method: bayes }", fusion)
+                .replace("decision: {", &format!("{fusion}\ndecision: {{"))
                 .replace("sweep: { fusion.method: [bayes, dempster] }", sweep);
             let scenario =
                 sightline_dsl::compile("j.yaml", &text, &Default::default()).unwrap_or_else(|e| panic!("{e}"));
             records_each(&scenario)
         };
-        let hybrid = "fusion: { method: hybrid, switch: { threshold: 10 } }";
+        // The sweeps give the method; the file only the hybrid rule's switch.
+        let hybrid = "fusion: { switch: { threshold: 10 } }";
         assert!(records(hybrid, "sweep: { fusion.method: [bayes, dempster, hybrid] }"));
         assert!(!records(
             hybrid,

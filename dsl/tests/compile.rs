@@ -14,6 +14,12 @@ field:
   masses: { gamma: 10 }
 ";
 
+/// [`BASE`] without γ, for sweeps that set it at every point: a value of the
+/// file that every point replaces is refused.
+fn base_without_gamma() -> String {
+    BASE.replace("masses: { gamma: 10 }", "masses: {}")
+}
+
 fn ok(text: &str) -> Scenario {
     compile("t.yaml", text, &Options::default()).unwrap_or_else(|e| panic!("{e}"))
 }
@@ -47,7 +53,8 @@ fn defaults_follow_the_paper() {
 #[test]
 fn sweep_expands_first_axis_outermost() {
     let scenario = ok(&format!(
-        "{BASE}sweep:\n  field.masses.gamma: [6, 14]\n  fusion:\n    - {{ label: B, method: dempster }}\n    - {{ label: P, method: hybrid, weights: mean_one, sources: pairwise, switch: {{ measure: ratio, threshold: 2 }} }}\n"
+        "{}sweep:\n  field.masses.gamma: [6, 14]\n  fusion:\n    - {{ label: B, method: dempster }}\n    - {{ label: P, method: hybrid, weights: mean_one, sources: pairwise, switch: {{ measure: ratio, threshold: 2 }} }}\n",
+        base_without_gamma()
     ));
     let labels: Vec<String> = scenario.points.iter().map(|p| p.label()).collect();
     assert_eq!(
@@ -81,7 +88,8 @@ fn sweep_expands_first_axis_outermost() {
 #[test]
 fn where_selects_points_by_effective_settings() {
     let scenario = ok(&format!(
-        "{BASE}sweep:\n  field.masses.gamma: [6, 14]\n  fusion.method: [dempster, bayes]\nrequirements:\n  - id: R1\n    text: conflict stays low\n    where: {{ fusion.label: dempster, field.masses.gamma: 14.0 }}\n    check: {{ metric: mean_conflict, at_most: 0.5 }}\n"
+        "{}sweep:\n  field.masses.gamma: [6, 14]\n  fusion.method: [dempster, bayes]\nrequirements:\n  - id: R1\n    text: conflict stays low\n    where: {{ fusion.label: dempster, field.masses.gamma: 14.0 }}\n    check: {{ metric: mean_conflict, at_most: 0.5 }}\n",
+        base_without_gamma()
     ));
     let requirement = &scenario.requirements[0];
     assert_eq!(requirement.points, vec![2]);
@@ -383,7 +391,8 @@ fn one_sweep_lists_a_point_once_per_row() {
 #[test]
 fn zero_and_negative_zero_stay_apart() {
     let scenario = ok(&format!(
-        "{BASE}sweeps:\n  - {{ field.masses.gamma: [0] }}\n  - {{ field.masses.gamma: [-0.0] }}\n  - {{ field.masses.gamma: [0.0] }}\n"
+        "{}sweeps:\n  - {{ field.masses.gamma: [0] }}\n  - {{ field.masses.gamma: [-0.0] }}\n  - {{ field.masses.gamma: [0.0] }}\n",
+        base_without_gamma()
     ));
     assert_eq!(scenario.points.len(), 2);
     assert_eq!(scenario.sweeps[2].points, [0]);
@@ -394,7 +403,8 @@ fn sweep_sizes_are_checked_before_the_points_are_made() {
     let values = |n: usize| (0..n).map(|i| i.to_string()).collect::<Vec<_>>().join(", ");
     // Three axes of 30 values make 27 000 combinations: refused at the sweep.
     let text = format!(
-        "{BASE}sweep:\n  seed: [{}]\n  field.masses.gamma: [{}]\n  field.sensors.range: [{}]\n",
+        "{}sweep:\n  seed: [{}]\n  field.masses.gamma: [{}]\n  field.masses.concentration: [{}]\n",
+        base_without_gamma(),
         values(30),
         (1..=30).map(|g| format!("{g}.5")).collect::<Vec<_>>().join(", "),
         (1..=30).map(|r| format!("{r}.25")).collect::<Vec<_>>().join(", "),
@@ -427,4 +437,98 @@ fn sweep_sizes_are_checked_before_the_points_are_made() {
         "{refused}"
     );
     assert_eq!(ok(&world(1000)).points.len(), 1000);
+}
+
+#[test]
+fn a_file_value_every_sweep_point_replaces_is_refused_where_it_is_written() {
+    // The file's γ (line 7) and method (line 8) are replaced at every point.
+    let text = format!(
+        "{BASE}fusion: {{ method: bayes, label: F }}\nsweep:\n  field.masses.gamma: [6, 14]\n  fusion.method: [dempster, bayes]\n"
+    );
+    let refused = errors(&text);
+    let found: Vec<(&str, Location)> = refused.0.iter().map(|e| (e.path.as_str(), e.location)).collect();
+    assert_eq!(
+        found,
+        [
+            ("field.masses.gamma", Location::new(7, 13)),
+            ("fusion.method", Location::new(8, 11))
+        ],
+        "{refused}"
+    );
+    assert!(matches!(&refused.0[1].kind, ErrorKind::NoEffect(why)
+        if why == "`sweep.fusion.method` replaces it at every sweep point; leave it out of the file"));
+
+    // A swept section replaces every key of it the file writes.
+    let refused = errors(&format!(
+        "{BASE}fusion: {{ method: bayes }}\nsweep:\n  fusion: [{{ method: dempster }}, {{ method: bayes }}]\n"
+    ));
+    assert_eq!(
+        (refused.0[0].path.as_str(), refused.0[0].location),
+        ("fusion", Location::new(8, 1))
+    );
+
+    // Replaced in every sweep, each named; kept when one sweep leaves it as written.
+    let refused = errors(&format!(
+        "{BASE}sweeps:\n  - {{ field.masses.gamma: [6] }}\n  - {{ field: [{{ truth: {{ occupied_fraction: 0.2 }}, sensors: {{ range: 15, layout: {{ regular: {{ rows: 1, cols: 2 }} }} }}, masses: {{ gamma: 8 }} }}] }}\n"
+    ));
+    assert!(
+        refused.0.iter().any(|e| e.path == "field.masses.gamma"
+            && e.to_string()
+                .contains("`sweeps[0].field.masses.gamma` and `sweeps[1].field` replace it")),
+        "{refused}"
+    );
+    ok(&format!(
+        "{BASE}sweeps:\n  - {{ field.masses.gamma: [6, 14] }}\n  - {{ decision.threshold: [0.7] }}\n"
+    ));
+}
+
+#[test]
+fn a_key_every_sweep_point_sets_counts_as_given() {
+    // γ is required; the sweep gives it at every point.
+    let scenario = ok(&format!(
+        "{}sweep:\n  field.masses.gamma: [6, 14]\n",
+        base_without_gamma()
+    ));
+    let gammas: Vec<f64> = scenario
+        .points
+        .iter()
+        .map(|p| match &p.setup.experiment {
+            Experiment::Field(field) => field.masses.gamma,
+            _ => panic!("a field scenario"),
+        })
+        .collect();
+    assert_eq!(gammas, [6.0, 14.0]);
+    // A bad swept value is still reported at the value, once.
+    let refused = errors(&format!(
+        "{}sweep:\n  field.masses.gamma: [-2, 6]\n",
+        base_without_gamma()
+    ));
+    assert_eq!(refused.0.len(), 1, "{refused}");
+    assert_eq!(refused.0[0].location, Location::new(9, 24));
+    // A sweep that leaves it out leaves it missing.
+    let refused = errors(&format!(
+        "{}sweeps:\n  - {{ field.masses.gamma: [6] }}\n  - {{ decision.threshold: [0.7] }}\n",
+        base_without_gamma()
+    ));
+    assert!(refused.to_string().contains("missing key `gamma`"), "{refused}");
+}
+
+#[test]
+fn the_field_refuses_an_origin_its_layout_moves_with() {
+    let moved = BASE.replace("grid: { size", "grid: { origin: [5, 0], size");
+    for layout in ["regular: { rows: 1, cols: 2 }", "random: { count: 3 }"] {
+        let refused = errors(&moved.replace("regular: { rows: 1, cols: 2 }", layout));
+        assert_eq!(
+            (refused.0[0].path.as_str(), refused.0[0].location),
+            ("grid.origin", Location::new(3, 9)),
+            "{refused}"
+        );
+        assert!(matches!(&refused.0[0].kind, ErrorKind::NoEffect(why) if why.contains("no distance changes")));
+    }
+    // Told in one pass with a value every sweep point replaces.
+    let both = errors(&format!("{moved}sweep:\n  field.masses.gamma: [6, 14]\n"));
+    let paths: Vec<&str> = both.0.iter().map(|e| e.path.as_str()).collect();
+    assert_eq!(paths, ["grid.origin", "field.masses.gamma"], "{both}");
+    // Given positions, the grid's origin decides which cells they see.
+    ok(&moved.replace("regular: { rows: 1, cols: 2 }", "positions: [[5, 5], [15, 5]]"));
 }

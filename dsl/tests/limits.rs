@@ -277,7 +277,7 @@ proptest! {
     }
 }
 
-/// A check over seeds multiplies its points' work: the urban junction's eight
+/// A check over seeds multiplies its points' work: the urban junction's twelve
 /// points at 10 000 seeds would take days in one process, so `run` (one
 /// process) refuses it at the check's `seeds`, a run split into enough shards
 /// takes it, and a compilation that simulates nothing (a merge, a replay) does
@@ -302,7 +302,7 @@ fn the_work_of_a_run_counts_its_seeds_and_is_split_by_shards() {
     assert_eq!(error.location.line, line_of(&text, "seeds: 10000"));
     let message = error.to_string();
     assert!(
-        message.contains("8 sweep points, each at the seeds") && message.contains("--shard K/N"),
+        message.contains("12 sweep points, each at the seeds") && message.contains("--shard K/N"),
         "{message}"
     );
     assert!(compile("s.yaml", &text, &processes(Some(100))).is_ok());

@@ -195,6 +195,40 @@ fn agent_grids_without_grids_have_no_effect() {
     assert!(compiled(&text, &Options::default()).record.unwrap().agent_grids);
 }
 
+/// Exact measurements (both σ 0) make every estimate the true pose: the
+/// filter, its process noise and its odometry are refused at their keys, and
+/// accepted again when a sweep makes the measurements noisy at some point.
+#[test]
+fn exact_localization_refuses_the_filter_keys() {
+    for key in [
+        "filter: none",
+        "filter: kalman",
+        "process_position_sigma: 5",
+        "process_heading_sigma_deg: 5",
+        "odometry: { speed_bias: 0.1, yaw_rate_bias_deg: 5, speed_sigma: 1 }",
+    ] {
+        let text = format!("{WORLD}localization: {{ position_sigma: 0, heading_sigma_deg: 0, {key} }}\n");
+        let name = key.split(':').next().unwrap();
+        assert_eq!(
+            first_error(&text),
+            format!(
+                "w.yaml:18:58: error: localization.{name}: has no effect: `position_sigma` and \
+                 `heading_sigma_deg` are 0: every estimate is the true pose, whatever the filter and its odometry"
+            ),
+        );
+        let swept = format!("{text}sweep: {{ localization.heading_sigma_deg: [0, 1] }}\n")
+            .replace("heading_sigma_deg: 0, ", "");
+        compiled(&swept, &Options::default());
+    }
+    // Either σ alone makes the filter work.
+    world(&format!(
+        "{WORLD}localization: {{ position_sigma: 0.1, filter: none }}\n"
+    ));
+    world(&format!(
+        "{WORLD}localization: {{ heading_sigma_deg: 0.1, filter: none }}\n"
+    ));
+}
+
 #[test]
 fn record_errors_are_located() {
     let text = format!("{WORLD}record: {{ point: 3 }}\n");
@@ -237,7 +271,10 @@ fn motions(text: &str, id: &str) -> Vec<(f64, f64)> {
 
 #[test]
 fn a_sweep_sets_an_agent_named_by_its_id() {
-    let text = format!("{WORLD}sweep:\n  agents.cav.start.time: [0, 5]\n  agents.cav.speed.target: [4, 8]\n");
+    // The sweep gives cav's start and speed: the file leaves them out.
+    let world = WORLD.replace("start: { time: 2 }, speed: { target: 8 }, connected", "connected");
+    assert_ne!(world, WORLD);
+    let text = format!("{world}sweep:\n  agents.cav.start.time: [0, 5]\n  agents.cav.speed.target: [4, 8]\n");
     assert_eq!(motions(&text, "cav"), [(0.0, 4.0), (0.0, 8.0), (5.0, 4.0), (5.0, 8.0)]);
     assert_eq!(
         motions(&text, "ego"),

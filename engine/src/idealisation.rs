@@ -9,8 +9,8 @@
 
 use serde::Serialize;
 use sightline_dsl::{
-    ErrorModel, Experiment, Following, FusionMethod, ImportKind, OdometryModel, PathLossModel, PoseFilter, RiskScope,
-    RsuSight, Rule, Scenario, Setup, ShareCycles, SourceCombination, SwitchMeasure, WeightScaling,
+    ErrorModel, Experiment, Following, FusionMethod, ImportKind, LabelledBy, OdometryModel, PathLossModel, PoseFilter,
+    RiskScope, RsuSight, Rule, Scenario, Setup, ShareCycles, SourceCombination, SwitchMeasure, WeightScaling,
 };
 
 use crate::{field, fusion, semantic, v2x, world};
@@ -53,6 +53,8 @@ pub enum ModelOption {
     RsuSight(RsuSight),
     /// `semantic.shares_over` and `semantic.contribution_over`.
     ShareCycles(ShareCycles),
+    /// `semantic.labelled_by`.
+    LabelledBy(LabelledBy),
 }
 
 impl ModelOption {
@@ -72,10 +74,12 @@ impl ModelOption {
             Self::PathLossModel(model) => v2x::path_loss_idealisations(model),
             Self::Following(following) => world::following_idealisations(following),
             Self::RsuSight(sight) => semantic::rsu_sight_idealisations(sight),
-            // Which objects are predicted and which cycles are counted are
-            // choices of what is measured, not simplifications of the world.
+            // Which objects are predicted, which cycles are counted and which
+            // labels make an object labelled are choices of what is measured,
+            // not simplifications of the world.
             Self::RiskScope(RiskScope::Relevant | RiskScope::All)
-            | Self::ShareCycles(ShareCycles::EgoInRange | ShareCycles::All) => &[],
+            | Self::ShareCycles(ShareCycles::EgoInRange | ShareCycles::All)
+            | Self::LabelledBy(LabelledBy::Any | LabelledBy::Critical) => &[],
         }
     }
 }
@@ -183,7 +187,9 @@ fn options(setup: &Setup) -> Vec<ModelOption> {
             if world.drives_vehicles() {
                 options.push(ModelOption::Following(world.driving.following));
             }
-            if world.perception.is_some() {
+            // Exact measurements make the estimate the true pose: no filter runs
+            // in effect, and `localization.exact` says so.
+            if world.perception.is_some() && !world.localization.is_exact() {
                 let localization = &world.localization;
                 options.push(ModelOption::PoseFilter(localization.filter));
                 if localization.filter == PoseFilter::Kalman {
@@ -196,6 +202,7 @@ fn options(setup: &Setup) -> Vec<ModelOption> {
                     ModelOption::RiskScope(semantic.risk_for),
                     ModelOption::ShareCycles(semantic.shares_over),
                     ModelOption::ShareCycles(semantic.contribution_over),
+                    ModelOption::LabelledBy(semantic.labelled_by),
                     ModelOption::PathLossModel(world.v2x.channel.model),
                 ]);
             }

@@ -55,10 +55,14 @@ fn a_method_sees_the_same_samples_alone_or_beside_others() {
 /// sampled alike would give equal outcomes, these differ.
 #[test]
 fn issue_20_points_differing_in_masses_share_a_pass_to_the_bit() {
-    let text = NOISY.replace(
-        "sweep:\n",
-        "sweep:\n  field.masses.gamma: [5, 40]\n  field.masses.error_model: [dirichlet_mean, wrong_label]\n",
-    ) + "requirements:
+    // The sweep gives the masses' γ and error model: the file leaves them out.
+    let text = NOISY
+        .replace("masses: { gamma: 40, error_model: wrong_label }", "masses: {}")
+        .replace(
+            "sweep:\n",
+            "sweep:\n  field.masses.gamma: [5, 40]\n  field.masses.error_model: [dirichlet_mean, wrong_label]\n",
+        )
+        + "requirements:
   - id: ACC
     text: accuracy over seeds at one γ
     where: { field.masses.gamma: 5 }

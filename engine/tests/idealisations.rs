@@ -31,6 +31,7 @@ fn option(name: &str, value: &str) -> Option<ModelOption> {
         "RiskScope" => ModelOption::RiskScope(parse(value)),
         "RsuSight" => ModelOption::RsuSight(parse(value)),
         "ShareCycles" => ModelOption::ShareCycles(parse(value)),
+        "LabelledBy" => ModelOption::LabelledBy(parse(value)),
         _ => return None,
     })
 }
@@ -79,6 +80,8 @@ const NONE: &[(&str, &str)] = &[
     ("RiskScope", "all"),
     ("ShareCycles", "ego_in_range"),
     ("ShareCycles", "all"),
+    ("LabelledBy", "any"),
+    ("LabelledBy", "critical"),
 ];
 
 /// Every enumeration of the language's JSON Schema, with its values.
@@ -194,8 +197,14 @@ fn a_run_lists_what_its_options_assume() {
         !unfiltered.iter().any(|id| id.ends_with("-odometry")),
         "the raw measurement reads no odometry: {unfiltered:?}"
     );
-    let exact = ids(&WORLD.replace("position_sigma: 0.2", "position_sigma: 0"));
+    // Exact measurements make every estimate the true pose: no filter or
+    // odometry is in effect (the defaults are a Kalman filter with noisy odometry).
+    let exact = ids(&WORLD.replace("{ position_sigma: 0.2, filter: kalman }", "{ position_sigma: 0 }"));
     assert!(exact.contains(&"localization.exact") && !exact.contains(&"localization.white-noise"));
+    assert!(
+        !exact.iter().any(|id| id.ends_with("-odometry")),
+        "exact localization reads no odometry: {exact:?}"
+    );
     let dempster = ids(&WORLD.replace("method: bayes", "method: dempster"));
     assert!(dempster.contains(&"fusion.dempster-independent") && !dempster.contains(&"fusion.bayes-independent"));
 }
@@ -242,7 +251,9 @@ fn a_semantic_run_lists_its_radio_and_its_roadside_units_sight() {
 
 #[test]
 fn a_sweep_lists_what_any_of_its_points_assumes_once() {
-    let swept = ids(&format!("{WORLD}sweep: {{ fusion.method: [bayes, dempster] }}\n"));
+    // The sweep gives the method: the file's would be refused.
+    let world = WORLD.replace("fusion: { method: bayes }\n", "");
+    let swept = ids(&format!("{world}sweep: {{ fusion.method: [bayes, dempster] }}\n"));
     assert_eq!(
         swept.iter().filter(|&&id| id == "fusion.bayes-independent").count(),
         1,
@@ -263,7 +274,7 @@ fn idealisation_ids_are_unique_and_texts_are_sentences() {
     }
     for text in [
         WORLD.to_string(),
-        WORLD.replace("position_sigma: 0.2", "position_sigma: 0"),
+        WORLD.replace("{ position_sigma: 0.2, filter: kalman }", "{ position_sigma: 0 }"),
     ] {
         let scenario = compile("t.yaml", &text, &Options::default()).unwrap();
         all.extend(idealisations(&scenario));

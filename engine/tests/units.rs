@@ -15,7 +15,7 @@ grid: { size: [20, 20], cell: 1 }
 field:
   truth: { occupied_fraction: 0.2 }
   sensors: { range: 15, layout: { regular: { rows: 1, cols: 2 } } }
-  masses: { gamma: 10 }
+  masses: {}
 sweep:
   field.masses.gamma: [5, 10]
   fusion: [{ label: DS, method: dempster }, { label: Bayes, method: bayes }]

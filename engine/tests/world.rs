@@ -62,7 +62,15 @@ impl Setting {
             .replace("{seed}", &self.seed.to_string())
             .replace("{sigma}", &self.sigma.to_string())
             .replace("{heading}", &(self.sigma * 5.0).to_string())
-            .replace("{filter}", self.filter)
+            // Exact localization takes no filter: `check` refuses one.
+            .replace(
+                ", filter: {filter}",
+                &if self.sigma == 0.0 {
+                    String::new()
+                } else {
+                    format!(", filter: {}", self.filter)
+                },
+            )
             .replace("{method}", self.method);
         for (i, offset) in self.offsets.iter().enumerate() {
             text = text.replace(&format!("{{o{i}}}"), &offset.to_string());

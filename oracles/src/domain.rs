@@ -171,7 +171,7 @@ grid: { size: [20, 20], cell: 1 }
 field:
   truth: { occupied_fraction: 0.2 }
   sensors: { range: 15, layout: { regular: { rows: 1, cols: 2 } } }
-  masses: { gamma: 4 }
+  masses: {}
 sweep:
   field.masses.gamma: [4, 30]
 requirements:

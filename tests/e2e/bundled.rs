@@ -470,11 +470,11 @@ fn urban_semantic_scenario_runs_end_to_end() {
         assert_eq!(point["verdict"] == "not_exercised", waiting, "{point}");
         assert_eq!(point["n"] == 0, waiting, "{point}");
     }
-    // 13 rows in five sweeps; density 23 at the paper's `risk_for` and
-    // density 10 at our `shares_over` and `contribution_over` are rows of two
-    // and three sweeps.
+    // 21 rows in six sweeps; density 23 at the paper's `risk_for` and
+    // density 10 at our `shares_over` and `contribution_over` are rows of
+    // three and four sweeps (each density also `labelled_by: any`).
     let points = results["sweep"].as_array().unwrap();
-    assert_eq!(points.len(), 8);
+    assert_eq!(points.len(), 12);
     for point in points {
         assert_eq!(point["experiment"], "semantic");
         assert!(point.get("audit").is_none(), "a semantic world fuses no cells");
@@ -503,7 +503,8 @@ fn urban_semantic_scenario_runs_end_to_end() {
     // Counting every cycle, not only those serving the ego, can only lower the shares.
     assert_eq!(
         points[1]["label"],
-        "traffic.vehicles.density_per_km=10 | semantic.shares_over=ego_in_range | semantic.contribution_over=ego_in_range"
+        "traffic.vehicles.density_per_km=10 | semantic.shares_over=ego_in_range | semantic.contribution_over=ego_in_range | \
+         traffic.vehicles.density_per_km=10, semantic.labelled_by=any"
     );
     assert_eq!(points[5]["label"], "semantic.shares_over=all");
     assert!(load(5, "transmitted_share") < load(1, "transmitted_share"));
@@ -518,10 +519,30 @@ fn urban_semantic_scenario_runs_end_to_end() {
         points[6]["metrics"]["channel_load"],
         points[1]["metrics"]["channel_load"]
     );
+    // Labelled by a critical label only, at each density: fewer objects
+    // labelled than by any label, of the same perceived ones; nothing else moves.
+    for (any, critical) in [0, 1, 2, 3].into_iter().zip(7..) {
+        assert!(
+            points[critical]["label"]
+                .as_str()
+                .unwrap()
+                .ends_with("semantic.labelled_by=critical")
+        );
+        assert!(points[critical]["counts"]["labelled"].as_u64() < points[any]["counts"]["labelled"].as_u64());
+        assert_eq!(
+            points[critical]["samples"]["labelled_share"],
+            points[any]["samples"]["labelled_share"]
+        );
+        assert_eq!(points[critical]["counts"]["labels"], points[any]["counts"]["labels"]);
+        assert_eq!(
+            points[critical]["metrics"]["channel_load"],
+            points[any]["metrics"]["channel_load"]
+        );
+    }
     // The ego waiting inside the RSU's range is served at every step.
     assert_eq!(
-        points[7]["samples"]["infrastructure_contribution"],
-        points[7]["counts"]["steps"]
+        points[11]["samples"]["infrastructure_contribution"],
+        points[11]["counts"]["steps"]
     );
     // Per object: the least-warned of the flagged road users decides.
     let warn = requirement(results, "URB-WARN-01");
@@ -541,7 +562,7 @@ fn urban_semantic_scenario_runs_end_to_end() {
     );
     // Eventually: every point reports when the signal came best.
     let rsu = requirement(results, "URB-RSU-T-01");
-    assert_eq!(rsu["points"].as_array().unwrap().len(), 8);
+    assert_eq!(rsu["points"].as_array().unwrap().len(), 12);
     assert!(rsu["points"].as_array().unwrap().iter().all(|p| p["time"].is_number()));
 }
 

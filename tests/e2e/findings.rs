@@ -64,21 +64,30 @@ fn assert_quotes(quoted: &str, actual: f64, what: &str) {
     );
 }
 
-/// Checks every table of a section whose first column is a swept setting (a
-/// number or a name; `` `key` (sweep K)``: among the points of sweep K only)
-/// and whose other columns are metrics of the point with that setting, else
-/// its counts, `n(…)`: a metric's sample size, or `… (paper)`: the scenario's
-/// reference at that point (`—` where there is none). Returns the number of
-/// cells checked.
+/// Checks every table of a section whose first columns (in backticks; at
+/// least the first) are swept settings (a number or a name; `` `key` (sweep
+/// K)``: among the points of sweep K only) and whose other columns are metrics
+/// of the first point with those settings, else its counts, `n(…)`: a metric's
+/// sample size, or `… (paper)`: the scenario's reference at that point (`—`
+/// where there is none). Returns the number of cells checked.
 fn check_swept_tables(results: &serde_json::Value, path: &str, section: &str) -> usize {
     let references = results["references"].as_array().unwrap();
     let mut checked = 0;
     for table in tables(path, section) {
-        let (axis, sweep) = match table.header[0].split_once(" (sweep ") {
-            Some((axis, k)) => (axis, Some(k.trim_end_matches(')').parse::<u64>().unwrap())),
-            None => (table.header[0].as_str(), None),
-        };
-        let axis = axis.trim_matches('`');
+        // The leading columns in backticks are settings; the point has them all.
+        let axes = table.header.iter().take_while(|c| c.starts_with('`')).count().max(1);
+        let mut sweep = None;
+        let axis: Vec<&str> = table.header[..axes]
+            .iter()
+            .map(|c| match c.split_once(" (sweep ") {
+                Some((axis, k)) => {
+                    sweep = Some(k.trim_end_matches(')').parse::<u64>().unwrap());
+                    axis.trim_matches('`')
+                }
+                None => c.trim_matches('`'),
+            })
+            .collect();
+        let axis = &axis[..];
         let points: Vec<serde_json::Value> = results["sweep"]
             .as_array()
             .unwrap()
@@ -87,11 +96,11 @@ fn check_swept_tables(results: &serde_json::Value, path: &str, section: &str) ->
             .cloned()
             .collect();
         for cells in &table.rows {
-            let setting = &cells[0];
+            let setting = &cells[..axes];
             let point = point_with(&points, axis, setting)
-                .unwrap_or_else(|| panic!("{path}: no point with {axis} = {setting}"));
+                .unwrap_or_else(|| panic!("{path}: no point with {axis:?} = {setting:?}"));
             let index = point["index"].as_u64().unwrap();
-            for (column, cell) in table.header.iter().zip(cells).skip(1) {
+            for (column, cell) in table.header.iter().zip(cells).skip(axes) {
                 let actual = if let Some(metric) = column.strip_prefix("n(").and_then(|c| c.strip_suffix(')')) {
                     point["samples"][metric].as_f64()
                 } else if let Some(metric) = column.strip_suffix(" (paper)") {
@@ -106,7 +115,7 @@ fn check_swept_tables(results: &serde_json::Value, path: &str, section: &str) ->
                         .as_f64()
                         .or_else(|| point["counts"][column.as_str()].as_f64())
                 };
-                let what = format!("{path}: {column} at {axis} = {setting}");
+                let what = format!("{path}: {column} at {axis:?} = {setting:?}");
                 match (cell.as_str(), actual) {
                     ("—", None) => {}
                     (quoted, Some(actual)) => assert_quotes(quoted, actual, &what),
@@ -119,12 +128,18 @@ fn check_swept_tables(results: &serde_json::Value, path: &str, section: &str) ->
     checked
 }
 
-/// The first point of `points` whose setting `axis` is `setting` (a number or a
-/// name).
-fn point_with<'a>(points: &'a [serde_json::Value], axis: &str, setting: &str) -> Option<&'a serde_json::Value> {
+/// The first point of `points` whose settings `axes` are `settings` (each a
+/// number or a name).
+fn point_with<'a>(
+    points: &'a [serde_json::Value],
+    axes: &[&str],
+    settings: &[String],
+) -> Option<&'a serde_json::Value> {
     points.iter().find(|p| {
-        setting_of(p, axis).is_some_and(|value| {
-            value.as_str() == Some(setting) || value.as_f64().is_some_and(|v| setting.parse() == Ok(v))
+        axes.iter().zip(settings).all(|(axis, setting)| {
+            setting_of(p, axis).is_some_and(|value| {
+                value.as_str() == Some(setting) || value.as_f64().is_some_and(|v| setting.parse() == Ok(v))
+            })
         })
     })
 }
@@ -145,7 +160,7 @@ fn check_density_tables(results: &serde_json::Value, path: &str, section: &str) 
         );
         let axis = table.header[0].trim_matches('`');
         for cells in &table.rows {
-            let point = point_with(points, axis, &cells[0])
+            let point = point_with(points, &[axis], &cells[..1])
                 .unwrap_or_else(|| panic!("{path}: no point with {axis} = {}", cells[0]));
             let from: f64 = cells[1].split('–').next().unwrap().parse().unwrap();
             let row = point["contribution_by_density"]
@@ -178,8 +193,9 @@ fn seed_002_findings_quote_the_bundled_run() {
     let results = urban();
     let checked = check_swept_tables(results, path, "Measured beside the paper");
     // By density, per road user and their criticality, then by risk_for,
-    // shares_over, contribution_over, and the ego waiting.
-    assert_eq!(checked, 4 * 13 + 4 * 12 + 4 * 5 + 2 * 3 + 2 * 3 + 2 * 2 + 10);
+    // shares_over, labelled_by at each density, contribution_over, and the
+    // ego waiting.
+    assert_eq!(checked, 4 * 13 + 4 * 12 + 4 * 6 + 2 * 3 + 2 * 3 + 8 * 3 + 2 * 2 + 10);
     let bins = check_density_tables(results, path, "Extra objects by scene density");
     assert_eq!(bins, 7 + 5);
 

@@ -332,7 +332,7 @@ const SECTIONS: &[(&str, &str)] = &[
              "overspeed": { "window": 5, "threshold": 2 }, "hypotheses": [0.7, 1, 1.1], "rate": 10, "risk_for": "all",
              "rsu_sight": "range", "history": 5, "caution": { "headway": 2.5, "speed_factor": 0.8, "hold": 3 },
              "baseline": { "distance": 4, "speed": 0.5, "heading_deg": 4, "interval": 1 }, "shares_over": "all",
-             "contribution_over": "all", "runs": 1 }"#,
+             "contribution_over": "all", "labelled_by": "critical", "runs": 1 }"#,
     ),
     (
         "field",
@@ -968,6 +968,7 @@ const KEYS: &[Key] = &[
     Key { path: "semantic.baseline.interval", field: Section, perception: MakesJoint, semantic: change(&[("semantic.baseline", r#"{ "interval": 0.1 }"#)]) },
     Key { path: "semantic.shares_over", field: Section, perception: MakesJoint, semantic: with(&[("agents.0.start.offset", "0")], &[("semantic.shares_over", r#""all""#)]) },
     Key { path: "semantic.contribution_over", field: Section, perception: MakesJoint, semantic: with(&[("agents.0.start.offset", "0")], &[("semantic.contribution_over", r#""all""#)]) },
+    Key { path: "semantic.labelled_by", field: Section, perception: MakesJoint, semantic: change(&[("semantic.labelled_by", r#""critical""#)]) },
     Key { path: "semantic.runs", field: Section, perception: MakesJoint, semantic: change(&[("semantic.runs", "2")]) },
     // Requirements and published figures: what is judged and shown.
     Key { path: "requirements[].id", field: Descriptive, perception: Descriptive, semantic: Descriptive },
@@ -1146,11 +1147,13 @@ const KEYS: &[Key] = &[
     },
     // Sweeps, the space falsify searches, the recording.
     Key { path: "sweep", field: change(&[FUSION_SWEEP]), perception: change(&[COOPERATING_SWEEP]), semantic: change(&[RATE_SWEEP]) },
+    // The second sweep leaves the file's seed as written: a value every sweep
+    // point replaced would be refused.
     Key {
         path: "sweeps",
-        field: change(&[("sweeps", r#"[ { "seed": [1, 2] } ]"#)]),
-        perception: change(&[("sweeps", r#"[ { "seed": [3, 4] } ]"#)]),
-        semantic: change(&[("sweeps", r#"[ { "seed": [5, 6] } ]"#)]),
+        field: change(&[("sweeps", r#"[ { "seed": [1, 2] }, { "fusion.method": ["bayes"] } ]"#)]),
+        perception: change(&[("sweeps", r#"[ { "seed": [3, 4] }, { "perception.cooperating": [1] } ]"#)]),
+        semantic: change(&[("sweeps", r#"[ { "seed": [5, 6] }, { "semantic.rate": [5] } ]"#)]),
     },
     Key {
         path: "vary",

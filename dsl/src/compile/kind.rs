@@ -92,8 +92,19 @@ pub(super) fn unused(tree: &Node, setup: &Setup) -> Vec<(Path, String)> {
             });
         }
     }
-    if let Experiment::World(world) = &setup.experiment {
-        found.world(world);
+    match &setup.experiment {
+        Experiment::World(world) => found.world(world),
+        Experiment::Field(_) => {
+            // Sensors laid out on the grid move with it: every distance stays.
+            let root = Path::root();
+            if !has(tree, &root.key("field").key("sensors").key("layout").key("positions")) {
+                found.check(root.key("grid").key("origin"), || {
+                    "the sensors are laid out on the grid (`regular`, `random`), so moving the grid moves them \
+                     with it and no distance changes; `positions` places them in the grid's frame"
+                        .into()
+                });
+            }
+        }
     }
     found.found
 }
@@ -155,6 +166,19 @@ impl Unused<'_> {
             self.check(root.key("localization"), || {
                 "every cooperating agent is a roadside unit, whose pose is surveyed: nobody localizes".into()
             });
+        } else if world.localization.is_exact() {
+            for key in [
+                "filter",
+                "process_position_sigma",
+                "process_heading_sigma_deg",
+                "odometry",
+            ] {
+                self.check(root.key("localization").key(key), || {
+                    "`position_sigma` and `heading_sigma_deg` are 0: every estimate is the true pose, whatever the \
+                     filter and its odometry"
+                        .into()
+                });
+            }
         } else if world.localization.filter == PoseFilter::None {
             for key in ["process_position_sigma", "process_heading_sigma_deg", "odometry"] {
                 self.check(root.key("localization").key(key), || {

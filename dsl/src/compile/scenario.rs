@@ -105,13 +105,15 @@ fn compile_inner(file: &str, source: &str, options: &Options<'_>) -> Result<Scen
             kind: e.kind,
         }]
     })?;
-    let mut ctx = Context::new(file, &tree);
+    // The file as written is checked with the keys every sweep gives filled in.
+    let given = sweep::completed(&tree);
+    let mut ctx = Context::new(file, &given);
     ctx.driven = tree.get("system_under_test").is_some();
     check_version(&mut ctx);
     if !ctx.errors.is_empty() {
         return Err(ctx.errors);
     }
-    let raw: RawScenario = from_node(&tree, &Path::root()).map_err(|e| vec![ctx.de_error(e)])?;
+    let raw: RawScenario = from_node(&given, &Path::root()).map_err(|e| vec![ctx.de_error(e)])?;
     // Imported files are read and parsed once: `traces` and `map` cannot be swept.
     let imported = traces::load(&mut ctx, raw.traces.as_ref(), options.loader);
     let mapped = map::load(&mut ctx, raw.map.as_ref(), options.loader);
@@ -150,6 +152,9 @@ fn compile_inner(file: &str, source: &str, options: &Options<'_>) -> Result<Scen
         },
         _ => None,
     };
+    // After the points, so that a file also refused for what its settings
+    // leave without effect is told both in one pass.
+    sweep::refuse_replaced(&mut ctx, &tree, &sweeps);
     let points = compiled.as_ref().map(Configurations::points);
     let requirements = requirements(&mut ctx, &raw.requirements, points);
     verdicts_budget(&mut ctx, &requirements);

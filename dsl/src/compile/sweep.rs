@@ -8,7 +8,7 @@ use std::io;
 
 use foldhash::fast::{FixedState, FoldHasher};
 
-use super::context::Context;
+use super::context::{Context, has, locate_key};
 use super::ignored::ignored;
 use super::kind::Kind;
 use crate::de::{closest, one_of};
@@ -62,28 +62,26 @@ pub(super) struct AxisNodes<'a> {
 pub(super) fn sweeps<'a>(ctx: &mut Context<'a>, copied: usize) -> Vec<Vec<AxisNodes<'a>>> {
     let tree = ctx.tree;
     let root = Path::root();
-    let sweeps = match (tree.get("sweep"), tree.get("sweeps")) {
-        (Some(_), Some(_)) => {
-            ctx.error(
-                &root.key("sweeps"),
-                ErrorKind::Invalid("give `sweep` (one sweep) or `sweeps` (several), not both".into()),
-            );
-            return Vec::new();
-        }
-        (Some(sweep), None) => vec![axes(ctx, sweep, &root.key("sweep"))],
-        (
-            None,
-            Some(Node {
-                value: Value::Seq(items),
-                ..
-            }),
-        ) => items
-            .iter()
-            .enumerate()
-            .map(|(i, sweep)| axes(ctx, sweep, &root.key("sweeps").index(i)))
-            .collect(),
-        _ => Vec::new(),
-    };
+    if tree.get("sweep").is_some() && tree.get("sweeps").is_some() {
+        ctx.error(
+            &root.key("sweeps"),
+            ErrorKind::Invalid("give `sweep` (one sweep) or `sweeps` (several), not both".into()),
+        );
+        return Vec::new();
+    }
+    let one = tree.get("sweep").is_some();
+    let sweeps: Vec<Vec<AxisNodes<'a>>> = sweep_mappings(tree)
+        .into_iter()
+        .enumerate()
+        .map(|(i, sweep)| {
+            let at = if one {
+                root.key("sweep")
+            } else {
+                root.key("sweeps").index(i)
+            };
+            axes(ctx, sweep, &at)
+        })
+        .collect();
     let section = root.key(if tree.get("sweep").is_some() { "sweep" } else { "sweeps" });
     let count = sweeps.iter().try_fold(0usize, |total, axes| {
         axes.iter()
@@ -108,6 +106,85 @@ pub(super) fn sweeps<'a>(ctx: &mut Context<'a>, copied: usize) -> Vec<Vec<AxisNo
         ),
     }
     sweeps
+}
+
+/// The file with each setting it omits that every sweep sets, given the first
+/// value a sweep sets it to: a key every point takes from a sweep counts as
+/// given, so the file need not write a value the sweeps replace. The file as
+/// written is checked on this tree; a key a sweep may not set adds nothing
+/// (its errors are [`sweeps`]'s to report).
+pub(super) fn completed(tree: &Node) -> Node {
+    let written: Vec<Vec<(Path, &Node)>> = sweep_mappings(tree)
+        .into_iter()
+        .map(|sweep| match &sweep.value {
+            Value::Map(entries) => entries
+                .iter()
+                .filter_map(|(key, node)| match &node.value {
+                    Value::Seq(values) => {
+                        let (path, _) = settable(tree, &key.name, ("sweep", "a sweep")).ok()?;
+                        Some((path, values.first()?))
+                    }
+                    _ => None,
+                })
+                .collect(),
+            _ => Vec::new(),
+        })
+        .collect();
+    let mut completed = tree.clone();
+    for (path, first) in written.iter().flatten() {
+        let everywhere = written.iter().all(|axes| axes.iter().any(|(p, _)| is_prefix(p, path)));
+        if everywhere && !has(&completed, path) {
+            // A path that cannot be set is refused where the sweep writes it.
+            let _ = set(&mut completed, path.segments(), (*first).clone(), first.location);
+        }
+    }
+    completed
+}
+
+/// The sweep mappings as written: `sweep`, or each entry of `sweeps` (none when
+/// the file gives both, an error [`sweeps`] reports).
+fn sweep_mappings(tree: &Node) -> Vec<&Node> {
+    match (tree.get("sweep"), tree.get("sweeps")) {
+        (Some(sweep), None) => vec![sweep],
+        (
+            None,
+            Some(Node {
+                value: Value::Seq(items),
+                ..
+            }),
+        ) => items.iter().collect(),
+        _ => Vec::new(),
+    }
+}
+
+/// Refuses each value the file writes that every sweep point replaces: every
+/// sweep has an axis that sets it or a section around it. The error is at the
+/// key in `file` and names the axes that replace it.
+pub(super) fn refuse_replaced(ctx: &mut Context<'_>, file: &Node, sweeps: &[Vec<AxisNodes<'_>>]) {
+    let mut refused: Vec<&Path> = Vec::new();
+    for axis in sweeps.iter().flatten() {
+        if refused.contains(&&axis.path) || !has(file, &axis.path) {
+            continue;
+        }
+        let replacing: Option<Vec<&AxisNodes<'_>>> = sweeps
+            .iter()
+            .map(|axes| axes.iter().find(|a| is_prefix(&a.path, &axis.path)))
+            .collect();
+        let Some(replacing) = replacing else {
+            continue;
+        };
+        let names: Vec<String> = replacing.iter().map(|a| format!("`{}`", a.here)).collect();
+        let verb = if names.len() == 1 { "replaces" } else { "replace" };
+        ctx.error_at(
+            locate_key(file, &axis.path),
+            &axis.path,
+            ErrorKind::NoEffect(format!(
+                "{} {verb} it at every sweep point; leave it out of the file",
+                names.join(" and ")
+            )),
+        );
+        refused.push(&axis.path);
+    }
 }
 
 /// Reads and checks the axes of one sweep mapping, at `prefix` in the file.
@@ -170,66 +247,55 @@ pub(super) fn setting(
     ctx: &mut Context<'_>,
     key: &Key,
     here: &Path,
-    (verb, noun): (&str, &str),
+    words: (&str, &str),
 ) -> Option<(Path, serde_json::Value)> {
-    let path = match resolve(ctx.tree, &key.name) {
-        Ok(path) => path,
-        Err(kind) => {
-            ctx.error_at(key.location, here, kind);
-            return None;
-        }
-    };
+    settable(ctx.tree, &key.name, words)
+        .map_err(|kind| ctx.error_at(key.location, here, kind))
+        .ok()
+}
+
+/// The path in `tree` and the JSON Schema of the setting `name` names, if a
+/// sweep or `vary` (`words`) may set it; else why not.
+fn settable(tree: &Node, name: &str, (verb, noun): (&str, &str)) -> Result<(Path, serde_json::Value), ErrorKind> {
+    let path = resolve(tree, name)?;
     let Some(Segment::Key(section)) = path.segments().first() else {
-        return None;
+        return Err(ErrorKind::Invalid(
+            "expected a dotted path such as `fusion.method`".into(),
+        ));
     };
     if !SWEEPABLE.contains(&section.as_str()) {
-        ctx.error_at(
-            key.location,
-            here,
-            ErrorKind::Invalid(format!(
-                "cannot {verb} `{section}`; {noun} sets the simulation: {}",
-                SWEEPABLE.map(|s| format!("`{s}`")).join(", ")
-            )),
-        );
-        return None;
+        return Err(ErrorKind::Invalid(format!(
+            "cannot {verb} `{section}`; {noun} sets the simulation: {}",
+            SWEEPABLE.map(|s| format!("`{s}`")).join(", ")
+        )));
     }
-    if key.name == "time.start" {
-        ctx.error_at(
-            key.location,
-            here,
-            ErrorKind::Invalid(format!(
-                "cannot {verb} `time.start`: it sets the recording's clock once for the whole run, not a \
-                 simulation setting of a point"
-            )),
-        );
-        return None;
+    if name == "time.start" {
+        return Err(ErrorKind::Invalid(format!(
+            "cannot {verb} `time.start`: it sets the recording's clock once for the whole run, not a \
+             simulation setting of a point"
+        )));
     }
-    let names: Vec<&str> = key.name.split('.').collect();
+    let names: Vec<&str> = name.split('.').collect();
     match check_setting(&names) {
-        Ok(schema) => match Kind::of(ctx.tree).and_then(|kind| ignored(kind, &path)) {
-            Some(why) => {
-                ctx.error_at(key.location, here, ErrorKind::NoEffect(why.into()));
-                None
-            }
-            None => Some((path, schema)),
+        Ok(schema) => match Kind::of(tree).and_then(|kind| ignored(kind, &path)) {
+            Some(why) => Err(ErrorKind::NoEffect(why.into())),
+            None => Ok((path, schema)),
         },
         Err(no) => {
             let message = if no.allowed.is_empty() {
-                format!("`{}` names no setting: `{}` is not a mapping", key.name, no.parent)
+                format!("`{name}` names no setting: `{}` is not a mapping", no.parent)
             } else {
                 let allowed: Vec<&str> = no.allowed.iter().map(String::as_str).collect();
                 let hint = closest(&no.unknown, allowed.iter().copied())
                     .map(|c| format!(" (did you mean `{}.{c}`?)", no.parent))
                     .unwrap_or_default();
                 format!(
-                    "`{}` names no setting: `{}` has {}{hint}",
-                    key.name,
+                    "`{name}` names no setting: `{}` has {}{hint}",
                     no.parent,
                     one_of(allowed.iter())
                 )
             };
-            ctx.error_at(key.location, here, ErrorKind::DanglingReference(message));
-            None
+            Err(ErrorKind::DanglingReference(message))
         }
     }
 }

@@ -153,7 +153,7 @@ pub enum Metric {
     MinPet,
     /// Semantic: the greatest deceleration rate to avoid a crash the ego
     /// needed for any relevant road user (the greatest of the records'
-    /// `max_drac`), m/s², over the road users it closed on.
+    /// `max_drac`), m/s², over the road users its braking could have avoided.
     MaxDrac,
     /// Joint world: `packet_delivery_ratio` of collective perception, the
     /// share of the cooperating agents' messages to the ego that arrive (0–1),

@@ -30,8 +30,8 @@ pub use scenario::{
     Record, RecordedPoints, Scenario, Settings, Setup, Sweep, display_value,
 };
 pub use semantic::{
-    Area, Baseline, Caution, Crosswalk, Driving, Following, InteractionArea, PedestrianTraffic, RiskScope, RsuSight,
-    Semantic, ShareCycles, Traffic, TrafficRoute, VehicleTraffic,
+    Area, Baseline, Caution, Crosswalk, Driving, Following, InteractionArea, LabelledBy, PedestrianTraffic, RiskScope,
+    RsuSight, Semantic, ShareCycles, Traffic, TrafficRoute, VehicleTraffic,
 };
 pub use system::SystemUnderTest;
 pub use unit::{Unit, ValueDomain};

@@ -355,9 +355,10 @@ pub enum ObjectProperty {
     /// covered: its post-encroachment time, seconds (0: they touched). One
     /// without such a spot has none and is not judged.
     Pet,
-    /// Each relevant road user the ego closed on, on a collision course: the
-    /// greatest deceleration rate to avoid the crash the ego needed, m/s².
-    /// One it never closed on has none and is not judged.
+    /// Each relevant road user on a collision course that the ego's braking
+    /// could avoid: the greatest deceleration rate to avoid the crash the ego
+    /// needed, m/s². One braking never could avoid (head on, from behind, or
+    /// heading for an ego that stands) has none and is not judged.
     MaxDrac,
     /// Joint world, each relevant road user: seconds from when a cell of its
     /// footprint was first decided occupied in the ego's fused grid to its
@@ -459,7 +460,7 @@ impl ObjectProperty {
             Self::WarningTime => "objects that came within d_min of the ego",
             Self::MinTtc => "relevant road users on a collision course with the ego",
             Self::Pet => "relevant road users that covered a spot the ego covered",
-            Self::MaxDrac => "relevant road users the ego closed on, on a collision course",
+            Self::MaxDrac => "relevant road users on a collision course the ego's braking could avoid",
             Self::WarningLead
             | Self::KnowledgeLead
             | Self::Anticipation

@@ -147,6 +147,20 @@ pub enum ShareCycles {
     All,
 }
 
+/// Which labels make an object labelled, for the labelled share: seed 002
+/// counts an object "if at least one of the conditions presented in the
+/// framework is verified", and calls that subset "potentially critical".
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum LabelledBy {
+    /// Any label, the NLoS flag included (ours: every condition of the framework).
+    #[default]
+    Any,
+    /// A critical label only: relevance, speeding or a predicted conflict (the
+    /// NLoS flag describes the ego's sight, not the object's criticality).
+    Critical,
+}
+
 /// The roadside units' semantic pipeline.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Semantic {
@@ -181,6 +195,8 @@ pub struct Semantic {
     pub baseline: Baseline,
     /// Which cycles the transmitted and labelled shares count.
     pub shares_over: ShareCycles,
+    /// Which labels the labelled share counts.
+    pub labelled_by: LabelledBy,
     /// Which steps the infrastructure contribution counts.
     pub contribution_over: ShareCycles,
     /// Independent runs pooled into each point's measurements (run 0 uses the

@@ -372,6 +372,14 @@ pub struct Localization {
     pub odometry: Odometry,
 }
 
+impl Localization {
+    /// Whether the measurements are exact (both σ are 0): every estimate is
+    /// then the true pose, whatever the filter and its odometry.
+    pub fn is_exact(&self) -> bool {
+        self.position_sigma == 0.0 && self.heading_sigma == 0.0
+    }
+}
+
 /// The odometry models the pose filter can predict with (`localization.odometry.model`).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]

@@ -7,7 +7,7 @@ use serde::{Deserialize, Serialize};
 
 use super::perception::RawRegion;
 use super::range;
-use crate::model::{RiskScope, RsuSight, ShareCycles};
+use crate::model::{LabelledBy, RiskScope, RsuSight, ShareCycles};
 
 /// A region around a conflict zone (junction, roundabout entry, crossing).
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
@@ -89,6 +89,11 @@ pub(crate) struct RawSemantic {
     /// (the ego within range of one of the RSU's sensors) or `all`.
     #[serde(default)]
     pub shares_over: ShareCycles,
+    /// Which labels make an object labelled for the labelled share: `any`
+    /// (ours: the NLoS flag too) or `critical` (relevance, speeding or a
+    /// predicted conflict).
+    #[serde(default)]
+    pub labelled_by: LabelledBy,
     /// Which steps the infrastructure contribution (objects the ego knows only
     /// through an RSU) counts: `ego_in_range` (the ego within range of one of
     /// an RSU's sensors: seed 002's ego, always served) or `all`.

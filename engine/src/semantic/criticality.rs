@@ -13,18 +13,20 @@
 //!   when they never will. Exact, by the separating axis theorem on the four
 //!   edge normals: two convex polygons that translate are apart exactly while
 //!   one of those axes separates their projections.
-//! - **DRAC** at a step with a TTC t > 0: c / (2 t), with c the closing speed
-//!   along the ego's heading, (v_ego − v_other) · heading_ego, when c > 0:
-//!   the constant deceleration of the closing motion that sheds c over the
-//!   c · t metres it has before the contact, the literature's
-//!   v_rel² / (2 gap) along the ego's path (Archer 2005; the review of
-//!   Westhofen et al. 2023 calls it a_long,req). Behind a slower road user
-//!   it is Archer's (v_F − v_L)² / (2 gap), the ego's own deceleration;
-//!   across the ego's way (c = the ego's speed), the deceleration that stops
-//!   the ego where the contact would be; head on, it counts both speeds. None
-//!   without a predicted contact, at contact (t = 0), or when the motion does
-//!   not close along the ego's heading (a road user catching up from behind,
-//!   or crossing the way of an ego that stands).
+//! - **DRAC** at a step with a TTC t > 0: the deceleration the ego needs to
+//!   avoid the contact by braking, so only where braking can: when the road
+//!   user, moving on, would miss the ego standing where it is. It is then
+//!   c / (2 t), with c the closing speed along the ego's heading,
+//!   (v_ego − v_other) · heading_ego, when c > 0: the constant deceleration
+//!   of the closing motion that sheds c over the c · t metres it has before
+//!   the contact, the literature's v_rel² / (2 gap) along the ego's path
+//!   (Archer 2005; the review of Westhofen et al. 2023 calls it a_long,req).
+//!   Behind a slower road user it is Archer's (v_F − v_L)² / (2 gap), the
+//!   ego's own deceleration; across the ego's way (c = the ego's speed), the
+//!   deceleration that stops the ego where the contact would be. None without
+//!   a predicted contact, at contact (t = 0), or when braking would not avoid
+//!   it: a road user coming head on or catching up from behind, and any road
+//!   user heading for an ego that stands.
 //! - **PET** over a run: the conflict area is the set of points both
 //!   footprints covered at the steps given (the intersection of the two swept
 //!   footprints); PET is the least, over its points, of the time between the
@@ -158,7 +160,12 @@ impl Criticality {
     pub fn of((ego, ego_velocity): (&OrientedBox, Vector), (other, other_velocity): (&OrientedBox, Vector)) -> Self {
         let ttc = time_to_contact(ego, other, other_velocity - ego_velocity);
         let closing = (ego_velocity - other_velocity).dot(ego.heading);
-        let drac = ttc.filter(|&t| t > 0.0 && closing > 0.0).map(|t| closing / (2.0 * t));
+        // Braking avoids the contact only if the road user would miss the ego
+        // standing where it is (never so for an ego that stands already).
+        let avoidable = || time_to_contact(ego, other, other_velocity).is_none();
+        let drac = ttc
+            .filter(|&t| t > 0.0 && closing > 0.0 && avoidable())
+            .map(|t| closing / (2.0 * t));
         Self { ttc, drac }
     }
 }
@@ -221,7 +228,8 @@ mod tests {
     }
 
     /// Head on: centres 30 m apart on one line, 10 and 5 m/s toward each other;
-    /// the fronts are 30 − 4 = 26 m apart and close at 15 m/s: 26 / 15 s.
+    /// the fronts are 30 − 4 = 26 m apart and close at 15 m/s: 26 / 15 s. The
+    /// other reaches the ego even if it stops: no braking avoids it, no DRAC.
     #[test]
     fn head_on() {
         let c = Criticality::of(
@@ -229,8 +237,15 @@ mod tests {
             (&car(30.0, 0.0, 180.0), at(5.0, 180.0)),
         );
         assert_relative_eq!(c.ttc.unwrap(), 26.0 / 15.0, epsilon = 1e-12);
-        // The closing speed along the ego's heading is 15 m/s: 15 / (2 · 26/15) = 225 / 52.
-        assert_relative_eq!(c.drac.unwrap(), 225.0 / 52.0, epsilon = 1e-12);
+        assert_eq!(c.drac, None);
+        // An ego that stands, a car coming at 10 m/s from 60 m (the fronts 56 m
+        // apart): TTC 5.6 s, and nothing the ego could shed.
+        let c = Criticality::of(
+            (&car(0.0, 0.0, 0.0), Vector::ZERO),
+            (&car(60.0, 0.0, 180.0), at(10.0, 180.0)),
+        );
+        assert_relative_eq!(c.ttc.unwrap(), 5.6, epsilon = 1e-12);
+        assert_eq!(c.drac, None);
     }
 
     /// Behind a slower car in the same lane: gap 20 − 4 = 16 m, closing at
@@ -243,6 +258,18 @@ mod tests {
         );
         assert_relative_eq!(c.ttc.unwrap(), 4.0, epsilon = 1e-12);
         assert_relative_eq!(c.drac.unwrap(), 0.5, epsilon = 1e-12);
+        // Behind a car that stands, gap 16 m at 8 m/s: 8² / (2 · 16) = 2 m/s².
+        let c = Criticality::of(
+            (&car(0.0, 0.0, 0.0), at(8.0, 0.0)),
+            (&car(20.0, 0.0, 0.0), Vector::ZERO),
+        );
+        assert_relative_eq!(c.drac.unwrap(), 2.0, epsilon = 1e-12);
+        // Caught up from behind: braking only brings the contact sooner.
+        let c = Criticality::of(
+            (&car(0.0, 0.0, 0.0), at(8.0, 0.0)),
+            (&car(-20.0, 0.0, 0.0), at(12.0, 0.0)),
+        );
+        assert_eq!((c.ttc, c.drac), (Some(4.0), None));
         // Pulling away: no collision course.
         let c = Criticality::of(
             (&car(0.0, 0.0, 0.0), at(8.0, 0.0)),
@@ -281,11 +308,10 @@ mod tests {
         let ego = (&car(0.0, 0.0, 0.0), Vector::ZERO);
         let c = Criticality::of(ego, (&car(10.0, 0.0, 45.0), at(2.0, 180.0)));
         assert_relative_eq!(c.ttc.unwrap(), (8.0 - 3.0 / 2f64.sqrt()) / 2.0, epsilon = 1e-12);
-        // The ego stands: the motion closes along its heading at the other's
-        // 2 m/s, and that is what must be shed: 2 / (2 t).
-        assert_relative_eq!(c.drac.unwrap(), 1.0 / c.ttc.unwrap(), epsilon = 1e-12);
+        // The ego stands: braking sheds nothing.
+        assert_eq!(c.drac, None);
         // Crossing the way of an ego that stands (its front from y = −8 to the
-        // ego's side at −1, 7 m at 2 m/s): nothing closes along its heading.
+        // ego's side at −1, 7 m at 2 m/s): likewise.
         let c = Criticality::of(ego, (&car(0.0, -10.0, 90.0), at(2.0, 90.0)));
         assert_eq!((c.ttc, c.drac), (Some(3.5), None));
         // 2.5 m up, that corner passes above the face (y = 1.79) and the

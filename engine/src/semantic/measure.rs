@@ -2,7 +2,7 @@
 //! RSU's selection and each packet added to the run's metrics, each road user's
 //! encounter with the ego, and every step's record handed to the trace sink.
 
-use sightline_dsl::{Agent, Semantic, World};
+use sightline_dsl::{Agent, LabelledBy, Semantic, World};
 
 use super::ego::{Ego, EgoView};
 use super::message::{Item, baseline_bytes};
@@ -27,6 +27,8 @@ pub(super) struct Measures {
     encounters: Encounters,
     /// The current step's record.
     log: SemanticLog,
+    /// Which labels the labelled share counts.
+    labelled_by: LabelledBy,
 }
 
 impl Measures {
@@ -44,6 +46,7 @@ impl Measures {
             time_to_conflict: Vec::new(),
             encounters: Encounters::new(world, semantic, agents),
             log: SemanticLog::default(),
+            labelled_by: semantic.labelled_by,
         }
     }
 
@@ -98,7 +101,7 @@ impl Measures {
             metrics.baseline_bytes += baseline_bytes(selection.baseline.len()) as u64;
         }
         if shared {
-            count_labels(metrics, &selection.items);
+            count_labels(metrics, &selection.items, self.labelled_by);
         }
         let soonest = selection
             .items
@@ -179,11 +182,11 @@ impl Measures {
     }
 }
 
-fn count_labels(metrics: &mut SemanticMetrics, items: &[Item]) {
+fn count_labels(metrics: &mut SemanticMetrics, items: &[Item], by: LabelledBy) {
     metrics.transmitted += items.len() as u64;
     for item in items {
         let labels = &item.labels;
-        metrics.labelled += u64::from(labels.any());
+        metrics.labelled += u64::from(labels.labelled(by));
         metrics.labels.nlos_static += u64::from(labels.nlos == Some(Visibility::NlosStatic));
         metrics.labels.nlos_dynamic += u64::from(labels.nlos == Some(Visibility::NlosDynamic));
         metrics.labels.relevant += u64::from(labels.relevant);

@@ -11,7 +11,7 @@
 
 use std::collections::BTreeMap;
 
-use sightline_dsl::Baseline;
+use sightline_dsl::{Baseline, LabelledBy};
 
 use super::ldm::Measurement;
 use super::risk::Conflict;
@@ -46,9 +46,22 @@ pub struct Labels {
 }
 
 impl Labels {
-    /// Whether any label is set: the paper's "labelled" objects.
+    /// Whether any label is set, the NLoS flag included.
     pub fn any(&self) -> bool {
-        self.nlos.is_some() || self.relevant || self.speeding || self.conflict.is_some()
+        self.nlos.is_some() || self.critical()
+    }
+
+    /// Whether a critical label is set: relevance, speeding or a predicted conflict.
+    pub fn critical(&self) -> bool {
+        self.relevant || self.speeding || self.conflict.is_some()
+    }
+
+    /// Whether the object counts as labelled when `by` decides.
+    pub fn labelled(&self, by: LabelledBy) -> bool {
+        match by {
+            LabelledBy::Any => self.any(),
+            LabelledBy::Critical => self.critical(),
+        }
     }
 }
 

@@ -183,7 +183,7 @@ fn may_block(ego: Point, proximity: f64, m: &Measurement) -> bool {
 
 #[cfg(test)]
 mod tests {
-    use sightline_dsl::{Baseline, Caution, RsuSight, ShareCycles};
+    use sightline_dsl::{Baseline, Caution, LabelledBy, RsuSight, ShareCycles};
 
     use proptest::prelude::*;
 
@@ -215,6 +215,7 @@ mod tests {
                 interval: 1.0,
             },
             shares_over: ShareCycles::EgoInRange,
+            labelled_by: LabelledBy::Any,
             contribution_over: ShareCycles::EgoInRange,
             runs: 1,
         }

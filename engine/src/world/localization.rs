@@ -133,7 +133,7 @@ impl PoseEstimator {
         // Exact measurements (the noise was still drawn, so that every noise level
         // of a sweep scales the same draws) give the true pose itself, not a copy
         // rounded through (x, y, θ).
-        if s.position_sigma == 0.0 && s.heading_sigma == 0.0 {
+        if s.is_exact() {
             true_pose
         } else {
             vector_pose(estimate.0)

@@ -90,8 +90,7 @@ pub(crate) fn idealisations(world: &World, perception: &Perception) -> Vec<Ideal
         listed.push(SURVEYED);
     }
     if cooperators().any(|a| !matches!(a.motion, Motion::Fixed { .. })) {
-        let noise = &world.localization;
-        listed.push(if noise.position_sigma == 0.0 && noise.heading_sigma == 0.0 {
+        listed.push(if world.localization.is_exact() {
             localization::EXACT
         } else {
             localization::WHITE_NOISE

@@ -104,8 +104,8 @@ pub struct ObjectResult {
     /// (0: they overlapped or touched; `null`: never on a collision course).
     pub min_ttc: Option<f64>,
     /// Its greatest deceleration rate to avoid a crash over those steps,
-    /// m/s²: the ego's closing speed along its heading over twice the TTC
-    /// (`null`: the ego never closed on it on a collision course).
+    /// m/s²: the ego's closing speed along its heading over twice the TTC, at
+    /// the steps its braking could avoid the contact (`null`: at none).
     pub max_drac: Option<f64>,
     /// Its post-encroachment time with the ego over those steps, seconds: the
     /// least time between one of the two leaving a spot both footprints

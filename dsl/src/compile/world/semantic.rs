@@ -568,6 +568,7 @@ pub(super) fn semantic_of(
             interval: raw.baseline.interval,
         },
         shares_over: raw.shares_over,
+        labelled_by: raw.labelled_by,
         contribution_over: raw.contribution_over,
         runs: raw.runs,
     })
