@@ -13,7 +13,7 @@ use std::sync::mpsc;
 use sightline_dsl::{Decision, Grid, Perception, Rule};
 
 use super::evidence::Evidence;
-use super::memo::{Memo, judge};
+use super::memo::{Judged, Memo, judge};
 use super::metrics::WorldTally;
 use super::observe::Observed;
 use super::raster::cell_center;
@@ -337,11 +337,7 @@ impl Tallier<'_> {
         let mut sources = Vec::with_capacity(self.fusion.observations.len());
         let ego = self.fusion.observations[0];
         for &cell in cells {
-            let memoised = self.memo.and_then(|memo| memo.get(self.fusion.observations, cell));
-            let judged = match memoised {
-                Some(&judged) => judged,
-                None => judge(self.fusion.estimate(cell, &mut sources), self.decision),
-            };
+            let judged = self.judged(self.fusion.observations, cell, &mut sources);
             let (estimate, probability, decision) = (judged.estimate, judged.probability, judged.decision);
             tally.estimates.record(&estimate);
             // Self-report is left out, as recall leaves it out: no sensor had to find it.
@@ -393,19 +389,19 @@ impl Tallier<'_> {
     /// recall counts (`ego_occupied_recall`).
     fn ego_decides_occupied(&self, cell: usize, sources: &mut Vec<Source>) -> bool {
         let ego = &self.fusion.observations[..1];
-        if ego[0].get(cell) == Observed::Unknown {
-            return false;
+        ego[0].get(cell) != Observed::Unknown && self.judged(ego, cell, sources).decision == Some(State::Occupied)
+    }
+
+    /// `cell` fused from `observations` (the job's, or a leading part of them)
+    /// and judged by the job's rule: the memo's answer when it has one.
+    fn judged(&self, observations: &[&dyn Evidence], cell: usize, sources: &mut Vec<Source>) -> Judged {
+        if let Some(&judged) = self.memo.and_then(|memo| memo.get(observations, cell)) {
+            return judged;
         }
-        let judged = match self.memo.and_then(|memo| memo.get(ego, cell)) {
-            Some(&judged) => judged,
-            None => {
-                let alone = CellFusion {
-                    observations: ego,
-                    ..self.fusion
-                };
-                judge(alone.estimate(cell, sources), self.decision)
-            }
+        let fusion = CellFusion {
+            observations,
+            ..self.fusion
         };
-        judged.decision == Some(State::Occupied)
+        judge(fusion.estimate(cell, sources), self.decision)
     }
 }
