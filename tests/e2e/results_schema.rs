@@ -8,9 +8,20 @@
 use serde_json::{Value, json};
 use sightline_reports::{FORMAT, results_schema};
 
-use crate::support::{assert_matches_file, files_under, read_json, root};
+use crate::support::{assert_matches_file, files_under, read_json, root, sha256_hex};
 
 const SCHEMA_FILE: &str = "docs/results.schema.json";
+
+/// The format and the SHA-256 of its schema's shape ([`shape`]): a schema
+/// that accepts or refuses other documents is another format, so a reader
+/// that pinned one schema by its format string is not handed documents it
+/// refuses. When the shape changes, bump [`FORMAT`]
+/// (`reports/src/results/document.rs`, and the docs that name it) and record
+/// the new pair here.
+const FORMAT_SHAPE: (&str, &str) = (
+    "sightline-results/3",
+    "9e1ca95f21cfc90db659b19e226e499b06c5bd72eb57f727eeb2f048b516bb8a",
+);
 
 /// Why `results` does not validate against the schema, or `Ok`.
 fn validate(results: &Value) -> Result<(), String> {
@@ -81,6 +92,67 @@ fn results_schema_json_is_generated_from_the_wire_types() {
     assert_matches_file(SCHEMA_FILE, &text);
 }
 
+/// The schema without its prose (`description`, `title`, `examples`,
+/// `$comment`): what decides which documents it accepts. The names of
+/// properties and definitions are kept, whatever they are called.
+fn shape(schema: &Value) -> Value {
+    const PROSE: [&str; 4] = ["description", "title", "examples", "$comment"];
+    const NAMED: [&str; 4] = ["properties", "$defs", "patternProperties", "dependentSchemas"];
+    match schema {
+        Value::Object(object) => Value::Object(
+            object
+                .iter()
+                .filter(|(key, _)| !PROSE.contains(&key.as_str()))
+                .map(|(key, value)| {
+                    let value = match value {
+                        Value::Object(named) if NAMED.contains(&key.as_str()) => Value::Object(
+                            named
+                                .iter()
+                                .map(|(name, schema)| (name.clone(), shape(schema)))
+                                .collect(),
+                        ),
+                        _ => shape(value),
+                    };
+                    (key.clone(), value)
+                })
+                .collect(),
+        ),
+        Value::Array(items) => Value::Array(items.iter().map(shape).collect()),
+        other => other.clone(),
+    }
+}
+
+#[test]
+fn the_format_names_the_shape_of_its_schema() {
+    let schema = results_schema();
+    let shape = sha256_hex(shape(&schema).to_string().as_bytes());
+    let (format, recorded) = FORMAT_SHAPE;
+    assert_eq!(
+        FORMAT, format,
+        "FORMAT changed: record its shape in FORMAT_SHAPE: (\"{FORMAT}\", \"{shape}\")"
+    );
+    assert_eq!(
+        shape, recorded,
+        "results.json's schema changed shape since {format}: bump FORMAT, then record the new pair in FORMAT_SHAPE"
+    );
+}
+
+#[test]
+fn the_shape_ignores_prose_but_not_property_names() {
+    let schema = json!({
+        "description": "prose",
+        "properties": { "description": { "type": "string", "description": "prose" } },
+        "$defs": { "title": { "title": "prose", "const": 1 } }
+    });
+    assert_eq!(
+        shape(&schema),
+        json!({
+            "properties": { "description": { "type": "string" } },
+            "$defs": { "title": { "const": 1 } }
+        })
+    );
+}
+
 #[test]
 fn every_bundled_run_validates() {
     for run in crate::bundled::every_run() {
@@ -141,6 +213,6 @@ fn a_renamed_key_is_refused() {
         .remove("mean_sources");
     refusal(&missing, "a coverage without mean_sources");
     let mut other = valid;
-    other["format"] = json!("sightline-results/3");
-    refusal(&other, "another format");
+    other["format"] = json!("sightline-results/2");
+    refusal(&other, "an earlier format");
 }
