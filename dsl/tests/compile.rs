@@ -387,6 +387,30 @@ fn one_sweep_lists_a_point_once_per_row() {
     assert_eq!(scenario.points[0].label(), "fusion={method=bayes} | fusion=bayes");
 }
 
+/// Two points that would show under one label (tables, messages and JUnit name
+/// points by it) are refused, within a sweep and across sweeps.
+#[test]
+fn two_points_under_one_label_are_refused() {
+    for (sweeps, location) in [
+        (
+            "sweep:\n  fusion: [{ label: A, method: bayes }, { label: A, method: dempster }]\n",
+            Location::new(9, 41),
+        ),
+        (
+            "sweeps:\n  - fusion: [{ label: A, method: bayes }]\n  - fusion: [{ label: A, method: dempster }]\n",
+            Location::new(10, 14),
+        ),
+    ] {
+        let refused = errors(&format!("{BASE}{sweeps}"));
+        assert_eq!(refused.0.len(), 1, "{refused}");
+        assert_eq!(refused.0[0].location, location, "{refused}");
+        assert!(
+            matches!(refused.0[0].kind, ErrorKind::Invalid(ref m) if m.contains("`fusion=A` names two different")),
+            "{refused}"
+        );
+    }
+}
+
 /// Equal setups are the test, to the bit: 0 and −0 stay two points.
 #[test]
 fn zero_and_negative_zero_stay_apart() {

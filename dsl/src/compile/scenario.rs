@@ -333,6 +333,8 @@ fn points(
     let mut sections = Sections::default();
     let mut unused = Unused::default();
     let mut errors = Vec::new();
+    // Each label as tables, messages and JUnit show it, and its point.
+    let mut named: HashMap<String, usize> = HashMap::new();
     for (group, axes, choice, point_tree) in combinations(tree, sweeps) {
         let mut ctx = Context::new(file, &point_tree);
         ctx.osi = options.osi;
@@ -372,7 +374,22 @@ fn points(
                     here.insert(location);
                 }
                 unused.at.push(here);
-                configurations.add(label, setup);
+                let text = label.text();
+                let index = configurations.add(label, setup);
+                if let Some(first) = axes.first()
+                    && *named.entry(text.clone()).or_insert(index) != index
+                {
+                    let value = first.here.index(choice[0]);
+                    errors.push(Error {
+                        file: file.to_string(),
+                        location: first.values[choice[0]].location,
+                        path: value.to_string(),
+                        kind: ErrorKind::Invalid(format!(
+                            "the sweep point `{text}` names two different configurations; \
+                             give the values distinct labels (`label:` in a mapping)"
+                        )),
+                    });
+                }
                 if configurations.bytes().saturating_add(sections.bytes) > MAX_SETTINGS_BYTES {
                     errors.push(Error {
                         file: file.to_string(),

@@ -468,8 +468,9 @@ impl Configurations {
         }
     }
 
-    /// Adds a combination, the next row of its sweep.
-    pub(super) fn add(&mut self, label: Label, setup: Setup) {
+    /// Adds a combination, the next row of its sweep, and returns the index
+    /// of its point.
+    pub(super) fn add(&mut self, label: Label, setup: Setup) -> usize {
         let sweep = label.sweep;
         let (hash, bytes) = fingerprint(&setup);
         let candidates = self.by_hash.entry(hash).or_default();
@@ -497,6 +498,7 @@ impl Configurations {
         if let Some(rows) = sweep.and_then(|s| self.rows.get_mut(s)) {
             rows.push(index);
         }
+        index
     }
 
     /// The bytes of the distinct points' setups serialized as JSON: a measure
