@@ -12,7 +12,7 @@ use sightline_dsl::{Record, RecordedPoints, Scenario};
 use sightline_engine::Run;
 use sightline_engine::TraceSink;
 use sightline_engine::trace::{SemanticStep, WorldStep};
-use sightline_oracles::{Status, Verdict};
+use sightline_oracles::Verdict;
 use sightline_reports::mcap::{Recorder, Source};
 use sightline_reports::osi::{OSI_TRACE, OsiTrace};
 use sightline_reports::{
@@ -135,16 +135,17 @@ pub fn write_evidence(
 }
 
 /// The recording of `record`'s point, when the file names it (or the scenario
-/// has one point); otherwise of the worst point of the first failing
-/// requirement of a run judged `verdicts`, or of the first point when none
-/// fails.
+/// has one point); otherwise of the decisive point of the first requirement
+/// that fails the run judged `verdicts` (a failure, an error, or a
+/// not-exercised verdict the scenario does not accept), or of the first point
+/// when none does.
 pub fn recorded_point(scenario: &Scenario, record: Record, verdicts: &[Verdict]) -> Record {
     if record.named || record.points == RecordedPoints::All {
         return record;
     }
     let worst = verdicts
         .iter()
-        .find(|v| v.status == Status::Fail)
+        .find(|v| v.fails_run())
         .map(|v| v.decisive.point);
     record.at_point(&scenario.points, worst.unwrap_or(record.point))
 }

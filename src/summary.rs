@@ -61,8 +61,7 @@ pub fn print_verdicts(path: &str, scenario: &Scenario, verdicts: &[Verdict], tai
             };
             let shown = |v: Option<f64>| v.map_or_else(|| "none".to_string(), |v| format!("{v:?}"));
             let accepted = verdict
-                .accepted
-                .as_ref()
+                .acceptance()
                 .map_or(String::new(), |reason| format!(" (accepted: {reason})"));
             say(format_args!(
                 "  {} {}{at}{accepted}: measured {} ({}), threshold {}, margin {}, n = {}: {}",

@@ -141,12 +141,21 @@ pub struct Verdict {
 }
 
 impl Verdict {
+    /// The scenario's reason for accepting this verdict: only a not-exercised
+    /// verdict is accepted, so a pass or a failure has none.
+    pub fn acceptance(&self) -> Option<&str> {
+        match self.status {
+            Status::NotExercised => self.accepted.as_deref(),
+            Status::Pass | Status::Fail | Status::Error => None,
+        }
+    }
+
     /// Whether the verdict fails the run: a failure, an error, or a
     /// not-exercised verdict the requirement does not accept.
     pub fn fails_run(&self) -> bool {
         match self.status {
             Status::Pass => false,
-            Status::NotExercised => self.accepted.is_none(),
+            Status::NotExercised => self.acceptance().is_none(),
             Status::Fail | Status::Error => true,
         }
     }

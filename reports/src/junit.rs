@@ -11,7 +11,8 @@
 //! `<properties>` in a `<testcase>` (Jenkins' junit-10.xsd, Ant's, JUnit 5's),
 //! so each case's measured value, threshold, margin and n are `name: value`
 //! lines of its `<system-out>`, which CI servers show beside the case, passing
-//! cases too; the suite's `<properties>` name the scenario, its hash, the seed
+//! cases too (each value on one line: a line feed in a requirement's text is
+//! written `\n`, a backslash `\\`); the suite's `<properties>` name the scenario, its hash, the seed
 //! and the tool. A suite is named by the scenario's name and its file, so two
 //! scenarios of the same name are two suites.
 
@@ -81,7 +82,8 @@ pub fn junit(results: &Results) -> Report {
                     .set_message(message)
                     .set_description(format!(
                         "{}\ncheck: {check}\nmeasured: {value} ({})\nthreshold: {relation}\nmargin: {margin}\nn: {n}\n",
-                        requirement.text, point.measured
+                        one_line(&requirement.text),
+                        point.measured
                     ));
             }
             let mut case = new_case(name, status, &scenario.name, &scenario.path, requirement.line);
@@ -182,9 +184,20 @@ pub(crate) fn new_case(name: String, status: TestCaseStatus, scenario: &str, pat
     case
 }
 
-/// `name: value` lines, for a case's `<system-out>`.
+/// `name: value` lines, for a case's `<system-out>`: one line each, whatever
+/// the value holds ([`one_line`]).
 pub(crate) fn lines(pairs: &[(&str, &str)]) -> String {
-    pairs.iter().map(|(name, value)| format!("{name}: {value}\n")).collect()
+    pairs
+        .iter()
+        .map(|(name, value)| format!("{name}: {}\n", one_line(value)))
+        .collect()
+}
+
+/// `text` on one line: a line feed written `\n`, a backslash `\\`, so a
+/// requirement's text of several lines cannot add a `name: value` line
+/// (`verdict: pass`) of its own.
+fn one_line(text: &str) -> String {
+    text.replace('\\', "\\\\").replace('\n', "\\n")
 }
 
 /// A scenario's name as a dotted identifier under `sightline.`: lowercase
@@ -232,6 +245,16 @@ mod tests {
         assert!(text.contains("a\u{FFFD}b"), "{text}");
         assert!(text.contains("R\u{FFFD}1"), "{text}");
         assert!(text.contains("text \u{FFFD}\u{FFFD} end"), "{text}");
+    }
+
+    /// A text of several lines stays one `text:` line: its own
+    /// `verdict: pass` cannot be read as the case's.
+    #[test]
+    fn a_value_of_several_lines_is_one_line() {
+        assert_eq!(
+            lines(&[("text", "Low.\nverdict: pass\\n"), ("verdict", "fail")]),
+            "text: Low.\\nverdict: pass\\\\n\nverdict: fail\n"
+        );
     }
 
     #[test]

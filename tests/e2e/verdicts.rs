@@ -304,3 +304,29 @@ fn a_pass_on_a_run_with_a_hole_in_its_trace_is_not_exercised() {
         ),
     );
 }
+
+/// Only a not-exercised verdict is accepted: a requirement that passes
+/// everywhere although it gives a reason (P-01) is not called accepted by the
+/// summary, the report or the recording. And a run that fails only through a
+/// requirement not exercised at one point records that point by default.
+#[test]
+fn a_pass_is_not_called_accepted_and_the_recording_is_of_the_point_that_fails_the_run() {
+    const FILE: &str = "tests/fixtures/not-exercised/field-pass-with-reason.yaml";
+    let tmp = temp_dir();
+    let out = tmp.path().join("evidence");
+    let outcome = sightline(["run", FILE, "--out", arg(&out), "--record"]);
+    outcome.assert_exit(1);
+    assert!(!outcome.stdout.contains("accepted"), "{outcome}");
+    let results = read_json(&out.join("results.json"));
+    let ne = requirement(&results, "NE-01");
+    assert_eq!((&ne["verdict"], &ne["point"]), (&"not_exercised".into(), &3.into()));
+    assert_eq!(requirement(&results, "P-01")["verdict"], "pass");
+    assert_eq!(results["recording"]["point"], 3, "NE-01's point, not the first");
+    let html = unescape_html(&read(&out.join("report.html")));
+    for claim in ["accepted: a reason", "accepted by the scenario: a reason", "Accepted: a reason"] {
+        assert!(!html.contains(claim), "the report says `{claim}`");
+    }
+    let recording = sightline_reports::mcap::read(&std::fs::read(out.join("run.mcap")).unwrap()).unwrap();
+    let accepted: Vec<_> = recording.verdicts.iter().map(|v| (v.id.as_str(), v.accepted.as_deref())).collect();
+    assert_eq!(accepted, [("P-01", None), ("NE-01", None)]);
+}

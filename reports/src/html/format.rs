@@ -27,6 +27,21 @@ pub(crate) fn or_dash(value: Option<f64>) -> String {
 /// separated by commas, and values below 10⁻³ in scientific notation
 /// (`1.25 × 10⁻⁹`).
 pub(crate) fn number(value: f64) -> String {
+    significant(value, 4)
+}
+
+/// A value as the scenario gave it (a threshold), in the page's format with
+/// as many significant digits as it takes to read back as the same number,
+/// four at least: `0.81478`, where [`number`] writes `0.8148`.
+pub(crate) fn exact(value: f64) -> String {
+    let digits = (4..=17)
+        .find(|&digits| format!("{value:.*e}", digits - 1).parse::<f64>() == Ok(value))
+        .unwrap_or(17);
+    significant(value, digits)
+}
+
+/// `value` to `digits` significant digits, in the page's format.
+fn significant(value: f64, digits: usize) -> String {
     if !value.is_finite() {
         return value.to_string();
     }
@@ -35,24 +50,34 @@ pub(crate) fn number(value: f64) -> String {
     }
     let magnitude = value.abs().log10().floor() as i32;
     if magnitude < -3 {
-        let mantissa = trimmed(&format!("{:.3}", value / 10f64.powi(magnitude)));
-        // Rounding the mantissa may carry into the next power (9.9996 → 10).
-        let (mantissa, magnitude) = match mantissa.trim_start_matches('-') {
-            "10" => (mantissa.replace("10", "1"), magnitude + 1),
-            _ => (mantissa, magnitude),
-        };
-        return format!("{mantissa} × 10{}", superscript(magnitude));
+        // Rust's exponent format rounds the decimal digits exactly and
+        // carries into the next power (9.99996 × 10⁻⁵ → 1.000e-4).
+        let text = format!("{value:.*e}", digits - 1);
+        let (mantissa, exponent) = text.split_once('e').expect("an exponent format");
+        let exponent: i32 = exponent.parse().expect("an exponent");
+        return format!("{} × 10{}", trimmed(mantissa), superscript(exponent));
     }
-    let decimals = usize::try_from(3 - magnitude).unwrap_or(0);
+    let decimals = usize::try_from(digits as i32 - 1 - magnitude).unwrap_or(0);
     grouped(&trimmed(&format!("{value:.decimals$}")))
 }
 
 /// A value with its unit (`1.32 s`; a dimensionless value stands alone), or
 /// a dash where it is undefined.
 pub(crate) fn with_unit(value: Option<f64>, unit: &str) -> String {
-    match value {
-        Some(v) if unit != "1" => format!("{} {unit}", number(v)),
-        _ => or_dash(value),
+    in_unit(value.map(number), unit)
+}
+
+/// A threshold with its unit, as the scenario gave it ([`exact`]).
+pub(crate) fn exact_with_unit(value: f64, unit: &str) -> String {
+    in_unit(Some(exact(value)), unit)
+}
+
+/// `text` followed by `unit` (alone when dimensionless), or a dash.
+fn in_unit(text: Option<String>, unit: &str) -> String {
+    match text {
+        Some(text) if unit != "1" => format!("{text} {unit}"),
+        Some(text) => text,
+        None => "—".into(),
     }
 }
 
@@ -118,6 +143,12 @@ mod tests {
         assert_eq!(number(1234.5678), "1,235");
         assert_eq!(number(9.99996), "10");
         assert_eq!(number(0.0), "0");
+        assert_eq!(exact(0.81478), "0.81478");
+        assert_eq!(exact(0.8147743055555556), "0.8147743055555556");
+        assert_eq!(exact(0.9), "0.9");
+        assert_eq!(exact(1234.5678), "1,234.5678");
+        assert_eq!(exact(-1.23456e-7), "-1.23456 × 10⁻⁷");
+        assert_eq!(exact_with_unit(2.0, "s"), "2 s");
         assert_eq!(with_unit(Some(1.3249), "s"), "1.325 s");
         assert_eq!(with_unit(Some(0.5), "1"), "0.5");
         assert_eq!(with_unit(None, "s"), "—");

@@ -5,8 +5,8 @@
 use serde::Serialize;
 use sightline_dsl::ObjectProperty;
 
-use super::format::{number, with_unit};
-use crate::results::{CheckInfo, RateBound, RequirementResult, Statistic};
+use super::format::{exact_with_unit, number, with_unit};
+use crate::results::{CheckInfo, RateBound, RequirementResult, Statistic, Status};
 
 /// A requirement that did not pass, as the banner names it.
 #[derive(Serialize)]
@@ -18,7 +18,8 @@ pub(super) struct Finding {
     words: &'static str,
     /// Whether it fails the run (not an accepted not-exercised verdict).
     fails_run: bool,
-    /// The reason a not-exercised verdict is accepted.
+    /// The reason a not-exercised verdict is accepted (none for another
+    /// verdict).
     accepted: Option<String>,
     /// The deciding point's label (empty without a sweep).
     label: String,
@@ -57,10 +58,18 @@ struct EvaluationView {
     label: String,
     verdict: &'static str,
     words: &'static str,
+    /// Whether the point is not exercised and the scenario accepts that.
+    accepted: bool,
     measured: String,
     what: String,
     margin: String,
     message: String,
+}
+
+/// The scenario's reason for accepting `verdict`: only a not-exercised verdict
+/// is accepted, so a pass or a failure has none.
+fn acceptance(verdict: Status, reason: Option<&String>) -> Option<String> {
+    (verdict == Status::NotExercised).then(|| reason.cloned()).flatten()
 }
 
 pub(super) fn finding(r: &RequirementResult) -> Finding {
@@ -72,11 +81,11 @@ pub(super) fn finding(r: &RequirementResult) -> Finding {
         verdict: r.verdict.name(),
         words: r.verdict.words(),
         fails_run: r.fails_run,
-        accepted: r.accept_not_exercised.clone(),
+        accepted: acceptance(r.verdict, r.accept_not_exercised.as_ref()),
         label: decisive.map(|p| p.label.clone()).unwrap_or_default(),
         measured: with_unit(r.value, unit),
         what: r.measured.clone(),
-        threshold: format!("{} {}", relation_sign(r.relation()), with_unit(Some(r.threshold), unit)),
+        threshold: format!("{} {}", relation_sign(r.relation()), exact_with_unit(r.threshold, unit)),
         margin: with_unit(r.margin, unit),
         // As the `what` beside it writes it (`n = 28529`), not `28,529`.
         n: r.n.map_or_else(|| "—".into(), |n| n.to_string()),
@@ -104,11 +113,11 @@ pub(super) fn requirement_view(r: &RequirementResult) -> RequirementView {
         unit,
         measured: with_unit(r.value, unit),
         what: r.measured.clone(),
-        threshold: with_unit(Some(r.threshold), unit),
+        threshold: exact_with_unit(r.threshold, unit),
         margin: with_unit(r.margin, unit),
         verdict: r.verdict.name(),
         words: r.verdict.words(),
-        accepted: r.accept_not_exercised.clone(),
+        accepted: acceptance(r.verdict, r.accept_not_exercised.as_ref()),
         message: r.message.clone(),
         points: r
             .points
@@ -121,6 +130,7 @@ pub(super) fn requirement_view(r: &RequirementResult) -> RequirementView {
                 },
                 verdict: p.verdict.name(),
                 words: p.verdict.words(),
+                accepted: acceptance(p.verdict, r.accept_not_exercised.as_ref()).is_some(),
                 measured: with_unit(p.value, unit),
                 what: p.measured.clone(),
                 margin: with_unit(p.margin, unit),
@@ -131,7 +141,7 @@ pub(super) fn requirement_view(r: &RequirementResult) -> RequirementView {
 }
 
 fn describe_check(check: &CheckInfo) -> String {
-    let (name, threshold) = (check.name, with_unit(Some(check.threshold), check.unit));
+    let (name, threshold) = (check.name, exact_with_unit(check.threshold, check.unit));
     let relation = match check.relation {
         "at_least" | "at_most" => format!("{name} {} {threshold}", relation_sign(check.relation)),
         _ => return format!("invariant {name} (tolerance {threshold})"),

@@ -162,7 +162,7 @@ fn verdict_record(requirement: &sightline_dsl::Requirement, verdict: &Verdict) -
         id: requirement.id.clone(),
         text: requirement.text.clone(),
         verdict: verdict.status.name().into(),
-        accepted: verdict.accepted.clone(),
+        accepted: verdict.acceptance().map(str::to_owned),
         value: verdict.decisive.value.map(Real),
         threshold: Real(verdict.threshold),
         margin: verdict.decisive.margin.map(Real),
