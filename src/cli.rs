@@ -81,8 +81,8 @@ pub struct RunArgs {
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=MAX_JOBS))]
     pub jobs: Option<u16>,
     /// Record into DIR/run.mcap even when a scenario has no `record:` section
-    /// (with that section's defaults: the worst point of the first failing
-    /// requirement, or the first point when none fails; a grid a second).
+    /// (with that section's defaults: the worst point of the first requirement
+    /// that fails the run, or the first point when none does; a grid a second).
     #[arg(long)]
     pub record: bool,
     /// Also write DIR/osi.mcap, an ASAM OSI trace (osi3.GroundTruth and, per

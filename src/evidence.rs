@@ -143,10 +143,7 @@ pub fn recorded_point(scenario: &Scenario, record: Record, verdicts: &[Verdict])
     if record.named || record.points == RecordedPoints::All {
         return record;
     }
-    let worst = verdicts
-        .iter()
-        .find(|v| v.fails_run())
-        .map(|v| v.decisive.point);
+    let worst = verdicts.iter().find(|v| v.fails_run()).map(|v| v.decisive.point);
     record.at_point(&scenario.points, worst.unwrap_or(record.point))
 }
 

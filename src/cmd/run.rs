@@ -138,7 +138,7 @@ pub fn run(args: &RunArgs) -> anyhow::Result<Exit> {
                     Ok(pool.install(|| sightline_engine::simulate_traced_each(scenario, sinks, &mut done)))
                 })?
             }
-            // The worst point of the first failing requirement: known once the
+            // The worst point of the first requirement that fails the run: known once the
             // run is judged, then simulated again as it is recorded.
             (None, Some(record)) => {
                 let run = pool.install(|| sightline_engine::simulate_reporting(scenario, &mut done));

@@ -94,7 +94,7 @@ fn bundled_roundabout_recording_has_foxglove_channels_and_the_steps() {
         .as_array()
         .unwrap()
         .iter()
-        .find(|r| r["verdict"] == "fail")
+        .find(|r| r["fails_run"] == true)
         .expect("the roundabout fails a requirement");
     // Its decisive point: the failing one with the smallest margin.
     let index = first_failing["point"].as_u64().unwrap() as usize;
@@ -204,7 +204,7 @@ fn bundled_roundabout_recording_has_foxglove_channels_and_the_steps() {
 }
 
 /// `run --help` says which point `--record` records: the one the bundled
-/// roundabout's recording shows (its first failing requirement's worst), not
+/// roundabout's recording shows (the worst of its first requirement that fails the run), not
 /// the first sweep point.
 #[test]
 fn run_help_names_the_point_record_records() {
@@ -213,7 +213,7 @@ fn run_help_names_the_point_record_records() {
     let text = help.stdout.split_whitespace().collect::<Vec<_>>().join(" ");
     assert!(
         text.contains(
-            "the worst point of the first failing requirement, or the first point when none fails; a grid a second"
+            "the worst point of the first requirement that fails the run, or the first point when none does; a grid a second"
         ),
         "{text}"
     );
@@ -259,7 +259,7 @@ fn urban_recording_counts_the_packets_messages_and_approaches() {
     let run = sightline(["run", arg(&scenario), "--out", arg(&out), "--record"]);
     let results = read_json(&out.join("results.json"));
     run.assert_exit(if results["verdict"] == "pass" { 0 } else { 1 });
-    // The recorded point: the worst of the first failing requirement, if any.
+    // The recorded point: the worst of the first requirement that fails the run, if any.
     let recorded = results["recording"]["point"].as_u64().unwrap() as usize;
     let counts = &results["sweep"][recorded]["counts"];
     assert_eq!(counts["runs"], 1);

@@ -323,10 +323,18 @@ fn a_pass_is_not_called_accepted_and_the_recording_is_of_the_point_that_fails_th
     assert_eq!(requirement(&results, "P-01")["verdict"], "pass");
     assert_eq!(results["recording"]["point"], 3, "NE-01's point, not the first");
     let html = unescape_html(&read(&out.join("report.html")));
-    for claim in ["accepted: a reason", "accepted by the scenario: a reason", "Accepted: a reason"] {
+    for claim in [
+        "accepted: a reason",
+        "accepted by the scenario: a reason",
+        "Accepted: a reason",
+    ] {
         assert!(!html.contains(claim), "the report says `{claim}`");
     }
     let recording = sightline_reports::mcap::read(&std::fs::read(out.join("run.mcap")).unwrap()).unwrap();
-    let accepted: Vec<_> = recording.verdicts.iter().map(|v| (v.id.as_str(), v.accepted.as_deref())).collect();
+    let accepted: Vec<_> = recording
+        .verdicts
+        .iter()
+        .map(|v| (v.id.as_str(), v.accepted.as_deref()))
+        .collect();
     assert_eq!(accepted, [("P-01", None), ("NE-01", None)]);
 }

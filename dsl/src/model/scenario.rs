@@ -91,8 +91,8 @@ pub struct Record {
     pub point: usize,
     /// Whether the file names the recorded point (`point` or `where`). When it
     /// does not and the scenario has several points, `sightline run` records
-    /// the worst point of the first failing requirement
-    /// ([`at_point`](Self::at_point)), or the first point when none fails.
+    /// the worst point of the first requirement that fails the run
+    /// ([`at_point`](Self::at_point)), or the first point when none does.
     pub named: bool,
     /// Fused grids recorded per simulated second, Hz (0: none).
     pub grid_rate: f64,
@@ -119,7 +119,7 @@ pub struct Record {
 #[serde(rename_all = "snake_case")]
 pub enum RecordedPoints {
     /// One: the point `point` or `where` names, or the worst point of the
-    /// first failing requirement (the first point when none fails).
+    /// first requirement that fails the run (the first point when none does).
     #[default]
     One,
     /// Every sweep point, one after another on the recording's clock.

@@ -11,7 +11,8 @@ use super::range;
 /// step (the scene, detections, fused grids, V2X packets, semantic messages),
 /// or every point (`points: all`), and every point's metrics and verdicts.
 /// Give `point` or `where`, not both; neither records the worst point of the
-/// first failing requirement (the first point when none fails).
+/// first requirement that fails the run (a failure, an error, or a
+/// not-exercised verdict not accepted; the first point when none does).
 #[derive(Debug, Clone, Default, Serialize, Deserialize, JsonSchema)]
 #[serde(default, deny_unknown_fields, expecting = "a record mapping")]
 #[schemars(rename = "Record")]
@@ -33,7 +34,7 @@ pub(crate) struct RawRecord {
     /// Also record each cooperating agent's own grid, at `grid_rate` (refused with `grid_rate: 0`, which records no grid).
     pub agent_grids: bool,
     /// `one` (the default): the point `point` or `where` names, or the worst
-    /// point of the first failing requirement; `all`: every sweep point, one
+    /// point of the first requirement that fails the run; `all`: every sweep point, one
     /// after another on the recording's clock (docs/recording.md).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub points: Option<RawRecordedPoints>,
