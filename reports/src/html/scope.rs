@@ -19,7 +19,7 @@ type Row = (&'static str, String);
 /// The scope and operational design domain of the scenario: one (aspect,
 /// value) row each, over every configuration. A row whose value differs
 /// between configurations starts `swept by` and the keys that change it
-/// (`swept by \`fusion.method\` (see Sweep): {Bayesian, Dempster–Shafer}`);
+/// (`` swept by `fusion.method` (see Sweep): {bayes, dempster} ``);
 /// the sweep rows say what is swept and how many configurations there are.
 pub(super) fn scope(scenario: &Scenario) -> Vec<Row> {
     let setups: Vec<&Setup> = scenario.points.iter().map(|p| &p.setup).collect();
@@ -460,6 +460,19 @@ mod tests {
         assert_eq!(unswept(&swept), unswept(&single));
         assert!(swept.iter().all(|(_, v)| !v.starts_with("swept")), "{swept:?}");
         assert_eq!(row(&swept, "Sensors"), "4 fixed, range 5 m");
+    }
+
+    /// A row that differs only between sweeps, each fixing a key to another
+    /// value, is said to be swept with no key named: no axis changes it
+    /// within its sweep.
+    #[test]
+    fn a_row_that_differs_between_sweeps_is_swept() {
+        let rows = field(&format!(
+            "seed: 1\n{}sweeps:\n  - {{ field.sensors.range: [30] }}\n  - {{ field.sensors.range: [5] }}\n",
+            sensors("", "{ gamma: 6 }")
+        ));
+        assert_eq!(row(&rows, "Sensors"), "swept (see Sweep): 4 fixed, range {5, 30} m");
+        assert_eq!(row(&rows, "Area"), "20 m × 10 m from (0, 0) m, cells of 1 m");
     }
 
     #[test]
