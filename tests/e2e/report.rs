@@ -123,11 +123,15 @@ fn one_changed_byte_of_any_input_changes_the_document_id() {
 /// both collective perception and the semantic pipeline, for its one ego; the
 /// grids the ego fuses (its own, the roadside unit's and the cooperating
 /// car's, as `scenarios/junction-joint.yaml` declares them), the unit that
-/// runs the pipeline, both radios, and no `v2x.penetration`, which a joint
-/// world refuses.
+/// runs the pipeline, both radios, no `v2x.penetration`, which a joint world
+/// refuses, and both fusion methods it sweeps, not the first (#18).
 #[test]
 fn the_scope_of_the_joint_world_says_what_it_simulates() {
     let rows = scope(&crate::joint::junction_run().report);
+    assert_eq!(
+        row(&rows, "Fusion"),
+        Some("swept by `fusion.method` (see Sweep): {bayes, dempster}")
+    );
     let experiment = row(&rows, "Experiment").expect("an experiment row");
     assert!(
         experiment.starts_with("joint world: collective perception") && experiment.contains("semantic pipeline"),
@@ -159,8 +163,8 @@ fn the_scope_of_the_joint_world_says_what_it_simulates() {
 /// Every bundled scenario's scope names its kind of experiment, and shows a
 /// row only where its kind has it: grids in perception and joint worlds, the
 /// pipeline in semantic and joint worlds, `v2x.penetration` (but as a swept
-/// setting) only in a semantic world with generated or imported vehicles to
-/// connect.
+/// key) only in a semantic world with generated or imported vehicles to
+/// connect. A row a sweep changes names swept keys only (#18).
 #[test]
 fn every_bundled_scope_describes_its_kind_of_world() {
     for run in every_run() {
@@ -179,13 +183,50 @@ fn every_bundled_scope_describes_its_kind_of_world() {
         assert_eq!(row(&rows, "Grids fused").is_some(), perception, "{}", run.scenario);
         assert_eq!(row(&rows, "Semantic pipeline").is_some(), semantic, "{}", run.scenario);
         let penetration = semantic && !perception && (has("traffic:") || has("traces:"));
+        // A swept row's value, after the keys that sweep it.
+        let shown = |v: &str| v.split_once("(see Sweep): ").map_or(v, |(_, shown)| shown).to_string();
         assert_eq!(
-            rows.iter().any(|(a, v)| a != "Sweep" && v.contains("penetration")),
+            rows.iter()
+                .any(|(a, v)| a != "Sweep" && shown(v).contains("penetration")),
             penetration,
             "{}: {rows:?}",
             run.scenario
         );
+        let sweep = row(&rows, "Sweep").expect("a sweep row");
+        for (aspect, value) in &rows {
+            let Some(keys) = value.strip_prefix("swept by ") else {
+                continue;
+            };
+            let keys = keys.split_once(" (see Sweep): ").expect("the keys end").0;
+            for key in keys.split(", ") {
+                let key = key.trim_matches('`');
+                assert!(sweep.contains(key), "{}: {aspect} names {key}, not swept", run.scenario);
+            }
+        }
     }
+}
+
+/// The roundabout's scope gives each radio setting it sweeps as the set of
+/// its values, not its first (#18): the channel models, latencies and ages
+/// of `scenarios/roundabout-six-agents.yaml`, the message rate it
+/// does not sweep as written, and the keys that sweep them named.
+#[test]
+fn the_roundabout_scope_gives_the_radio_it_sweeps() {
+    let rows = scope(&crate::bundled::roundabout_run().report);
+    assert_eq!(
+        row(&rows, "V2X, grids"),
+        Some(
+            "swept by `v2x.channel.model`, `v2x.latency`, `v2x.messages.max_age` (see Sweep): over the radio: \
+             channel {tr36885_urban, ideal}, latency {0.02, 0.1, 0.3} s, 10 Hz messages of at most 1100 bytes, \
+             evidence dropped after {0.1, 0.3, 1} s"
+        )
+    );
+    let grids = row(&rows, "Grids fused").expect("a grids row");
+    assert!(
+        grids.starts_with("swept by `v2x.penetration` (see Sweep): {the ego's own only: no other agent cooperates; "),
+        "{grids}"
+    );
+    assert_eq!(row(&rows, "Fusion"), Some("bayes"));
 }
 
 /// docs/report-templates.md lists every field a template receives in

@@ -4,8 +4,8 @@
 //! only lays them out.
 //!
 //! - `page`: the page's view (banner, provenance, context) and [`html`];
-//! - `document`: document control, scope and ODD, the self-test, the
-//!   scenario file verbatim;
+//! - `document`: document control, the self-test, the scenario file verbatim;
+//! - `scope`: the scope and operational design domain;
 //! - `requirement`: each requirement, its check in words and its points;
 //! - `sweep`: the results table of each sweep and the published comparisons;
 //! - `point`: each point's sample sizes and counts;
@@ -21,5 +21,6 @@ mod format;
 mod page;
 mod point;
 mod requirement;
+mod scope;
 mod sweep;
 mod system;

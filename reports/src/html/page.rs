@@ -6,10 +6,11 @@ use serde::Serialize;
 
 use sightline_dsl::{Scenario, display_value};
 
-use super::document::{AppendixView, DocumentView, SelftestView, appendix, document, scope, selftest};
+use super::document::{AppendixView, DocumentView, SelftestView, appendix, document, selftest};
 use super::format::TableView;
 use super::point::{point_body, samples_table};
 use super::requirement::{Finding, RequirementView, finding, requirement_view};
+use super::scope::scope;
 use super::sweep::{ComparisonView, SweepView, comparisons, sweep_tables};
 use crate::chart::Chart;
 use crate::picture::Pictures;
