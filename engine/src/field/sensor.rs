@@ -243,20 +243,23 @@ impl Dirichlet {
 /// gamma variables", with their boost Gamma(a) = Gamma(a + 1)·U^(1/a) for a < 1.
 /// The same method as rand_distr's `Gamma`, without its per-distribution setup
 /// enum, because the engine draws from a fresh shape for nearly every sample.
+/// A shape of 0, Gamma's limit as the shape vanishes, draws 0.
 #[derive(Debug, Clone, Copy)]
 struct Gamma {
     d: f64,
     c: f64,
-    /// The shape when it is below 1 (boosted), else 0.
-    small_shape: f64,
+    /// 1/shape when the shape is below 1 (boosted; +∞ for a shape of 0, whose
+    /// boost U^∞ is 0), else 0.
+    boost_exponent: f64,
 }
 
 impl Gamma {
     #[inline]
     fn new(shape: f64) -> Self {
+        // A positive parameter can round to 0: κε/2 with κ = 1 and ε0 = 5e-324.
         debug_assert!(
-            shape > 0.0 && shape.is_finite(),
-            "the dsl keeps Dirichlet parameters positive"
+            shape >= 0.0 && shape.is_finite(),
+            "the dsl keeps Dirichlet parameters finite"
         );
         // Selects, not branches: `sample_many` computes every draw's parameters
         // in one loop.
@@ -265,7 +268,7 @@ impl Gamma {
         Self {
             d,
             c: 1.0 / (9.0 * d).sqrt(),
-            small_shape: if boosted { shape } else { 0.0 },
+            boost_exponent: if boosted { 1.0 / shape } else { 0.0 },
         }
     }
 
@@ -284,8 +287,8 @@ impl Gamma {
                 break self.d * v;
             }
         };
-        if self.small_shape > 0.0 {
-            value * pow(rng.random::<f64>(), 1.0 / self.small_shape)
+        if self.boost_exponent > 0.0 {
+            value * pow(rng.random::<f64>(), self.boost_exponent)
         } else {
             value
         }
@@ -364,6 +367,19 @@ mod tests {
             favoured += usize::from(mass[1] == 1.0);
         }
         assert_relative_eq!(favoured as f64 / draws as f64, 0.75, epsilon = 0.035);
+    }
+
+    /// A parameter that rounds to 0 (κε/2 with κ = 1, ε = 5e-324, which the dsl
+    /// accepts) draws 0, the limit of Gamma as its shape vanishes. Before, a
+    /// shape of 0 failed a debug assertion and, in a release build, was sampled
+    /// as Gamma(1): a sensor that almost never errs drew Dirichlet(1, 1, 1).
+    #[test]
+    fn a_parameter_that_rounds_to_zero_draws_zero() {
+        let dirichlet = Dirichlet::new(1.0, 5e-324);
+        let mut rng = mass_stream(7, 0);
+        for _ in 0..1000 {
+            assert_eq!(dirichlet.sample(State::Empty, &mut rng), Mass::new(1.0, 0.0, 0.0));
+        }
     }
 
     /// Gamma(a) has mean a and variance a, for large and boosted small shapes.
