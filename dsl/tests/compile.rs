@@ -1,8 +1,9 @@
 //! The compiled model: what a valid file becomes, and how problems are reported.
 
 use sightline_dsl::{
-    Bound, Check, DecisionRule, ErrorKind, Errors, Experiment, Layout, Location, Metric, Options, OverSeeds, RateBound,
-    Rule, Scenario, SourceCombination, Statistic, Switch, SwitchMeasure, WeightScaling, Weighting, compile,
+    Bound, Check, DecisionRule, ErrorKind, ErrorModel, Errors, Experiment, Layout, Location, Metric, Options,
+    OverSeeds, Point, RateBound, Rule, Scenario, SourceCombination, Statistic, Switch, SwitchMeasure, WeightScaling,
+    Weighting, compile,
 };
 
 const BASE: &str = "sightline: 1
@@ -215,6 +216,61 @@ fn the_decision_rule_is_read_and_an_unknown_one_refused_where_written() {
     assert!(message.contains("exceeds"), "the closest rule is suggested: {message}");
     let swept = errors(&format!("{BASE}sweep:\n  decision.rule: [margin, p_max]\n"));
     assert_eq!(swept.0[0].location, Location::new(9, 27));
+}
+
+/// The error model of the field's masses.
+fn error_model(point: &Point) -> ErrorModel {
+    match &point.setup.experiment {
+        Experiment::Field(field) => field.masses.error_model,
+        other => panic!("a field scenario, not {other:?}"),
+    }
+}
+
+#[test]
+fn the_error_model_is_read_and_an_unknown_one_refused_where_written() {
+    for (written, model) in [
+        ("dirichlet_mean", ErrorModel::DirichletMean),
+        ("wrong_label", ErrorModel::WrongLabel),
+        ("dirichlet_toward_empty", ErrorModel::DirichletTowardEmpty),
+    ] {
+        let scenario = ok(&BASE.replace(
+            "masses: { gamma: 10 }",
+            &format!("masses: {{ gamma: 10, error_model: {written} }}"),
+        ));
+        assert_eq!(error_model(&scenario.points[0]), model, "{written}");
+    }
+    // Swept, each reading is its own point.
+    let swept = ok(&format!(
+        "{BASE}sweep:\n  field.masses.error_model: [dirichlet_mean, wrong_label, dirichlet_toward_empty]\n"
+    ));
+    let models: Vec<ErrorModel> = swept.points.iter().map(error_model).collect();
+    assert_eq!(
+        models,
+        [
+            ErrorModel::DirichletMean,
+            ErrorModel::WrongLabel,
+            ErrorModel::DirichletTowardEmpty
+        ]
+    );
+    // Line 7, the value after `masses: { gamma: 10, error_model: `.
+    let refused = errors(&BASE.replace(
+        "masses: { gamma: 10 }",
+        "masses: { gamma: 10, error_model: dirichlet_toward_emty }",
+    ));
+    assert_eq!(refused.0.len(), 1);
+    assert_eq!(refused.0[0].path, "field.masses.error_model");
+    assert_eq!(refused.0[0].location, Location::new(7, 37));
+    let message = refused.to_string();
+    assert!(message.starts_with("t.yaml:7:37: error:"), "{message}");
+    assert!(
+        message.contains("(did you mean `dirichlet_toward_empty`?)"),
+        "{message}"
+    );
+    let swept = errors(&format!(
+        "{BASE}sweep:\n  field.masses.error_model: [wrong_label, dirichlet_text]\n"
+    ));
+    assert_eq!(swept.0[0].path, "field.masses.error_model");
+    assert_eq!(swept.0[0].location, Location::new(9, 43));
 }
 
 #[test]

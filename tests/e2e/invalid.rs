@@ -125,6 +125,7 @@ invalid_inputs! {
     unsupported_language_version_is_refused => "unsupported-version",
     unknown_key_suggests_the_closest_key => "unknown-key",
     unknown_value_suggests_the_closest_value => "unknown-fusion-method",
+    an_unknown_error_model_suggests_the_closest_reading => "unknown-error-model",
     missing_required_key_is_named => "missing-key",
     wrong_type_is_refused => "wrong-type",
     probability_above_one_is_out_of_range => "probability-above-one",

@@ -58,7 +58,7 @@ pub struct Masses {
 /// How the misdetection ε(d) shapes a sensor's mass vector. The paper says ε is
 /// "the probability that a truly empty cell is output as Occupy or Unknown" and
 /// that ε0 = 0.0625 "corresponds to" Dirichlet(30, 1, 1); it does not say which
-/// of the two readings below it means.
+/// of the readings below it means.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum ErrorModel {
@@ -72,4 +72,10 @@ pub enum ErrorModel {
     /// vector is Dirichlet(concentration·(1 − ε0), concentration·ε0/2, concentration·ε0/2)
     /// centred on the reported label.
     WrongLabel,
+    /// As `dirichlet_mean` for a truly empty cell; for a truly occupied cell the
+    /// mean puts ε on Empty, 1 − ε on Occupy and nothing on Unknown (the text's
+    /// "misdetection probability toward Empty"): a Beta(concentration·ε,
+    /// concentration·(1 − ε)) split between Empty and Occupy, so that an occupied
+    /// cell is never reported with Unknown mass.
+    DirichletTowardEmpty,
 }
