@@ -7,7 +7,7 @@
 //! and by which keys, so that no row states one configuration's value as the
 //! scenario's.
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 use sightline_dsl::{AgentKind, Experiment, Field, Messages, Perception, Scenario, Setup, SystemUnderTest, World};
 
@@ -105,12 +105,9 @@ fn each_number<T: ?Sized>(items: &[&T], part: impl Fn(&T) -> f64) -> String {
 /// `values` each once, in order: one as it is, several as a set `{a, b}`
 /// (`{a; b}` where a value holds a comma).
 fn set(values: impl Iterator<Item = String>) -> String {
-    let mut distinct: Vec<String> = Vec::new();
-    for value in values {
-        if !distinct.contains(&value) {
-            distinct.push(value);
-        }
-    }
+    // A set beside the list: a sweep of 10 000 points may give as many values.
+    let mut seen: HashSet<String> = HashSet::new();
+    let distinct: Vec<String> = values.filter(|value| seen.insert(value.clone())).collect();
     match distinct.as_slice() {
         [one] => one.clone(),
         _ => {
