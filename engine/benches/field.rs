@@ -26,7 +26,7 @@ sweep:
 fn field(c: &mut Criterion) {
     let mut group = c.benchmark_group("seed001_one_gamma_both_methods");
     group.sample_size(10);
-    for error_model in ["dirichlet_mean", "wrong_label"] {
+    for error_model in ["dirichlet_mean", "wrong_label", "dirichlet_toward_empty"] {
         let text = SCENARIO.replace("ERROR_MODEL", error_model);
         let scenario =
             sightline_dsl::compile("bench.yaml", &text, &Default::default()).expect("the bench scenario is valid");

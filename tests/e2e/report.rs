@@ -171,9 +171,10 @@ fn every_bundled_scope_describes_its_kind_of_world() {
         let rows = scope(&run.report);
         let experiment = row(&rows, "Experiment").expect("an experiment row");
         let text = read(&root().join(run.scenario));
-        let has = |section: &str| text.lines().any(|line| line.starts_with(section));
-        let (perception, semantic) = (has("perception:"), has("semantic:"));
-        let kind = match (has("field:"), perception, semantic) {
+        let file: serde_yaml::Mapping = serde_yaml::from_str(&text).unwrap_or_else(|e| panic!("{}: {e}", run.scenario));
+        let has = |section: &str| file.contains_key(section);
+        let (perception, semantic) = (has("perception"), has("semantic"));
+        let kind = match (has("field"), perception, semantic) {
             (true, _, _) => "static evidential field",
             (_, true, true) => "joint world",
             (_, true, false) => "collective perception",
@@ -182,7 +183,7 @@ fn every_bundled_scope_describes_its_kind_of_world() {
         assert!(experiment.starts_with(kind), "{}: {experiment}", run.scenario);
         assert_eq!(row(&rows, "Grids fused").is_some(), perception, "{}", run.scenario);
         assert_eq!(row(&rows, "Semantic pipeline").is_some(), semantic, "{}", run.scenario);
-        let penetration = semantic && !perception && (has("traffic:") || has("traces:"));
+        let penetration = semantic && !perception && (has("traffic") || has("traces"));
         // A swept row's value, after the keys that sweep it.
         let shown = |v: &str| v.split_once("(see Sweep): ").map_or(v, |(_, shown)| shown).to_string();
         assert_eq!(
