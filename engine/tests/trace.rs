@@ -377,6 +377,7 @@ fn world_steps_add_up_to_the_metrics() {
             false_positives: metrics.false_positives,
             blind_occupied: metrics.blind_occupied,
             blind_detected: metrics.blind_detected,
+            footprint_only: metrics.footprint_only,
             self_report: metrics.self_report,
             self_report_detected: metrics.self_report_detected,
             self_report_only: metrics.self_report_only,

@@ -69,7 +69,7 @@ fn results() -> &'static serde_json::Value {
 #[test]
 fn evidential_field_scenario_runs_end_to_end() {
     let results = results();
-    assert_eq!(results["format"], "sightline-results/3");
+    assert_eq!(results["format"], "sightline-results/4");
     assert_eq!(results["verdict"], "pass");
     assert_eq!(results["scenario"]["path"], SCENARIO);
     assert_eq!(results["sweep"].as_array().map(Vec::len), Some(120));

@@ -12,8 +12,8 @@ use std::sync::OnceLock;
 use crate::bundled::{Bundled, run_bundled};
 use crate::record::{channels, messages};
 use crate::support::{
-    arg, files_under, normalise_execution, normalise_junit_times, read, read_json, requirement, sightline, temp_dir,
-    unescape_html, verdict,
+    arg, files_under, normalise_execution, normalise_junit_times, read, read_json, requirement, root, sightline,
+    temp_dir, unescape_html, verdict,
 };
 
 /// Two walkers, one in the Bayesian grid from 1.2 s, one never
@@ -96,31 +96,36 @@ fn a_joint_world_judges_each_road_user_by_the_grid_and_the_warnings() {
 
 /// A car no sensor sees, following a cooperator over a perfect radio
 /// (`footprint-trail.yaml` in a joint world): the cooperator's old footprints
-/// are not held, so the car never comes into the ego's fused grid and has no
-/// grid_lead; the cooperator, which reports itself, does.
+/// are not held, and the newest, up to a message period behind it, is
+/// credited to the cooperator alone, so the car never comes into the ego's
+/// fused grid and has no grid_lead, at any message rate; the cooperator,
+/// which reports itself, does.
 #[test]
 fn a_car_in_a_cooperator_s_wake_never_comes_into_the_grid() {
-    let tmp = temp_dir();
-    let out = tmp.path().join("out");
-    let run = sightline([
-        "run",
-        "tests/fixtures/valid/joint-footprint-trail.yaml",
-        "--out",
-        arg(&out),
-    ]);
-    run.assert_exit(1);
-    let results = read_json(&out.join("results.json"));
-    let records = results["sweep"][0]["semantic"]["objects"]["records"]
-        .as_array()
-        .unwrap();
-    let first_in_grid = |id: &str| &records.iter().find(|o| o["id"] == id).unwrap()["first_in_grid"];
-    assert_eq!(first_in_grid("car1"), &serde_json::Value::Null);
-    assert!(first_in_grid("cav1").is_number());
-    assert_eq!(verdict(&results, "GRID-LEAD").0, "fail");
-    assert!(
-        run.stdout.contains("had no grid_lead (never in the ego's fused grid)"),
-        "{run}"
-    );
+    let fixture = read(&root().join("tests/fixtures/valid/joint-footprint-trail.yaml"));
+    let radio = "v2x: { latency: 0.02, channel: { model: ideal } }";
+    assert!(fixture.contains(radio));
+    for rate in [10, 1] {
+        let tmp = temp_dir();
+        let (file, out) = (tmp.path().join("trail.yaml"), tmp.path().join("out"));
+        let messages =
+            format!("v2x: {{ latency: 0.02, channel: {{ model: ideal }}, messages: {{ rate_hz: {rate} }} }}");
+        std::fs::write(&file, fixture.replace(radio, &messages)).unwrap();
+        let run = sightline(["run", arg(&file), "--out", arg(&out)]);
+        run.assert_exit(1);
+        let results = read_json(&out.join("results.json"));
+        let records = results["sweep"][0]["semantic"]["objects"]["records"]
+            .as_array()
+            .unwrap();
+        let first_in_grid = |id: &str| &records.iter().find(|o| o["id"] == id).unwrap()["first_in_grid"];
+        assert_eq!(first_in_grid("car1"), &serde_json::Value::Null, "{rate} Hz");
+        assert!(first_in_grid("cav1").is_number(), "{rate} Hz");
+        assert_eq!(verdict(&results, "GRID-LEAD").0, "fail", "{rate} Hz");
+        assert!(
+            run.stdout.contains("had no grid_lead (never in the ego's fused grid)"),
+            "{rate} Hz: {run}"
+        );
+    }
 }
 
 /// The bundled junction runs the fused grid and the semantic pipeline in one

@@ -19,8 +19,8 @@ const SCHEMA_FILE: &str = "docs/results.schema.json";
 /// (`reports/src/results/document.rs`, and the docs that name it) and record
 /// the new pair here.
 const FORMAT_SHAPE: (&str, &str) = (
-    "sightline-results/3",
-    "9e1ca95f21cfc90db659b19e226e499b06c5bd72eb57f727eeb2f048b516bb8a",
+    "sightline-results/4",
+    "daf43e45e11d4337176ab2bf931dae5cf58709d4d8ab349c8c578b54288ba08a",
 );
 
 /// Why `results` does not validate against the schema, or `Ok`.

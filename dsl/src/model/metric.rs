@@ -47,9 +47,11 @@ pub enum Metric {
     /// World: Σ cells observed by any cooperating agent / Σ cells observed by the
     /// ego, minus 1, over the run (seed 000 reports +260 %, that is 2.6).
     FovGain,
-    /// World: share of the truly occupied cells the fused grid decides Occupy,
-    /// over the run, the cooperating agents' own footprints (self-report) left
-    /// out (0–1).
+    /// World: share of the truly occupied cells the fused grid decides Occupy
+    /// where a sensor found them occupied, over the run, the cooperating
+    /// agents' own footprints (self-report) left out (0–1). A cell that only a
+    /// reported footprint marks occupied (held over the radio, where its agent
+    /// was) is no detection of whoever is there now.
     OccupiedRecall,
     /// World: share of the cells the fused grid decides Occupy that are truly
     /// occupied, over the run (0–1).
@@ -57,7 +59,8 @@ pub enum Metric {
     /// World: `occupied_recall` over the cells the ego does not observe itself (0–1).
     BlindRecall,
     /// World: `occupied_recall` with the cooperating agents' own footprints
-    /// counted as well, as a grid that holds every road user is scored (0–1).
+    /// counted as well, each credited when decided Occupy, reported or sensed,
+    /// as a grid that holds every road user is scored (0–1).
     OccupiedRecallWithSelfReport,
     /// World: `occupied_recall` of the ego's own observation alone, over the
     /// same cells (fused and decided by the same rule): the ego-only baseline

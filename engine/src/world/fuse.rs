@@ -345,33 +345,45 @@ impl Tallier<'_> {
                 tally.calibration.record(probability, self.truth[cell] == OCCUPIED);
             }
             let decided = decision == Some(State::Occupied);
-            if let Some(owners) = self.owners.filter(|_| decided)
-                && matches!(self.truth[cell], OCCUPIED | SELF_REPORT)
-            {
+            // Whether a sensor found the cell occupied: a footprint a cooperating agent
+            // reports (`Own`) is no sensor's finding, and one held over the radio is
+            // where the agent was, which another road user may have driven into since.
+            let sensed = || {
+                self.fusion
+                    .observations
+                    .iter()
+                    .any(|o| o.get(cell) == Observed::Occupied)
+            };
+            // A road user that does not cooperate is detected only where a sensor
+            // found it; a cooperating agent's body is credited by its self-report too.
+            let detected = match self.truth[cell] {
+                OCCUPIED => decided && sensed(),
+                SELF_REPORT => decided,
+                _ => false,
+            };
+            if let Some(owners) = self.owners.filter(|_| detected) {
                 tally.owners.push(owners[cell] as usize);
             }
             let counts = &mut tally.cells;
             match self.truth[cell] {
                 OCCUPIED => {
                     counts.occupied += 1;
-                    counts.detected += u64::from(decided);
-                    counts.ego_detected += u64::from(self.ego_decides_occupied(cell, &mut sources));
-                    tally.by_distance.record(self.fusion.grid, self.senders, cell, decided);
+                    counts.detected += u64::from(detected);
+                    counts.footprint_only += u64::from(decided && !detected);
+                    // The ego alone, held to the same rule: its own sensor found the cell.
+                    counts.ego_detected +=
+                        u64::from(ego.get(cell) == Observed::Occupied && self.ego_decides_occupied(cell, &mut sources));
+                    tally.by_distance.record(self.fusion.grid, self.senders, cell, detected);
                     if ego.get(cell) == Observed::Unknown {
                         counts.blind_occupied += 1;
-                        counts.blind_detected += u64::from(decided);
+                        counts.blind_detected += u64::from(detected);
                     }
                 }
                 SELF_REPORT => {
                     counts.self_report += 1;
                     counts.self_report_detected += u64::from(decided);
                     // Known only through self-report: no sensor found it occupied.
-                    let sensed = self
-                        .fusion
-                        .observations
-                        .iter()
-                        .any(|o| o.get(cell) == Observed::Occupied);
-                    counts.self_report_only += u64::from(decided && !sensed);
+                    counts.self_report_only += u64::from(decided && !sensed());
                 }
                 _ => counts.false_positives += u64::from(decided),
             }

@@ -11,7 +11,10 @@
 //! The cells a cooperating agent's own body covers (its true footprint) are
 //! self-report: the agent marks them itself, so no sensor had to find them.
 //! Recall (`occupied_recall`, `blind_recall`) counts the other occupied cells,
-//! which answers "does cooperation reveal the road users the ego cannot see?";
+//! each detected when decided Occupy where a sensor found it occupied (a
+//! reported footprint, held over the radio where its agent was, detects no
+//! one who drove into it since), which answers "does cooperation reveal the
+//! road users the ego cannot see?";
 //! the self-report cells are counted apart (`self_report_share`), and with them
 //! (`occupied_recall_with_self_report`) as a grid holding every road user is
 //! scored. Precision counts every cell decided Occupy. How well the fused
@@ -64,8 +67,8 @@ impl WorldOutcome {
             Signal::OccupiedRecall => ratio(c.detected, c.occupied),
             Signal::BlindRecall => ratio(c.blind_detected, c.blind_occupied),
             Signal::OccupiedPrecision => {
-                let correct = c.detected + c.self_report_detected;
-                ratio(correct, correct + c.false_positives)
+                let decided = c.detected + c.footprint_only + c.self_report_detected;
+                ratio(decided, decided + c.false_positives)
             }
             Signal::RsuOnlyObjects | Signal::TimeToConflict => None,
         };
@@ -87,7 +90,8 @@ pub struct WorldMetrics {
     /// Cell-steps truly occupied by a road user that does not cooperate (not
     /// the ego, an RSU or a cooperating agent reporting its own footprint).
     pub occupied: u64,
-    /// Of those, decided Occupy by the fused grid.
+    /// Of those, decided Occupy by the fused grid where a sensor found them
+    /// occupied (not a reported footprint alone).
     pub detected: u64,
     /// Of the `occupied` cell-steps, those the ego's own observation alone
     /// decides Occupy (fused and decided by the same rule).
@@ -96,8 +100,13 @@ pub struct WorldMetrics {
     pub false_positives: u64,
     /// Of the `occupied` cell-steps, those the ego did not observe itself.
     pub blind_occupied: u64,
-    /// Of those, decided Occupy by the fused grid.
+    /// Of those, detected as `detected` counts.
     pub blind_detected: u64,
+    /// Of the `occupied` cell-steps, those decided Occupy where no sensor
+    /// found them occupied: only another agent's reported footprint (where
+    /// that agent was) covers them. A correct decision (`occupied_precision`
+    /// counts it), no detection (`detected` does not).
+    pub footprint_only: u64,
     /// Cell-steps truly occupied by a cooperating agent other than the ego
     /// (its own footprint, which it reports).
     pub self_report: u64,
@@ -143,14 +152,21 @@ impl WorldMetrics {
         add(&mut self.false_positives, cells.false_positives);
         add(&mut self.blind_occupied, cells.blind_occupied);
         add(&mut self.blind_detected, cells.blind_detected);
+        add(&mut self.footprint_only, cells.footprint_only);
         add(&mut self.self_report, cells.self_report);
         add(&mut self.self_report_detected, cells.self_report_detected);
         add(&mut self.self_report_only, cells.self_report_only);
     }
 
-    /// Truly occupied cell-steps decided Occupy, self-report included.
+    /// Truly occupied cell-steps detected, self-report included.
     fn correct(&self) -> u64 {
         self.detected.saturating_add(self.self_report_detected)
+    }
+
+    /// Truly occupied cell-steps decided Occupy: the detected ones and those
+    /// only another agent's footprint covers.
+    fn decided_occupied(&self) -> u64 {
+        self.correct().saturating_add(self.footprint_only)
     }
 
     /// The value of `metric`, or `None` where it is not defined for this run.
@@ -160,7 +176,10 @@ impl WorldMetrics {
             Metric::FovGain => ratio(self.joint_observed, self.ego_observed).map(|r| r - 1.0),
             Metric::OccupiedRecall => ratio(self.detected, self.occupied),
             Metric::EgoOccupiedRecall => ratio(self.ego_detected, self.occupied),
-            Metric::OccupiedPrecision => ratio(self.correct(), self.correct().saturating_add(self.false_positives)),
+            Metric::OccupiedPrecision => ratio(
+                self.decided_occupied(),
+                self.decided_occupied().saturating_add(self.false_positives),
+            ),
             Metric::BlindRecall => ratio(self.blind_detected, self.blind_occupied),
             Metric::OccupiedRecallWithSelfReport => {
                 ratio(self.correct(), self.occupied.saturating_add(self.self_report))
@@ -196,7 +215,7 @@ impl WorldMetrics {
         match metric {
             Metric::FovGain => Some(self.ego_observed),
             Metric::OccupiedRecall | Metric::EgoOccupiedRecall => Some(self.occupied),
-            Metric::OccupiedPrecision => Some(self.correct().saturating_add(self.false_positives)),
+            Metric::OccupiedPrecision => Some(self.decided_occupied().saturating_add(self.false_positives)),
             Metric::BlindRecall => Some(self.blind_occupied),
             Metric::OccupiedRecallWithSelfReport => Some(self.occupied.saturating_add(self.self_report)),
             Metric::SelfReportShare => Some(self.correct()),
@@ -250,7 +269,8 @@ pub struct FusedCell {
 pub struct CellTally {
     /// Truly occupied by a road user that does not cooperate.
     pub occupied: u64,
-    /// Of those, decided Occupy by the fused grid.
+    /// Of those, decided Occupy by the fused grid where a sensor found them
+    /// occupied.
     pub detected: u64,
     /// Of the `occupied`, decided Occupy by the ego's own observation alone.
     pub ego_detected: u64,
@@ -258,8 +278,11 @@ pub struct CellTally {
     pub false_positives: u64,
     /// Of the `occupied`, those not observed by the ego itself.
     pub blind_occupied: u64,
-    /// Of those, decided Occupy by the fused grid.
+    /// Of those, detected as `detected` counts.
     pub blind_detected: u64,
+    /// Of the `occupied`, decided Occupy where only another agent's reported
+    /// footprint, no sensor, marks them occupied.
+    pub footprint_only: u64,
     /// Truly occupied by a cooperating agent other than the ego (self-report).
     pub self_report: u64,
     /// Of those, decided Occupy by the fused grid.
@@ -277,6 +300,7 @@ impl CellTally {
         self.false_positives += other.false_positives;
         self.blind_occupied += other.blind_occupied;
         self.blind_detected += other.blind_detected;
+        self.footprint_only += other.footprint_only;
         self.self_report += other.self_report;
         self.self_report_detected += other.self_report_detected;
         self.self_report_only += other.self_report_only;
@@ -367,6 +391,7 @@ mod tests {
             false_positives: 1,
             blind_occupied: 4,
             blind_detected: 2,
+            footprint_only: 1,
             self_report: 6,
             self_report_detected: 5,
             self_report_only: 3,
@@ -398,7 +423,11 @@ mod tests {
         assert_eq!(metrics.sample_size(Metric::OccupiedRecallWithSelfReport, 0), Some(32));
         assert_eq!(metrics.value(Metric::SelfReportShare), Some(6.0 / 26.0));
         assert_eq!(metrics.sample_size(Metric::SelfReportShare, 0), Some(26));
-        assert_eq!(metrics.value(Metric::OccupiedPrecision), Some(26.0 / 28.0));
+        // Precision counts the 2 cell-steps only another agent's footprint covers as
+        // correct decisions, which no recall counts as detected: (16 + 2 + 10) / (28 + 2).
+        assert_eq!(metrics.footprint_only, 2);
+        assert_eq!(metrics.value(Metric::OccupiedPrecision), Some(28.0 / 30.0));
+        assert_eq!(metrics.sample_size(Metric::OccupiedPrecision, 0), Some(30));
     }
 
     /// Four sensor–target pairs: one wholly seen, two half seen, one hidden:

@@ -54,7 +54,8 @@ pub(crate) const FREE_SPACE: Idealisation = Idealisation {
     id: "observe.free-space",
     text: "Free space is carved along rays `ray_spacing_deg` apart, cell by cell, up to the first building or \
            road user of the true world; a cell belongs to a footprint or a building when its centre lies inside \
-           it.",
+           it, and a footprint always holds the cell under its own centre (a body smaller than a cell takes \
+           one).",
 };
 
 /// Cooperators report their own bodies.

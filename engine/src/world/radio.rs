@@ -29,7 +29,7 @@ use sightline_dsl::{Agent, AgentKind, Grid, Messages, V2x};
 use super::evidence::Evidence;
 use super::message::{Message, Run, header_bytes, pack, runs};
 use super::observe::Observation;
-use super::received::Held;
+use super::received::{Held, outlived};
 use super::sight::Occluders;
 use super::state::AgentState;
 use crate::idealisation::Idealisation;
@@ -271,11 +271,15 @@ impl<'a> Radio<'a> {
         // ages apart from the others': the senders run in parallel.
         let mut arrived: Vec<Vec<Parcel>> = self.senders.iter().map(|_| Vec::new()).collect();
         for (_, parcel) in self.in_flight.arrived(time) {
-            let age = ((time - parcel.sensed) / self.step).round() as usize;
-            if self.stats.ages.len() <= age {
-                self.stats.ages.resize(age + 1, 0);
+            // A message past `max_age` on arrival is dropped at once: never fused, so
+            // its age is not among the fused messages'.
+            if !outlived(time - parcel.sensed, messages) {
+                let age = ((time - parcel.sensed) / self.step).round() as usize;
+                if self.stats.ages.len() <= age {
+                    self.stats.ages.resize(age + 1, 0);
+                }
+                self.stats.ages[age] += 1;
             }
-            self.stats.ages[age] += 1;
             arrived[parcel.sender].push(parcel);
         }
         self.senders.par_iter_mut().zip(arrived).for_each(|(sender, parcels)| {

@@ -11,7 +11,10 @@
 //! where the sender is, so a newer footprint replaces the older one whole, and
 //! an older one arriving late is ignored. Kept until `max_age`, the footprints
 //! of a moving sender left a trail behind it, which fusion read as occupied
-//! and credited to whoever followed in it (session 21's outside check).
+//! and credited to whoever followed in it (session 21's outside check). Even
+//! the newest is where the sender was up to a message period and the latency
+//! ago: the measures of the fused grid credit a footprint to its sender only,
+//! never as a detection of another road user (`super::fuse`).
 
 use sightline_dsl::Messages;
 
@@ -134,7 +137,7 @@ impl Held {
         for slot in &mut self.slots {
             let Some(generation) = slot else { continue };
             let age = now - generation.sensed;
-            if age > messages.max_age + 1e-9 {
+            if outlived(age, messages) {
                 *slot = None;
                 dropped = true;
             } else {
@@ -167,6 +170,12 @@ impl Held {
             .as_ref()
             .expect("a held cell's generation is live")
     }
+}
+
+/// Whether evidence `age` seconds old (since it was sensed) is past
+/// `messages.max_age`: dropped, never fused.
+pub(super) fn outlived(age: f64, messages: &Messages) -> bool {
+    age > messages.max_age + 1e-9
 }
 
 /// The slot of generation `serial` among `slots` (a power of two of them).

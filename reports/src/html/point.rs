@@ -95,6 +95,10 @@ pub(super) fn point_body(p: &PointResult) -> (String, Vec<TableView>) {
                 ("occupied cell-steps the ego did not observe", c.blind_occupied as f64),
                 ("… decided Occupy", c.blind_detected as f64),
                 (
+                    "occupied cell-steps decided Occupy by another agent's reported footprint alone (no detection)",
+                    c.footprint_only as f64,
+                ),
+                (
                     "cell-steps of cooperating agents' own bodies (self-report)",
                     c.self_report as f64,
                 ),

@@ -137,6 +137,7 @@ pub fn read(bytes: &[u8]) -> Result<Recording, ReadError> {
                                         false_positives: cells.false_positives,
                                         blind_occupied: cells.blind_occupied,
                                         blind_detected: cells.blind_detected,
+                                        footprint_only: cells.footprint_only,
                                         self_report: cells.self_report,
                                         self_report_detected: cells.self_report_detected,
                                         self_report_only: cells.self_report_only,

@@ -29,7 +29,7 @@ pub use semantic::{
 
 /// The format of sightline's recordings, written in `/sightline/scenario`;
 /// replay reads this version only.
-pub const RECORDING_FORMAT: &str = "sightline-recording/6";
+pub const RECORDING_FORMAT: &str = "sightline-recording/7";
 
 /// A number that survives JSON exactly: finite values as JSON numbers (read back
 /// bit for bit). JSON has no number for NaN and the infinities, and the viewers'
@@ -354,7 +354,7 @@ pub struct CellSignals {
     pub joint_observed: u64,
     /// Cells truly occupied by a road user that does not cooperate.
     pub occupied: u64,
-    /// Of those, decided occupied.
+    /// Of those, decided occupied where a sensor found them occupied.
     pub detected: u64,
     /// Of the `occupied` cells, those the ego's own observation alone decides
     /// occupied.
@@ -363,8 +363,11 @@ pub struct CellSignals {
     pub false_positives: u64,
     /// Of the `occupied` cells, those the ego did not observe itself.
     pub blind_occupied: u64,
-    /// Of those, decided occupied.
+    /// Of those, decided occupied where a sensor found them occupied.
     pub blind_detected: u64,
+    /// Of the `occupied` cells, decided occupied where only another agent's
+    /// reported footprint, no sensor, marks them occupied.
+    pub footprint_only: u64,
     /// Cells of a cooperating agent's own body (other than the ego's): self-report.
     pub self_report: u64,
     /// Of those, decided occupied.

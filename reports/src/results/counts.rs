@@ -66,7 +66,8 @@ pub struct WorldCounts {
     /// Cell-steps truly occupied by a road user that does not cooperate (not
     /// the ego, an RSU or a cooperating agent's own footprint).
     pub occupied: u64,
-    /// Of those, decided Occupy by the fused grid.
+    /// Of those, decided Occupy by the fused grid where a sensor found them
+    /// occupied (detected: `occupied_recall`).
     pub detected: u64,
     /// Of the `occupied` cell-steps, those the ego's own observation alone
     /// decides Occupy (`ego_occupied_recall`).
@@ -75,8 +76,13 @@ pub struct WorldCounts {
     pub false_positives: u64,
     /// Of the `occupied` cell-steps, those the ego did not observe itself.
     pub blind_occupied: u64,
-    /// Of those, decided Occupy by the fused grid.
+    /// Of those, detected as `detected` counts.
     pub blind_detected: u64,
+    /// Of the `occupied` cell-steps, those decided Occupy where no sensor
+    /// found them occupied: only another agent's reported footprint (where
+    /// that agent was) covers them. Counted as correct by `occupied_precision`,
+    /// not as detected by the recalls.
+    pub footprint_only: u64,
     /// Cell-steps truly occupied by a cooperating agent other than the ego: its
     /// own footprint, which it reports itself.
     pub self_report: u64,

@@ -151,6 +151,7 @@ impl<W> Recorder<'_, W> {
             false_positives: cells.false_positives,
             blind_occupied: cells.blind_occupied,
             blind_detected: cells.blind_detected,
+            footprint_only: cells.footprint_only,
             self_report: cells.self_report,
             self_report_detected: cells.self_report_detected,
             self_report_only: cells.self_report_only,
