@@ -191,7 +191,9 @@ pub struct PointVerdict {
     /// For a check over seeds: the estimate and the bound compared.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub seeds: Option<SeedStatistics>,
-    /// For a temporal check: the time of the decisive step, seconds.
+    /// For a temporal check: the time of the decisive step, seconds; when the
+    /// point pools runs, in the run the message names (counted from 0; the
+    /// recording's per-step topics show run 0 only).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub time: Option<f64>,
 }
