@@ -57,8 +57,8 @@ pub(crate) fn evaluate(
 }
 
 /// Whether more samples can only move `metric` further past `bound` once it
-/// misses it: a count of faults bounded above (a cell-count, which more cells
-/// can only raise), a least value bounded below, a greatest bounded above.
+/// misses it: a count of faults bounded above (faulty cells, ghost
+/// detections: more cells or detections can only raise it), a least value bounded below, a greatest bounded above.
 /// Such a metric that misses over too few samples is a violation seen. A
 /// share, a mean, a quantile or a count per run (a mean over runs) can move
 /// either way and is not; neither is a comparison of two metrics.
@@ -70,6 +70,7 @@ fn only_worsens(metric: Metric, bound: Bound) -> bool {
                 | Metric::MissedDetections
                 | Metric::ConfidentErrors
                 | Metric::TotalConflictCells
+                | Metric::SutGhosts
                 | Metric::MaxConflict
                 | Metric::MaxDrac
         ),
@@ -356,6 +357,9 @@ mod tests {
         assert_eq!((e.status, e.value, e.n), (Status::Fail, Some(4.0), Some(100)));
         let e = evaluate((m, &ALL), Bound::AtMost(3.0), sample(&metrics(3), m), 200);
         assert_eq!(e.status, Status::NotExercised);
+        let two_ghosts = Some(Sample { value: Some(2.0), n: 5 });
+        let e = evaluate((Metric::SutGhosts, &ALL), Bound::AtMost(1.0), two_ghosts, 10);
+        assert_eq!((e.status, e.value, e.n), (Status::Fail, Some(2.0), Some(5)));
         let m = Metric::Accuracy;
         let e = evaluate((m, &ALL), Bound::AtLeast(0.95), sample(&metrics(1), m), 200);
         assert_eq!((e.status, e.value), (Status::NotExercised, None));
