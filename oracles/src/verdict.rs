@@ -67,7 +67,8 @@ pub struct Evaluation {
     pub message: String,
     /// For a check over seeds: what the seeds measured and the bound compared.
     pub seeds: Option<SeedStatistics>,
-    /// For a temporal check: the time of the decisive step, seconds.
+    /// For a temporal check: the time of the decisive step, seconds (in the
+    /// run its message names when the point pools runs).
     pub time: Option<f64>,
 }
 

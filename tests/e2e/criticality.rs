@@ -63,6 +63,54 @@ fn criticality_is_judged_listed_and_replayed() {
     assert_eq!(lines(&replay.stdout), lines(&run.stdout));
 }
 
+/// Fewer road users than a per-object check needs, one of them already
+/// breaking it, is a failure, not a not-exercised verdict the scenario may
+/// accept: the lead's PET of 1.2 s misses 1.5 s though three crossings are
+/// needed and two were seen; no road user is ever flagged (no message reaches
+/// the ego), so none can lead by 1 s though five are needed and three were
+/// seen. A check all of whose two road users hold (PET ≥ 1 s) stays not
+/// exercised.
+#[test]
+fn a_violation_seen_among_too_few_road_users_fails() {
+    let tmp = temp_dir();
+    let text = read(&root().join(SCENE));
+    let (head, _) = text.split_once("requirements:\n").unwrap();
+    let file = tmp.path().join("too-few.yaml");
+    let accept = "    accept_not_exercised: Too few road users in this short scene.\n";
+    let requirements = [
+        ("PET-MIN3", "{ per_object: pet, at_least: 1.5, min_samples: 3 }"),
+        ("LEAD-MIN5", "{ per_object: warning_lead, at_least: 1, min_samples: 5 }"),
+        ("PET-HOLDS", "{ per_object: pet, at_least: 1, min_samples: 3 }"),
+    ]
+    .map(|(id, check)| format!("  - id: {id}\n    text: Judged.\n    check: {check}\n{accept}"))
+    .concat();
+    std::fs::write(&file, format!("{head}requirements:\n{requirements}")).unwrap();
+    let out = tmp.path().join("out");
+    let run = sightline(["run", arg(&file), "--out", arg(&out)]);
+    run.assert_exit(1);
+    assert!(
+        run.stdout.starts_with(&format!(
+            "FAIL {}: 0 of 3 requirements hold over 1 sweep point (fail: PET-MIN3, LEAD-MIN5; not exercised: \
+             PET-HOLDS (1 accepted))",
+            file.display()
+        )),
+        "{run}"
+    );
+    let results = read_json(&out.join("results.json"));
+    let (status, value, n) = verdict(&results, "PET-MIN3");
+    assert_eq!((status.as_str(), n), ("fail", Some(2)));
+    assert!((value.unwrap() - 1.2).abs() < 1e-9, "{value:?}");
+    assert_eq!(verdict(&results, "LEAD-MIN5"), ("fail".into(), None, Some(3)));
+    assert!(
+        requirement(&results, "LEAD-MIN5")["message"]
+            .as_str()
+            .unwrap()
+            .starts_with("3 of 3 relevant road users had no warning_lead (never flagged); a violation seen"),
+        "{results}"
+    );
+    assert_eq!(verdict(&results, "PET-HOLDS"), ("not_exercised".into(), None, Some(2)));
+}
+
 /// A road user moving in a straight line at constant speed.
 #[derive(Clone, Copy)]
 struct User {

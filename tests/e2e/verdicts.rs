@@ -338,3 +338,42 @@ fn a_pass_is_not_called_accepted_and_the_recording_is_of_the_point_that_fails_th
         .collect();
     assert_eq!(accepted, [("P-01", None), ("NE-01", None)]);
 }
+
+/// The estimate of a share over seeds is the share judged to hold: at one of
+/// six seeds no road user comes within d_min of the ego (too few samples, not
+/// judged), and `missed_criticals ≤ 0` holds at four of the other five. The
+/// estimate is 4/6; the bound compared is the one at best, the seed not judged
+/// counted as holding: Clopper–Pearson's lower 95 % bound of 5 of 6, the 5 %
+/// quantile of Beta(5, 2), where 6x⁵ − 5x⁶ = 0.05: 0.41820.
+#[test]
+fn a_share_over_seeds_estimates_the_seeds_judged_to_hold() {
+    let tmp = temp_dir();
+    let out = tmp.path().join("evidence");
+    let scenario = "tests/fixtures/failing/seeds-share-estimate.yaml";
+    sightline(["run", scenario, "--out", arg(&out)]).assert_exit(1);
+    let results = read_json(&out.join("results.json"));
+    let share = requirement(&results, "S-MISS");
+    assert_eq!(share["verdict"], "fail", "{share}");
+    let seeds = &share["points"][0]["seeds"];
+    assert_eq!(
+        (&seeds["seeds"], &seeds["method"]),
+        (&6.into(), &"clopper_pearson".into())
+    );
+    assert!(
+        (seeds["estimate"].as_f64().unwrap() - 4.0 / 6.0).abs() < 1e-12,
+        "{seeds}"
+    );
+    let bound = seeds["bound"].as_f64().unwrap();
+    assert!((bound - 0.418_197).abs() < 1e-6, "{seeds}");
+    assert!(
+        (6.0 * bound.powi(5) - 5.0 * bound.powi(6) - 0.05).abs() < 1e-9,
+        "{seeds}"
+    );
+    assert!(
+        share["message"]
+            .as_str()
+            .unwrap()
+            .starts_with("missed_criticals ≤ 0 at 4 seeds; with the 1 not judged holding too"),
+        "{share}"
+    );
+}

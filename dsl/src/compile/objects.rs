@@ -27,6 +27,27 @@ pub(super) fn selection(
     let Some(raw) = raw else {
         return Some(ObjectSelection::default());
     };
+    // An empty mapping selects as if it were absent: a key that changes nothing.
+    let unset = raw.ids.is_empty()
+        && raw.classes.is_empty()
+        && raw.areas.is_empty()
+        && raw.between.is_none()
+        && raw.closer_than.is_none();
+    if unset
+        && ["ids", "classes", "areas", "between", "closer_than"]
+            .iter()
+            .all(|key| !ctx.has(&path.key(key)))
+    {
+        ctx.error(
+            path,
+            ErrorKind::Invalid(
+                "an empty selection selects every road user, as no `objects` does; leave `objects` out, or select \
+                 by `ids`, `classes`, `areas`, `between` or `closer_than`"
+                    .into(),
+            ),
+        );
+        return None;
+    }
     match check {
         Check::Metric { metric, over_seeds, .. } if metric.of_system() => {
             if !of_system(ctx, raw, metric, over_seeds.is_some(), path) {

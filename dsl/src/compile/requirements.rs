@@ -387,10 +387,23 @@ fn over_seeds(ctx: &mut Context<'_>, raw: &RawCheck, path: &Path) -> Option<Opti
         "a level above 0.5 and below 1",
         confidence,
     ) & raw.holds_in.is_none_or(|share| {
+        if share == 1.0 {
+            // Every seed holding bounds the share below 1: it could never pass.
+            ctx.error(
+                &path.key("holds_in"),
+                ErrorKind::Invalid(
+                    "`holds_in: 1` can never pass: a share's lower confidence bound is below 1 even with every \
+                     seed holding ((1 − c)^(1/n) by Clopper–Pearson, n / (n + z²) by Wilson); require a share \
+                     below 1"
+                        .into(),
+                ),
+            );
+            return false;
+        }
         ctx.expect(
-            range::PROBABILITY_POSITIVE.contains(share),
+            range::SHARE_OF_SEEDS.contains(share),
             &path.key("holds_in"),
-            "a share above 0 and at most 1",
+            "a share above 0 and below 1",
             share,
         )
     });

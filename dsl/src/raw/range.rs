@@ -284,8 +284,12 @@ pub(crate) const SIGMA_PER_M: Range = Range::closed(0.0, 1.0);
 
 /// A probability or a share.
 pub(crate) const PROBABILITY: Range = Range::closed(0.0, 1.0).unit("1");
-/// A probability that must be positive (a share of seeds, a share of speed).
+/// A probability that must be positive (a share of speed).
 pub(crate) const PROBABILITY_POSITIVE: Range = Range::left_open(0.0, 1.0).unit("1");
+/// The share of seeds a check over seeds requires to hold: above 0, and
+/// below 1, since the lower confidence bound of a share is below 1 even with
+/// every seed holding (Clopper–Pearson's (1 − c)^(1/n)), so 1 could never pass.
+pub(crate) const SHARE_OF_SEEDS: Range = Range::open(0.0, 1.0).unit("1");
 /// A probability strictly between 0 and 1.
 pub(crate) const PROBABILITY_OPEN: Range = Range::open(0.0, 1.0).unit("1");
 /// The probability of occupancy a detection conveys.

@@ -82,10 +82,11 @@ pub(crate) struct RawCheck {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     #[schemars(transform = range::CONFIDENCE.schema())]
     pub confidence: Option<f64>,
-    /// The share of seeds (0–1] at which the threshold must hold, bounded below
-    /// at `confidence`.
+    /// The share of seeds (0–1, both excluded) at which the threshold must
+    /// hold, bounded below at `confidence`. 1 is refused: the lower bound of a
+    /// share is below 1 even with every seed holding, so it could never pass.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    #[schemars(transform = range::PROBABILITY_POSITIVE.schema())]
+    #[schemars(transform = range::SHARE_OF_SEEDS.schema())]
     pub holds_in: Option<f64>,
     /// The bound of that share: `clopper_pearson` (exact, the default) or `wilson`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -99,7 +100,8 @@ pub(crate) struct RawCheck {
     /// The signal meets the threshold at some step where it is defined.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub eventually: Option<RawThreshold>,
-    /// Only the run's first this many seconds count (> 0).
+    /// Only the run's first this many seconds count (> 0): the steps at time
+    /// t ≤ `within`, the step at t = `within` included.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     #[schemars(transform = range::SPAN.schema())]
     pub within: Option<f64>,

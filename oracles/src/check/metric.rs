@@ -3,14 +3,15 @@
 use sightline_dsl::{Bound, Comparison, Metric, ObjectSelection};
 use sightline_engine::Sample;
 
-use super::short;
+use super::{seen_among_too_few, short};
 use crate::Evaluation;
 
 /// Compares `metric`'s value over `selection` (a system's object-steps; all
 /// where it selects nothing) with `bound`: passes when the margin is ≥ 0. A
 /// sample smaller than `min_samples` (an empty population included) is not
-/// exercised; a metric the measurements lack, or one undefined over a
-/// non-empty population, is an error.
+/// exercised, unless the metric already misses in a way more samples cannot
+/// mend ([`only_worsens`]): a failure; a metric the measurements lack, or one
+/// undefined over a non-empty population, is an error.
 pub(crate) fn evaluate(
     (metric, selection): (Metric, &ObjectSelection),
     bound: Bound,
@@ -26,24 +27,55 @@ pub(crate) fn evaluate(
         return Evaluation::error(format!("{label} is not measured at this point"));
     };
     let measured = describe(metric, n, &population);
-    if n < min_samples {
+    let short_of = n < min_samples;
+    // Too few samples leave the check not exercised, unless the metric is one
+    // that more samples can only worsen and it already misses: a violation seen.
+    let seen_violation = |v: f64| only_worsens(metric, bound) && bound.margin(v) < 0.0;
+    if short_of && !value.is_some_and(seen_violation) {
         return Evaluation::not_exercised(n, measured, too_few(name, n, min_samples, &population));
     }
     let Some(value) = value.filter(|v| !v.is_nan()) else {
         return Evaluation::error(format!("{name} is undefined over n = {n} {population}"));
     };
     let margin = bound.margin(value);
+    let seen = if short_of {
+        seen_among_too_few(n, min_samples)
+    } else {
+        String::new()
+    };
     let (relation, wanted) = match bound {
         Bound::AtLeast(_) => (if margin >= 0.0 { "≥" } else { "<" }, "at least"),
         Bound::AtMost(_) => (if margin >= 0.0 { "≤" } else { ">" }, "at most"),
     };
     let message = format!(
-        "{label} = {} {relation} {threshold} (required {wanted} {threshold}; margin {}; n = {n})",
+        "{label} = {} {relation} {threshold} (required {wanted} {threshold}; margin {}; n = {n}){seen}",
         short(value),
         short(margin),
         threshold = short(bound.threshold())
     );
     Evaluation::judged(value, margin, n, measured, message)
+}
+
+/// Whether more samples can only move `metric` further past `bound` once it
+/// misses it: a count of faults bounded above (faulty cells, ghost
+/// detections: more cells or detections can only raise it), a least value bounded below, a greatest bounded above.
+/// Such a metric that misses over too few samples is a violation seen. A
+/// share, a mean, a quantile or a count per run (a mean over runs) can move
+/// either way and is not; neither is a comparison of two metrics.
+fn only_worsens(metric: Metric, bound: Bound) -> bool {
+    match bound {
+        Bound::AtMost(_) => matches!(
+            metric,
+            Metric::FalseAlarms
+                | Metric::MissedDetections
+                | Metric::ConfidentErrors
+                | Metric::TotalConflictCells
+                | Metric::SutGhosts
+                | Metric::MaxConflict
+                | Metric::MaxDrac
+        ),
+        Bound::AtLeast(_) => matches!(metric, Metric::MinTtc | Metric::MinPet),
+    }
 }
 
 /// Compares a metric with another measured on the same run, each with its
@@ -297,6 +329,40 @@ mod tests {
         assert!(e.message.contains("fewer than the 6 the check needs"), "{}", e.message);
         // The requirement may lower the minimum; then the value is judged.
         assert_eq!(evaluate((m, &ALL), Bound::AtLeast(1.0), three, 3).status, Status::Pass);
+    }
+
+    /// Too few samples, but a least TTC already under its bound or a count
+    /// of false alarms already over it: more samples cannot mend either, a
+    /// failure. A share that misses over too few samples may still be met:
+    /// not exercised, and so is an extreme that holds.
+    #[test]
+    fn a_violation_seen_over_too_few_samples_fails_where_more_cannot_mend_it() {
+        let ttc = |value: f64| {
+            Some(Sample {
+                value: Some(value),
+                n: 2,
+            })
+        };
+        let e = evaluate((Metric::MinTtc, &ALL), Bound::AtLeast(1.0), ttc(0.8), 3);
+        assert_eq!((e.status, e.value, e.n), (Status::Fail, Some(0.8), Some(2)));
+        assert_eq!(
+            e.message,
+            "min_ttc = 0.8 < 1 (required at least 1; margin -0.2; n = 2); a violation seen, judged though n = 2 \
+             is fewer than the 3 the check needs"
+        );
+        let e = evaluate((Metric::MinTtc, &ALL), Bound::AtLeast(1.0), ttc(1.2), 3);
+        assert_eq!((e.status, e.value), (Status::NotExercised, None));
+        let m = Metric::FalseAlarms;
+        let e = evaluate((m, &ALL), Bound::AtMost(3.0), sample(&metrics(4), m), 200);
+        assert_eq!((e.status, e.value, e.n), (Status::Fail, Some(4.0), Some(100)));
+        let e = evaluate((m, &ALL), Bound::AtMost(3.0), sample(&metrics(3), m), 200);
+        assert_eq!(e.status, Status::NotExercised);
+        let two_ghosts = Some(Sample { value: Some(2.0), n: 5 });
+        let e = evaluate((Metric::SutGhosts, &ALL), Bound::AtMost(1.0), two_ghosts, 10);
+        assert_eq!((e.status, e.value, e.n), (Status::Fail, Some(2.0), Some(5)));
+        let m = Metric::Accuracy;
+        let e = evaluate((m, &ALL), Bound::AtLeast(0.95), sample(&metrics(1), m), 200);
+        assert_eq!((e.status, e.value), (Status::NotExercised, None));
     }
 
     #[test]

@@ -6,6 +6,11 @@ pub(crate) mod object;
 pub(crate) mod seeds;
 pub(crate) mod temporal;
 
+/// What a failure (a violation seen) among fewer samples than a check needs adds to its message.
+pub(crate) fn seen_among_too_few(n: u64, min_samples: u64) -> String {
+    format!("; a violation seen, judged though n = {n} is fewer than the {min_samples} the check needs")
+}
+
 /// A number for messages: six significant digits, no trailing zeros, so that
 /// rounding noise (0.00682499999999997) does not reach a log. Full precision stays
 /// in the evaluation's fields.

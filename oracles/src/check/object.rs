@@ -2,7 +2,7 @@
 
 use sightline_dsl::{Bound, ObjectProperty, ObjectSelection};
 
-use super::short;
+use super::{seen_among_too_few, short};
 use crate::Evaluation;
 
 /// Checks `property` of every road user `selection` kept against `bound`: the
@@ -10,7 +10,9 @@ use crate::Evaluation;
 /// value, except for a property only conflicts have
 /// ([`ObjectProperty::defined_only`]): one without a conflict is not judged.
 /// Fewer judged road users than `min_objects` (none, by default) is not
-/// exercised: nothing to judge.
+/// exercised (nothing to judge), unless one of them already violates the
+/// bound (no value, or a failing one): a violation seen is a failure whatever
+/// the road users not seen would hold.
 pub(crate) fn evaluate(
     (property, selection): (ObjectProperty, &ObjectSelection),
     bound: Bound,
@@ -38,14 +40,15 @@ pub(crate) fn evaluate(
         Bound::AtMost(_) => "largest",
     };
     let measured = format!("{extreme} {name} of n = {n} {population}");
-    if n < min_objects {
-        let message = if n == 0 {
-            format!("nothing to judge: no {population}")
+    // Too few road users to judge leaves the check not exercised, unless one
+    // already violates the bound: a violation seen is judged all the same.
+    let too_few = (n < min_objects).then(|| {
+        if n == 0 {
+            format!("no {population}")
         } else {
-            format!("nothing to judge: {n} {population}, fewer than the {min_objects} the check needs")
-        };
-        return Evaluation::not_exercised(n, measured, message);
-    }
+            format!("{n} {population}, fewer than the {min_objects} the check needs")
+        }
+    });
     let missing = values.iter().filter(|v| v.is_none()).count();
     if missing > 0 {
         let why = match property {
@@ -57,20 +60,35 @@ pub(crate) fn evaluate(
             }
             _ => "never known to the ego",
         };
+        let seen = if too_few.is_some() {
+            seen_among_too_few(n, min_objects)
+        } else {
+            String::new()
+        };
         return Evaluation::failed(
             n,
             measured,
-            format!("{missing} of {n} {population} had no {name} ({why})"),
+            format!("{missing} of {n} {population} had no {name} ({why}){seen}"),
         );
     }
-    let (margin, value) = values
+    let Some((margin, value)) = values
         .iter()
         .flatten()
         .map(|&v| (bound.margin(v), v))
         .min_by(|a, b| a.0.total_cmp(&b.0))
-        .expect("values are present");
+    else {
+        let few = too_few.unwrap_or_else(|| format!("no {population}"));
+        return Evaluation::not_exercised(n, measured, format!("nothing to judge: {few}"));
+    };
+    let seen = match too_few {
+        Some(few) if margin >= 0.0 => {
+            return Evaluation::not_exercised(n, measured, format!("nothing to judge: {few}"));
+        }
+        Some(_) => seen_among_too_few(n, min_objects),
+        None => String::new(),
+    };
     let message = format!(
-        "{extreme} {name} over {n} {population} = {} (margin {}; n = {n})",
+        "{extreme} {name} over {n} {population} = {} (margin {}; n = {n}){seen}",
         short(value),
         short(margin)
     );
@@ -109,6 +127,33 @@ mod tests {
         );
         let e = evaluate(WARNING_TIME, Bound::AtLeast(1.0), &[Some(2.0)], 2);
         assert_eq!(e.status, Status::NotExercised);
+    }
+
+    /// Too few road users to judge, but one already breaks the bound: a
+    /// failure, as an `always` broken on too few steps is. Held by all of
+    /// them, the check stays not exercised.
+    #[test]
+    fn a_violation_seen_among_too_few_road_users_fails() {
+        // PET 1.2 s and 2.2 s against ≥ 1.5 s, three needed: 1.2 fails by 0.3.
+        let pet = (ObjectProperty::Pet, &ALL);
+        let e = evaluate(pet, Bound::AtLeast(1.5), &[Some(2.2), Some(1.2)], 3);
+        assert_eq!((e.status, e.value, e.n), (Status::Fail, Some(1.2), Some(2)));
+        assert!((e.margin.unwrap() + 0.3).abs() < 1e-12);
+        assert!(
+            e.message.ends_with(
+                "= 1.2 (margin -0.3; n = 2); a violation seen, judged though n = 2 is fewer than the 3 the check needs"
+            ),
+            "{}",
+            e.message
+        );
+        // A road user never flagged cannot meet a lead of 1 s at all.
+        let e = evaluate(WARNING_TIME, Bound::AtLeast(1.0), &[Some(3.0), None], 5);
+        assert_eq!((e.status, e.value, e.n), (Status::Fail, None, Some(2)));
+        assert!(e.message.starts_with("1 of 2 objects"), "{}", e.message);
+        // Both hold: too few to pass, not exercised.
+        let e = evaluate(pet, Bound::AtLeast(1.0), &[Some(2.2), Some(1.2)], 3);
+        assert_eq!((e.status, e.value, e.n), (Status::NotExercised, None, Some(2)));
+        assert!(e.message.starts_with("nothing to judge: 2 "), "{}", e.message);
     }
 
     /// A selection that keeps no road user in a run is not exercised there,

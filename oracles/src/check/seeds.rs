@@ -20,9 +20,13 @@ pub struct SeedStatistics {
     pub confidence: f64,
     /// The bound's method: `student_t`, `clopper_pearson` or `wilson`.
     pub method: &'static str,
-    /// The mean of the metric, or the share of seeds at which the threshold holds.
+    /// The mean of the metric, or the share of seeds judged to hold the
+    /// threshold (a seed with fewer samples than the check needs is not
+    /// counted as holding).
     pub estimate: f64,
-    /// The one-sided confidence bound of the estimate that is compared.
+    /// The one-sided confidence bound that is compared: of the estimate, or,
+    /// when a share fails with seeds not judged, the bound at best, those
+    /// seeds counted as holding.
     pub bound: f64,
 }
 
@@ -63,7 +67,12 @@ pub(crate) fn evaluate(
                 .filter(|s| s.n >= min_samples && s.value.is_some_and(|v| bound.margin(v) >= 0.0))
                 .count();
             let n = seeds as u32;
-            let statistics = share_statistics(method, (holding + short_of) as u32, n, over.confidence);
+            // The bound at best, the seeds not judged counted as holding; the
+            // estimate is the share judged to hold.
+            let statistics = SeedStatistics {
+                estimate: holding as f64 / f64::from(n),
+                ..share_statistics(method, (holding + short_of) as u32, n, over.confidence)
+            };
             let limit = statistics.bound;
             if limit < share {
                 let measured = format!(
@@ -382,6 +391,11 @@ mod tests {
         let e = evaluate(Metric::MissedCriticals, Bound::AtMost(2.0), share(0.5), &values, 1);
         assert_eq!((e.status, e.n), (Status::Fail, Some(10)));
         assert_relative_eq!(e.value.unwrap(), wilson_lower(3, 10, 0.95), epsilon = 1e-12);
+        // The estimate is the share judged to hold, 2 of 10; the bound, at
+        // best, counts the tenth as holding (3 of 10).
+        let statistics = e.seeds.unwrap();
+        assert_eq!((statistics.estimate, statistics.seeds), (0.2, 10));
+        assert_relative_eq!(statistics.bound, wilson_lower(3, 10, 0.95), epsilon = 1e-12);
         assert!(
             e.message
                 .starts_with("missed_criticals ≤ 2 at 2 seeds; with the 1 not judged holding too"),

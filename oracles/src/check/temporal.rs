@@ -67,7 +67,8 @@ pub(crate) fn evaluate(
     // first incomplete run is.
     let mut incomplete = uncovered.clone();
     let mut worst: Option<(f64, f64, f64)> = None;
-    for series in runs {
+    let mut worst_run = 0;
+    for (run, series) in runs.iter().enumerate() {
         let defined = series.iter().filter(|(t, _)| in_window(*t));
         let count = defined.clone().count() as u64;
         let margins = defined.map(|&(t, v)| (bound.margin(v), t, v));
@@ -94,6 +95,7 @@ pub(crate) fn evaluate(
             && worst.is_none_or(|w| decisive.0 < w.0)
         {
             worst = Some(decisive);
+            worst_run = run;
         }
     }
     if let Some(why) = &incomplete
@@ -112,8 +114,15 @@ pub(crate) fn evaluate(
         Temporal::Always => "always",
         Temporal::Eventually => "eventually",
     };
+    // Pooled runs: the decisive step's run, counted from 0 (the recording
+    // holds run 0 only).
+    let of_run = if runs.len() > 1 {
+        format!(" of run {worst_run} (runs 0–{} pooled)", runs.len() - 1)
+    } else {
+        String::new()
+    };
     let message = format!(
-        "{what} {name} {relation}{span}: {} (robustness {}; {name} = {} at {} s; n = {steps} steps)",
+        "{what} {name} {relation}{span}: {} (robustness {}; {name} = {} at {} s{of_run}; n = {steps} steps)",
         if margin >= 0.0 { "holds" } else { "fails" },
         short(margin),
         short(value),
@@ -175,8 +184,25 @@ mod tests {
     fn every_run_must_hold_and_the_worst_decides() {
         let good = vec![(0.0, 0.9), (0.1, 0.8)];
         let bad = vec![(0.0, 0.9), (0.1, 0.4)];
-        let found = check(Temporal::Always, Bound::AtLeast(0.5), None, &[good, bad]);
+        let found = check(
+            Temporal::Always,
+            Bound::AtLeast(0.5),
+            None,
+            &[good.clone(), bad.clone()],
+        );
         assert_eq!((found.status, found.value, found.n), (Status::Fail, Some(0.4), Some(4)));
+        // The message names the pooled run the decisive step is in, from 0.
+        assert_eq!(
+            found.message,
+            "always blind_recall ≥ 0.5: fails (robustness -0.1; blind_recall = 0.4 at 0.1 s of run 1 (runs 0–1 \
+             pooled); n = 4 steps)"
+        );
+        let found = check(Temporal::Always, Bound::AtLeast(0.5), None, &[bad, good]);
+        assert!(
+            found.message.contains("at 0.1 s of run 0 (runs 0–1 pooled)"),
+            "{}",
+            found.message
+        );
     }
 
     #[test]

@@ -191,7 +191,9 @@ pub struct PointVerdict {
     /// For a check over seeds: the estimate and the bound compared.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub seeds: Option<SeedStatistics>,
-    /// For a temporal check: the time of the decisive step, seconds.
+    /// For a temporal check: the time of the decisive step, seconds; when the
+    /// point pools runs, in the run the message names (counted from 0; the
+    /// recording's per-step topics show run 0 only).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub time: Option<f64>,
 }
@@ -206,8 +208,12 @@ pub struct SeedStatistics {
     pub confidence: f64,
     /// The bound's method: `student_t`, `clopper_pearson` or `wilson`.
     pub method: &'static str,
-    /// The mean of the metric, or the share of seeds at which the threshold holds.
+    /// The mean of the metric over the seeds, or the share of seeds judged to
+    /// hold the threshold (a seed with fewer samples than `min_samples` is not
+    /// counted as holding).
     pub estimate: f64,
-    /// The one-sided confidence bound of the estimate that is compared.
+    /// The one-sided confidence bound that is compared: of the estimate, or,
+    /// for a share that fails with seeds not judged (too few samples), the
+    /// bound at best, those seeds counted as holding.
     pub bound: f64,
 }
