@@ -91,6 +91,12 @@ impl Measures {
 
     /// What an RSU selected at `time`; `shared`: the cycle counts toward the
     /// transmitted and labelled shares.
+    /// A counted cycle in which an RSU perceived `count` objects and sent the
+    /// ego none of them (no plan received yet, or the ego out of the scene).
+    pub(super) fn unsent(&mut self, count: usize) {
+        self.metrics.perceived += count as u64;
+    }
+
     pub(super) fn selection(&mut self, time: f64, selection: &Selection, shared: bool) {
         let metrics = &mut self.metrics;
         if shared {

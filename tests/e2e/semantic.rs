@@ -1,0 +1,37 @@
+//! The semantic pipeline through the CLI on small scenes worked out by hand
+//! (found by session 23's outside check of the semantic pipeline).
+
+use crate::support::{arg, read_json, sightline, temp_dir, verdict};
+
+/// The ego drives east at 10 m/s past an RSU at (110, 10) whose sensors see
+/// six standing pedestrians for the whole run (14 s, 140 cycles). The ego is
+/// within the RSU's 100 m in 129 cycles, but over the lossy link its first
+/// plan reaches the RSU only after 38 of them (91 cycles with a plan, 546
+/// object-cycles); the RSU sends 378 object-cycles in all (the outside
+/// auditor's count from the recording). The 38 cycles before the first plan
+/// count against the share: 378 / (129 × 6) = 0.488 (they were left out:
+/// 378 / 546 = 0.692, a wrong PASS).
+#[test]
+fn shares_count_the_cycles_before_the_rsu_first_hears_the_ego() {
+    let tmp = temp_dir();
+    let out = tmp.path().join("out");
+    sightline(["run", "tests/fixtures/valid/share-before-plan.yaml", "--out", arg(&out)]).assert_exit(1);
+    let results = read_json(&out.join("results.json"));
+    let (status, value, n) = verdict(&results, "SHARE");
+    assert_eq!((status.as_str(), n), ("fail", Some(774)));
+    assert!((value.unwrap() - 378.0 / 774.0).abs() < 1e-12, "{value:?}");
+    assert_eq!(verdict(&results, "LSHARE"), ("pass".to_string(), Some(0.0), Some(774)));
+}
+
+/// `shares_over: all`: every one of the 140 cycles counts, 840 object-cycles
+/// (it gave 546, the same as `ego_in_range`): 378 / 840 = 0.45.
+#[test]
+fn shares_over_all_count_every_cycle() {
+    let tmp = temp_dir();
+    let out = tmp.path().join("out");
+    sightline(["run", "tests/fixtures/valid/share-all-cycles.yaml", "--out", arg(&out)]).assert_exit(1);
+    let results = read_json(&out.join("results.json"));
+    let (status, value, n) = verdict(&results, "SHARE");
+    assert_eq!((status.as_str(), n), ("fail", Some(840)));
+    assert!((value.unwrap() - 0.45).abs() < 1e-12, "{value:?}");
+}
