@@ -35,3 +35,19 @@ fn shares_over_all_count_every_cycle() {
     assert_eq!((status.as_str(), n), ("fail", Some(840)));
     assert!((value.unwrap() - 0.45).abs() < 1e-12, "{value:?}");
 }
+
+/// A car (`hop`, from a SUMO trace) drives 1 m beside the ego's path within
+/// d_min of it, leaves the scene at 2.1 s and comes back at 4.0 s, again within
+/// d_min: two close approaches, neither flagged (the RSU sees nothing of it).
+/// Back in the scene it kept the `close` of before it left, so the second
+/// approach was not counted: missed_criticals 1, a PASS of "at most 1".
+#[test]
+fn a_road_user_back_in_the_scene_within_d_min_is_a_new_close_approach() {
+    let tmp = temp_dir();
+    let out = tmp.path().join("out");
+    sightline(["run", "tests/fixtures/valid/close-again.yaml", "--out", arg(&out)]).assert_exit(1);
+    let results = read_json(&out.join("results.json"));
+    assert_eq!(verdict(&results, "MISS"), ("fail".to_string(), Some(2.0), Some(2)));
+    let (status, value, n) = verdict(&results, "WT");
+    assert_eq!((status.as_str(), value, n), ("fail", None, Some(2)));
+}
