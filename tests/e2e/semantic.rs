@@ -51,3 +51,20 @@ fn a_road_user_back_in_the_scene_within_d_min_is_a_new_close_approach() {
     let (status, value, n) = verdict(&results, "WT");
     assert_eq!((status.as_str(), value, n), ("fail", None, Some(2)));
 }
+
+/// PETs of whole steps (engine/tests/criticality.rs works the scene out): the
+/// lead's 12 steps of 0.1 s are 1.2 s and the crossing car's 22 steps 2.2 s,
+/// exactly the decimals, so each holds at equality either way. As a float
+/// difference of step times the lead's was 1.1999999999999997 and
+/// `at_least: 1.2` failed by 2.2e-16.
+#[test]
+fn durations_of_whole_steps_hold_at_equality() {
+    let tmp = temp_dir();
+    let out = tmp.path().join("out");
+    sightline(["run", "tests/fixtures/valid/pet-whole-steps.yaml", "--out", arg(&out)]).assert_exit(0);
+    let results = read_json(&out.join("results.json"));
+    assert_eq!(verdict(&results, "PET-EQ").1, Some(1.2));
+    assert_eq!(verdict(&results, "MINPET-EQ").1, Some(1.2));
+    assert_eq!(verdict(&results, "PET-EQ-MAX").1, Some(2.2));
+    assert_eq!(verdict(&results, "PET-EQ-MIN").1, Some(2.2));
+}

@@ -32,6 +32,7 @@
 //!   a crash (DRAC), and its post-encroachment time (PET) over the conflict
 //!   area their footprints at those steps share; none where it never had one.
 
+use crate::math::elapsed;
 use serde::{Deserialize, Serialize};
 use sightline_dsl::{Agent, AgentKind, Semantic, World};
 
@@ -167,8 +168,8 @@ impl ObjectRecord {
     fn anticipation_if_told_at(&self, told: Option<f64>) -> Option<f64> {
         let told = told?;
         match Category::of(Some(told), self.first_seen) {
-            Category::WarnedBeforeSeen => self.first_seen.map(|seen| seen - told),
-            Category::WarnedNeverSeen => self.closest.map(|c| (c.time - told).max(0.0)),
+            Category::WarnedBeforeSeen => self.first_seen.map(|seen| elapsed(seen, told)),
+            Category::WarnedNeverSeen => self.closest.map(|c| elapsed(c.time, told).max(0.0)),
             Category::SeenFirst | Category::NeverKnown => None,
         }
     }
