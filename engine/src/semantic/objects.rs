@@ -7,8 +7,11 @@
 //! start of the run):
 //! - **relevant**: a road user other than the ego and the RSUs whose centre comes
 //!   closer to the ego's than `semantic.proximity` (the pipeline's first layer,
-//!   on true positions) at a step with both in the scene, or that a message the
-//!   ego received names. It becomes relevant at the first of the two.
+//!   on true positions) at a step with both in the scene, or that an RSU message
+//!   the ego received names (its own status message, if it is connected, does
+//!   not: relevance is what the RSU selects for the ego, seed 002's RSUs
+//!   "selecting and transmitting only those actors that are relevant"). It
+//!   becomes relevant at the first of the two.
 //! - **first own sight**: the first step at which the ego sees it (its centre in
 //!   range, field of view and line of sight of one of the ego's sensors).
 //! - **first V2X knowledge**: the arrival of the first message the ego received
