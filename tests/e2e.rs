@@ -86,6 +86,9 @@ mod viewers;
 // the bundled junction's road users counted by category.
 #[path = "e2e/objects.rs"]
 mod objects;
+// The semantic pipeline's shares and close approaches, worked out by hand.
+#[path = "e2e/semantic.rs"]
+mod semantic;
 
 // TTC, PET and DRAC: a scene judged by hand through the CLI, and
 // commonroad-crime on two-road-user scenes where the definitions match.

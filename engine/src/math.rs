@@ -7,3 +7,27 @@ pub use parry2d_f64::math::{Pose, Vector};
 /// A position in the world frame, metres: a vector from the world origin (glam has
 /// no separate point type).
 pub type Point = Vector;
+
+/// The time from `earlier` to `later`, seconds, to the nanosecond. Step times
+/// are k·dt, so the time between two of them is a whole number of steps, which
+/// a float subtraction misses by ~1e-16 (12 steps of 0.1 s give
+/// 1.1999999999999997, and `at_least: 1.2` failed); rounded to whole
+/// nanoseconds it is the double nearest the decimal (1.2) for any step that is
+/// a whole number of nanoseconds. A time that is not a step time (a message's
+/// arrival) moves by less than half a nanosecond.
+pub fn elapsed(later: f64, earlier: f64) -> f64 {
+    ((later - earlier) * 1e9).round() / 1e9
+}
+
+#[cfg(test)]
+mod elapsed_tests {
+    use super::elapsed;
+
+    #[test]
+    fn whole_steps_give_the_decimal() {
+        assert_eq!(elapsed(2.2, 1.0), 1.2);
+        assert_eq!(elapsed(22.0 * 0.1, 10.0 * 0.1), 1.2);
+        assert_eq!(elapsed(3.8 + 0.1, 0.1), 3.8);
+        assert_eq!(elapsed(1.0, 1.0 + 4e-7), -4e-7);
+    }
+}

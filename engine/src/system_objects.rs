@@ -26,6 +26,7 @@
 use serde::{Deserialize, Serialize};
 use sightline_dsl::{Agent, AgentKind, ObjectProperty, ObjectSelection};
 
+use crate::math::elapsed;
 use crate::semantic::{Closest, Region, contains, keeps};
 use crate::trace::WorldStep;
 
@@ -65,12 +66,12 @@ impl SystemObject {
     pub fn property(&self, property: ObjectProperty) -> Option<f64> {
         let detected = self.first_detected?;
         match property {
-            ObjectProperty::SutLead => Some(self.closest.time - detected),
+            ObjectProperty::SutLead => Some(elapsed(self.closest.time, detected)),
             ObjectProperty::SutAnticipation => {
                 let ego_knows = self.first_seen_by_ego.unwrap_or(self.closest.time);
-                Some((ego_knows - detected).max(0.0))
+                Some(elapsed(ego_knows, detected).max(0.0))
             }
-            ObjectProperty::SutDelay => Some((detected - self.first_in_sight?).max(0.0)),
+            ObjectProperty::SutDelay => Some(elapsed(detected, self.first_in_sight?).max(0.0)),
             _ => None,
         }
     }

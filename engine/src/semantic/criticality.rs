@@ -38,7 +38,7 @@
 //!   can be up to two steps shorter.
 
 use crate::idealisation::Idealisation;
-use crate::math::{Point, Vector};
+use crate::math::{Point, Vector, elapsed};
 use crate::world::AgentState;
 
 /// What criticality takes as given.
@@ -191,7 +191,7 @@ pub(crate) fn post_encroachment(ego: &[(f64, OrientedBox)], other: &[(f64, Orien
             .iter()
             .take_while(|(_, a)| a.centre.x <= b.centre.x + reach)
         {
-            let apart = (t_ego - t_other).abs();
+            let apart = elapsed(t_ego, t_other).abs();
             if best.is_some_and(|best| apart >= best) || (a.centre - b.centre).length() > reach {
                 continue;
             }

@@ -149,6 +149,15 @@ impl Ego {
         d_min: f64,
     ) -> EgoView {
         let mut view = EgoView::default();
+        // A road user out of the scene is not close: back within d_min, it
+        // makes a new close approach.
+        let mut present = vec![false; self.knowledge.len()];
+        for body in bodies.all() {
+            present[body.agent] = true;
+        }
+        for (known, _) in self.knowledge.iter_mut().zip(&present).filter(|&(_, &p)| !p) {
+            known.close = false;
+        }
         for body in bodies.all().iter().filter(|b| b.agent != self.agent) {
             view.present += 1;
             let known = &mut self.knowledge[body.agent];

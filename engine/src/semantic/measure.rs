@@ -2,6 +2,7 @@
 //! RSU's selection and each packet added to the run's metrics, each road user's
 //! encounter with the ego, and every step's record handed to the trace sink.
 
+use crate::math::elapsed;
 use sightline_dsl::{Agent, LabelledBy, Semantic, World};
 
 use super::ego::{Ego, EgoView};
@@ -76,7 +77,7 @@ impl Measures {
         for (agent, flagged) in view.approaches {
             metrics.close_approaches += 1;
             metrics.missed_criticals += u64::from(flagged.is_none());
-            metrics.warnings.push(flagged.map(|at| time - at));
+            metrics.warnings.push(flagged.map(|at| elapsed(time, at)));
             self.log.approaches.push(Approach {
                 agent,
                 flagged: flagged.is_some(),
@@ -91,6 +92,12 @@ impl Measures {
 
     /// What an RSU selected at `time`; `shared`: the cycle counts toward the
     /// transmitted and labelled shares.
+    /// A counted cycle in which an RSU perceived `count` objects and sent the
+    /// ego none of them (no plan received yet, or the ego out of the scene).
+    pub(super) fn unsent(&mut self, count: usize) {
+        self.metrics.perceived += count as u64;
+    }
+
     pub(super) fn selection(&mut self, time: f64, selection: &Selection, shared: bool) {
         let metrics = &mut self.metrics;
         if shared {

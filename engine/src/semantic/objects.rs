@@ -7,8 +7,11 @@
 //! start of the run):
 //! - **relevant**: a road user other than the ego and the RSUs whose centre comes
 //!   closer to the ego's than `semantic.proximity` (the pipeline's first layer,
-//!   on true positions) at a step with both in the scene, or that a message the
-//!   ego received names. It becomes relevant at the first of the two.
+//!   on true positions) at a step with both in the scene, or that an RSU message
+//!   the ego received names (its own status message, if it is connected, does
+//!   not: relevance is what the RSU selects for the ego, seed 002's RSUs
+//!   "selecting and transmitting only those actors that are relevant"). It
+//!   becomes relevant at the first of the two.
 //! - **first own sight**: the first step at which the ego sees it (its centre in
 //!   range, field of view and line of sight of one of the ego's sensors).
 //! - **first V2X knowledge**: the arrival of the first message the ego received
@@ -32,6 +35,7 @@
 //!   a crash (DRAC), and its post-encroachment time (PET) over the conflict
 //!   area their footprints at those steps share; none where it never had one.
 
+use crate::math::elapsed;
 use serde::{Deserialize, Serialize};
 use sightline_dsl::{Agent, AgentKind, Semantic, World};
 
@@ -167,8 +171,8 @@ impl ObjectRecord {
     fn anticipation_if_told_at(&self, told: Option<f64>) -> Option<f64> {
         let told = told?;
         match Category::of(Some(told), self.first_seen) {
-            Category::WarnedBeforeSeen => self.first_seen.map(|seen| seen - told),
-            Category::WarnedNeverSeen => self.closest.map(|c| (c.time - told).max(0.0)),
+            Category::WarnedBeforeSeen => self.first_seen.map(|seen| elapsed(seen, told)),
+            Category::WarnedNeverSeen => self.closest.map(|c| elapsed(c.time, told).max(0.0)),
             Category::SeenFirst | Category::NeverKnown => None,
         }
     }

@@ -156,6 +156,12 @@ impl Rsu {
 
     /// Fuse: what the RSU sends at `time` with the ego's `plan`, by its
     /// `pipeline` over its LDM, and what the ETSI baseline would have sent.
+    /// How many objects (the ego excluded) the RSU's LDM holds now.
+    pub(super) fn perceived(&self, pipeline: &Pipeline<'_>, time: f64) -> usize {
+        let ego = pipeline.semantic.ego;
+        self.ldm.current(time).filter(|&(agent, _)| agent != ego).count()
+    }
+
     pub(super) fn select(&mut self, pipeline: &Pipeline<'_>, time: f64, plan: &EgoPlan) -> Selection {
         let ego = pipeline.semantic.ego;
         let perceived: Vec<(usize, &Measurement)> = self

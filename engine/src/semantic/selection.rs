@@ -1,6 +1,7 @@
 //! What a per-object check reads of the per-object records: which records a
 //! selection keeps, and each record's value of a property.
 
+use crate::math::elapsed;
 use sightline_dsl::{AgentKind, ObjectProperty, ObjectSelection};
 
 use super::objects::{Category, Closest, ObjectRecord};
@@ -24,13 +25,13 @@ impl ObjectRecord {
             | ObjectProperty::SutLead
             | ObjectProperty::SutAnticipation
             | ObjectProperty::SutDelay => None,
-            ObjectProperty::WarningLead => Some(closest? - self.first_warning?),
+            ObjectProperty::WarningLead => Some(elapsed(closest?, self.first_warning?)),
             ObjectProperty::KnowledgeLead => {
                 let known = match (self.first_seen, self.first_v2x) {
                     (Some(seen), Some(told)) => seen.min(told),
                     (seen, told) => seen.or(told)?,
                 };
-                Some(closest? - known)
+                Some(elapsed(closest?, known))
             }
             ObjectProperty::Anticipation => match self.category {
                 Category::SeenFirst => Some(0.0),
@@ -40,13 +41,13 @@ impl ObjectRecord {
             ObjectProperty::MinTtc => self.min_ttc,
             ObjectProperty::Pet => self.pet,
             ObjectProperty::MaxDrac => self.max_drac,
-            ObjectProperty::GridLead => Some(closest? - self.first_in_grid?),
+            ObjectProperty::GridLead => Some(elapsed(closest?, self.first_in_grid?)),
             ObjectProperty::GridOrWarningLead => {
                 let first = match (self.first_in_grid, self.first_warning) {
                     (Some(grid), Some(warned)) => grid.min(warned),
                     (grid, warned) => grid.or(warned)?,
                 };
-                Some(closest? - first)
+                Some(elapsed(closest?, first))
             }
         }
     }
@@ -74,6 +75,7 @@ pub(crate) fn keeps(
 
 #[cfg(test)]
 mod tests {
+    use crate::math::elapsed;
     use sightline_dsl::AgentKind;
 
     use super::*;

@@ -340,6 +340,14 @@ impl StepLayer for Layer<'_> {
             for packet in direct {
                 self.measures.packet(packet);
             }
+        } else if cycle && semantic.shares_over == ShareCycles::All {
+            // `shares_over: all` counts every cycle: with the ego out of the
+            // scene an RSU in it tells the ego nothing of what it perceives.
+            for rsu in &self.rsus {
+                if states[rsu.agent].is_some() {
+                    self.measures.unsent(rsu.perceived(&self.pipeline, time));
+                }
+            }
         }
     }
 
@@ -381,13 +389,20 @@ impl Cycle<'_> {
         let uplink = radio.uplink(rsu, station, self.ego, self.occluders, self.time);
         let link = uplink.link;
         measures.packet(uplink);
-        let Some(plan) = rsu.plan else { return };
-        let selection = rsu.select(self.pipeline, self.time, &plan);
         // Whether this cycle counts toward the transmitted and labelled shares.
         let shared = match self.semantic.shares_over {
             ShareCycles::All => true,
             ShareCycles::EgoInRange => link.distance_m <= rsu.range,
         };
+        let Some(plan) = rsu.plan else {
+            // No plan received yet: the RSU tells the ego nothing of what it
+            // perceives, which counts against the shares.
+            if shared {
+                measures.unsent(rsu.perceived(self.pipeline, self.time));
+            }
+            return;
+        };
+        let selection = rsu.select(self.pipeline, self.time, &plan);
         measures.selection(self.time, &selection, shared);
         if !selection.baseline.is_empty() {
             radio.baseline_downlink(rsu, &link, selection.baseline, self.time);

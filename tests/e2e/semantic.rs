@@ -1,0 +1,70 @@
+//! The semantic pipeline through the CLI on small scenes worked out by hand
+//! (found by session 23's outside check of the semantic pipeline).
+
+use crate::support::{arg, read_json, sightline, temp_dir, verdict};
+
+/// The ego drives east at 10 m/s past an RSU at (110, 10) whose sensors see
+/// six standing pedestrians for the whole run (14 s, 140 cycles). The ego is
+/// within the RSU's 100 m in 129 cycles, but over the lossy link its first
+/// plan reaches the RSU only after 38 of them (91 cycles with a plan, 546
+/// object-cycles); the RSU sends 378 object-cycles in all (the outside
+/// auditor's count from the recording). The 38 cycles before the first plan
+/// count against the share: 378 / (129 × 6) = 0.488 (they were left out:
+/// 378 / 546 = 0.692, a wrong PASS).
+#[test]
+fn shares_count_the_cycles_before_the_rsu_first_hears_the_ego() {
+    let tmp = temp_dir();
+    let out = tmp.path().join("out");
+    sightline(["run", "tests/fixtures/valid/share-before-plan.yaml", "--out", arg(&out)]).assert_exit(1);
+    let results = read_json(&out.join("results.json"));
+    let (status, value, n) = verdict(&results, "SHARE");
+    assert_eq!((status.as_str(), n), ("fail", Some(774)));
+    assert!((value.unwrap() - 378.0 / 774.0).abs() < 1e-12, "{value:?}");
+    assert_eq!(verdict(&results, "LSHARE"), ("pass".to_string(), Some(0.0), Some(774)));
+}
+
+/// `shares_over: all`: every one of the 140 cycles counts, 840 object-cycles
+/// (it gave 546, the same as `ego_in_range`): 378 / 840 = 0.45.
+#[test]
+fn shares_over_all_count_every_cycle() {
+    let tmp = temp_dir();
+    let out = tmp.path().join("out");
+    sightline(["run", "tests/fixtures/valid/share-all-cycles.yaml", "--out", arg(&out)]).assert_exit(1);
+    let results = read_json(&out.join("results.json"));
+    let (status, value, n) = verdict(&results, "SHARE");
+    assert_eq!((status.as_str(), n), ("fail", Some(840)));
+    assert!((value.unwrap() - 0.45).abs() < 1e-12, "{value:?}");
+}
+
+/// A car (`hop`, from a SUMO trace) drives 1 m beside the ego's path within
+/// d_min of it, leaves the scene at 2.1 s and comes back at 4.0 s, again within
+/// d_min: two close approaches, neither flagged (the RSU sees nothing of it).
+/// Back in the scene it kept the `close` of before it left, so the second
+/// approach was not counted: missed_criticals 1, a PASS of "at most 1".
+#[test]
+fn a_road_user_back_in_the_scene_within_d_min_is_a_new_close_approach() {
+    let tmp = temp_dir();
+    let out = tmp.path().join("out");
+    sightline(["run", "tests/fixtures/valid/close-again.yaml", "--out", arg(&out)]).assert_exit(1);
+    let results = read_json(&out.join("results.json"));
+    assert_eq!(verdict(&results, "MISS"), ("fail".to_string(), Some(2.0), Some(2)));
+    let (status, value, n) = verdict(&results, "WT");
+    assert_eq!((status.as_str(), value, n), ("fail", None, Some(2)));
+}
+
+/// PETs of whole steps (engine/tests/criticality.rs works the scene out): the
+/// lead's 12 steps of 0.1 s are 1.2 s and the crossing car's 22 steps 2.2 s,
+/// exactly the decimals, so each holds at equality either way. As a float
+/// difference of step times the lead's was 1.1999999999999997 and
+/// `at_least: 1.2` failed by 2.2e-16.
+#[test]
+fn durations_of_whole_steps_hold_at_equality() {
+    let tmp = temp_dir();
+    let out = tmp.path().join("out");
+    sightline(["run", "tests/fixtures/valid/pet-whole-steps.yaml", "--out", arg(&out)]).assert_exit(0);
+    let results = read_json(&out.join("results.json"));
+    assert_eq!(verdict(&results, "PET-EQ").1, Some(1.2));
+    assert_eq!(verdict(&results, "MINPET-EQ").1, Some(1.2));
+    assert_eq!(verdict(&results, "PET-EQ-MAX").1, Some(2.2));
+    assert_eq!(verdict(&results, "PET-EQ-MIN").1, Some(2.2));
+}
