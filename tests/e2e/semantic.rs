@@ -3,6 +3,16 @@
 
 use crate::support::{arg, read_json, sightline, temp_dir, verdict};
 
+/// The results.json of running `fixture` (a file of tests/fixtures/valid/),
+/// which must exit with `exit`.
+fn results(fixture: &str, exit: i32) -> serde_json::Value {
+    let tmp = temp_dir();
+    let out = tmp.path().join("out");
+    let scenario = format!("tests/fixtures/valid/{fixture}");
+    sightline(["run", scenario.as_str(), "--out", arg(&out)]).assert_exit(exit);
+    read_json(&out.join("results.json"))
+}
+
 /// The ego drives east at 10 m/s past an RSU at (110, 10) whose sensors see
 /// six standing pedestrians for the whole run (14 s, 140 cycles). The ego is
 /// within the RSU's 100 m in 129 cycles, but over the lossy link its first
@@ -13,10 +23,7 @@ use crate::support::{arg, read_json, sightline, temp_dir, verdict};
 /// 378 / 546 = 0.692, a wrong PASS).
 #[test]
 fn shares_count_the_cycles_before_the_rsu_first_hears_the_ego() {
-    let tmp = temp_dir();
-    let out = tmp.path().join("out");
-    sightline(["run", "tests/fixtures/valid/share-before-plan.yaml", "--out", arg(&out)]).assert_exit(1);
-    let results = read_json(&out.join("results.json"));
+    let results = results("share-before-plan.yaml", 1);
     let (status, value, n) = verdict(&results, "SHARE");
     assert_eq!((status.as_str(), n), ("fail", Some(774)));
     assert!((value.unwrap() - 378.0 / 774.0).abs() < 1e-12, "{value:?}");
@@ -27,10 +34,7 @@ fn shares_count_the_cycles_before_the_rsu_first_hears_the_ego() {
 /// (it gave 546, the same as `ego_in_range`): 378 / 840 = 0.45.
 #[test]
 fn shares_over_all_count_every_cycle() {
-    let tmp = temp_dir();
-    let out = tmp.path().join("out");
-    sightline(["run", "tests/fixtures/valid/share-all-cycles.yaml", "--out", arg(&out)]).assert_exit(1);
-    let results = read_json(&out.join("results.json"));
+    let results = results("share-all-cycles.yaml", 1);
     let (status, value, n) = verdict(&results, "SHARE");
     assert_eq!((status.as_str(), n), ("fail", Some(840)));
     assert!((value.unwrap() - 0.45).abs() < 1e-12, "{value:?}");
@@ -43,10 +47,7 @@ fn shares_over_all_count_every_cycle() {
 /// approach was not counted: missed_criticals 1, a PASS of "at most 1".
 #[test]
 fn a_road_user_back_in_the_scene_within_d_min_is_a_new_close_approach() {
-    let tmp = temp_dir();
-    let out = tmp.path().join("out");
-    sightline(["run", "tests/fixtures/valid/close-again.yaml", "--out", arg(&out)]).assert_exit(1);
-    let results = read_json(&out.join("results.json"));
+    let results = results("close-again.yaml", 1);
     assert_eq!(verdict(&results, "MISS"), ("fail".to_string(), Some(2.0), Some(2)));
     let (status, value, n) = verdict(&results, "WT");
     assert_eq!((status.as_str(), value, n), ("fail", None, Some(2)));
@@ -59,10 +60,7 @@ fn a_road_user_back_in_the_scene_within_d_min_is_a_new_close_approach() {
 /// `at_least: 1.2` failed by 2.2e-16.
 #[test]
 fn durations_of_whole_steps_hold_at_equality() {
-    let tmp = temp_dir();
-    let out = tmp.path().join("out");
-    sightline(["run", "tests/fixtures/valid/pet-whole-steps.yaml", "--out", arg(&out)]).assert_exit(0);
-    let results = read_json(&out.join("results.json"));
+    let results = results("pet-whole-steps.yaml", 0);
     assert_eq!(verdict(&results, "PET-EQ").1, Some(1.2));
     assert_eq!(verdict(&results, "MINPET-EQ").1, Some(1.2));
     assert_eq!(verdict(&results, "PET-EQ-MAX").1, Some(2.2));
