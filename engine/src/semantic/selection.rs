@@ -75,7 +75,6 @@ pub(crate) fn keeps(
 
 #[cfg(test)]
 mod tests {
-    use crate::math::elapsed;
     use sightline_dsl::AgentKind;
 
     use super::*;
