@@ -2,7 +2,6 @@
 //! RSU's selection and each packet added to the run's metrics, each road user's
 //! encounter with the ego, and every step's record handed to the trace sink.
 
-use crate::math::elapsed;
 use sightline_dsl::{Agent, LabelledBy, Semantic, World};
 
 use super::ego::{Ego, EgoView};
@@ -10,6 +9,7 @@ use super::message::{Item, baseline_bytes};
 use super::metrics::{DELIVERY_BIN, SemanticMetrics};
 use super::objects::Encounters;
 use super::rsu::Selection;
+use crate::math::elapsed;
 use crate::metrics::Series;
 use crate::sink::TraceSink;
 use crate::trace::{Approach, Arrival, Packet, PacketKind, SemanticLog};
@@ -90,14 +90,14 @@ impl Measures {
         self.rsu_only.push((time, f64::from(view.through_rsu)));
     }
 
-    /// What an RSU selected at `time`; `shared`: the cycle counts toward the
-    /// transmitted and labelled shares.
     /// A counted cycle in which an RSU perceived `count` objects and sent the
     /// ego none of them (no plan received yet, or the ego out of the scene).
     pub(super) fn unsent(&mut self, count: usize) {
         self.metrics.perceived += count as u64;
     }
 
+    /// What an RSU selected at `time`; `shared`: the cycle counts toward the
+    /// transmitted and labelled shares.
     pub(super) fn selection(&mut self, time: f64, selection: &Selection, shared: bool) {
         let metrics = &mut self.metrics;
         if shared {

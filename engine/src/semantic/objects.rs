@@ -35,13 +35,13 @@
 //!   a crash (DRAC), and its post-encroachment time (PET) over the conflict
 //!   area their footprints at those steps share; none where it never had one.
 
-use crate::math::elapsed;
 use serde::{Deserialize, Serialize};
 use sightline_dsl::{Agent, AgentKind, Semantic, World};
 
 use super::criticality::{Criticality, OrientedBox, post_encroachment, velocity};
 use super::ego::Knowledge;
 use super::relevance::{Region, contains, regions};
+use crate::math::elapsed;
 use crate::world::AgentState;
 
 /// How the ego came to know a road user: by V2X, by its own sight, in which

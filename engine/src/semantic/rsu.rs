@@ -154,22 +154,15 @@ impl Rsu {
         self.ldm.forget(time, semantic.history);
     }
 
-    /// Fuse: what the RSU sends at `time` with the ego's `plan`, by its
-    /// `pipeline` over its LDM, and what the ETSI baseline would have sent.
-    /// How many objects (the ego excluded) the RSU's LDM holds now.
+    /// How many objects (the ego excluded) the RSU's LDM holds at `time`.
     pub(super) fn perceived(&self, pipeline: &Pipeline<'_>, time: f64) -> usize {
-        let ego = pipeline.semantic.ego;
-        self.ldm.current(time).filter(|&(agent, _)| agent != ego).count()
+        current(&self.ldm, pipeline, time).count()
     }
 
+    /// Fuse: what the RSU sends at `time` with the ego's `plan`, by its
+    /// `pipeline` over its LDM, and what the ETSI baseline would have sent.
     pub(super) fn select(&mut self, pipeline: &Pipeline<'_>, time: f64, plan: &EgoPlan) -> Selection {
-        let ego = pipeline.semantic.ego;
-        let perceived: Vec<(usize, &Measurement)> = self
-            .ldm
-            .current(time)
-            .filter(|&(agent, _)| agent != ego)
-            .map(|(agent, track)| (agent, track.latest()))
-            .collect();
+        let perceived: Vec<(usize, &Measurement)> = current(&self.ldm, pipeline, time).collect();
         let count = perceived.len();
         let baseline = self.baseline.select(perceived);
         Selection {
@@ -178,4 +171,13 @@ impl Rsu {
             items: pipeline.run(&self.ldm, time, plan),
         }
     }
+}
+
+/// The objects (the ego excluded) `ldm` holds at `time`, with their latest
+/// measurements: what an RSU perceives.
+fn current<'l>(ldm: &'l Ldm, pipeline: &Pipeline<'_>, time: f64) -> impl Iterator<Item = (usize, &'l Measurement)> {
+    let ego = pipeline.semantic.ego;
+    ldm.current(time)
+        .filter(move |&(agent, _)| agent != ego)
+        .map(|(agent, track)| (agent, track.latest()))
 }

@@ -1,10 +1,10 @@
 //! What a per-object check reads of the per-object records: which records a
 //! selection keeps, and each record's value of a property.
 
-use crate::math::elapsed;
 use sightline_dsl::{AgentKind, ObjectProperty, ObjectSelection};
 
 use super::objects::{Category, Closest, ObjectRecord};
+use crate::math::elapsed;
 
 impl ObjectRecord {
     /// Whether `selection` keeps it: every criterion given matches (an id, a

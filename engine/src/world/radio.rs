@@ -273,8 +273,9 @@ impl<'a> Radio<'a> {
         for (_, parcel) in self.in_flight.arrived(time) {
             // A message past `max_age` on arrival is dropped at once: never fused, so
             // its age is not among the fused messages'.
-            if !outlived(time - parcel.sensed, messages) {
-                let age = ((time - parcel.sensed) / self.step).round() as usize;
+            let age = time - parcel.sensed;
+            if !outlived(age, messages) {
+                let age = (age / self.step).round() as usize;
                 if self.stats.ages.len() <= age {
                     self.stats.ages.resize(age + 1, 0);
                 }
