@@ -27,11 +27,7 @@ fn mass_function(tolerance: f64, audit: &MassAudit, min_cells: u64) -> Evaluatio
     // Too few fused cells leave the check not exercised, unless a cell
     // already breaks it: a violation seen is judged all the same.
     let too_few = n < min_cells;
-    let seen = if too_few {
-        seen_among_too_few(n, min_cells)
-    } else {
-        String::new()
-    };
+    let seen = seen_among_too_few(n, min_cells);
     let (Some(min), Some(max)) = (audit.min_mass, audit.max_mass) else {
         if audit.non_finite > 0 {
             return Evaluation::failed(

@@ -38,11 +38,7 @@ pub(crate) fn evaluate(
         return Evaluation::error(format!("{name} is undefined over n = {n} {population}"));
     };
     let margin = bound.margin(value);
-    let seen = if short_of {
-        seen_among_too_few(n, min_samples)
-    } else {
-        String::new()
-    };
+    let seen = seen_among_too_few(n, min_samples);
     let (relation, wanted) = match bound {
         Bound::AtLeast(_) => (if margin >= 0.0 { "≥" } else { "<" }, "at least"),
         Bound::AtMost(_) => (if margin >= 0.0 { "≤" } else { ">" }, "at most"),

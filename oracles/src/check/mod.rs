@@ -6,8 +6,12 @@ pub(crate) mod object;
 pub(crate) mod seeds;
 pub(crate) mod temporal;
 
-/// What a failure (a violation seen) among fewer samples than a check needs adds to its message.
+/// What a failure (a violation seen) among fewer samples than a check needs
+/// adds to its message; nothing when it has enough.
 pub(crate) fn seen_among_too_few(n: u64, min_samples: u64) -> String {
+    if n >= min_samples {
+        return String::new();
+    }
     format!("; a violation seen, judged though n = {n} is fewer than the {min_samples} the check needs")
 }
 

@@ -60,11 +60,7 @@ pub(crate) fn evaluate(
             }
             _ => "never known to the ego",
         };
-        let seen = if too_few.is_some() {
-            seen_among_too_few(n, min_objects)
-        } else {
-            String::new()
-        };
+        let seen = seen_among_too_few(n, min_objects);
         return Evaluation::failed(
             n,
             measured,
@@ -80,13 +76,10 @@ pub(crate) fn evaluate(
         let few = too_few.unwrap_or_else(|| format!("no {population}"));
         return Evaluation::not_exercised(n, measured, format!("nothing to judge: {few}"));
     };
-    let seen = match too_few {
-        Some(few) if margin >= 0.0 => {
-            return Evaluation::not_exercised(n, measured, format!("nothing to judge: {few}"));
-        }
-        Some(_) => seen_among_too_few(n, min_objects),
-        None => String::new(),
-    };
+    if let Some(few) = too_few.filter(|_| margin >= 0.0) {
+        return Evaluation::not_exercised(n, measured, format!("nothing to judge: {few}"));
+    }
+    let seen = seen_among_too_few(n, min_objects);
     let message = format!(
         "{extreme} {name} over {n} {population} = {} (margin {}; n = {n}){seen}",
         short(value),
