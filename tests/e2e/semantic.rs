@@ -66,3 +66,25 @@ fn durations_of_whole_steps_hold_at_equality() {
     assert_eq!(verdict(&results, "PET-EQ-MAX").1, Some(2.2));
     assert_eq!(verdict(&results, "PET-EQ-MIN").1, Some(2.2));
 }
+
+/// Two pedestrians walk the crosswalk at x = 80 side by side in one spot
+/// (twin_a and twin_b on the same path). Each contains the other's centre, so
+/// the one ray to either ended inside the other and neither was ever seen
+/// (both warned_never_seen: NEVER-SEEN failed on 2); 1 m apart (x = 81) they
+/// were seen. A body that contains the target's centre no longer blocks the
+/// ray to it: both are seen (at 5.1 s) and NEVER-SEEN holds.
+#[test]
+fn a_road_user_in_the_same_spot_does_not_hide_the_other() {
+    let tmp = temp_dir();
+    let out = tmp.path().join("out");
+    sightline(["run", "tests/fixtures/valid/twins-one-spot.yaml", "--out", arg(&out)]).assert_exit(0);
+    let results = read_json(&out.join("results.json"));
+    let records = results["sweep"][0]["objects"]["records"].as_array().unwrap();
+    for twin in ["twin_a", "twin_b"] {
+        let record = records
+            .iter()
+            .find(|r| r["id"] == twin)
+            .unwrap_or_else(|| panic!("no {twin}"));
+        assert!(record["first_seen"].as_f64().is_some(), "{twin} never seen: {record}");
+    }
+}

@@ -315,7 +315,7 @@ mod tests {
                     .map(|(i, m)| footprint(i + 2, m))
                     .collect(),
             );
-            prop_assert_eq!(kept.block(ego, to, [0, 1]), every.block(ego, to, [0, 1]));
+            prop_assert_eq!(kept.block_at_centre(ego, to, [0, 1]), every.block_at_centre(ego, to, [0, 1]));
         }
     }
 }

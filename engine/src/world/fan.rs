@@ -43,7 +43,9 @@ pub(crate) const FAN: Idealisation = Idealisation {
            clear rays, an angular share, in 2-D outlines without height. Any part of an object whose centre \
            is in range and field of view can be seen, even past the edge of the field of view or the range; \
            an object with a clear ray counts in line of sight and is detected with the sensor's full \
-           probability, and only the seen part of its measured footprint is marked occupied.",
+           probability, and only the seen part of its measured footprint is marked occupied. A ray ends where \
+           it reaches the object's outline: a road user whose outline only touches that point (two in one \
+           spot) does not hide it, one that covers it (vehicles driving through one another) does.",
 };
 
 /// What a sensor sees of one object.
@@ -249,6 +251,20 @@ mod tests {
         let behind = Body::circle(3, Pose::new(Vector::new(3.0, 20.0), 0.0), 0.3);
         let hidden = seen(&none, &vans, &behind);
         assert_eq!((hidden.visibility, hidden.fraction()), (Visibility::NlosDynamic, 0.0));
+    }
+
+    /// Two pedestrians (and two cars) in one spot, 20 m north and 14 m north-east:
+    /// each outline is the other's, so every ray meets the twin's outline just
+    /// where it reaches the target's. Touching is not covering: each is seen whole.
+    #[test]
+    fn twins_in_one_spot_do_not_hide_each_other() {
+        let none = Occluders::new(&[]);
+        let at = Pose::new(Vector::new(0.0, 20.0), 0.0);
+        let walker = |agent| Body::circle(agent, at, 0.3);
+        let both = seen(&none, &[walker(1)], &walker(2));
+        assert_eq!((both.visibility, both.fraction()), (Visibility::Los, 1.0));
+        let both = seen(&none, &[car(1, 10.0, 10.0, 0.7)], &car(2, 10.0, 10.0, 0.7));
+        assert_eq!((both.visibility, both.fraction()), (Visibility::Los, 1.0));
     }
 
     /// A pedestrian 20 m north whose centre lies on the gap's right edge seen from

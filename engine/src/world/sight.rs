@@ -33,8 +33,9 @@ pub(crate) const PLANAR: Idealisation = Idealisation {
 pub(crate) const ONE_RAY: Idealisation = Idealisation {
     id: "sight.one-ray",
     text: "An object is visible when the segment from the sensor to the object's centre crosses no building \
-           and no other road user: visibility is all or nothing, so a partly hidden object is either seen \
-           whole or missed.",
+           and no other road user (a road user whose footprint contains the object's centre, standing in the \
+           same spot, does not hide it): visibility is all or nothing, so a partly hidden object is either \
+           seen whole or missed.",
 };
 
 /// Footprints are rectangles and circles.
@@ -265,15 +266,26 @@ impl Bodies {
     }
 
     /// Whether the segment from `from` to `to` crosses a footprint other than
-    /// those of agents `skip`.
+    /// those of agents `skip`. A footprint the segment meets only at `to` (within
+    /// [`TOUCHING`]) touches the target there and does not hide it.
     pub fn block(&self, from: Point, to: Point, skip: [usize; 2]) -> bool {
+        self.block_unless(from, to, |body| skip.contains(&body.agent))
+    }
+
+    /// [`Self::block`], passing over also the footprints that contain `to`: a road
+    /// user standing in the same spot as the target's centre does not hide it.
+    pub fn block_at_centre(&self, from: Point, to: Point, skip: [usize; 2]) -> bool {
+        self.block_unless(from, to, |body| skip.contains(&body.agent) || body.contains(to))
+    }
+
+    fn block_unless(&self, from: Point, to: Point, passed_over: impl Fn(&Body) -> bool) -> bool {
         let Some((ray, length)) = segment_ray(from, to) else {
             return false;
         };
         self.bvh
-            .cast_ray(&ray, length, |leaf, best| {
+            .cast_ray(&ray, length - TOUCHING, |leaf, best| {
                 let body = &self.bodies[self.leaf_body[leaf as usize] as usize];
-                if skip.contains(&body.agent) {
+                if passed_over(body) {
                     return None;
                 }
                 body.cast_ray(&ray, best)
@@ -281,6 +293,10 @@ impl Bodies {
             .is_some()
     }
 }
+
+/// How close to a ray's end a footprint may begin and only touch what the ray
+/// reaches (1 µm: rounding, not cover).
+const TOUCHING: f64 = 1e-6;
 
 /// A unit ray from `from` toward `to` and the distance, or `None` when they coincide.
 pub(super) fn segment_ray(from: Point, to: Point) -> Option<(Ray, f64)> {
@@ -296,7 +312,7 @@ pub fn visibility(occluders: &Occluders, bodies: &Bodies, from: Point, observer:
     let to = target.pose.translation;
     if occluders.block(from, to) {
         Visibility::NlosStatic
-    } else if bodies.block(from, to, [observer, target.agent]) {
+    } else if bodies.block_at_centre(from, to, [observer, target.agent]) {
         Visibility::NlosDynamic
     } else {
         Visibility::Los
@@ -372,5 +388,26 @@ mod tests {
     #[test]
     fn the_observer_and_the_target_do_not_hide_each_other() {
         assert_eq!(seen(&Occluders::new(&[]), &[], [4.0, 0.0]), Visibility::Los);
+    }
+
+    /// A car parked on the target's spot, 0.5 m aside (its box holds the
+    /// target's centre at (30, 0)), does not hide it; 3 m nearer it does.
+    #[test]
+    fn a_road_user_in_the_target_s_spot_does_not_hide_it() {
+        let none = Occluders::new(&[]);
+        assert_eq!(seen(&none, &[car(1, 29.5, 0.0)], [30.0, 0.0]), Visibility::Los);
+        assert_eq!(seen(&none, &[car(1, 27.0, 0.0)], [30.0, 0.0]), Visibility::NlosDynamic);
+    }
+
+    /// A ray from the origin to (10, 0) and a disc of radius 1 at (10.5, 0)
+    /// covering its last 1.5 m: it blocks the ray, unless the centre rule passes
+    /// it over for containing (10, 0). (Touching the ray's end only is the
+    /// fan's case: `fan::tests::twins_in_one_spot_do_not_hide_each_other`.)
+    #[test]
+    fn the_centre_rule_passes_over_a_footprint_holding_the_ray_s_end() {
+        let covering = Bodies::new(vec![Body::circle(1, Pose::new(Vector::new(10.5, 0.0), 0.0), 1.0)]);
+        let to = Vector::new(10.0, 0.0);
+        assert!(covering.block(Vector::ZERO, to, [0, 2]));
+        assert!(!covering.block_at_centre(Vector::ZERO, to, [0, 2]));
     }
 }
