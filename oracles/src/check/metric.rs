@@ -77,7 +77,9 @@ fn only_worsens(metric: Metric, bound: Bound) -> bool {
 /// Compares a metric with another measured on the same run, each with its
 /// sample (`[(metric, sample), (other, sample)]`): their ratio or difference
 /// against `bound`. Either sample smaller than `min_samples` is not exercised,
-/// and so is a ratio to 0 (nothing to compare with); a metric the
+/// and so is a ratio to 0 (nothing to compare with), unless its numerator puts
+/// it past the bound (x > 0 over 0 under `at_most`, x < 0 under `at_least`):
+/// a violation seen, a failure with no value; a metric the
 /// measurements lack, or one undefined over a non-empty population, is an
 /// error. n is the smaller sample's.
 pub(crate) fn compare(
@@ -118,6 +120,23 @@ pub(crate) fn compare(
         describe(other, sizes[1], other.population())
     );
     let Some(value) = by.of(values[0], values[1]) else {
+        // x / 0 for x ≠ 0 is beyond every bound on its side: past an upper bound
+        // when x > 0, below a lower one when x < 0. Any other ratio to 0 is undefined.
+        let beyond = match bound {
+            Bound::AtMost(_) => values[0] > 0.0,
+            Bound::AtLeast(_) => values[0] < 0.0,
+        };
+        if beyond {
+            let (side, wanted) = match bound {
+                Bound::AtMost(t) => ("above", format!("at most {}", short(t))),
+                Bound::AtLeast(t) => ("below", format!("at least {}", short(t))),
+            };
+            let message = format!(
+                "{expression} = {} / 0, {side} every bound (required {wanted}; n = {n})",
+                short(values[0])
+            );
+            return Evaluation::failed(n, measured, message);
+        }
         return Evaluation::not_exercised(
             n,
             measured,
@@ -250,8 +269,19 @@ mod tests {
         assert_eq!(e.status, Status::Fail);
         let e = compare(pair(300.0, 1000.0), Comparison::Difference, Bound::AtLeast(0.0), 1);
         assert_eq!((e.status, e.value), (Status::Fail, Some(-700.0)));
-        // Nothing sent by the baseline: no ratio, nothing to compare with.
+        // Nothing sent by the baseline: no ratio. 300 B/s against nothing is past
+        // any upper bound on the ratio, a violation seen; it meets every lower
+        // bound only as an undefined quotient, so that is not exercised, and so is
+        // 0 against nothing either way.
         let e = compare(pair(300.0, 0.0), Comparison::Ratio, Bound::AtMost(0.5), 1);
+        assert_eq!((e.status, e.value, e.n), (Status::Fail, None, Some(40)));
+        assert_eq!(
+            e.message,
+            "channel_load / baseline_channel_load = 300 / 0, above every bound (required at most 0.5; n = 40)"
+        );
+        let e = compare(pair(300.0, 0.0), Comparison::Ratio, Bound::AtLeast(0.5), 1);
+        assert_eq!(e.status, Status::NotExercised);
+        let e = compare(pair(0.0, 0.0), Comparison::Ratio, Bound::AtMost(0.5), 1);
         assert_eq!(e.status, Status::NotExercised);
         // Either side too small a sample: not exercised; either side missing: an error.
         let e = compare(pair(300.0, 1000.0), Comparison::Ratio, Bound::AtMost(0.5), 45);
