@@ -38,8 +38,9 @@ pub use idealisation::{Idealisation, ModelOption, idealisations};
 pub use known::{KnownAnswer, known_answers};
 pub use recorded::simulate_recorded;
 pub use run::{
-    AssembleError, Job, Outcome, Run, Sample, Unit, assemble, shares_one_simulation, simulate, simulate_point,
-    simulate_reporting, simulate_traced, simulate_traced_all, simulate_traced_each, simulate_unit, units,
+    AssembleError, Job, Outcome, RoadUserValue, Run, Sample, Unit, assemble, shares_one_simulation, simulate,
+    simulate_point, simulate_reporting, simulate_traced, simulate_traced_all, simulate_traced_each, simulate_unit,
+    units,
 };
 pub use sink::{NoTrace, TraceSink};
 

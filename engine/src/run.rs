@@ -3,7 +3,7 @@
 mod passes;
 mod reading;
 
-pub use reading::Sample;
+pub use reading::{RoadUserValue, Sample};
 
 use std::collections::HashMap;
 

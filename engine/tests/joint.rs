@@ -120,7 +120,7 @@ fn a_joint_outcome_answers_both_models() {
         .per_object(ObjectProperty::GridLead, &everyone)
         .expect("a joint world has a grid");
     assert_eq!(leads.len(), 2);
-    assert_eq!(leads.iter().filter(|l| l.is_some()).count(), 1);
+    assert_eq!(leads.iter().filter(|l| l.value.is_some()).count(), 1);
 }
 
 /// Recording a joint point changes nothing, and the outcome does not depend

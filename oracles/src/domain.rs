@@ -142,7 +142,7 @@ pub fn out_of_domain(scenario: &Scenario, measurements: &(impl Measurements + ?S
                 Check::PerObject { property, .. } => {
                     let values = measurements.per_object(point, property, selection);
                     for (object, value) in values.iter().flatten().enumerate() {
-                        if let Some(value) = *value {
+                        if let Some(value) = value.value {
                             check(point, Quantity::Object { property, object }, value);
                         }
                     }
@@ -158,7 +158,7 @@ pub fn out_of_domain(scenario: &Scenario, measurements: &(impl Measurements + ?S
 mod tests {
     use sightline_dsl::{ObjectSelection, Options, compile};
     use sightline_engine::outcome::{MassAudit, Series};
-    use sightline_engine::{Outcome, Sample, simulate};
+    use sightline_engine::{Outcome, RoadUserValue, Sample, simulate};
 
     use super::*;
 
@@ -238,7 +238,7 @@ requirements:
         fn series(&self, _: usize, _: Signal) -> Option<Vec<Series>> {
             None
         }
-        fn per_object(&self, _: usize, _: ObjectProperty, _: &ObjectSelection) -> Option<Vec<Option<f64>>> {
+        fn per_object(&self, _: usize, _: ObjectProperty, _: &ObjectSelection) -> Option<Vec<RoadUserValue>> {
             None
         }
     }

@@ -5,7 +5,7 @@
 use sightline_dsl::{Metric, ObjectProperty, ObjectSelection, Signal};
 use sightline_engine::outcome::MassAudit;
 use sightline_engine::outcome::Series;
-use sightline_engine::{Run, Sample};
+use sightline_engine::{RoadUserValue, Run, Sample};
 
 /// The measurements of every sweep point of a run, as the oracles read them: a
 /// fresh [`Run`], or the values a recording carries (`sightline replay`). The
@@ -36,7 +36,7 @@ pub trait Measurements {
         point: usize,
         property: ObjectProperty,
         selection: &ObjectSelection,
-    ) -> Option<Vec<Option<f64>>>;
+    ) -> Option<Vec<RoadUserValue>>;
 }
 
 impl Measurements for Run {
@@ -64,7 +64,7 @@ impl Measurements for Run {
         point: usize,
         property: ObjectProperty,
         selection: &ObjectSelection,
-    ) -> Option<Vec<Option<f64>>> {
+    ) -> Option<Vec<RoadUserValue>> {
         self.points[point].per_object(property, selection)
     }
 }

@@ -105,7 +105,7 @@ fn a_violation_seen_among_too_few_road_users_fails() {
         requirement(&results, "LEAD-MIN5")["message"]
             .as_str()
             .unwrap()
-            .starts_with("3 of 3 relevant road users had no warning_lead (never flagged); a violation seen"),
+            .starts_with("3 of 3 relevant road users had no warning_lead (never flagged: lead, crossing, walker); a violation seen"),
         "{results}"
     );
     assert_eq!(verdict(&results, "PET-HOLDS"), ("not_exercised".into(), None, Some(2)));

@@ -93,14 +93,17 @@ impl Outcome {
     /// for its properties (`sut_delay`: of those that came into a served
     /// sensor's sight); `None` where it is not measured (a property of the
     /// fused grid outside a joint world, of a system without one).
-    pub fn per_object(&self, property: ObjectProperty, selection: &ObjectSelection) -> Option<Vec<Option<f64>>> {
+    pub fn per_object(&self, property: ObjectProperty, selection: &ObjectSelection) -> Option<Vec<RoadUserValue>> {
         if property.of_system() {
             let Self::World(o) = self else { return None };
             let objects = &o.system.as_ref()?.objects;
             return Some(
                 (objects.iter())
                     .filter(|object| object.selected_by(selection) && object.judged_on(property))
-                    .map(|object| object.property(property))
+                    .map(|object| RoadUserValue {
+                        who: object.id.clone(),
+                        value: object.property(property),
+                    })
                     .collect(),
             );
         }
@@ -109,13 +112,25 @@ impl Outcome {
             return None;
         }
         Some(if property.of_record() {
-            m.objects
-                .iter()
+            let pooled = m.runs > 1;
+            (m.objects.iter())
                 .filter(|record| record.selected_by(selection))
-                .map(|record| record.property(property))
+                .map(|record| RoadUserValue {
+                    who: if pooled {
+                        format!("{} of run {}", record.id, record.run)
+                    } else {
+                        record.id.clone()
+                    },
+                    value: record.property(property),
+                })
                 .collect()
         } else {
-            m.warnings.clone()
+            (m.warnings.iter().enumerate())
+                .map(|(i, &value)| RoadUserValue {
+                    who: format!("close approach {}", i + 1),
+                    value,
+                })
+                .collect()
         })
     }
 
@@ -151,6 +166,16 @@ impl WorldOutcome {
             (part, semantic, as_metric)
         })
     }
+}
+
+/// One road user's value of a per-object property, and who it is.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RoadUserValue {
+    /// Its id, with its run where the point pools several (`ped_3 of run 2`);
+    /// for `warning_time`, the close approach's place in order (`close approach 3`).
+    pub who: String,
+    /// Its value (`None`: it has none).
+    pub value: Option<f64>,
 }
 
 /// A metric as measured: its value (`None` where it is undefined, an empty

@@ -1,6 +1,7 @@
 //! Properties every road user a per-object check judges must meet.
 
 use sightline_dsl::{Bound, ObjectProperty, ObjectSelection};
+use sightline_engine::RoadUserValue;
 
 use super::{seen_among_too_few, short};
 use crate::Evaluation;
@@ -12,20 +13,20 @@ use crate::Evaluation;
 /// Fewer judged road users than `min_objects` (none, by default) is not
 /// exercised (nothing to judge), unless one of them already violates the
 /// bound (no value, or a failing one): a violation seen is a failure whatever
-/// the road users not seen would hold.
+/// the road users not seen would hold. Messages name the road user that
+/// decides, and those without the property.
 pub(crate) fn evaluate(
     (property, selection): (ObjectProperty, &ObjectSelection),
     bound: Bound,
-    values: &[Option<f64>],
+    values: &[RoadUserValue],
     min_objects: u64,
 ) -> Evaluation {
     let name = property.name();
     let selected = values.len();
-    let values: Vec<Option<f64>> = if property.defined_only() {
-        values.iter().copied().filter(Option::is_some).collect()
-    } else {
-        values.to_vec()
-    };
+    let values: Vec<&RoadUserValue> = values
+        .iter()
+        .filter(|v| !property.defined_only() || v.value.is_some())
+        .collect();
     let n = values.len() as u64;
     // Those judged among those selected: "… with the ego (of class
     // pedestrian; 3 selected)", the selection after the qualifier.
@@ -49,8 +50,11 @@ pub(crate) fn evaluate(
             format!("{n} {population}, fewer than the {min_objects} the check needs")
         }
     });
-    let missing = values.iter().filter(|v| v.is_none()).count();
-    if missing > 0 {
+    let missing: Vec<&str> = (values.iter())
+        .filter(|v| v.value.is_none())
+        .map(|v| v.who.as_str())
+        .collect();
+    if !missing.is_empty() {
         let why = match property {
             ObjectProperty::WarningTime | ObjectProperty::WarningLead => "never flagged",
             ObjectProperty::GridLead => "never in the ego's fused grid",
@@ -64,13 +68,15 @@ pub(crate) fn evaluate(
         return Evaluation::failed(
             n,
             measured,
-            format!("{missing} of {n} {population} had no {name} ({why}){seen}"),
+            format!(
+                "{} of {n} {population} had no {name} ({why}: {}){seen}",
+                missing.len(),
+                some_of(&missing)
+            ),
         );
     }
-    let Some((margin, value)) = values
-        .iter()
-        .flatten()
-        .map(|&v| (bound.margin(v), v))
+    let Some((margin, value, who)) = (values.iter())
+        .filter_map(|v| v.value.map(|value| (bound.margin(value), value, &v.who)))
         .min_by(|a, b| a.0.total_cmp(&b.0))
     else {
         let few = too_few.unwrap_or_else(|| format!("no {population}"));
@@ -81,11 +87,20 @@ pub(crate) fn evaluate(
     }
     let seen = seen_among_too_few(n, min_objects);
     let message = format!(
-        "{extreme} {name} over {n} {population} = {} (margin {}; n = {n}){seen}",
+        "{extreme} {name} over {n} {population} = {}, of {who} (margin {}; n = {n}){seen}",
         short(value),
         short(margin)
     );
     Evaluation::judged(value, margin, n, measured, message)
+}
+
+/// The first few of `names`, then how many more: `a, b, c and 4 more`.
+fn some_of(names: &[&str]) -> String {
+    const SHOWN: usize = 3;
+    match names.len() {
+        n if n <= SHOWN => names.join(", "),
+        n => format!("{} and {} more", names[..SHOWN].join(", "), n - SHOWN),
+    }
 }
 
 #[cfg(test)]
@@ -98,27 +113,43 @@ mod tests {
     const WARNING_TIME: (ObjectProperty, &ObjectSelection) = (ObjectProperty::WarningTime, &ALL);
     const ALL: ObjectSelection = ObjectSelection::ALL;
 
+    /// [`evaluate`] over road users `u1`, `u2`, … with `values`.
+    fn check(
+        what: (ObjectProperty, &ObjectSelection),
+        bound: Bound,
+        values: &[Option<f64>],
+        min_objects: u64,
+    ) -> Evaluation {
+        let users: Vec<RoadUserValue> = (values.iter().enumerate())
+            .map(|(i, &value)| RoadUserValue {
+                who: format!("u{}", i + 1),
+                value,
+            })
+            .collect();
+        evaluate(what, bound, &users, min_objects)
+    }
+
     #[test]
     fn the_least_warned_object_decides() {
-        let e = evaluate(WARNING_TIME, Bound::AtLeast(1.0), &[Some(2.5), Some(1.2), Some(4.0)], 1);
+        let e = check(WARNING_TIME, Bound::AtLeast(1.0), &[Some(2.5), Some(1.2), Some(4.0)], 1);
         assert_eq!((e.status, e.value, e.n), (Status::Pass, Some(1.2), Some(3)));
         assert!((e.margin.unwrap() - 0.2).abs() < 1e-12);
-        let e = evaluate(WARNING_TIME, Bound::AtLeast(1.5), &[Some(2.5), Some(1.2)], 1);
+        let e = check(WARNING_TIME, Bound::AtLeast(1.5), &[Some(2.5), Some(1.2)], 1);
         assert_eq!(e.status, Status::Fail);
     }
 
     #[test]
     fn an_unflagged_object_fails_and_no_object_is_not_exercised() {
-        let e = evaluate(WARNING_TIME, Bound::AtLeast(0.0), &[Some(3.0), None], 1);
+        let e = check(WARNING_TIME, Bound::AtLeast(0.0), &[Some(3.0), None], 1);
         assert_eq!((e.status, e.value, e.n), (Status::Fail, None, Some(2)));
         assert!(e.message.starts_with("1 of 2 objects"), "{}", e.message);
-        let e = evaluate(WARNING_TIME, Bound::AtLeast(1.0), &[], 1);
+        let e = check(WARNING_TIME, Bound::AtLeast(1.0), &[], 1);
         assert_eq!((e.status, e.n), (Status::NotExercised, Some(0)));
         assert_eq!(
             e.message,
             "nothing to judge: no objects that came within d_min of the ego"
         );
-        let e = evaluate(WARNING_TIME, Bound::AtLeast(1.0), &[Some(2.0)], 2);
+        let e = check(WARNING_TIME, Bound::AtLeast(1.0), &[Some(2.0)], 2);
         assert_eq!(e.status, Status::NotExercised);
     }
 
@@ -129,22 +160,22 @@ mod tests {
     fn a_violation_seen_among_too_few_road_users_fails() {
         // PET 1.2 s and 2.2 s against ≥ 1.5 s, three needed: 1.2 fails by 0.3.
         let pet = (ObjectProperty::Pet, &ALL);
-        let e = evaluate(pet, Bound::AtLeast(1.5), &[Some(2.2), Some(1.2)], 3);
+        let e = check(pet, Bound::AtLeast(1.5), &[Some(2.2), Some(1.2)], 3);
         assert_eq!((e.status, e.value, e.n), (Status::Fail, Some(1.2), Some(2)));
         assert!((e.margin.unwrap() + 0.3).abs() < 1e-12);
         assert!(
             e.message.ends_with(
-                "= 1.2 (margin -0.3; n = 2); a violation seen, judged though n = 2 is fewer than the 3 the check needs"
+                "= 1.2, of u2 (margin -0.3; n = 2); a violation seen, judged though n = 2 is fewer than the 3 the check needs"
             ),
             "{}",
             e.message
         );
         // A road user never flagged cannot meet a lead of 1 s at all.
-        let e = evaluate(WARNING_TIME, Bound::AtLeast(1.0), &[Some(3.0), None], 5);
+        let e = check(WARNING_TIME, Bound::AtLeast(1.0), &[Some(3.0), None], 5);
         assert_eq!((e.status, e.value, e.n), (Status::Fail, None, Some(2)));
         assert!(e.message.starts_with("1 of 2 objects"), "{}", e.message);
         // Both hold: too few to pass, not exercised.
-        let e = evaluate(pet, Bound::AtLeast(1.0), &[Some(2.2), Some(1.2)], 3);
+        let e = check(pet, Bound::AtLeast(1.0), &[Some(2.2), Some(1.2)], 3);
         assert_eq!((e.status, e.value, e.n), (Status::NotExercised, None, Some(2)));
         assert!(e.message.starts_with("nothing to judge: 2 "), "{}", e.message);
     }
@@ -158,13 +189,13 @@ mod tests {
             areas: vec!["cw_north".into()],
             ..Default::default()
         };
-        let e = evaluate((ObjectProperty::WarningLead, &pedestrians), Bound::AtLeast(2.0), &[], 1);
+        let e = check((ObjectProperty::WarningLead, &pedestrians), Bound::AtLeast(2.0), &[], 1);
         assert_eq!(e.status, Status::NotExercised);
         assert_eq!(
             e.message,
             "nothing to judge: no relevant road users of class pedestrian, in cw_north"
         );
-        let e = evaluate(
+        let e = check(
             (ObjectProperty::KnowledgeLead, &pedestrians),
             Bound::AtLeast(2.0),
             &[Some(2.5), None],
@@ -172,7 +203,8 @@ mod tests {
         );
         assert_eq!(e.status, Status::Fail);
         assert!(
-            e.message.ends_with("had no knowledge_lead (never known to the ego)"),
+            e.message
+                .ends_with("had no knowledge_lead (never known to the ego: u2)"),
             "{}",
             e.message
         );
@@ -184,7 +216,7 @@ mod tests {
     #[test]
     fn road_users_without_a_conflict_are_not_judged() {
         let all = ObjectSelection::default();
-        let e = evaluate(
+        let e = check(
             (ObjectProperty::MinTtc, &all),
             Bound::AtLeast(1.5),
             &[None, Some(2.0), None, Some(1.7)],
@@ -195,14 +227,14 @@ mod tests {
             e.measured,
             "smallest min_ttc of n = 2 relevant road users on a collision course with the ego (of 4 selected)"
         );
-        let e = evaluate((ObjectProperty::MinTtc, &all), Bound::AtLeast(1.5), &[None, None], 1);
+        let e = check((ObjectProperty::MinTtc, &all), Bound::AtLeast(1.5), &[None, None], 1);
         assert_eq!((e.status, e.n), (Status::NotExercised, Some(0)));
         assert_eq!(
             e.message,
             "nothing to judge: no relevant road users on a collision course with the ego (of 2 selected)"
         );
         // An upper bound: the greatest DRAC decides.
-        let e = evaluate(
+        let e = check(
             (ObjectProperty::MaxDrac, &all),
             Bound::AtMost(3.0),
             &[Some(1.0), None, Some(3.4)],
@@ -210,7 +242,23 @@ mod tests {
         );
         assert_eq!((e.status, e.value, e.n), (Status::Fail, Some(3.4), Some(2)));
         assert!(e.message.starts_with("largest max_drac over 2"), "{}", e.message);
-        let e = evaluate((ObjectProperty::Pet, &all), Bound::AtLeast(1.0), &[Some(0.0)], 1);
+        let e = check((ObjectProperty::Pet, &all), Bound::AtLeast(1.0), &[Some(0.0)], 1);
         assert_eq!((e.status, e.value), (Status::Fail, Some(0.0)));
+    }
+
+    /// The road user that decides is named, and so are those without the
+    /// property: the first three, then how many more.
+    #[test]
+    fn messages_name_the_road_users_that_decide() {
+        let e = check(WARNING_TIME, Bound::AtLeast(1.0), &[Some(2.5), Some(1.2), Some(4.0)], 1);
+        assert!(e.message.contains("= 1.2, of u2 (margin 0.2;"), "{}", e.message);
+        let unflagged = [Some(3.0), None, None, Some(1.0), None, None, None];
+        let e = check(WARNING_TIME, Bound::AtLeast(0.0), &unflagged, 1);
+        assert!(
+            e.message
+                .ends_with("had no warning_time (never flagged: u2, u3, u5 and 2 more)"),
+            "{}",
+            e.message
+        );
     }
 }

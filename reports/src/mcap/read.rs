@@ -11,8 +11,8 @@ use mcap::records::Record;
 use mcap::sans_io::{LinearReadEvent, LinearReader, LinearReaderOptions};
 use serde::de::DeserializeOwned;
 use sightline_dsl::{Metric, ObjectProperty, ObjectSelection, Signal};
-use sightline_engine::Sample;
 use sightline_engine::outcome::{CellTally, MassAudit, Series, WorldMetrics};
+use sightline_engine::{RoadUserValue, Sample};
 use sightline_oracles::Measurements;
 
 use super::counts::WORLD_STEP_METRICS;
@@ -246,7 +246,7 @@ struct RecordedPoint {
     metrics: Vec<Vec<(Metric, Sample)>>,
     audit: Option<MassAudit>,
     series: Vec<(Signal, Vec<Series>)>,
-    per_object: Vec<(ObjectProperty, ObjectSelection, Vec<Option<f64>>)>,
+    per_object: Vec<(ObjectProperty, ObjectSelection, Vec<RoadUserValue>)>,
 }
 
 impl Measurements for RecordedRun {
@@ -279,7 +279,7 @@ impl Measurements for RecordedRun {
         point: usize,
         property: ObjectProperty,
         selection: &ObjectSelection,
-    ) -> Option<Vec<Option<f64>>> {
+    ) -> Option<Vec<RoadUserValue>> {
         let point = self.points.get(point)?;
         point
             .per_object
@@ -340,7 +340,12 @@ impl Recording {
                             .per_object
                             .iter()
                             .map(|p| {
-                                let values = p.values.iter().map(|v| v.value.map(|r| r.0)).collect();
+                                let values = (p.values.iter())
+                                    .map(|v| RoadUserValue {
+                                        who: v.who.clone(),
+                                        value: v.value.map(|r| r.0),
+                                    })
+                                    .collect();
                                 (p.property, p.selection.clone(), values)
                             })
                             .collect(),

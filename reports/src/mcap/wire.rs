@@ -29,7 +29,7 @@ pub use semantic::{
 
 /// The format of sightline's recordings, written in `/sightline/scenario`;
 /// replay reads this version only.
-pub const RECORDING_FORMAT: &str = "sightline-recording/7";
+pub const RECORDING_FORMAT: &str = "sightline-recording/8";
 
 /// A number that survives JSON exactly: finite values as JSON numbers (read back
 /// bit for bit). JSON has no number for NaN and the infinities, and the viewers'
@@ -208,8 +208,11 @@ pub struct ObjectRecord {
 }
 
 /// A per-object property of one road user.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct ObjectValue {
+    /// Who it is: its id, with its run where the point pools runs (`ped_3 of
+    /// run 2`); for `warning_time`, `close approach k`.
+    pub who: String,
     /// Its value (left out: the object has none).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub value: Option<Real>,

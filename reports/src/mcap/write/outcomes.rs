@@ -88,7 +88,12 @@ impl<W: Write + Send + 'static> Recorder<'_, W> {
                         Some(ObjectRecord {
                             property,
                             selection: selection.clone(),
-                            values: values.iter().map(|v| ObjectValue { value: v.map(Real) }).collect(),
+                            values: (values.into_iter())
+                                .map(|v| ObjectValue {
+                                    who: v.who,
+                                    value: v.value.map(Real),
+                                })
+                                .collect(),
                         })
                     })
                     .collect(),
