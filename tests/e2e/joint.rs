@@ -45,7 +45,8 @@ fn a_joint_world_judges_each_road_user_by_the_grid_and_the_warnings() {
     assert!((lead.unwrap() - 8.7).abs() < 1e-9, "{lead:?}");
     assert_eq!(verdict(&results, "JOINT-B-01"), ("fail".into(), None, Some(1)));
     assert!(
-        run.stdout.contains("had no grid_lead (never in the ego's fused grid: walker_b)"),
+        run.stdout
+            .contains("had no grid_lead (never in the ego's fused grid: walker_b)"),
         "{run}"
     );
     assert_eq!(
@@ -122,7 +123,8 @@ fn a_car_in_a_cooperator_s_wake_never_comes_into_the_grid() {
         assert!(first_in_grid("cav1").is_number(), "{rate} Hz");
         assert_eq!(verdict(&results, "GRID-LEAD").0, "fail", "{rate} Hz");
         assert!(
-            run.stdout.contains("had no grid_lead (never in the ego's fused grid: car1)"),
+            run.stdout
+                .contains("had no grid_lead (never in the ego's fused grid: car1)"),
             "{rate} Hz: {run}"
         );
     }

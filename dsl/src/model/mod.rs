@@ -19,7 +19,7 @@ pub use fusion::{
     Decision, DecisionRule, Fusion, FusionMethod, Rule, SourceCombination, Switch, SwitchMeasure, WeightScaling,
     Weighting,
 };
-pub use metric::{JointPart, Metric};
+pub use metric::{JointPart, Metric, Trend};
 pub use requirement::{
     Bound, Check, Comparison, Invariant, ObjectProperty, ObjectSelection, OverSeeds, RateBound, Reference, Requirement,
     Signal, Statistic, Temporal,

@@ -1,6 +1,6 @@
 //! Metric thresholds.
 
-use sightline_dsl::{Bound, Comparison, Metric, ObjectSelection};
+use sightline_dsl::{Bound, Comparison, Metric, ObjectSelection, Trend};
 use sightline_engine::Sample;
 
 use super::{seen_among_too_few, short};
@@ -53,25 +53,15 @@ pub(crate) fn evaluate(
 }
 
 /// Whether more samples can only move `metric` further past `bound` once it
-/// misses it: a count of faults bounded above (faulty cells, ghost
-/// detections: more cells or detections can only raise it), a least value bounded below, a greatest bounded above.
-/// Such a metric that misses over too few samples is a violation seen. A
-/// share, a mean, a quantile or a count per run (a mean over runs) can move
-/// either way and is not; neither is a comparison of two metrics.
+/// misses it: a count or a greatest value bounded above, a least value
+/// bounded below ([`Metric::with_more_samples`]). Such a metric that misses
+/// over too few samples is a violation seen; neither a share, a mean, a
+/// quantile nor a comparison of two metrics is.
 fn only_worsens(metric: Metric, bound: Bound) -> bool {
-    match bound {
-        Bound::AtMost(_) => matches!(
-            metric,
-            Metric::FalseAlarms
-                | Metric::MissedDetections
-                | Metric::ConfidentErrors
-                | Metric::TotalConflictCells
-                | Metric::SutGhosts
-                | Metric::MaxConflict
-                | Metric::MaxDrac
-        ),
-        Bound::AtLeast(_) => matches!(metric, Metric::MinTtc | Metric::MinPet),
-    }
+    matches!(
+        (metric.with_more_samples(), bound),
+        (Trend::OnlyUp, Bound::AtMost(_)) | (Trend::OnlyDown, Bound::AtLeast(_))
+    )
 }
 
 /// Compares a metric with another measured on the same run, each with its
@@ -386,6 +376,13 @@ mod tests {
         let two_ghosts = Some(Sample { value: Some(2.0), n: 5 });
         let e = evaluate((Metric::SutGhosts, &ALL), Bound::AtMost(1.0), two_ghosts, 10);
         assert_eq!((e.status, e.value, e.n), (Status::Fail, Some(2.0), Some(5)));
+        // Any count of cells only grows with more cells, not only the faults.
+        let unobserved = Some(Sample {
+            value: Some(7.0),
+            n: 50,
+        });
+        let e = evaluate((Metric::Unobserved, &ALL), Bound::AtMost(5.0), unobserved, 100);
+        assert_eq!((e.status, e.value), (Status::Fail, Some(7.0)));
         let m = Metric::Accuracy;
         let e = evaluate((m, &ALL), Bound::AtLeast(0.95), sample(&metrics(1), m), 200);
         assert_eq!((e.status, e.value), (Status::NotExercised, None));
