@@ -9,6 +9,7 @@ mod requirement;
 mod scenario;
 mod semantic;
 mod system;
+mod trend;
 mod unit;
 mod v2x;
 mod vary;
@@ -19,7 +20,7 @@ pub use fusion::{
     Decision, DecisionRule, Fusion, FusionMethod, Rule, SourceCombination, Switch, SwitchMeasure, WeightScaling,
     Weighting,
 };
-pub use metric::{JointPart, Metric, Trend};
+pub use metric::{JointPart, Metric};
 pub use requirement::{
     Bound, Check, Comparison, Invariant, ObjectProperty, ObjectSelection, OverSeeds, RateBound, Reference, Requirement,
     Signal, Statistic, Temporal,
@@ -34,6 +35,7 @@ pub use semantic::{
     RsuSight, Semantic, ShareCycles, Traffic, TrafficRoute, VehicleTraffic,
 };
 pub use system::SystemUnderTest;
+pub use trend::Trend;
 pub use unit::{Unit, ValueDomain};
 pub use v2x::{
     Channel, MESSAGE_HEADER_BYTES, Messages, Oversize, PathLossModel, SENSOR_INFORMATION_BYTES, SMALLEST_PAYLOAD_BYTES,
