@@ -445,8 +445,10 @@ mod tests {
     /// sight (x from −2.25 to 2.25, y from 19.1 to 20.9), behind the corner of a
     /// building that covers x < 0, 5 ≤ y ≤ 15 (the fan's case in
     /// [`super::super::fan`]): half of it is seen, and on the 0.5 m grid the
-    /// detection marks occupied exactly the 20 cells of its footprint whose
-    /// centre lies east of x = 0 (5 columns × 4 rows), none of the 20 west of it.
+    /// detection marks occupied exactly the 16 cells of its footprint whose
+    /// centre lies east of x = 0 (4 columns × 4 rows: its ends lie on cell
+    /// centres, and the footprint holds the west one, x = −2.25, not the east
+    /// one, x = 2.25), none of the 20 west of it.
     #[test]
     fn only_the_seen_side_of_a_car_half_behind_a_corner_is_marked_occupied() {
         use sightline_dsl::{AgentKind, Motion, Occluder};
@@ -496,11 +498,11 @@ mod tests {
         assert_eq!(sighting.visibility, Visibility::Los);
         approx::assert_relative_eq!(sighting.visible_fraction, 0.5, epsilon = 1e-9);
         let footprint = box_cells(&grid, &target);
-        assert_eq!(footprint.len(), 40);
+        assert_eq!(footprint.len(), 36);
         let (east, west): (Vec<usize>, Vec<usize>) = footprint
             .into_iter()
             .partition(|&cell| cell_center(&grid, cell).x > 0.0);
-        assert_eq!((east.len(), west.len()), (20, 20));
+        assert_eq!((east.len(), west.len()), (16, 20));
         assert!(east.iter().all(|&cell| observation.get(cell) == Observed::Occupied));
         assert!(west.iter().all(|&cell| observation.get(cell) != Observed::Occupied));
     }

@@ -205,8 +205,8 @@ fn cell_range(
     })
 }
 
-/// The cells whose centre lies in the footprint (its rectangle or circle), and
-/// the cell under its centre.
+/// The cells whose centre lies in the footprint (its rectangle or circle,
+/// half-open: [`Body::contains`]), and the cell under its centre.
 pub fn box_cells(grid: &Grid, body: &Body) -> Vec<usize> {
     let corners = body.corners();
     let min = corners.iter().fold(Vector::splat(f64::INFINITY), |m, c| m.min(*c));
@@ -580,6 +580,26 @@ mod tests {
                 true
             });
             proptest::prop_assert_eq!(visited, stepped(&grid, from, direction, length));
+        }
+    }
+
+    /// A 4.5 × 1.8 m car whose ends lie on cell centres (0.5 m cells): half-open,
+    /// it holds 9 columns × 4 rows wherever it is, placed exactly or driven
+    /// there by fifty-five steps of 0.1 m (x = 5.499999999999996). Closed, it
+    /// held 10 columns placed exactly and 9 driven there: rounding decided.
+    #[test]
+    fn a_footprint_s_edges_on_cell_centres_hold_as_many_cells_however_it_got_there() {
+        let grid = Grid {
+            origin: [0.0, 0.0],
+            cell: 0.5,
+            cols: 40,
+            rows: 10,
+        };
+        let driven = (0..55).fold(0.0, |x, _| x + 0.1);
+        assert_ne!(driven, 5.5);
+        for x in [5.5, driven] {
+            let car = Body::rectangle(0, Pose::new(Vector::new(x, 2.0), 0.0), Vector::new(2.25, 0.9));
+            assert_eq!(box_cells(&grid, &car).len(), 36, "x = {x}");
         }
     }
 

@@ -163,12 +163,18 @@ impl Body {
         }
     }
 
-    /// Whether `point` (world frame) lies inside the outline or on it.
+    /// Whether `point` (world frame) lies in the outline, half-open in its own
+    /// frame: a rectangle holds −h ≤ x < h (and y alike), a circle the points
+    /// nearer its centre than its radius, each edge moved by [`ON_EDGE`] toward
+    /// −∞. A point on an edge is then in or out by the edge, not by the
+    /// rounding of a position accumulated step by step, and a footprint holds
+    /// as many cell centres wherever it lies on the grid's lattice.
     pub fn contains(&self, point: Point) -> bool {
         let local = self.pose.inverse() * point;
+        let within = |v: f64, h: f64| (-h - ON_EDGE..h - ON_EDGE).contains(&v);
         match self.outline {
-            Outline::Rectangle => local.x.abs() <= self.half_extents.x && local.y.abs() <= self.half_extents.y,
-            Outline::Circle => local.length() <= self.half_extents.x,
+            Outline::Rectangle => within(local.x, self.half_extents.x) && within(local.y, self.half_extents.y),
+            Outline::Circle => local.length() < self.half_extents.x - ON_EDGE,
         }
     }
 
@@ -293,6 +299,10 @@ impl Bodies {
             .is_some()
     }
 }
+
+/// How far a point may be off an outline's edge and count as on it (1 nm): a
+/// position accumulated step by step is off by about 1e-15 m.
+const ON_EDGE: f64 = 1e-9;
 
 /// How close to a ray's end a footprint may begin and only touch what the ray
 /// reaches (1 µm: rounding, not cover).
