@@ -159,13 +159,7 @@ impl AroundEgo {
             }
             let distance = (at - ego.position()).length();
             let around = &mut self.by_agent[agent];
-            if around.closest.is_none_or(|c| distance < c.distance) {
-                around.closest = Some(Closest {
-                    time: step.time,
-                    distance,
-                    position: [at.x, at.y],
-                });
-            }
+            around.closest = Closest::nearer(around.closest, step.time, distance, at);
         }
         let Some(cooperator) = step.cooperators.iter().find(|c| c.agent == self.ego) else {
             return;

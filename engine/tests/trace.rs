@@ -479,7 +479,7 @@ fn recorded_world_states_are_the_simulated_ones() {
     let (mut error_sum, mut errors) = (0.0, 0);
     for (k, record) in recorder.world.iter().enumerate() {
         kinematics.advance(k, &mut states);
-        assert_eq!((record.step, record.time), (k, k as f64 * world.step));
+        assert_eq!((record.step, record.time), (k, nanosecond(k as f64 * world.step)));
         assert_eq!(record.agents, states, "step {k}");
         for cooperator in &record.cooperators {
             let truth = states[cooperator.agent]
@@ -633,11 +633,16 @@ fn recorded_semantic_states_are_the_simulated_ones() {
         panic!("an RSU stands still")
     };
     for (k, record) in recorder.semantic.iter().enumerate() {
-        assert_eq!((record.step, record.time), (k, k as f64 * world.step));
+        assert_eq!((record.step, record.time), (k, nanosecond(k as f64 * world.step)));
         assert_eq!(record.agents.len(), recorder.agents.len());
         let state = record.agents[rsu].expect("the RSU is always there");
         assert_eq!([state.position().x, state.position().y], position);
     }
     let present = |k: usize| recorder.semantic[k].agents.iter().filter(|s| s.is_some()).count();
     assert!(present(world.steps - 1) > present(0), "traffic enters the scene");
+}
+
+/// Step k's time as the engine states it: k · step to the nanosecond.
+fn nanosecond(seconds: f64) -> f64 {
+    (seconds * 1e9).round() / 1e9
 }

@@ -34,6 +34,8 @@ fn criticality_is_judged_listed_and_replayed() {
         ("CRIT-PET-01", 1.2, 2),
         ("CRIT-DRAC-01", 5.0 / 2.32, 1),
         ("CRIT-MIN-01", 1.16, 1),
+        // At equality: TTC is to the nanosecond (it was 1.1599999999999995).
+        ("CRIT-TTC-EQ", 1.16, 1),
     ] {
         let (status, measured, count) = verdict(&results, id);
         assert_eq!((status.as_str(), count), ("pass", Some(n)), "{id}");

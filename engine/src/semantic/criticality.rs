@@ -38,7 +38,7 @@
 //!   can be up to two steps shorter.
 
 use crate::idealisation::Idealisation;
-use crate::math::{Point, Vector, elapsed};
+use crate::math::{Point, Vector, elapsed, to_ns};
 use crate::world::AgentState;
 
 /// What criticality takes as given.
@@ -148,7 +148,7 @@ fn direction(state: &AgentState) -> Vector {
 /// The TTC and DRAC of a road user against the ego at one step.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct Criticality {
-    /// Time to collision, seconds.
+    /// Time to collision, seconds, to the nanosecond.
     pub ttc: Option<f64>,
     /// Deceleration rate to avoid the crash, m/s².
     pub drac: Option<f64>,
@@ -158,7 +158,7 @@ impl Criticality {
     /// The road user `other` (its footprint and velocity) against the `ego` at
     /// one step.
     pub fn of((ego, ego_velocity): (&OrientedBox, Vector), (other, other_velocity): (&OrientedBox, Vector)) -> Self {
-        let ttc = time_to_contact(ego, other, other_velocity - ego_velocity);
+        let ttc = time_to_contact(ego, other, other_velocity - ego_velocity).map(to_ns);
         let closing = (ego_velocity - other_velocity).dot(ego.heading);
         // Braking avoids the contact only if the road user would miss the ego
         // standing where it is (never so for an ego that stands already).
@@ -236,7 +236,7 @@ mod tests {
             (&car(0.0, 0.0, 0.0), at(10.0, 0.0)),
             (&car(30.0, 0.0, 180.0), at(5.0, 180.0)),
         );
-        assert_relative_eq!(c.ttc.unwrap(), 26.0 / 15.0, epsilon = 1e-12);
+        assert_relative_eq!(c.ttc.unwrap(), 26.0 / 15.0, epsilon = 5e-10); // to the nanosecond
         assert_eq!(c.drac, None);
         // An ego that stands, a car coming at 10 m/s from 60 m (the fronts 56 m
         // apart): TTC 5.6 s, and nothing the ego could shed.
@@ -244,7 +244,7 @@ mod tests {
             (&car(0.0, 0.0, 0.0), Vector::ZERO),
             (&car(60.0, 0.0, 180.0), at(10.0, 180.0)),
         );
-        assert_relative_eq!(c.ttc.unwrap(), 5.6, epsilon = 1e-12);
+        assert_eq!(c.ttc, Some(5.6));
         assert_eq!(c.drac, None);
     }
 
@@ -256,7 +256,7 @@ mod tests {
             (&car(0.0, 0.0, 0.0), at(12.0, 0.0)),
             (&car(20.0, 0.0, 0.0), at(8.0, 0.0)),
         );
-        assert_relative_eq!(c.ttc.unwrap(), 4.0, epsilon = 1e-12);
+        assert_eq!(c.ttc, Some(4.0));
         assert_relative_eq!(c.drac.unwrap(), 0.5, epsilon = 1e-12);
         // Behind a car that stands, gap 16 m at 8 m/s: 8² / (2 · 16) = 2 m/s².
         let c = Criticality::of(
@@ -291,7 +291,7 @@ mod tests {
         let ego = (&car(0.0, 0.0, 0.0), at(10.0, 0.0));
         assert_eq!(Criticality::of(ego, (&car(20.0, -15.0, 90.0), at(5.0, 90.0))).ttc, None);
         let c = Criticality::of(ego, (&car(20.0, -10.0, 90.0), at(5.0, 90.0)));
-        assert_relative_eq!(c.ttc.unwrap(), 1.7, epsilon = 1e-12);
+        assert_eq!(c.ttc, Some(1.7));
         // The other crosses the ego's way: the ego closes at its own speed,
         // 10 / (2 · 1.7) m/s², stopping in the 17 m to where it would touch.
         assert_relative_eq!(c.drac.unwrap(), 10.0 / 3.4, epsilon = 1e-12);
@@ -307,7 +307,7 @@ mod tests {
     fn rotated_box_touches_corner_first() {
         let ego = (&car(0.0, 0.0, 0.0), Vector::ZERO);
         let c = Criticality::of(ego, (&car(10.0, 0.0, 45.0), at(2.0, 180.0)));
-        assert_relative_eq!(c.ttc.unwrap(), (8.0 - 3.0 / 2f64.sqrt()) / 2.0, epsilon = 1e-12);
+        assert_relative_eq!(c.ttc.unwrap(), (8.0 - 3.0 / 2f64.sqrt()) / 2.0, epsilon = 5e-10); // to the nanosecond
         // The ego stands: braking sheds nothing.
         assert_eq!(c.drac, None);
         // Crossing the way of an ego that stands (its front from y = −8 to the
@@ -320,7 +320,7 @@ mod tests {
         // (12.5 − 2 t)/√2 apart and touch at 2 + 3/√2 (its half length, the
         // ego's reach there): t = (9.5 − 2√2) / 2.
         let c = Criticality::of(ego, (&car(10.0, 2.5, 45.0), at(2.0, 180.0)));
-        assert_relative_eq!(c.ttc.unwrap(), (9.5 - 2.0 * 2f64.sqrt()) / 2.0, epsilon = 1e-12);
+        assert_relative_eq!(c.ttc.unwrap(), (9.5 - 2.0 * 2f64.sqrt()) / 2.0, epsilon = 5e-10); // to the nanosecond
         // 3.2 m up it passes above: 3.2 > 1 + 3/√2 = 3.12.
         assert_eq!(Criticality::of(ego, (&car(10.0, 3.2, 45.0), at(2.0, 180.0))).ttc, None);
     }

@@ -20,7 +20,8 @@
 //! - **first warning**: the arrival of the first RSU message the ego received
 //!   that flags a conflict with it.
 //! - **closest approach**: the step, among those with both in the scene, at which
-//!   the centres are closest (the first such step on a tie), that distance, and
+//!   the centres are closest (the first such step on a tie: distances within
+//!   1 µm are one), that distance, and
 //!   where the road user was then (so that it can be placed in an area).
 //! - **areas**: the crosswalks, interaction areas and declared `areas` its centre
 //!   was inside at some step with the ego in the scene, in declaration order.
@@ -41,7 +42,7 @@ use sightline_dsl::{Agent, AgentKind, Semantic, World};
 use super::criticality::{Criticality, OrientedBox, post_encroachment, velocity};
 use super::ego::Knowledge;
 use super::relevance::{Region, contains, regions};
-use crate::math::elapsed;
+use crate::math::{Point, elapsed};
 use crate::world::AgentState;
 
 /// How the ego came to know a road user: by V2X, by its own sight, in which
@@ -100,6 +101,26 @@ pub struct Closest {
     pub distance: f64,
     /// The road user's centre then, world frame [x, y], metres.
     pub position: [f64; 2],
+}
+
+impl Closest {
+    /// How much nearer than the closest approach so far a later step must be
+    /// to replace it (1 µm): distances within it are a tie, and the first step
+    /// keeps it, not whichever the rounding of the positions favours.
+    const TIE: f64 = 1e-6;
+
+    /// `closest` so far, or the step at `time` with the road user at `at`,
+    /// `distance` from the ego, where that is nearer by more than [`Self::TIE`].
+    pub fn nearer(closest: Option<Self>, time: f64, distance: f64, at: Point) -> Option<Self> {
+        match closest {
+            Some(c) if distance >= c.distance - Self::TIE => Some(c),
+            _ => Some(Self {
+                time,
+                distance,
+                position: [at.x, at.y],
+            }),
+        }
+    }
 }
 
 /// One relevant road user over one run.
@@ -232,14 +253,7 @@ impl Encounters {
             }
             let encounter = &mut self.by_agent[agent];
             let distance = (state.position() - ego.position()).length();
-            if encounter.closest.is_none_or(|c| distance < c.distance) {
-                let at = state.position();
-                encounter.closest = Some(Closest {
-                    time,
-                    distance,
-                    position: [at.x, at.y],
-                });
-            }
+            encounter.closest = Closest::nearer(encounter.closest, time, distance, state.position());
             // Farther, criticality says nothing the nearer steps do not;
             // leaving those steps out keeps the record cheap in dense traffic.
             if distance >= self.proximity {
@@ -360,6 +374,27 @@ fn pick(a: Option<f64>, b: Option<f64>, choose: fn(f64, f64) -> f64) -> Option<f
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A road user keeping its distance (25.243811122728676 m, then a hair
+    /// less by rounding at 7 s) has its closest approach at its first step; one
+    /// that comes 1 mm nearer replaces it.
+    #[test]
+    fn the_first_step_keeps_a_tied_closest_approach() {
+        let at = Point::new(25.0, 3.5);
+        let steps = [
+            (0.0, 25.243811122728676),
+            (3.0, 25.243811122728680),
+            (7.0, 25.243811122728662),
+        ];
+        let closest = steps
+            .iter()
+            .fold(None, |c, &(t, d)| Closest::nearer(c, t, d, at))
+            .unwrap();
+        assert_eq!((closest.time, closest.distance), (0.0, 25.243811122728676));
+        let nearer = Closest::nearer(Some(closest), 9.0, 25.242, at).unwrap();
+        assert_eq!((nearer.time, nearer.distance), (9.0, 25.242));
+    }
+
     #[test]
     fn each_road_user_falls_in_exactly_one_category() {
         use Category::*;

@@ -71,6 +71,7 @@ use super::risk::RouteMap;
 use super::rsu::{self, Rsu};
 use super::traffic;
 use crate::idealisation::Idealisation;
+use crate::math::step_time;
 use crate::rng::{Derived, derived_seed};
 use crate::sink::{NoTrace, TraceSink};
 use crate::v2x;
@@ -286,7 +287,7 @@ impl StepLayer for Layer<'_> {
     fn step(&mut self, k: usize, states: &[Option<AgentState>], bodies: &Bodies, kinematics: &mut Kinematics<'_>) {
         let semantic = self.semantic;
         let dt = self.pipeline.dt;
-        let time = k as f64 * dt;
+        let time = step_time(k, dt);
         // RSUs run their cycle, and connected road users send, at the V2X rate.
         let cycle = k.is_multiple_of(semantic.period_steps);
         let ego_state = states[semantic.ego];
@@ -363,7 +364,7 @@ impl StepLayer for Layer<'_> {
     }
 
     fn record(&mut self, k: usize, states: &[Option<AgentState>], sink: &mut impl TraceSink) {
-        let time = k as f64 * self.pipeline.dt;
+        let time = step_time(k, self.pipeline.dt);
         self.measures.record(k, time, states, sink);
     }
 }

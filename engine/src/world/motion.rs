@@ -18,7 +18,7 @@ use super::following::CarFollowing;
 use super::state::{AgentState, Restraint};
 use super::traced::replay;
 use crate::idealisation::Idealisation;
-use crate::math::{Pose, Vector};
+use crate::math::{Pose, Vector, step_time};
 
 /// Road users keep to their ways.
 pub(crate) const ON_THEIR_WAY: Idealisation = Idealisation {
@@ -71,7 +71,7 @@ impl<'a> Kinematics<'a> {
     /// The states at step `k` (time k · step), advancing from step k − 1. Call for
     /// k = 0, 1, 2, … in order. `None`: the agent is not in the scene.
     pub fn advance(&mut self, k: usize, states: &mut Vec<Option<AgentState>>) {
-        let time = k as f64 * self.step;
+        let time = step_time(k, self.step);
         states.clear();
         self.entered.clear();
         for i in 0..self.agents.len() {

@@ -38,7 +38,7 @@ use super::sight::{self, Bodies, Occluders};
 use super::state::AgentState;
 use super::truth::{EXCLUDED, Truth};
 use crate::idealisation::Idealisation;
-use crate::math::{Point, Pose, Vector};
+use crate::math::{Point, Pose, Vector, step_time};
 use crate::rng::{Purpose, stream};
 use crate::run::Job;
 use crate::sink::TraceSink;
@@ -243,7 +243,7 @@ pub fn run(
         if sink.gave_up() {
             break;
         }
-        let time = k as f64 * world.step;
+        let time = step_time(k, world.step);
         scene.advance(k, agents);
         layer.step(k, &scene.states, &scene.bodies, &mut scene.kinematics);
         let ego_in_scene = scene.states[perception.ego].is_some();
