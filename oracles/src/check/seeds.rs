@@ -152,8 +152,18 @@ pub(crate) fn evaluate(
             (statistics, share, limit - share, description, measured)
         }
     };
+    // Seeds that all give the same value are one sample repeated: nothing the
+    // seed draws changes the metric here, however many seeds ran.
+    let repeated = if n > 1 && values.iter().all(|v| v.to_bits() == values[0].to_bits()) {
+        format!(
+            "; the {n} seeds gave identical values: nothing drawn at random changes {name} at this point, \
+             so they are one sample repeated, not {n} independent ones"
+        )
+    } else {
+        String::new()
+    };
     let message = format!(
-        "{description} {} {} (margin {})",
+        "{description} {} {} (margin {}){repeated}",
         if margin >= 0.0 { "clears" } else { "misses" },
         short(threshold),
         short(margin)
@@ -326,6 +336,44 @@ mod tests {
             1,
         );
         assert_eq!(e.status, Status::Pass);
+    }
+
+    /// Seven seeds of a world that draws nothing: seven equal values. The
+    /// verdict stands (the value is exact), and its message says they are one
+    /// sample repeated; ten different values say nothing of the kind.
+    #[test]
+    fn identical_seeds_are_called_one_sample_repeated() {
+        let same = vec![
+            Some(Sample {
+                value: Some(0.93),
+                n: 40
+            });
+            7
+        ];
+        let e = evaluate(
+            Metric::OccupiedRecall,
+            Bound::AtLeast(0.9),
+            over(Statistic::Mean),
+            &same,
+            1,
+        );
+        assert_eq!((e.status, e.n), (Status::Pass, Some(7)));
+        assert!(
+            e.message.ends_with(
+                "; the 7 seeds gave identical values: nothing drawn at random changes occupied_recall at this \
+                 point, so they are one sample repeated, not 7 independent ones"
+            ),
+            "{}",
+            e.message
+        );
+        let e = evaluate(
+            Metric::OccupiedRecall,
+            Bound::AtLeast(3.7),
+            over(Statistic::Mean),
+            &one_to_ten(),
+            1,
+        );
+        assert!(!e.message.contains("identical"), "{}", e.message);
     }
 
     #[test]
