@@ -40,6 +40,24 @@ fn shares_over_all_count_every_cycle() {
     assert!((value.unwrap() - 0.45).abs() < 1e-12, "{value:?}");
 }
 
+/// `shares_over: all` with the ego entering the scene at 4 s: the 40 cycles
+/// before it (240 object-cycles of the six pedestrians) count too, against
+/// the share, as the RSU tells an absent ego nothing: n = 140 × 6 = 840, of
+/// which the RSU sent 189 once the ego was there (n was 600 without them, a
+/// share of 0.315 instead of 0.225).
+#[test]
+fn shares_over_all_count_the_cycles_without_the_ego() {
+    let results = results("share-all-ego-late.yaml", 1);
+    let counts = &results["sweep"][0]["counts"];
+    assert_eq!(
+        (counts["perceived"].as_u64(), counts["transmitted"].as_u64()),
+        (Some(840), Some(189))
+    );
+    let (status, value, n) = verdict(&results, "SHARE");
+    assert_eq!((status.as_str(), n), ("fail", Some(840)));
+    assert!((value.unwrap() - 189.0 / 840.0).abs() < 1e-12, "{value:?}");
+}
+
 /// A car (`hop`, from a SUMO trace) drives 1 m beside the ego's path within
 /// d_min of it, leaves the scene at 2.1 s and comes back at 4.0 s, again within
 /// d_min: two close approaches, neither flagged (the RSU sees nothing of it).
