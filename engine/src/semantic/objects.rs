@@ -110,7 +110,7 @@ impl Closest {
     const TIE: f64 = 1e-6;
 
     /// `closest` so far, or the step at `time` with the road user at `at`,
-    /// `distance` from the ego, where that is nearer by more than [`Self::TIE`].
+    /// `distance` from the ego, where that is nearer by more than `Self::TIE`.
     pub fn nearer(closest: Option<Self>, time: f64, distance: f64, at: Point) -> Option<Self> {
         match closest {
             Some(c) if distance >= c.distance - Self::TIE => Some(c),

@@ -165,7 +165,7 @@ impl Body {
 
     /// Whether `point` (world frame) lies in the outline, half-open in its own
     /// frame: a rectangle holds −h ≤ x < h (and y alike), a circle the points
-    /// nearer its centre than its radius, each edge moved by [`ON_EDGE`] toward
+    /// nearer its centre than its radius, each edge moved by `ON_EDGE` (1 nm) toward
     /// −∞. A point on an edge is then in or out by the edge, not by the
     /// rounding of a position accumulated step by step, and a footprint holds
     /// as many cell centres wherever it lies on the grid's lattice.
