@@ -354,17 +354,26 @@ fn verdicts_and_the_text_they_repeat_are_bounded() {
         "  - {{ id: LONG, text: {}, check: {{ invariant: mass_function }} }}\n",
         "t".repeat(1_000_000)
     );
-    for (added, message) in [
+    let text_limit = " bytes of text in the evidence (each point's label; per verdict its requirement's text, its \
+                      point's label and the scenario's name; per reference row its source and label) exceed the \
+                      limit of 5e7";
+    let requirements = |added: &str| with(FIELD, "requirements:\n", &format!("requirements:\n{added}"));
+    // A name of 400 kB in each of the field's 600 verdicts (the fuzz trial's
+    // 6 MB name over 400 points wrote a 386 MB junit.xml, then ran out of memory).
+    let name = format!("name: {}\n", "n".repeat(400_000));
+    let named = with(
+        FIELD,
+        "name: \"Evidential field: distance-weighted Dempster rule (seed 001)\"\n",
+        &name,
+    );
+    for (text, message) in [
         (
-            many,
+            requirements(&many),
             " verdicts (requirements × the sweep points each applies to) exceed the limit of 100000",
         ),
-        (
-            long,
-            " bytes of requirement text in the evidence (each text × the points it applies to) exceed the limit of 5e7",
-        ),
+        (requirements(&long), text_limit),
+        (named, text_limit),
     ] {
-        let text = with(FIELD, "requirements:\n", &format!("requirements:\n{added}"));
         let errors = errors(&text);
         assert!(
             errors
@@ -374,4 +383,50 @@ fn verdicts_and_the_text_they_repeat_are_bounded() {
             "{errors}"
         );
     }
+}
+
+/// Reference figures and a field's distance bands are written at every point
+/// they apply to: 1 000 of either over the field's 120 points is refused
+/// where they are written (the fuzz trial's 3 900 bands over 500 points wrote
+/// 459 MB of results.json from a 37 kB file).
+#[test]
+fn rows_of_results_are_bounded() {
+    let rows = " rows of results beside the verdicts (reference figures × the points each applies to, and a \
+                field's distance bands × the points) exceed the limit of 100000";
+    let references: String = (0..1000)
+        .map(|i| format!("  - {{ source: paper, metric: accuracy, value: {i} }}\n"))
+        .collect();
+    let bands: Vec<String> = (1..=1000).map(|i| format!("{}", i as f64 / 10.0)).collect();
+    let bands = format!("field:\n  distance_bands: [{}]\n", bands.join(", "));
+    for (text, path) in [
+        (
+            with(FIELD, "references:\n", &format!("references:\n{references}")),
+            "references",
+        ),
+        (with(FIELD, "field:\n", &bands), "field.distance_bands"),
+    ] {
+        let errors = errors(&text);
+        assert!(
+            errors.0.iter().any(|e| e.path == path && e.to_string().contains(rows)),
+            "{errors}"
+        );
+    }
+}
+
+/// The ego's and the RSUs' sensors each look at every agent at every step: a
+/// list of 2 000 sensors on the ego (the fuzz trial's 100 000 never ended) is
+/// refused at the agents.
+#[test]
+fn a_semantic_world_s_sensor_looks_are_bounded() {
+    let sensors = vec!["ego_front"; 2000].join(", ");
+    let text = with(URBAN, "sensors: [ego_front]", &format!("sensors: [{sensors}]"));
+    let errors = errors(&text);
+    assert!(
+        errors.0.iter().any(|e| e.path == "agents"
+            && e.to_string().contains(
+                " looks at objects at a point (the ego's and the RSUs' sensors × agents × steps × runs) exceed the \
+                 limit of 1e8"
+            )),
+        "{errors}"
+    );
 }

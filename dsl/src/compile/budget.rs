@@ -8,7 +8,9 @@
 
 use super::context::Context;
 use crate::error::ErrorKind;
-use crate::model::{Check, Experiment, Field, Grid, Layout, Point, Requirement, Setup, Traffic, World, grid_every};
+use crate::model::{
+    Check, Experiment, Field, Grid, Layout, Point, Reference, Requirement, Semantic, Setup, Traffic, World, grid_every,
+};
 use crate::path::Path;
 
 /// The most agents in one run: declared, imported and the traffic expected to
@@ -57,6 +59,11 @@ pub const MAX_OCCLUDER_TESTS: f64 = 1.0e10;
 /// The most mass vectors the field experiment draws at a point (sensors × the
 /// cells within a sensor's range).
 pub const MAX_FIELD_DRAWS: f64 = 1.0e9;
+
+/// The most looks a semantic world's sensors take at a point: each sensor of
+/// the ego and of the RSUs at each agent at each step of each run (a range and
+/// field-of-view test, and at most one ray).
+pub const MAX_SENSOR_LOOKS: f64 = 1.0e8;
 
 /// The most samples of one predicted trajectory (`semantic.horizon` / `time.step`).
 pub const MAX_PREDICTION_SAMPLES: f64 = 10_000.0;
@@ -138,40 +145,86 @@ pub(super) fn recording_budget(
 /// the report.
 pub const MAX_VERDICTS: f64 = 100_000.0;
 
-/// The most bytes of requirement text the evidence repeats: each
-/// requirement's text × the points it applies to (junit.xml has a case per
-/// requirement and point, each with the text).
+/// The most rows of results a run writes beside its verdicts: each reference
+/// figure at each point it applies to, and each distance band of a field at
+/// each point, written to results.json and the report like a verdict.
+pub const MAX_RESULT_ROWS: f64 = 100_000.0;
+
+/// The most bytes of text the evidence repeats: each point's label, each
+/// verdict's requirement text, point label and scenario name (junit.xml has a
+/// case per requirement and point, each with all three), and each reference
+/// row's source and label.
 pub const MAX_TEXT_REPEATED: f64 = 5.0e7;
 
-/// Checks the verdicts `requirements` give and the text their evidence
-/// repeats; returns whether both are within their limits.
-pub(super) fn verdicts_budget(ctx: &mut Context<'_>, requirements: &[Requirement]) -> bool {
-    let at = Path::root().key("requirements");
-    let verdicts: f64 = requirements.iter().map(|r| r.points.len() as f64).sum();
-    let text: f64 = requirements
-        .iter()
-        .map(|r| r.text.len() as f64 * r.points.len() as f64)
+/// What the evidence repeats per verdict and per row of results.
+pub(super) struct Evidence<'a> {
+    /// The scenario's name.
+    pub name: &'a str,
+    /// The sweep points, when they compiled.
+    pub points: Option<&'a [Point]>,
+    /// The requirements, compiled.
+    pub requirements: &'a [Requirement],
+    /// The reference figures, compiled.
+    pub references: &'a [Reference],
+}
+
+/// Checks the verdicts and rows of results a run writes and the text they
+/// repeat; returns whether all are within their limits.
+pub(super) fn evidence_budget(ctx: &mut Context<'_>, evidence: &Evidence<'_>) -> bool {
+    let labels: Vec<f64> = (evidence.points.unwrap_or_default().iter())
+        .map(|point| point.label().len() as f64)
+        .collect();
+    let label = |p: usize| labels.get(p).copied().unwrap_or(0.0);
+    let name = evidence.name.len() as f64;
+    let verdicts: f64 = evidence.requirements.iter().map(|r| r.points.len() as f64).sum();
+    let references: f64 = evidence.references.iter().map(|r| r.points.len() as f64).sum();
+    let bands: f64 = (evidence.points.unwrap_or_default().iter())
+        .map(|point| match &point.setup.experiment {
+            Experiment::Field(field) => field.distance_bands.len() as f64,
+            Experiment::World(_) => 0.0,
+        })
         .sum();
+    let per_verdict =
+        (evidence.requirements.iter()).flat_map(|r| r.points.iter().map(|&p| r.text.len() as f64 + label(p) + name));
+    let per_reference =
+        (evidence.references.iter()).flat_map(|r| r.points.iter().map(|&p| r.source.len() as f64 + label(p)));
+    let text: f64 = labels.iter().copied().chain(per_verdict).chain(per_reference).sum();
+    let root = Path::root();
     limit(
         ctx,
-        &at,
+        &root.key("requirements"),
         verdicts,
         MAX_VERDICTS,
         "verdicts (requirements × the sweep points each applies to)",
         "check fewer requirements, or each at fewer points (`where`)",
     ) && limit(
         ctx,
-        &at,
+        &if references > bands {
+            root.key("references")
+        } else {
+            root.key("field").key("distance_bands")
+        },
+        references + bands,
+        MAX_RESULT_ROWS,
+        "rows of results beside the verdicts (reference figures × the points each applies to, and a field's \
+         distance bands × the points)",
+        "compare fewer reference figures, or each at fewer points (`where`), use fewer distance bands, or sweep \
+         fewer points",
+    ) && limit(
+        ctx,
+        &root.key("requirements"),
         text,
         MAX_TEXT_REPEATED,
-        "bytes of requirement text in the evidence (each text × the points it applies to)",
-        "shorten the requirements' text, or check each at fewer points",
+        "bytes of text in the evidence (each point's label; per verdict its requirement's text, its point's label \
+         and the scenario's name; per reference row its source and label)",
+        "shorten the requirements' text, the scenario's name, the sweep labels or the references' sources, or \
+         check each at fewer points",
     )
 }
 
 /// The most work one process may do, in points at the per-point work limits
-/// (agent-steps, grid cells crossed by rays, rays cast at objects, mass
-/// vectors drawn): the sum, over the sweep points and the seeds their checks
+/// (agent-steps, grid cells crossed by rays, rays cast at objects, looks at
+/// objects, mass vectors drawn): the sum, over the sweep points and the seeds their checks
 /// run them at, of each point's [`load`].
 pub const MAX_RUN_LOAD: f64 = 100.0;
 
@@ -185,9 +238,11 @@ pub fn load(setup: &Setup) -> f64 {
         (Experiment::World(world), grid) => {
             let (agents, steps) = (agent_count(world), world.steps as f64);
             let moving = agents * steps * runs(world) / MAX_AGENT_STEPS;
+            let looks = (world.semantic.as_ref()).map_or(0.0, |s| sensor_looks(world, s, agents) / MAX_SENSOR_LOOKS);
             let rays = grid.and_then(|grid| ray_work(world, grid));
-            rays.map_or(moving, |rays| {
+            rays.map_or(moving.max(looks), |rays| {
                 moving
+                    .max(looks)
                     .max(rays.cells * steps / MAX_RAY_CELLS)
                     .max(rays.fans * agents * steps / MAX_SIGHTING_RAYS)
             })
@@ -342,6 +397,13 @@ fn world_budget(ctx: &mut Context<'_>, world: &World, grid: Option<&Grid>) -> bo
             MAX_PREDICTION_SAMPLES,
             "samples in a predicted trajectory (horizon / step)",
             "use a shorter horizon or a longer step",
+        ) & limit(
+            ctx,
+            &root.key("agents"),
+            sensor_looks(world, semantic, agents),
+            MAX_SENSOR_LOOKS,
+            "looks at objects at a point (the ego's and the RSUs' sensors × agents × steps × runs)",
+            "give the ego and the RSUs fewer sensors, lower the traffic, shorten the run or take fewer runs",
         );
     }
     if let (Some(perception), Some(grid)) = (&world.perception, grid) {
@@ -477,6 +539,14 @@ fn ray_work<'w>(world: &'w World, grid: &Grid) -> Option<RayWork<'w>> {
         }
     }
     Some(work)
+}
+
+/// The looks a semantic world's sensors take at a point: the ego's and the
+/// RSUs' sensors × `agents` × steps × runs.
+fn sensor_looks(world: &World, semantic: &Semantic, agents: f64) -> f64 {
+    let sensors = |&agent: &usize| world.agents.get(agent).map_or(0, |a| a.sensors.len());
+    let looking: usize = std::iter::once(&semantic.ego).chain(&semantic.rsus).map(sensors).sum();
+    looking as f64 * agents * world.steps as f64 * runs(world)
 }
 
 /// The fewest and the most rays a fan casts at an object (the engine's

@@ -5,7 +5,7 @@ use std::collections::{BTreeMap, HashMap, HashSet};
 use std::sync::Arc;
 use std::{fmt, io};
 
-use super::budget::{run_budget, verdicts_budget};
+use super::budget::{Evidence, evidence_budget, run_budget};
 use super::context::{Context, has, locate_key};
 use super::ignored::ignored;
 use super::kind::{self, Kind};
@@ -157,12 +157,18 @@ fn compile_inner(file: &str, source: &str, options: &Options<'_>) -> Result<Scen
     sweep::refuse_replaced(&mut ctx, &tree, &sweeps);
     let points = compiled.as_ref().map(Configurations::points);
     let requirements = requirements(&mut ctx, &raw.requirements, points);
-    verdicts_budget(&mut ctx, &requirements);
+    let references = references(&mut ctx, &raw.references, points);
+    let evidence = Evidence {
+        name: &raw.name,
+        points,
+        requirements: &requirements,
+        references: &references,
+    };
+    evidence_budget(&mut ctx, &evidence);
     if let (Some(points), Some(processes)) = (points, options.processes) {
         let sweep = Path::root().key(if raw.sweeps.is_empty() { "sweep" } else { "sweeps" });
         run_budget(&mut ctx, points, &requirements, (processes, &sweep));
     }
-    let references = references(&mut ctx, &raw.references, points);
     let start = start(&mut ctx, raw.time.as_ref());
     let record = record(&mut ctx, raw.record.as_ref(), options.record, points, start);
     let system_under_test = system_under_test(&mut ctx, &raw, points, &requirements);
