@@ -21,7 +21,7 @@ use sightline_reports::{
 
 use crate::exit::Exit;
 use crate::input::Input;
-use crate::output::{default_dir, shell_word, stem};
+use crate::output::{default_dir, shell_word, stderr, stem};
 use crate::staging::Staging;
 use crate::summary::print_verdicts;
 
@@ -116,7 +116,7 @@ pub fn write_evidence(
         Ok(evidence) => evidence,
         // A custom template that fails on the data is the input's fault.
         Err(sightline_reports::Error::Template(error)) if templates.is_custom() => {
-            eprintln!("{error}");
+            stderr!("{error}");
             return Ok(Exit::Invalid);
         }
         Err(error) => return Err(error.into()),
@@ -438,7 +438,7 @@ pub fn evidence_dirs<'a>(
     if out.is_none()
         && let Some(input) = inputs.iter().find(|i| i.is_stdin())
     {
-        eprintln!(
+        stderr!(
             "{}: error: a scenario read from standard input has no file name to name its evidence directory after; give --out DIR",
             input.name
         );
@@ -450,7 +450,7 @@ pub fn evidence_dirs<'a>(
             None => default_dir(&input.path),
         };
         if dir.is_none() {
-            eprintln!(
+            stderr!(
                 "{}: error: its name without the extension is `.` or `..`, which cannot name its evidence \
                  directory; rename the file{}",
                 input.name,
@@ -466,7 +466,7 @@ pub fn evidence_dirs<'a>(
     let mut seen = HashSet::new();
     for (dir, input) in dirs.iter().zip(&inputs) {
         if !seen.insert(dir) {
-            eprintln!(
+            stderr!(
                 "{}: error: its evidence would overwrite another scenario's in {}; run the files separately with --out",
                 input.name,
                 dir.display()
@@ -475,7 +475,7 @@ pub fn evidence_dirs<'a>(
         }
         let replaced = replaced_input(dir, input, replaces).or_else(|| replaced_template(dir, template?, replaces));
         if let Some(read) = replaced {
-            eprintln!(
+            stderr!(
                 "{}: error: the evidence written into {} would replace this file, which the command reads; give \
                  another --out",
                 read.display(),

@@ -6,6 +6,7 @@ use std::path::{Path, PathBuf};
 use sightline_dsl::{Options, Scenario};
 
 use crate::files::{DATA_LIMIT, TEXT_LIMIT, read_regular, read_stdin};
+use crate::output::stderr;
 
 /// The path that names standard input on the command line.
 pub const STDIN: &str = "-";
@@ -57,7 +58,7 @@ pub fn load_all(
     let mut valid = true;
     let is_stdin = |path: &&PathBuf| *path == Path::new(STDIN);
     if paths.iter().filter(is_stdin).count() > 1 {
-        eprintln!("{STDIN_NAME}: error: `-` is given more than once; standard input can be read only once");
+        stderr!("{STDIN_NAME}: error: `-` is given more than once; standard input can be read only once");
         valid = false;
     }
     let mut stdin_read = false;
@@ -68,7 +69,7 @@ pub fn load_all(
         match load(path, &options) {
             Ok(input) => inputs.push(input),
             Err(message) => {
-                eprintln!("{message}");
+                stderr!("{message}");
                 valid = false;
             }
         }
@@ -94,7 +95,7 @@ fn load(path: &Path, options: &Options<'_>) -> Result<Input, String> {
         shard_budget(&name, &scenario, shards)?;
     }
     for warning in &scenario.warnings {
-        eprintln!("{warning}");
+        stderr!("{warning}");
     }
     Ok(Input {
         path: path.to_path_buf(),

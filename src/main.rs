@@ -5,6 +5,8 @@ use std::process::ExitCode;
 
 use clap::Parser;
 
+use crate::output::{printable, stderr};
+
 mod cli;
 mod cmd;
 mod evidence;
@@ -21,7 +23,7 @@ mod template;
 fn main() -> ExitCode {
     let cli = cli::Cli::parse();
     if let Err(error) = signals::install() {
-        eprintln!("error: failed to handle interrupting signals: {error}");
+        stderr!("error: failed to handle interrupting signals: {error}");
         return exit::Exit::Internal.into();
     }
     // A panic is a defect in sightline: the hook has printed it; exit 3, not 101.
@@ -58,5 +60,5 @@ fn main() -> ExitCode {
 /// Writes a last line to stderr, if stderr is still there.
 fn report(line: std::fmt::Arguments<'_>) {
     use std::io::Write;
-    let _ = writeln!(std::io::stderr(), "{line}");
+    let _ = writeln!(std::io::stderr(), "{}", printable(&line.to_string()));
 }

@@ -8,7 +8,7 @@ use sightline_dsl::Scenario;
 use sightline_oracles::{Measurements, Status, Verdict, headline};
 
 use crate::exit::Exit;
-use crate::output::say;
+use crate::output::{say, stderr};
 
 /// Prints `PASS|FAIL|NOT EXERCISED|ERROR path: N of M requirements hold over K
 /// sweep points (fail: A; not exercised: B)` followed by `tail`, then one line
@@ -94,7 +94,7 @@ pub fn refuse_out_of_domain(
 ) -> Option<Exit> {
     let outside = sightline_oracles::out_of_domain(scenario, measurements);
     for problem in &outside {
-        eprintln!("{file}: error: {problem}: {why}");
+        stderr!("{file}: error: {problem}: {why}");
     }
     (!outside.is_empty()).then_some(Exit::Internal)
 }

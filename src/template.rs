@@ -8,6 +8,7 @@ use std::sync::Arc;
 use sightline_reports::{Page, Templates};
 
 use crate::files::{TEXT_LIMIT, read_beneath};
+use crate::output::stderr;
 
 /// The templates of `page`: the bundled ones, or the set in `dir`. `None`
 /// (after printing why) when the set cannot be used.
@@ -21,7 +22,7 @@ pub fn templates(dir: Option<&Path>, page: Page) -> Option<Templates> {
         } else {
             "no such directory"
         };
-        eprintln!("{}: error: failed to read the template set: {problem}", dir.display());
+        stderr!("{}: error: failed to read the template set: {problem}", dir.display());
         return None;
     }
     let root = dir.to_path_buf();
@@ -35,6 +36,6 @@ pub fn templates(dir: Option<&Path>, page: Page) -> Option<Templates> {
         Err(error) => Err(error),
     };
     Templates::custom(page, &dir.display().to_string(), Arc::new(load))
-        .inspect_err(|error| eprintln!("{error}"))
+        .inspect_err(|error| stderr!("{error}"))
         .ok()
 }

@@ -10,7 +10,7 @@ use crate::cli::ExportArgs;
 use crate::evidence::{evidence_dirs, tool};
 use crate::exit::Exit;
 use crate::input::load_all;
-use crate::output::say;
+use crate::output::{say, stderr};
 use crate::staging::Staging;
 
 /// The scenario's file name in the output directory.
@@ -38,7 +38,7 @@ pub fn export(args: &ExportArgs) -> anyhow::Result<Exit> {
             Some(point) => point,
             None => {
                 let labels: Vec<String> = scenario.points.iter().map(|p| format!("`{}`", p.label())).collect();
-                eprintln!(
+                stderr!(
                     "{path}: error: --point: no sweep point is labelled `{label}` (the points: {})",
                     labels.join(", ")
                 );
@@ -57,7 +57,7 @@ pub fn export(args: &ExportArgs) -> anyhow::Result<Exit> {
     let exported = match sightline_reports::export(&request) {
         Ok(exported) => exported,
         Err(error) => {
-            eprintln!("{path}: error: {error}");
+            stderr!("{path}: error: {error}");
             return Ok(Exit::Invalid);
         }
     };
@@ -71,7 +71,7 @@ pub fn export(args: &ExportArgs) -> anyhow::Result<Exit> {
     staging.write(MAP_FILE, exported.opendrive.as_bytes())?;
     staging.commit()?;
     for note in &exported.notes {
-        eprintln!("{path}: note: {note}");
+        stderr!("{path}: note: {note}");
     }
     let label = scenario.points[point].label();
     let at = if label.is_empty() {

@@ -21,7 +21,7 @@ use crate::evidence::{EVIDENCE_SET, evidence_dirs, tool};
 use crate::exit::Exit;
 use crate::files::{DATA_LIMIT, read_regular};
 use crate::input::load_all;
-use crate::output::{relative, say, shell_word};
+use crate::output::{relative, say, shell_word, stderr};
 use crate::staging::Staging;
 use crate::template::templates;
 
@@ -53,15 +53,15 @@ pub fn falsify(args: &FalsifyArgs) -> anyhow::Result<Exit> {
     let path = input.name.clone();
     let scenario = &input.scenario;
     if scenario.vary.is_empty() {
-        eprintln!("{path}: error: nothing to falsify: the scenario has no `vary` section");
+        stderr!("{path}: error: nothing to falsify: the scenario has no `vary` section");
         return Ok(Exit::Invalid);
     }
     if scenario.requirements.is_empty() {
-        eprintln!("{path}: error: nothing to falsify: the scenario has no requirements");
+        stderr!("{path}: error: nothing to falsify: the scenario has no requirements");
         return Ok(Exit::Invalid);
     }
     if scenario.record.is_some() {
-        eprintln!(
+        stderr!(
             "{path}: note: record: no case of the search is recorded; the section is kept in counterexample.yaml, \
              which `sightline run` records"
         );
@@ -110,7 +110,7 @@ pub fn falsify(args: &FalsifyArgs) -> anyhow::Result<Exit> {
     let outcome = match outcome {
         Ok(outcome) => outcome,
         Err(Stop::Invalid(message)) => {
-            eprintln!("{message}");
+            stderr!("{message}");
             return Ok(Exit::Invalid);
         }
         Err(Stop::Internal(error)) => return Err(error),
@@ -153,7 +153,7 @@ pub fn falsify(args: &FalsifyArgs) -> anyhow::Result<Exit> {
         Ok(html) => html,
         // A custom template that fails on the data is the input's fault.
         Err(sightline_reports::Error::Template(error)) if templates.is_custom() => {
-            eprintln!("{error}");
+            stderr!("{error}");
             return Ok(Exit::Invalid);
         }
         Err(error) => return Err(error.into()),

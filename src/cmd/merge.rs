@@ -28,6 +28,7 @@ use crate::evidence::{
 use crate::exit::Exit;
 use crate::files::{DATA_LIMIT, read_regular};
 use crate::input::{Input, load_all};
+use crate::output::stderr;
 use crate::staging::Staging;
 use crate::template::templates;
 
@@ -51,7 +52,7 @@ pub fn merge(args: &MergeArgs) -> anyhow::Result<Exit> {
                 .map(|()| merged)
                 .map_err(|message| (Exit::Internal, message))
         })
-        .inspect_err(|(_, message)| eprintln!("{message}"));
+        .inspect_err(|(_, message)| stderr!("{message}"));
     let templates = templates(args.template.as_deref(), Page::Run);
     let merged = match merged {
         Ok(merged) => merged,

@@ -10,6 +10,7 @@ use sightline_reports::sha256_hex;
 use super::merge::OUT_OF_DOMAIN;
 use crate::exit::Exit;
 use crate::files::{DATA_LIMIT, read_regular};
+use crate::output::stderr;
 use crate::summary::{print_verdicts, refuse_out_of_domain};
 
 /// Re-checks the requirements of a recording from what it holds: the file is
@@ -23,18 +24,18 @@ pub fn replay(file: &Path) -> Exit {
     let bytes = match read_regular(file, DATA_LIMIT) {
         Ok(bytes) => bytes,
         Err(error) => {
-            eprintln!("{name}: error: failed to read the recording: {error}");
+            stderr!("{name}: error: failed to read the recording: {error}");
             return Exit::Invalid;
         }
     };
     if let Err(problem) = matches_results(file, &bytes) {
-        eprintln!("{name}: error: {problem}");
+        stderr!("{name}: error: {problem}");
         return Exit::Invalid;
     }
     let recording = match read(&bytes) {
         Ok(recording) => recording,
         Err(error) => {
-            eprintln!("{name}: error: failed to read the recording: {error}");
+            stderr!("{name}: error: failed to read the recording: {error}");
             return Exit::Invalid;
         }
     };
@@ -55,15 +56,15 @@ pub fn replay(file: &Path) -> Exit {
     let scenario = match sightline_dsl::compile(&recording.scenario.file, &recording.scenario.text, &options) {
         Ok(scenario) => scenario,
         Err(errors) => {
-            eprintln!("{name}: error: the recorded scenario does not compile with this sightline:");
-            eprintln!("{errors}");
+            stderr!("{name}: error: the recorded scenario does not compile with this sightline:");
+            stderr!("{errors}");
             return Exit::Invalid;
         }
     };
     let measurements = match recording.measurements(scenario.points.len()) {
         Ok(measurements) => measurements,
         Err(error) => {
-            eprintln!("{name}: error: failed to read the recording: {error}");
+            stderr!("{name}: error: failed to read the recording: {error}");
             return Exit::Invalid;
         }
     };
@@ -116,7 +117,7 @@ fn matches_results(file: &Path, bytes: &[u8]) -> Result<(), String> {
 /// holds (a different version judging the same measurements differently).
 fn warn_divergence(name: &str, recording: &Recording, verdicts: &[sightline_oracles::Verdict]) {
     if recording.verdicts.len() != verdicts.len() {
-        eprintln!(
+        stderr!(
             "{name}: warning: the recording holds {} verdicts; replay reaches {}",
             recording.verdicts.len(),
             verdicts.len()
@@ -127,7 +128,7 @@ fn warn_divergence(name: &str, recording: &Recording, verdicts: &[sightline_orac
             || recorded.verdict != verdict.status.name()
             || recorded.message != verdict.decisive.message
         {
-            eprintln!(
+            stderr!(
                 "{name}: warning: {}: the recording holds `{} {}: {}`; replay gives `{} {}: {}`",
                 verdict.id,
                 recorded.verdict,

@@ -12,7 +12,7 @@ use crate::evidence::{
 };
 use crate::exit::Exit;
 use crate::input::load_all;
-use crate::output::{PointClock, progress};
+use crate::output::{PointClock, progress, stderr};
 use crate::staging::Staging;
 use crate::summary::refuse_out_of_domain;
 use crate::template::templates;
@@ -42,7 +42,7 @@ pub fn run(args: &RunArgs) -> anyhow::Result<Exit> {
         return Ok(Exit::Invalid);
     };
     if let Some(input) = inputs.iter().find(|i| args.osi && !has_road_users(&i.scenario)) {
-        eprintln!(
+        stderr!(
             "{}: error: --osi traces road users, and a field experiment has none: only a world (agents) has an OSI trace",
             input.name
         );
@@ -50,7 +50,7 @@ pub fn run(args: &RunArgs) -> anyhow::Result<Exit> {
     }
     let every_point = |scenario: &Scenario| scenario.record.is_some_and(|r| r.points == RecordedPoints::All);
     if let Some(input) = inputs.iter().find(|i| args.osi && every_point(&i.scenario)) {
-        eprintln!(
+        stderr!(
             "{}: error: --osi traces one sweep point, and `record.points: all` records every point: \
              name the point to trace (`record: {{ point: N }}`) or leave --osi out",
             input.name
@@ -62,7 +62,7 @@ pub fn run(args: &RunArgs) -> anyhow::Result<Exit> {
         .iter()
         .find(|i| driven(i) && (args.record || args.osi || args.shard.is_some()))
     {
-        eprintln!(
+        stderr!(
             "{}: error: a run with a system under test is neither recorded nor sharded: leave out --record, --osi \
              and --shard",
             input.name
@@ -70,7 +70,7 @@ pub fn run(args: &RunArgs) -> anyhow::Result<Exit> {
         return Ok(Exit::Invalid);
     }
     if let Some(input) = inputs.iter().find(|i| i.is_stdin() && args.shard.is_some()) {
-        eprintln!(
+        stderr!(
             "{}: error: a shard's scenario must be a file: `sightline merge` reads it again",
             input.name
         );
@@ -109,7 +109,7 @@ pub fn run(args: &RunArgs) -> anyhow::Result<Exit> {
                 // Its failure is the run's: no verdict but `error`, nothing written.
                 Err(error) => {
                     bar.finish_and_clear();
-                    eprintln!("{}: error: {error}; no requirement is judged", input.name);
+                    stderr!("{}: error: {error}; no requirement is judged", input.name);
                     return Ok(Exit::Internal);
                 }
             },

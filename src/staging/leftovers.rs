@@ -26,6 +26,7 @@ use anyhow::Context;
 
 use super::manifest::{MANIFEST, Manifest};
 use crate::files::{TEXT_LIMIT, read_regular};
+use crate::output::stderr;
 
 /// The name of a staging folder begins so, followed by its id.
 pub const STAGING: &str = ".sightline-staging-";
@@ -49,7 +50,7 @@ pub fn clean(dir: &Path, own: Option<&Path>) -> anyhow::Result<()> {
             && matches!(by_age(&entry.path(), started), Ok(Owner::Gone(_)))
         {
             fs::remove_file(entry.path()).with_context(|| format!("failed to remove {}", entry.path().display()))?;
-            eprintln!(
+            stderr!(
                 "note: {}: removed {name}, left by an interrupted run of an earlier version",
                 dir.display()
             );
@@ -72,10 +73,10 @@ pub fn clean(dir: &Path, own: Option<&Path>) -> anyhow::Result<()> {
         };
         if name.starts_with(STAGING) {
             fs::remove_dir_all(&folder).with_context(|| format!("failed to remove {}", folder.display()))?;
-            eprintln!("note: {}: removed {name}, left by an interrupted run", dir.display());
+            stderr!("note: {}: removed {name}, left by an interrupted run", dir.display());
         } else if let Some(manifest) = manifest_of(&folder) {
             manifest.apply(dir, &folder)?;
-            eprintln!(
+            stderr!(
                 "note: {}: finished the evidence set an interrupted run had committed ({name})",
                 dir.display()
             );
@@ -152,7 +153,7 @@ fn manifest_of(folder: &Path) -> Option<Manifest> {
         ),
     };
     if WARNED.lock().unwrap_or_else(|p| p.into_inner()).insert(path) {
-        eprintln!("{problem}");
+        stderr!("{problem}");
     }
     None
 }

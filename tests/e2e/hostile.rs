@@ -20,7 +20,7 @@ use tempfile::TempDir;
 use crate::fuzz::reduced;
 use crate::support::{
     EVIDENCE_FILES, Outcome, SMALL_FIELD, TIME_CAP_SECONDS, arg, caps_available, evidence_problem, files_under,
-    is_located_error, leftovers, root, sightline_capped, temp_dir,
+    is_located_error, leftovers, root, sightline_capped, sightline_in, temp_dir,
 };
 
 /// The reduced bundled scenario `scenarios/NAME.yaml` with `edit` made to it,
@@ -622,4 +622,25 @@ fn a_closed_output_stream_is_exit_3_not_a_panic() {
     drop(child.stderr.take());
     let status = child.wait().expect("sightline ends");
     assert_eq!(status.code(), Some(3), "{status}");
+}
+
+/// Control characters in a file name on the command line reach no terminal
+/// or CI log raw: each is written as its escape (a file named `a\e[2J.yaml`
+/// cleared the screen). A scenario's own text refuses them at their line.
+// See: session 25's fuzz audit.
+#[test]
+fn control_characters_in_a_file_name_are_escaped_on_the_terminal() {
+    let dir = temp_dir();
+    std::fs::copy(root().join(SMALL_FIELD), dir.path().join("a\u{1b}[2J\r.yaml")).expect("the fixture copies");
+    std::fs::write(dir.path().join("b\u{1b}.yaml"), "sightline: 1\nname: [").expect("the file is written");
+    for (file, code, shown) in [
+        ("a\u{1b}[2J\r.yaml", 0, "a\\u{1b}[2J\\u{d}.yaml: ok"),
+        ("b\u{1b}.yaml", 2, "b\\u{1b}.yaml:"),
+    ] {
+        let outcome = sightline_in(dir.path(), ["check", file]);
+        outcome.assert_exit(code);
+        let printed = format!("{}{}", outcome.stdout, outcome.stderr);
+        assert!(!printed.contains(['\u{1b}', '\r']), "{outcome}");
+        assert!(printed.contains(shown), "{outcome}");
+    }
 }
