@@ -21,9 +21,10 @@ use sightline_reports::{
 
 use crate::exit::Exit;
 use crate::input::Input;
-use crate::output::{default_dir, shell_word, stderr, stem};
+use crate::output::{default_dir, shell_word, stem};
 use crate::staging::Staging;
 use crate::summary::print_verdicts;
+use crate::terminal::stderr;
 
 /// The recording's name in the evidence directory.
 pub const RECORDING: &str = "run.mcap";

@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use sightline_dsl::{Options, Scenario};
 
 use crate::files::{DATA_LIMIT, TEXT_LIMIT, read_regular, read_stdin};
-use crate::output::stderr;
+use crate::terminal::stderr;
 
 /// The path that names standard input on the command line.
 pub const STDIN: &str = "-";

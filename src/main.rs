@@ -5,7 +5,7 @@ use std::process::ExitCode;
 
 use clap::Parser;
 
-use crate::output::{printable, stderr};
+use crate::terminal::{printable, stderr};
 
 mod cli;
 mod cmd;
@@ -19,6 +19,7 @@ mod staging;
 mod summary;
 mod system;
 mod template;
+mod terminal;
 
 fn main() -> ExitCode {
     let cli = cli::Cli::parse();

@@ -1,7 +1,6 @@
 //! Output: where evidence goes, and lines on stdout and progress on stderr.
 //! (How the evidence is written, as a set: `staging`.)
 
-use std::borrow::Cow;
 use std::ffi::OsString;
 use std::fmt::Display;
 use std::io::{ErrorKind, Write};
@@ -9,6 +8,7 @@ use std::path::{Component, Path, PathBuf};
 use std::time::Instant;
 
 use crate::input::STDIN;
+use crate::terminal::{printable, stderr};
 
 /// The default output directory of a scenario file: `out/STEM/` (STEM: the file
 /// name without its extension); `None` when its [`stem`] names no directory.
@@ -47,36 +47,6 @@ pub fn say(line: impl Display) {
     {
         stderr!("warning: failed to write to stdout: {error}");
     }
-}
-
-/// `eprintln!` through [`printable`]: every line sightline writes on stderr.
-macro_rules! stderr {
-    ($($arg:tt)*) => {
-        eprintln!("{}", $crate::output::printable(&format!($($arg)*)))
-    };
-}
-pub(crate) use stderr;
-
-/// `text` with each control character but a line break and a tab written as
-/// its escape (`\u{1b}`): a file name on the command line or a path or id in
-/// a scenario cannot move the cursor, recolour the terminal or forge a line
-/// of a CI log.
-pub fn printable(text: &str) -> Cow<'_, str> {
-    let hidden = |c: char| c.is_control() && c != '\n' && c != '\t';
-    if !text.contains(hidden) {
-        return Cow::Borrowed(text);
-    }
-    Cow::Owned(
-        text.chars()
-            .map(|c| {
-                if hidden(c) {
-                    c.escape_unicode().to_string()
-                } else {
-                    c.to_string()
-                }
-            })
-            .collect(),
-    )
 }
 
 /// A progress bar over `len` sweep points of `name` on stderr, shown only on a
@@ -153,13 +123,6 @@ mod tests {
         let path = relative(Path::new("/work/out/grid"), Path::new("/work/scenarios/sumo/x.xml"));
         assert_eq!(path, Path::new("../../scenarios/sumo/x.xml"));
         assert_eq!(relative(Path::new("/a"), Path::new("/a/b.xml")), Path::new("b.xml"));
-    }
-
-    #[test]
-    fn control_characters_are_escaped_but_line_breaks_and_tabs() {
-        assert_eq!(printable("a\u{1b}[2Jb.yaml"), "a\\u{1b}[2Jb.yaml");
-        assert_eq!(printable("x\ry\u{7}"), "x\\u{d}y\\u{7}");
-        assert_eq!(printable("line\n\tnext: ok"), "line\n\tnext: ok");
     }
 }
 

@@ -8,7 +8,8 @@ use sightline_dsl::Scenario;
 use sightline_oracles::{Measurements, Status, Verdict, headline};
 
 use crate::exit::Exit;
-use crate::output::{say, stderr};
+use crate::output::say;
+use crate::terminal::stderr;
 
 /// Prints `PASS|FAIL|NOT EXERCISED|ERROR path: N of M requirements hold over K
 /// sweep points (fail: A; not exercised: B)` followed by `tail`, then one line

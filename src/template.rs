@@ -8,7 +8,7 @@ use std::sync::Arc;
 use sightline_reports::{Page, Templates};
 
 use crate::files::{TEXT_LIMIT, read_beneath};
-use crate::output::stderr;
+use crate::terminal::stderr;
 
 /// The templates of `page`: the bundled ones, or the set in `dir`. `None`
 /// (after printing why) when the set cannot be used.

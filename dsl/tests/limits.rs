@@ -425,7 +425,7 @@ fn a_semantic_world_s_sensor_looks_are_bounded() {
         errors.0.iter().any(|e| e.path == "agents"
             && e.to_string().contains(
                 " looks at objects at a point (the ego's and the RSUs' sensors × agents × steps × runs) exceed the \
-                 limit of 1e8"
+                 limit of 1e9"
             )),
         "{errors}"
     );

@@ -10,8 +10,9 @@ use crate::cli::ExportArgs;
 use crate::evidence::{evidence_dirs, tool};
 use crate::exit::Exit;
 use crate::input::load_all;
-use crate::output::{say, stderr};
+use crate::output::say;
 use crate::staging::Staging;
+use crate::terminal::stderr;
 
 /// The scenario's file name in the output directory.
 pub const SCENARIO_FILE: &str = "scenario.xosc";

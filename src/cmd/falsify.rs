@@ -21,9 +21,10 @@ use crate::evidence::{EVIDENCE_SET, evidence_dirs, tool};
 use crate::exit::Exit;
 use crate::files::{DATA_LIMIT, read_regular};
 use crate::input::load_all;
-use crate::output::{relative, say, shell_word, stderr};
+use crate::output::{relative, say, shell_word};
 use crate::staging::Staging;
 use crate::template::templates;
+use crate::terminal::stderr;
 
 /// Cases simulated side by side: one per core of the 2-core machines sightline
 /// targets. A constant, not the thread count, so that the cases tried (and the

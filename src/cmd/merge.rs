@@ -28,9 +28,9 @@ use crate::evidence::{
 use crate::exit::Exit;
 use crate::files::{DATA_LIMIT, read_regular};
 use crate::input::{Input, load_all};
-use crate::output::stderr;
 use crate::staging::Staging;
 use crate::template::templates;
+use crate::terminal::stderr;
 
 /// One scenario of the campaign, ready to render.
 struct Merged {

@@ -10,8 +10,8 @@ use sightline_reports::sha256_hex;
 use super::merge::OUT_OF_DOMAIN;
 use crate::exit::Exit;
 use crate::files::{DATA_LIMIT, read_regular};
-use crate::output::stderr;
 use crate::summary::{print_verdicts, refuse_out_of_domain};
+use crate::terminal::stderr;
 
 /// Re-checks the requirements of a recording from what it holds: the file is
 /// checked whole (and against the results.json beside it, if any), the recorded

@@ -12,10 +12,11 @@ use crate::evidence::{
 };
 use crate::exit::Exit;
 use crate::input::load_all;
-use crate::output::{PointClock, progress, stderr};
+use crate::output::{PointClock, progress};
 use crate::staging::Staging;
 use crate::summary::refuse_out_of_domain;
 use crate::template::templates;
+use crate::terminal::stderr;
 
 /// Validates every file and the template set first (reporting every problem;
 /// nothing is written if one is invalid), then runs each scenario (or, with

@@ -26,7 +26,7 @@ use anyhow::Context;
 
 use super::manifest::{MANIFEST, Manifest};
 use crate::files::{TEXT_LIMIT, read_regular};
-use crate::output::stderr;
+use crate::terminal::stderr;
 
 /// The name of a staging folder begins so, followed by its id.
 pub const STAGING: &str = ".sightline-staging-";
