@@ -155,6 +155,7 @@ invalid_inputs! {
     out_of_range_sweep_value_is_located_in_the_sweep => "sweep-value-out-of-range",
     vary_errors_are_all_reported => "vary-errors",
     out_of_range_vary_value_is_located_in_vary => "vary-value-out-of-range",
+    a_whole_number_vary_range_beyond_2_53_is_refused_at_its_end => "vary-integer-range-beyond-2-53",
     vary_over_a_misnamed_agent_setting_is_refused => "vary-agent-errors",
     every_problem_of_a_file_is_reported_in_source_order => "several-errors",
     seed_beyond_64_bits_is_out_of_range => "seed-beyond-64-bits",
