@@ -219,6 +219,8 @@ invalid_inputs! {
     link_to_a_missing_road_is_located_at_the_link => "opendrive-missing-road",
     lane_link_to_a_missing_lane_is_located_at_the_link => "opendrive-missing-lane",
     map_beyond_the_point_limit_is_refused_before_sampling => "opendrive-points-beyond-limit",
+    a_map_object_corner_beyond_the_coordinate_range_is_refused_at_the_attribute => "opendrive-object-corner-beyond-range",
+    crosswalk_ends_closer_than_its_least_length_are_refused => "crosswalk-ends-too-close",
     a_run_beyond_the_work_of_one_process_is_refused => "run-work-beyond-limit",
     route_naming_a_missing_lane_suggests_the_closest => "opendrive-unknown-lane",
     lanes_without_a_speed_limit_need_map_speed_limit => "opendrive-speed-limit-missing",
