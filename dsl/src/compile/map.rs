@@ -19,7 +19,7 @@ use super::checks::{distinct, types_among};
 use super::context::Context;
 use super::reader::{Failed, Named, Reader};
 use crate::error::{Error, ErrorKind};
-use crate::geometry::{Polyline, Xy, counter_clockwise};
+use crate::geometry::{Polyline, Xy, counter_clockwise, distance};
 use crate::import::opendrive::{LaneUse, Map, MapObject, build, parse_opendrive};
 use crate::model::{Area, Crosswalk, Import, ImportKind, InteractionArea, LaneLink, Occluder, Road};
 use crate::path::Path;
@@ -293,10 +293,29 @@ fn crosswalk(id: String, area: &[Xy], road_heading: f64) -> Option<Crosswalk> {
     let ((u0, u1), (v0, v1)) = (range(&along), range(&across));
     let (width, u) = (u1 - u0, (u0 + u1) / 2.0);
     let point = |v: f64| [u * cos - v * sin, u * sin + v * cos];
-    (width > 1e-6 && v1 - v0 > 1e-6).then(|| Crosswalk {
-        id,
-        from: point(v0),
-        to: point(v1),
-        width,
-    })
+    let (from, to) = (point(v0), point(v1));
+    // Checked in the map's frame, where the walk uses them: turned back, a far
+    // `u` rounds the kerbs together however far apart `v0` and `v1` lie.
+    (width > 1e-6 && distance(from, to) > Crosswalk::MIN_LENGTH).then_some(Crosswalk { id, from, to, width })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_crosswalk_is_walked_between_kerbs_apart_in_the_maps_frame() {
+        // A crosswalk 4 m wide along a road heading 1 rad and 7 m across it,
+        // its first corner `far` metres along (as `Object::areas` turns it).
+        let heading: f64 = 1.0;
+        let (sin, cos) = heading.sin_cos();
+        let area = |far: f64| {
+            [[far, -3.5], [2.0, -3.5], [2.0, 3.5], [-2.0, 3.5]].map(|[u, v]| [u * cos - v * sin, u * sin + v * cos])
+        };
+        let walked = crosswalk("c".into(), &area(-2.0), heading).unwrap();
+        assert!((distance(walked.from, walked.to) - 7.0).abs() < 1e-9);
+        // At 1e100 m the across extent survives the projection but the kerbs,
+        // turned back into the map's frame, round to one point.
+        assert_eq!(crosswalk("c".into(), &area(1e100), heading), None);
+    }
 }

@@ -14,7 +14,7 @@ use super::traces::Imported;
 use crate::de::from_node;
 use crate::emit::emit;
 use crate::error::{Error, ErrorKind, Errors, Location};
-use crate::model::{Domain, Setup, Vary};
+use crate::model::{Domain, MAX_WHOLE_END, Setup, Vary};
 use crate::path::Path;
 use crate::raw::RawScenario;
 use crate::yaml::{self, Node, Value};
@@ -127,6 +127,19 @@ fn domain<'a>(ctx: &mut Context<'_>, node: &'a Node, here: &Path, integer: bool)
                     ErrorKind::OutOfRange {
                         expected: format!("a high end ≥ the low end {lo}"),
                         found: hi.to_string(),
+                    },
+                );
+                return None;
+            }
+            if integer && let Some(bad) = [lo, hi].iter().position(|end| end.abs() > MAX_WHOLE_END) {
+                ctx.error(
+                    &here.index(bad),
+                    ErrorKind::OutOfRange {
+                        expected: format!(
+                            "an end from -{MAX_WHOLE_END} to {MAX_WHOLE_END} (2^53) for a range of whole numbers, \
+                             whose values are held exactly only up to there; use `one_of` for larger values"
+                        ),
+                        found: ends[bad].describe(),
                     },
                 );
                 return None;

@@ -155,6 +155,13 @@ pub(crate) fn number_within(node: Node, name: &str, range: Range) -> Result<f64,
     Err(value_error(node, &attribute(node, name)?, message))
 }
 
+/// An optional number within `range`, as [`number_within`]; `None` when absent.
+pub(crate) fn optional_number_within(node: Node, name: &str, range: Range) -> Result<Option<f64>, XmlError> {
+    node.attribute_node(name)
+        .map(|_| number_within(node, name, range))
+        .transpose()
+}
+
 /// An optional finite number, `default` when absent.
 pub(crate) fn number_or(node: Node, name: &str, default: f64) -> Result<f64, XmlError> {
     Ok(optional_number(node, name)?.unwrap_or(default))

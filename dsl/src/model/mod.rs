@@ -41,7 +41,7 @@ pub use v2x::{
     Channel, MESSAGE_HEADER_BYTES, Messages, Oversize, PathLossModel, SENSOR_INFORMATION_BYTES, SMALLEST_PAYLOAD_BYTES,
     V2x,
 };
-pub use vary::{Domain, RANGE_STEPS, Vary};
+pub use vary::{Domain, MAX_WHOLE_END, RANGE_STEPS, Vary};
 pub use world::{
     Agent, AgentKind, Direction, Entry, LaneLink, Localization, Motion, Occluder, Odometry, OdometryModel,
     OdometryNoise, Perception, PoseFilter, Road, Sensor, TraceSample, World,

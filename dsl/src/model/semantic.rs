@@ -58,10 +58,17 @@ pub struct Crosswalk {
     pub id: String,
     /// One kerb.
     pub from: Xy,
-    /// The other kerb.
+    /// The other kerb, more than [`Crosswalk::MIN_LENGTH`] from `from`.
     pub to: Xy,
     /// Width, metres.
     pub width: f64,
+}
+
+impl Crosswalk {
+    /// The least distance between a crosswalk's kerbs, metres: the compiler
+    /// refuses (or, from a SUMO network, drops) a shorter crossing, so that a
+    /// walk across it is a line even with no approach on the pavement.
+    pub const MIN_LENGTH: f64 = 1e-6;
 }
 
 /// A region around a conflict zone.

@@ -7,6 +7,11 @@ use serde::Serialize;
 /// integer grid (index 0 is the range's low end).
 pub const RANGE_STEPS: u64 = 1000;
 
+/// The largest magnitude of an end of a whole-number `vary` range, 2^53: a
+/// range holds its ends as 64-bit floats, which hold every whole number up to
+/// there and not all beyond, so `check` refuses an end beyond it.
+pub const MAX_WHOLE_END: f64 = 9_007_199_254_740_992.0;
+
 /// One varied setting and the values it may take.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Vary {
@@ -21,7 +26,8 @@ pub struct Vary {
 #[serde(rename_all = "snake_case")]
 pub enum Domain {
     /// Every number from `lo` to `hi` (inclusive) on a grid: whole numbers when
-    /// the setting is an integer, else [`RANGE_STEPS`] equal steps.
+    /// the setting is an integer (both ends then within ±[`MAX_WHOLE_END`]),
+    /// else [`RANGE_STEPS`] equal steps.
     Range {
         /// The low end.
         lo: f64,
@@ -59,15 +65,15 @@ impl Vary {
     pub fn value(&self, index: u64) -> serde_json::Value {
         let index = index.min(self.count() - 1);
         match &self.domain {
-            Domain::Range { lo, integer: true, .. } => {
-                serde_json::Value::from((*lo as i64).saturating_add(index as i64))
-            }
+            // Within ±2^53 every whole number is exact, and `lo + index` ≤ `hi`.
+            Domain::Range { lo, integer: true, .. } => serde_json::Value::from(*lo as i64 + index as i64),
             Domain::Range { lo, hi, .. } => {
                 let steps = (self.count() - 1).max(1) as f64;
-                // Round to 12 significant digits so that grid values print as
-                // written (−72.5, not −72.49999999999999).
+                // Round to 13 significant digits so that grid values print as
+                // written (−72.5, not −72.49999999999999), and keep the
+                // rounded value within the ends however many digits they have.
                 let value = lo + (hi - lo) * index as f64 / steps;
-                let value = format!("{value:.12e}").parse::<f64>().unwrap_or(value);
+                let value = format!("{value:.12e}").parse::<f64>().unwrap_or(value).clamp(*lo, *hi);
                 serde_json::Number::from_f64(value).map_or(serde_json::Value::Null, serde_json::Value::Number)
             }
             Domain::Choices(values) => values[index as usize].clone(),
@@ -93,6 +99,37 @@ mod tests {
         assert_eq!(vary.value(0), serde_json::json!(1));
         assert_eq!(vary.value(5), serde_json::json!(6));
         assert_eq!(vary.value(99), serde_json::json!(6));
+    }
+
+    #[test]
+    fn the_widest_integer_range_takes_every_whole_number_exactly() {
+        let vary = Vary {
+            path: "seed".into(),
+            domain: Domain::Range {
+                lo: -MAX_WHOLE_END,
+                hi: MAX_WHOLE_END,
+                integer: true,
+            },
+        };
+        assert_eq!(vary.count(), (1 << 54) + 1);
+        assert_eq!(vary.value(0), serde_json::json!(-(1_i64 << 53)));
+        assert_eq!(vary.value((1 << 53) + 1), serde_json::json!(1));
+        assert_eq!(vary.value(1 << 54), serde_json::json!(1_i64 << 53));
+        assert_eq!(vary.value(u64::MAX), serde_json::json!(1_i64 << 53));
+    }
+
+    #[test]
+    fn a_real_range_rounded_for_print_stays_within_its_ends() {
+        let vary = Vary {
+            path: "decision.threshold".into(),
+            domain: Domain::Range {
+                lo: 0.0,
+                hi: 0.123_456_789_012_36,
+                integer: false,
+            },
+        };
+        // Thirteen significant digits would print the high end as 0.1234567890124.
+        assert_eq!(vary.value(RANGE_STEPS), serde_json::json!(0.123_456_789_012_36));
     }
 
     #[test]

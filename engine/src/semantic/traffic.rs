@@ -294,13 +294,14 @@ fn crossings(
     }
 }
 
-/// The straight walk from `approach` metres before `from` to `approach` metres past `to`.
+/// The straight walk from `approach` metres before `from` to `approach` metres
+/// past `to`, which lie more than [`Crosswalk::MIN_LENGTH`] apart.
 fn walk(from: Xy, to: Xy, approach: f64) -> Polyline {
     let length = ((to[0] - from[0]).powi(2) + (to[1] - from[1]).powi(2)).sqrt();
     let unit = [(to[0] - from[0]) / length, (to[1] - from[1]) / length];
     let start = [from[0] - unit[0] * approach, from[1] - unit[1] * approach];
     let end = [to[0] + unit[0] * approach, to[1] + unit[1] * approach];
-    Polyline::new([start, end]).expect("a crosswalk's ends differ")
+    Polyline::new([start, end]).expect("a crosswalk's kerbs lie more than its least length apart")
 }
 
 #[cfg(test)]

@@ -236,7 +236,7 @@ fn pedestrian_areas(net: &Network, dropped: &mut Vec<String>) -> (Vec<Crosswalk>
         match edge.function.as_str() {
             "crossing" => {
                 let (from, to) = (lane.shape[0], lane.shape[lane.shape.len() - 1]);
-                if distance(from, to) > 0.0 {
+                if distance(from, to) > Crosswalk::MIN_LENGTH {
                     crosswalks.push(Crosswalk {
                         id: edge.id.clone(),
                         from,

@@ -9,7 +9,7 @@ use crate::compile::context::Context;
 use crate::compile::map::Mapped;
 use crate::compile::traces::Imported;
 use crate::error::ErrorKind;
-use crate::geometry::counter_clockwise;
+use crate::geometry::{counter_clockwise, distance};
 use crate::model::{
     Agent, AgentKind, Area, Baseline, Caution, Channel, Crosswalk, Driving, InteractionArea, PathLossModel,
     PedestrianTraffic, Road, RsuSight, Semantic, Traffic, TrafficRoute, V2x, VehicleTraffic,
@@ -51,10 +51,13 @@ pub(super) fn crosswalks(
         let ends_ok =
             coordinates(ctx, &path.key("from"), &[crosswalk.from]) & coordinates(ctx, &path.key("to"), &[crosswalk.to]);
         ok &= ends_ok & ctx.within(&path.key("width"), crosswalk.width, range::BODY);
-        if ends_ok && crosswalk.from == crosswalk.to {
+        if ends_ok && distance(crosswalk.from, crosswalk.to) <= Crosswalk::MIN_LENGTH {
             ctx.error(
                 &path.key("to"),
-                ErrorKind::Invalid("a crosswalk's ends must differ".into()),
+                ErrorKind::Invalid(format!(
+                    "a crosswalk's ends must lie more than {} m apart",
+                    Crosswalk::MIN_LENGTH
+                )),
             );
             ok = false;
         }

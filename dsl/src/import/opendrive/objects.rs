@@ -1,6 +1,8 @@
 //! A road's objects (`<objects><object>`): buildings, crosswalks and the
 //! rest, each with its footprint as an outline, a box or a circle in road
-//! coordinates.
+//! coordinates. Every offset and size is held to the world's coordinate range
+//! (±1e6 m) where it is written: beyond it, turning a corner into the map's
+//! frame loses the object's own extent to rounding.
 
 use roxmltree::Node;
 
@@ -8,6 +10,7 @@ use super::geometry::Pose;
 use super::xml::{self, Locator, OpenDriveError};
 use crate::Location;
 use crate::geometry::Xy;
+use crate::raw::range::COORDINATE;
 
 /// A circular object's outline has this many corners.
 const CIRCLE_CORNERS: usize = 16;
@@ -95,12 +98,12 @@ fn object(node: Node, locator: &Locator) -> Result<Object, OpenDriveError> {
     }
     let footprint = if !outlines.is_empty() {
         Footprint::Outlines(outlines)
-    } else if let Some(radius) = xml::optional_number(node, "radius")?.filter(|&r| r > 0.0) {
+    } else if let Some(radius) = xml::optional_number_within(node, "radius", COORDINATE)?.filter(|&r| r > 0.0) {
         Footprint::Circle { radius }
     } else {
         match (
-            xml::optional_number(node, "length")?,
-            xml::optional_number(node, "width")?,
+            xml::optional_number_within(node, "length", COORDINATE)?,
+            xml::optional_number_within(node, "width", COORDINATE)?,
         ) {
             (Some(length), Some(width)) if length > 0.0 && width > 0.0 => Footprint::Box { length, width },
             _ => Footprint::Point,
@@ -110,7 +113,7 @@ fn object(node: Node, locator: &Locator) -> Result<Object, OpenDriveError> {
         id: xml::string(node, "id")?.to_owned(),
         kind: node.attribute("type").unwrap_or("none").to_owned(),
         s: xml::non_negative(node, "s")?,
-        t: xml::number(node, "t")?,
+        t: xml::number_within(node, "t", COORDINATE)?,
         heading: xml::number_or(node, "hdg", 0.0)?,
         footprint,
         repeated: xml::child(node, "repeat").is_some(),
@@ -123,10 +126,15 @@ fn read_outline(node: Node) -> Result<(bool, Corners), OpenDriveError> {
     xml::allowed_children(node, &["cornerLocal", "cornerRoad"], &[])?;
     let closed = xml::choice(node, "closed", &["true", "false"])? != Some("false");
     let local: Vec<Xy> = xml::children(node, "cornerLocal")
-        .map(|c| Ok([xml::number(c, "u")?, xml::number(c, "v")?]))
+        .map(|c| {
+            Ok([
+                xml::number_within(c, "u", COORDINATE)?,
+                xml::number_within(c, "v", COORDINATE)?,
+            ])
+        })
         .collect::<Result<_, OpenDriveError>>()?;
     let road: Vec<Xy> = xml::children(node, "cornerRoad")
-        .map(|c| Ok([xml::number(c, "s")?, xml::number(c, "t")?]))
+        .map(|c| Ok([xml::number(c, "s")?, xml::number_within(c, "t", COORDINATE)?]))
         .collect::<Result<_, OpenDriveError>>()?;
     match (local.is_empty(), road.is_empty()) {
         (false, true) => Ok((closed, Corners::Local(local))),
@@ -228,6 +236,33 @@ mod tests {
         assert_eq!(pole.len(), CIRCLE_CORNERS);
         assert_relative_eq!(pole[0][0], 6.0);
         assert_relative_eq!(pole[4][1], 3.0, epsilon = 1e-12);
+    }
+
+    #[test]
+    fn offsets_and_sizes_beyond_the_coordinate_range_are_refused_where_written() {
+        let object = |attributes: &str, corner: &str| {
+            read(&format!(
+                r#"<objects><object id="x" s="0" t="0" {attributes}><outline>{corner}</outline></object></objects>"#
+            ))
+        };
+        let corner = r#"<cornerLocal u="0" v="0"/>"#;
+        assert_eq!(
+            object("", r#"<cornerLocal u="1e100" v="-3.5"/>"#).unwrap_err(),
+            "1:63: attribute `u` of <cornerLocal> must be a number from -1000000 to 1000000 m, found 1e100"
+        );
+        assert_eq!(
+            object("", r#"<cornerRoad s="0" t="-2e6"/>"#).unwrap_err(),
+            "1:68: attribute `t` of <cornerRoad> must be a number from -1000000 to 1000000 m, found -2000000"
+        );
+        assert_eq!(
+            read(r#"<objects><object id="x" s="0" t="1e7"/></objects>"#).unwrap_err(),
+            "1:34: attribute `t` of <object> must be a number from -1000000 to 1000000 m, found 10000000"
+        );
+        assert_eq!(
+            read(r#"<objects><object id="x" s="0" t="0" radius="1e300"/></objects>"#).unwrap_err(),
+            "1:45: attribute `radius` of <object> must be a number from -1000000 to 1000000 m, found 1e300"
+        );
+        assert!(object(r#"length="1e6" width="-1e6""#, corner).is_ok());
     }
 
     #[test]

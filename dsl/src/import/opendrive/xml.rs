@@ -8,7 +8,8 @@ use roxmltree::{Document, Node, ParsingOptions};
 use crate::Location;
 use crate::de::closest;
 pub(crate) use crate::import::xml::{
-    Locator, attribute, children, element_error, number, number_or, optional_number, string, tag, value_error,
+    Locator, attribute, children, element_error, number, number_or, number_within, optional_number_within, string, tag,
+    value_error,
 };
 use crate::import::xml::{Number, XmlError, malformed};
 
