@@ -1,6 +1,8 @@
 //! Routes: a list of road ids checked for connectivity and resolved into one
 //! path on one lane, with the speed limit of each part.
 
+use std::collections::HashMap;
+
 use crate::compile::checks::known_names;
 use crate::compile::context::{Context, Declaration};
 use crate::error::ErrorKind;
@@ -13,6 +15,34 @@ use crate::path::Path;
 /// route keeps and looks up as it moves.
 const MAX_ROUTE_ROADS: usize = 1_000;
 
+/// Roads and where each id is, so that a route is resolved in time linear in
+/// its length, whatever the number of roads.
+pub(super) struct RoadIndex<'a> {
+    roads: &'a [Road],
+    by_id: HashMap<&'a str, usize>,
+}
+
+impl<'a> RoadIndex<'a> {
+    pub(super) fn new(roads: &'a [Road]) -> Self {
+        let mut by_id = HashMap::with_capacity(roads.len());
+        for (i, road) in roads.iter().enumerate() {
+            // The first of two roads of one id (refused where they are declared).
+            by_id.entry(road.id.as_str()).or_insert(i);
+        }
+        Self { roads, by_id }
+    }
+
+    /// The index of the road of id `id`.
+    pub(super) fn position(&self, id: &str) -> Option<usize> {
+        self.by_id.get(id).copied()
+    }
+
+    /// Whether there are no roads.
+    pub(super) fn is_empty(&self) -> bool {
+        self.roads.is_empty()
+    }
+}
+
 /// Resolves a route into one polyline on lane `lane` of each road, with the speed
 /// limit of each part. Road a connects to road b across a junction when a links
 /// that lane to b's (roads of a SUMO network), or else when a's last point lies
@@ -23,8 +53,9 @@ pub(super) fn route_path(
     route: &[String],
     lane: u32,
     path: &Path,
-    roads: &[Road],
+    index: &RoadIndex<'_>,
 ) -> Option<(Polyline, Vec<(f64, f64)>)> {
+    let roads = index.roads;
     if route.is_empty() {
         ctx.error(path, ErrorKind::Invalid("a route names at least one road".into()));
         return None;
@@ -41,7 +72,7 @@ pub(super) fn route_path(
     }
     let mut parts: Vec<(&Road, &Polyline)> = Vec::new();
     for (i, id) in route.iter().enumerate() {
-        let Some(road) = roads.iter().find(|r| &r.id == id) else {
+        let Some(road) = index.position(id).map(|i| &roads[i]) else {
             if ctx.is_failed(Declaration::Road, id) {
                 // The road's own errors say why; the route is not at fault.
                 return None;
