@@ -126,6 +126,35 @@ fn a_route_naming_no_road_is_still_refused() {
     );
 }
 
+/// A route of more roads than any scene names is refused at the route, an
+/// agent's or the traffic's (1 001 roads of one lane compiled in quadratic time:
+/// 200 000 never finished).
+#[test]
+fn a_route_of_too_many_roads_is_refused_where_it_is_written() {
+    let long = |road: &str| format!("[{}]", vec![road; 1_001].join(", "));
+    let cases = [
+        ("route: [south_in, s_n, north_out]", "route: ", "agents[0].route"),
+        ("- [north_in, n_s, south_out]", "- ", "traffic.vehicles.routes[0]"),
+    ];
+    for (from, key, at) in cases {
+        let text = with(URBAN, from, &format!("{key}{}", long("south_in")));
+        let errors = errors(&text);
+        assert_eq!(errors.0.len(), 1, "{errors}");
+        assert_eq!(errors.0[0].path, at);
+        assert_eq!(errors.0[0].location.line, line_of(&text, "south_in, south_in"));
+        assert_eq!(
+            errors.0[0].kind,
+            ErrorKind::TooLarge(
+                "1001 roads in a route exceed the limit of 1000; name each road of the way once".into()
+            )
+        );
+    }
+    // The same way with its last road named again up to the limit is a route.
+    let at_the_limit = format!("route: [south_in, s_n{}]", ", north_out".repeat(998));
+    let text = with(URBAN, "route: [south_in, s_n, north_out]", &at_the_limit);
+    compile("s.yaml", &text, &Options::default()).expect("1 000 roads are a route");
+}
+
 /// Products within each range are still checked: many fine rays over many
 /// steps exceed the rays per step, with the numbers.
 #[test]

@@ -4,13 +4,13 @@
 
 use std::collections::{HashMap, HashSet};
 
-use super::routes::route_path;
+use super::routes::{RoadIndex, route_path};
 use crate::compile::checks::{coordinates, known_names, reserved, unique_ids};
 use crate::compile::context::{Context, Declaration};
 use crate::compile::traces::{Imported, imported_agents, trace_motion};
 use crate::error::ErrorKind;
 use crate::geometry::Polyline;
-use crate::model::{Agent, AgentKind, Entry, Motion, Road, Sensor};
+use crate::model::{Agent, AgentKind, Entry, Motion, Sensor};
 use crate::path::Path;
 use crate::raw::RawAgent;
 use crate::raw::range;
@@ -18,9 +18,9 @@ use crate::raw::range;
 /// What agents are resolved against.
 pub(super) struct Scene<'a> {
     /// Every road, declared and imported.
-    pub(super) roads: &'a [Road],
+    pub(super) roads: &'a RoadIndex<'a>,
     /// The sidewalks of `map`, which pedestrians' routes name.
-    pub(super) walkways: &'a [Road],
+    pub(super) walkways: &'a RoadIndex<'a>,
     /// The sensor models by id.
     pub(super) sensors: &'a HashMap<String, Sensor>,
     /// What `traces` imports.

@@ -6,6 +6,7 @@ use super::joint::joint;
 use super::occluders::occluders;
 use super::perception::perception_of;
 use super::roads::roads;
+use super::routes::RoadIndex;
 use super::semantic::{areas, crosswalks, driving, interaction_areas, own_antennas, semantic_of, traffic, v2x};
 use super::sensors::{localization, sensor_models};
 use crate::compile::checks::whole_multiple;
@@ -15,7 +16,7 @@ use crate::compile::traces::Imported;
 use crate::error::ErrorKind;
 use std::collections::BTreeSet;
 
-use crate::model::{Road, World};
+use crate::model::World;
 use crate::path::Path;
 use crate::raw::range;
 use crate::raw::{RawScenario, RawTime, RawV2x};
@@ -53,9 +54,11 @@ pub(crate) fn world(
     }
     let (roads, roads_ok) = roads(ctx, &raw.roads, imported, mapped);
     let occluders = occluders(ctx, &raw.occluders, imported, mapped);
+    let road_index = RoadIndex::new(&roads);
+    let walkways = RoadIndex::new(mapped.map_or(&[], |m| &m.walkways));
     let scene = Scene {
-        roads: &roads,
-        walkways: mapped.map_or(&[], |m| &m.walkways),
+        roads: &road_index,
+        walkways: &walkways,
         sensors: &sensors,
         imported,
         duration: time.duration,
@@ -82,7 +85,7 @@ pub(crate) fn world(
     let traffic = raw
         .traffic
         .as_ref()
-        .map(|t| traffic(ctx, t, &roads, crosswalks.as_deref()));
+        .map(|t| traffic(ctx, t, &road_index, crosswalks.as_deref()));
     let semantic = match (&raw.semantic, &agents) {
         (Some(semantic), Some((agents, _))) => semantic_of(ctx, semantic, agents, time.step, is_joint).map(Some),
         (None, _) => Some(None),
@@ -111,7 +114,7 @@ pub(crate) fn world(
         );
         return None;
     }
-    let connections = connections(raw, &roads);
+    let connections = connections(raw, &road_index);
     if !joint_ok {
         return None;
     }
@@ -141,8 +144,8 @@ pub(crate) fn world(
 /// The pairs of roads, by index, that a declared route drives from one into
 /// the other (an agent's `route`, a route of `traffic.vehicles`), sorted. The
 /// routes themselves are checked where they are resolved (`routes`).
-fn connections(raw: &RawScenario, roads: &[Road]) -> Vec<(usize, usize)> {
-    let index = |id: &String| roads.iter().position(|road| &road.id == id);
+fn connections(raw: &RawScenario, roads: &RoadIndex<'_>) -> Vec<(usize, usize)> {
+    let index = |id: &String| roads.position(id);
     let agent_routes = raw.agents.iter().filter_map(|agent| agent.route.as_ref());
     let traffic_routes = raw
         .traffic

@@ -1,12 +1,47 @@
 //! Routes: a list of road ids checked for connectivity and resolved into one
 //! path on one lane, with the speed limit of each part.
 
+use std::collections::HashMap;
+
 use crate::compile::checks::known_names;
 use crate::compile::context::{Context, Declaration};
 use crate::error::ErrorKind;
 use crate::geometry::{Polyline, Xy, distance};
 use crate::model::Road;
 use crate::path::Path;
+
+/// The most roads a route may name. A drive across a city names some tens
+/// (bundled: at most 3); each road adds a speed limit that every vehicle on the
+/// route keeps and looks up as it moves.
+const MAX_ROUTE_ROADS: usize = 1_000;
+
+/// Roads and where each id is, so that a route is resolved in time linear in
+/// its length, whatever the number of roads.
+pub(super) struct RoadIndex<'a> {
+    roads: &'a [Road],
+    by_id: HashMap<&'a str, usize>,
+}
+
+impl<'a> RoadIndex<'a> {
+    pub(super) fn new(roads: &'a [Road]) -> Self {
+        let mut by_id = HashMap::with_capacity(roads.len());
+        for (i, road) in roads.iter().enumerate() {
+            // The first of two roads of one id (refused where they are declared).
+            by_id.entry(road.id.as_str()).or_insert(i);
+        }
+        Self { roads, by_id }
+    }
+
+    /// The index of the road of id `id`.
+    pub(super) fn position(&self, id: &str) -> Option<usize> {
+        self.by_id.get(id).copied()
+    }
+
+    /// Whether there are no roads.
+    pub(super) fn is_empty(&self) -> bool {
+        self.roads.is_empty()
+    }
+}
 
 /// Resolves a route into one polyline on lane `lane` of each road, with the speed
 /// limit of each part. Road a connects to road b across a junction when a links
@@ -18,15 +53,26 @@ pub(super) fn route_path(
     route: &[String],
     lane: u32,
     path: &Path,
-    roads: &[Road],
+    index: &RoadIndex<'_>,
 ) -> Option<(Polyline, Vec<(f64, f64)>)> {
+    let roads = index.roads;
     if route.is_empty() {
         ctx.error(path, ErrorKind::Invalid("a route names at least one road".into()));
         return None;
     }
+    if route.len() > MAX_ROUTE_ROADS {
+        ctx.error(
+            path,
+            ErrorKind::TooLarge(format!(
+                "{} roads in a route exceed the limit of {MAX_ROUTE_ROADS}; name each road of the way once",
+                route.len()
+            )),
+        );
+        return None;
+    }
     let mut parts: Vec<(&Road, &Polyline)> = Vec::new();
     for (i, id) in route.iter().enumerate() {
-        let Some(road) = roads.iter().find(|r| &r.id == id) else {
+        let Some(road) = index.position(id).map(|i| &roads[i]) else {
             if ctx.is_failed(Declaration::Road, id) {
                 // The road's own errors say why; the route is not at fault.
                 return None;
@@ -54,7 +100,7 @@ pub(super) fn route_path(
         );
         return None;
     }
-    let mut points: Vec<Xy> = Vec::new();
+    let mut way = Way::default();
     let mut limits = Vec::new();
     let mut entry = 0.0;
     for (i, &(road, line)) in parts.iter().enumerate() {
@@ -95,23 +141,38 @@ pub(super) fn route_path(
             }
         };
         if line.is_closed() && exit < entry {
-            points.extend(line.slice(entry, line.length()));
-            points.extend(line.slice(0.0, exit));
+            way.extend(line.slice(entry, line.length()));
+            way.extend(line.slice(0.0, exit));
         } else {
-            points.extend(line.slice(entry, exit));
+            way.extend(line.slice(entry, exit));
         }
-        limits.push((length_of(&points), road.speed_limit));
+        limits.push((way.length, road.speed_limit));
         // The path across the junction drives at the next road's limit.
-        points.extend(link.iter().flat_map(|link| &link.via));
+        way.extend(link.iter().flat_map(|link| link.via.iter().copied()));
         entry = next_entry;
     }
-    let Some(polyline) = Polyline::new(points) else {
+    let Some(polyline) = Polyline::new(way.points) else {
         ctx.error(path, ErrorKind::Invalid("the route has no length".into()));
         return None;
     };
     Some((polyline, limits))
 }
 
-fn length_of(points: &[Xy]) -> f64 {
-    points.windows(2).map(|p| distance(p[0], p[1])).sum()
+/// The points of a route as they are joined, and their length so far (kept as
+/// they come, so that each road's end is found in constant time).
+#[derive(Default)]
+struct Way {
+    points: Vec<Xy>,
+    length: f64,
+}
+
+impl Way {
+    fn extend(&mut self, points: impl IntoIterator<Item = Xy>) {
+        for point in points {
+            if let Some(&last) = self.points.last() {
+                self.length += distance(last, point);
+            }
+            self.points.push(point);
+        }
+    }
 }

@@ -3,7 +3,7 @@
 
 use std::collections::HashSet;
 
-use super::routes::route_path;
+use super::routes::{RoadIndex, route_path};
 use crate::compile::checks::{coordinates, distinct_from_imported, known_names, unique_ids, whole_multiple};
 use crate::compile::context::Context;
 use crate::compile::map::Mapped;
@@ -12,7 +12,7 @@ use crate::error::ErrorKind;
 use crate::geometry::{counter_clockwise, distance};
 use crate::model::{
     Agent, AgentKind, Area, Baseline, Caution, Channel, Crosswalk, Driving, InteractionArea, PathLossModel,
-    PedestrianTraffic, Road, RsuSight, Semantic, Traffic, TrafficRoute, V2x, VehicleTraffic,
+    PedestrianTraffic, RsuSight, Semantic, Traffic, TrafficRoute, V2x, VehicleTraffic,
 };
 use crate::path::Path;
 use crate::raw::range;
@@ -187,7 +187,7 @@ fn named_areas(ctx: &mut Context<'_>, list: &Path, raw: &[RawInteractionArea]) -
 pub(super) fn traffic(
     ctx: &mut Context<'_>,
     raw: &RawTraffic,
-    roads: &[Road],
+    roads: &RoadIndex<'_>,
     crosswalks: Option<&[Crosswalk]>,
 ) -> Option<Traffic> {
     let path = Path::root().key("traffic");
