@@ -35,3 +35,4 @@ mod world;
 
 pub use scenario::{Loader, Options, compile};
 pub use vary::instantiate;
+pub(crate) use world::MAX_ROUTE_ROADS;

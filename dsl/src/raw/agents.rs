@@ -19,6 +19,7 @@ pub(crate) struct RawAgent {
     /// Vehicles: the road ids it drives along, in order (`road R lane L` for
     /// a lane of `map`). Pedestrians: the sidewalks of `map` it walks along.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(length(max = crate::compile::MAX_ROUTE_ROADS))]
     pub route: Option<Vec<String>>,
     /// Vehicles: the lane it keeps (0: lane 0 of every road).
     #[serde(default)]

@@ -34,6 +34,7 @@ pub(crate) struct RawVehicleTraffic {
     #[schemars(transform = range::DENSITY.schema())]
     pub density_per_km: f64,
     /// The routes traffic drives, each a list of road ids like an agent's `route`.
+    #[schemars(inner(length(max = crate::compile::MAX_ROUTE_ROADS)))]
     pub routes: Vec<Vec<String>>,
     /// Share of drivers who ignore speed limits (0–1); seed 002 uses 0.4.
     #[serde(default)]

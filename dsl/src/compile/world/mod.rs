@@ -14,3 +14,4 @@ mod semantic;
 mod sensors;
 
 pub(super) use assemble::world;
+pub(crate) use routes::MAX_ROUTE_ROADS;

@@ -13,7 +13,7 @@ use crate::path::Path;
 /// The most roads a route may name. A drive across a city names some tens
 /// (bundled: at most 3); each road adds a speed limit that every vehicle on the
 /// route keeps and looks up as it moves.
-const MAX_ROUTE_ROADS: usize = 1_000;
+pub(crate) const MAX_ROUTE_ROADS: usize = 1_000;
 
 /// Roads and where each id is, so that a route is resolved in time linear in
 /// its length, whatever the number of roads.
