@@ -12,8 +12,8 @@ macro_rules! stderr {
 pub(crate) use stderr;
 
 /// `text` with each control character but a line break and a tab written as
-/// its escape (`\u{1b}`): a file name on the command line cannot move the cursor, recolour the terminal or forge a line
-/// of a CI log.
+/// its escape (`\u{1b}`): a file name on the command line cannot move the
+/// cursor, recolour the terminal or forge a line of a CI log.
 pub fn printable(text: &str) -> Cow<'_, str> {
     let hidden = |c: char| c.is_control() && c != '\n' && c != '\t';
     if !text.contains(hidden) {
