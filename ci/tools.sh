@@ -49,13 +49,19 @@ python3 -m venv "$venv"
 CRIME_VERSION=0.4.5
 "$venv/bin/python" -m pip install --quiet --disable-pip-version-check \
   -c tests/python/crime-constraints.txt "commonroad-crime==$CRIME_VERSION"
+# numpy, for the test that checks the bundled field experiment against the
+# independent numpy implementation of bench/numpy_s1.py
+# (tests/e2e/field_reference.rs), at the version bench/requirements.txt pins
+# (CRIME's constraints pin the same).
+"$venv/bin/python" -m pip install --quiet --disable-pip-version-check -r bench/requirements.txt
 # The tests fail, rather than skip, when these are set and the reader, the
-# browser check, SUMO or CRIME fails.
+# browser check, SUMO, CRIME or numpy fails.
 export SIGHTLINE_MCAP_PYTHON="$PWD/$venv/bin/python"
 export SIGHTLINE_BROWSER_PYTHON="$PWD/$venv/bin/python"
 export SIGHTLINE_SUMO_PYTHON="$PWD/$venv/bin/python"
 export SIGHTLINE_CRIME_PYTHON="$PWD/$venv/bin/python"
 export SIGHTLINE_JUNIT_PYTHON="$PWD/$venv/bin/python"
+export SIGHTLINE_NUMPY_PYTHON="$PWD/$venv/bin/python"
 
 # ASAM OSI's Python tools, for the tests of `sightline run --osi`
 # (tests/e2e/osi.rs, through tests/python/read_osi.py) and the example systems

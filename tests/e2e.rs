@@ -103,6 +103,10 @@ mod joint;
 #[path = "e2e/findings.rs"]
 mod findings;
 
+// The bundled field experiment within sampling error of an independent numpy implementation.
+#[path = "e2e/field_reference.rs"]
+mod field_reference;
+
 // `falsify`: the bundled counterexample found and shrunk, determinism, exit codes.
 #[path = "e2e/falsify.rs"]
 mod falsify;
