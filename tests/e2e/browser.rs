@@ -12,12 +12,11 @@
 //! Skipped (with a message) only when `SIGHTLINE_BROWSER_PYTHON` is unset;
 //! `.ci/run` sets it, and then any failure fails the test.
 
-use std::ffi::OsString;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use crate::bundled::{Bundled, every_run};
-use crate::support::{FAILING, arg, read, read_json, root, sha256_hex, sightline};
+use crate::support::{FAILING, arg, read, read_json, root, sha256_hex, sightline, tool};
 
 /// Names a Python with Playwright; `.ci/run` sets it.
 const PYTHON_VAR: &str = "SIGHTLINE_BROWSER_PYTHON";
@@ -27,15 +26,8 @@ const PYTHON_VAR: &str = "SIGHTLINE_BROWSER_PYTHON";
 const HOSTILE: &str = "tests/fixtures/valid/script-in-text.yaml";
 
 /// The Python to drive the browser with, or `None` (with a message) to skip.
-fn python() -> Option<OsString> {
-    let python = std::env::var_os(PYTHON_VAR);
-    if python.is_none() {
-        eprintln!(
-            "skipped: {PYTHON_VAR} is not set; set it to a Python with Playwright and install \
-             Debian's chromium (see README, Test), as .ci/run does"
-        );
-    }
-    python
+fn python() -> Option<PathBuf> {
+    tool(PYTHON_VAR, "a Python with Playwright, beside Debian's chromium")
 }
 
 /// Where the report of `scenario` is opened and its screenshot kept.
@@ -47,12 +39,12 @@ fn page_dir(scenario: &str) -> PathBuf {
 /// Opens `dir/report.html` in Chromium, saves `dir/screenshot.png`, prints it
 /// to `dir/report.pdf` and returns what the page showed; panics with the
 /// checker's reasons when it fails.
-fn open(python: &OsString, dir: &Path) -> serde_json::Value {
+fn open(python: &Path, dir: &Path) -> serde_json::Value {
     open_page(python, dir, &[])
 }
 
 /// [`open`] with the checker's extra arguments (`--falsify`).
-fn open_page(python: &OsString, dir: &Path, extra: &[&str]) -> serde_json::Value {
+fn open_page(python: &Path, dir: &Path, extra: &[&str]) -> serde_json::Value {
     let output = Command::new(python)
         .arg(root().join("tests/python/check_report.py"))
         .arg(dir.join("report.html"))
@@ -158,13 +150,13 @@ fn first_line(text: &str) -> &str {
 /// Opens the report in the page directory of `scenario` and checks it against
 /// `results`.
 #[track_caller]
-fn assert_report_works(python: &OsString, scenario: &str, results: &serde_json::Value) {
+fn assert_report_works(python: &Path, scenario: &str, results: &serde_json::Value) {
     assert_page_shows(&open(python, &page_dir(scenario)), results);
 }
 
 /// Runs `scenario` and checks its report in the browser; returns results.json.
 #[track_caller]
-fn run_and_open(python: &OsString, scenario: &str) -> serde_json::Value {
+fn run_and_open(python: &Path, scenario: &str) -> serde_json::Value {
     let results = run(scenario);
     assert_report_works(python, scenario, &results);
     results

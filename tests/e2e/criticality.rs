@@ -11,7 +11,9 @@ use std::process::Command;
 
 use serde_json::{Value, json};
 
-use crate::support::{RECORDING, arg, read, read_json, requirement, root, sightline, temp_dir, unescape_html, verdict};
+use crate::support::{
+    RECORDING, arg, read, read_json, requirement, root, sightline, temp_dir, tool, unescape_html, verdict,
+};
 
 const SCENE: &str = "tests/fixtures/valid/criticality.yaml";
 
@@ -340,18 +342,10 @@ const HUNDREDTH: f64 = 0.005 + 1e-9;
 /// commonroad-crime; with `CI` set a missing one fails the test.
 #[test]
 fn commonroad_crime_agrees_where_the_definitions_match() {
-    let Some(python) = std::env::var_os(PYTHON_VAR) else {
-        assert!(
-            std::env::var_os("CI").is_none(),
-            "CI is set but {PYTHON_VAR} is not: .ci/run installs commonroad-crime and sets it"
-        );
-        eprintln!(
-            "skipped: {PYTHON_VAR} is not set; set it to a Python with commonroad-crime \
-             (python3 -m venv v && v/bin/pip install commonroad-crime==0.4.5), as .ci/run does"
-        );
+    let Some(python) = tool(PYTHON_VAR, "a Python with commonroad-crime 0.4.5") else {
         return;
     };
-    let python = Path::new(&python);
+    let python = python.as_path();
     let tmp = temp_dir();
     for case in cases() {
         let ours = case.sightline(tmp.path());

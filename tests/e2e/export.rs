@@ -8,7 +8,7 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use crate::support::{arg, read, root, sightline, temp_dir};
+use crate::support::{arg, read, root, sightline, temp_dir, tool};
 
 /// Names a Python with asam-qc-opendrive and asam-qc-openscenarioxml.
 const QC_VAR: &str = "SIGHTLINE_QC_PYTHON";
@@ -19,17 +19,7 @@ const MAP: &str = "scenario.xodr";
 /// The Python with the ASAM Quality Checker, `None` (after saying why) when
 /// none is named outside CI.
 fn checker() -> Option<PathBuf> {
-    match std::env::var_os(QC_VAR) {
-        Some(python) => Some(PathBuf::from(python)),
-        None if std::env::var_os("CI").is_some() => panic!("{QC_VAR} is not set in CI; .ci/run sets it"),
-        None => {
-            eprintln!(
-                "skipped the ASAM Quality Checker: {QC_VAR} is not set; set it to a Python with \
-                 asam-qc-opendrive and asam-qc-openscenarioxml (see .ci/run)"
-            );
-            None
-        }
-    }
+    tool(QC_VAR, "a Python with asam-qc-opendrive and asam-qc-openscenarioxml")
 }
 
 /// Runs the checker on an export's folder and panics on any error or warning

@@ -11,7 +11,7 @@ use std::process::{Child, Command, Stdio};
 use serde_json::Value;
 
 use crate::bundled::field;
-use crate::support::{root, setting};
+use crate::support::{root, setting, tool};
 
 /// The Python with numpy (bench/requirements.txt); `.ci/run` sets it.
 const PYTHON_VAR: &str = "SIGHTLINE_NUMPY_PYTHON";
@@ -57,15 +57,7 @@ const COUNTS: [&str; 5] = [
 /// with `CI` set a missing one fails the test.
 #[test]
 fn the_bundled_field_experiment_agrees_with_an_independent_numpy_implementation() {
-    let Some(python) = std::env::var_os(PYTHON_VAR) else {
-        assert!(
-            std::env::var_os("CI").is_none(),
-            "CI is set but {PYTHON_VAR} is not: .ci/run installs numpy and sets it"
-        );
-        eprintln!(
-            "skipped: {PYTHON_VAR} is not set; set it to a Python with numpy \
-             (python3 -m venv v && v/bin/pip install -r bench/requirements.txt), as .ci/run does"
-        );
+    let Some(python) = tool(PYTHON_VAR, "a Python with numpy (bench/requirements.txt)") else {
         return;
     };
     // Both readings at once, while the bundled run (shared with other tests) runs.

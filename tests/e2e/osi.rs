@@ -16,7 +16,7 @@ use prost::Message;
 use serde_json::json;
 use sightline_osi::osi3;
 
-use crate::support::{SMALL_FIELD, arg, root, sightline, temp_dir};
+use crate::support::{SMALL_FIELD, arg, root, sightline, temp_dir, tool};
 
 /// Names a Python with osi-python and asam-osi-utilities.
 const PYTHON_VAR: &str = "SIGHTLINE_OSI_PYTHON";
@@ -37,20 +37,9 @@ const REQUIREMENTS: &str = "requirements:
   - { id: VIS-HALF, text: Half of what is in view shows., check: { metric: mean_visible_fraction, at_least: 0.45 } }
 ";
 
-/// The Python with ASAM's OSI tools, `None` (after saying why) when none is
-/// named outside CI.
+/// The Python with ASAM's OSI tools (see [`tool`]).
 fn python() -> Option<PathBuf> {
-    match std::env::var_os(PYTHON_VAR) {
-        Some(python) => Some(PathBuf::from(python)),
-        None if std::env::var_os("CI").is_some() => panic!("{PYTHON_VAR} is not set in CI; ci/tools.sh sets it"),
-        None => {
-            eprintln!(
-                "skipped ASAM's OSI tools: {PYTHON_VAR} is not set; set it to a Python with \
-                 osi-python and asam-osi-utilities (see ci/tools.sh)"
-            );
-            None
-        }
-    }
+    tool(PYTHON_VAR, "a Python with osi-python and asam-osi-utilities")
 }
 
 /// Runs the hand-counted scene with `--osi` into `dir` and returns the trace.

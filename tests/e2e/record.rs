@@ -10,7 +10,7 @@ use std::process::Command;
 
 use crate::bundled::{Bundled, every_run, roundabout_run, sumo_grid_run};
 use crate::support::{
-    FAILING, RECORDING, arg, files_under, normalise_execution, read, read_json, root, sightline, temp_dir,
+    FAILING, RECORDING, arg, files_under, normalise_execution, read, read_json, root, sightline, temp_dir, tool,
 };
 
 /// Names a Python that has the official `mcap` package; `.ci/run` sets it.
@@ -621,11 +621,7 @@ fn recording_is_byte_identical_whatever_the_thread_count() {
 /// sets it, and then any failure of the reader fails the test.
 #[test]
 fn the_python_mcap_reader_reads_the_recordings() {
-    let Some(python) = std::env::var_os(PYTHON_VAR) else {
-        eprintln!(
-            "skipped: {PYTHON_VAR} is not set; set it to a Python with the official reader \
-             (python3 -m venv v && v/bin/pip install mcap==1.6.0), as .ci/run does"
-        );
+    let Some(python) = tool(PYTHON_VAR, "a Python with the official reader (mcap 1.6.0)") else {
         return;
     };
     let tmp = temp_dir();

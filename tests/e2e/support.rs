@@ -138,6 +138,24 @@ fn signal(status: ExitStatus) -> Option<i32> {
 /// The memory cap of a run on hostile input (issue 15): 2 GiB of address space.
 pub const MEMORY_CAP_BYTES: u64 = 2 << 30;
 
+/// The real tool named by the environment variable `var` that a test checks
+/// output with (`ci/tools.sh` installs each and sets its variable): `None`,
+/// after saying on stderr what to set it to (`what`), when it is not set; a
+/// panic instead when `CI` is set, since CI must run every such check.
+pub fn tool(var: &str, what: &str) -> Option<PathBuf> {
+    match std::env::var_os(var) {
+        Some(path) => Some(PathBuf::from(path)),
+        None => {
+            assert!(
+                std::env::var_os("CI").is_none(),
+                "CI is set but {var} is not: `source ci/tools.sh` installs {what} and sets it"
+            );
+            eprintln!("skipped: {var} is not set; set it to {what}, as `source ci/tools.sh` does");
+            None
+        }
+    }
+}
+
 /// The time cap of a run on hostile input, in seconds of wall-clock time; then
 /// the run is killed (SIGKILL).
 pub const TIME_CAP_SECONDS: u32 = 20;

@@ -14,7 +14,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-use super::support::{Outcome, arg, read_json, redact_results_json, requirement, root, temp_dir, verdict};
+use super::support::{Outcome, arg, read_json, redact_results_json, requirement, root, temp_dir, tool, verdict};
 
 const PYTHON_VAR: &str = "SIGHTLINE_OSI_PYTHON";
 
@@ -421,17 +421,9 @@ fn a_scenario_with_a_system_is_neither_recorded_nor_sharded() {
     }
 }
 
-/// The Python with osi-python, `None` (after saying why) when none is named
-/// outside CI.
+/// The Python with osi-python (see [`tool`]).
 fn python() -> Option<PathBuf> {
-    match std::env::var_os(PYTHON_VAR) {
-        Some(python) => Some(PathBuf::from(python)),
-        None if std::env::var_os("CI").is_some() => panic!("{PYTHON_VAR} is not set in CI; ci/tools.sh sets it"),
-        None => {
-            eprintln!("skipped the example systems: {PYTHON_VAR} is not set; set it to a Python with osi-python");
-            None
-        }
-    }
+    tool(PYTHON_VAR, "a Python with osi-python")
 }
 
 /// Runs scenario `text` (an example's, changed) with the example systems'
