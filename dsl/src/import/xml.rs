@@ -138,21 +138,28 @@ pub(crate) fn number(node: Node, name: &str) -> Result<f64, XmlError> {
 /// range the scenario's own speeds have.
 pub(crate) fn number_within(node: Node, name: &str, range: Range) -> Result<f64, XmlError> {
     let value = number(node, name)?;
+    match outside(range, value) {
+        None => Ok(value),
+        Some(problem) => {
+            let message = format!("attribute `{name}` of {} {problem}", tag(node));
+            Err(value_error(node, &attribute(node, name)?, message))
+        }
+    }
+}
+
+/// What is wrong with `value` when it lies outside `range`, as the end of a
+/// message (`must be a number from -1000000 to 1000000 m, found 1e300`);
+/// `None` when it lies within.
+pub(crate) fn outside(range: Range, value: f64) -> Option<String> {
     if range.contains(value) {
-        return Ok(value);
+        return None;
     }
     let unit = if range.unit.is_empty() {
         String::new()
     } else {
         format!(" {}", range.unit)
     };
-    let message = format!(
-        "attribute `{name}` of {} must be {}{unit}, found {}",
-        tag(node),
-        range.words(),
-        Number(value)
-    );
-    Err(value_error(node, &attribute(node, name)?, message))
+    Some(format!("must be {}{unit}, found {}", range.words(), Number(value)))
 }
 
 /// An optional number within `range`, as [`number_within`]; `None` when absent.

@@ -7,6 +7,7 @@ use super::vclass::vehicle_class;
 use super::xml::{self, Locator, SumoError};
 use crate::Location;
 use crate::geometry::Xy;
+use crate::raw::range::COORDINATE;
 
 /// What an additional or route file holds that sightline reads.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -103,7 +104,9 @@ const READ: [&str; 5] = ["poly", "poi", "vType", "vTypeDistribution", "location"
 /// [`Additional::ignored`].
 ///
 /// Errors: malformed XML, another root element, a missing or bad attribute, a
-/// vehicle class SUMO does not know, a size that is not positive, and shapes or
+/// polygon's point, a point of interest's `x` or `y` or its `posLat` beyond the
+/// world's coordinates (±1e6 m), a vehicle class SUMO does not know, a size
+/// that is not positive, and shapes or
 /// points in geographic coordinates (`geo="true"`, `lon`/`lat`): convert them
 /// to network coordinates first, for example with SUMO's polyconvert.
 pub fn parse_additional(text: &str) -> Result<Additional, SumoError> {
@@ -183,9 +186,12 @@ fn poi(node: Node, locator: &Locator) -> Result<Poi, SumoError> {
         Some(lane) => PoiAt::Lane {
             lane: lane.to_owned(),
             pos: xml::number(node, "pos")?,
-            pos_lat: xml::number_or(node, "posLat", 0.0)?,
+            pos_lat: xml::optional_number_within(node, "posLat", COORDINATE)?.unwrap_or(0.0),
         },
-        None => PoiAt::Point([xml::number(node, "x")?, xml::number(node, "y")?]),
+        None => PoiAt::Point([
+            xml::number_within(node, "x", COORDINATE)?,
+            xml::number_within(node, "y", COORDINATE)?,
+        ]),
     };
     let mut height = None;
     for param in xml::children(node, "param").filter(|p| p.attribute("key") == Some("height")) {
@@ -325,6 +331,28 @@ mod tests {
         assert_eq!(ignored, [("busStop".to_string(), 2, Location::new(6, 5))]);
         let routes = "<routes><vType id=\"a\"/><vehicle id=\"v\" depart=\"0\"/></routes>";
         assert_eq!(parse_additional(routes).unwrap().ignored, []);
+    }
+
+    /// A building at 1e300 m was refused as enclosing no area; a point of
+    /// interest there was read.
+    #[test]
+    fn positions_beyond_the_coordinate_range_are_errors_where_written() {
+        let text = POLYS.replace("40,30 10,30", "40,30 1e300,30");
+        assert_eq!(
+            error(&text),
+            "3:92: x of point \"1e300,30\" in attribute `shape` of <poly> must be a number from \
+             -1000000 to 1000000 m, found 1e300"
+        );
+        let text = POLYS.replace(r#"x="50" y="50""#, r#"x="50" y="-2e6""#);
+        assert_eq!(
+            error(&text),
+            "4:42: attribute `y` of <poi> must be a number from -1000000 to 1000000 m, found -2000000"
+        );
+        let text = POLYS.replace(r#"posLat="3.5""#, r#"posLat="1e300""#);
+        assert_eq!(
+            error(&text),
+            "7:60: attribute `posLat` of <poi> must be a number from -1000000 to 1000000 m, found 1e300"
+        );
     }
 
     #[test]

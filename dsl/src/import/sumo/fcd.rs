@@ -73,8 +73,9 @@ pub struct FcdSample {
 /// attributes leave it out, and a rider then reads as a pedestrian at its
 /// vehicle's position.
 ///
-/// Errors: malformed XML, a missing or non-finite attribute, a `speed` outside
-/// a scenario's speed range (0 to 150 m/s), timesteps out of time order or two
+/// Errors: malformed XML, a missing or non-finite attribute, an `x` or `y`
+/// beyond the world's coordinates (±1e6 m), a `speed` outside a scenario's
+/// speed range (0 to 150 m/s), timesteps out of time order or two
 /// at one time, an id twice in one timestep or used by both a vehicle and a
 /// person, and geographic
 /// coordinates: `lon`/`lat` attributes, or a file whose header records
@@ -155,7 +156,10 @@ pub fn parse_fcd(text: &str) -> Result<Fcd, SumoError> {
 fn sample(node: Node, time: f64) -> Result<FcdSample, SumoError> {
     Ok(FcdSample {
         time,
-        position: [xml::number(node, "x")?, xml::number(node, "y")?],
+        position: [
+            xml::number_within(node, "x", range::COORDINATE)?,
+            xml::number_within(node, "y", range::COORDINATE)?,
+        ],
         heading: heading(xml::number(node, "angle")?),
         speed: xml::number_within(node, "speed", range::SPEED)?,
         lane: node.attribute("lane").map(str::to_owned),
@@ -345,6 +349,28 @@ mod tests {
                 format!("9:68: attribute `speed` of <vehicle> must be a number from 0 to 150 m/s, found {found}")
             );
         }
+    }
+
+    /// A road user at `x="1e300"` was taken as far away, and the scenario
+    /// passed without it.
+    #[test]
+    fn positions_beyond_the_coordinate_range_are_errors_at_the_value() {
+        for (x, y, at, found) in [
+            ("1e300", "-1.60", "9:29 attribute `x`", "1e300"),
+            ("-1000000.5", "-1.60", "9:29 attribute `x`", "-1000000.5"),
+            ("50.00", "2e6", "9:39 attribute `y`", "2000000"),
+        ] {
+            let text = TRACE.replace(r#"x="50.00" y="-1.60""#, &format!(r#"x="{x}" y="{y}""#));
+            let (position, attribute) = at.split_once(' ').unwrap();
+            assert_eq!(
+                error(&text),
+                format!(
+                    "{position}: {attribute} of <vehicle> must be a number from -1000000 to 1000000 m, found {found}"
+                )
+            );
+        }
+        let text = TRACE.replace(r#"x="50.00" y="-1.60""#, r#"x="-1e6" y="1e6""#);
+        assert_eq!(parse_fcd(&text).unwrap().objects[2].samples[0].position, [-1e6, 1e6]);
     }
 
     #[test]

@@ -5,7 +5,8 @@
 //! classes are in sightline ([`vehicle_class`]).
 //!
 //! Each takes the file's text and returns plain data in SUMO's network
-//! coordinates (metres), or a [`SumoError`] located by line and column.
+//! coordinates (metres, each within the world's ±1e6 m), or a [`SumoError`]
+//! located by line and column.
 //! Geographic coordinates are not supported.
 //!
 //! ```

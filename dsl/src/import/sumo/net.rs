@@ -129,9 +129,10 @@ type LaneOf<'a> = (&'a str, u32);
 /// `id`; `type`, `incLanes` and `shape` are optional. The location, roundabouts,
 /// traffic-light programs and other elements and attributes are ignored.
 ///
-/// Errors: malformed XML, a missing or bad attribute, a connection to an edge or
-/// lane the network does not have, and a `via` naming an internal lane it does
-/// not have.
+/// Errors: malformed XML, a missing or bad attribute, a point of a lane's or a
+/// junction's shape beyond the world's coordinates (±1e6 m), a connection to an
+/// edge or lane the network does not have, and a `via` naming an internal lane
+/// it does not have.
 pub fn parse_net(text: &str) -> Result<Network, SumoError> {
     let doc = xml::parse(text)?;
     let root = xml::root(&doc, "net")?;
@@ -435,6 +436,23 @@ mod tests {
         assert_eq!(
             error(&text),
             "12:70: attribute `shape` of <lane> has one point; a lane needs at least two"
+        );
+    }
+
+    /// A walking area's lane at 1e300 m was read, and the scenario passed.
+    #[test]
+    fn shape_points_beyond_the_coordinate_range_are_errors_at_the_coordinate() {
+        let text = NET.replace(r#"shape="95,-5 96,-5""#, r#"shape="1e300,-5 96,-5""#);
+        assert_eq!(
+            error(&text),
+            "24:85: x of point \"1e300,-5\" in attribute `shape` of <lane> must be a number from \
+             -1000000 to 1000000 m, found 1e300"
+        );
+        let text = NET.replace("105,-5 105,5", "105,-5 105,-1000001");
+        assert_eq!(
+            error(&text),
+            "26:121: y of point \"105,-1000001\" in attribute `shape` of <junction> must be a number from \
+             -1000000 to 1000000 m, found -1000001"
         );
     }
 

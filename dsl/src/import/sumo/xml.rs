@@ -7,10 +7,11 @@ use roxmltree::{Document, Node};
 use crate::Location;
 use crate::geometry::Xy;
 pub(crate) use crate::import::xml::{
-    Locator, attribute, children, element_error, error_at_pos, number, number_or, number_within, string, tag,
-    value_error,
+    Locator, attribute, children, element_error, error_at_pos, number, number_or, number_within,
+    optional_number_within, string, tag, value_error,
 };
-use crate::import::xml::{XmlError, malformed};
+use crate::import::xml::{XmlError, malformed, outside};
+use crate::raw::range::COORDINATE;
 
 /// A problem in a SUMO file, located by line and column.
 pub type SumoError = XmlError;
@@ -88,7 +89,9 @@ pub(crate) fn index(node: Node, name: &str) -> Result<u32, SumoError> {
 }
 
 /// A required shape: points `x,y` (or `x,y,z`, the height dropped) separated by
-/// spaces. An empty shape is an error; a bad point is located at that point.
+/// spaces, each coordinate within the world's ([`COORDINATE`]). An empty shape
+/// is an error; a bad point is located at that point, a coordinate out of range
+/// at that coordinate.
 pub(crate) fn shape(node: Node, name: &str) -> Result<Vec<Xy>, SumoError> {
     let attribute = attribute(node, name)?;
     let value = attribute.value();
@@ -99,14 +102,28 @@ pub(crate) fn shape(node: Node, name: &str) -> Result<Vec<Xy>, SumoError> {
     let mut points = Vec::new();
     for token in value.split_ascii_whitespace() {
         let offset = token.as_ptr() as usize - value.as_ptr() as usize;
+        // The error at byte `within` of the point.
+        let error = |within: usize, message: String| {
+            let pos = if raw == value { start + offset + within } else { start };
+            error_at_pos(node, pos, message)
+        };
         let point = parse_point(token).ok_or_else(|| {
-            let pos = if raw == value { start + offset } else { start };
             let message = format!(
                 "bad point {token:?} in attribute `{name}` of {}; expected \"x,y\" with finite numbers",
                 tag(node)
             );
-            error_at_pos(node, pos, message)
+            error(0, message)
         })?;
+        let y_at = token.find(',').map_or(0, |comma| comma + 1);
+        for (axis, coordinate, within) in [("x", point[0], 0), ("y", point[1], y_at)] {
+            if let Some(problem) = outside(COORDINATE, coordinate) {
+                let message = format!(
+                    "{axis} of point {token:?} in attribute `{name}` of {} {problem}",
+                    tag(node)
+                );
+                return Err(error(within, message));
+            }
+        }
         points.push(point);
     }
     if points.is_empty() {
@@ -189,6 +206,23 @@ mod tests {
                 "{bad}"
             );
         }
+    }
+
+    #[test]
+    fn shape_coordinates_are_held_to_the_coordinate_range_at_the_coordinate() {
+        let text = "<net>\n  <lane shape=\"0,0 1e6,-1e6,5e9 1,-1000000.1\"/>\n</net>";
+        assert_eq!(
+            first_error(text, |n| shape(n, "shape")),
+            "2:35: y of point \"1,-1000000.1\" in attribute `shape` of <lane> must be a number from \
+             -1000000 to 1000000 m, found -1000000.1"
+        );
+        let text = "<net><lane shape=\"0,0 1e6,-1e6,5e9\"/></net>";
+        let doc = parse(text).unwrap();
+        let lane = doc.root_element().first_element_child().unwrap();
+        assert_eq!(shape(lane, "shape").unwrap(), [[0.0, 0.0], [1e6, -1e6]]);
+        // Behind an entity reference, offsets into the value are not the file's.
+        let text = "<net><lane shape=\"0&#44;0 2e6,0\"/></net>";
+        assert!(first_error(text, |n| shape(n, "shape")).starts_with("1:19: x of point \"2e6,0\""));
     }
 
     #[test]
