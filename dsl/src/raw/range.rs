@@ -175,6 +175,9 @@ pub(crate) const OFFSET: Range = Range::closed(0.0, 1.0e7).unit("m");
 pub(crate) const CELL: Range = Range::left_open(0.0, 1.0e4).unit("m");
 /// The size of a road user, a lane, a crossing, a conflict distance, metres.
 pub(crate) const BODY: Range = Range::left_open(0.0, 100.0).unit("m");
+/// The length of an imported SUMO vehicle type, metres: SUMO's rail types are
+/// 109.5 to 200 m long by default, and a freight train kilometres.
+pub(crate) const VEHICLE_LENGTH: Range = Range::left_open(0.0, 1.0e4).unit("m");
 /// A gap or a walk that may be 0, metres.
 pub(crate) const GAP: Range = Range::closed(0.0, 1000.0).unit("m");
 /// Where a sensor sits on its agent, metres from the agent's centre.

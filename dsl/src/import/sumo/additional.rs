@@ -7,7 +7,7 @@ use super::vclass::vehicle_class;
 use super::xml::{self, Locator, SumoError};
 use crate::Location;
 use crate::geometry::Xy;
-use crate::raw::range::COORDINATE;
+use crate::raw::range::{BODY, COORDINATE, VEHICLE_LENGTH};
 
 /// What an additional or route file holds that sightline reads.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -105,8 +105,8 @@ const READ: [&str; 5] = ["poly", "poi", "vType", "vTypeDistribution", "location"
 ///
 /// Errors: malformed XML, another root element, a missing or bad attribute, a
 /// polygon's point, a point of interest's `x` or `y` or its `posLat` beyond the
-/// world's coordinates (±1e6 m), a vehicle class SUMO does not know, a size
-/// that is not positive, and shapes or
+/// world's coordinates (±1e6 m), a vehicle class SUMO does not know, a type's
+/// length outside (0, 10 000] m or width outside (0, 100] m, and shapes or
 /// points in geographic coordinates (`geo="true"`, `lon`/`lat`): convert them
 /// to network coordinates first, for example with SUMO's polyconvert.
 pub fn parse_additional(text: &str) -> Result<Additional, SumoError> {
@@ -225,22 +225,11 @@ fn vtype(node: Node, locator: &Locator) -> Result<VType, SumoError> {
         })?),
         None => None,
     };
-    let mut size = [None, None];
-    for (slot, name) in size.iter_mut().zip(["length", "width"]) {
-        if let Some(attribute) = node.attribute_node(name) {
-            let value = xml::number(node, name)?;
-            if value <= 0.0 {
-                let message = format!("the {name} of type `{id}` is not positive: {value}");
-                return Err(xml::value_error(node, &attribute, message));
-            }
-            *slot = Some(value);
-        }
-    }
     Ok(VType {
         id: id.to_owned(),
         vclass,
-        length: size[0],
-        width: size[1],
+        length: xml::optional_number_within(node, "length", VEHICLE_LENGTH)?,
+        width: xml::optional_number_within(node, "width", BODY)?,
         gui_shape: node.attribute("guiShape").map(str::to_owned),
         location: locator.at(node),
     })
@@ -379,8 +368,23 @@ mod tests {
             error(&text),
             "14:30: type `bike` has vehicle class \"e_bike\", which SUMO does not know"
         );
-        let text = POLYS.replace(r#"width="0.7""#, r#"width="0""#);
-        assert_eq!(error(&text), "14:59: the width of type `bike` is not positive: 0");
+        // A type's width is a body's, more than 0 and at most 100 m; its
+        // length at most 10 km, as trains are long (a car 1e300 m long was
+        // read, and the scenario passed).
+        for (size, found) in [("0", "0"), ("100.5", "100.5"), ("1e300", "1e300")] {
+            let text = POLYS.replace(r#"width="0.7""#, &format!(r#"width="{size}""#));
+            assert_eq!(
+                error(&text),
+                format!("14:59: attribute `width` of <vType> must be a number > 0 and ≤ 100 m, found {found}")
+            );
+        }
+        let text = POLYS.replace(r#"length="1.8""#, r#"length="1e9""#);
+        assert_eq!(
+            error(&text),
+            "14:47: attribute `length` of <vType> must be a number > 0 and ≤ 10000 m, found 1000000000"
+        );
+        let text = POLYS.replace(r#"length="1.8""#, r#"length="200""#);
+        assert_eq!(parse_additional(&text).unwrap().vtypes[1].length, Some(200.0));
         let text = POLYS.replace(r#"value="6.5""#, r#"value="high""#);
         assert_eq!(
             error(&text),

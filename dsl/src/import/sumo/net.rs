@@ -261,7 +261,7 @@ fn lane(node: Node) -> Result<Lane, SumoError> {
         id: xml::string(node, "id")?.to_owned(),
         index: xml::index(node, "index")?,
         speed: xml::number_within(node, "speed", range::SPEED_POSITIVE)?,
-        width: xml::number_or(node, "width", DEFAULT_LANE_WIDTH)?,
+        width: xml::optional_number_within(node, "width", range::BODY)?.unwrap_or(DEFAULT_LANE_WIDTH),
         shape: xml::shape(node, "shape")?,
         permitted,
     };
@@ -425,6 +425,12 @@ mod tests {
                 format!("12:42: attribute `speed` of <lane> must be a number > 0 and ≤ 150 m/s, found {found}")
             );
         }
+        // A lane's width is a body's, as a road's `lane_width`.
+        let text = NET.replace(r#"width="3.50""#, r#"width="1e300""#);
+        assert_eq!(
+            error(&text),
+            "9:71: attribute `width` of <lane> must be a number > 0 and ≤ 100 m, found 1e300"
+        );
         let text = NET.replace(r#"index="1" "#, "");
         assert_eq!(error(&text), "9:9: missing attribute `index` on <lane>");
         let text = NET.replace("103.20,-1.60 200.00,-1.60", "103.20,-1.60 200.00;-1.60");

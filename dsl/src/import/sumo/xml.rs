@@ -7,8 +7,8 @@ use roxmltree::{Document, Node};
 use crate::Location;
 use crate::geometry::Xy;
 pub(crate) use crate::import::xml::{
-    Locator, attribute, children, element_error, error_at_pos, number, number_or, number_within,
-    optional_number_within, string, tag, value_error,
+    Locator, attribute, children, element_error, error_at_pos, number, number_within, optional_number_within, string,
+    tag, value_error,
 };
 use crate::import::xml::{XmlError, malformed, outside};
 use crate::raw::range::COORDINATE;
