@@ -9,7 +9,8 @@
 //! the time simulating its point took, shared among the point's cases (a
 //! share of the run's wall-clock time when the points were not timed). No published JUnit schema allows
 //! `<properties>` in a `<testcase>` (Jenkins' junit-10.xsd, Ant's, JUnit 5's),
-//! so each case's measured value, threshold, margin and n are `name: value`
+//! so each case's oracle (the check in words), measured value, threshold,
+//! margin, n and message are `name: value`
 //! lines of its `<system-out>`, which CI servers show beside the case, passing
 //! cases too (each value on one line: a line feed in a requirement's text is
 //! written `\n`, a backslash `\\`); the suite's `<properties>` name the scenario, its hash, the seed
@@ -21,6 +22,7 @@ use std::time::Duration;
 use quick_junit::{NonSuccessKind, Report, TestCase, TestCaseStatus, TestSuite};
 
 use crate::Execution;
+use crate::html::describe_check;
 use crate::results::{Results, Status};
 
 /// The JUnit report of one scenario's results.
@@ -43,6 +45,9 @@ pub fn junit(results: &Results) -> Report {
     let time = case_times(results.sweep.len(), cases, &results.execution);
     for requirement in &results.requirements {
         let check = format!("{}:{}", requirement.check.kind, requirement.check.name);
+        // What the value and threshold below mean: for a share of seeds, the
+        // per-seed bound and the share (the threshold is the share's).
+        let oracle = describe_check(&requirement.check);
         let unit = requirement.check.unit;
         for point in &requirement.points {
             let name = if point.label.is_empty() {
@@ -81,7 +86,8 @@ pub fn junit(results: &Results) -> Report {
                     .set_type(point.verdict.name())
                     .set_message(message)
                     .set_description(format!(
-                        "{}\ncheck: {check}\nmeasured: {value} ({})\nthreshold: {relation}\nmargin: {margin}\nn: {n}\n",
+                        "{}\ncheck: {check}\noracle: {oracle}\nmeasured: {value} ({})\nthreshold: {relation}\nmargin: \
+                         {margin}\nn: {n}\n",
                         one_line(&requirement.text),
                         point.measured
                     ));
@@ -92,6 +98,7 @@ pub fn junit(results: &Results) -> Report {
                 ("requirement", requirement.id.as_str()),
                 ("text", requirement.text.as_str()),
                 ("check", check.as_str()),
+                ("oracle", oracle.as_str()),
                 ("verdict", point.verdict.name()),
                 ("value", value.as_str()),
                 ("unit", unit),
@@ -99,6 +106,7 @@ pub fn junit(results: &Results) -> Report {
                 ("margin", margin.as_str()),
                 ("n", n.as_str()),
                 ("measured", point.measured.as_str()),
+                ("message", point.message.as_str()),
             ]));
             suite.add_test_case(case);
         }

@@ -85,9 +85,10 @@ fn get<'a>(output: &'a [(String, String)], key: &str) -> &'a str {
 
 /// The suite says what `results` says: named by the scenario and its file,
 /// one case per requirement and point in order, each with its classname,
-/// file, line, a time, its verdict as the result, and its values.
+/// file, line, a time, its verdict as the result, and its values; returns
+/// how many cases judge a share of seeds.
 #[track_caller]
-fn assert_suite_matches(suite: &Value, results: &Value) {
+fn assert_suite_matches(suite: &Value, results: &Value) -> usize {
     let (name, path) = (
         results["scenario"]["name"].as_str().unwrap(),
         results["scenario"]["path"].as_str().unwrap(),
@@ -95,6 +96,7 @@ fn assert_suite_matches(suite: &Value, results: &Value) {
     assert_eq!(suite["name"], format!("{name} ({path})"));
     assert_eq!(suite["properties"]["scenario_sha256"], results["scenario"]["sha256"]);
     let cases = suite["cases"].as_array().unwrap();
+    let mut shares = 0;
     let mut expected = Vec::new();
     for r in results["requirements"].as_array().unwrap() {
         for p in r["points"].as_array().unwrap() {
@@ -153,7 +155,29 @@ fn assert_suite_matches(suite: &Value, results: &Value) {
             format!("{relation} {threshold:?}"),
             "{path} {title}"
         );
+        let message = p["message"].as_str().unwrap();
+        assert_eq!(get(&out, "message"), message.replace('\\', "\\\\").replace('\n', "\\n"));
+        // The oracle says what the threshold bounds: a share of seeds gives
+        // the per-seed bound beside the share, which the threshold line is.
+        let (oracle, name) = (get(&out, "oracle"), r["check"]["name"].as_str().unwrap());
+        assert!(oracle.contains(name), "{path} {title}: {oracle}");
+        if let Some(share) = r["check"]["over_seeds"]["statistic"]["share"]["share"].as_f64() {
+            let sign = if r["check"]["relation"] == "at_least" {
+                "≥"
+            } else {
+                "≤"
+            };
+            let seeds = &r["check"]["over_seeds"]["seeds"];
+            let per_seed = format!("{name} {sign} ");
+            let of_seeds = format!("at ≥ {} % of {seeds} seeds", (share * 1e4).round() / 1e2);
+            assert!(
+                oracle.starts_with(&per_seed) && oracle.contains(&of_seeds),
+                "{path} {title}: {oracle}"
+            );
+            shares += 1;
+        }
     }
+    shares
 }
 
 #[test]
@@ -179,9 +203,14 @@ fn every_junit_validates_against_the_published_schema_and_reads_as_results_json_
         results.push(read_json(&out.join("results.json")));
     }
     let read = check(&python, &xsd, &files);
+    let mut shares = 0;
     for (file, results) in files.iter().zip(&results) {
-        assert_suite_matches(suite(&read, file), results);
+        shares += assert_suite_matches(suite(&read, file), results);
     }
+    assert!(
+        shares > 0,
+        "a bundled scenario judges a share of seeds (sumo-grid-semantic.yaml)"
+    );
     let names: Vec<&Value> = files[files.len() - 2..]
         .iter()
         .map(|f| &suite(&read, f)["name"])

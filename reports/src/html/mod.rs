@@ -15,6 +15,7 @@
 pub(crate) use document::{DocumentView, content_id, control};
 pub(crate) use format::{number, or_dash};
 pub use page::{RunPage, html};
+pub(crate) use requirement::describe_check;
 
 mod document;
 mod format;

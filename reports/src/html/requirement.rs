@@ -140,7 +140,10 @@ pub(super) fn requirement_view(r: &RequirementResult) -> RequirementView {
     }
 }
 
-fn describe_check(check: &CheckInfo) -> String {
+/// The check in words, as the report's Oracle column and junit.xml give it
+/// (`occupied_recall ≥ 0.5 at ≥ 90 % of 30 seeds, at 95 % confidence
+/// (Clopper–Pearson)`).
+pub(crate) fn describe_check(check: &CheckInfo) -> String {
     let (name, threshold) = (check.name, exact_with_unit(check.threshold, check.unit));
     let relation = match check.relation {
         "at_least" | "at_most" => format!("{name} {} {threshold}", relation_sign(check.relation)),
