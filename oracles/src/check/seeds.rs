@@ -96,7 +96,10 @@ pub(crate) fn evaluate(
                 };
             }
         }
-        let message = format!("nothing to judge at {unjudged}");
+        let message = format!(
+            "nothing to judge at {unjudged}{}",
+            judged_range(name, &samples, min_samples)
+        );
         return Evaluation::not_exercised(fewest, format!("{name} at each of {seeds} seeds"), message);
     }
     let Some(values) = samples
@@ -171,6 +174,32 @@ pub(crate) fn evaluate(
     Evaluation {
         seeds: Some(statistics),
         ..Evaluation::judged(statistics.bound, margin, u64::from(n), measured, message)
+    }
+}
+
+/// What the seeds that could be judged gave, for the message of a check left
+/// not exercised by the others (`; the 4 seeds judged gave min_ttc from 0 to
+/// 2.1`), so that a value past the bound at one of them (a collision) shows
+/// in the verdict; empty when none could be judged.
+fn judged_range(name: &str, samples: &[Sample], min_samples: u64) -> String {
+    let judged: Vec<f64> = samples
+        .iter()
+        .filter(|s| s.n >= min_samples)
+        .filter_map(|s| s.value.filter(|v| !v.is_nan()))
+        .collect();
+    let (low, high) = judged
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(low, high), &v| {
+            (low.min(v), high.max(v))
+        });
+    match judged.len() {
+        0 => String::new(),
+        1 => format!("; the one seed judged gave {name} {}", short(low)),
+        k => format!(
+            "; the {k} seeds judged gave {name} from {} to {}",
+            short(low),
+            short(high)
+        ),
     }
 }
 
@@ -336,6 +365,50 @@ mod tests {
             1,
         );
         assert_eq!(e.status, Status::Pass);
+    }
+
+    /// Two of six seeds with no road user on a collision course leave a mean
+    /// of min_ttc not exercised; the four judged, one of them a collision
+    /// (0 s), are named in the message (an outside audit: the collision was
+    /// nowhere in the verdict).
+    #[test]
+    fn a_check_left_not_exercised_names_what_the_judged_seeds_gave() {
+        let sample = |value: Option<f64>, n| Some(Sample { value, n });
+        let samples = [
+            sample(Some(0.0), 1),
+            sample(None, 0),
+            sample(Some(2.1), 2),
+            sample(Some(1.3), 1),
+            sample(None, 0),
+            sample(Some(1.7), 1),
+        ];
+        let e = evaluate(Metric::MinTtc, Bound::AtLeast(1.0), over(Statistic::Mean), &samples, 1);
+        assert_eq!(e.status, Status::NotExercised);
+        assert!(
+            e.message.ends_with("; the 4 seeds judged gave min_ttc from 0 to 2.1"),
+            "{}",
+            e.message
+        );
+        let e = evaluate(
+            Metric::MinTtc,
+            Bound::AtLeast(1.0),
+            over(Statistic::Mean),
+            &samples[..2],
+            1,
+        );
+        assert!(
+            e.message.ends_with("; the one seed judged gave min_ttc 0"),
+            "{}",
+            e.message
+        );
+        let e = evaluate(
+            Metric::MinTtc,
+            Bound::AtLeast(1.0),
+            over(Statistic::Mean),
+            &samples[1..2],
+            1,
+        );
+        assert!(e.message.ends_with("the check needs"), "{}", e.message);
     }
 
     /// Seven seeds of a world that draws nothing: seven equal values. The
