@@ -283,3 +283,33 @@ fn the_template_data_contract_lists_every_field_of_the_report() {
         .collect();
     assert!(missing.is_empty(), "docs/report-templates.md does not list {missing:?}");
 }
+
+/// Beneath each figure of a sweep table, its n (a user audit: the roundabout's
+/// recall over penetration rose while its population shrank, and no table
+/// said so). Checked on the bundled roundabout's first table: each row's first
+/// figure, `occupied_recall`, carries that point's sample size.
+#[test]
+fn every_figure_of_a_sweep_table_carries_its_n() {
+    let run = crate::bundled::roundabout_run();
+    let report = &run.report;
+    let begin = report.find("<h2>Results over").expect("the report has a sweep table");
+    let table = &report[begin..begin + report[begin..].find("</table>").expect("the table is closed")];
+    let body = &table[table.find("<tbody>").expect("a body")..];
+    let rows: Vec<&str> = body.split("<tr>").skip(1).collect();
+    let points = run.results["sweeps"][0]["points"]
+        .as_array()
+        .expect("the sweep's points");
+    assert_eq!(rows.len(), points.len(), "one row per point");
+    for (row, point) in rows.iter().zip(points) {
+        let index = point.as_u64().expect("a point index") as usize;
+        let n = run.results["sweep"][index]["samples"]["occupied_recall"]
+            .as_u64()
+            .expect("occupied_recall's n");
+        let shown = row
+            .split("<span class=\"n\">n = ")
+            .nth(1)
+            .and_then(|rest| rest.split('<').next())
+            .unwrap_or_else(|| panic!("a row without n: {row}"));
+        assert_eq!(shown.replace(',', ""), n.to_string(), "{row}");
+    }
+}

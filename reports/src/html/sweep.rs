@@ -35,39 +35,62 @@ const TABLE_METRICS: [&str; 16] = [
 /// split into several, each with the axes, so that it prints on A4 portrait.
 const COLUMNS_PER_TABLE: usize = 6;
 
+/// The most columns, axes and values, a part of a sweep table holds: a table of
+/// many axes takes fewer values a part (each at least two), since a figure's n
+/// beneath it (`n = 3,109,682`) breaks nowhere.
+const COLUMNS_PER_PART: usize = 9;
+
 #[derive(Serialize)]
 pub(super) struct SweepView {
     title: String,
     /// The table, split into parts of at most [`COLUMNS_PER_TABLE`] value
-    /// columns beside the axes.
-    tables: Vec<TableView>,
+    /// columns beside the axes (fewer beside many axes:
+    /// [`COLUMNS_PER_PART`]), each with its figures' sample sizes.
+    tables: Vec<SweepPart>,
     /// The first part (the whole table when it is narrow enough).
     table: TableView,
     pub(super) charts: Vec<Chart>,
 }
 
-/// A sweep's view: its table, and that table in parts narrow enough to print.
-fn sweep_view(title: String, table: TableView) -> SweepView {
+/// A part of a sweep's table, and beneath each figure its n.
+#[derive(Serialize)]
+struct SweepPart {
+    #[serde(flatten)]
+    table: TableView,
+    /// Per cell of `rows`, the sample size of its figure (`9,554`), empty where
+    /// none is shown (the axes, published values, a metric whose n every row
+    /// shares: its head gives it).
+    ns: Vec<Vec<String>>,
+}
+
+/// A sweep's view: its table, and that table in parts narrow enough to print,
+/// with the sample size `ns` of each cell.
+fn sweep_view(title: String, table: TableView, ns: &[Vec<String>]) -> SweepView {
     let axes = table.text_columns;
     let values = table.head.len().saturating_sub(axes);
-    let parts = values.div_ceil(COLUMNS_PER_TABLE).max(1);
+    let per_part = COLUMNS_PER_PART.saturating_sub(axes).clamp(2, COLUMNS_PER_TABLE);
+    let parts = values.div_ceil(per_part).max(1);
     let part = |i: usize| {
         let columns: Vec<usize> = (0..axes)
-            .chain(axes + i * COLUMNS_PER_TABLE..(axes + (i + 1) * COLUMNS_PER_TABLE).min(table.head.len()))
+            .chain(axes + i * per_part..(axes + (i + 1) * per_part).min(table.head.len()))
             .collect();
-        TableView {
-            caption: if parts > 1 {
-                format!("Part {} of {parts}", i + 1)
-            } else {
-                String::new()
-            },
-            head: columns.iter().map(|&c| table.head[c].clone()).collect(),
-            rows: table
-                .rows
-                .iter()
+        let pick = |rows: &[Vec<String>]| -> Vec<Vec<String>> {
+            rows.iter()
                 .map(|row| columns.iter().map(|&c| row[c].clone()).collect())
-                .collect(),
-            text_columns: axes,
+                .collect()
+        };
+        SweepPart {
+            table: TableView {
+                caption: if parts > 1 {
+                    format!("Part {} of {parts}", i + 1)
+                } else {
+                    String::new()
+                },
+                head: columns.iter().map(|&c| table.head[c].clone()).collect(),
+                rows: pick(&table.rows),
+                text_columns: axes,
+            },
+            ns: pick(ns),
         }
     };
     SweepView {
@@ -97,7 +120,8 @@ type Row<'a> = (&'a PointResult, &'a [serde_json::Value]);
 pub(super) fn sweep_tables(results: &Results) -> Vec<SweepView> {
     if results.sweeps.is_empty() {
         let all: Vec<Row<'_>> = results.sweep.iter().map(|point| (point, &[][..])).collect();
-        return vec![sweep_view("Results".into(), sweep_table(results, &[], &all))];
+        let (table, ns) = sweep_table(results, &[], &all);
+        return vec![sweep_view("Results".into(), table, &ns)];
     }
     results
         .sweeps
@@ -109,18 +133,19 @@ pub(super) fn sweep_tables(results: &Results) -> Vec<SweepView> {
                 .iter()
                 .map(|row| (&results.sweep[row.point], &row.values[..]))
                 .collect();
-            sweep_view(
-                format!("Results over {}", paths.join(" × ")),
-                sweep_table(results, &sweep.axes, &rows),
-            )
+            let (table, ns) = sweep_table(results, &sweep.axes, &rows);
+            sweep_view(format!("Results over {}", paths.join(" × ")), table, &ns)
         })
         .collect()
 }
 
 /// One row per combination: the axis values, then [`TABLE_METRICS`] and every
 /// metric a requirement or reference uses, each followed by its published value
-/// if any.
-fn sweep_table(results: &Results, axes: &[Axis], rows: &[Row<'_>]) -> TableView {
+/// if any; and the sample size n of each figure (the points' populations
+/// differ: more cooperating agents leave fewer cells unseen): in the column's
+/// head when every row of the table shares it (the field's million cells),
+/// else beneath each figure.
+fn sweep_table(results: &Results, axes: &[Axis], rows: &[Row<'_>]) -> (TableView, Vec<Vec<String>>) {
     // A default column where some row has a value; a cited one where some row
     // measures it, its value or — (over nobody: n = 0).
     let mut metrics: Vec<&str> = TABLE_METRICS
@@ -141,12 +166,39 @@ fn sweep_table(results: &Results, axes: &[Axis], rows: &[Row<'_>]) -> TableView 
             None => a.path.clone(),
         })
         .collect();
-    for metric in &metrics {
-        heads.push(head(metric, metric_unit(metric)));
+    // Each metric's n where it is the same in every row, for its head.
+    let shared: Vec<Option<u64>> = metrics
+        .iter()
+        .map(|metric| {
+            let first = rows.first().and_then(|(p, _)| p.samples.get(metric))?;
+            rows.iter()
+                .all(|(p, _)| p.samples.get(metric) == Some(first))
+                .then_some(first)
+        })
+        .collect();
+    for (metric, shared) in metrics.iter().zip(&shared) {
+        heads.push(match shared {
+            Some(n) => format!("{}, n = {}", head(metric, metric_unit(metric)), number(*n as f64)),
+            None => head(metric, metric_unit(metric)),
+        });
         if has_published(metric) {
             heads.push(head(&format!("{metric}, published"), metric_unit(metric)));
         }
     }
+    let ns = rows
+        .iter()
+        .map(|(point, values)| {
+            let mut row = vec![String::new(); values.len()];
+            for (metric, shared) in metrics.iter().zip(&shared) {
+                let n = point.samples.get(metric).filter(|_| shared.is_none());
+                row.push(n.map_or_else(String::new, |n| number(n as f64)));
+                if has_published(metric) {
+                    row.push(String::new());
+                }
+            }
+            row
+        })
+        .collect();
     let rows = rows
         .iter()
         .map(|(point, values)| {
@@ -170,12 +222,13 @@ fn sweep_table(results: &Results, axes: &[Axis], rows: &[Row<'_>]) -> TableView 
             row
         })
         .collect();
-    TableView {
+    let table = TableView {
         caption: String::new(),
         head: heads,
         rows,
         text_columns: axes.len(),
-    }
+    };
+    (table, ns)
 }
 
 pub(super) fn comparisons(results: &Results) -> Vec<ComparisonView> {
