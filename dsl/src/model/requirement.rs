@@ -327,8 +327,9 @@ impl Signal {
 #[serde(rename_all = "snake_case")]
 pub enum ObjectProperty {
     /// Each object that came within d_min of the ego: seconds from the first
-    /// RSU message flagging a conflict with it to that close approach (an
-    /// unflagged object has none, and fails).
+    /// RSU message flagging a conflict with it to the step it came within d_min
+    /// (the close approach's start, not its closest point, which its record's
+    /// `closest.time` gives; an unflagged object has none, and fails).
     WarningTime,
     /// Each relevant road user: seconds from the first RSU message flagging a
     /// conflict with it to its closest approach to the ego, negative when the

@@ -100,8 +100,9 @@ pub(crate) struct RawCheck {
     /// The signal meets the threshold at some step where it is defined.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub eventually: Option<RawThreshold>,
-    /// Only the run's first this many seconds count (> 0): the steps at time
-    /// t ≤ `within`, the step at t = `within` included.
+    /// With `signal` only (a metric is one number per run): only the run's
+    /// first this many seconds count (> 0), the steps at time t ≤ `within`,
+    /// the step at t = `within` included.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     #[schemars(transform = range::SPAN.schema())]
     pub within: Option<f64>,
