@@ -382,33 +382,20 @@ mod tests {
             sample(None, 0),
             sample(Some(1.7), 1),
         ];
-        let e = evaluate(Metric::MinTtc, Bound::AtLeast(1.0), over(Statistic::Mean), &samples, 1);
-        assert_eq!(e.status, Status::NotExercised);
-        assert!(
-            e.message.ends_with("; the 4 seeds judged gave min_ttc from 0 to 2.1"),
-            "{}",
+        let message = |samples: &[Option<Sample>]| {
+            let e = evaluate(Metric::MinTtc, Bound::AtLeast(1.0), over(Statistic::Mean), samples, 1);
+            assert_eq!(e.status, Status::NotExercised);
             e.message
-        );
-        let e = evaluate(
-            Metric::MinTtc,
-            Bound::AtLeast(1.0),
-            over(Statistic::Mean),
-            &samples[..2],
-            1,
-        );
+        };
+        let all = message(&samples);
         assert!(
-            e.message.ends_with("; the one seed judged gave min_ttc 0"),
-            "{}",
-            e.message
+            all.ends_with("; the 4 seeds judged gave min_ttc from 0 to 2.1"),
+            "{all}"
         );
-        let e = evaluate(
-            Metric::MinTtc,
-            Bound::AtLeast(1.0),
-            over(Statistic::Mean),
-            &samples[1..2],
-            1,
-        );
-        assert!(e.message.ends_with("the check needs"), "{}", e.message);
+        let one = message(&samples[..2]);
+        assert!(one.ends_with("; the one seed judged gave min_ttc 0"), "{one}");
+        let none = message(&samples[1..2]);
+        assert!(none.ends_with("the check needs"), "{none}");
     }
 
     /// Seven seeds of a world that draws nothing: seven equal values. The
