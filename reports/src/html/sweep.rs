@@ -185,26 +185,16 @@ fn sweep_table(results: &Results, axes: &[Axis], rows: &[Row<'_>]) -> (TableView
             heads.push(head(&format!("{metric}, published"), metric_unit(metric)));
         }
     }
-    let ns = rows
-        .iter()
-        .map(|(point, values)| {
-            let mut row = vec![String::new(); values.len()];
-            for (metric, shared) in metrics.iter().zip(&shared) {
-                let n = point.samples.get(metric).filter(|_| shared.is_none());
-                row.push(n.map_or_else(String::new, |n| number(n as f64)));
-                if has_published(metric) {
-                    row.push(String::new());
-                }
-            }
-            row
-        })
-        .collect();
-    let rows = rows
+    // Each row's cells and, beside them, each cell's n (empty where none is shown).
+    let (rows, ns) = rows
         .iter()
         .map(|(point, values)| {
             let mut row: Vec<String> = values.iter().map(display_value).collect();
-            for metric in &metrics {
+            let mut ns = vec![String::new(); values.len()];
+            for (metric, shared) in metrics.iter().zip(&shared) {
                 row.push(or_dash(point.metrics.get(metric)));
+                let n = point.samples.get(metric).filter(|_| shared.is_none());
+                ns.push(n.map_or_else(String::new, |n| number(n as f64)));
                 if has_published(metric) {
                     let values: Vec<String> = results
                         .references
@@ -217,11 +207,12 @@ fn sweep_table(results: &Results, axes: &[Axis], rows: &[Row<'_>]) -> (TableView
                     } else {
                         values.join(" / ")
                     });
+                    ns.push(String::new());
                 }
             }
-            row
+            (row, ns)
         })
-        .collect();
+        .unzip();
     let table = TableView {
         caption: String::new(),
         head: heads,
