@@ -17,14 +17,16 @@
 //! - A semantic world (seed 002): [`SemanticMetrics`] with its density rows
 //!   ([`DensityRow`]), delivery bins ([`DeliveryBin`]), label counts
 //!   ([`LabelCounts`]), per-step [`Series`], and the per-object
-//!   [`ObjectRecord`]s with their [`Category`] and [`Closest`] approach.
+//!   [`ObjectRecord`]s with their [`Category`] and [`Closest`] approach, and
+//!   every [`CloseApproach`].
 
 pub use crate::fusion::State;
 pub use crate::metrics::{
     BandMetrics, ConflictMetrics, Coverage, FieldMetrics, FieldOutcome, MassAudit, Series, quantile,
 };
 pub use crate::semantic::{
-    Category, Closest, DELIVERY_BIN, DENSITY_BIN, DeliveryBin, DensityRow, LabelCounts, ObjectRecord, SemanticMetrics,
+    Category, CloseApproach, Closest, DELIVERY_BIN, DENSITY_BIN, DeliveryBin, DensityRow, LabelCounts, ObjectRecord,
+    SemanticMetrics,
 };
 pub use crate::system::{Detection, SystemJudge, SystemMetrics};
 pub use crate::system_objects::SystemObject;

@@ -4,7 +4,7 @@
 //! A shard file is sealed: two header lines, then the payload.
 //!
 //! ```text
-//! sightline-shard/2\n              the layout (SHARD_FORMAT)
+//! sightline-shard/3\n              the layout (SHARD_FORMAT)
 //! <SHA-256 of the payload>\n       64 lowercase hex digits
 //! <payload>                        the Shard as CBOR (RFC 8949)
 //! ```
@@ -21,7 +21,7 @@ use sightline_engine::{Outcome, Unit};
 use crate::{Execution, Tool, sha256_hex};
 
 /// The layout of a shard file: its first line.
-pub const SHARD_FORMAT: &str = "sightline-shard/2";
+pub const SHARD_FORMAT: &str = "sightline-shard/3";
 
 /// The length of the digest line: 64 hex digits and a newline.
 const DIGEST_LINE: usize = 65;

@@ -119,10 +119,10 @@ fn a_truncated_foreign_or_unsealed_shard_is_refused() {
     assert!(matches!(read_shard(b"{\"format\": 1}"), Err(ShardError::NotShard)));
     assert!(matches!(read_shard(b""), Err(ShardError::NotShard)));
 
-    let later = [b"sightline-shard/3\n".as_slice(), &bytes[SHARD_FORMAT.len() + 1..]].concat();
+    let later = [b"sightline-shard/4\n".as_slice(), &bytes[SHARD_FORMAT.len() + 1..]].concat();
     assert_eq!(
         read_shard(&later).map(|_| ()).unwrap_err().to_string(),
-        "written as `sightline-shard/3`; this sightline reads `sightline-shard/2` (merge with the sightline \
+        "written as `sightline-shard/4`; this sightline reads `sightline-shard/3` (merge with the sightline \
          that wrote it, or run the shards again with this one)"
     );
     // The first layout: a bare CBOR map, its layout in a `format` field, no seal.

@@ -69,7 +69,7 @@ fn results() -> &'static serde_json::Value {
 #[test]
 fn evidential_field_scenario_runs_end_to_end() {
     let results = results();
-    assert_eq!(results["format"], "sightline-results/4");
+    assert_eq!(results["format"], "sightline-results/5");
     assert_eq!(results["verdict"], "pass");
     assert_eq!(results["scenario"]["path"], SCENARIO);
     assert_eq!(results["sweep"].as_array().map(Vec::len), Some(120));
@@ -550,16 +550,36 @@ fn urban_semantic_scenario_runs_end_to_end() {
         points[4]["label"],
         "traffic.vehicles.density_per_km=23, semantic.risk_for=all"
     );
-    let warnings = points[4]["counts"]["warnings"].as_array().unwrap();
-    let least = warnings
-        .iter()
-        .map(|w| w.as_f64().unwrap())
-        .fold(f64::INFINITY, f64::min);
-    assert_eq!(warn["value"].as_f64(), Some(least));
+    // Each close approach names its road user and when it came within d_min;
+    // its warning time is that less when it was first flagged.
+    let approaches = points[4]["counts"]["approaches"].as_array().unwrap();
     assert_eq!(
-        warnings.len() as u64,
+        approaches.len() as u64,
         points[4]["counts"]["close_approaches"].as_u64().unwrap()
     );
+    for a in approaches {
+        let warning = a["warning_time"].as_f64().unwrap();
+        let elapsed = a["at"].as_f64().unwrap() - a["flagged"].as_f64().unwrap();
+        assert!((warning - elapsed).abs() < 1e-9, "{a}");
+    }
+    let least = approaches
+        .iter()
+        .min_by(|a, b| {
+            a["warning_time"]
+                .as_f64()
+                .unwrap()
+                .total_cmp(&b["warning_time"].as_f64().unwrap())
+        })
+        .unwrap();
+    assert_eq!(warn["point"], 4);
+    assert_eq!(warn["value"], least["warning_time"]);
+    let who = format!(
+        "of {} of run {} at {} s",
+        least["id"].as_str().unwrap(),
+        least["run"],
+        least["at"].as_f64().unwrap()
+    );
+    assert!(warn["message"].as_str().unwrap().contains(&who), "{warn}");
     // Eventually: every point reports when the signal came best.
     let rsu = requirement(results, "URB-RSU-T-01");
     assert_eq!(rsu["points"].as_array().unwrap().len(), 12);

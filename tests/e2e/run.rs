@@ -45,7 +45,7 @@ fn valid_scenario_passes_and_writes_three_evidence_files() {
     assert_evidence_files(&out);
 
     let results = read_json(&out.join("results.json"));
-    assert_eq!(results["format"], "sightline-results/4");
+    assert_eq!(results["format"], "sightline-results/5");
     assert_eq!(results["verdict"], "pass");
     assert_eq!(results["tool"]["name"], "sightline");
     assert_eq!(results["tool"]["version"], env!("CARGO_PKG_VERSION"));

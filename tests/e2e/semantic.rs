@@ -1,7 +1,7 @@
 //! The semantic pipeline through the CLI on small scenes worked out by hand
 //! (found by session 23's outside check of the semantic pipeline).
 
-use crate::support::{arg, read_json, sightline, temp_dir, verdict};
+use crate::support::{arg, read_json, requirement, sightline, temp_dir, verdict};
 
 /// The results.json of running `fixture` (a file of tests/fixtures/valid/),
 /// which must exit with `exit`.
@@ -69,6 +69,20 @@ fn a_road_user_back_in_the_scene_within_d_min_is_a_new_close_approach() {
     assert_eq!(verdict(&results, "MISS"), ("fail".to_string(), Some(2.0), Some(2)));
     let (status, value, n) = verdict(&results, "WT");
     assert_eq!((status.as_str(), value, n), ("fail", None, Some(2)));
+    // Both approaches listed, by road user and step, and named in the verdict.
+    let approaches = &results["sweep"][0]["counts"]["approaches"];
+    assert_eq!(
+        approaches,
+        &serde_json::json!([
+            { "run": 0, "id": "hop", "at": 0.0, "flagged": null, "warning_time": null },
+            { "run": 0, "id": "hop", "at": 4.0, "flagged": null, "warning_time": null },
+        ])
+    );
+    let message = requirement(&results, "WT")["message"].as_str().unwrap();
+    assert!(
+        message.ends_with("(never flagged: hop at 0 s, hop at 4 s)"),
+        "{message}"
+    );
 }
 
 /// PETs of whole steps (engine/tests/criticality.rs works the scene out): the

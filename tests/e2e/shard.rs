@@ -289,7 +289,7 @@ fn a_damaged_shard_is_refused() {
         let mut flipped = bytes.clone();
         flipped[at] ^= 0x04;
         std::fs::write(&damaged, &flipped).unwrap();
-        let expected = if at < "sightline-shard/2\n".len() {
+        let expected = if at < "sightline-shard/3\n".len() {
             format!("{}: error: not a sightline shard file", damaged.display())
         } else {
             format!(

@@ -111,24 +111,27 @@ impl Outcome {
         if property.needs_grid() && !matches!(self, Self::World(_)) {
             return None;
         }
+        // A road user's id, with its run where the point pools runs.
+        let who = |id: &str, run: u32| {
+            if m.runs > 1 {
+                format!("{id} of run {run}")
+            } else {
+                id.to_string()
+            }
+        };
         Some(if property.of_record() {
-            let pooled = m.runs > 1;
             (m.objects.iter())
                 .filter(|record| record.selected_by(selection))
                 .map(|record| RoadUserValue {
-                    who: if pooled {
-                        format!("{} of run {}", record.id, record.run)
-                    } else {
-                        record.id.clone()
-                    },
+                    who: who(&record.id, record.run),
                     value: record.property(property),
                 })
                 .collect()
         } else {
-            (m.warnings.iter().enumerate())
-                .map(|(i, &value)| RoadUserValue {
-                    who: format!("close approach {}", i + 1),
-                    value,
+            (m.approaches.iter())
+                .map(|approach| RoadUserValue {
+                    who: format!("{} at {} s", who(&approach.id, approach.run), approach.at),
+                    value: approach.warning_time(),
                 })
                 .collect()
         })
@@ -172,7 +175,8 @@ impl WorldOutcome {
 #[derive(Debug, Clone, PartialEq)]
 pub struct RoadUserValue {
     /// Its id, with its run where the point pools several (`ped_3 of run 2`);
-    /// for `warning_time`, the close approach's place in order (`close approach 3`).
+    /// for `warning_time`, the road user with when it came within d_min of the
+    /// ego (`ped_3 at 12.4 s`).
     pub who: String,
     /// Its value (`None`: it has none).
     pub value: Option<f64>,

@@ -7,9 +7,8 @@ use sightline_dsl::{Agent, LabelledBy, Semantic, World};
 use super::ego::{Ego, EgoView};
 use super::message::{Item, baseline_bytes};
 use super::metrics::{DELIVERY_BIN, SemanticMetrics};
-use super::objects::Encounters;
+use super::objects::{CloseApproach, Encounters};
 use super::rsu::Selection;
-use crate::math::elapsed;
 use crate::metrics::Series;
 use crate::sink::TraceSink;
 use crate::trace::{Approach, Arrival, Packet, PacketKind, SemanticLog};
@@ -26,6 +25,9 @@ pub(super) struct Measures {
     time_to_conflict: Series,
     /// Each road user's encounter with the ego, for the per-object records.
     encounters: Encounters,
+    /// Each close approach: the road user's agent index, the step's time and
+    /// when a conflict with it was first flagged to the ego.
+    approaches: Vec<(usize, f64, Option<f64>)>,
     /// The current step's record.
     log: SemanticLog,
     /// Which labels the labelled share counts.
@@ -46,6 +48,7 @@ impl Measures {
             rsu_only: Vec::new(),
             time_to_conflict: Vec::new(),
             encounters: Encounters::new(world, semantic, agents),
+            approaches: Vec::new(),
             log: SemanticLog::default(),
             labelled_by: semantic.labelled_by,
         }
@@ -77,7 +80,7 @@ impl Measures {
         for (agent, flagged) in view.approaches {
             metrics.close_approaches += 1;
             metrics.missed_criticals += u64::from(flagged.is_none());
-            metrics.warnings.push(flagged.map(|at| elapsed(time, at)));
+            self.approaches.push((agent, time, flagged));
             self.log.approaches.push(Approach {
                 agent,
                 flagged: flagged.is_some(),
@@ -147,7 +150,8 @@ impl Measures {
     }
 
     /// The run's metrics, with what the `ego` came to know of the `agents` over
-    /// it, its road users' records labelled with pooled run `run`: one per
+    /// it, its road users' records and close approaches labelled with pooled
+    /// run `run`: one per
     /// fused grid of `in_grid` (per agent, when it first came into the grid),
     /// each record holding its time in that grid, or one without any grid
     /// when `in_grid` is empty.
@@ -174,6 +178,14 @@ impl Measures {
         metrics.baseline_anticipation.sort_by(f64::total_cmp);
         metrics.rsu_only = vec![self.rsu_only];
         metrics.time_to_conflict = vec![self.time_to_conflict];
+        metrics.approaches = (self.approaches.iter())
+            .map(|&(agent, at, flagged)| CloseApproach {
+                run,
+                id: agents[agent].id.clone(),
+                at,
+                flagged,
+            })
+            .collect();
         let records = |grid: Option<&[Option<f64>]>| self.encounters.records(run, agents, ego.knowledge(), grid);
         if in_grid.is_empty() {
             metrics.objects = records(None);

@@ -3,7 +3,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::objects::{Category, ObjectRecord};
+use super::objects::{Category, CloseApproach, ObjectRecord};
 use crate::metrics::{Series, quantile};
 use sightline_dsl::Metric;
 
@@ -67,9 +67,8 @@ pub struct SemanticMetrics {
     pub missed_criticals: u64,
     /// Seconds the ego drove cautiously after a flagged conflict.
     pub cautious_time: f64,
-    /// Per close approach, in order: seconds from the first message flagging a
-    /// conflict with the object to the approach; `None` when none was flagged.
-    pub warnings: Vec<Option<f64>>,
+    /// Every close approach, by run, then in order of time.
+    pub approaches: Vec<CloseApproach>,
     /// Per pooled run, per step with the ego: (time, objects the ego knew only
     /// through an RSU).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
@@ -154,7 +153,7 @@ impl SemanticMetrics {
             close_approaches,
             missed_criticals,
             cautious_time,
-            warnings,
+            approaches,
             rsu_only,
             time_to_conflict,
             objects,
@@ -194,7 +193,7 @@ impl SemanticMetrics {
         self.close_approaches += close_approaches;
         self.missed_criticals += missed_criticals;
         self.cautious_time += cautious_time;
-        self.warnings.extend(warnings);
+        self.approaches.extend(approaches);
         self.rsu_only.extend(rsu_only);
         self.time_to_conflict.extend(time_to_conflict);
         self.objects.extend(objects);

@@ -21,7 +21,7 @@ mod traffic;
 
 pub use message::{Item, Labels};
 pub use metrics::{DELIVERY_BIN, DENSITY_BIN, DeliveryBin, DensityRow, LabelCounts, SemanticMetrics};
-pub use objects::{Category, Closest, ObjectRecord};
+pub use objects::{Category, CloseApproach, Closest, ObjectRecord};
 pub use risk::Conflict;
 pub use simulate::{first_run, run};
 

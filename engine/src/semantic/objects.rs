@@ -123,6 +123,28 @@ impl Closest {
     }
 }
 
+/// A road user coming within d_min of the ego (seed 002's close approach).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct CloseApproach {
+    /// The pooled run it happened in (0: the run with the point's own seed).
+    pub run: u32,
+    /// The road user's agent id.
+    pub id: String,
+    /// The step it came within d_min of the ego, seconds.
+    pub at: f64,
+    /// When the first message flagging a conflict with it reached the ego,
+    /// seconds (`None`: none did before `at`).
+    pub flagged: Option<f64>,
+}
+
+impl CloseApproach {
+    /// Seconds from the first flag to the approach (`warning_time`); `None`
+    /// when it was never flagged.
+    pub fn warning_time(&self) -> Option<f64> {
+        Some(elapsed(self.at, self.flagged?))
+    }
+}
+
 /// One relevant road user over one run.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ObjectRecord {

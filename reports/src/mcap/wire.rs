@@ -211,7 +211,8 @@ pub struct ObjectRecord {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct ObjectValue {
     /// Who it is: its id, with its run where the point pools runs (`ped_3 of
-    /// run 2`); for `warning_time`, `close approach k`.
+    /// run 2`); for `warning_time`, also when it came within d_min of the ego
+    /// (`ped_3 at 12.4 s`).
     pub who: String,
     /// Its value (left out: the object has none).
     #[serde(default, skip_serializing_if = "Option::is_none")]

@@ -261,9 +261,27 @@ pub struct SemanticCounts {
     pub missed_criticals: u64,
     /// Seconds the ego drove cautiously after a flagged conflict.
     pub cautious_time: f64,
-    /// Per close approach, in order: seconds from the first message flagging a
-    /// conflict with the object to the approach; `null` when none was flagged.
-    pub warnings: Vec<Option<f64>>,
+    /// The first 1000 close approaches (`MAX_OBJECT_RECORDS`), by run, then
+    /// in order of time; `close_approaches` counts them all.
+    pub approaches: Vec<CloseApproach>,
+}
+
+/// A road user coming within d_min of the ego.
+#[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
+#[schemars(deny_unknown_fields)]
+pub struct CloseApproach {
+    /// The pooled run it happened in (0: the run with the point's own seed).
+    pub run: u32,
+    /// The road user's agent id.
+    pub id: String,
+    /// The step it came within d_min of the ego, seconds.
+    pub at: f64,
+    /// When the first message flagging a conflict with it reached the ego,
+    /// seconds; `null` when none did before `at`.
+    pub flagged: Option<f64>,
+    /// `at − flagged`, seconds (what `per_object: warning_time` judges);
+    /// `null` when it was never flagged.
+    pub warning_time: Option<f64>,
 }
 
 /// Sent object-cycles by label.

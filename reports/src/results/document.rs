@@ -11,13 +11,13 @@ use super::{
 use crate::execution::Execution;
 
 /// The format identifier written into every results.json.
-pub const FORMAT: &str = "sightline-results/4";
+pub const FORMAT: &str = "sightline-results/5";
 
 /// The whole of results.json.
 #[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
 #[schemars(deny_unknown_fields)]
 pub struct Results {
-    /// The format and its version: `sightline-results/4`.
+    /// The format and its version: `sightline-results/5`.
     #[schemars(schema_with = "format_schema")]
     pub format: &'static str,
     /// The tool.

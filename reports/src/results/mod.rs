@@ -31,8 +31,8 @@
 //! fields.
 
 pub use counts::{
-    AgeCount, Band, Calibration, Conflict, Coverage, DeliveryBin, DensityRow, DistanceRow, LabelCounts, MassAudit,
-    Radio, ReliabilityBin, SemanticCounts, Sightings, WorldCounts,
+    AgeCount, Band, Calibration, CloseApproach, Conflict, Coverage, DeliveryBin, DensityRow, DistanceRow, LabelCounts,
+    MassAudit, Radio, ReliabilityBin, SemanticCounts, Sightings, WorldCounts,
 };
 pub use document::{FORMAT, InputInfo, Results, ScenarioInfo, Summary, WarningInfo};
 pub(crate) use from_run::object_result;

@@ -9,6 +9,8 @@ use serde::Serialize;
 /// Most object records a point lists in results.json and in the recording
 /// (about 0.5 MB of JSON); the rest are counted in [`ObjectList::omitted`],
 /// and every record, listed or not, counts in the categories and the metrics.
+/// A point lists as many close approaches at most
+/// ([`SemanticCounts::approaches`](super::SemanticCounts::approaches)).
 /// The bundled urban junction's densest point has 519 over its five runs.
 pub const MAX_OBJECT_RECORDS: usize = 1000;
 

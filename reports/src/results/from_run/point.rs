@@ -8,9 +8,9 @@ use sightline_engine::{Outcome, outcome as engine};
 use super::objects::object_list;
 use super::system::system_detail;
 use crate::results::{
-    AgeCount, Band, Calibration, Conflict, Coverage, DeliveryBin, DensityRow, Detail, DistanceRow, LabelCounts,
-    LabelResult, MassAudit, Ordered, PointResult, Radio, ReliabilityBin, SemanticCounts, SemanticDetail, Sightings,
-    WorldCounts,
+    AgeCount, Band, Calibration, CloseApproach, Conflict, Coverage, DeliveryBin, DensityRow, Detail, DistanceRow,
+    LabelCounts, LabelResult, MAX_OBJECT_RECORDS, MassAudit, Ordered, PointResult, Radio, ReliabilityBin,
+    SemanticCounts, SemanticDetail, Sightings, WorldCounts,
 };
 
 pub(super) fn point_result((point, outcome): (&Point, &Outcome)) -> PointResult {
@@ -295,7 +295,7 @@ fn semantic_counts(metrics: &engine::SemanticMetrics) -> SemanticCounts {
         close_approaches,
         missed_criticals,
         cautious_time,
-        ref warnings,
+        ref approaches,
         rsu_only: _,
         time_to_conflict: _,
         objects: _,
@@ -338,7 +338,17 @@ fn semantic_counts(metrics: &engine::SemanticMetrics) -> SemanticCounts {
         close_approaches,
         missed_criticals,
         cautious_time,
-        warnings: warnings.clone(),
+        approaches: approaches
+            .iter()
+            .take(MAX_OBJECT_RECORDS)
+            .map(|approach| CloseApproach {
+                run: approach.run,
+                id: approach.id.clone(),
+                at: approach.at,
+                flagged: approach.flagged,
+                warning_time: approach.warning_time(),
+            })
+            .collect(),
     }
 }
 
