@@ -65,7 +65,10 @@ fn shares_over_all_count_the_cycles_without_the_ego() {
 /// approach was not counted: missed_criticals 1, a PASS of "at most 1".
 #[test]
 fn a_road_user_back_in_the_scene_within_d_min_is_a_new_close_approach() {
-    let results = results("close-again.yaml", 1);
+    let tmp = temp_dir();
+    let out = tmp.path().join("out");
+    sightline(["run", "tests/fixtures/valid/close-again.yaml", "--out", arg(&out)]).assert_exit(1);
+    let results = read_json(&out.join("results.json"));
     assert_eq!(verdict(&results, "MISS"), ("fail".to_string(), Some(2.0), Some(2)));
     let (status, value, n) = verdict(&results, "WT");
     assert_eq!((status.as_str(), value, n), ("fail", None, Some(2)));
@@ -82,6 +85,19 @@ fn a_road_user_back_in_the_scene_within_d_min_is_a_new_close_approach() {
     assert!(
         message.ends_with("(never flagged: hop at 0 s, hop at 4 s)"),
         "{message}"
+    );
+    // The report lists them too, under the counts.
+    let report = std::fs::read_to_string(out.join("report.html")).unwrap();
+    let table = report
+        .split("Close approaches, the least warned first: 2 of 2 (2 in results.json)")
+        .nth(1)
+        .expect("a table of the close approaches");
+    let rows = table.split("</tbody>").next().unwrap();
+    let hop = r#"<td class="text">0</td><td class="text">hop</td>"#;
+    assert_eq!(rows.matches(hop).count(), 2, "{rows}");
+    assert!(
+        rows.contains(r#"<td class="num">4</td><td class="num">—</td><td class="num">—</td>"#),
+        "{rows}"
     );
 }
 

@@ -1,13 +1,16 @@
 //! Each point's tables: every metric with its sample size, and the counts of
 //! its kind of scenario (distance bands and coverage, a world's cell-steps, a
-//! semantic run's counts, contribution by density and delivery by distance).
+//! semantic run's counts, contribution by density, delivery by distance and
+//! close approaches).
 
 use sightline_dsl::Metric;
 use sightline_engine::outcome::{DELIVERY_BIN, DENSITY_BIN, quantile};
 
 use super::format::{TableView, metric_unit, number, or_dash};
 use super::system::system_table;
-use crate::results::{DensityRow, Detail, ObjectCategory, ObjectList, ObjectResult, PointResult, SemanticCounts};
+use crate::results::{
+    CloseApproach, DensityRow, Detail, ObjectCategory, ObjectList, ObjectResult, PointResult, SemanticCounts,
+};
 
 const BAND_COLUMNS: [&str; 7] = [
     "distance to nearest sensor",
@@ -302,12 +305,52 @@ fn semantic_tables(c: &SemanticCounts, density: &[DensityRow]) -> Vec<TableView>
                 .collect(),
         ],
     };
-    vec![
+    let mut tables = vec![
         counts_table(counts.iter().map(|(k, v)| vec![(*k).to_string(), number(*v)]).collect()),
         anticipation,
         by_density,
         by_distance,
-    ]
+    ];
+    if !c.approaches.is_empty() {
+        tables.push(approach_table(c));
+    }
+    tables
+}
+
+/// The close approaches that give `warning_time`, the least warned first:
+/// those never flagged, then by warning time.
+fn approach_table(c: &SemanticCounts) -> TableView {
+    let mut shown: Vec<&CloseApproach> = c.approaches.iter().collect();
+    shown.sort_by(|a, b| match (a.warning_time, b.warning_time) {
+        (Some(a), Some(b)) => a.total_cmp(&b),
+        (a, b) => a.is_some().cmp(&b.is_some()),
+    });
+    shown.truncate(REPORT_OBJECT_ROWS);
+    TableView {
+        caption: format!(
+            "Close approaches, the least warned first: {} of {} ({} in results.json); — where no conflict was \
+             flagged beforehand",
+            shown.len(),
+            c.close_approaches,
+            c.approaches.len()
+        ),
+        text_columns: 2,
+        head: ["run", "id", "within d_min at (s)", "flagged at (s)", "warning time (s)"]
+            .map(String::from)
+            .to_vec(),
+        rows: shown
+            .iter()
+            .map(|a| {
+                vec![
+                    a.run.to_string(),
+                    a.id.clone(),
+                    number(a.at),
+                    or_dash(a.flagged),
+                    or_dash(a.warning_time),
+                ]
+            })
+            .collect(),
+    }
 }
 
 /// Rows of the object table in the report; results.json lists more.
