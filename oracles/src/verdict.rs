@@ -163,18 +163,16 @@ impl Verdict {
 }
 
 /// What a run's verdicts tell a CI gate: the worst status that fails the run,
-/// `Pass` when none does, and `NotExercised` when there is no requirement at
-/// all (nothing was judged, so nothing was passed).
+/// `Pass` when none does and one requirement passes, and `NotExercised` when
+/// none passes (no requirement at all, or each not exercised for an accepted
+/// reason: nothing was judged, so nothing was passed).
 pub fn headline(verdicts: &[Verdict]) -> Status {
-    if verdicts.is_empty() {
-        return Status::NotExercised;
+    let failing = verdicts.iter().filter(|v| v.fails_run()).map(|v| v.status).max();
+    match failing {
+        Some(status) => status,
+        None if verdicts.iter().any(|v| v.status == Status::Pass) => Status::Pass,
+        None => Status::NotExercised,
     }
-    verdicts
-        .iter()
-        .filter(|v| v.fails_run())
-        .map(|v| v.status)
-        .max()
-        .unwrap_or(Status::Pass)
 }
 
 /// Checks every requirement of `scenario` against the measurements of a run

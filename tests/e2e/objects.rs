@@ -50,10 +50,11 @@ fn each_category_is_listed_counted_and_judged() {
     let report = unescape_html(&read(&out.join("report.html"))).replace("<wbr>", "");
     assert!(report.contains("Relevant road users by how the ego came to know them (n = 4 over the pooled runs)"));
     // Never known first in the report's table.
+    let table = &report[report.find("Relevant road users, when the ego knew them").unwrap()..];
     let row = |id: &str| {
-        report
+        table
             .find(&format!(">{id}<"))
-            .unwrap_or_else(|| panic!("{id} in the report"))
+            .unwrap_or_else(|| panic!("{id} in the report's table"))
     };
     assert!(row("walker_d") < row("car_b") && row("car_b") < row("walker_a") && row("walker_a") < row("walker_c"));
 }

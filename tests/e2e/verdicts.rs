@@ -62,6 +62,29 @@ fn a_window_of_the_runs_duration_is_judged_and_one_past_it_is_not() {
     }
 }
 
+/// Two requirements, each not exercised for an accepted reason: the run
+/// judged nothing, so it passes nothing.
+#[test]
+fn a_run_with_every_requirement_accepted_not_exercised_does_not_pass() {
+    let tmp = temp_dir();
+    let out = tmp.path().join("evidence");
+    let scenario = "tests/fixtures/not-exercised/all-accepted.yaml";
+    let outcome = sightline(["run", scenario, "--out", arg(&out)]);
+    outcome.assert_exit(1);
+    assert!(
+        outcome.stdout.starts_with(&format!(
+            "NOT EXERCISED {scenario}: 0 of 2 requirements hold over 1 sweep point \
+             (not exercised: MISS-01, TTC-01 (2 accepted)) -> "
+        )),
+        "{outcome}"
+    );
+    let results = read_json(&out.join("results.json"));
+    assert_eq!(
+        (&results["verdict"], &results["gate"]),
+        (&"not_exercised".into(), &"fail".into())
+    );
+}
+
 #[test]
 fn requirements_with_nothing_to_judge_are_not_exercised_and_fail_the_run() {
     let tmp = temp_dir();

@@ -232,6 +232,20 @@ impl Unused<'_> {
                 });
             }
         }
+        if let Some(semantic) = &world.semantic {
+            let vehicles = world.traffic.as_ref().is_some_and(|t| t.vehicles.is_some())
+                || (world.agents.iter().enumerate()).any(|(i, a)| i != semantic.ego && a.kind.is_vehicle());
+            if !vehicles {
+                for key in ["hypotheses", "overspeed"] {
+                    self.check(root.key("semantic").key(key), || {
+                        "only vehicles are predicted at speed hypotheses and judged for speeding, and no vehicle \
+                         but the ego can occur (no `traffic.vehicles`, every other agent a pedestrian or a roadside \
+                         unit)"
+                            .into()
+                    });
+                }
+            }
+        }
         if world.semantic.is_some() || world.perception.as_ref().is_some_and(|p| p.messages.is_some()) {
             self.v2x(world);
         }

@@ -182,13 +182,14 @@ pub(super) fn selection(
             .iter()
             .map(|w| w.steps as f64 * w.step)
             .fold(f64::INFINITY, f64::min);
-        // A window may reach past the run's end; one that starts there matches nothing.
-        let valid = from.is_finite() && to.is_finite() && 0.0 <= from && from < to && from < duration;
+        // A window past the run's end holds moments no run covers: what it
+        // selects would pass for a judgement of them.
+        let valid = from.is_finite() && to.is_finite() && 0.0 <= from && from < to && to <= duration;
         if !valid {
             ctx.error(
                 &path.key("between"),
                 ErrorKind::Invalid(format!(
-                    "a window [from, to] of seconds, 0 ≤ from < to, starting before the run ends at {duration} s; \
+                    "a window [from, to] of seconds within the run, 0 ≤ from < to ≤ its end at {duration} s; \
                      found [{from}, {to}]"
                 )),
             );

@@ -149,7 +149,7 @@ pub(crate) struct RawObjectSelection {
     /// was inside one of them at some step with the ego in the scene.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub areas: Vec<String>,
-    /// [from, to], seconds, starting before the run ends: its closest approach
+    /// [from, to], seconds, ending by the run's end: its closest approach
     /// to the ego lies in this window.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     #[schemars(transform = range::TIME.schema())]

@@ -39,8 +39,9 @@ pub struct Results {
     /// no requirements: nothing was judged).
     pub verdict: Status,
     /// What a CI gate should do: `pass` when every requirement passes or is
-    /// not exercised with an accepted reason (`sightline run` exits 0),
-    /// `fail` otherwise, and with no requirements (it exits 1).
+    /// not exercised with an accepted reason and one passes (`sightline run`
+    /// exits 0), `fail` otherwise: also with no requirements, or none judged
+    /// (it exits 1).
     pub gate: Status,
     /// Requirement counts.
     pub summary: Summary,
