@@ -86,7 +86,8 @@ const REDUCED_SEEDS: u64 = 2;
 /// A scenario made cheap to run in a debug build, keeping every section:
 /// `time.duration` cut to [`REDUCED_STEPS`] steps (or
 /// [`REDUCED_TRACE_SECONDS`] when it replays traces) and the time of the
-/// report's grid pictures (`perception.snapshot`) dropped, every sweep axis to its
+/// report's grid pictures (`perception.snapshot`) dropped, windows of road
+/// users (`between`) ending with it, every sweep axis to its
 /// first value (and the requirements and references that select sweep points
 /// with `where`, and the record section's point, dropped with them),
 /// `semantic.runs` to 1 and checks over seeds to [`REDUCED_SEEDS`]. Imported
@@ -97,12 +98,14 @@ pub fn reduced(path: &str) -> Value {
     let text = std::fs::read_to_string(&file).unwrap_or_else(|e| panic!("failed to read {path}: {e}"));
     let mut tree: Value = serde_yaml::from_str(&text).unwrap_or_else(|e| panic!("{path} is not YAML: {e}"));
     let step = tree["time"]["step"].as_f64();
+    let mut end = None;
     if let (Some(step), Some(duration)) = (step, tree["time"]["duration"].as_f64()) {
         let kept = if tree.get("traces").is_some() {
             REDUCED_TRACE_SECONDS
         } else {
             step * REDUCED_STEPS
         };
+        end = Some(duration.min(kept));
         tree["time"]["duration"] = Value::from(duration.min(kept));
     }
     if let Some(perception) = tree.get_mut("perception").and_then(Value::as_mapping_mut) {
@@ -135,6 +138,16 @@ pub fn reduced(path: &str) -> Value {
     {
         if let Some(seeds) = requirement.get_mut("check").and_then(|c| c.get_mut("seeds")) {
             *seeds = Value::from(REDUCED_SEEDS);
+        }
+        // A window of road users ends by the shorter run's end.
+        let window = requirement
+            .get_mut("check")
+            .and_then(|c| c.get_mut("objects"))
+            .and_then(|o| o.get_mut("between"))
+            .and_then(Value::as_sequence_mut);
+        if let (Some(window), Some(end)) = (window, end) {
+            let from = window[0].as_f64().unwrap_or(0.0).min(end / 2.0);
+            *window = vec![Value::from(from), Value::from(end)];
         }
     }
     if let Some(record) = tree.get_mut("record").and_then(Value::as_mapping_mut) {
