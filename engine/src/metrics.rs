@@ -89,16 +89,16 @@ impl FieldMetrics {
         if self.sample_size(metric)? == 0 {
             return None;
         }
-        let cells = self.cells as f64;
+        let observed = (self.cells - self.unobserved) as f64;
         let confident_errors = (self.false_alarms + self.missed_detections) as f64;
         Some(match metric {
-            Metric::Accuracy => self.correct as f64 / cells,
+            Metric::Accuracy => self.correct as f64 / self.cells as f64,
             Metric::BelowThreshold => self.below_threshold as f64,
-            Metric::BelowThresholdFraction => self.below_threshold as f64 / cells,
+            Metric::BelowThresholdFraction => self.below_threshold as f64 / observed,
             Metric::FalseAlarms => self.false_alarms as f64,
             Metric::MissedDetections => self.missed_detections as f64,
             Metric::ConfidentErrors => confident_errors,
-            Metric::ConfidentErrorRate => confident_errors / cells,
+            Metric::ConfidentErrorRate => confident_errors / observed,
             Metric::DecidedUnknown => self.decided_unknown as f64,
             Metric::Unobserved => self.unobserved as f64,
             Metric::MeanUncertainty => self.mean_uncertainty?,
@@ -110,11 +110,20 @@ impl FieldMetrics {
     }
 
     /// The number of cells `metric` is computed over ([`Metric::population`]),
-    /// or `None` where this run does not measure it.
+    /// or `None` where this run does not measure it. A decision's errors are
+    /// over the observed cells: an unobserved cell is not decided, so it can
+    /// be no error, and a grid no sensor observes judges nothing.
     pub fn sample_size(&self, metric: Metric) -> Option<u64> {
         let observed = self.cells - self.unobserved;
         match metric {
-            Metric::MeanUncertainty => Some(observed),
+            Metric::BelowThreshold
+            | Metric::BelowThresholdFraction
+            | Metric::FalseAlarms
+            | Metric::MissedDetections
+            | Metric::ConfidentErrors
+            | Metric::ConfidentErrorRate
+            | Metric::DecidedUnknown
+            | Metric::MeanUncertainty => Some(observed),
             Metric::MeanConflict | Metric::MaxConflict | Metric::TotalConflictCells | Metric::WeightedCells => {
                 self.conflict.as_ref().map(|_| observed)
             }

@@ -8,7 +8,7 @@
 use quick_junit::{NonSuccessKind, TestCaseStatus};
 
 use crate::support::{
-    FAILING, arg, case_output, read, read_json, read_junit, requirement, sightline, temp_dir, unescape_html,
+    FAILING, arg, case_output, read, read_json, read_junit, requirement, sightline, temp_dir, unescape_html, verdict,
 };
 
 /// The bundled urban junction for one run, with d_min of 1 cm: no road user
@@ -83,6 +83,24 @@ fn a_run_with_every_requirement_accepted_not_exercised_does_not_pass() {
         (&results["verdict"], &results["gate"]),
         (&"not_exercised".into(), &"fail".into())
     );
+}
+
+/// A field no sensor observes: its errors are over no fused cell.
+#[test]
+fn a_field_no_sensor_observes_judges_no_error() {
+    let tmp = temp_dir();
+    let out = tmp.path().join("evidence");
+    let scenario = "tests/fixtures/not-exercised/field-unobserved.yaml";
+    sightline(["run", scenario, "--out", arg(&out)]).assert_exit(1);
+    let results = read_json(&out.join("results.json"));
+    assert_eq!(results["sweep"][0]["metrics"]["unobserved"], 400.0);
+    for id in ["FA-01", "CER-01", "BT-01"] {
+        assert_eq!(
+            verdict(&results, id),
+            ("not_exercised".to_string(), None, Some(0)),
+            "{id}"
+        );
+    }
 }
 
 #[test]

@@ -14,21 +14,23 @@ use super::ObjectProperty;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Metric {
-    /// Share of all cells whose decided state equals the ground truth (0–1).
+    /// Share of all cells whose decided state equals the ground truth (0–1;
+    /// an unobserved cell is not decided, so not correct).
     Accuracy,
-    /// Cells with no decision (p_max − p_others < θ): seed 001's Table III.
+    /// Observed cells with no decision (p_max − p_others < θ): seed 001's
+    /// Table III.
     BelowThreshold,
-    /// `below_threshold` as a share of all cells (0–1).
+    /// `below_threshold` as a share of the observed cells (0–1).
     BelowThresholdFraction,
-    /// Cells decided Occupy that are truly empty.
+    /// Observed cells decided Occupy that are truly empty.
     FalseAlarms,
-    /// Cells decided Empty that are truly occupied.
+    /// Observed cells decided Empty that are truly occupied.
     MissedDetections,
     /// `false_alarms` + `missed_detections`: confident wrong decisions.
     ConfidentErrors,
-    /// `confident_errors` as a share of all cells (0–1).
+    /// `confident_errors` as a share of the observed cells (0–1).
     ConfidentErrorRate,
-    /// Cells decided Unknown (the Unknown mass dominates).
+    /// Observed cells decided Unknown (the Unknown mass dominates).
     DecidedUnknown,
     /// Cells no sensor observes.
     Unobserved,
@@ -458,7 +460,14 @@ impl Metric {
     /// over. An empty population leaves a requirement on it not exercised.
     pub fn population(self) -> &'static str {
         match self {
-            Self::MeanUncertainty
+            Self::BelowThreshold
+            | Self::BelowThresholdFraction
+            | Self::FalseAlarms
+            | Self::MissedDetections
+            | Self::ConfidentErrors
+            | Self::ConfidentErrorRate
+            | Self::DecidedUnknown
+            | Self::MeanUncertainty
             | Self::MeanConflict
             | Self::MaxConflict
             | Self::TotalConflictCells

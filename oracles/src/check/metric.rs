@@ -218,13 +218,59 @@ mod tests {
             (e.status, e.value, e.margin, e.n),
             (Status::Pass, Some(3.0), Some(0.0), Some(100))
         );
-        assert_eq!(e.measured, "value over n = 100 cells");
+        assert_eq!(e.measured, "value over n = 100 fused cells");
         let e = evaluate((m, &ALL), Bound::AtMost(3.0), sample(&metrics(4), m), 1);
         assert_eq!((e.status, e.margin), (Status::Fail, Some(-1.0)));
         assert_eq!(
             e.message,
             "false_alarms = 4 > 3 (required at most 3; margin -1; n = 100)"
         );
+    }
+
+    /// A grid no sensor observes decides no cell, so it raises no false
+    /// alarm by judging nothing: not exercised, not a pass of "at most 0".
+    /// Accuracy still counts its cells, none of them correct.
+    #[test]
+    fn errors_of_a_grid_no_sensor_observes_are_not_judged() {
+        let blind = FieldMetrics {
+            cells: 400,
+            correct: 0,
+            below_threshold: 0,
+            false_alarms: 0,
+            missed_detections: 0,
+            decided_unknown: 0,
+            unobserved: 400,
+            mean_uncertainty: None,
+            conflict: None,
+        };
+        for m in [Metric::FalseAlarms, Metric::ConfidentErrorRate, Metric::BelowThreshold] {
+            let e = evaluate((m, &ALL), Bound::AtMost(0.0), sample(&blind, m), 1);
+            assert_eq!((e.status, e.n), (Status::NotExercised, Some(0)), "{m:?}");
+            assert_eq!(
+                e.message,
+                format!("nothing to judge: no fused cells to measure {} on", m.name())
+            );
+        }
+        let e = evaluate(
+            (Metric::Accuracy, &ALL),
+            Bound::AtLeast(0.5),
+            sample(&blind, Metric::Accuracy),
+            1,
+        );
+        assert_eq!((e.status, e.value, e.n), (Status::Fail, Some(0.0), Some(400)));
+        // Half observed: the shares are over the observed half.
+        let half = FieldMetrics {
+            correct: 40,
+            unobserved: 50,
+            ..metrics(4)
+        };
+        let e = evaluate(
+            (Metric::ConfidentErrorRate, &ALL),
+            Bound::AtMost(0.1),
+            sample(&half, Metric::ConfidentErrorRate),
+            1,
+        );
+        assert_eq!((e.value, e.n), (Some(4.0 / 50.0), Some(50)));
     }
 
     #[test]
