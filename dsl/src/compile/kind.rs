@@ -244,6 +244,24 @@ impl Unused<'_> {
                             .into()
                     });
                 }
+                if world.crosswalks.is_empty() {
+                    let why = || {
+                        "no conflict can be predicted: no vehicle but the ego can occur, and no crosswalk (where \
+                         pedestrians are predicted) is declared or imported"
+                            .to_string()
+                    };
+                    self.check(root.key("semantic").key("risk_for"), why);
+                    self.check(root.key("semantic").key("caution"), why);
+                    // The horizon also makes a pedestrian heading for an
+                    // interaction area relevant.
+                    if world.interaction_areas.is_empty() {
+                        self.check(root.key("semantic").key("horizon"), || {
+                            "no conflict can be predicted nor area approached: no vehicle but the ego can occur, \
+                             and no crosswalk or interaction area is declared or imported"
+                                .into()
+                        });
+                    }
+                }
             }
         }
         if world.semantic.is_some() || world.perception.as_ref().is_some_and(|p| p.messages.is_some()) {
