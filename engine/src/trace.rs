@@ -70,9 +70,10 @@ pub struct CooperatorStep<'a> {
 /// What a perception world measured at one step.
 #[derive(Debug, Clone, Copy)]
 pub struct Measured<'a> {
-    /// Counted cells the ego observed.
+    /// Counted cells a sensor of the ego observed.
     pub ego_observed: u64,
-    /// Counted cells any cooperating agent observed: the cells fused.
+    /// Counted cells a sensor of any cooperating agent observed (the cells
+    /// fused, less those only a self-reported footprint covers).
     pub joint_observed: u64,
     /// One entry per fusion job, in job order.
     pub fused: &'a [FusedStep<'a>],

@@ -85,6 +85,30 @@ fn a_run_with_every_requirement_accepted_not_exercised_does_not_pass() {
     );
 }
 
+/// A cooperating bus whose one sensor reaches 0.2 m, inside its own body,
+/// adds no field of view: the ego's disc of 3 m is 44 cells, 440 cell-steps
+/// over the run, and the bus's reported footprint is no cell a sensor
+/// observed. fov_gain = 440 / 440 − 1 = 0, a FAIL of "at least 0.5".
+#[test]
+fn fov_gain_counts_no_self_reported_body() {
+    let tmp = temp_dir();
+    let out = tmp.path().join("evidence");
+    sightline([
+        "run",
+        "tests/fixtures/failing/fov-gain-self-report.yaml",
+        "--out",
+        arg(&out),
+    ])
+    .assert_exit(1);
+    let results = read_json(&out.join("results.json"));
+    assert_eq!(verdict(&results, "FOV-01"), ("fail".to_string(), Some(0.0), Some(440)));
+    let counts = &results["sweep"][0]["counts"];
+    assert_eq!(
+        (&counts["ego_observed"], &counts["joint_observed"]),
+        (&440.into(), &440.into())
+    );
+}
+
 /// A field no sensor observes: its errors are over no fused cell.
 #[test]
 fn a_field_no_sensor_observes_judges_no_error() {

@@ -46,8 +46,9 @@ pub enum Metric {
     TotalConflictCells,
     /// Cells fused with the distance-weighted rule (evidential methods only).
     WeightedCells,
-    /// World: Σ cells observed by any cooperating agent / Σ cells observed by the
-    /// ego, minus 1, over the run (seed 000 reports +260 %, that is 2.6).
+    /// World: Σ cells a sensor of any cooperating agent observed / Σ cells a
+    /// sensor of the ego observed, minus 1, over the run (seed 000 reports
+    /// +260 %, that is 2.6). A self-reported footprint is not observed.
     FovGain,
     /// World: share of the truly occupied cells the fused grid decides Occupy
     /// where a sensor found them occupied, over the run, the cooperating

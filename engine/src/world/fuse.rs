@@ -104,15 +104,21 @@ impl CellFusion<'_> {
 const CHUNK: usize = 4096;
 
 /// The counted cells the observations that reached the ego cover at one step:
-/// the cells fused.
+/// the cells fused, and of those the ones a sensor observed (a cooperating
+/// agent's self-reported footprint, [`Observed::Own`], is covered without
+/// being observed).
 #[derive(Debug, Clone)]
 pub(super) struct Coverage {
     /// Per cell, whether it is covered.
     covered: Vec<bool>,
+    /// Per covered cell, whether a sensor observed it.
+    sensed: Vec<bool>,
     /// The covered cells, in the order first touched.
     cells: Vec<usize>,
-    /// How many counted cells the ego's own observation covers.
+    /// How many counted cells a sensor of the ego observed.
     ego: u64,
+    /// How many counted cells a sensor of any cooperating agent observed.
+    joint: u64,
 }
 
 impl Coverage {
@@ -120,8 +126,10 @@ impl Coverage {
     pub(super) fn new(cells: usize) -> Self {
         Self {
             covered: vec![false; cells],
+            sensed: vec![false; cells],
             cells: Vec::new(),
             ego: 0,
+            joint: 0,
         }
     }
 
@@ -136,8 +144,10 @@ impl Coverage {
     ) {
         for &cell in &self.cells {
             self.covered[cell] = false;
+            self.sensed[cell] = false;
         }
         self.cells.clear();
+        self.joint = 0;
         for (i, observation) in received.iter().enumerate() {
             for &cell in observation.touched() {
                 if !self.covered[cell] && counted(cell) {
@@ -148,11 +158,14 @@ impl Coverage {
                         chunk(index, &self.cells[index * CHUNK..]);
                     }
                 }
+                if self.covered[cell] && !self.sensed[cell] && observation.get(cell) != Observed::Own {
+                    self.sensed[cell] = true;
+                    self.joint += 1;
+                }
             }
-            // The ego's observation comes first and touches each cell once:
-            // every counted cell of it is covered.
+            // The ego's observation comes first.
             if i == 0 {
-                self.ego = self.cells.len() as u64;
+                self.ego = self.joint;
             }
         }
         if !self.cells.len().is_multiple_of(CHUNK) {
@@ -171,9 +184,14 @@ impl Coverage {
         self.covered[cell]
     }
 
-    /// How many counted cells the ego's own observation covers.
+    /// How many counted cells a sensor of the ego observed.
     pub(super) fn ego(&self) -> u64 {
         self.ego
+    }
+
+    /// How many counted cells a sensor of any cooperating agent observed.
+    pub(super) fn joint(&self) -> u64 {
+        self.joint
     }
 }
 

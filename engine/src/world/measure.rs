@@ -95,7 +95,7 @@ impl Measures {
         }
         let coverage = step.fused.coverage;
         let truth = step.truth.cells();
-        let (ego_observed, joint_observed) = (coverage.ego(), coverage.cells().len() as u64);
+        let (ego_observed, joint_observed) = (coverage.ego(), coverage.joint());
         // Occupied cells nobody observed count as missed (and as blind: the ego did
         // not observe them either); so do a cooperating agent's own cells that
         // nobody, not even it, observed (its estimated footprint missed them).

@@ -115,9 +115,10 @@ pub struct WorldMetrics {
     /// Of those, the cell-steps no sensor observed occupied: known only
     /// through self-report.
     pub self_report_only: u64,
-    /// Cell-steps observed by the ego.
+    /// Cell-steps a sensor of the ego observed.
     pub ego_observed: u64,
-    /// Cell-steps observed by any cooperating agent.
+    /// Cell-steps a sensor of any cooperating agent observed (a self-reported
+    /// footprint is not observed).
     pub joint_observed: u64,
     /// Sensor–target pairs in range and field of view, by visibility, over the run.
     pub sightings: Sightings,

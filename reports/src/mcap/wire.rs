@@ -352,9 +352,10 @@ pub struct SignalsRecord {
 /// out). Ratios are left out where undefined.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct CellSignals {
-    /// Cells the ego observed.
+    /// Cells a sensor of the ego observed.
     pub ego_observed: u64,
-    /// Cells any cooperating agent observed (the cells fused).
+    /// Cells a sensor of any cooperating agent observed (the cells fused,
+    /// less those only a self-reported footprint covers).
     pub joint_observed: u64,
     /// Cells truly occupied by a road user that does not cooperate.
     pub occupied: u64,
