@@ -87,7 +87,8 @@ const REDUCED_SEEDS: u64 = 2;
 /// `time.duration` cut to [`REDUCED_STEPS`] steps (or
 /// [`REDUCED_TRACE_SECONDS`] when it replays traces) and the time of the
 /// report's grid pictures (`perception.snapshot`) dropped, windows of road
-/// users (`between`) ending with it, every sweep axis to its
+/// users (`between`) ending with it, agents that would start after it
+/// starting at once, every sweep axis to its
 /// first value (and the requirements and references that select sweep points
 /// with `where`, and the record section's point, dropped with them),
 /// `semantic.runs` to 1 and checks over seeds to [`REDUCED_SEEDS`]. Imported
@@ -107,6 +108,20 @@ pub fn reduced(path: &str) -> Value {
         };
         end = Some(duration.min(kept));
         tree["time"]["duration"] = Value::from(duration.min(kept));
+    }
+    // An agent starts by the shorter run's last step, or it would never enter.
+    if let (Some(step), Some(end)) = (step, end) {
+        for agent in tree
+            .get_mut("agents")
+            .and_then(Value::as_sequence_mut)
+            .into_iter()
+            .flatten()
+        {
+            let start = agent.get_mut("start").and_then(|s| s.get_mut("time"));
+            if let Some(time) = start.filter(|t| t.as_f64().is_some_and(|t| t > end - step)) {
+                *time = Value::from(0.0);
+            }
+        }
     }
     if let Some(perception) = tree.get_mut("perception").and_then(Value::as_mapping_mut) {
         perception.remove("snapshot");
