@@ -10,7 +10,8 @@ use std::process::Command;
 
 use crate::bundled::{Bundled, every_run, roundabout_run, sumo_grid_run};
 use crate::support::{
-    FAILING, RECORDING, arg, files_under, normalise_execution, read, read_json, root, sightline, temp_dir, tool,
+    FAILING, RECORDING, arg, files_under, normalise_execution, read, read_json, root, short_roundabout, sightline,
+    temp_dir, tool,
 };
 
 /// Names a Python that has the official `mcap` package; `.ci/run` sets it.
@@ -565,9 +566,7 @@ fn replay_refuses_what_is_not_a_recording() {
 #[test]
 fn recording_is_byte_identical_whatever_the_thread_count() {
     let tmp = temp_dir();
-    let roundabout = read(&root().join("scenarios/roundabout-six-agents.yaml"))
-        .replace("duration: 30", "duration: 4")
-        .replace("snapshot: 12", "snapshot: 2")
+    let roundabout = short_roundabout("4").replace("snapshot: 12", "snapshot: 2")
         + "record: { where: { perception.cooperating: 6 }, grid_rate: 10, agent_grids: true }\n";
     let urban = read(&root().join("scenarios/urban-rsu-semantic.yaml"))
         .replace("duration: 120", "duration: 70")

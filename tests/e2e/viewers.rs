@@ -20,7 +20,7 @@ use std::sync::OnceLock;
 
 use crate::bundled::every_run;
 use crate::record::messages;
-use crate::support::{RECORDING, arg, read, root, sightline, temp_dir};
+use crate::support::{RECORDING, arg, read, root, short_roundabout, sightline, temp_dir};
 
 /// Set by `.ci/run` once `npm ci` has installed `ci/viewers/`: the check must run.
 const CHECKS_VAR: &str = "SIGHTLINE_VIEWER_CHECKS";
@@ -88,12 +88,7 @@ fn dump(recording: &[u8], out: &Path) {
 fn extra_recordings() -> &'static [(&'static str, Vec<u8>)] {
     static RECORDINGS: OnceLock<Vec<(&'static str, Vec<u8>)>> = OnceLock::new();
     RECORDINGS.get_or_init(|| {
-        let roundabout = read(&root().join("scenarios/roundabout-six-agents.yaml"))
-            .replace(
-                "duration: 30, step: 0.1",
-                "duration: 3, step: 0.1, start: 2026-03-01T09:00:00+01:00",
-            )
-            .replace("snapshot: 12", "snapshot: 2")
+        let roundabout = short_roundabout("3, start: 2026-03-01T09:00:00+01:00").replace("snapshot: 12", "snapshot: 2")
             + "record: { where: { perception.cooperating: 6 }, agent_grids: true }\n";
         let urban = read(&root().join("scenarios/urban-rsu-semantic.yaml"))
             .replace("duration: 120", "duration: 80")
@@ -131,9 +126,7 @@ struct EveryPoint {
 fn every_point() -> &'static EveryPoint {
     static RUN: OnceLock<EveryPoint> = OnceLock::new();
     RUN.get_or_init(|| {
-        let text = read(&root().join("scenarios/roundabout-six-agents.yaml"))
-            .replace("duration: 30, step: 0.1", "duration: 3, step: 0.1")
-            .replace("snapshot: 12", "snapshot: 2")
+        let text = short_roundabout("3").replace("snapshot: 12", "snapshot: 2")
             + "record: { points: all, agent_grids: true }\n";
         let tmp = temp_dir();
         let scenario = tmp.path().join("every-point.yaml");

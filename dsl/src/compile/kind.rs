@@ -289,6 +289,19 @@ impl Unused<'_> {
                     self.check(at.key(key), || "a roadside unit stands still".into());
                 }
             }
+            // The engine lets an agent in at the first step within a millionth
+            // of a step of its start time.
+            let last = world.steps.saturating_sub(1) as f64 * world.step;
+            if let Motion::Along { start_time, .. } = agent.motion
+                && start_time > last + 1e-6 * world.step
+            {
+                self.check(at.key("start").key("time"), || {
+                    format!(
+                        "`{id}` would start at {start_time} s, after the run's last step at {} s: it never enters",
+                        (last * 1e9).round() / 1e9
+                    )
+                });
+            }
             if matches!(agent.kind, AgentKind::Pedestrian | AgentKind::Rsu) {
                 self.check(at.key("lane"), || "only vehicles keep to a lane of a road".into());
             }
@@ -452,6 +465,17 @@ impl Unused<'_> {
                 }
             }
             PathLossModel::Tr36885Urban => {}
+        }
+        let urban = matches!(
+            world.v2x.channel.model,
+            PathLossModel::Tr36885Urban | PathLossModel::Tr37885Urban
+        );
+        if urban && world.occluders.is_empty() {
+            self.check(channel.key("nlos_shadowing_sigma_db"), || {
+                "only a building blocks a link, and there is none (declared or imported): every link is line of \
+                 sight"
+                    .into()
+            });
         }
         if let Some(semantic) = &world.semantic
             && world.perception.is_none()

@@ -228,12 +228,31 @@ fn of_system(ctx: &mut Context<'_>, raw: &RawObjectSelection, metric: Metric, ov
         ("between", raw.between.is_some()),
         ("closer_than", raw.closer_than.is_some()),
     ];
+    let by_detection = matches!(metric, Metric::SutPrecision | Metric::SutGhosts);
     if let Some((key, _)) = unselected.iter().find(|(_, given)| *given) {
+        let keys = if by_detection {
+            "`classes` and `areas`"
+        } else {
+            "`ids`, `classes` and `areas`"
+        };
         ctx.error(
             &path.key(key),
             ErrorKind::Invalid(format!(
                 "`{key}` selects road users by their closest approach to a semantic pipeline's ego; `{name}` \
-                 selects what it is summed over by `ids`, `classes` and `areas` only"
+                 selects what it is summed over by {keys} only"
+            )),
+        );
+        return false;
+    }
+    // Ids keep only the detections that matched one of those road users: no
+    // ghost is ever kept, whatever the system reports.
+    if by_detection && !raw.ids.is_empty() {
+        let outcome = if metric == Metric::SutPrecision { "1" } else { "0" };
+        ctx.error(
+            &path.key("ids"),
+            ErrorKind::Invalid(format!(
+                "`ids` keeps only the detections that matched one of those road users, so `{name}` would be \
+                 {outcome} whatever the system reports; select detections by `classes` or `areas`"
             )),
         );
         return false;

@@ -27,11 +27,6 @@ pub(super) struct Scene<'a> {
     pub(super) imported: Option<&'a Imported>,
     /// Length of the run, seconds.
     pub(super) duration: f64,
-    /// The time of the run's last step, seconds (`None` where `time` is
-    /// invalid): an agent that starts later never enters.
-    pub(super) last_step: Option<f64>,
-    /// The step, seconds.
-    pub(super) step: f64,
 }
 
 /// The declared agents, then the objects of the trace none of them replays; and
@@ -301,21 +296,6 @@ fn motion(ctx: &mut Context<'_>, raw: &RawAgent, path: &Path, scene: &Scene<'_>,
             ErrorKind::OutOfRange {
                 expected: format!("less than the length of its way, {:.1} m", along.length()),
                 found: raw.start.offset.to_string(),
-            },
-        );
-        return None;
-    }
-    // The engine lets an agent in at the first step within a millionth of a
-    // step of its start time.
-    if let Some(last) = scene
-        .last_step
-        .filter(|&last| raw.start.time > last + 1e-6 * scene.step)
-    {
-        ctx.error(
-            &path.key("start").key("time"),
-            ErrorKind::OutOfRange {
-                expected: format!("at most the time of the run's last step, {last} s (it would never enter)"),
-                found: raw.start.time.to_string(),
             },
         );
         return None;

@@ -62,8 +62,6 @@ pub(crate) fn world(
         sensors: &sensors,
         imported,
         duration: time.duration,
-        last_step: steps.map(|n| ((n.saturating_sub(1) as f64 * time.step) * 1e9).round() / 1e9),
-        step: time.step,
     };
     let agents = agents(ctx, &raw.agents, &scene).filter(|(agents, _)| match &v2x {
         Some(v2x) => own_antennas(ctx, v2x, agents),
