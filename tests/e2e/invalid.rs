@@ -194,6 +194,7 @@ invalid_inputs! {
     semantic_prediction_keys_without_a_conflict_to_predict_are_refused => "semantic-prediction-keys-without-conflicts",
     an_agent_starting_after_the_run_is_refused => "agent-starts-after-the-run",
     nlos_shadowing_without_a_building_is_refused => "radio-nlos-sigma-without-buildings",
+    car_following_where_every_vehicle_is_parked_is_refused => "driving-with-parked-vehicles-only",
     vary_value_leaving_a_key_without_effect_is_refused => "vary-leaves-a-key-without-effect",
     // See: issue 15 (hostile input).
     aliases_that_multiply_are_refused_at_a_million_nodes => "alias-bomb",

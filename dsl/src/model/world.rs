@@ -64,11 +64,19 @@ impl World {
     }
 
     /// Whether a vehicle drives by the car-following model (`driving`): a
-    /// declared vehicle on its way, or generated vehicle traffic; not when
-    /// every vehicle replays a trace or stands still.
+    /// declared vehicle on its way at a speed above 0 (its target or its
+    /// initial one), or generated vehicle traffic; not when every vehicle
+    /// replays a trace or stands still.
     pub fn drives_vehicles(&self) -> bool {
-        self.traffic.as_ref().is_some_and(|t| t.vehicles.is_some())
-            || (self.agents.iter()).any(|a| a.kind.is_vehicle() && matches!(a.motion, Motion::Along { .. }))
+        let drives = |a: &Agent| match a.motion {
+            Motion::Along {
+                target_speed,
+                initial_speed,
+                ..
+            } => a.kind.is_vehicle() && (target_speed > 0.0 || initial_speed > 0.0),
+            _ => false,
+        };
+        self.traffic.as_ref().is_some_and(|t| t.vehicles.is_some()) || self.agents.iter().any(drives)
     }
 }
 
