@@ -70,9 +70,11 @@ pub enum Metric {
     /// at the same population, so that cooperation's gain is
     /// `occupied_recall` − `ego_occupied_recall` at one point (0–1).
     EgoOccupiedRecall,
-    /// World: share of the truly occupied cells the fused grid decides Occupy
-    /// that only a cooperating agent's report of its own footprint marks
-    /// occupied, no sensor (0–1).
+    /// World: of the truly occupied cells the fused grid decides Occupy and
+    /// counts detected (a sensor found them occupied, or they are a
+    /// cooperating agent's body, which it reports), the share only that
+    /// self-report marks occupied, no sensor (0–1). Cells decided Occupy on a
+    /// held footprint alone (`footprint_only`) are in neither.
     SelfReportShare,
     /// World: the Brier score of the fused occupancy probabilities, mean
     /// (p − o)² over the fused cell-steps (self-report left out), with p the
