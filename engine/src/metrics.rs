@@ -116,17 +116,10 @@ impl FieldMetrics {
     pub fn sample_size(&self, metric: Metric) -> Option<u64> {
         let observed = self.cells - self.unobserved;
         match metric {
-            Metric::BelowThreshold
-            | Metric::BelowThresholdFraction
-            | Metric::FalseAlarms
-            | Metric::MissedDetections
-            | Metric::ConfidentErrors
-            | Metric::ConfidentErrorRate
-            | Metric::DecidedUnknown
-            | Metric::MeanUncertainty => Some(observed),
             Metric::MeanConflict | Metric::MaxConflict | Metric::TotalConflictCells | Metric::WeightedCells => {
                 self.conflict.as_ref().map(|_| observed)
             }
+            m if m.over_fused_cells() => Some(observed),
             m if m.in_field() => Some(self.cells),
             _ => None,
         }

@@ -463,18 +463,7 @@ impl Metric {
     /// over. An empty population leaves a requirement on it not exercised.
     pub fn population(self) -> &'static str {
         match self {
-            Self::BelowThreshold
-            | Self::BelowThresholdFraction
-            | Self::FalseAlarms
-            | Self::MissedDetections
-            | Self::ConfidentErrors
-            | Self::ConfidentErrorRate
-            | Self::DecidedUnknown
-            | Self::MeanUncertainty
-            | Self::MeanConflict
-            | Self::MaxConflict
-            | Self::TotalConflictCells
-            | Self::WeightedCells => "fused cells",
+            m if m.over_fused_cells() => "fused cells",
             Self::FovGain => "cell-steps the ego observes",
             Self::OccupiedRecall | Self::EgoOccupiedRecall => "occupied cell-steps of non-cooperating road users",
             Self::OccupiedPrecision => "cell-steps decided occupied",
@@ -536,6 +525,27 @@ impl Metric {
             | Self::BaselineObjectAnticipationP95 => 59,
             _ => 1,
         }
+    }
+
+    /// Whether a field measures it over the fused (observed) cells only: a
+    /// decision's errors, which an unobserved cell, never decided, cannot
+    /// make, and the fused masses' statistics.
+    pub fn over_fused_cells(self) -> bool {
+        matches!(
+            self,
+            Self::BelowThreshold
+                | Self::BelowThresholdFraction
+                | Self::FalseAlarms
+                | Self::MissedDetections
+                | Self::ConfidentErrors
+                | Self::ConfidentErrorRate
+                | Self::DecidedUnknown
+                | Self::MeanUncertainty
+                | Self::MeanConflict
+                | Self::MaxConflict
+                | Self::TotalConflictCells
+                | Self::WeightedCells
+        )
     }
 
     /// Whether the metric exists only for evidential (Dempster–Shafer) methods.
